@@ -1,0 +1,38 @@
+# Thin wrapper: deps + build + run + test. The real build is CMake (CMakeLists.txt).
+BUILD      ?= build
+BUILD_TYPE ?= RelWithDebInfo
+JOBS       ?= 2
+CONFIG     ?= config/server.pbtxt
+SANITIZE   ?= OFF
+
+.PHONY: all deps build run test test-cpp test-py bench clean
+
+all: build
+
+# Idempotent: checks what is installed and installs only what is missing.
+deps:
+	@bash scripts/install_deps.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCONTACTSIM_SANITIZE=$(SANITIZE)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j$(JOBS)
+
+run: build
+	$(BUILD)/bin/contactsim-server --config $(CONFIG)
+
+test: build
+	@$(MAKE) --no-print-directory test-cpp test-py
+
+test-cpp:
+	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+
+test-py:
+	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
+
+bench: build
+	$(BUILD)/bin/contactsim-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+
+clean:
+	rm -rf $(BUILD)

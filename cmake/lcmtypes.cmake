@@ -1,0 +1,24 @@
+# Generates C++ and Python code from lcmtypes/*.lcm with lcm-gen at build time.
+# C++ headers land in ${LCMTYPES_CPP_DIR}/contactsim/*.hpp (target
+# contactsim_lcmtypes), Python modules in ${LCMTYPES_PY_DIR}/contactsim/*.py,
+# which the Python client adds to its package path.
+file(GLOB LCM_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
+set(LCMTYPES_CPP_DIR ${CMAKE_BINARY_DIR}/lcmtypes/cpp)
+set(LCMTYPES_PY_DIR ${CMAKE_BINARY_DIR}/lcmtypes/python)
+set(LCM_OUTPUTS)
+foreach(f ${LCM_FILES})
+  get_filename_component(name ${f} NAME_WE)
+  list(APPEND LCM_OUTPUTS ${LCMTYPES_CPP_DIR}/contactsim/${name}.hpp
+                          ${LCMTYPES_PY_DIR}/contactsim/${name}.py)
+endforeach()
+add_custom_command(
+  OUTPUT ${LCM_OUTPUTS}
+  COMMAND ${CMAKE_COMMAND} -E make_directory ${LCMTYPES_CPP_DIR} ${LCMTYPES_PY_DIR}
+  COMMAND ${LCM_GEN} --cpp --cpp-hpath ${LCMTYPES_CPP_DIR} --python --ppath ${LCMTYPES_PY_DIR} ${LCM_FILES}
+  DEPENDS ${LCM_FILES}
+  COMMENT "lcm-gen: C++ and Python code for lcmtypes/*.lcm")
+add_custom_target(contactsim_lcmtypes_gen ALL DEPENDS ${LCM_OUTPUTS})
+add_library(contactsim_lcmtypes INTERFACE)
+add_dependencies(contactsim_lcmtypes contactsim_lcmtypes_gen)
+target_include_directories(contactsim_lcmtypes INTERFACE ${LCMTYPES_CPP_DIR})
+target_link_libraries(contactsim_lcmtypes INTERFACE PkgConfig::LCM)

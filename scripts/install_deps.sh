@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Installs every dependency of contactsim on Debian bookworm, idempotently:
+# the Debian packages the C++ build needs and a Python virtual environment
+# (.venv) with the lcm bindings, numpy, pytest and the contactsim client
+# installed editable. Works as root and through sudo.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+APT_PACKAGES=(
+  build-essential cmake pkg-config
+  liblcm-dev liblcm-bin libglib2.0-dev      # LCM (lcm-gen, lcm-logger); lcm.pc needs glib
+  libeigen3-dev                              # math
+  libprotobuf-dev protobuf-compiler          # config, scene and snapshot files
+  libspdlog-dev libfmt-dev                   # server logs
+  libgtest-dev libgmock-dev                  # unit tests
+  libbenchmark-dev                           # contactsim-bench micro benchmarks
+  libcli11-dev                               # command-line parsing
+  python3 python3-venv python3-dev           # Python client
+)
+
+if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
+
+missing=()
+for p in "${APT_PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "deps: installing Debian packages: ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Large STATE messages (1,000 bodies is ~120 kB) are fragmented by LCM; the
+# receiver needs a socket buffer larger than the kernel default to keep them.
+# Raise the cap when we may; the README says how to do it by hand otherwise.
+want=8388608
+have=$(cat /proc/sys/net/core/rmem_max 2>/dev/null || echo 0)
+if [ "$have" -lt "$want" ]; then
+  $SUDO sysctl -q -w net.core.rmem_max=$want 2>/dev/null \
+    || echo "deps: could not raise net.core.rmem_max to $want (see README, troubleshooting)"
+fi
+
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=$(command -v python3)
+if [ ! -x .venv/bin/python ]; then
+  echo "deps: creating .venv"
+  "$PY" -m venv .venv
+fi
+if ! .venv/bin/python -c "import lcm, numpy, pytest" 2>/dev/null \
+   || ! .venv/bin/pip show -q contactsim >/dev/null 2>&1; then
+  echo "deps: installing Python packages into .venv"
+  .venv/bin/pip install -q --upgrade pip
+  .venv/bin/pip install -q -r clients/python/requirements.txt
+  .venv/bin/pip install -q -e clients/python
+fi
+touch .venv/.deps-stamp
+echo "deps: ok"

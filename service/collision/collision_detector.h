@@ -1,0 +1,41 @@
+// The collision pipeline of one step: bounding boxes, broadphase, narrowphase.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "service/collision/broadphase.h"
+#include "service/collision/contact.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+struct CollisionStats {
+  int candidate_pairs = 0;  // from the broadphase
+  int contacts = 0;
+};
+
+class CollisionDetector {
+ public:
+  CollisionDetector();  // sweep and prune
+  Status SetBroadphase(const std::string& name);
+  const char* broadphase_name() const { return broadphase_->Name(); }
+
+  // Contacts of the world at its current poses with depth > -margin (m).
+  // Boxes are swept by v * sweep_dt so that pairs about to meet are found.
+  void Detect(const World& world, double margin, double sweep_dt, ContactSet* contacts);
+  // The candidate pairs of the last Detect (body indices).
+  const std::vector<BodyPair>& pairs() const { return pairs_; }
+  const CollisionStats& stats() const { return stats_; }
+  void Reset() { broadphase_->Reset(); }
+
+ private:
+  std::unique_ptr<Broadphase> broadphase_;
+  std::vector<Aabb> boxes_;
+  std::vector<bool> movable_;
+  std::vector<BodyPair> pairs_;
+  CollisionStats stats_;
+};
+
+}  // namespace contactsim

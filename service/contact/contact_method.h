@@ -1,0 +1,54 @@
+// The contact method interface. A method owns the whole step
+// (ARCHITECTURE.md): the methods differ in what they need (collision time,
+// forces before integration, a global solve), so each one calls the
+// collision detector and the integrator itself.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "service/collision/collision_detector.h"
+#include "service/collision/contact.h"
+#include "service/physics/status.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+// Parameters arrive as text ("0.5", "pgs") and are validated by the method.
+using ParamMap = std::map<std::string, std::string>;
+
+// What Contact::normal_value and tangent_value hold after a step.
+enum class ContactValueKind { kImpulse, kForce };
+
+struct StepStats {
+  int contacts = 0;
+  int iterations = 0;          // solver iterations (summed over sub-steps)
+  int substeps = 0;            // collision-time sub-steps taken
+  double residual = 0.0;       // method specific, documented by the method
+  double max_penetration = 0.0;// m, deepest contact at the end of the step
+};
+
+class ContactMethod {
+ public:
+  virtual ~ContactMethod() = default;
+  virtual const char* Name() const = 0;
+  virtual ContactValueKind ValueKind() const = 0;
+  // Validates every entry before changing any; on error nothing changes and
+  // the message names the parameter and the value.
+  virtual Status SetParams(const ParamMap& params) = 0;
+  virtual ParamMap Params() const = 0;
+  // Advances the world by world.dt and leaves the step's contacts in
+  // `contacts` with their values.
+  virtual StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) = 0;
+  // Drops warm-start and other caches (on a switch, reset or scene load).
+  virtual void ResetCaches() {}
+};
+
+// Known method names, in a stable order.
+std::vector<std::string> ContactMethodNames();
+// Creates a method by name with its default parameters.
+Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out);
+
+}  // namespace contactsim

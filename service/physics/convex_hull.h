@@ -1,0 +1,34 @@
+// A convex polyhedron with its topology, as the narrowphase needs it:
+// vertices, faces (outward unit normal, plane offset, vertex loop in
+// counter-clockwise order seen from outside) and unique edges.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "service/physics/math.h"
+#include "service/physics/status.h"
+
+namespace contactsim {
+
+struct ConvexHull {
+  struct Face {
+    Vec3 normal;                // unit, outward, body frame
+    double offset = 0.0;        // m, normal . p = offset for p on the face
+    std::vector<int> vertices;  // indices into vertices, counter-clockwise from outside
+  };
+  std::vector<Vec3> vertices;            // m, body frame (centre of mass at the origin)
+  std::vector<Face> faces;
+  std::vector<std::array<int, 2>> edges; // each undirected edge once
+};
+
+// Builds the hull of a point cloud, merging coplanar faces. Fails with a
+// message when there are fewer than four points, a non-finite coordinate,
+// or all points are (nearly) coplanar. `centroid_out`, when given, receives
+// the centre of mass of the solid hull in the input frame; the returned
+// hull's vertices are shifted so that this point is the origin.
+Status BuildConvexHull(const std::vector<Vec3>& points, std::shared_ptr<const ConvexHull>* hull,
+                       Vec3* centroid_out = nullptr);
+
+}  // namespace contactsim

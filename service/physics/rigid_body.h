@@ -1,0 +1,76 @@
+// A rigid body in the classic state form of Witkin and Baraff (SIGGRAPH 1997
+// course notes, "Rigid Body Dynamics"): Y = (x, q, P, L) with
+//   x  position of the centre of mass (world),
+//   q  orientation as a unit quaternion (R = R(q), body to world),
+//   P  linear momentum  m v,
+//   L  angular momentum I w, with I = R I_body R^T,
+// and dY/dt = (v, w x R, F, tau). v, w and I^-1 are derived from the state.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "service/physics/math.h"
+#include "service/physics/shape.h"
+
+namespace contactsim {
+
+using BodyId = int64_t;
+
+struct Material {
+  double restitution = 0.5;  // unitless, [0, 1]
+  double friction = 0.5;     // unitless Coulomb coefficient, >= 0
+};
+
+enum class MotionType {
+  kDynamic,    // moves under forces and contacts
+  kStatic,     // never moves; infinite mass
+  kKinematic,  // moves with its set velocity; infinite mass for contacts
+};
+
+struct RigidBody {
+  BodyId id = 0;
+  std::string name;
+  Shape shape;
+  Material material;
+  MotionType motion = MotionType::kDynamic;
+
+  double mass = 0.0;                          // kg (0 for static and kinematic)
+  double inv_mass = 0.0;                      // 1/kg
+  Mat3 inertia_body = Mat3::Zero();           // kg m^2, body frame
+  Mat3 inv_inertia_body = Mat3::Zero();       // 1/(kg m^2), body frame
+
+  Vec3 x = Vec3::Zero();                      // m, world
+  Quat q = Quat::Identity();                  // body to world
+  Vec3 P = Vec3::Zero();                      // kg m/s, world
+  Vec3 L = Vec3::Zero();                      // kg m^2/s, world
+
+  Vec3 force = Vec3::Zero();                  // N, accumulated for this step
+  Vec3 torque = Vec3::Zero();                 // N m, accumulated for this step
+
+  // kinematic bodies have no momentum; their velocity is kept here
+  Vec3 kinematic_v = Vec3::Zero();
+  Vec3 kinematic_w = Vec3::Zero();
+
+  bool IsDynamic() const { return motion == MotionType::kDynamic; }
+  Mat3 Rotation() const { return q.toRotationMatrix(); }
+  // I^-1 = R I_body^-1 R^T (world frame)
+  Mat3 InvInertiaWorld() const;
+  Mat3 InertiaWorld() const;
+  Vec3 LinearVelocity() const;                // m/s
+  Vec3 AngularVelocity() const;               // rad/s, world
+  // velocity of the material point at p_W: v + w x (p - x)
+  Vec3 PointVelocity(const Vec3& p_W) const;
+  void SetVelocity(const Vec3& v, const Vec3& w);
+  // P += J, L += (p - x) x J; no effect on static and kinematic bodies
+  void ApplyImpulse(const Vec3& J, const Vec3& p_W);
+  void ApplyAngularImpulse(const Vec3& H);
+  double KineticEnergy() const;               // J
+  // Sets mass and inertia from the shape and a density (kg/m^3) or a mass
+  // (kg); dynamic bodies only.
+  void SetMassFromDensity(double density);
+  void SetMass(double mass);
+  void MakeStatic();
+};
+
+}  // namespace contactsim

@@ -1,0 +1,62 @@
+// The world: bodies in ascending id order, gravity, time step and clock, and
+// timed external wrenches. Iteration order is the id order, so the same
+// commands give the same state bit for bit (ARCHITECTURE.md, determinism).
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "service/physics/rigid_body.h"
+#include "service/physics/status.h"
+
+namespace contactsim {
+
+struct TimedWrench {
+  BodyId body = 0;
+  Vec3 force = Vec3::Zero();   // N, world, at the centre of mass
+  Vec3 torque = Vec3::Zero();  // N m, world
+  double remaining = 0.0;      // s; a wrench with 0 acts for one step
+};
+
+class World {
+ public:
+  static constexpr double kDefaultDt = 1.0 / 240.0;      // s
+  static Vec3 DefaultGravity() { return Vec3(0, 0, -9.81); }  // m/s^2
+
+  // Adds a body, assigning it the next id (ids are never reused).
+  BodyId AddBody(RigidBody body);
+  Status RemoveBody(BodyId id);
+  RigidBody* Find(BodyId id);
+  const RigidBody* Find(BodyId id) const;
+  int IndexOf(BodyId id) const;  // -1 when absent
+
+  std::vector<RigidBody>& bodies() { return bodies_; }
+  const std::vector<RigidBody>& bodies() const { return bodies_; }
+
+  void AddWrench(const TimedWrench& wrench) { wrenches_.push_back(wrench); }
+  // Sets each body's force and torque to gravity plus the active wrenches.
+  void AccumulateForces();
+  // Advances the clock by dt, ages the wrenches and drops expired ones.
+  void FinishStep();
+
+  // Empties the world and restarts the clock; gravity and dt to defaults.
+  void Clear();
+
+  Vec3 gravity = DefaultGravity();
+  double dt = kDefaultDt;
+  double time = 0.0;     // s
+  int64_t step = 0;      // steps taken
+  BodyId next_id = 1;
+
+ private:
+  void Reindex();
+  std::vector<RigidBody> bodies_;
+  std::map<BodyId, int> index_;
+  std::vector<TimedWrench> wrenches_;
+};
+
+// 64-bit FNV-1a hash over every body's id and state bits (x, q, P, L) and the
+// clock: equal hashes mean bit-identical worlds.
+uint64_t HashWorldState(const World& world);
+
+}  // namespace contactsim
