@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "service/physics/mass_properties.h"
 #include "service/physics/math.h"
 #include "service/physics/status.h"
 
@@ -30,5 +31,10 @@ struct ConvexHull {
 // hull's vertices are shifted so that this point is the origin.
 Status BuildConvexHull(const std::vector<Vec3>& points, std::shared_ptr<const ConvexHull>* hull,
                        Vec3* centroid_out = nullptr);
+
+// Volume (m^3) and mass properties of the solid hull at uniform density,
+// by the polyhedral mass integrals (Mirtich 1996, divergence theorem).
+double ConvexHullVolume(const ConvexHull& hull);
+MassProperties ConvexHullMassProperties(const ConvexHull& hull, double density);
 
 }  // namespace contactsim
