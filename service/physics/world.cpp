@@ -1,0 +1,122 @@
+#include "service/physics/world.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+namespace contactsim {
+
+BodyId World::AddBody(RigidBody body) {
+  body.id = next_id++;
+  bodies_.push_back(std::move(body));  // ids grow, so the vector stays sorted
+  index_[bodies_.back().id] = static_cast<int>(bodies_.size()) - 1;
+  return bodies_.back().id;
+}
+
+Status World::RemoveBody(BodyId id) {
+  const int i = IndexOf(id);
+  if (i < 0) return Status::NotFound("unknown body id " + std::to_string(id));
+  bodies_.erase(bodies_.begin() + i);
+  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
+                                 [id](const TimedWrench& w) { return w.body == id; }),
+                  wrenches_.end());
+  Reindex();
+  return Status::Ok();
+}
+
+RigidBody* World::Find(BodyId id) {
+  const int i = IndexOf(id);
+  return i < 0 ? nullptr : &bodies_[i];
+}
+
+const RigidBody* World::Find(BodyId id) const {
+  const int i = IndexOf(id);
+  return i < 0 ? nullptr : &bodies_[i];
+}
+
+int World::IndexOf(BodyId id) const {
+  const auto it = index_.find(id);
+  return it == index_.end() ? -1 : it->second;
+}
+
+void World::AccumulateForces() {
+  for (RigidBody& b : bodies_) {
+    b.force = b.IsDynamic() ? Vec3(b.mass * gravity) : Vec3::Zero();
+    b.torque.setZero();
+  }
+  for (const TimedWrench& w : wrenches_) {
+    RigidBody* b = Find(w.body);
+    if (b == nullptr || !b->IsDynamic()) continue;
+    // A wrench ending inside this step acts for its remaining fraction only,
+    // so the impulse delivered is exactly F * duration.
+    const double fraction = w.remaining > 0.0 ? std::min(1.0, w.remaining / dt) : 1.0;
+    b->force += fraction * w.force;
+    b->torque += fraction * w.torque;
+  }
+}
+
+void World::FinishStep() {
+  time += dt;
+  ++step;
+  for (TimedWrench& w : wrenches_) w.remaining -= dt;
+  // A zero-duration wrench acted once; a timed one until its time ran out
+  // (the relative slack absorbs round-off in repeated subtraction).
+  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
+                                 [this](const TimedWrench& w) { return w.remaining <= 1e-9 * dt; }),
+                  wrenches_.end());
+}
+
+void World::Clear() {
+  bodies_.clear();
+  index_.clear();
+  wrenches_.clear();
+  gravity = DefaultGravity();
+  dt = kDefaultDt;
+  time = 0.0;
+  step = 0;
+  next_id = 1;
+}
+
+void World::Reindex() {
+  index_.clear();
+  for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) index_[bodies_[i].id] = i;
+}
+
+namespace {
+
+struct Fnv1a {
+  uint64_t h = 1469598103934665603ull;
+  void Bytes(const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) {
+      h ^= p[i];
+      h *= 1099511628211ull;
+    }
+  }
+  void Double(double d) {
+    if (d == 0.0) d = 0.0;  // -0.0 and +0.0 describe the same state
+    Bytes(&d, sizeof d);
+  }
+  void Vector(const Vec3& v) {
+    for (int i = 0; i < 3; ++i) Double(v[i]);
+  }
+};
+
+}  // namespace
+
+uint64_t HashWorldState(const World& world) {
+  Fnv1a f;
+  f.Double(world.time);
+  f.Bytes(&world.step, sizeof world.step);
+  for (const RigidBody& b : world.bodies()) {
+    f.Bytes(&b.id, sizeof b.id);
+    f.Vector(b.x);
+    f.Double(b.q.w());
+    f.Vector(b.q.vec());
+    f.Vector(b.P);
+    f.Vector(b.L);
+  }
+  return f.h;
+}
+
+}  // namespace contactsim
