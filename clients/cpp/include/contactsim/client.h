@@ -1,0 +1,205 @@
+// contactsim::Client: a C++ client of contactsim-server that speaks only the
+// LCM types of docs/protocol.md (it never includes server code).
+//
+// Every command is published on <prefix>_BODY_CMD or <prefix>_SCENE_CMD with
+// this client's id and a fresh request id, and the call blocks until the
+// matching reply_t arrives on <prefix>_REPLY or the reply timeout passes.
+// Nothing throws across this API: failures come back as a CommandResult code.
+//
+// A background thread receives STATE, CONTACTS, STATUS and REPLY messages.
+// Callbacks run on that thread, so they must return quickly and must not
+// call the blocking commands of the same Client (whose replies that very
+// thread would have to deliver).
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <contactsim/body_cmd_t.hpp>
+#include <contactsim/contacts_t.hpp>
+#include <contactsim/reply_t.hpp>
+#include <contactsim/result.h>
+#include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/state_t.hpp>
+#include <contactsim/status_t.hpp>
+
+namespace lcm {
+class LCM;
+class ReceiveBuffer;
+}  // namespace lcm
+
+namespace contactsim {
+
+// The project default (docs/protocol.md): host-local multicast with an 8 MiB
+// receive buffer so that large, fragmented STATE messages survive.
+inline constexpr char kDefaultLcmUrl[] =
+    "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608";
+
+// "" -> $LCM_DEFAULT_URL when set, else kDefaultLcmUrl; anything else as is.
+std::string ResolveLcmUrl(const std::string& url);
+
+struct ClientOptions {
+  std::string url;                    // "" -> ResolveLcmUrl("")
+  std::string prefix = "CONTACTSIM";  // channel prefix <P>
+  std::string client_id;              // "" -> "cpp-<pid>" (unique per Client)
+  std::chrono::milliseconds reply_timeout{2000};
+};
+
+enum class Mode : int8_t { kRealtime = 1, kFreeRun = 2 };
+
+// Initial state and material of a new body. Units are SI, world frame.
+struct BodyOptions {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();    // m, centre of mass
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z)
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // m/s
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s
+  std::optional<double> mass;      // kg; give at most one of mass, density
+  std::optional<double> density;   // kg/m^3; neither: the server's 1000
+  std::optional<double> restitution;  // [0, 1]; unset: the server default
+  std::optional<double> friction;     // >= 0; unset: the server default
+  bool fixed = false;                 // static body
+  std::string name;                   // label in logs and snapshots
+};
+
+class Client {
+ public:
+  using StateCallback = std::function<void(const state_t&)>;
+  using ContactsCallback = std::function<void(const contacts_t&)>;
+  using StatusCallback = std::function<void(const status_t&)>;
+  using ReplyCallback = std::function<void(const reply_t&)>;
+  using Clock = std::chrono::steady_clock;
+
+  explicit Client(ClientOptions options = {});
+  ~Client();
+  Client(const Client&) = delete;
+  Client& operator=(const Client&) = delete;
+
+  // False when LCM could not be opened (bad URL, no multicast route); every
+  // command then returns ReplyCode::kTransport.
+  bool good() const;
+  const std::string& client_id() const { return options_.client_id; }
+  const std::string& url() const { return options_.url; }
+  const std::string& prefix() const { return options_.prefix; }
+  std::string Channel(const std::string& suffix) const;  // "<P>_<suffix>"
+
+  // --- scene commands ---
+  CommandResult Reset();
+  CommandResult LoadScene(const std::string& path);  // on the server's host
+  CommandResult SetGravity(const Eigen::Vector3d& gravity);  // m/s^2
+  CommandResult SetTimestep(double dt);                      // s
+  CommandResult SetContactMethod(
+      const std::string& name,
+      const std::map<std::string, std::string>& params = {});
+  CommandResult Pause();
+  CommandResult Resume();
+  // Takes n steps and leaves the run paused. Returns after the reply AND once
+  // a STATE with step >= reply.step has arrived (so LatestState() shows it).
+  CommandResult Step(int32_t n = 1);
+  CommandResult SetMode(Mode mode, double real_time_factor = 1.0);
+
+  // --- body commands; Add* return the new id ---
+  Result<int64_t> AddSphere(double radius, const BodyOptions& options = {});
+  Result<int64_t> AddBox(const Eigen::Vector3d& half_extents,
+                         const BodyOptions& options = {});
+  Result<int64_t> AddCapsule(double radius, double half_length,
+                             const BodyOptions& options = {});
+  Result<int64_t> AddConvex(const std::vector<Eigen::Vector3d>& points,
+                            const BodyOptions& options = {});
+  // The plane {p : normal . p = offset}; always static. Only the material
+  // and name of `options` are used.
+  Result<int64_t> AddPlane(const Eigen::Vector3d& normal, double offset = 0.0,
+                           const BodyOptions& options = {});
+  CommandResult RemoveBody(int64_t id);
+  CommandResult SetPose(int64_t id, const Eigen::Vector3d& position,
+                        const std::array<double, 4>& orientation = {1, 0, 0, 0});
+  CommandResult SetVelocity(int64_t id, const Eigen::Vector3d& velocity,
+                            const Eigen::Vector3d& angular_velocity =
+                                Eigen::Vector3d::Zero());
+  // Force (N) and torque (N m) at the centre of mass for `duration` seconds
+  // of simulated time (0: the next step only).
+  CommandResult ApplyForce(int64_t id, const Eigen::Vector3d& force,
+                           const Eigen::Vector3d& torque = Eigen::Vector3d::Zero(),
+                           double duration = 0.0);
+  // Impulse (N s) at `point` (world frame), or at the centre of mass.
+  CommandResult ApplyImpulse(int64_t id, const Eigen::Vector3d& impulse,
+                             const std::optional<Eigen::Vector3d>& point = {});
+  CommandResult SetMass(int64_t id, double mass);        // kg
+  CommandResult SetDensity(int64_t id, double density);  // kg/m^3
+  CommandResult SetMaterial(int64_t id, std::optional<double> restitution,
+                            std::optional<double> friction);
+
+  // Raw commands: client_id and request_id are filled in here. For fields
+  // the typed methods do not cover, and for tests of the server's checks.
+  CommandResult Send(body_cmd_t command);
+  CommandResult Send(scene_cmd_t command);
+
+  // --- subscriptions ---
+  // Each returns an id for RemoveCallback. Callbacks run on the LCM thread.
+  int OnState(StateCallback callback);
+  int OnContacts(ContactsCallback callback);
+  int OnStatus(StatusCallback callback);
+  int OnReply(ReplyCallback callback);  // every reply, any client's
+  void RemoveCallback(int id);
+
+  std::optional<state_t> LatestState() const;
+  std::optional<contacts_t> LatestContacts() const;
+  std::optional<status_t> LatestStatus() const;
+
+  // True once a STATUS has arrived (the server publishes one at start and
+  // then at status_rate_hz), false after `timeout`.
+  bool WaitForServer(std::chrono::milliseconds timeout);
+  // The first state (the latest one, or one arriving later) for which
+  // `predicate` holds; nullopt after `timeout`.
+  std::optional<state_t> WaitForState(
+      const std::function<bool(const state_t&)>& predicate,
+      std::chrono::milliseconds timeout);
+
+ private:
+  struct Callbacks;
+
+  CommandResult Publish(const std::string& channel, int64_t request_id,
+                        const void* data, int size);
+  CommandResult AddBody(body_cmd_t command, const BodyOptions& options);
+  body_cmd_t NewBodyCommand(int8_t op, int64_t body_id) const;
+  scene_cmd_t NewSceneCommand(int8_t op) const;
+  int64_t NextRequestId();
+
+  void Run();
+  void HandleReply(const lcm::ReceiveBuffer*, const std::string&,
+                   const reply_t* reply);
+  void HandleState(const lcm::ReceiveBuffer*, const std::string&,
+                   const state_t* state);
+  void HandleContacts(const lcm::ReceiveBuffer*, const std::string&,
+                      const contacts_t* contacts);
+  void HandleStatus(const lcm::ReceiveBuffer*, const std::string&,
+                    const status_t* status);
+
+  ClientOptions options_;
+  std::unique_ptr<lcm::LCM> lcm_;
+
+  mutable std::mutex mutex_;  // guards everything below
+  std::condition_variable changed_;  // a reply, state or status arrived
+  int64_t last_request_id_ = 0;
+  std::map<int64_t, std::optional<reply_t>> pending_;  // request id -> reply
+  std::optional<state_t> latest_state_;
+  uint64_t states_received_ = 0;  // lets Step ignore states older than its command
+  std::optional<contacts_t> latest_contacts_;
+  std::optional<status_t> latest_status_;
+  std::unique_ptr<Callbacks> callbacks_;
+  std::atomic<bool> running_{true};
+  std::thread thread_;  // last: starts after every member is ready
+};
+
+}  // namespace contactsim

@@ -1,0 +1,313 @@
+// Transport half of contactsim::Client: the LCM receive thread, reply
+// matching and the latest STATE / CONTACTS / STATUS. The command builders
+// live in client_commands.cpp.
+#include "contactsim/client.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <utility>
+
+#include <lcm/lcm-cpp.hpp>
+
+namespace contactsim {
+namespace {
+
+// How long one handleTimeout call may block; bounds how late the destructor
+// notices that it should stop.
+constexpr int kPollMillis = 50;
+
+// Two Clients in one process must not share a client id: both would see the
+// other's replies with the same request ids. Only the first gets the plain
+// "cpp-<pid>" name.
+std::string DefaultClientId() {
+  static std::atomic<int> instances{0};
+  const int n = instances.fetch_add(1);
+  std::string id = "cpp-" + std::to_string(::getpid());
+  return n == 0 ? id : id + "-" + std::to_string(n);
+}
+
+template <typename T>
+std::vector<std::function<void(const T&)>> Snapshot(
+    std::mutex& mutex,
+    const std::map<int, std::function<void(const T&)>>& callbacks) {
+  std::lock_guard<std::mutex> lock(mutex);
+  std::vector<std::function<void(const T&)>> out;
+  out.reserve(callbacks.size());
+  for (const auto& [id, callback] : callbacks) out.push_back(callback);
+  return out;
+}
+
+}  // namespace
+
+struct Client::Callbacks {
+  int next_id = 1;
+  std::map<int, StateCallback> state;
+  std::map<int, ContactsCallback> contacts;
+  std::map<int, StatusCallback> status;
+  std::map<int, ReplyCallback> reply;
+};
+
+std::string ResolveLcmUrl(const std::string& url) {
+  if (!url.empty()) return url;
+  // LCM itself would fall back to a URL without recv_buf_size, so resolve
+  // the project default here.
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  if (env != nullptr && env[0] != '\0') return env;
+  return kDefaultLcmUrl;
+}
+
+Client::Client(ClientOptions options)
+    : options_(std::move(options)), callbacks_(std::make_unique<Callbacks>()) {
+  options_.url = ResolveLcmUrl(options_.url);
+  if (options_.client_id.empty()) options_.client_id = DefaultClientId();
+  lcm_ = std::make_unique<lcm::LCM>(options_.url);
+  if (!lcm_->good()) return;
+  lcm_->subscribe(Channel("REPLY"), &Client::HandleReply, this);
+  lcm_->subscribe(Channel("STATE"), &Client::HandleState, this);
+  lcm_->subscribe(Channel("CONTACTS"), &Client::HandleContacts, this);
+  lcm_->subscribe(Channel("STATUS"), &Client::HandleStatus, this);
+  thread_ = std::thread(&Client::Run, this);
+}
+
+Client::~Client() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+}
+
+bool Client::good() const { return lcm_ && lcm_->good(); }
+
+std::string Client::Channel(const std::string& suffix) const {
+  return options_.prefix + "_" + suffix;
+}
+
+void Client::Run() {
+  while (running_) lcm_->handleTimeout(kPollMillis);
+}
+
+int64_t Client::NextRequestId() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return ++last_request_id_;
+}
+
+CommandResult Client::Publish(const std::string& channel, int64_t request_id,
+                              const void* data, int size) {
+  CommandResult result;
+  result.request_id = request_id;
+  if (!good()) {
+    result.code = ReplyCode::kTransport;
+    result.message = "LCM is not usable with url " + options_.url;
+    return result;
+  }
+  std::unique_lock<std::mutex> lock(mutex_);
+  // Registered before publishing: the reply may arrive before publish returns.
+  pending_[request_id] = std::nullopt;
+  lock.unlock();
+  if (lcm_->publish(channel, data, size) != 0) {
+    lock.lock();
+    pending_.erase(request_id);
+    result.code = ReplyCode::kTransport;
+    result.message = "LCM publish on " + channel + " failed";
+    return result;
+  }
+  lock.lock();
+  const bool replied = changed_.wait_for(lock, options_.reply_timeout, [&] {
+    return pending_[request_id].has_value();
+  });
+  std::optional<reply_t> reply = std::move(pending_[request_id]);
+  pending_.erase(request_id);
+  if (!replied) {
+    result.code = ReplyCode::kTimeout;
+    result.message = "no reply to request " + std::to_string(request_id) +
+                     " on " + Channel("REPLY") + " within " +
+                     std::to_string(options_.reply_timeout.count()) + " ms";
+    return result;
+  }
+  result.code = static_cast<ReplyCode>(reply->code);
+  result.message = std::move(reply->message);
+  result.step = reply->step;
+  result.time = reply->time;
+  result.ids = std::move(reply->ids);
+  return result;
+}
+
+CommandResult Client::Send(body_cmd_t command) {
+  command.client_id = options_.client_id;
+  command.request_id = NextRequestId();
+  // lcm-gen sizes arrays by their count fields, so keep them consistent.
+  command.num_points = static_cast<int32_t>(command.points.size());
+  for (std::vector<double>& point : command.points) point.resize(3);
+  std::vector<uint8_t> buffer(command.getEncodedSize());
+  command.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
+  return Publish(Channel("BODY_CMD"), command.request_id, buffer.data(),
+                 static_cast<int>(buffer.size()));
+}
+
+CommandResult Client::Send(scene_cmd_t command) {
+  command.client_id = options_.client_id;
+  command.request_id = NextRequestId();
+  command.num_params = static_cast<int32_t>(command.param_names.size());
+  command.param_values.resize(command.param_names.size());
+  std::vector<uint8_t> buffer(command.getEncodedSize());
+  command.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
+  return Publish(Channel("SCENE_CMD"), command.request_id, buffer.data(),
+                 static_cast<int>(buffer.size()));
+}
+
+CommandResult Client::Step(int32_t n) {
+  uint64_t states_before = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    states_before = states_received_;
+  }
+  const Clock::time_point deadline = Clock::now() + options_.reply_timeout;
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::STEP);
+  command.steps = n;
+  CommandResult result = Send(command);
+  if (!result.ok()) return result;
+  // The server publishes the last step's STATE before the reply, but the two
+  // may be received in either order; a state from before the command (e.g.
+  // from before a RESET, with a larger step) must not count.
+  std::unique_lock<std::mutex> lock(mutex_);
+  const bool arrived = changed_.wait_until(lock, deadline, [&] {
+    return states_received_ > states_before && latest_state_ &&
+           latest_state_->step >= result.step;
+  });
+  if (!arrived) {
+    result.code = ReplyCode::kTimeout;
+    result.message = "STEP replied (step " + std::to_string(result.step) +
+                     ") but no STATE of that step arrived on " +
+                     Channel("STATE");
+  }
+  return result;
+}
+
+void Client::HandleReply(const lcm::ReceiveBuffer*, const std::string&,
+                         const reply_t* reply) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (reply->client_id == options_.client_id) {
+      auto it = pending_.find(reply->request_id);
+      if (it != pending_.end() && !it->second) {
+        it->second = *reply;
+        changed_.notify_all();
+      }
+    }
+  }
+  for (const auto& callback : Snapshot(mutex_, callbacks_->reply)) {
+    callback(*reply);
+  }
+}
+
+void Client::HandleState(const lcm::ReceiveBuffer*, const std::string&,
+                         const state_t* state) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_state_ = *state;
+    ++states_received_;
+    changed_.notify_all();
+  }
+  for (const auto& callback : Snapshot(mutex_, callbacks_->state)) {
+    callback(*state);
+  }
+}
+
+void Client::HandleContacts(const lcm::ReceiveBuffer*, const std::string&,
+                            const contacts_t* contacts) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_contacts_ = *contacts;
+  }
+  for (const auto& callback : Snapshot(mutex_, callbacks_->contacts)) {
+    callback(*contacts);
+  }
+}
+
+void Client::HandleStatus(const lcm::ReceiveBuffer*, const std::string&,
+                          const status_t* status) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_status_ = *status;
+    changed_.notify_all();
+  }
+  for (const auto& callback : Snapshot(mutex_, callbacks_->status)) {
+    callback(*status);
+  }
+}
+
+int Client::OnState(StateCallback callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->state[callbacks_->next_id] = std::move(callback);
+  return callbacks_->next_id++;
+}
+
+int Client::OnContacts(ContactsCallback callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->contacts[callbacks_->next_id] = std::move(callback);
+  return callbacks_->next_id++;
+}
+
+int Client::OnStatus(StatusCallback callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->status[callbacks_->next_id] = std::move(callback);
+  return callbacks_->next_id++;
+}
+
+int Client::OnReply(ReplyCallback callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->reply[callbacks_->next_id] = std::move(callback);
+  return callbacks_->next_id++;
+}
+
+void Client::RemoveCallback(int id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->state.erase(id);
+  callbacks_->contacts.erase(id);
+  callbacks_->status.erase(id);
+  callbacks_->reply.erase(id);
+}
+
+std::optional<state_t> Client::LatestState() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_state_;
+}
+
+std::optional<contacts_t> Client::LatestContacts() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_contacts_;
+}
+
+std::optional<status_t> Client::LatestStatus() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_status_;
+}
+
+bool Client::WaitForServer(std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return changed_.wait_for(lock, timeout,
+                           [&] { return latest_status_.has_value(); });
+}
+
+std::optional<state_t> Client::WaitForState(
+    const std::function<bool(const state_t&)>& predicate,
+    std::chrono::milliseconds timeout) {
+  const Clock::time_point deadline = Clock::now() + timeout;
+  uint64_t seen = 0;  // states_received_ of the last state checked
+  while (true) {
+    std::optional<state_t> state;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (!changed_.wait_until(lock, deadline, [&] {
+            return latest_state_ && states_received_ != seen;
+          })) {
+        return std::nullopt;
+      }
+      seen = states_received_;
+      state = latest_state_;
+    }
+    // Outside the lock, so the predicate may call LatestStatus() and friends.
+    if (predicate(*state)) return state;
+  }
+}
+
+}  // namespace contactsim

@@ -1,0 +1,223 @@
+// Command half of contactsim::Client: turns typed calls into body_cmd_t /
+// scene_cmd_t messages. No validation happens here on purpose: the server is
+// the one gate for bad input (docs/protocol.md), and its error replies name
+// the field, which a second client-side copy of the rules would only shadow.
+#include <algorithm>
+
+#include "contactsim/client.h"
+
+namespace contactsim {
+namespace {
+
+void Copy(const Eigen::Vector3d& from, double to[3]) {
+  std::copy(from.data(), from.data() + 3, to);
+}
+
+}  // namespace
+
+body_cmd_t Client::NewBodyCommand(int8_t op, int64_t body_id) const {
+  // lcm-gen types leave numbers uninitialised; {} zeroes every field.
+  body_cmd_t command{};
+  command.op = op;
+  command.body_id = body_id;
+  return command;
+}
+
+scene_cmd_t Client::NewSceneCommand(int8_t op) const {
+  scene_cmd_t command{};
+  command.op = op;
+  return command;
+}
+
+CommandResult Client::Reset() {
+  return Send(NewSceneCommand(scene_cmd_t::RESET));
+}
+
+CommandResult Client::LoadScene(const std::string& path) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::LOAD_SCENE);
+  command.path = path;
+  return Send(command);
+}
+
+CommandResult Client::SetGravity(const Eigen::Vector3d& gravity) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::SET_GRAVITY);
+  Copy(gravity, command.gravity);
+  return Send(command);
+}
+
+CommandResult Client::SetTimestep(double dt) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::SET_TIMESTEP);
+  command.dt = dt;
+  return Send(command);
+}
+
+CommandResult Client::SetContactMethod(
+    const std::string& name, const std::map<std::string, std::string>& params) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::SET_METHOD);
+  command.method = name;
+  for (const auto& [key, value] : params) {
+    command.param_names.push_back(key);
+    command.param_values.push_back(value);
+  }
+  return Send(command);
+}
+
+CommandResult Client::Pause() {
+  return Send(NewSceneCommand(scene_cmd_t::PAUSE));
+}
+
+CommandResult Client::Resume() {
+  return Send(NewSceneCommand(scene_cmd_t::RESUME));
+}
+
+CommandResult Client::SetMode(Mode mode, double real_time_factor) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::SET_MODE);
+  command.mode = static_cast<int8_t>(mode);
+  command.real_time_factor = real_time_factor;
+  return Send(command);
+}
+
+CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
+  Copy(options.position, command.position);
+  std::copy(options.orientation.begin(), options.orientation.end(),
+            command.orientation);
+  Copy(options.velocity, command.linear_velocity);
+  Copy(options.angular_velocity, command.angular_velocity);
+  command.mass = options.mass.value_or(0.0);
+  command.density = options.density.value_or(0.0);
+  command.has_restitution = options.restitution.has_value();
+  command.restitution = options.restitution.value_or(0.0);
+  command.has_friction = options.friction.has_value();
+  command.friction = options.friction.value_or(0.0);
+  command.fixed = options.fixed;
+  command.name = options.name;
+  return Send(command);
+}
+
+namespace {
+
+Result<int64_t> WithId(CommandResult status) {
+  Result<int64_t> result;
+  if (status.ok() && status.ids.empty()) {
+    status.code = ReplyCode::kInternal;
+    status.message = "ADD replied OK without a body id: " + status.message;
+  }
+  if (status.ok()) result.value = status.ids.front();
+  result.status = std::move(status);
+  return result;
+}
+
+}  // namespace
+
+Result<int64_t> Client::AddSphere(double radius, const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::SPHERE;
+  command.radius = radius;
+  return WithId(AddBody(command, options));
+}
+
+Result<int64_t> Client::AddBox(const Eigen::Vector3d& half_extents,
+                               const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::BOX;
+  Copy(half_extents, command.half_extents);
+  return WithId(AddBody(command, options));
+}
+
+Result<int64_t> Client::AddCapsule(double radius, double half_length,
+                                   const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::CAPSULE;
+  command.radius = radius;
+  command.half_length = half_length;
+  return WithId(AddBody(command, options));
+}
+
+Result<int64_t> Client::AddConvex(const std::vector<Eigen::Vector3d>& points,
+                                  const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::CONVEX;
+  for (const Eigen::Vector3d& p : points) {
+    command.points.push_back({p.x(), p.y(), p.z()});
+  }
+  return WithId(AddBody(command, options));
+}
+
+Result<int64_t> Client::AddPlane(const Eigen::Vector3d& normal, double offset,
+                                 const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::PLANE;
+  Copy(normal, command.plane_normal);
+  command.plane_offset = offset;
+  // A plane has no pose, mass or velocity of its own; sending the caller's
+  // defaults would only invite "plane made dynamic" errors.
+  BodyOptions plane;
+  plane.restitution = options.restitution;
+  plane.friction = options.friction;
+  plane.name = options.name;
+  plane.fixed = true;
+  return WithId(AddBody(command, plane));
+}
+
+CommandResult Client::RemoveBody(int64_t id) {
+  return Send(NewBodyCommand(body_cmd_t::REMOVE, id));
+}
+
+CommandResult Client::SetPose(int64_t id, const Eigen::Vector3d& position,
+                              const std::array<double, 4>& orientation) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::SET_POSE, id);
+  Copy(position, command.position);
+  std::copy(orientation.begin(), orientation.end(), command.orientation);
+  return Send(command);
+}
+
+CommandResult Client::SetVelocity(int64_t id, const Eigen::Vector3d& velocity,
+                                  const Eigen::Vector3d& angular_velocity) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::SET_VELOCITY, id);
+  Copy(velocity, command.linear_velocity);
+  Copy(angular_velocity, command.angular_velocity);
+  return Send(command);
+}
+
+CommandResult Client::ApplyForce(int64_t id, const Eigen::Vector3d& force,
+                                 const Eigen::Vector3d& torque,
+                                 double duration) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::APPLY_FORCE, id);
+  Copy(force, command.force);
+  Copy(torque, command.torque);
+  command.duration = duration;
+  return Send(command);
+}
+
+CommandResult Client::ApplyImpulse(int64_t id, const Eigen::Vector3d& impulse,
+                                   const std::optional<Eigen::Vector3d>& point) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::APPLY_IMPULSE, id);
+  Copy(impulse, command.impulse);
+  command.has_point = point.has_value();
+  if (point) Copy(*point, command.point);
+  return Send(command);
+}
+
+CommandResult Client::SetMass(int64_t id, double mass) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::SET_MASS, id);
+  command.mass = mass;
+  return Send(command);
+}
+
+CommandResult Client::SetDensity(int64_t id, double density) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::SET_MASS, id);
+  command.density = density;
+  return Send(command);
+}
+
+CommandResult Client::SetMaterial(int64_t id, std::optional<double> restitution,
+                                  std::optional<double> friction) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::SET_MATERIAL, id);
+  command.has_restitution = restitution.has_value();
+  command.restitution = restitution.value_or(0.0);
+  command.has_friction = friction.has_value();
+  command.friction = friction.value_or(0.0);
+  return Send(command);
+}
+
+}  // namespace contactsim

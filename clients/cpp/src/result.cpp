@@ -1,0 +1,45 @@
+// Names and printing of client-side command results.
+#include "contactsim/result.h"
+
+#include <sstream>
+
+namespace contactsim {
+
+std::string ReplyCodeName(ReplyCode code) {
+  switch (code) {
+    case ReplyCode::kOk: return "OK";
+    case ReplyCode::kInvalidArgument: return "INVALID_ARGUMENT";
+    case ReplyCode::kNotFound: return "NOT_FOUND";
+    case ReplyCode::kDecodeError: return "DECODE_ERROR";
+    case ReplyCode::kFailedPrecondition: return "FAILED_PRECONDITION";
+    case ReplyCode::kInternal: return "INTERNAL";
+    case ReplyCode::kTimeout: return "TIMEOUT";
+    case ReplyCode::kTransport: return "TRANSPORT";
+  }
+  // A newer server may send a code this client was not built with.
+  return "UNKNOWN(" + std::to_string(static_cast<int32_t>(code)) + ")";
+}
+
+std::string ToString(const CommandResult& result) {
+  std::ostringstream os;
+  os << ReplyCodeName(result.code);
+  if (result.code != ReplyCode::kTimeout &&
+      result.code != ReplyCode::kTransport) {
+    os << " step=" << result.step << " time=" << result.time;
+  }
+  if (!result.ids.empty()) {
+    os << " ids=[";
+    for (size_t i = 0; i < result.ids.size(); ++i) {
+      os << (i ? "," : "") << result.ids[i];
+    }
+    os << "]";
+  }
+  if (!result.message.empty()) os << ": " << result.message;
+  return os.str();
+}
+
+std::ostream& operator<<(std::ostream& os, const CommandResult& result) {
+  return os << ToString(result);
+}
+
+}  // namespace contactsim
