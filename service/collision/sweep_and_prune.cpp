@@ -1,0 +1,116 @@
+#include "service/collision/sweep_and_prune.h"
+
+#include <algorithm>
+
+#include "service/collision/broadphase_check.h"
+
+namespace contactsim {
+namespace {
+
+// Boxes wider than this (m) are unbounded on that axis: planes get +-1e15
+// (aabb.cpp). They would swamp the spread of the others, so they do not vote
+// for the sweep axis.
+constexpr double kUnboundedExtent = 1e12;
+// Switch axis only when another one spreads the centres this many times more
+// (variance ratio); the hysteresis keeps a scene near the tie from re-sorting
+// every step.
+constexpr double kAxisSwitchRatio = 2.0;
+
+bool Before(double min_a, int index_a, double min_b, int index_b) {
+  return min_a < min_b || (min_a == min_b && index_a < index_b);
+}
+
+// Variance of the box centres along each axis, bounded boxes only.
+Vec3 CentreVariance(const std::vector<Aabb>& boxes) {
+  Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero(), count = Vec3::Zero();
+  for (const Aabb& box : boxes) {
+    for (int k = 0; k < 3; ++k) {
+      if (box.max[k] - box.min[k] > kUnboundedExtent) continue;
+      const double c = 0.5 * (box.min[k] + box.max[k]);
+      sum[k] += c;
+      sum_sq[k] += c * c;
+      count[k] += 1.0;
+    }
+  }
+  Vec3 variance = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (count[k] > 0) variance[k] = sum_sq[k] / count[k] - (sum[k] / count[k]) * (sum[k] / count[k]);
+  }
+  return variance;
+}
+
+}  // namespace
+
+int SweepAndPrune::ChooseAxis(const std::vector<Aabb>& boxes) const {
+  const Vec3 variance = CentreVariance(boxes);
+  int best = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (variance[k] > variance[best]) best = k;
+  }
+  if (!entries_.empty() && variance[best] <= kAxisSwitchRatio * variance[axis_]) return axis_;
+  return best;
+}
+
+void SweepAndPrune::Rebuild(const std::vector<Aabb>& boxes) {
+  const int n = static_cast<int>(boxes.size());
+  entries_.resize(n);
+  for (int i = 0; i < n; ++i) entries_[i] = {boxes[i].min[axis_], boxes[i].max[axis_], i};
+  std::sort(entries_.begin(), entries_.end(),
+            [](const Entry& a, const Entry& b) { return Before(a.min, a.index, b.min, b.index); });
+}
+
+// Insertion sort of the last step's order under the new bounds: each entry
+// moves left past the entries that now start after it.
+void SweepAndPrune::Repair(const std::vector<Aabb>& boxes) {
+  for (Entry& e : entries_) {
+    e.min = boxes[e.index].min[axis_];
+    e.max = boxes[e.index].max[axis_];
+  }
+  int64_t swaps = 0;
+  const int n = static_cast<int>(entries_.size());
+  for (int i = 1; i < n; ++i) {
+    const Entry e = entries_[i];
+    int j = i;
+    while (j > 0 && Before(e.min, e.index, entries_[j - 1].min, entries_[j - 1].index)) {
+      entries_[j] = entries_[j - 1];
+      --j;
+    }
+    swaps += i - j;
+    entries_[j] = e;
+  }
+  last_swaps_ = swaps;
+}
+
+void SweepAndPrune::FindPairs(const std::vector<Aabb>& boxes, const std::vector<bool>& movable,
+                              std::vector<BodyPair>* pairs) {
+  CheckBroadphaseInput(boxes, movable);
+  pairs->clear();
+  const int n = static_cast<int>(boxes.size());
+  if (static_cast<int>(entries_.size()) != n) entries_.clear();
+  const int axis = ChooseAxis(boxes);
+  last_rebuilt_ = entries_.empty() || axis != axis_;
+  if (last_rebuilt_) {
+    axis_ = axis;
+    last_swaps_ = 0;
+    Rebuild(boxes);
+  } else {
+    Repair(boxes);
+  }
+
+  // sweep: a box overlaps on the axis exactly the boxes that start in [min, max]
+  for (int a = 0; a < n; ++a) {
+    const Entry& ea = entries_[a];
+    const bool movable_a = movable[ea.index];
+    const Aabb& box_a = boxes[ea.index];
+    for (int b = a + 1; b < n && entries_[b].min <= ea.max; ++b) {
+      const int j = entries_[b].index;
+      if (!movable_a && !movable[j]) continue;
+      if (!box_a.Overlaps(boxes[j])) continue;
+      pairs->emplace_back(std::min(ea.index, j), std::max(ea.index, j));
+    }
+  }
+  // body order, not sweep order, so that both broadphases agree bit for bit
+  std::sort(pairs->begin(), pairs->end());
+}
+
+}  // namespace contactsim
