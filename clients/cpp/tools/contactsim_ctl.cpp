@@ -1,0 +1,241 @@
+// contactsim-ctl: send one command to a running contactsim-server and print
+// its reply, e.g.
+//
+//   contactsim-ctl status
+//   contactsim-ctl add sphere --radius 0.1 --position 0 0 1 --mass 2
+//   contactsim-ctl method impulse restitution=0.3
+//   contactsim-ctl step 10
+//
+// Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout) or LCM
+// unusable; CLI11's own codes for a bad command line.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "contactsim/client.h"
+
+namespace {
+
+using contactsim::BodyOptions;
+using contactsim::Client;
+using contactsim::CommandResult;
+using contactsim::ReplyCode;
+
+constexpr int kExitErrorReply = 1;
+constexpr int kExitNoReply = 2;
+
+int ExitCode(const CommandResult& result) {
+  if (result.ok()) {
+    std::cout << result << "\n";
+    return 0;
+  }
+  std::cerr << result << "\n";
+  return result.code == ReplyCode::kTimeout ||
+                 result.code == ReplyCode::kTransport
+             ? kExitNoReply
+             : kExitErrorReply;
+}
+
+Eigen::Vector3d ToVector(const std::array<double, 3>& v) {
+  return {v[0], v[1], v[2]};
+}
+
+const char* ModeName(int8_t mode) {
+  switch (mode) {
+    case contactsim::status_t::REALTIME: return "realtime";
+    case contactsim::status_t::FREE_RUN: return "free_run";
+    default: return "unknown";
+  }
+}
+
+void PrintStatus(const contactsim::status_t& s) {
+  std::printf(
+      "version: %s\nmode: %s\npaused: %s\nmethod: %s\nmethod_params: %s\n"
+      "time: %.6f s\nstep: %lld\ndt: %.6g s\nstep_rate: %.1f steps/s\n"
+      "real_time_factor: %.3f (target %.3f)\nbodies: %d\ncontacts: %d\n"
+      "max_penetration: %.3g m\nsolver_iterations: %d\n"
+      "commands: %lld accepted, %lld rejected\nlast_error: %s\n",
+      s.version.c_str(), ModeName(s.mode), s.paused ? "yes" : "no",
+      s.method.c_str(), s.method_params.c_str(), s.time,
+      static_cast<long long>(s.step), s.dt, s.step_rate, s.real_time_factor,
+      s.target_real_time_factor, s.num_bodies, s.num_contacts,
+      s.max_penetration, s.solver_iterations,
+      static_cast<long long>(s.commands_accepted),
+      static_cast<long long>(s.commands_rejected), s.last_error.c_str());
+}
+
+// Command-line form of BodyOptions, shared by every `add` shape.
+struct AddFlags {
+  std::array<double, 3> position{0, 0, 0};
+  std::array<double, 4> orientation{1, 0, 0, 0};
+  std::array<double, 3> velocity{0, 0, 0};
+  std::array<double, 3> angular_velocity{0, 0, 0};
+  std::optional<double> mass, density, restitution, friction;
+  bool fixed = false;
+  std::string name;
+
+  BodyOptions ToOptions() const {
+    BodyOptions options;
+    options.position = ToVector(position);
+    options.orientation = orientation;
+    options.velocity = ToVector(velocity);
+    options.angular_velocity = ToVector(angular_velocity);
+    options.mass = mass;
+    options.density = density;
+    options.restitution = restitution;
+    options.friction = friction;
+    options.fixed = fixed;
+    options.name = name;
+    return options;
+  }
+};
+
+void AddBodyFlags(CLI::App* app, AddFlags* flags) {
+  app->add_option("--position,-p", flags->position, "m, centre of mass");
+  app->add_option("--orientation,-q", flags->orientation,
+                  "unit quaternion w x y z");
+  app->add_option("--velocity,-v", flags->velocity, "m/s");
+  app->add_option("--angular-velocity,-w", flags->angular_velocity, "rad/s");
+  app->add_option("--mass,-m", flags->mass, "kg");
+  app->add_option("--density,-d", flags->density, "kg/m^3");
+  app->add_option("--restitution,-e", flags->restitution, "in [0, 1]");
+  app->add_option("--friction,-f", flags->friction, "Coulomb coefficient");
+  app->add_flag("--fixed", flags->fixed, "static body");
+  app->add_option("--name,-n", flags->name, "label");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Send one command to contactsim-server and print its reply."};
+  app.require_subcommand(1);
+  contactsim::ClientOptions options;
+  double timeout_s = 2.0;
+  app.add_option("--lcm-url", options.url,
+                 "LCM URL (default: $LCM_DEFAULT_URL, else the project default)");
+  app.add_option("--prefix", options.prefix, "channel prefix")
+      ->capture_default_str();
+  app.add_option("--timeout", timeout_s, "s to wait for a reply")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
+  // Each subcommand sets `run`, which needs the Client that exists only
+  // after parsing (the URL and prefix are options too).
+  std::function<int(Client&)> run;
+
+  app.add_subcommand("status", "print the server's latest STATUS")
+      ->callback([&] {
+        run = [&](Client& client) {
+          const auto timeout = std::chrono::duration_cast<
+              std::chrono::milliseconds>(std::chrono::duration<double>(timeout_s));
+          // STATUS comes at ~1 Hz, so the wait is at least a second.
+          if (!client.WaitForServer(std::max(timeout, std::chrono::milliseconds(1500)))) {
+            std::cerr << "no STATUS on " << client.Channel("STATUS") << "\n";
+            return kExitNoReply;
+          }
+          PrintStatus(*client.LatestStatus());
+          return 0;
+        };
+      });
+
+  CLI::App* add = app.add_subcommand("add", "add a body; prints its id");
+  add->require_subcommand(1);
+  AddFlags add_flags;
+  double radius = 0.0;
+  std::array<double, 3> half_extents{0, 0, 0};
+  std::array<double, 3> normal{0, 0, 1};
+  double offset = 0.0;
+  CLI::App* sphere = add->add_subcommand("sphere", "add a sphere");
+  sphere->add_option("--radius,-r", radius, "m")->required();
+  AddBodyFlags(sphere, &add_flags);
+  sphere->callback([&] {
+    run = [&](Client& client) {
+      return ExitCode(client.AddSphere(radius, add_flags.ToOptions()).status);
+    };
+  });
+  CLI::App* box = add->add_subcommand("box", "add a box");
+  box->add_option("--half-extents,-x", half_extents, "m, along body x y z")
+      ->required();
+  AddBodyFlags(box, &add_flags);
+  box->callback([&] {
+    run = [&](Client& client) {
+      return ExitCode(
+          client.AddBox(ToVector(half_extents), add_flags.ToOptions()).status);
+    };
+  });
+  CLI::App* plane = add->add_subcommand("plane", "add a static plane n.p = offset");
+  plane->add_option("--normal", normal, "outward normal")->capture_default_str();
+  plane->add_option("--offset", offset, "m")->capture_default_str();
+  AddBodyFlags(plane, &add_flags);
+  plane->callback([&] {
+    run = [&](Client& client) {
+      return ExitCode(
+          client.AddPlane(ToVector(normal), offset, add_flags.ToOptions()).status);
+    };
+  });
+
+  int64_t body_id = 0;
+  app.add_subcommand("remove", "remove a body")
+      ->callback([&] {
+        run = [&](Client& client) { return ExitCode(client.RemoveBody(body_id)); };
+      })
+      ->add_option("id", body_id, "body id")
+      ->required();
+
+  std::string method;
+  std::vector<std::string> params;
+  CLI::App* method_cmd =
+      app.add_subcommand("method", "switch the contact method");
+  method_cmd->add_option("name", method, "method name, e.g. impulse")->required();
+  method_cmd->add_option("params", params, "parameters as key=value");
+  method_cmd->callback([&] {
+    run = [&](Client& client) {
+      std::map<std::string, std::string> named;
+      for (const std::string& param : params) {
+        const size_t eq = param.find('=');
+        if (eq == std::string::npos || eq == 0) {
+          std::cerr << "parameter must be key=value, got \"" << param << "\"\n";
+          return kExitErrorReply;
+        }
+        named[param.substr(0, eq)] = param.substr(eq + 1);
+      }
+      return ExitCode(client.SetContactMethod(method, named));
+    };
+  });
+
+  app.add_subcommand("pause", "pause the run")->callback([&] {
+    run = [](Client& client) { return ExitCode(client.Pause()); };
+  });
+  app.add_subcommand("resume", "resume the run")->callback([&] {
+    run = [](Client& client) { return ExitCode(client.Resume()); };
+  });
+  app.add_subcommand("reset", "empty the world")->callback([&] {
+    run = [](Client& client) { return ExitCode(client.Reset()); };
+  });
+  int32_t steps = 1;
+  app.add_subcommand("step", "take N steps, then stay paused")
+      ->callback([&] {
+        run = [&](Client& client) { return ExitCode(client.Step(steps)); };
+      })
+      ->add_option("n", steps, "number of steps")
+      ->required();
+
+  CLI11_PARSE(app, argc, argv);
+  options.reply_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(
+      std::chrono::duration<double>(timeout_s));
+  Client client(options);
+  if (!client.good()) {
+    std::cerr << "cannot open LCM with url " << client.url() << "\n";
+    return kExitNoReply;
+  }
+  return run(client);
+}
