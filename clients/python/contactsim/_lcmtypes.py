@@ -1,0 +1,59 @@
+"""Makes the lcm-gen generated message classes attributes of this package.
+
+lcm-gen writes ``<build>/lcmtypes/python/contactsim/<type>.py``; those modules
+refer to each other as ``contactsim.<type>`` and expect that name to be the
+*class* (lcm-gen's own ``__init__`` does ``from .body_state_t import
+body_state_t``). This package is also called ``contactsim``, so it appends the
+generated folder to its ``__path__`` and binds every class under its name.
+
+The folder is ``$CONTACTSIM_BUILD_DIR/lcmtypes/python/contactsim`` when that
+variable is set, else ``<repo>/build/lcmtypes/python/contactsim`` relative to
+this file.
+"""
+import importlib
+import os
+
+# Nested types first: the containers' code looks them up as contactsim.<name>.
+TYPE_NAMES = (
+    "body_state_t",
+    "contact_t",
+    "body_cmd_t",
+    "scene_cmd_t",
+    "reply_t",
+    "state_t",
+    "contacts_t",
+    "status_t",
+)
+
+
+def generated_dir():
+    """Folder holding the generated contactsim/*.py modules."""
+    build = os.environ.get("CONTACTSIM_BUILD_DIR")
+    if build:
+        return os.path.join(os.path.abspath(build), "lcmtypes", "python", "contactsim")
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))))
+    return os.path.join(repo, "build", "lcmtypes", "python", "contactsim")
+
+
+def install(package):
+    """Extends ``package.__path__`` and binds each generated class on it."""
+    folder = generated_dir()
+    missing = [n for n in TYPE_NAMES if not os.path.isfile(os.path.join(folder, n + ".py"))]
+    if missing:
+        raise ImportError(
+            "contactsim: generated LCM types not found in %s (missing %s). "
+            "Run `make` in the repository (or `cmake --build build --target "
+            "contactsim_lcmtypes_gen`), or set CONTACTSIM_BUILD_DIR to the build "
+            "folder that holds lcmtypes/python/contactsim." % (folder, ", ".join(missing)))
+    if folder not in package.__path__:
+        package.__path__.append(folder)
+    classes = {}
+    for name in TYPE_NAMES:
+        module = importlib.import_module(package.__name__ + "." + name)
+        classes[name] = getattr(module, name)
+        setattr(package, name, classes[name])
+    # Importing a submodule may have rebound an earlier name to its module.
+    for name, cls in classes.items():
+        setattr(package, name, cls)
+    return classes

@@ -1,0 +1,533 @@
+"""The contactsim client: commands with replies, and the latest STATE,
+CONTACTS and STATUS, over LCM.
+
+A background thread runs ``lcm.handle_timeout``; callbacks (``on_state``,
+``on_contacts``, ``on_status``, ``on_reply``) run on it, so they must be quick
+and must not send commands (that would wait for a reply the same thread has to
+receive: a RuntimeError says so).
+"""
+import os
+import socket
+import struct
+import threading
+import uuid
+import warnings
+
+import lcm
+import numpy as np
+
+from . import body_cmd_t, contacts_t, reply_t, scene_cmd_t, state_t, status_t
+from .errors import CommandError, TimeoutError
+from .state import Contacts, State, Status, reply_from_msg
+
+DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
+MODES = {"realtime": scene_cmd_t.REALTIME, "free_run": scene_cmd_t.FREE_RUN}
+_STATE_FP = state_t._get_packed_fingerprint()
+
+
+def default_url():
+    """LCM_DEFAULT_URL when set, else the project default (host-only, 8 MiB buffer)."""
+    return os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
+
+
+def _vec(value, n, field):
+    """A length-n list of floats; only the shape is checked (the server validates values)."""
+    a = np.asarray(value, dtype=np.float64)
+    if a.shape != (n,):
+        raise ValueError("%s must have %d components, got shape %s" % (field, n, a.shape))
+    return [float(x) for x in a]
+
+
+def _param_text(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+class _Pending:
+    __slots__ = ("event", "reply")
+
+    def __init__(self):
+        self.event = threading.Event()
+        self.reply = None
+
+
+class _Waiter:
+    __slots__ = ("predicate", "event", "result", "error")
+
+    def __init__(self, predicate):
+        self.predicate = predicate
+        self.event = threading.Event()
+        self.result = None
+        self.error = None
+
+
+class Client:
+    """A connection to one contactsim server (one LCM URL and channel prefix).
+
+    ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
+    None: a unique "py-<host>-<pid>-<random>". ``timeout`` (s) bounds the
+    wait for each reply. Use as a context manager, or call ``close()``.
+    """
+
+    def __init__(self, url=None, prefix="CONTACTSIM", client_id=None, timeout=2.0):
+        self.url = url or default_url()
+        self.prefix = prefix
+        self.client_id = client_id or "py-%s-%d-%s" % (
+            socket.gethostname(), os.getpid(), uuid.uuid4().hex[:6])
+        self.timeout = timeout
+        self.channels = {k: "%s_%s" % (prefix, k) for k in
+                         ("BODY_CMD", "SCENE_CMD", "REPLY", "STATE", "CONTACTS", "STATUS")}
+        self._lock = threading.Lock()
+        self._cond = threading.Condition(self._lock)
+        self._request_id = 0
+        self._pending = {}
+        self._state_bytes = None      # latest STATE payload, decoded lazily
+        self._state_obj = None
+        self._state_step = None
+        self._state_seq = 0           # number of STATEs received
+        self._contacts_msg = None
+        self._status = None
+        self._status_seq = 0
+        self._callbacks = {"state": [], "contacts": [], "status": [], "reply": []}
+        self._state_waiters = []
+        self._status_waiters = []
+        self._lc = lcm.LCM(self.url)
+        self._subs = [
+            self._lc.subscribe(self.channels["REPLY"], self._on_reply_msg),
+            self._lc.subscribe(self.channels["STATE"], self._on_state_msg),
+            self._lc.subscribe(self.channels["CONTACTS"], self._on_contacts_msg),
+            self._lc.subscribe(self.channels["STATUS"], self._on_status_msg),
+        ]
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name="contactsim-lcm", daemon=True)
+        self._thread.start()
+
+    # ------------------------------------------------------------------ life
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        """Stops the receive thread and unsubscribes; pending commands time out."""
+        if self._stop.is_set():
+            return
+        self._stop.set()
+        if threading.current_thread() is not self._thread:
+            self._thread.join(timeout=2.0)
+        for s in self._subs:
+            try:
+                self._lc.unsubscribe(s)
+            except Exception:  # noqa: BLE001 - best effort at shutdown
+                pass
+        self._subs = []
+
+    def _run(self):
+        while not self._stop.is_set():
+            try:
+                self._lc.handle_timeout(50)
+            except Exception as e:  # noqa: BLE001 - keep receiving
+                warnings.warn("contactsim: LCM receive error: %s" % e)
+
+    def _call(self, kind, obj):
+        for cb in list(self._callbacks[kind]):
+            try:
+                cb(obj)
+            except Exception as e:  # noqa: BLE001 - a bad callback must not stop the thread
+                warnings.warn("contactsim: %s callback raised %r" % (kind, e))
+
+    # -------------------------------------------------------------- handlers
+    def _on_reply_msg(self, channel, data):
+        try:
+            msg = reply_t.decode(data)
+        except Exception:  # noqa: BLE001 - not ours to judge
+            return
+        if msg.client_id == self.client_id:
+            with self._lock:
+                slot = self._pending.pop(msg.request_id, None)
+            if slot is not None:
+                slot.reply = msg
+                slot.event.set()
+        self._call("reply", msg)
+
+    def _on_state_msg(self, channel, data):
+        if len(data) < 24 or data[:8] != _STATE_FP:
+            return
+        _, step = struct.unpack_from(">dq", data, 8)
+        with self._cond:
+            self._state_bytes = data
+            self._state_obj = None
+            self._state_step = step
+            self._state_seq += 1
+            waiters = list(self._state_waiters)
+            self._cond.notify_all()
+        if waiters or self._callbacks["state"]:
+            st = self._latest_state_obj()
+            if st is None:
+                return
+            self._resolve(waiters, self._state_waiters, st)
+            self._call("state", st)
+
+    def _on_contacts_msg(self, channel, data):
+        try:
+            msg = contacts_t.decode(data)
+        except Exception:  # noqa: BLE001
+            return
+        with self._lock:
+            self._contacts_msg = msg
+        if self._callbacks["contacts"]:
+            self._call("contacts", Contacts(msg))
+
+    def _on_status_msg(self, channel, data):
+        try:
+            st = Status(status_t.decode(data))
+        except Exception:  # noqa: BLE001
+            return
+        with self._cond:
+            self._status = st
+            self._status_seq += 1
+            waiters = list(self._status_waiters)
+            self._cond.notify_all()
+        self._resolve(waiters, self._status_waiters, st)
+        self._call("status", st)
+
+    def _resolve(self, waiters, registry, obj):
+        for w in waiters:
+            try:
+                ok = w.predicate is None or w.predicate(obj)
+            except Exception as e:  # noqa: BLE001 - report to the waiting thread
+                w.error, ok = e, True
+            if ok:
+                w.result = obj
+                with self._lock:
+                    if w in registry:
+                        registry.remove(w)
+                w.event.set()
+
+    def _latest_state_obj(self):
+        with self._lock:
+            if self._state_obj is not None or self._state_bytes is None:
+                return self._state_obj
+            data = self._state_bytes
+        try:
+            st = State(state_t.decode(data))
+        except Exception:  # noqa: BLE001 - a corrupt STATE is skipped
+            return None
+        with self._lock:
+            if self._state_bytes is data:
+                self._state_obj = st
+        return st
+
+    # ----------------------------------------------------------- observers
+    def state(self):
+        """The latest world state (State), or None before the first STATE."""
+        return self._latest_state_obj()
+
+    def contacts(self):
+        """The latest contacts (Contacts, a list); empty before the first CONTACTS."""
+        with self._lock:
+            msg = self._contacts_msg
+        return Contacts(msg)
+
+    def status(self):
+        """The latest STATUS (Status), or None before the first one."""
+        with self._lock:
+            return self._status
+
+    def _add_callback(self, kind, callback):
+        self._callbacks[kind].append(callback)
+
+        def remove():
+            if callback in self._callbacks[kind]:
+                self._callbacks[kind].remove(callback)
+        return remove
+
+    def on_state(self, callback):
+        """Calls callback(State) for every STATE; returns a function that removes it."""
+        return self._add_callback("state", callback)
+
+    def on_contacts(self, callback):
+        """Calls callback(Contacts) for every CONTACTS; returns a remover."""
+        return self._add_callback("contacts", callback)
+
+    def on_status(self, callback):
+        """Calls callback(Status) for every STATUS; returns a remover."""
+        return self._add_callback("status", callback)
+
+    def on_reply(self, callback):
+        """Calls callback(reply_t) for every reply on the channel, any client's; returns a remover."""
+        return self._add_callback("reply", callback)
+
+    def _wait(self, registry, predicate, timeout, what):
+        self._check_thread()
+        w = _Waiter(predicate)
+        with self._lock:
+            registry.append(w)
+        if not w.event.wait(self.timeout if timeout is None else timeout):
+            with self._lock:
+                if w in registry:
+                    registry.remove(w)
+            raise TimeoutError("no %s%s within %gs on %s" % (
+                what, " matching the predicate" if predicate else "",
+                self.timeout if timeout is None else timeout, self.url))
+        if w.error is not None:
+            raise w.error
+        return w.result
+
+    def wait_for_state(self, predicate=None, timeout=None):
+        """Waits for the next STATE (for which predicate(State) is true, if given)
+        and returns it; raises TimeoutError. timeout None: the client's timeout."""
+        return self._wait(self._state_waiters, predicate, timeout, "STATE")
+
+    def wait_for_status(self, predicate=None, timeout=None):
+        """Waits for the next STATUS (matching predicate(Status), if given)."""
+        return self._wait(self._status_waiters, predicate, timeout, "STATUS")
+
+    def wait_for_server(self, timeout=5.0):
+        """Returns the latest STATUS, waiting up to timeout s for the first one."""
+        with self._lock:
+            if self._status is not None:
+                return self._status
+        return self.wait_for_status(timeout=timeout)
+
+    # ------------------------------------------------------------ commands
+    def _check_thread(self):
+        if threading.current_thread() is self._thread:
+            raise RuntimeError("contactsim: commands and waits cannot run inside a callback")
+
+    def _send(self, channel, msg, timeout=None):
+        self._check_thread()
+        if self._stop.is_set():
+            raise RuntimeError("contactsim: client is closed")
+        slot = _Pending()
+        with self._lock:
+            self._request_id += 1
+            rid = self._request_id
+            self._pending[rid] = slot
+        msg.client_id = self.client_id
+        msg.request_id = rid
+        self._lc.publish(self.channels[channel], msg.encode())
+        timeout = self.timeout if timeout is None else timeout
+        if not slot.event.wait(timeout):
+            with self._lock:
+                self._pending.pop(rid, None)
+            raise TimeoutError("no reply to %s request %d within %gs (is the server running on %s "
+                               "with prefix %s?)" % (channel, rid, timeout, self.url, self.prefix))
+        r = slot.reply
+        if r.code != reply_t.OK:
+            raise CommandError(r.message, r.code, r)
+        return reply_from_msg(r)
+
+    def _body(self, op, body_id=0):
+        m = body_cmd_t()
+        m.op = op
+        m.body_id = int(body_id)
+        return m
+
+    def _scene(self, op):
+        m = scene_cmd_t()
+        m.op = op
+        return m
+
+    # bodies
+    def _add(self, shape, fill, position, mass, density, orientation, velocity,
+             angular_velocity, restitution, friction, fixed, name):
+        m = self._body(body_cmd_t.ADD)
+        m.shape = shape
+        fill(m)
+        m.position = _vec(position, 3, "position")
+        m.orientation = _vec(orientation, 4, "orientation")
+        m.linear_velocity = _vec(velocity, 3, "velocity")
+        m.angular_velocity = _vec(angular_velocity, 3, "angular_velocity")
+        m.mass = 0.0 if mass is None else float(mass)
+        m.density = 0.0 if density is None else float(density)
+        m.fixed = bool(fixed)
+        self._material(m, restitution, friction)
+        m.name = name
+        return self._send("BODY_CMD", m).ids[0]
+
+    @staticmethod
+    def _material(m, restitution, friction):
+        m.has_restitution = restitution is not None
+        m.restitution = 0.0 if restitution is None else float(restitution)
+        m.has_friction = friction is not None
+        m.friction = 0.0 if friction is None else float(friction)
+
+    def add_sphere(self, radius, *, position=(0, 0, 0), mass=None, density=None,
+                   orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
+                   restitution=None, friction=None, fixed=False, name=""):
+        """Adds a sphere (radius m); returns its id. Give mass (kg) or density
+        (kg/m^3), not both; neither: density 1000."""
+        def fill(m):
+            m.radius = float(radius)
+        return self._add(body_cmd_t.SPHERE, fill, position, mass, density, orientation, velocity,
+                         angular_velocity, restitution, friction, fixed, name)
+
+    def add_box(self, half_extents, *, position=(0, 0, 0), mass=None, density=None,
+                orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
+                restitution=None, friction=None, fixed=False, name=""):
+        """Adds a box with half_extents (m, body x y z); returns its id."""
+        def fill(m):
+            m.half_extents = _vec(half_extents, 3, "half_extents")
+        return self._add(body_cmd_t.BOX, fill, position, mass, density, orientation, velocity,
+                         angular_velocity, restitution, friction, fixed, name)
+
+    def add_capsule(self, radius, half_length, *, position=(0, 0, 0), mass=None, density=None,
+                    orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
+                    restitution=None, friction=None, fixed=False, name=""):
+        """Adds a capsule along body z (radius, half_length between cap centres, m)."""
+        def fill(m):
+            m.radius = float(radius)
+            m.half_length = float(half_length)
+        return self._add(body_cmd_t.CAPSULE, fill, position, mass, density, orientation, velocity,
+                         angular_velocity, restitution, friction, fixed, name)
+
+    def add_convex(self, points, *, position=(0, 0, 0), mass=None, density=None,
+                   orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
+                   restitution=None, friction=None, fixed=False, name=""):
+        """Adds the convex hull of points (N x 3, m, body frame); returns its id."""
+        pts = np.asarray(points, dtype=np.float64)
+        if pts.ndim != 2 or pts.shape[1] != 3:
+            raise ValueError("points must be an N x 3 array, got shape %s" % (pts.shape,))
+
+        def fill(m):
+            m.num_points = len(pts)
+            m.points = [[float(v) for v in p] for p in pts]
+        return self._add(body_cmd_t.CONVEX, fill, position, mass, density, orientation, velocity,
+                         angular_velocity, restitution, friction, fixed, name)
+
+    def add_plane(self, normal, offset, *, restitution=None, friction=None, name=""):
+        """Adds a static plane {p : normal . p = offset}; returns its id."""
+        m = self._body(body_cmd_t.ADD)
+        m.shape = body_cmd_t.PLANE
+        m.plane_normal = _vec(normal, 3, "normal")
+        m.plane_offset = float(offset)
+        m.orientation = [1.0, 0.0, 0.0, 0.0]
+        m.fixed = True
+        self._material(m, restitution, friction)
+        m.name = name
+        return self._send("BODY_CMD", m).ids[0]
+
+    def remove_body(self, body_id):
+        m = self._body(body_cmd_t.REMOVE, body_id)
+        return self._send("BODY_CMD", m)
+
+    def set_pose(self, body_id, position, orientation):
+        """Position (m, centre of mass) and orientation (w, x, y, z)."""
+        m = self._body(body_cmd_t.SET_POSE, body_id)
+        m.position = _vec(position, 3, "position")
+        m.orientation = _vec(orientation, 4, "orientation")
+        return self._send("BODY_CMD", m)
+
+    def set_velocity(self, body_id, linear, angular):
+        """Linear (m/s, centre of mass) and angular (rad/s) velocity, world frame."""
+        m = self._body(body_cmd_t.SET_VELOCITY, body_id)
+        m.linear_velocity = _vec(linear, 3, "linear")
+        m.angular_velocity = _vec(angular, 3, "angular")
+        return self._send("BODY_CMD", m)
+
+    def apply_force(self, body_id, force, torque=(0, 0, 0), duration=0.0):
+        """Force (N, at the centre of mass) and torque (N m) for duration s of
+        simulated time from the next step (0: the next step only)."""
+        m = self._body(body_cmd_t.APPLY_FORCE, body_id)
+        m.force = _vec(force, 3, "force")
+        m.torque = _vec(torque, 3, "torque")
+        m.duration = float(duration)
+        return self._send("BODY_CMD", m)
+
+    def apply_impulse(self, body_id, impulse, point=None):
+        """Impulse (N s) at point (m, world), or at the centre of mass when None."""
+        m = self._body(body_cmd_t.APPLY_IMPULSE, body_id)
+        m.impulse = _vec(impulse, 3, "impulse")
+        m.has_point = point is not None
+        if point is not None:
+            m.point = _vec(point, 3, "point")
+        return self._send("BODY_CMD", m)
+
+    def set_mass(self, body_id, mass=None, density=None):
+        """Mass (kg) or density (kg/m^3), not both."""
+        m = self._body(body_cmd_t.SET_MASS, body_id)
+        m.mass = 0.0 if mass is None else float(mass)
+        m.density = 0.0 if density is None else float(density)
+        return self._send("BODY_CMD", m)
+
+    def set_material(self, body_id, restitution=None, friction=None):
+        """Restitution and/or friction; None leaves that one unchanged."""
+        m = self._body(body_cmd_t.SET_MATERIAL, body_id)
+        self._material(m, restitution, friction)
+        return self._send("BODY_CMD", m)
+
+    # world and server
+    def reset(self):
+        """Empties the world (time 0, default gravity and dt); method and paused state are kept."""
+        return self._send("SCENE_CMD", self._scene(scene_cmd_t.RESET))
+
+    def load_scene(self, path, *, timeout=None):
+        """Loads a scene file (protobuf text), a path on the server's host."""
+        m = self._scene(scene_cmd_t.LOAD_SCENE)
+        m.path = os.fspath(path)
+        return self._send("SCENE_CMD", m, timeout=timeout)
+
+    def set_gravity(self, g):
+        """Gravity (m/s^2, world frame)."""
+        m = self._scene(scene_cmd_t.SET_GRAVITY)
+        m.gravity = _vec(g, 3, "gravity")
+        return self._send("SCENE_CMD", m)
+
+    def set_timestep(self, dt):
+        """Time step (s)."""
+        m = self._scene(scene_cmd_t.SET_TIMESTEP)
+        m.dt = float(dt)
+        return self._send("SCENE_CMD", m)
+
+    def set_contact_method(self, name, /, **params):
+        """Switches the contact method; params are sent as text (floats with repr,
+        bools as true/false), e.g. set_contact_method("lcp", solver="pgs", iterations=50)."""
+        m = self._scene(scene_cmd_t.SET_METHOD)
+        m.method = name
+        m.num_params = len(params)
+        m.param_names = list(params)
+        m.param_values = [_param_text(v) for v in params.values()]
+        return self._send("SCENE_CMD", m)
+
+    def pause(self):
+        return self._send("SCENE_CMD", self._scene(scene_cmd_t.PAUSE))
+
+    def resume(self):
+        return self._send("SCENE_CMD", self._scene(scene_cmd_t.RESUME))
+
+    def step(self, n=1, *, timeout=None):
+        """Takes n steps now (the server stays paused afterwards). Returns the
+        reply once the client also holds the STATE of the last step
+        (``state().step == reply.step``). timeout None: the client's timeout."""
+        m = self._scene(scene_cmd_t.STEP)
+        m.steps = int(n)
+        with self._lock:
+            seq0 = self._state_seq
+        reply = self._send("SCENE_CMD", m, timeout=timeout)
+        wait = self.timeout if timeout is None else timeout
+        with self._cond:
+            ok = self._cond.wait_for(
+                lambda: self._state_seq > seq0 and self._state_step >= reply.step, wait)
+        if not ok:
+            raise TimeoutError("STEP replied with step %d but its STATE did not arrive within %gs"
+                               % (reply.step, wait))
+        return reply
+
+    def set_mode(self, mode, real_time_factor=1.0):
+        """"realtime" (paced to the wall clock times real_time_factor) or "free_run"."""
+        m = self._scene(scene_cmd_t.SET_MODE)
+        if isinstance(mode, str):
+            if mode.lower() not in MODES:
+                raise ValueError("mode must be one of %s, got %r" % (sorted(MODES), mode))
+            mode = MODES[mode.lower()]
+        m.mode = int(mode)
+        m.real_time_factor = float(real_time_factor)
+        return self._send("SCENE_CMD", m)
+
+
+__all__ = ["Client", "DEFAULT_URL", "default_url"]

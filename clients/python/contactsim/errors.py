@@ -1,0 +1,45 @@
+"""Exceptions raised by the contactsim client."""
+import builtins
+
+# reply_t codes, by value (the generated reply_t holds the same constants).
+CODE_NAMES = {
+    0: "OK",
+    1: "INVALID_ARGUMENT",
+    2: "NOT_FOUND",
+    3: "DECODE_ERROR",
+    4: "FAILED_PRECONDITION",
+    5: "INTERNAL",
+}
+
+
+class CommandError(Exception):
+    """The server rejected a command.
+
+    ``code`` is the reply_t code (int, e.g. ``reply_t.INVALID_ARGUMENT``),
+    ``code_name`` its name, ``message`` the server's message (it names the
+    field and the value) and ``reply`` the whole reply (None on a timeout).
+    """
+
+    def __init__(self, message, code=None, reply=None):
+        super().__init__(message)
+        self.message = message
+        self.code = code
+        self.code_name = CODE_NAMES.get(code, str(code)) if code is not None else None
+        self.reply = reply
+
+    def __str__(self):
+        if self.code_name is None:
+            return self.message
+        return "%s: %s" % (self.code_name, self.message)
+
+
+class TimeoutError(CommandError, builtins.TimeoutError):
+    """No reply (or no STATE/STATUS) arrived in time.
+
+    A subclass of both CommandError and the builtin TimeoutError, so either
+    ``except contactsim.CommandError`` or ``except TimeoutError`` catches it;
+    ``code`` and ``reply`` are None.
+    """
+
+    def __init__(self, message):
+        CommandError.__init__(self, message)
