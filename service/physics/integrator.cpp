@@ -23,4 +23,19 @@ void IntegratePositions(World& world, double dt) {
   }
 }
 
+void AdvanceBallistic(RigidBody& b, double h) {
+  switch (b.motion) {
+    case MotionType::kStatic: return;
+    case MotionType::kKinematic:
+      b.x += b.kinematic_v * h;
+      break;
+    case MotionType::kDynamic:
+      b.x += (b.LinearVelocity() + 0.5 * h * b.inv_mass * b.force) * h;
+      b.P += b.force * h;
+      b.L += b.torque * h;
+      break;
+  }
+  b.q = (QuatFromRotationVector(b.AngularVelocity() * h) * b.q).normalized();
+}
+
 }  // namespace contactsim

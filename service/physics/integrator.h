@@ -13,4 +13,9 @@ void IntegrateMomenta(World& world, double dt);
 // bodies move with their set velocity.
 void IntegratePositions(World& world, double dt);
 
+// Moves one body for time h under its accumulated force and torque alone:
+// P += F h, L += tau h, x += v0 h + F/(2m) h^2 (exact for a constant force),
+// q <- exp(w h / 2) q with the new w.
+void AdvanceBallistic(RigidBody& body, double h);
+
 }  // namespace contactsim

@@ -1,0 +1,20 @@
+#include <memory>
+
+#include "service/contact/contact_method.h"
+#include "service/contact/impulse_method.h"
+
+namespace contactsim {
+
+std::vector<std::string> ContactMethodNames() { return {"impulse"}; }
+
+Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out) {
+  if (name == "impulse") {
+    *out = std::make_unique<ImpulseMethod>();
+    return Status::Ok();
+  }
+  std::string known;
+  for (const std::string& n : ContactMethodNames()) known += (known.empty() ? "" : ", ") + n;
+  return Status::NotFound("unknown contact method \"" + name + "\" (known: " + known + ")");
+}
+
+}  // namespace contactsim

@@ -1,0 +1,47 @@
+#include "service/contact/contact_row.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactsim {
+
+double CombineRestitution(const Material& a, const Material& b) {
+  return std::max(a.restitution, b.restitution);
+}
+
+double CombineFriction(const Material& a, const Material& b) { return std::sqrt(a.friction * b.friction); }
+
+double EffectiveInverseMass(const ContactRow& row, const Vec3& d, const std::vector<SolverBody>& s) {
+  const SolverBody& A = s[row.a];
+  const SolverBody& B = s[row.b];
+  const Vec3 ra_d = row.ra.cross(d);
+  const Vec3 rb_d = row.rb.cross(d);
+  // d . (I^-1 (r x d)) x r == (r x d) . I^-1 (r x d)
+  return A.inv_mass + B.inv_mass + ra_d.dot(A.inv_inertia * ra_d) + rb_d.dot(B.inv_inertia * rb_d);
+}
+
+ContactRow MakeContactRow(const Contact& c, const World& world, const std::vector<SolverBody>& s) {
+  const RigidBody& A = world.bodies()[c.a];
+  const RigidBody& B = world.bodies()[c.b];
+  ContactRow row;
+  row.a = c.a;
+  row.b = c.b;
+  row.ra = c.point - A.x;
+  row.rb = c.point - B.x;
+  row.n = c.normal;
+  // a tangent basis that depends only on n, so it is the same every step
+  row.t1 = std::abs(row.n.x()) < 0.57735 ? row.n.cross(Vec3::UnitX()).normalized()
+                                         : row.n.cross(Vec3::UnitY()).normalized();
+  row.t2 = row.n.cross(row.t1);
+  row.k_n = EffectiveInverseMass(row, row.n, s);
+  row.mass_n = row.k_n > 0.0 ? 1.0 / row.k_n : 0.0;
+  const double k1 = EffectiveInverseMass(row, row.t1, s);
+  const double k2 = EffectiveInverseMass(row, row.t2, s);
+  row.mass_t1 = k1 > 0.0 ? 1.0 / k1 : 0.0;
+  row.mass_t2 = k2 > 0.0 ? 1.0 / k2 : 0.0;
+  row.friction = CombineFriction(A.material, B.material);
+  row.restitution = CombineRestitution(A.material, B.material);
+  return row;
+}
+
+}  // namespace contactsim

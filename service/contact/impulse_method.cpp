@@ -1,0 +1,293 @@
+#include "service/contact/impulse_method.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "service/collision/narrowphase.h"
+#include "service/collision/time_of_impact.h"
+#include "service/contact/param_reader.h"
+#include "service/physics/integrator.h"
+
+namespace contactsim {
+
+Status ImpulseMethod::SetParams(const ParamMap& params) {
+  ImpulseParams p = params_;
+  ParamReader r(Name(), params);
+  r.Int("iterations", 1, 10000, &p.iterations);
+  r.Int("collision_passes", 1, 10000, &p.collision_passes);
+  r.Double("velocity_tolerance", 0.0, 1.0, &p.velocity_tolerance);
+  r.Double("collision_threshold", 0.0, 10.0, &p.collision_threshold);
+  r.Double("slop", 0.0, 0.1, &p.slop);
+  r.Double("position_correction", 0.0, 1.0, &p.position_correction);
+  r.Choice("toi", {"regula_falsi", "bisection", "off"}, &p.toi);
+  r.Int("max_substeps", 1, 64, &p.max_substeps);
+  Status status = r.Finish();
+  if (status.ok()) params_ = p;
+  return status;
+}
+
+ParamMap ImpulseMethod::Params() const {
+  return {{"iterations", std::to_string(params_.iterations)},
+          {"collision_passes", std::to_string(params_.collision_passes)},
+          {"velocity_tolerance", FormatDouble(params_.velocity_tolerance)},
+          {"collision_threshold", FormatDouble(params_.collision_threshold)},
+          {"slop", FormatDouble(params_.slop)},
+          {"position_correction", FormatDouble(params_.position_correction)},
+          {"toi", params_.toi},
+          {"max_substeps", std::to_string(params_.max_substeps)}};
+}
+
+// Split impulse: pseudo-velocities solved like contact impulses for a
+// separation of beta (depth - slop) each, then applied to positions only.
+void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
+  if (params_.position_correction <= 0.0) return;
+  rows_.clear();
+  std::vector<double> target;
+  LoadSolverBodies(world, &solver_);
+  for (const Contact& c : contacts) {
+    const double excess = c.depth - params_.slop;
+    if (excess <= 0.0) continue;
+    rows_.push_back(MakeContactRow(c, world, solver_));
+    target.push_back(params_.position_correction * excess);
+  }
+  if (rows_.empty()) return;
+  for (SolverBody& s : solver_) s.v.setZero(), s.w.setZero();
+  for (int it = 0; it < params_.iterations; ++it) {
+    double worst = 0.0;
+    for (size_t k = 0; k < rows_.size(); ++k) {
+      ContactRow& row = rows_[k];
+      const double gap = target[k] - row.NormalVelocity(solver_);
+      const double next = std::max(0.0, row.lambda_n + gap * row.mass_n);
+      const double d = next - row.lambda_n;
+      row.lambda_n = next;
+      row.Apply(d * row.n, solver_);
+      worst = std::max(worst, std::abs(d) * row.k_n);
+    }
+    if (worst < 1e-9) break;
+  }
+  auto& bodies = world.bodies();
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies[i].IsDynamic()) continue;
+    bodies[i].x += solver_[i].v;
+    bodies[i].q = (QuatFromRotationVector(solver_[i].w) * bodies[i].q).normalized();
+  }
+}
+
+int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
+  int pass = 0;
+  for (; pass < params_.collision_passes; ++pass) {
+    bool any = false;
+    for (ContactRow& row : rows) {
+      const double vn = row.NormalVelocity(solver_);
+      if (vn >= -params_.collision_threshold) continue;
+      any = true;
+      const double j = -(1.0 + row.restitution) * vn * row.mass_n;
+      // Coulomb friction of the collision: stop the sliding if mu j allows it
+      Vec3 vt = row.RelativeVelocity(solver_);
+      vt -= row.n * row.n.dot(vt);
+      Vec3 J = j * row.n;
+      const double speed_t = vt.norm();
+      if (speed_t > 1e-12 && row.friction > 0.0) {
+        const Vec3 t = vt / speed_t;
+        const double k_t = EffectiveInverseMass(row, t, solver_);
+        const double jt = std::min(speed_t / k_t, row.friction * j);
+        J -= jt * t;
+        row.lambda_t1 -= jt * t.dot(row.t1);
+        row.lambda_t2 -= jt * t.dot(row.t2);
+      }
+      row.lambda_n += j;
+      row.Apply(J, solver_);
+    }
+    if (!any) break;
+  }
+  return pass;
+}
+
+int ImpulseMethod::ContactPhase(std::vector<ContactRow>& rows) {
+  // Accumulated impulses start at zero here; the collision phase's impulses
+  // are kept apart (collision_n) so that clamping applies to this phase only.
+  std::vector<double> collision_n(rows.size());
+  std::vector<Vec3> collision_t(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    collision_n[k] = rows[k].lambda_n;
+    collision_t[k] = rows[k].lambda_t1 * rows[k].t1 + rows[k].lambda_t2 * rows[k].t2;
+    rows[k].lambda_n = rows[k].lambda_t1 = rows[k].lambda_t2 = 0.0;
+  }
+  int it = 0;
+  for (; it < params_.iterations; ++it) {
+    double worst = 0.0;  // largest change of a relative velocity, m/s
+    for (ContactRow& row : rows) {
+      // friction first, limited by the normal impulse of the last sweep
+      const Vec3 vrel = row.RelativeVelocity(solver_);
+      const double limit = row.friction * row.lambda_n;
+      const double old1 = row.lambda_t1, old2 = row.lambda_t2;
+      double l1 = old1 - row.t1.dot(vrel) * row.mass_t1;
+      double l2 = old2 - row.t2.dot(vrel) * row.mass_t2;
+      const double norm = std::hypot(l1, l2);
+      if (norm > limit) {
+        const double scale = norm > 0.0 ? limit / norm : 0.0;
+        l1 *= scale;
+        l2 *= scale;
+      }
+      row.lambda_t1 = l1;
+      row.lambda_t2 = l2;
+      const Vec3 dJt = (l1 - old1) * row.t1 + (l2 - old2) * row.t2;
+      row.Apply(dJt, solver_);
+
+      const double vn = row.NormalVelocity(solver_);
+      const double next = std::max(0.0, row.lambda_n - vn * row.mass_n);
+      const double dn = next - row.lambda_n;
+      row.lambda_n = next;
+      row.Apply(dn * row.n, solver_);
+      worst = std::max({worst, std::abs(dn) * row.k_n, dJt.norm() * row.k_n});
+    }
+    if (worst < params_.velocity_tolerance) {
+      ++it;
+      break;
+    }
+  }
+  for (size_t k = 0; k < rows.size(); ++k) {
+    rows[k].lambda_n += collision_n[k];
+    const Vec3 t = collision_t[k];
+    rows[k].lambda_t1 += t.dot(rows[k].t1);
+    rows[k].lambda_t2 += t.dot(rows[k].t2);
+  }
+  return it;
+}
+
+namespace {
+
+// Radius of a sphere about the centre of mass that holds the shape (m).
+double BoundingRadius(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::kSphere: return s.radius;
+    case ShapeType::kBox: return s.half_extents.norm();
+    case ShapeType::kCapsule: return s.half_length + s.radius;
+    case ShapeType::kConvex: {
+      double r = 0.0;
+      for (const Vec3& v : s.hull->vertices) r = std::max(r, v.norm());
+      return r;
+    }
+    default: return 0.0;  // planes are static: no rotation sweeps them
+  }
+}
+
+}  // namespace
+
+double ImpulseMethod::FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs,
+                                     double h, int* iterations) const {
+  // Bound on how fast any pair can close during the sub-step (needed for
+  // conservative advancement, which keeps thin bodies from being skipped):
+  // relative speed plus rotation sweep plus what the forces add over h.
+  double max_closing = 0.0;
+  for (const auto& [i, j] : pairs) {
+    const RigidBody& a = start.bodies()[i];
+    const RigidBody& b = start.bodies()[j];
+    const double accel = (a.force * a.inv_mass - b.force * b.inv_mass).norm() * h;
+    max_closing = std::max(max_closing, (a.LinearVelocity() - b.LinearVelocity()).norm() + accel +
+                                            a.AngularVelocity().norm() * BoundingRadius(a.shape) +
+                                            b.AngularVelocity().norm() * BoundingRadius(b.shape));
+  }
+  // Separations up to everything the sub-step can close are measured exactly
+  // rather than clamped, so advancement takes full-size steps.
+  const double reach = max_closing * h + 2.0 * params_.slop;
+  ContactSet scratch;
+  auto distance_at = [&](double t) {
+    double deepest = -reach;
+    for (const auto& [i, j] : pairs) {
+      RigidBody a = start.bodies()[i];
+      RigidBody b = start.bodies()[j];
+      AdvanceBallistic(a, t);
+      AdvanceBallistic(b, t);
+      scratch.clear();
+      Collide(a, i, b, j, reach, &scratch);
+      for (const Contact& c : scratch) deepest = std::max(deepest, c.depth);
+    }
+    return -deepest;
+  };
+  TimeOfImpactOptions options;
+  ParseRootFinder(params_.toi, &options.finder);
+  options.tolerance = 0.25 * params_.slop;
+  options.max_closing_speed = max_closing;
+  const TimeOfImpactResult result = FindTimeOfImpact(distance_at, 0.0, h, options);
+  *iterations += result.evaluations;
+  return result.hit ? result.time : h;
+}
+
+StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  StepStats stats;
+  contacts_out->clear();
+  const double margin = params_.slop;
+  double remaining = world.dt;
+  world.AccumulateForces();
+  ContactSet contacts;
+  detector.Detect(world, margin, remaining, &contacts);
+  CorrectPositions(world, contacts);
+
+  World start_state;
+  for (int sub = 0;; ++sub) {
+    if (sub > 0) detector.Detect(world, margin, remaining, &contacts);
+    LoadSolverBodies(world, &solver_);
+    rows_.clear();
+    for (const Contact& c : contacts) rows_.push_back(MakeContactRow(c, world, solver_));
+    stats.iterations += CollisionPhase(rows_);
+    StoreSolverBodies(solver_, world);
+    start_state.bodies() = world.bodies();
+
+    IntegrateMomenta(world, remaining);
+    LoadSolverBodies(world, &solver_);
+    stats.iterations += ContactPhase(rows_);
+    StoreSolverBodies(solver_, world);
+
+    auto& bodies = world.bodies();
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      RigidBody& b = bodies[i];
+      if (b.motion == MotionType::kStatic) continue;
+      const bool touched = solver_[i].dP.squaredNorm() + solver_[i].dL.squaredNorm() > 0.0;
+      // ballistic: v0 h + F/(2m) h^2 with v0 = v - F/m h
+      const Vec3 v = touched || !b.IsDynamic() ? b.LinearVelocity()
+                                               : Vec3(b.LinearVelocity() - 0.5 * remaining * b.inv_mass * b.force);
+      b.x += v * remaining;
+      b.q = (QuatFromRotationVector(b.AngularVelocity() * remaining) * b.q).normalized();
+    }
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      Contact c = contacts[k];
+      c.normal_value = rows_[k].lambda_n;
+      c.tangent_value = rows_[k].lambda_t1 * rows_[k].t1 + rows_[k].lambda_t2 * rows_[k].t2;
+      contacts_out->push_back(c);
+    }
+    if (params_.toi == "off" || sub + 1 >= params_.max_substeps) break;
+
+    // pairs that were apart at the sub-step's start and now overlap
+    std::set<std::pair<int, int>> touching;
+    for (const Contact& c : contacts) touching.insert({std::min(c.a, c.b), std::max(c.a, c.b)});
+    std::vector<std::pair<int, int>> impacts;
+    ContactSet scratch;
+    for (const BodyPair& p : detector.pairs()) {
+      if (touching.count(p)) continue;
+      scratch.clear();
+      Collide(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
+      for (const Contact& c : scratch) {
+        if (c.depth > margin) {
+          impacts.push_back(p);
+          break;
+        }
+      }
+    }
+    if (impacts.empty()) break;
+    const double t_c = FindImpactTime(start_state, impacts, remaining, &stats.iterations);
+    if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
+    bodies = start_state.bodies();
+    for (RigidBody& b : bodies) AdvanceBallistic(b, t_c);
+    remaining -= t_c;
+    ++stats.substeps;
+    contacts_out->clear();
+  }
+  world.FinishStep();
+  stats.contacts = static_cast<int>(contacts_out->size());
+  for (const Contact& c : *contacts_out) stats.max_penetration = std::max(stats.max_penetration, c.depth);
+  return stats;
+}
+
+}  // namespace contactsim

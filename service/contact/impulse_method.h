@@ -1,0 +1,71 @@
+// The impulse method: collisions by impulses with a coefficient of
+// restitution, resting contact and friction by sequential impulses, and
+// collision time by backtracking.
+//
+// One step of length dt, in sub-steps that end at the moments of impact:
+//  1. detect contacts at the current poses (speculative within `slop`);
+//  2. collision phase (Guendelman, Bridson and Fedkiw 2003, "Nonconvex rigid
+//     bodies with stacking"): on the velocities before this step's forces,
+//     every contact approaching faster than collision_threshold gets
+//       j = -(1+e) v_rel / (1/ma + 1/mb + n.(Ia^-1 (ra x n)) x ra + n.(Ib^-1 (rb x n)) x rb)
+//     (Hahn 1988; Mirtich 1996), with Coulomb friction clamped to mu j, in
+//     passes until none approaches (this propagates through a Newton's cradle);
+//  3. forces: P += F h, L += tau h;
+//  4. contact phase: sequential impulses with accumulated clamping (Catto
+//     2005) so that no contact approaches (v_rel >= 0, no bounce) and
+//     friction stays in the Coulomb disk |lambda_t| <= mu lambda_n;
+//  5. positions: bodies without contact impulses fly ballistically,
+//     x += v0 h + F/(2m) h^2 (exact under constant force, so bounce heights
+//     carry no O(dt) bias); the others x += v h;
+//  6. time of impact: if a pair that was apart now overlaps deeper than
+//     slop, go back to the start of the sub-step, find the first time t_c
+//     its depth reaches zero by bisection or regula falsi, move everything
+//     to t_c and start a new sub-step there (at most max_substeps).
+// Penetration left over is removed at the next step's start by a split
+// impulse (pseudo-velocities that move positions, never velocities), so the
+// correction adds no kinetic energy.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "service/contact/contact_method.h"
+#include "service/contact/contact_row.h"
+#include "service/contact/solver_body.h"
+
+namespace contactsim {
+
+struct ImpulseParams {
+  int iterations = 30;                  // contact-phase sweeps at most
+  int collision_passes = 20;            // collision-phase sweeps at most
+  double velocity_tolerance = 1e-5;     // m/s: sweeping stops when no impulse changes v_rel more
+  double collision_threshold = 0.01;    // m/s: approach speed above which restitution applies
+  double slop = 1e-3;                   // m: penetration left alone; speculative contact margin
+  double position_correction = 0.2;     // 1/step: fraction of (depth - slop) removed per step
+  std::string toi = "regula_falsi";     // regula_falsi | bisection | off
+  int max_substeps = 4;                 // time-of-impact sub-steps per step at most
+};
+
+class ImpulseMethod : public ContactMethod {
+ public:
+  const char* Name() const override { return "impulse"; }
+  ContactValueKind ValueKind() const override { return ContactValueKind::kImpulse; }
+  Status SetParams(const ParamMap& params) override;
+  ParamMap Params() const override;
+  StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
+  const ImpulseParams& params() const { return params_; }
+
+ private:
+  void CorrectPositions(World& world, const ContactSet& contacts);
+  int CollisionPhase(std::vector<ContactRow>& rows);
+  int ContactPhase(std::vector<ContactRow>& rows);
+  // First time in (0, h] at which a pair that was apart touches, or h.
+  double FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs, double h,
+                        int* iterations) const;
+
+  ImpulseParams params_;
+  std::vector<SolverBody> solver_;
+  std::vector<ContactRow> rows_;
+};
+
+}  // namespace contactsim

@@ -1,0 +1,101 @@
+// contactsim-server: owns one physics world and serves it over LCM.
+//
+//   contactsim-server --config FILE [--scene FILE] [--lcm-url URL] [--prefix NAME]
+//                     [--log-level LEVEL] [--mode realtime|free_run] [--paused] [--no-live-line]
+//
+// Two threads: this one runs the simulation loop (SimServer::Run), a second
+// one receives LCM messages and hands them to the server. SIGINT and SIGTERM
+// stop both cleanly.
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <thread>
+
+#include "service/server/lcm_transport.h"
+#include "service/server/server_config.h"
+#include "service/server/sim_server.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void OnSignal(int) { g_stop.store(true); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace contactsim;
+  CLI::App app{"contactsim-server: rigid-body contact co-simulation over LCM"};
+  std::string config_path, scene_path, lcm_url, prefix, log_level, mode;
+  bool paused = false, no_live_line = false;
+  app.add_option("--config", config_path, "server configuration (protobuf text)")->required();
+  app.add_option("--scene", scene_path, "scene file, overriding the config's");
+  app.add_option("--lcm-url", lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else the project default)");
+  app.add_option("--prefix", prefix, "channel prefix (default from config: CONTACTSIM)");
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
+  app.add_option("--mode", mode, "realtime or free_run")->check(CLI::IsMember({"realtime", "free_run"}));
+  app.add_flag("--paused", paused, "start paused");
+  app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
+  CLI11_PARSE(app, argc, argv);
+
+  auto logger = spdlog::stderr_color_mt("contactsim");
+  spdlog::set_default_logger(logger);
+
+  proto::ServerConfig config;
+  Status st = LoadServerConfig(config_path, &config);
+  ServerSetup setup;
+  if (st.ok()) st = MakeServerSetup(config, config_path, scene_path, &setup);
+  if (!st.ok()) {
+    spdlog::critical("{}", st.message());
+    return 1;
+  }
+  if (!prefix.empty()) setup.options.prefix = prefix;
+  if (!lcm_url.empty()) setup.lcm_url = lcm_url;
+  if (!log_level.empty()) setup.log_level = log_level;
+  if (!mode.empty()) setup.options.mode = mode == "free_run" ? RunMode::kFreeRun : RunMode::kRealtime;
+  if (paused) setup.options.start_paused = true;
+  if (no_live_line) setup.options.live_line = false;
+  const auto level = spdlog::level::from_str(setup.log_level);
+  if (level == spdlog::level::off && setup.log_level != "off") {
+    spdlog::critical("--log-level must be one of trace, debug, info, warn, error, critical, off, got \"{}\"",
+                     setup.log_level);
+    return 1;
+  }
+  spdlog::set_level(level);
+
+  const std::string url = ResolveLcmUrl(setup.lcm_url);
+  LcmTransport transport(url);
+  if (!transport.good()) {
+    spdlog::critical("cannot open LCM at {} (no multicast route? see README, troubleshooting)", url);
+    return 1;
+  }
+  SimServer server(setup.options, &transport);
+  if (!(st = server.Init(setup.scene.get(), setup.method)).ok()) {
+    spdlog::critical("{}", st.message());
+    return 1;
+  }
+  transport.Subscribe(server.Channel("BODY_CMD"), [&](const std::string&, const void* d, int n) {
+    server.OnBodyMessage(d, n);
+  });
+  transport.Subscribe(server.Channel("SCENE_CMD"), [&](const std::string&, const void* d, int n) {
+    server.OnSceneMessage(d, n);
+  });
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  spdlog::info("contactsim-server {} ready: {} bodies, method {}, {} mode{}, channels {}_*, LCM {}",
+               CONTACTSIM_VERSION, server.world().bodies().size(), server.method().Name(),
+               setup.options.mode == RunMode::kRealtime ? "realtime" : "free_run",
+               setup.options.start_paused ? " (paused)" : "", setup.options.prefix, url);
+
+  std::thread lcm_thread([&] {
+    while (!g_stop.load()) transport.HandleTimeout(100);
+  });
+  server.Run(g_stop);
+  lcm_thread.join();
+  spdlog::info("stopped cleanly at step {} (t = {:.3f} s)", server.world().step, server.world().time);
+  return 0;
+}

@@ -1,0 +1,26 @@
+// Checks for values that arrive from outside (commands, scene files). Each
+// returns a status whose message names the field and the value, e.g.
+// "radius must be a finite number > 0, got -1".
+#pragma once
+
+#include <string>
+
+#include "service/physics/math.h"
+#include "service/physics/status.h"
+
+namespace contactsim {
+
+std::string FormatValue(double v);
+std::string FormatValue(const Vec3& v);
+
+Status CheckFinite(const std::string& field, double v);
+Status CheckFinite(const std::string& field, const Vec3& v);
+Status CheckPositive(const std::string& field, double v);  // finite and > 0
+Status CheckNonNegative(const std::string& field, double v);
+Status CheckInRange(const std::string& field, double v, double lo, double hi);
+
+// (w, x, y, z) -> unit quaternion; all zeros means the identity. Rejects
+// non-finite values and norms below 1e-9.
+Status MakeOrientation(const std::string& field, const Eigen::Vector4d& wxyz, Quat* q);
+
+}  // namespace contactsim

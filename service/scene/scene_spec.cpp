@@ -1,0 +1,178 @@
+#include "service/scene/scene_spec.h"
+
+#include <cmath>
+#include <random>
+
+#include "service/physics/validation.h"
+#include "service/proto/scene.pb.h"
+#include "service/scene/proto_text.h"
+
+namespace contactsim {
+namespace {
+
+using google::protobuf::TextFormat;
+
+Vec3 ToVec3(const proto::Vector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+
+Material ToMaterial(const proto::Material& m) {
+  Material out;
+  out.restitution = m.restitution();
+  out.friction = m.friction();
+  return out;
+}
+
+BodySettings ToBodySettings(const proto::Body& b, const Material& default_material) {
+  BodySettings s;
+  s.name = b.name();
+  switch (b.shape_case()) {
+    case proto::Body::kSphere:
+      s.shape = ShapeType::kSphere;
+      s.radius = b.sphere().radius();
+      break;
+    case proto::Body::kBox:
+      s.shape = ShapeType::kBox;
+      s.half_extents = ToVec3(b.box().half_extents());
+      break;
+    case proto::Body::kPlane:
+      s.shape = ShapeType::kPlane;
+      s.plane_normal = b.plane().has_normal() ? ToVec3(b.plane().normal()) : Vec3::UnitZ();
+      s.plane_offset = b.plane().offset();
+      break;
+    case proto::Body::kCapsule:
+      s.shape = ShapeType::kCapsule;
+      s.radius = b.capsule().radius();
+      s.half_length = b.capsule().half_length();
+      break;
+    case proto::Body::kConvex:
+      s.shape = ShapeType::kConvex;
+      for (const auto& p : b.convex().points()) s.points.push_back(ToVec3(p));
+      break;
+    case proto::Body::SHAPE_NOT_SET:
+      s.shape = ShapeType::kCount;  // rejected by CreateBody
+      break;
+  }
+  s.position = ToVec3(b.position());
+  if (b.has_orientation()) {
+    const auto& q = b.orientation();
+    s.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  }
+  s.linear_velocity = ToVec3(b.linear_velocity());
+  s.angular_velocity = ToVec3(b.angular_velocity());
+  if (b.has_mass()) s.mass = b.mass();
+  if (b.has_density()) s.density = b.density();
+  s.fixed = b.fixed();
+  const Material m = b.has_material() ? ToMaterial(b.material()) : default_material;
+  s.restitution = m.restitution;
+  s.friction = m.friction;
+  return s;
+}
+
+// Uniform in [0, 1) from 53 random bits: the same on every platform, unlike
+// std::uniform_real_distribution.
+double Uniform01(std::mt19937_64& rng) { return (rng() >> 11) * (1.0 / 9007199254740992.0); }
+
+// Uniformly random rotation (Shoemake 1992, "Uniform random rotations").
+Eigen::Vector4d RandomOrientation(std::mt19937_64& rng) {
+  const double u1 = Uniform01(rng), u2 = Uniform01(rng), u3 = Uniform01(rng);
+  const double two_pi = 6.283185307179586;
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  return Eigen::Vector4d(b * std::cos(two_pi * u3), a * std::sin(two_pi * u2), a * std::cos(two_pi * u2),
+                         b * std::sin(two_pi * u3));
+}
+
+Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Material& default_material,
+                  SceneSpec* scene) {
+  if (g.nx() < 1 || g.ny() < 1 || g.nz() < 1 || int64_t{g.nx()} * g.ny() * g.nz() > 1000000) {
+    return Status::InvalidArgument(where + ": grids nx, ny, nz must be >= 1 with at most 1,000,000 bodies, got " +
+                                   std::to_string(g.nx()) + " x " + std::to_string(g.ny()) + " x " +
+                                   std::to_string(g.nz()));
+  }
+  Status st;
+  if (!(st = CheckNonNegative("jitter", g.jitter())).ok()) return Status::InvalidArgument(where + ": grids " + st.message());
+  std::mt19937_64 rng(g.seed());
+  const BodySettings proto_body = ToBodySettings(g.prototype(), default_material);
+  const Vec3 origin = ToVec3(g.origin()), spacing = ToVec3(g.spacing());
+  for (int k = 0; k < g.nz(); ++k) {
+    for (int j = 0; j < g.ny(); ++j) {
+      for (int i = 0; i < g.nx(); ++i) {
+        BodySettings s = proto_body;
+        s.position = origin + Vec3(i, j, k).cwiseProduct(spacing) + s.position;
+        s.position.x() += g.jitter() * (2.0 * Uniform01(rng) - 1.0);
+        s.position.y() += g.jitter() * (2.0 * Uniform01(rng) - 1.0);
+        if (g.random_orientation()) s.orientation = RandomOrientation(rng);
+        if (!s.name.empty()) s.name += "_" + std::to_string(scene->bodies.size());
+        scene->bodies.push_back(std::move(s));
+        scene->origins.push_back(where);
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+Status Convert(const proto::Scene& p, const std::string& filename, const TextFormat::ParseInfoTree* tree,
+               SceneSpec* out) {
+  SceneSpec scene;
+  if (p.has_gravity()) scene.gravity = ToVec3(p.gravity());
+  if (p.has_dt()) scene.dt = p.dt();
+  Status st;
+  if (!(st = CheckFinite("gravity", scene.gravity)).ok()) {
+    return Status::InvalidArgument(FieldLocation(filename, tree, p, "gravity") + ": " + st.message());
+  }
+  if (!(st = CheckInRange("dt", scene.dt, 1e-6, 0.1)).ok()) {
+    return Status::InvalidArgument(FieldLocation(filename, tree, p, "dt") + ": " + st.message());
+  }
+  if (p.has_default_material()) {
+    scene.default_material = ToMaterial(p.default_material());
+    if (!(st = CheckMaterial(scene.default_material.restitution, scene.default_material.friction)).ok()) {
+      return Status::InvalidArgument(FieldLocation(filename, tree, p, "default_material") + ": default_material " +
+                                     st.message());
+    }
+  }
+  for (int i = 0; i < p.bodies_size(); ++i) {
+    scene.bodies.push_back(ToBodySettings(p.bodies(i), scene.default_material));
+    std::string where = FieldLocation(filename, tree, p, "bodies", i) + ": bodies[" + std::to_string(i) + "]";
+    if (!p.bodies(i).name().empty()) where += " \"" + p.bodies(i).name() + "\"";
+    scene.origins.push_back(where);
+  }
+  for (int i = 0; i < p.grids_size(); ++i) {
+    const std::string where = FieldLocation(filename, tree, p, "grids", i) + ": grids[" + std::to_string(i) + "]";
+    if (!(st = ExpandGrid(p.grids(i), where, scene.default_material, &scene)).ok()) return st;
+  }
+  scene.contact_method = p.contact_method();
+  for (const auto& param : p.method_params()) scene.method_params[param.name()] = param.value();
+  *out = std::move(scene);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ParseSceneText(const std::string& text, const std::string& filename, SceneSpec* scene) {
+  proto::Scene p;
+  TextFormat::ParseInfoTree tree;
+  Status st = ParseTextProto(text, filename, &p, &tree);
+  if (!st.ok()) return st;
+  return Convert(p, filename, &tree, scene);
+}
+
+Status LoadSceneFile(const std::string& path, SceneSpec* scene) {
+  proto::Scene p;
+  TextFormat::ParseInfoTree tree;
+  Status st = ReadTextProto(path, &p, &tree);
+  if (!st.ok()) return st;
+  return Convert(p, path, &tree, scene);
+}
+
+Status BuildWorld(const SceneSpec& scene, World* world) {
+  std::vector<RigidBody> bodies(scene.bodies.size());
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    Status st = CreateBody(scene.bodies[i], scene.default_material, &bodies[i]);
+    if (!st.ok()) return Status::InvalidArgument(scene.origins[i] + ": " + st.message());
+  }
+  world->Clear();
+  world->gravity = scene.gravity;
+  world->dt = scene.dt;
+  for (RigidBody& b : bodies) world->AddBody(std::move(b));
+  return Status::Ok();
+}
+
+}  // namespace contactsim

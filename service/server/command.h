@@ -1,0 +1,50 @@
+// A command after decoding and every check that needs no world: numbers are
+// finite, sizes positive, a new body is already built, a new contact method
+// already created with its parameters. Only checks against the world (does
+// the body exist?) remain for the simulation thread.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "service/contact/contact_method.h"
+#include "service/physics/rigid_body.h"
+#include "service/scene/scene_spec.h"
+
+namespace contactsim {
+
+enum class RunMode { kRealtime = 1, kFreeRun = 2 };
+
+struct Command {
+  enum class Kind {
+    kAddBody, kRemoveBody, kSetPose, kSetVelocity, kApplyForce, kApplyImpulse, kSetMass, kSetMaterial,
+    kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
+  };
+  Kind kind = Kind::kPause;
+  std::string client_id;
+  int64_t request_id = 0;
+
+  BodyId body_id = 0;                  // every body command but ADD
+  RigidBody new_body;                  // ADD
+  Vec3 position = Vec3::Zero();        // SET_POSE
+  Quat orientation = Quat::Identity(); // SET_POSE
+  Vec3 linear = Vec3::Zero();          // SET_VELOCITY (m/s), APPLY_FORCE (N), APPLY_IMPULSE (N s)
+  Vec3 angular = Vec3::Zero();         // SET_VELOCITY (rad/s), APPLY_FORCE (N m)
+  double duration = 0.0;               // APPLY_FORCE, s
+  std::optional<Vec3> point;           // APPLY_IMPULSE
+  std::optional<double> mass, density; // SET_MASS
+  std::optional<double> restitution, friction;  // SET_MATERIAL
+
+  std::shared_ptr<SceneSpec> scene;    // LOAD_SCENE
+  std::string scene_path;
+  Vec3 gravity = Vec3::Zero();         // SET_GRAVITY
+  double dt = 0.0;                     // SET_TIMESTEP
+  std::shared_ptr<ContactMethod> method;  // SET_METHOD, and LOAD_SCENE when the scene names one
+  int steps = 0;                       // STEP
+  RunMode mode = RunMode::kRealtime;   // SET_MODE
+  double real_time_factor = 1.0;
+};
+
+}  // namespace contactsim

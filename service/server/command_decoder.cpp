@@ -1,0 +1,180 @@
+#include "service/server/command_decoder.h"
+
+#include "service/physics/body_settings.h"
+#include "service/physics/validation.h"
+
+namespace contactsim {
+namespace {
+
+Vec3 V3(const double v[3]) { return Vec3(v[0], v[1], v[2]); }
+
+Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command* cmd) {
+  BodySettings s;
+  s.name = m.name;
+  switch (m.shape) {
+    case body_cmd_t::SPHERE: s.shape = ShapeType::kSphere; break;
+    case body_cmd_t::BOX: s.shape = ShapeType::kBox; break;
+    case body_cmd_t::PLANE: s.shape = ShapeType::kPlane; break;
+    case body_cmd_t::CAPSULE: s.shape = ShapeType::kCapsule; break;
+    case body_cmd_t::CONVEX: s.shape = ShapeType::kConvex; break;
+    default:
+      return Status::InvalidArgument("shape must be one of SPHERE=1, BOX=2, PLANE=3, CAPSULE=4, CONVEX=5, got " +
+                                     std::to_string(m.shape));
+  }
+  s.radius = m.radius;
+  s.half_extents = V3(m.half_extents);
+  s.half_length = m.half_length;
+  s.plane_normal = V3(m.plane_normal);
+  s.plane_offset = m.plane_offset;
+  if (m.num_points < 0 || static_cast<size_t>(m.num_points) != m.points.size()) {
+    return Status::InvalidArgument("num_points must equal the number of points, got " + std::to_string(m.num_points));
+  }
+  for (const auto& p : m.points) s.points.emplace_back(p[0], p[1], p[2]);
+  // 0 means "not given" for mass and density; anything else is checked
+  if (m.mass != 0.0) s.mass = m.mass;
+  if (m.density != 0.0) s.density = m.density;
+  s.fixed = m.fixed;
+  s.position = V3(m.position);
+  s.orientation = Eigen::Vector4d(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
+  s.linear_velocity = V3(m.linear_velocity);
+  s.angular_velocity = V3(m.angular_velocity);
+  if (m.has_restitution) s.restitution = m.restitution;
+  if (m.has_friction) s.friction = m.friction;
+  cmd->kind = Command::Kind::kAddBody;
+  return CreateBody(s, default_material, &cmd->new_body);
+}
+
+}  // namespace
+
+Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method) {
+  std::unique_ptr<ContactMethod> m;
+  Status st = CreateContactMethod(name, &m);
+  if (!st.ok()) return st;
+  if (!(st = m->SetParams(params)).ok()) return st;
+  *method = std::move(m);
+  return Status::Ok();
+}
+
+Status DecodeBodyCommand(const body_cmd_t& m, const Material& default_material, Command* cmd) {
+  cmd->client_id = m.client_id;
+  cmd->request_id = m.request_id;
+  cmd->body_id = m.body_id;
+  Status st;
+  switch (m.op) {
+    case body_cmd_t::ADD: return DecodeAdd(m, default_material, cmd);
+    case body_cmd_t::REMOVE: cmd->kind = Command::Kind::kRemoveBody; return Status::Ok();
+    case body_cmd_t::SET_POSE:
+      cmd->kind = Command::Kind::kSetPose;
+      cmd->position = V3(m.position);
+      if (!(st = CheckFinite("position", cmd->position)).ok()) return st;
+      return MakeOrientation("orientation",
+                             Eigen::Vector4d(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]),
+                             &cmd->orientation);
+    case body_cmd_t::SET_VELOCITY:
+      cmd->kind = Command::Kind::kSetVelocity;
+      cmd->linear = V3(m.linear_velocity);
+      cmd->angular = V3(m.angular_velocity);
+      if (!(st = CheckFinite("linear_velocity", cmd->linear)).ok()) return st;
+      return CheckFinite("angular_velocity", cmd->angular);
+    case body_cmd_t::APPLY_FORCE:
+      cmd->kind = Command::Kind::kApplyForce;
+      cmd->linear = V3(m.force);
+      cmd->angular = V3(m.torque);
+      cmd->duration = m.duration;
+      if (!(st = CheckFinite("force", cmd->linear)).ok()) return st;
+      if (!(st = CheckFinite("torque", cmd->angular)).ok()) return st;
+      return CheckNonNegative("duration", m.duration);
+    case body_cmd_t::APPLY_IMPULSE:
+      cmd->kind = Command::Kind::kApplyImpulse;
+      cmd->linear = V3(m.impulse);
+      if (!(st = CheckFinite("impulse", cmd->linear)).ok()) return st;
+      if (m.has_point) {
+        cmd->point = V3(m.point);
+        return CheckFinite("point", *cmd->point);
+      }
+      return Status::Ok();
+    case body_cmd_t::SET_MASS:
+      cmd->kind = Command::Kind::kSetMass;
+      if ((m.mass != 0.0) == (m.density != 0.0)) {
+        return Status::InvalidArgument("give exactly one of mass or density, got mass " + FormatValue(m.mass) +
+                                       ", density " + FormatValue(m.density));
+      }
+      if (m.mass != 0.0) {
+        cmd->mass = m.mass;
+        return CheckPositive("mass", m.mass);
+      }
+      cmd->density = m.density;
+      return CheckPositive("density", m.density);
+    case body_cmd_t::SET_MATERIAL:
+      cmd->kind = Command::Kind::kSetMaterial;
+      if (m.has_restitution) cmd->restitution = m.restitution;
+      if (m.has_friction) cmd->friction = m.friction;
+      return CheckMaterial(cmd->restitution, cmd->friction);
+    default: break;
+  }
+  return Status::InvalidArgument("op must be one of ADD=1 .. SET_MATERIAL=8, got " + std::to_string(m.op));
+}
+
+Status DecodeSceneCommand(const scene_cmd_t& m, Command* cmd) {
+  cmd->client_id = m.client_id;
+  cmd->request_id = m.request_id;
+  Status st;
+  switch (m.op) {
+    case scene_cmd_t::RESET: cmd->kind = Command::Kind::kReset; return Status::Ok();
+    case scene_cmd_t::LOAD_SCENE: {
+      cmd->kind = Command::Kind::kLoadScene;
+      cmd->scene_path = m.path;
+      auto scene = std::make_shared<SceneSpec>();
+      if (!(st = LoadSceneFile(m.path, scene.get())).ok()) return st;
+      // build once here so that a bad body is reported now, not mid-run
+      World probe;
+      if (!(st = BuildWorld(*scene, &probe)).ok()) return st;
+      if (!scene->contact_method.empty() &&
+          !(st = MakeContactMethod(scene->contact_method, scene->method_params, &cmd->method)).ok()) {
+        return Status::InvalidArgument(m.path + ": " + st.message());
+      }
+      cmd->scene = std::move(scene);
+      return Status::Ok();
+    }
+    case scene_cmd_t::SET_GRAVITY:
+      cmd->kind = Command::Kind::kSetGravity;
+      cmd->gravity = V3(m.gravity);
+      return CheckFinite("gravity", cmd->gravity);
+    case scene_cmd_t::SET_TIMESTEP:
+      cmd->kind = Command::Kind::kSetTimestep;
+      cmd->dt = m.dt;
+      return CheckInRange("dt", m.dt, 1e-6, 0.1);
+    case scene_cmd_t::SET_METHOD: {
+      cmd->kind = Command::Kind::kSetMethod;
+      if (m.num_params < 0 || static_cast<size_t>(m.num_params) != m.param_names.size() ||
+          m.param_names.size() != m.param_values.size()) {
+        return Status::InvalidArgument("num_params must equal the number of parameter names and values, got " +
+                                       std::to_string(m.num_params));
+      }
+      ParamMap params;
+      for (size_t i = 0; i < m.param_names.size(); ++i) params[m.param_names[i]] = m.param_values[i];
+      return MakeContactMethod(m.method, params, &cmd->method);
+    }
+    case scene_cmd_t::PAUSE: cmd->kind = Command::Kind::kPause; return Status::Ok();
+    case scene_cmd_t::RESUME: cmd->kind = Command::Kind::kResume; return Status::Ok();
+    case scene_cmd_t::STEP:
+      cmd->kind = Command::Kind::kStep;
+      cmd->steps = m.steps;
+      if (m.steps < 1 || m.steps > 100000000) {
+        return Status::InvalidArgument("steps must be in [1, 100000000], got " + std::to_string(m.steps));
+      }
+      return Status::Ok();
+    case scene_cmd_t::SET_MODE:
+      cmd->kind = Command::Kind::kSetMode;
+      if (m.mode != scene_cmd_t::REALTIME && m.mode != scene_cmd_t::FREE_RUN) {
+        return Status::InvalidArgument("mode must be REALTIME=1 or FREE_RUN=2, got " + std::to_string(m.mode));
+      }
+      cmd->mode = static_cast<RunMode>(m.mode);
+      cmd->real_time_factor = m.real_time_factor == 0.0 ? 1.0 : m.real_time_factor;
+      return CheckInRange("real_time_factor", cmd->real_time_factor, 1e-3, 1e3);
+    default: break;
+  }
+  return Status::InvalidArgument("op must be one of RESET=1 .. SET_MODE=9, got " + std::to_string(m.op));
+}
+
+}  // namespace contactsim

@@ -1,0 +1,22 @@
+// Decodes LCM command payloads and runs every check that needs no world.
+// Runs on the LCM thread, so bad input is answered at once and never
+// reaches the simulation thread.
+#pragma once
+
+#include <contactsim/body_cmd_t.hpp>
+#include <contactsim/scene_cmd_t.hpp>
+
+#include "service/physics/status.h"
+#include "service/server/command.h"
+
+namespace contactsim {
+
+// Turns a decoded body command into a Command; on error the status names the
+// field and the value.
+Status DecodeBodyCommand(const body_cmd_t& msg, const Material& default_material, Command* cmd);
+Status DecodeSceneCommand(const scene_cmd_t& msg, Command* cmd);
+
+// Builds a contact method by name with text parameters, validating both.
+Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method);
+
+}  // namespace contactsim

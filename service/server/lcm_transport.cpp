@@ -1,0 +1,40 @@
+#include "service/server/lcm_transport.h"
+
+#include <cstdlib>
+
+namespace contactsim {
+
+std::string ResolveLcmUrl(const std::string& explicit_url) {
+  if (!explicit_url.empty()) return explicit_url;
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  if (env != nullptr && env[0] != '\0') return env;
+  return kDefaultLcmUrl;
+}
+
+class LcmTransport::Relay {
+ public:
+  explicit Relay(RawHandler handler) : handler_(std::move(handler)) {}
+  void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    handler_(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+  }
+
+ private:
+  RawHandler handler_;
+};
+
+LcmTransport::LcmTransport(const std::string& url) : lcm_(std::make_unique<lcm::LCM>(url)) {}
+
+LcmTransport::~LcmTransport() = default;
+
+void LcmTransport::Publish(const std::string& channel, const void* data, int size) {
+  lcm_->publish(channel, data, static_cast<unsigned>(size));
+}
+
+void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
+  relays_.push_back(std::make_unique<Relay>(std::move(handler)));
+  lcm_->subscribe(channel, &Relay::Handle, relays_.back().get());
+}
+
+void LcmTransport::HandleTimeout(int timeout_ms) { lcm_->handleTimeout(timeout_ms); }
+
+}  // namespace contactsim

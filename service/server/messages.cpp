@@ -1,0 +1,68 @@
+#include "service/server/messages.h"
+
+namespace contactsim {
+namespace {
+
+void Copy3(const Vec3& v, double out[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = v[i];
+}
+
+}  // namespace
+
+state_t MakeStateMessage(const World& world) {
+  state_t msg;
+  msg.time = world.time;
+  msg.step = world.step;
+  msg.state_hash = static_cast<int64_t>(HashWorldState(world));
+  msg.num_bodies = static_cast<int32_t>(world.bodies().size());
+  msg.bodies.resize(world.bodies().size());
+  for (size_t i = 0; i < world.bodies().size(); ++i) {
+    const RigidBody& b = world.bodies()[i];
+    body_state_t& s = msg.bodies[i];
+    s.id = b.id;
+    Copy3(b.x, s.position);
+    s.orientation[0] = b.q.w();
+    s.orientation[1] = b.q.x();
+    s.orientation[2] = b.q.y();
+    s.orientation[3] = b.q.z();
+    Copy3(b.LinearVelocity(), s.linear_velocity);
+    Copy3(b.AngularVelocity(), s.angular_velocity);
+  }
+  return msg;
+}
+
+contacts_t MakeContactsMessage(const World& world, const ContactSet& contacts, const ContactMethod& method) {
+  contacts_t msg;
+  msg.time = world.time;
+  msg.step = world.step;
+  msg.method = method.Name();
+  msg.value_kind = method.ValueKind() == ContactValueKind::kImpulse ? contacts_t::IMPULSE : contacts_t::FORCE;
+  msg.num_contacts = static_cast<int32_t>(contacts.size());
+  msg.contacts.resize(contacts.size());
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    contact_t& m = msg.contacts[i];
+    m.body_a = c.id_a;
+    m.body_b = c.id_b;
+    Copy3(c.point, m.point);
+    Copy3(c.normal, m.normal);
+    m.depth = c.depth;
+    m.normal_value = c.normal_value;
+    Copy3(c.tangent_value, m.tangent_value);
+  }
+  return msg;
+}
+
+reply_t MakeReply(const std::string& client_id, int64_t request_id, const Status& status, const World& world) {
+  reply_t r;
+  r.client_id = client_id;
+  r.request_id = request_id;
+  r.code = static_cast<int32_t>(status.code());
+  r.message = status.ok() ? (status.message().empty() ? "ok" : status.message()) : status.message();
+  r.step = world.step;
+  r.time = world.time;
+  r.num_ids = 0;
+  return r;
+}
+
+}  // namespace contactsim

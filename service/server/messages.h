@@ -1,0 +1,19 @@
+// Engine structs to LCM messages (the only place that knows both).
+#pragma once
+
+#include <contactsim/contacts_t.hpp>
+#include <contactsim/reply_t.hpp>
+#include <contactsim/state_t.hpp>
+
+#include "service/collision/contact.h"
+#include "service/contact/contact_method.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+state_t MakeStateMessage(const World& world);
+contacts_t MakeContactsMessage(const World& world, const ContactSet& contacts, const ContactMethod& method);
+// reply_t codes equal StatusCode values by design.
+reply_t MakeReply(const std::string& client_id, int64_t request_id, const Status& status, const World& world);
+
+}  // namespace contactsim

@@ -1,0 +1,96 @@
+#include "service/server/server_config.h"
+
+#include "service/physics/validation.h"
+#include "service/scene/proto_text.h"
+#include "service/server/command_decoder.h"
+
+namespace contactsim {
+namespace {
+
+std::string Folder(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+}  // namespace
+
+Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
+  google::protobuf::TextFormat::ParseInfoTree tree;
+  Status st = ReadTextProto(path, config, &tree);
+  if (!st.ok()) return st;
+  auto at = [&](const char* field) { return FieldLocation(path, &tree, *config, field) + ": "; };
+  const struct {
+    const char* name;
+    double value, lo, hi;
+  } ranges[] = {
+      {"real_time_factor", config->real_time_factor(), 1e-3, 1e3},
+      {"state_rate_hz", config->state_rate_hz(), 0.0, 1e6},
+      {"contacts_rate_hz", config->contacts_rate_hz(), 0.0, 1e6},
+      {"status_rate_hz", config->status_rate_hz(), 1e-3, 1e3},
+  };
+  for (const auto& r : ranges) {
+    if (!(st = CheckInRange(r.name, r.value, r.lo, r.hi)).ok()) return Status::InvalidArgument(at(r.name) + st.message());
+  }
+  if (config->max_bodies() < 1) {
+    return Status::InvalidArgument(at("max_bodies") + "max_bodies must be >= 1, got " +
+                                   std::to_string(config->max_bodies()));
+  }
+  static const char* kLevels[] = {"trace", "debug", "info", "warn", "error", "critical", "off"};
+  bool level_ok = false;
+  for (const char* l : kLevels) level_ok |= config->log_level() == l;
+  if (!level_ok) {
+    return Status::InvalidArgument(at("log_level") + "log_level must be one of trace, debug, info, warn, error, "
+                                   "critical, off, got \"" + config->log_level() + "\"");
+  }
+  if (config->broadphase() != "sap" && config->broadphase() != "naive") {
+    return Status::InvalidArgument(at("broadphase") + "broadphase must be sap or naive, got \"" +
+                                   config->broadphase() + "\"");
+  }
+  ParamMap params;
+  for (const auto& p : config->method_params()) params[p.name()] = p.value();
+  std::shared_ptr<ContactMethod> method;
+  if (!(st = MakeContactMethod(config->contact_method(), params, &method)).ok()) {
+    return Status::InvalidArgument(at("contact_method") + st.message());
+  }
+  return Status::Ok();
+}
+
+Status MakeServerSetup(const proto::ServerConfig& config, const std::string& config_path,
+                       const std::string& scene_override, ServerSetup* setup) {
+  ServerSetup s;
+  s.options.prefix = config.channel_prefix();
+  s.options.mode = config.mode() == proto::ServerConfig::FREE_RUN ? RunMode::kFreeRun : RunMode::kRealtime;
+  s.options.real_time_factor = config.real_time_factor();
+  s.options.start_paused = config.start_paused();
+  s.options.state_rate_hz = config.state_rate_hz();
+  s.options.contacts_rate_hz = config.contacts_rate_hz();
+  s.options.status_rate_hz = config.status_rate_hz();
+  s.options.broadphase = config.broadphase();
+  s.options.max_bodies = config.max_bodies();
+  s.options.live_line = config.live_line();
+  s.lcm_url = config.lcm_url();
+  s.log_level = config.log_level();
+
+  ParamMap params;
+  for (const auto& p : config.method_params()) params[p.name()] = p.value();
+  Status st = MakeContactMethod(config.contact_method(), params, &s.method);
+  if (!st.ok()) return Status::InvalidArgument(config_path + ": contact_method: " + st.message());
+
+  if (!scene_override.empty()) {
+    s.scene_path = scene_override;
+  } else if (config.has_scene() && !config.scene().empty()) {
+    s.scene_path = config.scene()[0] == '/' ? config.scene() : Folder(config_path) + "/" + config.scene();
+  }
+  if (!s.scene_path.empty()) {
+    s.scene = std::make_shared<SceneSpec>();
+    if (!(st = LoadSceneFile(s.scene_path, s.scene.get())).ok()) return st;
+    if (!s.scene->contact_method.empty() &&
+        !(st = MakeContactMethod(s.scene->contact_method, s.scene->method_params, &s.method)).ok()) {
+      return Status::InvalidArgument(s.scene_path + ": contact_method: " + st.message());
+    }
+  }
+  *setup = std::move(s);
+  return Status::Ok();
+}
+
+}  // namespace contactsim
