@@ -262,11 +262,18 @@ class Client:
         """Calls callback(reply_t) for every reply on the channel, any client's; returns a remover."""
         return self._add_callback("reply", callback)
 
-    def _wait(self, registry, predicate, timeout, what):
+    def _wait(self, registry, predicate, timeout, what, latest):
         self._check_thread()
         w = _Waiter(predicate)
         with self._lock:
             registry.append(w)
+        if predicate is not None:  # registered first, so nothing newer is missed
+            current = latest()
+            if current is not None and predicate(current):
+                with self._lock:
+                    if w in registry:
+                        registry.remove(w)
+                return current
         if not w.event.wait(self.timeout if timeout is None else timeout):
             with self._lock:
                 if w in registry:
@@ -279,20 +286,19 @@ class Client:
         return w.result
 
     def wait_for_state(self, predicate=None, timeout=None):
-        """Waits for the next STATE (for which predicate(State) is true, if given)
-        and returns it; raises TimeoutError. timeout None: the client's timeout."""
-        return self._wait(self._state_waiters, predicate, timeout, "STATE")
+        """Returns the first State for which predicate(State) is true: the latest
+        one if it already is, else the next one that is. Without a predicate,
+        the next STATE to arrive. Raises TimeoutError after timeout s (None:
+        the client's timeout)."""
+        return self._wait(self._state_waiters, predicate, timeout, "STATE", self._latest_state_obj)
 
     def wait_for_status(self, predicate=None, timeout=None):
-        """Waits for the next STATUS (matching predicate(Status), if given)."""
-        return self._wait(self._status_waiters, predicate, timeout, "STATUS")
+        """Like wait_for_state, for STATUS messages."""
+        return self._wait(self._status_waiters, predicate, timeout, "STATUS", self.status)
 
     def wait_for_server(self, timeout=5.0):
         """Returns the latest STATUS, waiting up to timeout s for the first one."""
-        with self._lock:
-            if self._status is not None:
-                return self._status
-        return self.wait_for_status(timeout=timeout)
+        return self.wait_for_status(lambda st: True, timeout=timeout)
 
     # ------------------------------------------------------------ commands
     def _check_thread(self):

@@ -1,0 +1,93 @@
+"""contactsim-py: one command to a running contactsim server.
+
+    contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] COMMAND ...
+      status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET
+      remove ID | method NAME [key=value ...] | pause | resume | step [N] | reset
+
+Exit status: 0 OK, 1 error reply, 2 no reply (timeout).
+"""
+import argparse
+import sys
+
+from .client import Client
+from .errors import CommandError, TimeoutError
+
+
+def _parser():
+    p = argparse.ArgumentParser(prog="contactsim-py", description=__doc__.split("\n")[0])
+    p.add_argument("--lcm-url", default=None, help="LCM URL (default: $LCM_DEFAULT_URL or project default)")
+    p.add_argument("--prefix", default="CONTACTSIM", help="channel prefix")
+    p.add_argument("--timeout", type=float, default=2.0, help="reply timeout, s")
+    sub = p.add_subparsers(dest="cmd", required=True)
+    sub.add_parser("status", help="print the latest STATUS")
+    add = sub.add_parser("add", help="add a body").add_subparsers(dest="shape", required=True)
+    for shape, sizes in (("sphere", ["radius"]), ("box", ["hx", "hy", "hz"])):
+        a = add.add_parser(shape)
+        for s in sizes:
+            a.add_argument(s, type=float)
+        a.add_argument("--position", type=float, nargs=3, default=(0, 0, 0), metavar=("X", "Y", "Z"))
+        a.add_argument("--velocity", type=float, nargs=3, default=(0, 0, 0), metavar=("VX", "VY", "VZ"))
+        a.add_argument("--mass", type=float)
+        a.add_argument("--density", type=float)
+        a.add_argument("--restitution", type=float)
+        a.add_argument("--friction", type=float)
+        a.add_argument("--fixed", action="store_true")
+        a.add_argument("--name", default="")
+    a = add.add_parser("plane")
+    for s in ("nx", "ny", "nz", "offset"):
+        a.add_argument(s, type=float)
+    a.add_argument("--restitution", type=float)
+    a.add_argument("--friction", type=float)
+    sub.add_parser("remove").add_argument("id", type=int)
+    m = sub.add_parser("method", help="switch the contact method")
+    m.add_argument("name")
+    m.add_argument("params", nargs="*", metavar="key=value")
+    for name in ("pause", "resume", "reset"):
+        sub.add_parser(name)
+    sub.add_parser("step").add_argument("n", type=int, nargs="?", default=1)
+    return p
+
+
+def _run(c, a):
+    if a.cmd == "status":
+        for k, v in c.wait_for_server(timeout=max(a.timeout, 1.5)).as_dict().items():
+            print("%-24s %s" % (k, v))
+        return
+    if a.cmd == "add":
+        if a.shape == "plane":
+            bid = c.add_plane((a.nx, a.ny, a.nz), a.offset, restitution=a.restitution, friction=a.friction)
+        else:
+            kw = dict(position=a.position, velocity=a.velocity, mass=a.mass, density=a.density,
+                      restitution=a.restitution, friction=a.friction, fixed=a.fixed, name=a.name)
+            bid = (c.add_sphere(a.radius, **kw) if a.shape == "sphere"
+                   else c.add_box((a.hx, a.hy, a.hz), **kw))
+        print(bid)
+        return
+    if a.cmd == "remove":
+        r = c.remove_body(a.id)
+    elif a.cmd == "method":
+        params = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in a.params)
+        r = c.set_contact_method(a.name, **params)
+    elif a.cmd == "step":
+        r = c.step(a.n, timeout=max(a.timeout, 10.0))
+    else:
+        r = getattr(c, a.cmd)()
+    print("ok: step %d, time %.6f s%s" % (r.step, r.time, ": " + r.message if r.message else ""))
+
+
+def main(argv=None):
+    a = _parser().parse_args(argv)
+    with Client(url=a.lcm_url, prefix=a.prefix, timeout=a.timeout) as c:
+        try:
+            _run(c, a)
+        except TimeoutError as e:
+            print("contactsim-py: %s" % e, file=sys.stderr)
+            return 2
+        except CommandError as e:
+            print("contactsim-py: %s" % e, file=sys.stderr)
+            return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
