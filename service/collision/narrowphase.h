@@ -1,15 +1,38 @@
 // Narrowphase: contact points of one pair of bodies, looked up in a table by
 // the two shape types (as MuJoCo's mjCOLLISIONFUNC).
+//
+// Conventions (contact.h, docs/conventions.md): normals are unit, world, from
+// a to b; depth > 0 is penetration; a pair whose separation is below `margin`
+// is also reported, with depth = -separation < 0 (speculative contacts, used
+// for time-of-impact root finding, so the depth is continuous in the poses);
+// points lie midway between the two surfaces. Swapping a and b gives the same
+// points and feature ids with flipped normals.
 #pragma once
 
 #include "service/collision/contact.h"
+#include "service/collision/separating_axis_cache.h"
 #include "service/physics/rigid_body.h"
 
 namespace contactsim {
 
 // Appends the contacts of bodies a and b (indices ia, ib in the world) with
 // depth > -margin to `out`; normals point from a to b. Returns the number of
-// contacts appended.
+// contacts appended. Stateless: no separating-axis cache.
 int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out);
+
+// The same, remembering per body pair the axis that separated two polyhedra
+// (box, convex) so that the next call on a still-separated pair costs one axis
+// instead of the full separating-axis test. Results are identical to the free
+// function. A CollisionDetector owns one and calls it for every candidate pair.
+class Narrowphase {
+ public:
+  int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out);
+  // Forgets the cached axes and zeroes the counters (scene reset or load).
+  void Reset() { cache_.Clear(); }
+  const SeparatingAxisCache& cache() const { return cache_; }
+
+ private:
+  SeparatingAxisCache cache_;
+};
 
 }  // namespace contactsim

@@ -1,0 +1,68 @@
+// The pair functions of the narrowphase table (narrowphase.cpp), one file per
+// family as MuJoCo's engine_collision_*.c:
+//   collide_sphere.cpp      sphere-sphere, sphere-plane, sphere-box,
+//                           sphere-capsule, sphere-convex
+//   collide_capsule.cpp     capsule-capsule, capsule-plane, capsule-box,
+//                           capsule-convex
+//   collide_polyhedron.cpp  box/convex-plane, box/convex-box/convex (SAT)
+//
+// Every function collides body `a` (the row shape of the table) with body `b`
+// and appends contacts whose depth > -margin, filling only point, normal
+// (unit, world, from a to b), depth and feature_id; the dispatcher fills the
+// body indices and ids and flips the normal when it swapped the bodies.
+#pragma once
+
+#include <cstdint>
+
+#include "service/collision/contact.h"
+#include "service/physics/rigid_body.h"
+
+namespace contactsim {
+
+class SeparatingAxisCache;
+
+struct CollideContext {
+  double margin = 0.0;                  // m: report pairs with separation < margin
+  SeparatingAxisCache* cache = nullptr; // optional, used by the polyhedron pairs
+};
+
+using PairCollider = void (*)(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
+                              ContactSet* out);
+
+// Appends one contact between surfaces A and B given the unit normal from A to
+// B, the depth, and a point on A's surface: the contact point is moved half
+// the depth towards B's surface so that it lies midway between the two.
+void AppendContact(const Vec3& surface_a, const Vec3& normal_ab, double depth, uint32_t feature_id,
+                   ContactSet* out);
+
+// Sphere A (centre c, radius r) against a surface at signed distance d from c
+// whose outward unit normal at its nearest point is m: depth r - d, normal -m.
+void AppendSphereContact(const Vec3& c, double r, double d, const Vec3& m, uint32_t feature_id,
+                         double margin, ContactSet* out);
+// Sphere A (ca, ra) against sphere B (cb, rb).
+void AppendBallContact(const Vec3& ca, double ra, const Vec3& cb, double rb, uint32_t feature_id,
+                       double margin, ContactSet* out);
+
+void CollideSphereSphere(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+void CollideSpherePlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+void CollideSphereBox(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+void CollideSphereCapsule(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+void CollideSphereConvex(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+
+void CollideCapsuleCapsule(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+void CollideCapsulePlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+// capsule-box and capsule-convex
+void CollideCapsulePolyhedron(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+
+// box-plane and convex-plane
+void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+// box-box, box-convex and convex-convex
+void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+
+// World-frame plane of a plane body: n . p = offset, solid side n . p <= offset.
+void PlaneInWorld(const RigidBody& plane, Vec3* normal_W, double* offset_W);
+
+// Capsule axis end points (cap centres) in the world frame.
+void CapsuleSegment(const RigidBody& capsule, Vec3* p0_W, Vec3* p1_W);
+
+}  // namespace contactsim

@@ -1,0 +1,63 @@
+// Polyhedron pairs: box and convex hull against a plane (closed form over the
+// vertices) and against each other (separating-axis test + face clipping).
+#include <cstdint>
+
+#include "service/collision/collide_pairs.h"
+#include "service/collision/feature_id.h"
+#include "service/collision/manifold_reduction.h"
+#include "service/collision/polyhedron_manifold.h"
+#include "service/collision/polyhedron_sat.h"
+#include "service/collision/separating_axis_cache.h"
+
+namespace contactsim {
+
+// box/convex (a) - plane (b): every vertex v with signed distance
+// s = n.v - offset < margin is a contact of depth -s, normal -n (from the
+// body to the plane, whose solid side is below), point midway between v and
+// its projection on the plane. Feature id = vertex index. A face resting on
+// the plane gives its corners; more than four are reduced to four.
+void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
+                            ContactSet* out) {
+  PosedPolyhedron poly;
+  if (!PosePolyhedron(a, &poly)) return;
+  Vec3 n;
+  double offset;
+  PlaneInWorld(b, &n, &offset);
+  const size_t first = out->size();
+  for (size_t i = 0; i < poly.vertices.size(); ++i) {
+    const double s = n.dot(poly.vertices[i]) - offset;
+    if (-s <= -ctx.margin) continue;
+    AppendContact(poly.vertices[i], -n, -s, static_cast<uint32_t>(i), out);
+  }
+  ReduceManifold(first, out);
+}
+
+// box/convex (a) - box/convex (b): separating-axis test, with the axis that
+// separated the pair last call tried first when a cache is given (Baraff).
+void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
+                      ContactSet* out) {
+  PosedPolyhedron pa, pb;
+  if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
+  // equal ids (callers without a world) cannot be told apart in the cache
+  SeparatingAxisCache* cache = a.id != b.id ? ctx.cache : nullptr;
+  if (cache != nullptr) {
+    if (const SeparatingAxis* cached = cache->Find(a.id, b.id)) {
+      Vec3 n;
+      double sep;
+      if (AxisSeparation(pa, pb, *cached, &n, &sep) && sep > ctx.margin) {
+        cache->CountHit();
+        return;
+      }
+    }
+    cache->CountMiss();
+  }
+  const SatResult sat = FindSeparatingAxis(pa, pb, ctx.margin);
+  if (sat.separation > ctx.margin) {
+    if (cache != nullptr) cache->Store(a.id, b.id, sat.axis);
+    return;
+  }
+  if (cache != nullptr) cache->Erase(a.id, b.id);
+  PolyhedronManifold(pa, pb, sat, ctx.margin, out);
+}
+
+}  // namespace contactsim

@@ -1,0 +1,115 @@
+// Narrowphase dispatch: a table of pair functions indexed by the two shape
+// types (MuJoCo, engine_collision_driver.c, mjCOLLISIONFUNC). Only one
+// triangle is filled; a pair (B, A) found only as (A, B) is collided with the
+// bodies swapped and its normals flipped, so every pair function is written
+// once and swapping the bodies gives the same points.
+#include "service/collision/narrowphase.h"
+
+#include <array>
+
+#include "service/collision/collide_pairs.h"
+
+namespace contactsim {
+namespace {
+
+constexpr int kShapeTypes = static_cast<int>(ShapeType::kCount);
+
+// rows: shape of body a; columns: shape of body b
+const std::array<std::array<PairCollider, kShapeTypes>, kShapeTypes> kCollisionTable = {{
+    //  sphere               box                       capsule                 convex                    plane
+    {{CollideSphereSphere, CollideSphereBox, CollideSphereCapsule, CollideSphereConvex, CollideSpherePlane}},
+    {{nullptr, CollidePolyhedra, nullptr, CollidePolyhedra, CollidePolyhedronPlane}},
+    {{nullptr, CollideCapsulePolyhedron, CollideCapsuleCapsule, CollideCapsulePolyhedron, CollideCapsulePlane}},
+    {{nullptr, nullptr, nullptr, CollidePolyhedra, CollidePolyhedronPlane}},
+    {{nullptr, nullptr, nullptr, nullptr, nullptr}},  // plane-plane: never in contact
+}};
+
+// Canonical order of two bodies of the same shape type, so that (a, b) and
+// (b, a) run the same computation: by id, then by pose (callers without a
+// world may leave every id at 0).
+bool Precedes(const RigidBody& a, const RigidBody& b) {
+  if (a.id != b.id) return a.id < b.id;
+  for (int k = 0; k < 3; ++k) {
+    if (a.x[k] != b.x[k]) return a.x[k] < b.x[k];
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (a.q.coeffs()[k] != b.q.coeffs()[k]) return a.q.coeffs()[k] < b.q.coeffs()[k];
+  }
+  return true;
+}
+
+bool PoseIsFinite(const RigidBody& body) { return IsFinite(body.x) && IsFinite(body.q); }
+
+int Dispatch(const RigidBody& a, int ia, const RigidBody& b, int ib, const CollideContext& ctx,
+             ContactSet* out) {
+  // non-finite poses have no meaningful contacts; the state checks report them
+  if (!PoseIsFinite(a) || !PoseIsFinite(b)) return 0;
+  const int ta = static_cast<int>(a.shape.type);
+  const int tb = static_cast<int>(b.shape.type);
+  if (ta < 0 || ta >= kShapeTypes || tb < 0 || tb >= kShapeTypes) return 0;
+
+  PairCollider fn = kCollisionTable[ta][tb];
+  bool swapped = false;
+  if (fn == nullptr || (ta == tb && !Precedes(a, b))) {
+    fn = kCollisionTable[tb][ta];
+    swapped = true;
+  }
+  if (fn == nullptr) return 0;
+
+  const size_t first = out->size();
+  if (swapped) {
+    fn(b, a, ctx, out);
+  } else {
+    fn(a, b, ctx, out);
+  }
+  for (size_t k = first; k < out->size(); ++k) {
+    Contact& c = (*out)[k];
+    c.a = ia;
+    c.b = ib;
+    c.id_a = a.id;
+    c.id_b = b.id;
+    if (swapped) c.normal = -c.normal;
+  }
+  return static_cast<int>(out->size() - first);
+}
+
+}  // namespace
+
+void AppendContact(const Vec3& surface_a, const Vec3& normal_ab, double depth, uint32_t feature_id,
+                   ContactSet* out) {
+  Contact c;
+  // B's surface point is surface_a - depth * normal; the contact point is midway
+  c.point = surface_a - 0.5 * depth * normal_ab;
+  c.normal = normal_ab;
+  c.depth = depth;
+  c.feature_id = feature_id;
+  out->push_back(c);
+}
+
+void PlaneInWorld(const RigidBody& plane, Vec3* normal_W, double* offset_W) {
+  // n_B . p_B = o with p_W = R p_B + x gives (R n_B) . p_W = o + (R n_B) . x
+  *normal_W = plane.q * plane.shape.plane_normal.normalized();
+  *offset_W = plane.shape.plane_offset + normal_W->dot(plane.x);
+}
+
+void CapsuleSegment(const RigidBody& capsule, Vec3* p0_W, Vec3* p1_W) {
+  const Vec3 half_axis = capsule.q * Vec3(0.0, 0.0, capsule.shape.half_length);
+  *p0_W = capsule.x - half_axis;
+  *p1_W = capsule.x + half_axis;
+}
+
+int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out) {
+  CollideContext ctx;
+  ctx.margin = margin;
+  return Dispatch(a, ia, b, ib, ctx, out);
+}
+
+int Narrowphase::Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
+                         ContactSet* out) {
+  CollideContext ctx;
+  ctx.margin = margin;
+  ctx.cache = &cache_;
+  return Dispatch(a, ia, b, ib, ctx, out);
+}
+
+}  // namespace contactsim

@@ -1,0 +1,160 @@
+// Face clipping and edge-edge contacts of two polyhedra (see polyhedron_manifold.h).
+#include "service/collision/polyhedron_manifold.h"
+
+#include <limits>
+#include <vector>
+
+#include "service/collision/closest_points.h"
+#include "service/collision/collide_pairs.h"
+#include "service/collision/feature_id.h"
+#include "service/collision/manifold_reduction.h"
+
+namespace contactsim {
+namespace {
+
+// Edges with |dA x dB| below this count as parallel when looking for the
+// supporting edge of a chosen edge axis (same threshold as the SAT).
+constexpr double kParallelSin = 1e-6;
+
+// Tags of the feature-id hash, so that ids of different kinds never mix.
+constexpr uint32_t kTagClip = 0xC11Fu;
+constexpr uint32_t kTagFace = 0xFACEu;
+constexpr uint32_t kTagEdge = 0xED6Eu;
+constexpr uint32_t kTagFallback = 0xFA11u;
+
+struct ClipPoint {
+  Vec3 p;
+  uint32_t tag;  // incident vertex index, or hash of the clip that made it
+};
+
+// Sutherland-Hodgman: keeps the part of `poly` with n.p <= offset.
+void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double offset, uint32_t plane,
+                      std::vector<ClipPoint>* out) {
+  out->clear();
+  const size_t m = poly.size();
+  for (size_t k = 0; k < m; ++k) {
+    const ClipPoint& p = poly[k];
+    const ClipPoint& q = poly[(k + 1) % m];
+    const double dp = n.dot(p.p) - offset;
+    const double dq = n.dot(q.p) - offset;
+    if (dp <= 0.0) out->push_back(p);
+    if ((dp <= 0.0) != (dq <= 0.0)) {
+      const double t = dp / (dp - dq);
+      out->push_back({p.p + t * (q.p - p.p), FeatureId({kTagClip, plane, p.tag, q.tag})});
+    }
+  }
+}
+
+void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
+                  double margin, ContactSet* out) {
+  const bool ref_is_a = sat.axis.kind == SeparatingAxis::Kind::kFaceA;
+  const PosedPolyhedron& ref = ref_is_a ? a : b;
+  const PosedPolyhedron& inc = ref_is_a ? b : a;
+  const int ref_face = ref_is_a ? sat.axis.a : sat.axis.b;
+  const Vec3& n_ref = ref.normals[ref_face];
+  const double ref_offset = ref.offsets[ref_face];
+  const Vec3 normal_ab = ref_is_a ? n_ref : Vec3(-n_ref);
+
+  // incident face: most anti-parallel to the reference normal
+  int inc_face = 0;
+  double min_dot = std::numeric_limits<double>::infinity();
+  for (int g = 0; g < static_cast<int>(inc.normals.size()); ++g) {
+    const double d = inc.normals[g].dot(n_ref);
+    if (d < min_dot) {
+      min_dot = d;
+      inc_face = g;
+    }
+  }
+
+  std::vector<ClipPoint> poly, clipped;
+  for (int v : inc.topology->faces[inc_face].vertices) {
+    poly.push_back({inc.vertices[v], static_cast<uint32_t>(v)});
+  }
+  // side planes of the reference face: edge x normal points out of the face
+  // for a counter-clockwise loop seen from outside
+  const std::vector<int>& loop = ref.topology->faces[ref_face].vertices;
+  for (size_t j = 0; j < loop.size() && !poly.empty(); ++j) {
+    const Vec3& p0 = ref.vertices[loop[j]];
+    const Vec3& p1 = ref.vertices[loop[(j + 1) % loop.size()]];
+    const Vec3 side = (p1 - p0).cross(n_ref);
+    const double len = side.norm();
+    if (len <= 0.0) continue;
+    const Vec3 side_n = side / len;
+    ClipAgainstPlane(poly, side_n, side_n.dot(p0), static_cast<uint32_t>(j), &clipped);
+    poly.swap(clipped);
+  }
+
+  const uint32_t ref_side = ref_is_a ? 0u : 1u;
+  const size_t first = out->size();
+  for (const ClipPoint& cp : poly) {
+    const double s = n_ref.dot(cp.p) - ref_offset;  // < 0 below the reference face
+    if (-s <= -margin) continue;
+    // cp.p is on the incident surface; the reference surface is -s n_ref away
+    const Vec3 surface_a = ref_is_a ? Vec3(cp.p - s * n_ref) : cp.p;
+    AppendContact(surface_a, normal_ab, -s,
+                  FeatureId({kTagFace, ref_side, static_cast<uint32_t>(ref_face),
+                             static_cast<uint32_t>(inc_face), cp.tag}),
+                  out);
+  }
+  if (out->size() == first && poly.empty()) {
+    // round-off left no incident point inside the reference face: fall back to
+    // the incident body's deepest vertex so a penetrating pair is not lost
+    const int v = SupportVertex(inc, -n_ref);
+    const double s = n_ref.dot(inc.vertices[v]) - ref_offset;
+    if (-s > -margin) {
+      const Vec3 surface_a = ref_is_a ? Vec3(inc.vertices[v] - s * n_ref) : inc.vertices[v];
+      AppendContact(surface_a, normal_ab, -s,
+                    FeatureId({kTagFallback, ref_side, static_cast<uint32_t>(ref_face),
+                               static_cast<uint32_t>(v)}),
+                    out);
+    }
+  }
+  ReduceManifold(first, out);
+}
+
+// Edge of `poly` parallel to edge `e` that is extreme along `direction`.
+int SupportingEdge(const PosedPolyhedron& poly, int e, const Vec3& direction) {
+  const Vec3& d = poly.edge_dirs[e];
+  int best = e;
+  double best_p = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < static_cast<int>(poly.edge_dirs.size()); ++k) {
+    if (poly.edge_dirs[k].cross(d).norm() >= kParallelSin) continue;
+    const auto& edge = poly.topology->edges[k];
+    const double p = direction.dot(poly.vertices[edge[0]] + poly.vertices[edge[1]]);
+    if (p > best_p) {
+      best_p = p;
+      best = k;
+    }
+  }
+  return best;
+}
+
+void EdgeManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
+                  double margin, ContactSet* out) {
+  const double depth = -sat.separation;
+  if (depth <= -margin) return;
+  const int ea = SupportingEdge(a, sat.axis.a, sat.normal);
+  const int eb = SupportingEdge(b, sat.axis.b, -sat.normal);
+  const auto& edge_a = a.topology->edges[ea];
+  const auto& edge_b = b.topology->edges[eb];
+  const SegmentClosestPoints cp = ClosestPointsOfSegments(a.vertices[edge_a[0]], a.vertices[edge_a[1]],
+                                                          b.vertices[edge_b[0]], b.vertices[edge_b[1]]);
+  // the closest points are the two surface points; the SAT separation is
+  // their distance along the axis
+  const Vec3 mid = 0.5 * (cp.c1 + cp.c2);
+  AppendContact(mid + 0.5 * depth * sat.normal, sat.normal, depth,
+                FeatureId({kTagEdge, static_cast<uint32_t>(ea), static_cast<uint32_t>(eb)}), out);
+}
+
+}  // namespace
+
+void PolyhedronManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
+                        double margin, ContactSet* out) {
+  if (sat.axis.kind == SeparatingAxis::Kind::kEdges) {
+    EdgeManifold(a, b, sat, margin, out);
+  } else if (sat.axis.kind != SeparatingAxis::Kind::kNone) {
+    FaceManifold(a, b, sat, margin, out);
+  }
+}
+
+}  // namespace contactsim

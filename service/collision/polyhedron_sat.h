@@ -1,0 +1,61 @@
+// Separating-axis test (SAT) between two convex polyhedra.
+//
+// Two convex polyhedra are disjoint iff some plane separates them, and such a
+// plane can be taken to contain a face of one, or an edge of one and be
+// parallel to an edge of the other (Baraff 1989; Gottschalk, Lin and Manocha,
+// "OBBTree", SIGGRAPH 1996). So the candidate axes are the face normals of both
+// and the cross products of one edge of each. With u the axis oriented from A
+// to B, the separation is
+//   sep(u) = min_{v in B} u.v - max_{v in A} u.v,
+// positive for a gap. The candidates contain the face normals of the Minkowski
+// difference A - B, so when the bodies overlap the largest separation is minus
+// the exact translational penetration depth, and when they do not it is the
+// distance along the best axis (a lower bound of the Euclidean distance).
+//
+// Face axes are preferred over edge axes, and faces of A over faces of B,
+// unless the other beats them by a relative and an absolute tolerance (as Box2D
+// b2CollidePolygons), so that nearly tied axes do not make the manifold flicker.
+#pragma once
+
+#include <cstdint>
+
+#include "service/collision/posed_polyhedron.h"
+
+namespace contactsim {
+
+// What defines a separating (or least-penetrating) axis: a face of A, a face
+// of B, or an edge of A and an edge of B (topology indices).
+struct SeparatingAxis {
+  enum class Kind : uint8_t { kNone, kFaceA, kFaceB, kEdges };
+  Kind kind = Kind::kNone;
+  int a = -1;  // face or edge of A
+  int b = -1;  // face or edge of B
+  bool operator==(const SeparatingAxis& o) const { return kind == o.kind && a == o.a && b == o.b; }
+};
+
+struct SatResult {
+  SeparatingAxis axis;
+  Vec3 normal = Vec3::UnitZ();  // unit, world, from A to B
+  double separation = 0.0;      // m, > 0 gap, < 0 overlap (minus the depth)
+};
+
+// Preference tolerances: an edge axis (or a face of B) is chosen only when its
+// depth d (= -separation) is below min(rel d_ref, d_ref) - kSatAbsTolerance.
+// 5% relative keeps a resting box on its face under small rotations; the
+// absolute 0.1 mm is below any contact slop and bounds the jump in the depth
+// when the choice switches near zero depth.
+constexpr double kSatEdgeRelTolerance = 0.95;
+constexpr double kSatFaceRelTolerance = 0.98;
+constexpr double kSatAbsTolerance = 1e-4;  // m
+
+// Separation along one axis; false when the axis does not exist for these
+// polyhedra (index out of range, or parallel edges).
+bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const SeparatingAxis& axis,
+                    Vec3* normal, double* separation);
+
+// Best axis over all candidates, with the preferences above. Returns at the
+// first axis whose separation exceeds `early_out` (m): then no contact within
+// that margin exists and the result need not be the best axis.
+SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out);
+
+}  // namespace contactsim

@@ -1,0 +1,113 @@
+// Posing boxes and hulls as polyhedra (see posed_polyhedron.h).
+#include "service/collision/posed_polyhedron.h"
+
+#include <limits>
+
+namespace contactsim {
+namespace {
+
+// Edges whose unit directions have |d1 x d2| below this are parallel for the
+// edge-axis list: sin(angle) < 1e-6 rad gives a cross product too short to
+// normalise reliably, and its axis is covered by the adjacent face normals.
+constexpr double kParallelSin = 1e-6;
+
+ConvexHull MakeUnitBox() {
+  ConvexHull box;
+  for (int i = 0; i < 8; ++i) {
+    box.vertices.emplace_back((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
+  }
+  // loops counter-clockwise seen from outside: (v1 - v0) x (v2 - v1) is outward
+  const int loops[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3},
+                           {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+  const Vec3 normals[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
+                           -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+  for (int f = 0; f < 6; ++f) {
+    ConvexHull::Face face;
+    face.normal = normals[f];
+    face.offset = 1.0;
+    face.vertices.assign(loops[f], loops[f] + 4);
+    box.faces.push_back(face);
+  }
+  // one edge of each direction first, so that edge_axes is {0, 1, 2}
+  box.edges = {{0, 1}, {0, 2}, {0, 4}, {2, 3}, {4, 5}, {6, 7},
+               {1, 3}, {4, 6}, {5, 7}, {1, 5}, {2, 6}, {3, 7}};
+  return box;
+}
+
+}  // namespace
+
+const ConvexHull& UnitBoxTopology() {
+  static const ConvexHull kUnitBox = MakeUnitBox();
+  return kUnitBox;
+}
+
+bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out) {
+  Vec3 scale = Vec3::Ones();
+  if (body.shape.type == ShapeType::kBox) {
+    out->topology = &UnitBoxTopology();
+    scale = body.shape.half_extents;
+  } else if (body.shape.type == ShapeType::kConvex && body.shape.hull != nullptr) {
+    out->topology = body.shape.hull.get();
+  } else {
+    return false;
+  }
+  const ConvexHull& topo = *out->topology;
+  const Mat3 R = body.Rotation();
+  out->centre = body.x;
+
+  out->vertices.resize(topo.vertices.size());
+  for (size_t i = 0; i < topo.vertices.size(); ++i) {
+    out->vertices[i] = R * topo.vertices[i].cwiseProduct(scale) + body.x;
+  }
+  // a plane n . p = o maps under p' = S p to (S^-1 n) . p' = o
+  const Vec3 inv_scale = scale.cwiseInverse();
+  out->normals.resize(topo.faces.size());
+  out->offsets.resize(topo.faces.size());
+  for (size_t f = 0; f < topo.faces.size(); ++f) {
+    const Vec3 n = R * topo.faces[f].normal.cwiseProduct(inv_scale).normalized();
+    out->normals[f] = n;
+    out->offsets[f] = n.dot(out->vertices[topo.faces[f].vertices.front()]);
+  }
+  out->edge_dirs.resize(topo.edges.size());
+  out->edge_axes.clear();
+  for (size_t e = 0; e < topo.edges.size(); ++e) {
+    const Vec3 d = (out->vertices[topo.edges[e][1]] - out->vertices[topo.edges[e][0]]).normalized();
+    out->edge_dirs[e] = d;
+    bool is_new = true;
+    for (int k : out->edge_axes) {
+      if (d.cross(out->edge_dirs[k]).norm() < kParallelSin) {
+        is_new = false;
+        break;
+      }
+    }
+    if (is_new) out->edge_axes.push_back(static_cast<int>(e));
+  }
+  return true;
+}
+
+void ProjectPolyhedron(const PosedPolyhedron& poly, const Vec3& axis, double* lo, double* hi) {
+  double min_v = std::numeric_limits<double>::infinity();
+  double max_v = -min_v;
+  for (const Vec3& v : poly.vertices) {
+    const double p = axis.dot(v);
+    if (p < min_v) min_v = p;
+    if (p > max_v) max_v = p;
+  }
+  *lo = min_v;
+  *hi = max_v;
+}
+
+int SupportVertex(const PosedPolyhedron& poly, const Vec3& direction) {
+  int best = 0;
+  double best_p = -std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < poly.vertices.size(); ++i) {
+    const double p = direction.dot(poly.vertices[i]);
+    if (p > best_p) {
+      best_p = p;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+}  // namespace contactsim

@@ -1,0 +1,39 @@
+// A box or convex hull placed in the world: world-frame vertices and face
+// planes over a shared topology (face vertex loops and edges). A box is the
+// unit cube's topology scaled by its half extents, so that one separating-axis
+// test and one clipping routine serve boxes and hulls alike.
+#pragma once
+
+#include <vector>
+
+#include "service/physics/convex_hull.h"
+#include "service/physics/rigid_body.h"
+
+namespace contactsim {
+
+struct PosedPolyhedron {
+  const ConvexHull* topology = nullptr;  // face loops and edges (its geometry is not used)
+  std::vector<Vec3> vertices;            // m, world
+  std::vector<Vec3> normals;             // unit, world, outward, one per face
+  std::vector<double> offsets;           // m: normals[f] . p = offsets[f] on face f
+  std::vector<Vec3> edge_dirs;           // unit, world, one per topology edge
+  // Topology edges with pairwise non-parallel directions: the candidates of
+  // the edge-edge axes (3 for a box instead of 12).
+  std::vector<int> edge_axes;
+  Vec3 centre = Vec3::Zero();            // m, world (centre of mass)
+};
+
+// The cube [-1, 1]^3: 8 vertices (index bits x, y, z), 6 faces, 12 edges.
+const ConvexHull& UnitBoxTopology();
+
+// Fills `out` for a box or convex body; returns false for other shapes or a
+// convex body without a hull.
+bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out);
+
+// Interval [lo, hi] of the vertices projected on `axis`.
+void ProjectPolyhedron(const PosedPolyhedron& poly, const Vec3& axis, double* lo, double* hi);
+
+// Index of the vertex with the largest projection on `direction`.
+int SupportVertex(const PosedPolyhedron& poly, const Vec3& direction);
+
+}  // namespace contactsim
