@@ -73,16 +73,19 @@ int main(int argc, char** argv) {
     return 1;
   }
   SimServer server(setup.options, &transport);
-  if (!(st = server.Init(setup.scene.get(), setup.method)).ok()) {
-    spdlog::critical("{}", st.message());
-    return 1;
-  }
+  // Subscribe before Init announces the server (STATUS): LCM opens its
+  // receive socket on the first subscribe, and a client may answer the
+  // announcement at once.
   transport.Subscribe(server.Channel("BODY_CMD"), [&](const std::string&, const void* d, int n) {
     server.OnBodyMessage(d, n);
   });
   transport.Subscribe(server.Channel("SCENE_CMD"), [&](const std::string&, const void* d, int n) {
     server.OnSceneMessage(d, n);
   });
+  if (!(st = server.Init(setup.scene.get(), setup.method)).ok()) {
+    spdlog::critical("{}", st.message());
+    return 1;
+  }
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
