@@ -3,7 +3,8 @@
 
 The ball's lowest point starts 1 m above the plane; with restitution 0.5 each
 apex is a quarter of the one before: 0.25 m, 0.0625 m, ... The server is
-paused and stepped one step at a time so that no apex is missed.
+paused and stepped one step at a time so that no apex is missed, and left
+running afterwards if it was running before.
 
     python drop_ball.py [--lcm-url URL] [--prefix P] [--seconds S]
 """
@@ -39,7 +40,8 @@ def main():
                 bounces += 1
                 print("bounce %d: apex %.4f m (ideal %.4f m)" % (bounces, max(heights[-3:]), 0.25 ** bounces))
             vz_prev = vz
-        c.resume()
+        if not st.paused:
+            c.resume()  # leave the server running, as it was
 
 
 if __name__ == "__main__":
