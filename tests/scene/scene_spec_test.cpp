@@ -1,0 +1,94 @@
+// Tests of scene files: errors name file, line and field; lattices are
+// deterministic; a bad scene leaves the world untouched.
+#include "service/scene/scene_spec.h"
+
+#include <gtest/gtest.h>
+
+namespace contactsim {
+namespace {
+
+// Verifies that a syntax error is reported with file, line and column.
+TEST(SceneSpec, SyntaxErrorNamesFileLineAndColumn) {
+  SceneSpec scene;
+  const Status st = ParseSceneText("gravity { z: -9.81 }\nbodies { sphere { radius: } }\n", "s.pbtxt", &scene);
+  ASSERT_FALSE(st.ok());
+  EXPECT_EQ(st.message().rfind("s.pbtxt:2:", 0), 0u) << st.message();
+}
+
+// Verifies that an unknown field is reported with its line.
+TEST(SceneSpec, UnknownFieldNamesTheField) {
+  SceneSpec scene;
+  const Status st = ParseSceneText("\n\ngravty { z: 1 }\n", "s.pbtxt", &scene);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("s.pbtxt:3:"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("gravty"), std::string::npos) << st.message();
+}
+
+// Verifies that a bad body names the file, the body's line, its index and
+// name, the field and the value; and that the world is left as it was.
+TEST(SceneSpec, BadBodyNamesLineFieldAndValueAndLeavesWorld) {
+  SceneSpec scene;
+  ASSERT_TRUE(ParseSceneText("bodies { plane { normal { z: 1 } } }\n"
+                             "bodies { name: \"ok\" sphere { radius: 0.1 } }\n"
+                             "bodies {\n  name: \"bad\"\n  sphere { radius: -0.5 }\n}\n",
+                             "s.pbtxt", &scene)
+                  .ok());
+  World world;
+  BodySettings keep;
+  keep.radius = 1.0;
+  RigidBody b;
+  ASSERT_TRUE(CreateBody(keep, Material{}, &b).ok());
+  world.AddBody(b);
+  const uint64_t before = HashWorldState(world);
+  const Status st = BuildWorld(scene, &world);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("s.pbtxt:3: bodies[2] \"bad\": radius must be a finite number > 0, got -0.5"),
+            std::string::npos)
+      << st.message();
+  EXPECT_EQ(HashWorldState(world), before);
+}
+
+// Verifies that dt out of range is refused with its line.
+TEST(SceneSpec, TimeStepOutOfRangeIsRefused) {
+  SceneSpec scene;
+  const Status st = ParseSceneText("gravity { z: -9.81 }\ndt: 0.5\n", "s.pbtxt", &scene);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("s.pbtxt:2: dt must be in"), std::string::npos) << st.message();
+}
+
+// Verifies that a lattice expands to nx*ny*nz bodies at the given spacing,
+// with the same jitter and orientations for the same seed.
+TEST(SceneSpec, GridIsDeterministicForASeed) {
+  const char* text =
+      "grids { prototype { box { half_extents { x: 0.1 y: 0.1 z: 0.1 } } } nx: 3 ny: 2 nz: 4\n"
+      "        origin { z: 0.5 } spacing { x: 0.3 y: 0.3 z: 0.3 } jitter: 0.01 random_orientation: true seed: 7 }\n";
+  SceneSpec a, b;
+  ASSERT_TRUE(ParseSceneText(text, "g.pbtxt", &a).ok());
+  ASSERT_TRUE(ParseSceneText(text, "g.pbtxt", &b).ok());
+  ASSERT_EQ(a.bodies.size(), 24u);
+  for (size_t i = 0; i < a.bodies.size(); ++i) {
+    EXPECT_EQ(a.bodies[i].position, b.bodies[i].position);
+    EXPECT_EQ(a.bodies[i].orientation, b.bodies[i].orientation);
+    EXPECT_NEAR(a.bodies[i].orientation.norm(), 1.0, 1e-12);
+  }
+  // the last body: (i, j, k) = (2, 1, 3); jitter only in x and y
+  EXPECT_NEAR(a.bodies.back().position.x(), 0.6, 0.01 + 1e-12);
+  EXPECT_NEAR(a.bodies.back().position.y(), 0.3, 0.01 + 1e-12);
+  EXPECT_DOUBLE_EQ(a.bodies.back().position.z(), 0.5 + 0.9);
+}
+
+// Verifies that the default scene shipped in config/ loads and builds.
+TEST(SceneSpec, ShippedScenesLoad) {
+  for (const char* name : {"default"}) {
+    SceneSpec scene;
+    const std::string path = std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/" + name + ".pbtxt";
+    const Status st = LoadSceneFile(path, &scene);
+    ASSERT_TRUE(st.ok()) << st.message();
+    World world;
+    ASSERT_TRUE(BuildWorld(scene, &world).ok());
+    EXPECT_GT(world.bodies().size(), 3u);
+  }
+}
+
+}  // namespace
+}  // namespace contactsim

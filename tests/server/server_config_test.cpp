@@ -1,0 +1,61 @@
+// Tests of server configuration files.
+#include "service/server/server_config.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+namespace contactsim {
+namespace {
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Verifies that the shipped default config loads with its scene.
+TEST(ServerConfig, DefaultConfigLoads) {
+  const std::string path = std::string(CONTACTSIM_SOURCE_DIR) + "/config/server.pbtxt";
+  proto::ServerConfig config;
+  ASSERT_TRUE(LoadServerConfig(path, &config).ok());
+  ServerSetup setup;
+  const Status st = MakeServerSetup(config, path, "", &setup);
+  ASSERT_TRUE(st.ok()) << st.message();
+  ASSERT_NE(setup.scene, nullptr);
+  EXPECT_EQ(std::string(setup.method->Name()), "impulse");
+  EXPECT_EQ(setup.options.prefix, "CONTACTSIM");
+}
+
+// Verifies that a bad value names the file, the line and the field.
+TEST(ServerConfig, BadValueNamesFileLineAndField) {
+  const std::string path = WriteTemp("bad_rate.pbtxt", "channel_prefix: \"X\"\nstate_rate_hz: -5\n");
+  proto::ServerConfig config;
+  const Status st = LoadServerConfig(path, &config);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find(path + ":2: state_rate_hz must be in"), std::string::npos) << st.message();
+}
+
+// Verifies that an unknown contact method in the config is refused.
+TEST(ServerConfig, UnknownMethodIsRefused) {
+  const std::string path = WriteTemp("bad_method.pbtxt", "contact_method: \"magic\"\n");
+  proto::ServerConfig config;
+  const Status st = LoadServerConfig(path, &config);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find(":1: unknown contact method \"magic\""), std::string::npos) << st.message();
+}
+
+// Verifies that a missing scene file is reported with its path.
+TEST(ServerConfig, MissingSceneIsReported) {
+  const std::string path = WriteTemp("missing_scene.pbtxt", "scene: \"nowhere.pbtxt\"\n");
+  proto::ServerConfig config;
+  ASSERT_TRUE(LoadServerConfig(path, &config).ok());
+  ServerSetup setup;
+  const Status st = MakeServerSetup(config, path, "", &setup);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("nowhere.pbtxt: cannot open file"), std::string::npos) << st.message();
+}
+
+}  // namespace
+}  // namespace contactsim
