@@ -5,9 +5,11 @@
 // once and swapping the bodies gives the same points.
 #include "service/collision/narrowphase.h"
 
+#include <algorithm>
 #include <array>
 
 #include "service/collision/collide_pairs.h"
+#include "service/collision/polyhedron_sat.h"
 
 namespace contactsim {
 namespace {
@@ -102,6 +104,18 @@ int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margi
   CollideContext ctx;
   ctx.margin = margin;
   return Dispatch(a, ia, b, ib, ctx, out);
+}
+
+double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin) {
+  PosedPolyhedron pa, pb;
+  if (PoseIsFinite(a) && PoseIsFinite(b) && PosePolyhedron(a, &pa) && PosePolyhedron(b, &pb)) {
+    return std::min(margin, FindSeparatingAxis(pa, pb, margin).max_separation);
+  }
+  ContactSet contacts;
+  Collide(a, 0, b, 1, margin, &contacts);
+  double distance = margin;
+  for (const Contact& c : contacts) distance = std::min(distance, -c.depth);
+  return distance;
 }
 
 int Narrowphase::Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,

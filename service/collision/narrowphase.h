@@ -20,6 +20,16 @@ namespace contactsim {
 // contacts appended. Stateless: no separating-axis cache.
 int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out);
 
+// Signed distance of the pair (m) for time-of-impact searches: for two
+// polyhedra (box, convex) the largest separation over all separating-axis
+// candidates (a lower bound of the distance when apart, minus the exact
+// penetration depth when overlapping); for other pairs minus the deepest
+// contact's depth (exact). Values above `margin` are returned as `margin`
+// (the pair is at least that far apart). Continuous in the poses and never
+// above the true distance, so conservative advancement cannot step over a
+// contact.
+double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin);
+
 // The same, remembering per body pair the axis that separated two polyhedra
 // (box, convex) so that the next call on a still-separated pair costs one axis
 // instead of the full separating-axis test. Results are identical to the free

@@ -46,6 +46,22 @@ bool EdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, 
 // of depth d (see polyhedron_sat.h).
 double PreferenceThreshold(double d, double rel) { return std::min(rel * d, d) - kSatAbsTolerance; }
 
+SatResult MakeResult(const SeparatingAxis& axis, const Vec3& normal, double separation) {
+  SatResult r;
+  r.axis = axis;
+  r.normal = normal;
+  r.separation = separation;
+  r.max_separation = separation;
+  return r;
+}
+
+// An early-out result: its axis separates more than asked, which is all that
+// is known of the maximum.
+SatResult WithMax(SatResult r) {
+  r.max_separation = r.separation;
+  return r;
+}
+
 }  // namespace
 
 bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const SeparatingAxis& axis,
@@ -81,14 +97,14 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
   // faces of A: outward normals point from A to B
   for (int f = 0; f < static_cast<int>(a.normals.size()); ++f) {
     const double sep = FaceSeparation(a.normals[f], a.offsets[f], b);
-    if (sep > face_a.separation) face_a = {{SeparatingAxis::Kind::kFaceA, f, -1}, a.normals[f], sep};
-    if (sep > early_out) return face_a;
+    if (sep > face_a.separation) face_a = MakeResult({SeparatingAxis::Kind::kFaceA, f, -1}, a.normals[f], sep);
+    if (sep > early_out) return WithMax(face_a);
   }
   // faces of B: outward normals point from B to A
   for (int f = 0; f < static_cast<int>(b.normals.size()); ++f) {
     const double sep = FaceSeparation(b.normals[f], b.offsets[f], a);
-    if (sep > face_b.separation) face_b = {{SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep};
-    if (sep > early_out) return face_b;
+    if (sep > face_b.separation) face_b = MakeResult({SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep);
+    if (sep > early_out) return WithMax(face_b);
   }
   // one edge of each, skipping parallel pairs
   for (int ea : a.edge_axes) {
@@ -96,18 +112,20 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
       Vec3 n;
       double sep;
       if (!EdgeSeparation(a, b, ea, eb, &n, &sep)) continue;
-      if (sep > edges.separation) edges = {{SeparatingAxis::Kind::kEdges, ea, eb}, n, sep};
-      if (sep > early_out) return edges;
+      if (sep > edges.separation) edges = MakeResult({SeparatingAxis::Kind::kEdges, ea, eb}, n, sep);
+      if (sep > early_out) return WithMax(edges);
     }
   }
 
   // prefer faces of A, then faces of B, then edges (depth d = -separation)
+  const double max_separation = std::max({face_a.separation, face_b.separation, edges.separation});
   SatResult best = face_a;
   if (-face_b.separation < PreferenceThreshold(-best.separation, kSatFaceRelTolerance)) best = face_b;
   if (edges.axis.kind != SeparatingAxis::Kind::kNone &&
       -edges.separation < PreferenceThreshold(-best.separation, kSatEdgeRelTolerance)) {
     best = edges;
   }
+  best.max_separation = max_separation;
   return best;
 }
 

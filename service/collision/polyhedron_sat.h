@@ -37,16 +37,21 @@ struct SatResult {
   SeparatingAxis axis;
   Vec3 normal = Vec3::UnitZ();  // unit, world, from A to B
   double separation = 0.0;      // m, > 0 gap, < 0 overlap (minus the depth)
+  // m, the largest separation over all candidates, without preferences:
+  // minus the exact penetration depth, or a lower bound of the distance.
+  // Continuous in the poses, so time-of-impact searches use it.
+  double max_separation = 0.0;
 };
 
 // Preference tolerances: an edge axis (or a face of B) is chosen only when its
 // depth d (= -separation) is below min(rel d_ref, d_ref) - kSatAbsTolerance.
 // 5% relative keeps a resting box on its face under small rotations; the
-// absolute 0.1 mm is below any contact slop and bounds the jump in the depth
-// when the choice switches near zero depth.
+// absolute 10 um is well below contact slop and below the time-of-impact
+// tolerance, and bounds the jump in the manifold's depth when the choice
+// switches near zero depth.
 constexpr double kSatEdgeRelTolerance = 0.95;
 constexpr double kSatFaceRelTolerance = 0.98;
-constexpr double kSatAbsTolerance = 1e-4;  // m
+constexpr double kSatAbsTolerance = 1e-5;  // m
 
 // Separation along one axis; false when the axis does not exist for these
 // polyhedra (index out of range, or parallel edges).

@@ -1,0 +1,139 @@
+// Hand-computed cases of the capsule pair functions, and the capsule-box
+// search against dense sampling of the capsule's axis.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "service/collision/narrowphase.h"
+#include "service/collision/polyhedron_distance.h"
+#include "tests/collision/narrowphase_test_util.h"
+
+namespace contactsim {
+namespace {
+
+using testing_util::Box;
+using testing_util::Capsule;
+using testing_util::Convex;
+using testing_util::Ground;
+using testing_util::Hull;
+using testing_util::MaxDepth;
+
+// Closed forms on short decimals: round-off of a few ulps of 1 m. The
+// capsule-polyhedron search compares distances, so near a smooth minimum it
+// locates the point only to ~sqrt(machine epsilon) ~ 1.5e-8 of the axis
+// length (the depth itself is exact to second order); points get 1e-6 m.
+constexpr double kTol = 1e-12;        // m
+constexpr double kSearchTol = 1e-6;   // m
+
+const Quat kAlongX(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));
+const Quat kAlongY(Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX()));
+
+bool HasContact(const ContactSet& out, const Vec3& point, const Vec3& normal, double depth, double tol) {
+  return std::any_of(out.begin(), out.end(), [&](const Contact& c) {
+    return (c.point - point).norm() < tol && (c.normal - normal).norm() < tol && std::abs(c.depth - depth) < tol;
+  });
+}
+
+// Verifies crossed capsules: one contact between the axes' closest points.
+TEST(CollideCapsuleTest, CrossedCapsulesTouchAtTheAxesClosestPoints) {
+  ContactSet out;
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.5, Vec3::Zero(), kAlongX), 0, Capsule(2, 0.1, 0.5, Vec3(0, 0, 0.15), kAlongY),
+                    1, 0.0, &out),
+            1);
+  EXPECT_TRUE(HasContact(out, Vec3(0, 0, 0.075), Vec3(0, 0, 1), 0.05, kTol));
+}
+
+// Verifies parallel capsules lying on each other: a contact at each end of the overlap.
+TEST(CollideCapsuleTest, ParallelCapsulesTouchAtBothEndsOfTheOverlap) {
+  ContactSet out;
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.5, Vec3::Zero(), kAlongX), 0, Capsule(2, 0.1, 0.5, Vec3(0.3, 0, 0.18), kAlongX),
+                    1, 0.0, &out),
+            2);
+  EXPECT_TRUE(HasContact(out, Vec3(-0.2, 0, 0.09), Vec3(0, 0, 1), 0.02, kTol));
+  EXPECT_TRUE(HasContact(out, Vec3(0.5, 0, 0.09), Vec3(0, 0, 1), 0.02, kTol));
+}
+
+// Verifies a capsule lying on the ground (two cap contacts) and standing on it (one).
+TEST(CollideCapsuleTest, CapsuleOnPlaneLyingAndStanding) {
+  ContactSet out;
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.5, Vec3(0, 0, 0.09), kAlongX), 0, Ground(2), 1, 0.0, &out), 2);
+  EXPECT_TRUE(HasContact(out, Vec3(-0.5, 0, -0.005), Vec3(0, 0, -1), 0.01, kTol));
+  EXPECT_TRUE(HasContact(out, Vec3(0.5, 0, -0.005), Vec3(0, 0, -1), 0.01, kTol));
+  out.clear();
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.5, Vec3(0, 0, 0.59)), 0, Ground(2), 1, 0.0, &out), 1);
+  EXPECT_TRUE(HasContact(out, Vec3(0, 0, -0.005), Vec3(0, 0, -1), 0.01, kTol));
+}
+
+// Verifies a capsule lying on a box's top face: two contacts, one under each cap.
+TEST(CollideCapsuleTest, CapsuleLyingOnBoxGivesTwoContacts) {
+  ContactSet out;
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.5, Vec3(0, 0, 0.59), kAlongX), 0, Box(2, Vec3(1, 1, 0.5), Vec3::Zero()), 1, 0.0,
+                    &out),
+            2);
+  EXPECT_TRUE(HasContact(out, Vec3(-0.5, 0, 0.495), Vec3(0, 0, -1), 0.01, kTol));
+  EXPECT_TRUE(HasContact(out, Vec3(0.5, 0, 0.495), Vec3(0, 0, -1), 0.01, kTol));
+}
+
+// Verifies a tilted capsule resting across a box's edge: one contact at the edge.
+TEST(CollideCapsuleTest, CapsuleAcrossBoxEdgeTouchesTheEdge) {
+  const double theta = 0.3;
+  const Vec3 up(std::sin(theta), 0, std::cos(theta));  // axis normal, towards the capsule
+  const Vec3 centre = Vec3(0.5, 0, 0.5) + 0.09 * up;
+  const Quat q = Quat::FromTwoVectors(Vec3::UnitZ(), Vec3(std::cos(theta), 0, -std::sin(theta)));
+  ContactSet out;
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.5, centre, q), 0, Box(2, Vec3(0.5, 0.5, 0.5), Vec3::Zero()), 1, 0.0, &out), 1);
+  EXPECT_TRUE(HasContact(out, centre - 0.095 * up, -up, 0.01, kSearchTol));
+  EXPECT_NEAR(out[0].depth, 0.01, kTol);
+}
+
+// Verifies a capsule on a cube hull gives the same contacts as on the box.
+TEST(CollideCapsuleTest, CapsuleOnCubeHullMatchesTheBox) {
+  std::vector<Vec3> corners;
+  for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
+  const RigidBody capsule = Capsule(1, 0.1, 0.3, Vec3(0.1, 0.05, 0.58), kAlongX);
+  ContactSet hull_out, box_out;
+  Collide(capsule, 0, Convex(2, Hull(corners), Vec3::Zero()), 1, 0.0, &hull_out);
+  Collide(capsule, 0, Box(2, Vec3(0.5, 0.5, 0.5), Vec3::Zero()), 1, 0.0, &box_out);
+  ASSERT_EQ(hull_out.size(), 2u);
+  ASSERT_EQ(box_out.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR((hull_out[k].point - box_out[k].point).norm(), 0.0, kTol);
+    EXPECT_NEAR(hull_out[k].depth, box_out[k].depth, kTol);
+  }
+}
+
+// Verifies on random poses that the deepest capsule-box contact equals
+// r - (minimum over dense samples of the axis of the box's signed distance).
+TEST(CollideCapsuleTest, CapsuleBoxDepthMatchesDenseSampling) {
+  // 20001 samples of a 0.8 m axis are 4e-5 m apart; the distance is
+  // 1-Lipschitz, so the sampled minimum is within half of that.
+  constexpr int kSamples = 20001;
+  constexpr double kSampleTol = 2e-5;  // m
+  std::mt19937_64 rng(21);
+  int compared = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const RigidBody capsule =
+        Capsule(1, 0.15, 0.4, testing_util::RandomVector(rng, 0.5), testing_util::RandomRotation(rng));
+    const RigidBody box = Box(2, Vec3(0.3, 0.2, 0.25), Vec3::Zero(), testing_util::RandomRotation(rng));
+    ContactSet out;
+    if (Collide(capsule, 0, box, 1, 0.2, &out) == 0) continue;
+    Vec3 p0, p1;
+    p0 = capsule.x - capsule.q * Vec3(0, 0, 0.4);
+    p1 = capsule.x + capsule.q * Vec3(0, 0, 0.4);
+    double min_d = 1e300;
+    for (int i = 0; i < kSamples; ++i) {
+      min_d = std::min(min_d, BoxSignedDistance(box, p0 + (p1 - p0) * (double(i) / (kSamples - 1))).distance);
+    }
+    // the search is at least as deep as any sample, and no deeper than the
+    // sampled minimum allows
+    EXPECT_LE(MaxDepth(out), 0.15 - min_d + kSampleTol);
+    EXPECT_GE(MaxDepth(out), 0.15 - min_d - kSearchTol);
+    ++compared;
+  }
+  EXPECT_GT(compared, 50);
+}
+
+}  // namespace
+}  // namespace contactsim
