@@ -182,57 +182,50 @@ CommandResult Client::Step(int32_t n) {
   return result;
 }
 
+// Each handler runs the callbacks before it hands the message to waiting
+// commands, so that when Step() returns, OnState has already seen its state.
 void Client::HandleReply(const lcm::ReceiveBuffer*, const std::string&,
                          const reply_t* reply) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (reply->client_id == options_.client_id) {
-      auto it = pending_.find(reply->request_id);
-      if (it != pending_.end() && !it->second) {
-        it->second = *reply;
-        changed_.notify_all();
-      }
-    }
-  }
   for (const auto& callback : Snapshot(mutex_, callbacks_->reply)) {
     callback(*reply);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (reply->client_id != options_.client_id) return;
+  auto it = pending_.find(reply->request_id);
+  if (it != pending_.end() && !it->second) {
+    it->second = *reply;
+    changed_.notify_all();
   }
 }
 
 void Client::HandleState(const lcm::ReceiveBuffer*, const std::string&,
                          const state_t* state) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    latest_state_ = *state;
-    ++states_received_;
-    changed_.notify_all();
-  }
   for (const auto& callback : Snapshot(mutex_, callbacks_->state)) {
     callback(*state);
   }
+  std::lock_guard<std::mutex> lock(mutex_);
+  latest_state_ = *state;
+  ++states_received_;
+  changed_.notify_all();
 }
 
 void Client::HandleContacts(const lcm::ReceiveBuffer*, const std::string&,
                             const contacts_t* contacts) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    latest_contacts_ = *contacts;
-  }
   for (const auto& callback : Snapshot(mutex_, callbacks_->contacts)) {
     callback(*contacts);
   }
+  std::lock_guard<std::mutex> lock(mutex_);
+  latest_contacts_ = *contacts;
 }
 
 void Client::HandleStatus(const lcm::ReceiveBuffer*, const std::string&,
                           const status_t* status) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    latest_status_ = *status;
-    changed_.notify_all();
-  }
   for (const auto& callback : Snapshot(mutex_, callbacks_->status)) {
     callback(*status);
   }
+  std::lock_guard<std::mutex> lock(mutex_);
+  latest_status_ = *status;
+  changed_.notify_all();
 }
 
 int Client::OnState(StateCallback callback) {

@@ -146,7 +146,9 @@ class Client {
   CommandResult Send(scene_cmd_t command);
 
   // --- subscriptions ---
-  // Each returns an id for RemoveCallback. Callbacks run on the LCM thread.
+  // Each returns an id for RemoveCallback. Callbacks run on the LCM thread,
+  // before the message reaches LatestState() and waiting commands: when
+  // Step() returns, OnState callbacks have seen its state.
   int OnState(StateCallback callback);
   int OnContacts(ContactsCallback callback);
   int OnStatus(StatusCallback callback);
