@@ -49,16 +49,10 @@ def unique_endpoint(tag="PY"):
             "%s%d_%d" % (tag, os.getpid(), n))
 
 
-def _pause_cmd():
-    m = contactsim.scene_cmd_t()
-    m.op = contactsim.scene_cmd_t.PAUSE
-    return m
-
-
 class Server:
     """One contactsim-server child process and a Client connected to it."""
 
-    def __init__(self, tmp_path, scene=None, args=(), probe=True):
+    def __init__(self, tmp_path, scene=None, args=()):
         if not SERVER_BIN.exists():
             pytest.skip("%s is not built (run `make`)" % SERVER_BIN)
         self.url, self.prefix = unique_endpoint()
@@ -82,25 +76,6 @@ class Server:
             self.stop(check=False)
             pytest.fail("server gave no STATUS within %gs (exit code %s)\n%s\nlog:\n%s" % (
                 START_TIMEOUT, rc, " ".join(self.cmd), self.log()))
-        if probe:
-            self._probe()
-
-    def _probe(self):
-        """Sends PAUSE (a no-op: the server starts paused) until one is answered.
-
-        The first STATUS should mean that commands are heard, but the server
-        publishes it before it subscribes to the command channels, so a
-        command sent right away can be lost; test_server_start.py shows it.
-        """
-        deadline = time.monotonic() + START_TIMEOUT
-        while True:
-            try:
-                self.probe_reply = self.client._send("SCENE_CMD", _pause_cmd(), timeout=0.5)
-                return
-            except contactsim.TimeoutError:
-                if time.monotonic() > deadline or self.proc.poll() is not None:
-                    self.stop(check=False)
-                    pytest.fail("server never answered a command\nlog:\n%s" % self.log())
 
     def log(self):
         try:
@@ -132,8 +107,8 @@ class Server:
 def launch(tmp_path):
     servers = []
 
-    def start(scene=None, args=(), probe=True):
-        s = Server(tmp_path, scene, args, probe)
+    def start(scene=None, args=()):
+        s = Server(tmp_path, scene, args)
         servers.append(s)
         return s
 

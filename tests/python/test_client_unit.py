@@ -183,8 +183,10 @@ def test_commands_inside_callbacks_are_refused(fake_server, fake_client):
             errors.append(e)
     fake_client.on_state(cb)
     fake_server.publish_state(1)
-    fake_client.wait_for_state()
-    time.sleep(0.1)
+    fake_client.wait_for_state(lambda s: s.step >= 1)
+    deadline = time.monotonic() + 2.0
+    while not errors and time.monotonic() < deadline:
+        time.sleep(0.01)
     assert errors and "callback" in str(errors[0])
 
 

@@ -60,10 +60,12 @@ def test_thousand_bodies_every_state_arrives_complete(launch, tmp_path):
     incomplete = [r for r in records if not r[2]]
     sim_seconds = stop.time - start.time
     summary = ("%d STATEs received, %d published in (%d, %d], %d missing, %d incomplete, "
-               "%d undecodable, %.2f s simulated in %.1f s" % (
+               "%d undecodable, %.2f s simulated in %.1f s (load average %.2f)" % (
                    len(records), len(published), start.step, stop.step, len(missing),
-                   len(incomplete), result["undecodable"], sim_seconds, SECONDS))
+                   len(incomplete), result["undecodable"], sim_seconds, SECONDS, os.getloadavg()[0]))
     print(summary)
+    # delivery: every STATE the server published reached the other process, whole
     assert result["undecodable"] == 0 and not incomplete, summary
-    assert len(records) >= 0.95 * SECONDS * RATE_HZ, summary
     assert len(missing) <= 0.01 * len(published), "missing steps %s: %s" % (missing[:20], summary)
+    # pacing: the server kept up with real time (a starved CPU shows here, not above)
+    assert len(records) >= 0.95 * SECONDS * RATE_HZ, summary

@@ -64,6 +64,10 @@ class _Waiter:
         self.error = None
 
 
+# Messages LCM may hold per channel before this client handles them.
+SUBSCRIPTION_QUEUE_CAPACITY = 100000
+
+
 class Client:
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
@@ -101,6 +105,10 @@ class Client:
             self._lc.subscribe(self.channels["CONTACTS"], self._on_contacts_msg),
             self._lc.subscribe(self.channels["STATUS"], self._on_status_msg),
         ]
+        # LCM keeps at most 30 undelivered messages per subscription and drops
+        # the rest; a free-running server sends STATE in bursts far larger.
+        for sub in self._subs:
+            sub.set_queue_capacity(SUBSCRIPTION_QUEUE_CAPACITY)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="contactsim-lcm", daemon=True)
         self._thread.start()
