@@ -166,19 +166,20 @@ class Client:
         if len(data) < 24 or data[:8] != _STATE_FP:
             return
         _, step = struct.unpack_from(">dq", data, 8)
-        with self._cond:
+        with self._lock:
             self._state_bytes = data
             self._state_obj = None
-            self._state_step = step
-            self._state_seq += 1
             waiters = list(self._state_waiters)
-            self._cond.notify_all()
         if waiters or self._callbacks["state"]:
             st = self._latest_state_obj()
-            if st is None:
-                return
-            self._resolve(waiters, self._state_waiters, st)
-            self._call("state", st)
+            if st is not None:
+                self._call("state", st)
+                self._resolve(waiters, self._state_waiters, st)
+        # step() wakes last: when it returns, on_state callbacks have seen the state
+        with self._cond:
+            self._state_step = step
+            self._state_seq += 1
+            self._cond.notify_all()
 
     def _on_contacts_msg(self, channel, data):
         try:
@@ -200,8 +201,8 @@ class Client:
             self._status_seq += 1
             waiters = list(self._status_waiters)
             self._cond.notify_all()
-        self._resolve(waiters, self._status_waiters, st)
         self._call("status", st)
+        self._resolve(waiters, self._status_waiters, st)
 
     def _resolve(self, waiters, registry, obj):
         for w in waiters:
@@ -517,7 +518,8 @@ class Client:
     def step(self, n=1, *, timeout=None):
         """Takes n steps now (the server stays paused afterwards). Returns the
         reply once the client also holds the STATE of the last step
-        (``state().step == reply.step``). timeout None: the client's timeout."""
+        (``state().step == reply.step``) and on_state callbacks have seen it.
+        timeout None: the client's timeout."""
         m = self._scene(scene_cmd_t.STEP)
         m.steps = int(n)
         with self._lock:
