@@ -1,4 +1,5 @@
-"""A sphere (e = 0.5) dropped from 1 m onto a plane (e = 0.5) rebounds to 0.25 m."""
+"""A sphere (e = 0.5) dropped from 1 m onto a plane (e = 0.5) rebounds to 0.25 m;
+a pair uses restitution max(e_ball, e_plane)."""
 import pytest
 
 RADIUS = 0.1
@@ -31,3 +32,13 @@ def test_bounce_apex_is_e_squared_times_drop(client, dt):
     max_steps = int(1.5 / r.time)  # fall 0.45 s + rise 0.23 s, with margin
     apex = first_apex(client, ball, max_steps)
     assert apex == pytest.approx(0.25 * DROP, rel=0.02), "apex %.5f m (dt %g s)" % (apex, r.time)
+
+
+@pytest.mark.parametrize("e_ball,e_plane", [(0.9, 0.1), (0.0, 0.5), (0.3, 0.7)])
+def test_pair_restitution_is_the_max(client, e_ball, e_plane):
+    client.add_plane((0, 0, 1), 0.0, restitution=e_plane)
+    ball = client.add_sphere(RADIUS, position=(0, 0, DROP + RADIUS), restitution=e_ball)
+    r = client.step(1)
+    apex = first_apex(client, ball, int(2.5 / r.time))
+    e = max(e_ball, e_plane)
+    assert apex == pytest.approx(e * e * DROP, rel=0.02), "apex %.5f m, e = %g" % (apex, e)
