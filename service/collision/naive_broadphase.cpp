@@ -12,9 +12,15 @@ void NaiveBroadphase::FindPairs(const std::vector<Aabb>& boxes, const std::vecto
   // i ascending, then j ascending: the output is sorted without a sort
   for (int i = 0; i < n; ++i) {
     const bool movable_i = movable[i];
+    const Aabb& a = boxes[i];
     for (int j = i + 1; j < n; ++j) {
-      if (!movable_i && !movable[j]) continue;
-      if (boxes[i].Overlaps(boxes[j])) pairs->emplace_back(i, j);
+      const Aabb& b = boxes[j];
+      // Aabb::Overlaps with bitwise &: the single comparisons are coin flips
+      // a branch predictor loses, their conjunction is almost always false
+      // (the benchmark compares this against an equally tuned sweep)
+      const bool overlap = (a.min.x() <= b.max.x()) & (b.min.x() <= a.max.x()) & (a.min.y() <= b.max.y()) &
+                           (b.min.y() <= a.max.y()) & (a.min.z() <= b.max.z()) & (b.min.z() <= a.max.z());
+      if (overlap && (movable_i || movable[j])) pairs->emplace_back(i, j);
     }
   }
 }

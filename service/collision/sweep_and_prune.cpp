@@ -54,7 +54,7 @@ int SweepAndPrune::ChooseAxis(const std::vector<Aabb>& boxes) const {
 void SweepAndPrune::Rebuild(const std::vector<Aabb>& boxes) {
   const int n = static_cast<int>(boxes.size());
   entries_.resize(n);
-  for (int i = 0; i < n; ++i) entries_[i] = {boxes[i].min[axis_], boxes[i].max[axis_], i};
+  for (int i = 0; i < n; ++i) entries_[i] = {boxes[i].min[axis_], i};
   std::sort(entries_.begin(), entries_.end(),
             [](const Entry& a, const Entry& b) { return Before(a.min, a.index, b.min, b.index); });
 }
@@ -62,10 +62,7 @@ void SweepAndPrune::Rebuild(const std::vector<Aabb>& boxes) {
 // Insertion sort of the last step's order under the new bounds: each entry
 // moves left past the entries that now start after it.
 void SweepAndPrune::Repair(const std::vector<Aabb>& boxes) {
-  for (Entry& e : entries_) {
-    e.min = boxes[e.index].min[axis_];
-    e.max = boxes[e.index].max[axis_];
-  }
+  for (Entry& e : entries_) e.min = boxes[e.index].min[axis_];
   int64_t swaps = 0;
   const int n = static_cast<int>(entries_.size());
   for (int i = 1; i < n; ++i) {
@@ -79,6 +76,20 @@ void SweepAndPrune::Repair(const std::vector<Aabb>& boxes) {
     entries_[j] = e;
   }
   last_swaps_ = swaps;
+}
+
+void SweepAndPrune::Gather(const std::vector<Aabb>& boxes, const std::vector<bool>& movable) {
+  const int n = static_cast<int>(entries_.size());
+  const int u = (axis_ + 1) % 3, v = (axis_ + 2) % 3;
+  max_.resize(n);
+  sweep_.resize(n);
+  movable_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const Aabb& box = boxes[entries_[k].index];
+    max_[k] = box.max[axis_];
+    sweep_[k] = {box.min[axis_], box.min[u], box.max[u], box.min[v], box.max[v]};
+    movable_[k] = movable[entries_[k].index] ? 1 : 0;
+  }
 }
 
 void SweepAndPrune::FindPairs(const std::vector<Aabb>& boxes, const std::vector<bool>& movable,
@@ -97,16 +108,24 @@ void SweepAndPrune::FindPairs(const std::vector<Aabb>& boxes, const std::vector<
     Repair(boxes);
   }
 
-  // sweep: a box overlaps on the axis exactly the boxes that start in [min, max]
+  Gather(boxes, movable);
+
+  // sweep: a box overlaps on the axis exactly the boxes that start in
+  // [min, max]; those are tested on the two other axes (same closed-interval
+  // test as Aabb::Overlaps, so touching boxes pair as in the naive phase)
   for (int a = 0; a < n; ++a) {
-    const Entry& ea = entries_[a];
-    const bool movable_a = movable[ea.index];
-    const Aabb& box_a = boxes[ea.index];
-    for (int b = a + 1; b < n && entries_[b].min <= ea.max; ++b) {
-      const int j = entries_[b].index;
-      if (!movable_a && !movable[j]) continue;
-      if (!box_a.Overlaps(boxes[j])) continue;
-      pairs->emplace_back(std::min(ea.index, j), std::max(ea.index, j));
+    const double max_a = max_[a];
+    const SweepBounds ca = sweep_[a];
+    const uint8_t movable_a = movable_[a];
+    for (int b = a + 1; b < n && sweep_[b].min <= max_a; ++b) {
+      const SweepBounds& cb = sweep_[b];
+      // bitwise &, not &&: each comparison alone is a coin flip the branch
+      // predictor loses, while their conjunction is almost always false
+      const bool overlap = (cb.min_u <= ca.max_u) & (ca.min_u <= cb.max_u) & (cb.min_v <= ca.max_v) &
+                           (ca.min_v <= cb.max_v) & ((movable_a | movable_[b]) != 0);
+      if (!overlap) continue;
+      const int i = entries_[a].index, j = entries_[b].index;
+      pairs->emplace_back(std::min(i, j), std::max(i, j));
     }
   }
   // body order, not sweep order, so that both broadphases agree bit for bit
