@@ -12,10 +12,6 @@
 namespace contactsim {
 namespace {
 
-// Edges with |dA x dB| below this count as parallel when looking for the
-// supporting edge of a chosen edge axis (same threshold as the SAT).
-constexpr double kParallelSin = 1e-6;
-
 // Tags of the feature-id hash, so that ids of different kinds never mix.
 constexpr uint32_t kTagClip = 0xC11Fu;
 constexpr uint32_t kTagFace = 0xFACEu;
@@ -112,29 +108,13 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
   ReduceManifold(first, out);
 }
 
-// Edge of `poly` parallel to edge `e` that is extreme along `direction`.
-int SupportingEdge(const PosedPolyhedron& poly, int e, const Vec3& direction) {
-  const Vec3& d = poly.edge_dirs[e];
-  int best = e;
-  double best_p = -std::numeric_limits<double>::infinity();
-  for (int k = 0; k < static_cast<int>(poly.edge_dirs.size()); ++k) {
-    if (poly.edge_dirs[k].cross(d).norm() >= kParallelSin) continue;
-    const auto& edge = poly.topology->edges[k];
-    const double p = direction.dot(poly.vertices[edge[0]] + poly.vertices[edge[1]]);
-    if (p > best_p) {
-      best_p = p;
-      best = k;
-    }
-  }
-  return best;
-}
-
 void EdgeManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
                   double margin, ContactSet* out) {
   const double depth = -sat.separation;
   if (depth <= -margin) return;
-  const int ea = SupportingEdge(a, sat.axis.a, sat.normal);
-  const int eb = SupportingEdge(b, sat.axis.b, -sat.normal);
+  // the SAT keeps only Minkowski-face edge pairs, which are the touching edges
+  const int ea = sat.axis.a;
+  const int eb = sat.axis.b;
   const auto& edge_a = a.topology->edges[ea];
   const auto& edge_b = b.topology->edges[eb];
   const SegmentClosestPoints cp = ClosestPointsOfSegments(a.vertices[edge_a[0]], a.vertices[edge_a[1]],

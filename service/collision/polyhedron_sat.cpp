@@ -19,8 +19,8 @@ double FaceSeparation(const Vec3& n, double offset, const PosedPolyhedron& other
   return min_p - offset;
 }
 
-// Edge axis dA x dB, oriented from A to B by whichever sign separates more
-// (both orientations are candidates; the projections decide).
+// Any edge axis dA x dB by projection, oriented from A to B by whichever sign
+// separates more: for a cached axis, which may no longer be a Minkowski face.
 bool EdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, int eb,
                     Vec3* normal, double* separation) {
   const Vec3 c = a.edge_dirs[ea].cross(b.edge_dirs[eb]);
@@ -39,6 +39,38 @@ bool EdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, 
     *normal = -u;
     *separation = sep_minus;
   }
+  return true;
+}
+
+// Gauss-map test: edges of A (adjacent face normals a, b) and of B (c, d)
+// form a face of the Minkowski difference A - B iff the arcs a-b and -c..-d
+// cross on the unit sphere (Gregorius, "The Separating Axis Test between
+// Convex Polyhedra", GDC 2013). Only those edge pairs can define the
+// penetration depth or be needed to separate; the others are skipped.
+bool IsMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 b_x_a = b.cross(a);
+  const Vec3 d_x_c = d.cross(c);
+  const double cba = c.dot(b_x_a);
+  const double dba = d.dot(b_x_a);
+  const double adc = a.dot(d_x_c);
+  const double bdc = b.dot(d_x_c);
+  return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
+}
+
+// Separation along the axis of a Minkowski-face edge pair: the axis is the
+// face's outward normal, pointing away from A's centre, and the face plane
+// passes through both edges, so one point of each gives it in O(1).
+bool MinkowskiEdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, int eb,
+                             Vec3* normal, double* separation) {
+  const Vec3 c = a.edge_dirs[ea].cross(b.edge_dirs[eb]);
+  const double len = c.norm();
+  if (len < kParallelSin) return false;
+  const Vec3& pa = a.vertices[a.topology->edges[ea][0]];
+  const Vec3& pb = b.vertices[b.topology->edges[eb][0]];
+  Vec3 u = c / len;
+  if (u.dot(pa - a.centre) < 0.0) u = -u;
+  *normal = u;
+  *separation = u.dot(pb - pa);
   return true;
 }
 
@@ -106,12 +138,21 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
     if (sep > face_b.separation) face_b = MakeResult({SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep);
     if (sep > early_out) return WithMax(face_b);
   }
-  // one edge of each, skipping parallel pairs
-  for (int ea : a.edge_axes) {
-    for (int eb : b.edge_axes) {
+  // one edge of each, where they form a Minkowski face; parallel pairs skipped
+  const int edges_a = static_cast<int>(a.edge_dirs.size());
+  const int edges_b = static_cast<int>(b.edge_dirs.size());
+  for (int ea = 0; ea < edges_a; ++ea) {
+    const auto& fa = a.edge_faces[ea];
+    for (int eb = 0; eb < edges_b; ++eb) {
+      const auto& fb = b.edge_faces[eb];
       Vec3 n;
       double sep;
-      if (!EdgeSeparation(a, b, ea, eb, &n, &sep)) continue;
+      if (fa[1] >= 0 && fb[1] >= 0) {
+        if (!IsMinkowskiFace(a.normals[fa[0]], a.normals[fa[1]], -b.normals[fb[0]], -b.normals[fb[1]])) continue;
+        if (!MinkowskiEdgeSeparation(a, b, ea, eb, &n, &sep)) continue;
+      } else if (!EdgeSeparation(a, b, ea, eb, &n, &sep)) {  // open topology: project
+        continue;
+      }
       if (sep > edges.separation) edges = MakeResult({SeparatingAxis::Kind::kEdges, ea, eb}, n, sep);
       if (sep > early_out) return WithMax(edges);
     }

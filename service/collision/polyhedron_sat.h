@@ -7,10 +7,12 @@
 // and the cross products of one edge of each. With u the axis oriented from A
 // to B, the separation is
 //   sep(u) = min_{v in B} u.v - max_{v in A} u.v,
-// positive for a gap. The candidates contain the face normals of the Minkowski
-// difference A - B, so when the bodies overlap the largest separation is minus
-// the exact translational penetration depth, and when they do not it is the
-// distance along the best axis (a lower bound of the Euclidean distance).
+// positive for a gap. Edge pairs are kept only when they form a face of the
+// Minkowski difference A - B (a Gauss-map arc test, Gregorius, GDC 2013), so
+// the candidates are exactly the face normals of A - B: when the bodies
+// overlap the largest separation is minus the exact translational penetration
+// depth, and when they do not it is the distance of the origin from the
+// farthest face plane of A - B (a lower bound of the Euclidean distance).
 //
 // Face axes are preferred over edge axes, and faces of A over faces of B,
 // unless the other beats them by a relative and an absolute tolerance (as Box2D

@@ -1,15 +1,13 @@
 // Posing boxes and hulls as polyhedra (see posed_polyhedron.h).
 #include "service/collision/posed_polyhedron.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <limits>
+#include <utility>
 
 namespace contactsim {
 namespace {
-
-// Edges whose unit directions have |d1 x d2| below this are parallel for the
-// edge-axis list: sin(angle) < 1e-6 rad gives a cross product too short to
-// normalise reliably, and its axis is covered by the adjacent face normals.
-constexpr double kParallelSin = 1e-6;
 
 ConvexHull MakeUnitBox() {
   ConvexHull box;
@@ -28,10 +26,31 @@ ConvexHull MakeUnitBox() {
     face.vertices.assign(loops[f], loops[f] + 4);
     box.faces.push_back(face);
   }
-  // one edge of each direction first, so that edge_axes is {0, 1, 2}
   box.edges = {{0, 1}, {0, 2}, {0, 4}, {2, 3}, {4, 5}, {6, 7},
                {1, 3}, {4, 6}, {5, 7}, {1, 5}, {2, 6}, {3, 7}};
   return box;
+}
+
+uint64_t EdgeKey(int u, int v) {
+  return (static_cast<uint64_t>(std::min(u, v)) << 32) | static_cast<uint32_t>(std::max(u, v));
+}
+
+// Faces on both sides of each edge, from the faces' vertex loops.
+void FindEdgeFaces(const ConvexHull& topo, std::vector<std::array<int, 2>>* edge_faces) {
+  std::vector<std::pair<uint64_t, int>> sides;  // (edge key, face)
+  for (size_t f = 0; f < topo.faces.size(); ++f) {
+    const std::vector<int>& loop = topo.faces[f].vertices;
+    for (size_t k = 0; k < loop.size(); ++k) {
+      sides.emplace_back(EdgeKey(loop[k], loop[(k + 1) % loop.size()]), static_cast<int>(f));
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  edge_faces->assign(topo.edges.size(), {-1, -1});
+  for (size_t e = 0; e < topo.edges.size(); ++e) {
+    const uint64_t key = EdgeKey(topo.edges[e][0], topo.edges[e][1]);
+    auto it = std::lower_bound(sides.begin(), sides.end(), std::make_pair(key, -1));
+    for (int k = 0; k < 2 && it != sides.end() && it->first == key; ++k, ++it) (*edge_faces)[e][k] = it->second;
+  }
 }
 
 }  // namespace
@@ -69,19 +88,10 @@ bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out) {
     out->offsets[f] = n.dot(out->vertices[topo.faces[f].vertices.front()]);
   }
   out->edge_dirs.resize(topo.edges.size());
-  out->edge_axes.clear();
   for (size_t e = 0; e < topo.edges.size(); ++e) {
-    const Vec3 d = (out->vertices[topo.edges[e][1]] - out->vertices[topo.edges[e][0]]).normalized();
-    out->edge_dirs[e] = d;
-    bool is_new = true;
-    for (int k : out->edge_axes) {
-      if (d.cross(out->edge_dirs[k]).norm() < kParallelSin) {
-        is_new = false;
-        break;
-      }
-    }
-    if (is_new) out->edge_axes.push_back(static_cast<int>(e));
+    out->edge_dirs[e] = (out->vertices[topo.edges[e][1]] - out->vertices[topo.edges[e][0]]).normalized();
   }
+  FindEdgeFaces(topo, &out->edge_faces);
   return true;
 }
 

@@ -4,6 +4,7 @@
 // test and one clipping routine serve boxes and hulls alike.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "service/physics/convex_hull.h"
@@ -17,9 +18,9 @@ struct PosedPolyhedron {
   std::vector<Vec3> normals;             // unit, world, outward, one per face
   std::vector<double> offsets;           // m: normals[f] . p = offsets[f] on face f
   std::vector<Vec3> edge_dirs;           // unit, world, one per topology edge
-  // Topology edges with pairwise non-parallel directions: the candidates of
-  // the edge-edge axes (3 for a box instead of 12).
-  std::vector<int> edge_axes;
+  // The two faces that share each edge (-1 when the topology lacks one): their
+  // normals are the end points of the edge's arc on the Gauss map.
+  std::vector<std::array<int, 2>> edge_faces;
   Vec3 centre = Vec3::Zero();            // m, world (centre of mass)
 };
 
