@@ -3,10 +3,16 @@
 //
 // Scenes: n boxes of side 0.1..1 m, uniform in a cube sized so that a box
 // overlaps about two others (about n pairs in all), one in five static.
-//   Random:   a fixed scene; sap is Reset() every call, so it sorts from scratch.
+//   Random:   each call gets the next of kRandomScenes independent scenes,
+//             so there is no coherence (and the branch predictor cannot
+//             learn one scene's comparisons, which made a single repeated
+//             scene look ~1.7x faster); sap is Reset() every call.
 //   Coherent: every call first moves each dynamic box by 1 cm (its own
 //             constant velocity, bouncing off the walls), as a 1 ms step at
-//             10 m/s would; sap repairs last call's order.
+//             10 m/s would; sap repairs last call's order. The move costs
+//             ~3 ns per box and is included.
+//   SapCoherentRebuild: the coherent scene with a Reset() every call, to
+//             show what the incremental repair saves.
 // Run (see BENCHMARKS.md, "Broadphase scaling"):
 //   build/bin/contactsim-bench --benchmark_filter=Broadphase
 //       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -26,6 +32,7 @@ constexpr double kDensity = 2.0;   // expected overlaps per box
 constexpr double kMoveStep = 0.01; // m per call in the coherent variant
 constexpr int kLargeN = 50000;     // naive takes seconds per call here
 constexpr int kLargeNIterations = 3;
+constexpr int kRandomScenes = 4;
 
 struct BenchScene {
   std::vector<Aabb> boxes;
@@ -33,10 +40,10 @@ struct BenchScene {
   std::vector<Vec3> velocity;  // m per call
   double side = 0.0;           // m, the cube the boxes live in
 
-  explicit BenchScene(int n) {
+  BenchScene(int n, unsigned seed) {
     // P(overlap) = (2 s / side)^3 with mean side s = 0.55 m; = kDensity / n
     side = 2.0 * 0.55 * std::cbrt(n / kDensity);
-    std::mt19937 rng(12345);
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<double> pos(0.0, side), ext(0.05, 0.5), dir(-1.0, 1.0);
     std::bernoulli_distribution is_static(0.2);
     for (int i = 0; i < n; ++i) {
@@ -63,14 +70,21 @@ struct BenchScene {
 
 template <typename Finder>
 void Run(benchmark::State& state, bool coherent, Finder find) {
-  BenchScene scene(static_cast<int>(state.range(0)));
+  const int n = static_cast<int>(state.range(0));
+  std::vector<BenchScene> scenes;
+  for (int k = 0; k < (coherent ? 1 : kRandomScenes); ++k) scenes.emplace_back(n, 12345u + k);
   std::vector<BodyPair> pairs;
+  std::size_t next = 0;
+  double total_pairs = 0.0;
   for (auto _ : state) {
+    BenchScene& scene = scenes[next];
+    next = (next + 1) % scenes.size();
     if (coherent) scene.Move();
     find(scene, &pairs);
     benchmark::DoNotOptimize(pairs.data());
+    total_pairs += static_cast<double>(pairs.size());
   }
-  state.counters["pairs"] = static_cast<double>(pairs.size());
+  state.counters["pairs"] = benchmark::Counter(total_pairs, benchmark::Counter::kAvgIterations);
 }
 
 void BM_BroadphaseNaiveRandom(benchmark::State& state) {
@@ -102,6 +116,14 @@ void BM_BroadphaseSapCoherent(benchmark::State& state) {
   state.counters["swaps"] = calls > 0 ? static_cast<double>(swaps) / calls : 0.0;
 }
 
+void BM_BroadphaseSapCoherentRebuild(benchmark::State& state) {
+  SweepAndPrune sap;
+  Run(state, true, [&](const BenchScene& s, std::vector<BodyPair>* p) {
+    sap.Reset();
+    sap.FindPairs(s.boxes, s.movable, p);
+  });
+}
+
 void Sizes(benchmark::internal::Benchmark* b) {
   for (int n : {10, 30, 100, 300, 1000, 10000}) b->Arg(n);
   b->Unit(benchmark::kMicrosecond);
@@ -113,6 +135,7 @@ BENCHMARK(BM_BroadphaseSapRandom)->Apply(Sizes)->Arg(kLargeN);
 BENCHMARK(BM_BroadphaseNaiveCoherent)->Apply(Sizes);
 BENCHMARK(BM_BroadphaseNaiveCoherent)->Arg(kLargeN)->Iterations(kLargeNIterations)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BroadphaseSapCoherent)->Apply(Sizes)->Arg(kLargeN);
+BENCHMARK(BM_BroadphaseSapCoherentRebuild)->Apply(Sizes)->Arg(kLargeN);
 
 }  // namespace
 }  // namespace contactsim
