@@ -117,6 +117,24 @@ TEST(ConvexHullTest, OffsetCubeIsRecentredAtItsCentroid) {
   EXPECT_TRUE(props.inertia.isApprox(Mat3::Identity() * 16.0 / 3.0 * 2.0, kMassRelTol));
 }
 
+// Verifies the products of inertia: a box rotated by R has inertia
+// R I_box R^T, full off-diagonal terms included.
+TEST(ConvexHullTest, RotatedBoxHasRotatedInertia) {
+  const Vec3 h(0.3, 0.7, 1.1);
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+  std::vector<Vec3> pts;
+  for (const Vec3& p : BoxCorners(h)) pts.push_back(R * p + Vec3(5, 6, 7));
+  std::shared_ptr<const ConvexHull> hull;
+  ASSERT_TRUE(BuildConvexHull(pts, &hull).ok());
+  const double rho = 3.0, m = rho * 8 * h.prod();
+  const Vec3 diag(m / 3 * (h.y() * h.y() + h.z() * h.z()), m / 3 * (h.x() * h.x() + h.z() * h.z()),
+                  m / 3 * (h.x() * h.x() + h.y() * h.y()));
+  const Mat3 expected = R * diag.asDiagonal() * R.transpose();
+  const MassProperties props = ConvexHullMassProperties(*hull, rho);
+  EXPECT_NEAR(props.mass, m, kMassRelTol * m);
+  EXPECT_TRUE(props.inertia.isApprox(expected, kMassRelTol)) << props.inertia << "\n" << expected;
+}
+
 // Verifies that midpoints of box edges and faces do not become vertices.
 TEST(ConvexHullTest, PointsOnEdgesAndFacesAreNotVertices) {
   std::vector<Vec3> pts;
@@ -129,6 +147,32 @@ TEST(ConvexHullTest, PointsOnEdgesAndFacesAreNotVertices) {
   EXPECT_EQ(hull->faces.size(), 6u);
   EXPECT_EQ(hull->edges.size(), 12u);
   ExpectWellFormed(*hull, 1e-12);
+}
+
+// Verifies that thousands of random points on a box's faces (plus its
+// corners and duplicates) give the 8-vertex, 6-quad box at sizes from 1 mm to
+// 1 km and 1 km from the origin: the tolerance scales with the cloud.
+TEST(ConvexHullTest, BoxSurfaceSamplesGiveTheBoxAtAnyScale) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    for (double offset : {0.0, 1e3}) {
+      std::vector<Vec3> pts = BoxCorners(Vec3::Constant(scale), Vec3::Constant(offset));
+      for (int i = 0; i < 2000; ++i) {
+        Vec3 p(u(rng), u(rng), u(rng));
+        p[i % 3] = (i / 3) % 2 ? 1.0 : -1.0;  // onto a face
+        pts.push_back(Vec3::Constant(offset) + scale * p);
+      }
+      pts.push_back(pts[0]);  // duplicate corner
+      std::shared_ptr<const ConvexHull> hull;
+      ASSERT_TRUE(BuildConvexHull(pts, &hull).ok()) << scale << " " << offset;
+      EXPECT_EQ(hull->vertices.size(), 8u) << scale << " " << offset;
+      EXPECT_EQ(hull->faces.size(), 6u) << scale << " " << offset;
+      EXPECT_EQ(hull->edges.size(), 12u) << scale << " " << offset;
+      const double volume = 8.0 * scale * scale * scale;
+      EXPECT_NEAR(ConvexHullVolume(*hull), volume, kMassRelTol * volume) << scale << " " << offset;
+    }
+  }
 }
 
 // Verifies on random clouds that every input point is inside or on the hull
