@@ -12,7 +12,7 @@
 //      (d(t) - target) / v, over which the distance cannot reach the target,
 //      so no contact is stepped over (no tunnelling through thin bodies). It
 //      converges linearly, with ratio 1 - (true closing speed) / v: a tight
-//      bound takes one or two steps, a bound 10x too large about 70. Without
+//      bound takes one or two steps, a bound 10x too large about 80. Without
 //      a bound only the end of the step is checked (classic backtracking),
 //      which finds a root, not necessarily the first.
 //   2. refine the bracket [a, b], d(a) > target > d(b), by bisection or by
