@@ -2,14 +2,19 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/impulse_method.h"
+#include "service/contact/penalty_method.h"
 
 namespace contactsim {
 
-std::vector<std::string> ContactMethodNames() { return {"impulse"}; }
+std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty"}; }
 
 Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out) {
   if (name == "impulse") {
     *out = std::make_unique<ImpulseMethod>();
+    return Status::Ok();
+  }
+  if (name == "penalty") {
+    *out = std::make_unique<PenaltyMethod>();
     return Status::Ok();
   }
   std::string known;
