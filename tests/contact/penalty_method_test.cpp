@@ -160,6 +160,8 @@ TEST(PenaltyMethod, HuntCrossleySphereReboundsToESquaredTimesDropHeight) {
     const BodyId ball = AddSphere(sim.world, 0.1, Vec3(0, 0, 1.1), e);
     const double apex = FirstReboundApex(sim, ball, 2400) - 0.1;
     EXPECT_NEAR(apex, e * e, kTolerance * e * e) << integrator;
+    std::printf("hunt_crossley %s e = 0.9: rebound apex %.4f m, analytic %.4f m (%+.1f%%)\n", integrator, apex, e * e,
+                100.0 * (apex - e * e) / (e * e));
   }
 }
 
@@ -211,10 +213,12 @@ TEST_P(PenaltyIntegratorTest, BoxHoldsBelowCoulombLimitAndSlidesAbove) {
       EXPECT_LT(std::abs(x2), 3.0 * force / kt) << GetParam();
       // no creep between 1 s and 2 s of load (measured: below 1e-6 m)
       EXPECT_NEAR(x2, x1, 1e-5) << GetParam();
+      std::printf("%s: held %.1f N with %.3f mm (F / kt = %.3f mm)\n", GetParam(), force, 1e3 * x2, 1e3 * force / kt);
     } else {
       // 5%: the first steps of the load rock the box onto its front edge
       const double a = (fraction - 1.0) * mu * kG;
       EXPECT_NEAR(x2, 0.5 * a * 4.0, 0.05 * 0.5 * a * 4.0) << GetParam();
+      std::printf("%s: slid %.4f m in 2 s, analytic %.4f m\n", GetParam(), x2, 0.5 * a * 4.0);
     }
   }
 }
