@@ -67,7 +67,9 @@ void PenaltyMethod::KeepAnchors(const World& world, const ContactSet& contacts, 
     if (!row.engaged || row.lambda <= 0.0) continue;
     AnchorState next = row.anchor;
     const bool implicit = params_.integrator == "implicit";
-    if (implicit && row.sliding) {
+    if (row.mu <= 0.0) {
+      next.stretch.setZero();  // no friction: nothing to anchor
+    } else if (implicit && row.sliding) {
       // the anchor slid so that the spring alone carries mu lambda
       next.stretch = -row.ft / row.kt;
     } else {

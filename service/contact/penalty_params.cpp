@@ -39,6 +39,15 @@ Status ParsePenaltyParams(const char* method, const ParamMap& params, const Pena
 
   // restitution is a word or a number in [0, 1]
   const auto e = params.find("restitution");
+  if (e != params.end() && !IsRestitutionWord(e->second)) {
+    char* end = nullptr;
+    std::strtod(e->second.c_str(), &end);
+    if (e->second.empty() || *end != '\0') {
+      return Status::InvalidArgument(std::string(method) +
+                                     " parameter restitution must be material, off or a number in [0, 1], got \"" +
+                                     e->second + "\"");
+    }
+  }
   if (e != params.end() && IsRestitutionWord(e->second)) {
     r.Choice("restitution", {"material", "off"}, &p.restitution);
   } else {

@@ -33,6 +33,8 @@ struct PairInfo {
   int points = 0;
   double m_eff = 0.0;          // kg, 1 / (1/m_a + 1/m_b)
   double restitution = -1.0;   // combined, or -1 when kd / alpha are given
+  double kd = 0.0;             // N s/m, linear law
+  double ct = 0.0;             // N s/m, tangential dashpot
 };
 
 }  // namespace
@@ -76,6 +78,11 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     } else if (params.restitution != "off") {
       pair.restitution = params.RestitutionValue();
     }
+    // once per pair: the restitution's zeta is a bisection
+    if (linear) {
+      pair.kd = pair.restitution >= 0.0 ? DampingFromRestitution(pair.restitution, params.kp, pair.m_eff) : params.kd;
+    }
+    pair.ct = 2.0 * params.friction_damping_ratio * std::sqrt(params.friction_stiffness * pair.m_eff);
   }
 
   for (size_t k = 0; k < contacts.size(); ++k) {
@@ -96,7 +103,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
 
     double damping = 0.0;  // kd (linear) or alpha (hunt_crossley) of the pair
     if (linear) {
-      damping = pair.restitution >= 0.0 ? DampingFromRestitution(pair.restitution, params.kp, pair.m_eff) : params.kd;
+      damping = pair.kd;
     } else {
       damping = pair.restitution >= 0.0 ? HuntCrossleyAlpha(pair.restitution, row.anchor.impact_speed)
                                         : params.hc_damping;
@@ -113,7 +120,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     const double slip = row.vt0.norm();
     row.inv_mass_t = InverseEffectiveMass(world, row, slip > 1e-12 ? Vec3(row.vt0 / slip) : row.t1);
     row.kt = params.friction_stiffness / row.nc;
-    row.ct = 2.0 * params.friction_damping_ratio * std::sqrt(params.friction_stiffness * pair.m_eff) / row.nc;
+    row.ct = pair.ct / row.nc;
   }
 }
 
