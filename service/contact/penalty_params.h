@@ -12,7 +12,7 @@ namespace contactsim {
 struct PenaltyParams {
   // normal force law: "linear" spring-dashpot or "hunt_crossley"
   std::string model = "linear";
-  double kp = 1.0e5;              // N/m (N/m^n for hunt_crossley): pair stiffness
+  double kp = 1.0e6;              // N/m (N/m^n for hunt_crossley): pair stiffness
   double kd = 1.0e3;              // N s/m: pair damping, used when restitution = "off"
   // Damping source: "material" derives kd (linear) or the Hunt-Crossley
   // alpha from the pair's combined material restitution, a number in [0, 1]
@@ -20,7 +20,7 @@ struct PenaltyParams {
   std::string restitution = "material";
   double hc_exponent = 1.5;       // n of kp d^n (1.5: Hertz contact of spheres)
   double hc_damping = 0.2;        // s/m: Hunt-Crossley alpha when restitution = "off"
-  double friction_stiffness = 1.0e5;      // N/m: tangential spring of a pair
+  double friction_stiffness = 1.0e6;      // N/m: tangential spring of a pair
   double friction_damping_ratio = 1.0;    // unitless: of the tangential spring, 1 = critical
   std::string integrator = "implicit";    // explicit | implicit
   double theta = 1.0;             // implicit: 1 = linearly implicit Euler, 0.5 = trapezoidal
