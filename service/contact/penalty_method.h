@@ -4,7 +4,7 @@
 //   lambda = max(0, kp d - kd vn) / nc        (model = linear)
 //   lambda = max(0, kp d^n (1 - 1.5 alpha vn)) / nc   (model = hunt_crossley)
 // with d the depth, vn the separating normal velocity and nc the number of
-// force-carrying points of the pair (penalty_force.h). kd (or alpha) comes
+// contact points of the pair (penalty_force.h, penalty_row.h). kd (or alpha) comes
 // from a restitution coefficient unless given (penalty_force.h: the exact
 // no-tension relation of the linear dashpot). Friction is a tangential
 // spring from an anchor with a Coulomb limit (Yamane and Nakamura 2006,
