@@ -5,7 +5,7 @@ JOBS       ?= 2
 CONFIG     ?= config/server.pbtxt
 SANITIZE   ?= OFF
 
-.PHONY: all deps build run test test-cpp test-py bench clean
+.PHONY: all deps build run test test-cpp test-py test-asan bench clean
 
 all: build
 
@@ -30,6 +30,11 @@ test-cpp:
 
 test-py:
 	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
+
+# The whole suite again on a Debug build with AddressSanitizer and
+# UndefinedBehaviorSanitizer (CI runs it after `make test`).
+test-asan:
+	@$(MAKE) --no-print-directory test BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 
 bench: build
 	$(BUILD)/bin/contactsim-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true

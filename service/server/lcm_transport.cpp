@@ -32,7 +32,10 @@ void LcmTransport::Publish(const std::string& channel, const void* data, int siz
 
 void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
   relays_.push_back(std::make_unique<Relay>(std::move(handler)));
-  lcm_->subscribe(channel, &Relay::Handle, relays_.back().get());
+  lcm::Subscription* sub = lcm_->subscribe(channel, &Relay::Handle, relays_.back().get());
+  // LCM drops messages beyond 30 queued per subscription by default; a client
+  // may send many commands without waiting, and every one must be answered.
+  sub->setQueueCapacity(kCommandQueueCapacity);
 }
 
 void LcmTransport::HandleTimeout(int timeout_ms) { lcm_->handleTimeout(timeout_ms); }

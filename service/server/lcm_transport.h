@@ -18,6 +18,9 @@ namespace contactsim {
 // dropped by the kernel's small default buffer.
 constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608";
 
+// Commands LCM may queue per channel before the server handles them.
+constexpr int kCommandQueueCapacity = 100000;
+
 // explicit_url if not empty, else $LCM_DEFAULT_URL if set, else kDefaultLcmUrl.
 std::string ResolveLcmUrl(const std::string& explicit_url);
 

@@ -63,10 +63,13 @@ Client::Client(ClientOptions options)
   if (options_.client_id.empty()) options_.client_id = DefaultClientId();
   lcm_ = std::make_unique<lcm::LCM>(options_.url);
   if (!lcm_->good()) return;
-  lcm_->subscribe(Channel("REPLY"), &Client::HandleReply, this);
-  lcm_->subscribe(Channel("STATE"), &Client::HandleState, this);
-  lcm_->subscribe(Channel("CONTACTS"), &Client::HandleContacts, this);
-  lcm_->subscribe(Channel("STATUS"), &Client::HandleStatus, this);
+  // LCM drops messages beyond 30 queued per subscription by default; a
+  // free-running server sends STATE in far larger bursts.
+  constexpr int kQueueCapacity = 100000;
+  lcm_->subscribe(Channel("REPLY"), &Client::HandleReply, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribe(Channel("STATE"), &Client::HandleState, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribe(Channel("CONTACTS"), &Client::HandleContacts, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribe(Channel("STATUS"), &Client::HandleStatus, this)->setQueueCapacity(kQueueCapacity);
   thread_ = std::thread(&Client::Run, this);
 }
 
