@@ -26,7 +26,7 @@ void CollisionDetector::Detect(const World& world, double margin, double sweep_d
   broadphase_->FindPairs(boxes_, movable_, &pairs_);
   contacts->clear();
   for (const BodyPair& p : pairs_) {
-    Collide(bodies[p.first], p.first, bodies[p.second], p.second, margin, contacts);
+    narrowphase_.Collide(bodies[p.first], p.first, bodies[p.second], p.second, margin, contacts);
   }
   stats_.candidate_pairs = static_cast<int>(pairs_.size());
   stats_.contacts = static_cast<int>(contacts->size());

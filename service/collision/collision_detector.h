@@ -7,6 +7,7 @@
 
 #include "service/collision/broadphase.h"
 #include "service/collision/contact.h"
+#include "service/collision/narrowphase.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -28,10 +29,16 @@ class CollisionDetector {
   // The candidate pairs of the last Detect (body indices).
   const std::vector<BodyPair>& pairs() const { return pairs_; }
   const CollisionStats& stats() const { return stats_; }
-  void Reset() { broadphase_->Reset(); }
+  void Reset() {
+    broadphase_->Reset();
+    narrowphase_.Reset();
+  }
+  // Separating-axis cache counters (Baraff): hits skipped the full test.
+  const Narrowphase& narrowphase() const { return narrowphase_; }
 
  private:
   std::unique_ptr<Broadphase> broadphase_;
+  Narrowphase narrowphase_;
   std::vector<Aabb> boxes_;
   std::vector<bool> movable_;
   std::vector<BodyPair> pairs_;
