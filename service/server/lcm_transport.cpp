@@ -14,8 +14,10 @@ std::string ResolveLcmUrl(const std::string& explicit_url) {
 class LcmTransport::Relay {
  public:
   explicit Relay(RawHandler handler) : handler_(std::move(handler)) {}
-  void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    handler_(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+  // A plain function, not a pointer to member: UBSan flags LCM's
+  // pointer-to-member dispatch in lcm-cpp-impl.hpp.
+  static void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Relay* relay) {
+    relay->handler_(channel, rbuf->data, static_cast<int>(rbuf->data_size));
   }
 
  private:
@@ -32,7 +34,7 @@ void LcmTransport::Publish(const std::string& channel, const void* data, int siz
 
 void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
   relays_.push_back(std::make_unique<Relay>(std::move(handler)));
-  lcm::Subscription* sub = lcm_->subscribe(channel, &Relay::Handle, relays_.back().get());
+  lcm::Subscription* sub = lcm_->subscribeFunction(channel, &Relay::Handle, relays_.back().get());
   // LCM drops messages beyond 30 queued per subscription by default; a client
   // may send many commands without waiting, and every one must be answered.
   sub->setQueueCapacity(kCommandQueueCapacity);

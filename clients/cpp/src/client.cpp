@@ -57,6 +57,19 @@ std::string ResolveLcmUrl(const std::string& url) {
   return kDefaultLcmUrl;
 }
 
+void Client::OnReply(const lcm::ReceiveBuffer* rb, const std::string& ch, const reply_t* m, Client* c) {
+  c->HandleReply(rb, ch, m);
+}
+void Client::OnState(const lcm::ReceiveBuffer* rb, const std::string& ch, const state_t* m, Client* c) {
+  c->HandleState(rb, ch, m);
+}
+void Client::OnContacts(const lcm::ReceiveBuffer* rb, const std::string& ch, const contacts_t* m, Client* c) {
+  c->HandleContacts(rb, ch, m);
+}
+void Client::OnStatus(const lcm::ReceiveBuffer* rb, const std::string& ch, const status_t* m, Client* c) {
+  c->HandleStatus(rb, ch, m);
+}
+
 Client::Client(ClientOptions options)
     : options_(std::move(options)), callbacks_(std::make_unique<Callbacks>()) {
   options_.url = ResolveLcmUrl(options_.url);
@@ -66,10 +79,12 @@ Client::Client(ClientOptions options)
   // LCM drops messages beyond 30 queued per subscription by default; a
   // free-running server sends STATE in far larger bursts.
   constexpr int kQueueCapacity = 100000;
-  lcm_->subscribe(Channel("REPLY"), &Client::HandleReply, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribe(Channel("STATE"), &Client::HandleState, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribe(Channel("CONTACTS"), &Client::HandleContacts, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribe(Channel("STATUS"), &Client::HandleStatus, this)->setQueueCapacity(kQueueCapacity);
+  // Plain-function trampolines rather than LCM's pointer-to-member
+  // subscriptions, whose dispatch UBSan flags inside lcm-cpp-impl.hpp.
+  lcm_->subscribeFunction(Channel("REPLY"), &OnReply, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel("STATE"), &OnState, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel("CONTACTS"), &OnContacts, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel("STATUS"), &OnStatus, this)->setQueueCapacity(kQueueCapacity);
   thread_ = std::thread(&Client::Run, this);
 }
 

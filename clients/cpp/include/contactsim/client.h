@@ -187,6 +187,10 @@ class Client {
                       const contacts_t* contacts);
   void HandleStatus(const lcm::ReceiveBuffer*, const std::string&,
                     const status_t* status);
+  static void OnReply(const lcm::ReceiveBuffer*, const std::string&, const reply_t*, Client*);
+  static void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t*, Client*);
+  static void OnContacts(const lcm::ReceiveBuffer*, const std::string&, const contacts_t*, Client*);
+  static void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const status_t*, Client*);
 
   ClientOptions options_;
   std::unique_ptr<lcm::LCM> lcm_;
