@@ -15,6 +15,7 @@ APT_PACKAGES=(
   libgtest-dev libgmock-dev                  # unit tests
   libbenchmark-dev                           # contactsim-bench micro benchmarks
   libcli11-dev                               # command-line parsing
+  libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
   python3 python3-venv python3-dev           # Python client
 )
 
