@@ -30,10 +30,10 @@ Status ImpulseMethod::SetParams(const ParamMap& params) {
 ParamMap ImpulseMethod::Params() const {
   return {{"iterations", std::to_string(params_.iterations)},
           {"collision_passes", std::to_string(params_.collision_passes)},
-          {"velocity_tolerance", FormatDouble(params_.velocity_tolerance)},
-          {"collision_threshold", FormatDouble(params_.collision_threshold)},
-          {"slop", FormatDouble(params_.slop)},
-          {"position_correction", FormatDouble(params_.position_correction)},
+          {"velocity_tolerance", FormatValue(params_.velocity_tolerance)},
+          {"collision_threshold", FormatValue(params_.collision_threshold)},
+          {"slop", FormatValue(params_.slop)},
+          {"position_correction", FormatValue(params_.position_correction)},
           {"toi", params_.toi},
           {"max_substeps", std::to_string(params_.max_substeps)}};
 }

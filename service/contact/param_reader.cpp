@@ -7,13 +7,6 @@
 
 namespace contactsim {
 
-std::string FormatDouble(double v) {
-  std::ostringstream os;
-  os.precision(12);
-  os << v;
-  return os.str();
-}
-
 const std::string* ParamReader::Find(const char* name) {
   known_.insert(name);
   const auto it = params_.find(name);
@@ -33,7 +26,7 @@ void ParamReader::Double(const char* name, double lo, double hi, double* value) 
   if (text->empty() || *end != '\0' || errno != 0 || !std::isfinite(v)) {
     Fail(method_ + " parameter " + name + " must be a finite number, got \"" + *text + "\"");
   } else if (v < lo || v > hi) {
-    Fail(method_ + " parameter " + name + " must be in [" + FormatDouble(lo) + ", " + FormatDouble(hi) +
+    Fail(method_ + " parameter " + name + " must be in [" + FormatValue(lo) + ", " + FormatValue(hi) +
          "], got " + *text);
   } else {
     *value = v;

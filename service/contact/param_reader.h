@@ -9,6 +9,7 @@
 #include <string>
 
 #include "service/contact/contact_method.h"
+#include "service/physics/validation.h"
 
 namespace contactsim {
 
@@ -35,6 +36,5 @@ class ParamReader {
   Status status_;
 };
 
-std::string FormatDouble(double v);
 
 }  // namespace contactsim

@@ -53,7 +53,7 @@ Status ParsePenaltyParams(const char* method, const ParamMap& params, const Pena
   } else {
     double value = -1.0;
     r.Double("restitution", 0.0, 1.0, &value);
-    if (value >= 0.0) p.restitution = FormatDouble(value);
+    if (value >= 0.0) p.restitution = FormatValue(value);
   }
   Status status = r.Finish();
   if (!status.ok()) return status;
@@ -68,18 +68,18 @@ Status ParsePenaltyParams(const char* method, const ParamMap& params, const Pena
 
 ParamMap PenaltyParamsToMap(const PenaltyParams& p) {
   return {{"model", p.model},
-          {"kp", FormatDouble(p.kp)},
-          {"kd", FormatDouble(p.kd)},
+          {"kp", FormatValue(p.kp)},
+          {"kd", FormatValue(p.kd)},
           {"restitution", p.restitution},
-          {"hc_exponent", FormatDouble(p.hc_exponent)},
-          {"hc_damping", FormatDouble(p.hc_damping)},
-          {"friction_stiffness", FormatDouble(p.friction_stiffness)},
-          {"friction_damping_ratio", FormatDouble(p.friction_damping_ratio)},
+          {"hc_exponent", FormatValue(p.hc_exponent)},
+          {"hc_damping", FormatValue(p.hc_damping)},
+          {"friction_stiffness", FormatValue(p.friction_stiffness)},
+          {"friction_damping_ratio", FormatValue(p.friction_damping_ratio)},
           {"integrator", p.integrator},
-          {"theta", FormatDouble(p.theta)},
+          {"theta", FormatValue(p.theta)},
           {"substeps", std::to_string(p.substeps)},
           {"iterations", std::to_string(p.iterations)},
-          {"margin", FormatDouble(p.margin)}};
+          {"margin", FormatValue(p.margin)}};
 }
 
 }  // namespace contactsim

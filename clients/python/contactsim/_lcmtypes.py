@@ -1,8 +1,8 @@
-"""Makes the lcm-gen generated message classes attributes of this package.
+"""Makes the generated LCM message classes attributes of this package.
 
-lcm-gen writes ``<build>/lcmtypes/python/contactsim/<type>.py``; those modules
+The LCM code generator writes ``<build>/lcmtypes/python/contactsim/<type>.py``; those modules
 refer to each other as ``contactsim.<type>`` and expect that name to be the
-*class* (lcm-gen's own ``__init__`` does ``from .body_state_t import
+*class* (the generator's own ``__init__`` does ``from .body_state_t import
 body_state_t``). This package is also called ``contactsim``, so it appends the
 generated folder to its ``__path__`` and binds every class under its name.
 
