@@ -8,49 +8,16 @@
 #include <cstdio>
 
 #include "service/physics/body_settings.h"
+#include "tests/contact/test_bodies.h"
 
 namespace contactsim {
 namespace {
 
 constexpr double kG = 9.81;  // m/s^2
 
-BodyId AddGround(World& world, double restitution, double friction) {
-  BodySettings s;
-  s.shape = ShapeType::kPlane;
-  s.restitution = restitution;
-  s.friction = friction;
-  RigidBody b;
-  EXPECT_TRUE(CreateBody(s, Material{}, &b).ok());
-  return world.AddBody(b);
-}
-
-BodyId AddSphere(World& world, double radius, const Vec3& p, double restitution, double friction = 0.5,
-                 const Vec3& v = Vec3::Zero()) {
-  BodySettings s;
-  s.shape = ShapeType::kSphere;
-  s.radius = radius;
-  s.position = p;
-  s.linear_velocity = v;
-  s.restitution = restitution;
-  s.friction = friction;
-  RigidBody b;
-  EXPECT_TRUE(CreateBody(s, Material{}, &b).ok());
-  return world.AddBody(b);
-}
-
-BodyId AddBox(World& world, const Vec3& half, const Vec3& p, double restitution, double friction,
-              const Vec3& v = Vec3::Zero()) {
-  BodySettings s;
-  s.shape = ShapeType::kBox;
-  s.half_extents = half;
-  s.position = p;
-  s.linear_velocity = v;
-  s.restitution = restitution;
-  s.friction = friction;
-  RigidBody b;
-  EXPECT_TRUE(CreateBody(s, Material{}, &b).ok());
-  return world.AddBody(b);
-}
+using testing::AddBox;
+using testing::AddGround;
+using testing::AddSphere;
 
 struct Sim {
   World world;
