@@ -22,6 +22,7 @@ Status ImpulseMethod::SetParams(const ParamMap& params) {
   r.Double("position_correction", 0.0, 1.0, &p.position_correction);
   r.Choice("toi", {"regula_falsi", "bisection", "off"}, &p.toi);
   r.Int("max_substeps", 1, 64, &p.max_substeps);
+  r.Bool("warm_start", &p.warm_start);
   Status status = r.Finish();
   if (status.ok()) params_ = p;
   return status;
@@ -35,7 +36,8 @@ ParamMap ImpulseMethod::Params() const {
           {"slop", FormatValue(params_.slop)},
           {"position_correction", FormatValue(params_.position_correction)},
           {"toi", params_.toi},
-          {"max_substeps", std::to_string(params_.max_substeps)}};
+          {"max_substeps", std::to_string(params_.max_substeps)},
+          {"warm_start", params_.warm_start ? "true" : "false"}};
 }
 
 // Split impulse: pseudo-velocities solved like contact impulses for a
@@ -104,15 +106,34 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
   return pass;
 }
 
-int ImpulseMethod::ContactPhase(std::vector<ContactRow>& rows) {
-  // Accumulated impulses start at zero here; the collision phase's impulses
-  // are kept apart (collision_n) so that clamping applies to this phase only.
+int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
+  // Accumulated impulses start from last step's forces times h (or zero);
+  // the collision phase's impulses are kept apart (collision_n) so that
+  // clamping applies to this phase only.
   std::vector<double> collision_n(rows.size());
   std::vector<Vec3> collision_t(rows.size());
   for (size_t k = 0; k < rows.size(); ++k) {
-    collision_n[k] = rows[k].lambda_n;
-    collision_t[k] = rows[k].lambda_t1 * rows[k].t1 + rows[k].lambda_t2 * rows[k].t2;
-    rows[k].lambda_n = rows[k].lambda_t1 = rows[k].lambda_t2 = 0.0;
+    ContactRow& row = rows[k];
+    collision_n[k] = row.lambda_n;
+    collision_t[k] = row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2;
+    row.lambda_n = row.lambda_t1 = row.lambda_t2 = 0.0;
+    if (!params_.warm_start) continue;
+    const Contact& c = contacts[k];
+    const auto it = warm_.find({c.id_a, c.id_b, c.feature_id});
+    if (it == warm_.end()) continue;
+    // the stored tangent force projected on this step's tangent basis, kept
+    // in the Coulomb disk of the warm normal impulse
+    row.lambda_n = h * it->second.normal;
+    row.lambda_t1 = h * it->second.tangent.dot(row.t1);
+    row.lambda_t2 = h * it->second.tangent.dot(row.t2);
+    const double norm = std::hypot(row.lambda_t1, row.lambda_t2);
+    const double limit = row.friction * row.lambda_n;
+    if (norm > limit) {
+      const double scale = norm > 0.0 ? limit / norm : 0.0;
+      row.lambda_t1 *= scale;
+      row.lambda_t2 *= scale;
+    }
+    row.Apply(row.lambda_n * row.n + row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
   }
   int it = 0;
   for (; it < params_.iterations; ++it) {
@@ -147,7 +168,13 @@ int ImpulseMethod::ContactPhase(std::vector<ContactRow>& rows) {
       break;
     }
   }
+  warm_.clear();
   for (size_t k = 0; k < rows.size(); ++k) {
+    const Contact& c = contacts[k];
+    const ContactRow& row = rows[k];
+    if (row.lambda_n > 0.0) {
+      warm_[{c.id_a, c.id_b, c.feature_id}] = {row.lambda_n / h, (row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2) / h};
+    }
     rows[k].lambda_n += collision_n[k];
     const Vec3 t = collision_t[k];
     rows[k].lambda_t1 += t.dot(rows[k].t1);
@@ -237,7 +264,7 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
 
     IntegrateMomenta(world, remaining);
     LoadSolverBodies(world, &solver_);
-    stats.iterations += ContactPhase(rows_);
+    stats.iterations += ContactPhase(contacts, remaining, rows_);
     StoreSolverBodies(solver_, world);
 
     auto& bodies = world.bodies();

@@ -13,7 +13,10 @@
 //  3. forces: P += F h, L += tau h;
 //  4. contact phase: sequential impulses with accumulated clamping (Catto
 //     2005) so that no contact approaches (v_rel >= 0, no bounce) and
-//     friction stays in the Coulomb disk |lambda_t| <= mu lambda_n;
+//     friction stays in the Coulomb disk |lambda_t| <= mu lambda_n,
+//     warm-started from the previous step's contact forces matched by body
+//     pair and feature id (without it a stack of boxes never converges in
+//     the iteration cap and its friction creeps sideways);
 //  5. positions: bodies without contact impulses fly ballistically,
 //     x += v0 h + F/(2m) h^2 (exact under constant force, so bounce heights
 //     carry no O(dt) bias); the others x += v h;
@@ -26,7 +29,9 @@
 // correction adds no kinetic energy.
 #pragma once
 
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "service/contact/contact_method.h"
@@ -44,6 +49,7 @@ struct ImpulseParams {
   double position_correction = 0.2;     // 1/step: fraction of (depth - slop) removed per step
   std::string toi = "regula_falsi";     // regula_falsi | bisection | off
   int max_substeps = 4;                 // time-of-impact sub-steps per step at most
+  bool warm_start = true;               // start the contact phase from last step's forces
 };
 
 class ImpulseMethod : public ContactMethod {
@@ -53,12 +59,13 @@ class ImpulseMethod : public ContactMethod {
   Status SetParams(const ParamMap& params) override;
   ParamMap Params() const override;
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
+  void ResetCaches() override { warm_.clear(); }
   const ImpulseParams& params() const { return params_; }
 
  private:
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
-  int ContactPhase(std::vector<ContactRow>& rows);
+  int ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
   // First time in (0, h] at which a pair that was apart touches, or h.
   double FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs, double h,
                         int* iterations) const;
@@ -66,6 +73,15 @@ class ImpulseMethod : public ContactMethod {
   ImpulseParams params_;
   std::vector<SolverBody> solver_;
   std::vector<ContactRow> rows_;
+  // Contact-phase force (N, world: normal and tangent parts) of each contact
+  // point of the last sub-step, by (body A, body B, feature id). Forces, not
+  // impulses, so that sub-steps of another length reuse them.
+  using WarmKey = std::tuple<BodyId, BodyId, uint32_t>;
+  struct WarmForce {
+    double normal = 0.0;
+    Vec3 tangent = Vec3::Zero();
+  };
+  std::map<WarmKey, WarmForce> warm_;
 };
 
 }  // namespace contactsim
