@@ -61,11 +61,12 @@ BodyId AddBoxOnIncline(World& world, double angle, double mu, Vec3* downhill) {
   return AddValidBody(world, box);
 }
 
-class InclineTest : public ::testing::TestWithParam<const char*> {};
+// Runs for every method named in the instantiation below.
+class EveryMethodTest : public ::testing::TestWithParam<const char*> {};
 
 // Verifies static friction: with mu = 0.7 > tan 30 deg the box holds, moving
 // less than 1 mm in 5 s.
-TEST_P(InclineTest, BoxHoldsWhenFrictionExceedsTheSlope) {
+TEST_P(EveryMethodTest, BoxHoldsWhenFrictionExceedsTheSlope) {
   Sim sim(GetParam());
   Vec3 downhill;
   const BodyId id = AddBoxOnIncline(sim.world, kPi / 6.0, 0.7, &downhill);
@@ -80,7 +81,7 @@ TEST_P(InclineTest, BoxHoldsWhenFrictionExceedsTheSlope) {
 // Verifies dynamic friction: with mu = 0.3 the box slides down with
 // a = g (sin 30 - mu cos 30) within 3%, measured as the distance travelled
 // in 1 s, s = a t^2 / 2.
-TEST_P(InclineTest, BoxSlidesWithCoulombAcceleration) {
+TEST_P(EveryMethodTest, BoxSlidesWithCoulombAcceleration) {
   const double mu = 0.3, angle = kPi / 6.0;
   Sim sim(GetParam());
   Vec3 downhill;
@@ -101,7 +102,27 @@ TEST_P(InclineTest, BoxSlidesWithCoulombAcceleration) {
               100.0 * (travelled - expected) / expected);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, InclineTest, ::testing::Values("impulse", "penalty"));
+// Verifies that with e = 0 a dropped sphere does not bounce: after the first
+// contact its lowest point never rises more than 1% of the drop height.
+TEST_P(EveryMethodTest, SphereWithZeroRestitutionDoesNotBounce) {
+  const double r = 0.1, h = 1.0;
+  Sim sim(GetParam());
+  AddGround(sim.world, 0.0, 0.5);
+  const BodyId ball = AddSphere(sim.world, r, Vec3(0, 0, h + r), 0.0);
+  bool touched = false;
+  double highest = 0.0;
+  for (int i = 0; i < 480; ++i) {
+    sim.Step();
+    const double z = sim.world.Find(ball)->x.z() - r;
+    touched = touched || z < 2e-3;
+    if (touched) highest = std::max(highest, z);
+  }
+  EXPECT_TRUE(touched) << GetParam();
+  EXPECT_LT(highest, 0.01 * h) << GetParam();
+  std::printf("%s: e = 0, highest point after contact %.3g m\n", GetParam(), highest);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, EveryMethodTest, ::testing::Values("impulse", "penalty"));
 
 // Verifies that a stack of five boxes stays standing for 10 s under the
 // impulse method: every box within 1 cm of where it started.
