@@ -76,30 +76,65 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   }
 }
 
+// The contacts of one body pair (a face-on-face manifold has four) collide
+// at once: their impulses j_k >= 0 are found together, by Gauss-Seidel with
+// accumulated clamping, so that each contact leaves at -e times its approach
+// speed or faster. Applying the points one after another instead gives the
+// first corner the whole impulse: a box hit face-on by a wall would leave
+// spinning (measured: 0.33 rad/s and 3% too fast). Different pairs still
+// take turns, pass after pass, which is what carries the impulse down a
+// Newton's cradle (Guendelman et al. 2003).
 int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
+  std::vector<std::pair<size_t, size_t>> groups;  // [begin, end) of each pair's rows
+  for (size_t k = 0; k < rows.size();) {
+    size_t end = k + 1;
+    while (end < rows.size() && rows[end].a == rows[k].a && rows[end].b == rows[k].b) ++end;
+    groups.push_back({k, end});
+    k = end;
+  }
+  std::vector<double> target(rows.size()), j(rows.size());
   int pass = 0;
   for (; pass < params_.collision_passes; ++pass) {
     bool any = false;
-    for (ContactRow& row : rows) {
-      const double vn = row.NormalVelocity(solver_);
-      if (vn >= -params_.collision_threshold) continue;
+    for (const auto& [begin, end] : groups) {
+      bool hit = false;
+      for (size_t k = begin; k < end; ++k) hit = hit || rows[k].NormalVelocity(solver_) < -params_.collision_threshold;
+      if (!hit) continue;
       any = true;
-      const double j = -(1.0 + row.restitution) * vn * row.mass_n;
+      // Newton's law per point: v_n+ >= -e v_n-; points that barely approach
+      // only stop approaching
+      for (size_t k = begin; k < end; ++k) {
+        const double vn = rows[k].NormalVelocity(solver_);
+        target[k] = vn < -params_.collision_threshold ? -rows[k].restitution * vn : std::max(0.0, vn);
+        j[k] = 0.0;
+      }
+      for (int it = 0; it < params_.iterations; ++it) {
+        double worst = 0.0;
+        for (size_t k = begin; k < end; ++k) {
+          ContactRow& row = rows[k];
+          const double next = std::max(0.0, j[k] + (target[k] - row.NormalVelocity(solver_)) * row.mass_n);
+          const double d = next - j[k];
+          j[k] = next;
+          row.Apply(d * row.n, solver_);
+          worst = std::max(worst, std::abs(d) * row.k_n);
+        }
+        if (worst < params_.velocity_tolerance) break;
+      }
       // Coulomb friction of the collision: stop the sliding if mu j allows it
-      Vec3 vt = row.RelativeVelocity(solver_);
-      vt -= row.n * row.n.dot(vt);
-      Vec3 J = j * row.n;
-      const double speed_t = vt.norm();
-      if (speed_t > 1e-12 && row.friction > 0.0) {
+      for (size_t k = begin; k < end; ++k) {
+        ContactRow& row = rows[k];
+        row.lambda_n += j[k];
+        if (j[k] <= 0.0 || row.friction <= 0.0) continue;
+        Vec3 vt = row.RelativeVelocity(solver_);
+        vt -= row.n * row.n.dot(vt);
+        const double speed_t = vt.norm();
+        if (speed_t <= 1e-12) continue;
         const Vec3 t = vt / speed_t;
-        const double k_t = EffectiveInverseMass(row, t, solver_);
-        const double jt = std::min(speed_t / k_t, row.friction * j);
-        J -= jt * t;
+        const double jt = std::min(speed_t / EffectiveInverseMass(row, t, solver_), row.friction * j[k]);
+        row.Apply(-jt * t, solver_);
         row.lambda_t1 -= jt * t.dot(row.t1);
         row.lambda_t2 -= jt * t.dot(row.t2);
       }
-      row.lambda_n += j;
-      row.Apply(J, solver_);
     }
     if (!any) break;
   }

@@ -82,7 +82,14 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   Quat q;
   if (!(st = MakeOrientation("orientation", s.orientation, &q)).ok()) return st;
   if (!(st = CheckMaterial(s.restitution, s.friction)).ok()) return st;
-  const bool is_static = s.fixed || s.shape == ShapeType::kPlane;
+  if (s.kinematic && s.fixed) {
+    return Status::InvalidArgument("a body is fixed or kinematic, not both (kinematic true, fixed true)");
+  }
+  if (s.kinematic && s.shape == ShapeType::kPlane) {
+    return Status::InvalidArgument("a plane is always static (kinematic true)");
+  }
+  // kinematic bodies are infinite-mass like static ones; only their motion differs
+  const bool is_static = s.fixed || s.kinematic || s.shape == ShapeType::kPlane;
   if (s.mass && s.density) {
     return Status::InvalidArgument("give mass or density, not both (mass " + FormatValue(*s.mass) + ", density " +
                                    FormatValue(*s.density) + ")");
@@ -102,6 +109,7 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   b.x = s.position + q * origin_offset;
   if (is_static) {
     b.MakeStatic();
+    if (s.kinematic) b.motion = MotionType::kKinematic;
   } else if (s.mass) {
     b.SetMass(*s.mass);
   } else {

@@ -24,6 +24,7 @@ struct BodySettings {
   std::optional<double> mass;             // kg
   std::optional<double> density;          // kg/m^3; default kDefaultDensity
   bool fixed = false;                     // static body
+  bool kinematic = false;                 // infinite mass, moves with its velocity
   Vec3 position = Vec3::Zero();           // m, world
   Eigen::Vector4d orientation{1, 0, 0, 0};// (w, x, y, z); normalised here
   Vec3 linear_velocity = Vec3::Zero();    // m/s, world

@@ -61,6 +61,7 @@ BodySettings ToBodySettings(const proto::Body& b, const Material& default_materi
   if (b.has_mass()) s.mass = b.mass();
   if (b.has_density()) s.density = b.density();
   s.fixed = b.fixed();
+  s.kinematic = b.kinematic();
   const Material m = b.has_material() ? ToMaterial(b.material()) : default_material;
   s.restitution = m.restitution;
   s.friction = m.friction;

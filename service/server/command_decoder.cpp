@@ -34,6 +34,7 @@ Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command*
   if (m.mass != 0.0) s.mass = m.mass;
   if (m.density != 0.0) s.density = m.density;
   s.fixed = m.fixed;
+  s.kinematic = m.kinematic;
   s.position = V3(m.position);
   s.orientation = Eigen::Vector4d(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
   s.linear_velocity = V3(m.linear_velocity);

@@ -157,7 +157,8 @@ bool SimServer::Apply(Command& cmd) {
     if (b == nullptr) {
       SendReply(cid, rid, Status::NotFound("unknown body id " + std::to_string(cmd.body_id)), "");
     } else if (need_dynamic && !b->IsDynamic()) {
-      SendReply(cid, rid, Status::FailedPrecondition("body " + std::to_string(cmd.body_id) + " is static"), "");
+      const char* what = b->motion == MotionType::kKinematic ? " is kinematic (infinite mass)" : " is static";
+      SendReply(cid, rid, Status::FailedPrecondition("body " + std::to_string(cmd.body_id) + what), "");
       return nullptr;
     }
     return b;

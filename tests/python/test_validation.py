@@ -55,6 +55,9 @@ BAD = [
     ("zero_steps", lambda c: c.step(0), ["steps"], reply_t.INVALID_ARGUMENT),
     ("negative_real_time_factor", lambda c: c.set_mode("realtime", real_time_factor=-1.0), ["real_time_factor"],
      reply_t.INVALID_ARGUMENT),
+    ("fixed_and_kinematic", lambda c: c.add_box((0.1, 0.1, 0.1), fixed=True, kinematic=True), ["fixed", "kinematic"],
+     reply_t.INVALID_ARGUMENT),
+    ("force_on_static", lambda c: c.apply_force(1, (0, 0, 1)), ["static"], reply_t.FAILED_PRECONDITION),
     ("missing_scene_file", lambda c: c.load_scene("/nonexistent/scene.pbtxt"), ["/nonexistent/scene.pbtxt"], None),
 ]
 

@@ -90,6 +90,7 @@ CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
   command.has_friction = options.friction.has_value();
   command.friction = options.friction.value_or(0.0);
   command.fixed = options.fixed;
+  command.kinematic = options.kinematic;
   command.name = options.name;
   return Send(command);
 }

@@ -81,6 +81,7 @@ struct AddFlags {
   std::array<double, 3> angular_velocity{0, 0, 0};
   std::optional<double> mass, density, restitution, friction;
   bool fixed = false;
+  bool kinematic = false;
   std::string name;
 
   BodyOptions ToOptions() const {
@@ -94,6 +95,7 @@ struct AddFlags {
     options.restitution = restitution;
     options.friction = friction;
     options.fixed = fixed;
+    options.kinematic = kinematic;
     options.name = name;
     return options;
   }
@@ -110,6 +112,7 @@ void AddBodyFlags(CLI::App* app, AddFlags* flags) {
   app->add_option("--restitution,-e", flags->restitution, "in [0, 1]");
   app->add_option("--friction,-f", flags->friction, "Coulomb coefficient");
   app->add_flag("--fixed", flags->fixed, "static body");
+  app->add_flag("--kinematic", flags->kinematic, "infinite mass, moves with its velocity");
   app->add_option("--name,-n", flags->name, "label");
 }
 

@@ -350,7 +350,7 @@ class Client:
 
     # bodies
     def _add(self, shape, fill, position, mass, density, orientation, velocity,
-             angular_velocity, restitution, friction, fixed, name):
+             angular_velocity, restitution, friction, fixed, kinematic, name):
         m = self._body(body_cmd_t.ADD)
         m.shape = shape
         fill(m)
@@ -361,6 +361,7 @@ class Client:
         m.mass = 0.0 if mass is None else float(mass)
         m.density = 0.0 if density is None else float(density)
         m.fixed = bool(fixed)
+        m.kinematic = bool(kinematic)
         self._material(m, restitution, friction)
         m.name = name
         return self._send("BODY_CMD", m).ids[0]
@@ -374,36 +375,38 @@ class Client:
 
     def add_sphere(self, radius, *, position=(0, 0, 0), mass=None, density=None,
                    orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                   restitution=None, friction=None, fixed=False, name=""):
+                   restitution=None, friction=None, fixed=False, kinematic=False, name=""):
         """Adds a sphere (radius m); returns its id. Give mass (kg) or density
-        (kg/m^3), not both; neither: density 1000."""
+        (kg/m^3), not both; neither: density 1000. fixed: a static body;
+        kinematic: infinite mass, moves with its velocity (set_velocity steers
+        it) and pushes dynamic bodies without being pushed (same for every add_)."""
         def fill(m):
             m.radius = float(radius)
         return self._add(body_cmd_t.SPHERE, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name)
 
     def add_box(self, half_extents, *, position=(0, 0, 0), mass=None, density=None,
                 orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                restitution=None, friction=None, fixed=False, name=""):
+                restitution=None, friction=None, fixed=False, kinematic=False, name=""):
         """Adds a box with half_extents (m, body x y z); returns its id."""
         def fill(m):
             m.half_extents = _vec(half_extents, 3, "half_extents")
         return self._add(body_cmd_t.BOX, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name)
 
     def add_capsule(self, radius, half_length, *, position=(0, 0, 0), mass=None, density=None,
                     orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                    restitution=None, friction=None, fixed=False, name=""):
+                    restitution=None, friction=None, fixed=False, kinematic=False, name=""):
         """Adds a capsule along body z (radius, half_length between cap centres, m)."""
         def fill(m):
             m.radius = float(radius)
             m.half_length = float(half_length)
         return self._add(body_cmd_t.CAPSULE, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name)
 
     def add_convex(self, points, *, position=(0, 0, 0), mass=None, density=None,
                    orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                   restitution=None, friction=None, fixed=False, name=""):
+                   restitution=None, friction=None, fixed=False, kinematic=False, name=""):
         """Adds the convex hull of points (N x 3, m, body frame); returns its id."""
         pts = np.asarray(points, dtype=np.float64)
         if pts.ndim != 2 or pts.shape[1] != 3:
@@ -413,7 +416,7 @@ class Client:
             m.num_points = len(pts)
             m.points = [[float(v) for v in p] for p in pts]
         return self._add(body_cmd_t.CONVEX, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name)
 
     def add_plane(self, normal, offset, *, restitution=None, friction=None, name=""):
         """Adds a static plane {p : normal . p = offset}; returns its id."""

@@ -70,6 +70,7 @@ struct BodyOptions {
   std::optional<double> restitution;  // [0, 1]; unset: the server default
   std::optional<double> friction;     // >= 0; unset: the server default
   bool fixed = false;                 // static body
+  bool kinematic = false;             // infinite mass, moves with its velocity
   std::string name;                   // label in logs and snapshots
 };
 
