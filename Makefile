@@ -5,7 +5,7 @@ JOBS       ?= 2
 CONFIG     ?= config/server.pbtxt
 SANITIZE   ?= OFF
 
-.PHONY: all deps build run test test-cpp test-py test-asan bench clean
+.PHONY: all deps build run test test-cpp test-py test-asan bench bench-micro clean
 
 all: build
 
@@ -36,7 +36,14 @@ test-py:
 test-asan:
 	@$(MAKE) --no-print-directory test BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 
+# The standard scenes in contactsim (every contact method), Bullet, ODE and
+# MuJoCo, side by side; rewrites the generated tables in BENCHMARKS.md
+# (takes tens of minutes; prints progress).
 bench: build
+	.venv/bin/python scripts/bench_scenes.py --build-dir $(BUILD)
+
+# The Google Benchmark micro benchmarks (broadphase, narrowphase, penalty).
+bench-micro: build
 	$(BUILD)/bin/contactsim-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 
 clean:

@@ -16,6 +16,7 @@ APT_PACKAGES=(
   libbenchmark-dev                           # contactsim-bench micro benchmarks
   libcli11-dev                               # command-line parsing
   libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
+  libbullet-dev libode-dev libmujoco-dev     # peer runners of `make bench` only (bench/peers), never in the service
   python3 python3-venv python3-dev           # Python client
 )
 

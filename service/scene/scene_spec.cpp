@@ -139,6 +139,11 @@ Status Convert(const proto::Scene& p, const std::string& filename, const TextFor
     const std::string where = FieldLocation(filename, tree, p, "grids", i) + ": grids[" + std::to_string(i) + "]";
     if (!(st = ExpandGrid(p.grids(i), where, scene.default_material, &scene)).ok()) return st;
   }
+  if (p.steps() < 0) {
+    return Status::InvalidArgument(FieldLocation(filename, tree, p, "steps") + ": steps must be >= 0, got " +
+                                   std::to_string(p.steps()));
+  }
+  scene.steps = p.steps();
   scene.contact_method = p.contact_method();
   for (const auto& param : p.method_params()) scene.method_params[param.name()] = param.value();
   *out = std::move(scene);

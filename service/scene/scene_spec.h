@@ -19,6 +19,7 @@ struct SceneSpec {
   std::vector<std::string> origins;        // "FILE:LINE" of each body, for errors
   std::string contact_method;              // empty: keep the current one
   ParamMap method_params;
+  int steps = 0;                           // benchmark length; 0: not given
 };
 
 // Reads and converts a scene file. Errors name the file, the line and the

@@ -1,0 +1,42 @@
+// What every peer runner shares: checking that the scene uses only shapes
+// the peer runner translates, and writing a peer body's state into the
+// contactsim World mirror that the metrics read (scene_engine.h).
+#pragma once
+
+#include <string>
+
+#include "service/physics/world.h"
+
+namespace contactsim::bench {
+
+// Sets pose and velocity of a mirrored body; v and w in the world frame.
+inline void MirrorState(const Vec3& x, const Quat& q, const Vec3& v, const Vec3& w, RigidBody* body) {
+  body->x = x;
+  body->q = q;
+  body->SetVelocity(v, w);
+}
+
+// The runners translate spheres, boxes and planes (all the standard scenes
+// use); anything else is refused with the body named, before any stepping.
+inline Status CheckPeerShapes(const World& world, const char* engine) {
+  for (const RigidBody& b : world.bodies()) {
+    const ShapeType t = b.shape.type;
+    if (t != ShapeType::kSphere && t != ShapeType::kBox && t != ShapeType::kPlane) {
+      return Status::InvalidArgument(std::string(engine) + " runner: body \"" + b.name + "\" has shape " +
+                                     ShapeTypeName(t) + "; only sphere, box and plane are translated");
+    }
+    if (b.motion == MotionType::kKinematic) {
+      return Status::InvalidArgument(std::string(engine) + " runner: body \"" + b.name +
+                                     "\" is kinematic; only dynamic and static bodies are translated");
+    }
+  }
+  return Status::Ok();
+}
+
+// A static plane {p : n_W . p <= offset_W} in the world frame.
+inline void WorldPlane(const RigidBody& b, Vec3* n_W, double* offset_W) {
+  *n_W = b.Rotation() * b.shape.plane_normal;
+  *offset_W = b.shape.plane_offset + n_W->dot(b.x);
+}
+
+}  // namespace contactsim::bench

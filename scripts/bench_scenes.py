@@ -1,0 +1,250 @@
+#!/usr/bin/env python3
+"""Runs every engine x method on every standard scene and writes the tables
+into BENCHMARKS.md (between the peers:begin / peers:end markers; the rest of
+the file is left as it is). `make bench` runs it.
+
+Engines: contactsim-bench with every registered contact method
+(--list-methods), and the peer runners that were built (bench/peers:
+Bullet sequential impulse, ODE QuickStep and Dantzig, MuJoCo Newton). Each
+run is a separate process with --repeat 3 --json; a run that fails (NaN,
+explosion, time limit, crash, memory limit) becomes a row that says so and
+never stops the driver.
+
+Usage: scripts/bench_scenes.py [--build-dir build] [--scenes a b] [--repeat 3]
+       [--max-seconds 120] [--steps N] [--output BENCHMARKS.md] [--no-write]
+"""
+import argparse
+import datetime
+import json
+import os
+import platform
+import resource
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENES = ["box_pyramid", "sphere_pile", "box_rain", "bounce"]
+BEGIN, END = "<!-- peers:begin -->", "<!-- peers:end -->"
+APEX = 0.5 * 0.5 * 0.9  # m, analytic first apex of the bounce scene (e^2 h)
+MEMORY_LIMIT = 6 << 30  # bytes of address space per run: a dense LCP of a 1,000-body pile would take the machine
+
+# Peer rows: (engine, binary, method). Bullet first: the ratio column divides by it.
+PEERS = [
+    ("bullet", "contactsim-bench-bullet", "sequential_impulse"),
+    ("ode", "contactsim-bench-ode", "quickstep"),
+    ("ode", "contactsim-bench-ode", "dantzig"),
+    ("mujoco", "contactsim-bench-mujoco", "newton"),
+]
+# Extra contactsim rows beyond each method's defaults, used when the method is registered.
+VARIANTS = {"lcp": [["solver=pgs"], ["solver=lemke"]]}
+
+
+def runs(bin_dir):
+    """(engine, binary, method, params) for every row, in table order."""
+    out = []
+    for engine, binary, method in PEERS[:1]:
+        if os.path.exists(os.path.join(bin_dir, binary)):
+            out.append((engine, binary, method, []))
+    names = subprocess.run([os.path.join(bin_dir, "contactsim-bench"), "--list-methods"],
+                           capture_output=True, text=True, check=True).stdout.split()
+    for method in names:
+        for params in VARIANTS.get(method, [[]]):
+            out.append(("contactsim", "contactsim-bench", method, params))
+    for engine, binary, method in PEERS[1:]:
+        if os.path.exists(os.path.join(bin_dir, binary)):
+            out.append((engine, binary, method, []))
+    return out
+
+
+def limit_memory():
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+
+
+def run_one(bin_dir, binary, scene, method, params, args):
+    cmd = [os.path.join(bin_dir, binary), "--scene", os.path.join(ROOT, "config", "scenes", scene + ".pbtxt"),
+           "--method", method, "--repeat", str(args.repeat), "--max-seconds", str(args.max_seconds), "--json"]
+    for p in params:
+        cmd += ["--param", p]
+    if args.steps:
+        cmd += ["--steps", str(args.steps)]
+    # each repeat may step max_seconds; allow for building, measuring and a last slow step
+    timeout = (args.max_seconds * 2 + 60) * args.repeat + 300
+    try:
+        proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=timeout,
+                              preexec_fn=limit_memory)
+    except subprocess.TimeoutExpired:
+        return {"status": "killed: no result after %d s" % timeout}
+    lines = [l for l in proc.stdout.splitlines() if l.startswith("{")]
+    if lines:
+        try:
+            return json.loads(lines[-1])
+        except json.JSONDecodeError:
+            pass
+    why = "signal %d" % -proc.returncode if proc.returncode < 0 else "exit %d" % proc.returncode
+    tail = (proc.stderr.strip().splitlines() or [""])[-1][:120]
+    return {"status": "crashed (%s)%s" % (why, ": " + tail if tail else "")}
+
+
+def fmt(v, digits=3):
+    if v is None:
+        return "-"
+    if v == 0:
+        return "0"
+    return "%.*g" % (digits, v)
+
+
+def failed(r):
+    return r.get("status", "ok") != "ok"
+
+
+def short_status(r):
+    s = r.get("status", "?")
+    if s == "ok":
+        return "ok"
+    return "**%s**" % s.replace("|", "/")
+
+
+def table(scene, rows):
+    bullet = next((r for r in rows if r["engine"] == "bullet" and not failed(r)), None)
+    extra = {"box_pyramid": "top displacement", "bounce": "rebound height (analytic 0.225 m)"}.get(scene)
+    head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "max penetration", "final KE"]
+    if extra:
+        head.append(extra)
+    head += ["peak memory", "status"]
+    out = ["| " + " | ".join(head) + " |", "|" + "|".join(["---", "---"] + ["---:"] * (len(head) - 3) + ["---"]) + "|"]
+    for r in rows:
+        ms = r.get("ms_per_step")
+        has_time = ms is not None and r.get("steps_done", 0) > 0
+        cells = [r["engine"], r["label"],
+                 "%s (%s-%s)" % (fmt(ms), fmt(r.get("ms_per_step_min")), fmt(r.get("ms_per_step_max"))) if has_time else "-",
+                 "%.2fx" % (ms / bullet["ms_per_step"]) if has_time and bullet else "-",
+                 "%s mm" % fmt(1e3 * r["max_penetration"]) if r.get("max_penetration") is not None else "-",
+                 "%s J" % fmt(r["final_kinetic_energy"]) if r.get("final_kinetic_energy") is not None else "-"]
+        if scene == "box_pyramid":
+            cells.append("%s m" % fmt(r["top_displacement"]) if r.get("top_displacement") is not None else "-")
+        elif scene == "bounce":
+            h = r.get("rebound_height")
+            cells.append("%.4f m (%+.1f%%)" % (h, 100 * (h - APEX) / APEX) if h is not None else "no rebound")
+        cells.append("%s MiB" % fmt(r["peak_rss_mb"]) if r.get("peak_rss_mb") is not None else "-")
+        cells.append(short_status(r))
+        out.append("| " + " | ".join(cells) + " |")
+    return out
+
+
+def machine():
+    cpu = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return "%d x %s, %s %s" % (os.cpu_count() or 0, cpu, platform.system(), platform.release())
+
+
+def build_type(build_dir):
+    try:
+        with open(os.path.join(build_dir, "CMakeCache.txt")) as f:
+            for line in f:
+                if line.startswith("CMAKE_BUILD_TYPE:"):
+                    return line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    return "?"
+
+
+def git_commit():
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True,
+                              check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "?"
+
+
+def render(results, args, started, load_before):
+    out = [BEGIN,
+           "<!-- Generated by scripts/bench_scenes.py (make bench); edits here are overwritten. -->",
+           "",
+           "Machine: %s; build %s, commit %s; %s; load average %s before the run." % (
+               machine(), build_type(args.build_dir), git_commit(), started.strftime("%Y-%m-%d %H:%M UTC"),
+               load_before),
+           "",
+           "Reproduce: `make bench` (or `.venv/bin/python scripts/bench_scenes.py --build-dir build "
+           "--repeat %d --max-seconds %g`). Each row is one process: `contactsim-bench` or a peer runner "
+           "`contactsim-bench-{bullet,ode,mujoco}` with `--scene config/scenes/NAME.pbtxt --method M "
+           "--repeat %d --json`; ms/step is the median of the repeats (stepping loop only), min-max "
+           "in brackets; a repeat stops after %g s of stepping (status `timeout`)." % (
+               args.repeat, args.max_seconds, args.repeat, args.max_seconds),
+           ""]
+    for scene in args.scenes:
+        rows = [r for r in results if r["scene_name"] == scene]
+        if not rows:
+            continue
+        first = next((r for r in rows if r.get("bodies")), {})
+        out += ["### %s (%s bodies, %s steps of %s s)" % (
+            scene, first.get("bodies", "?"), first.get("steps", "?"), fmt(first.get("dt"), 6)), ""]
+        out += table(scene, rows)
+        out.append("")
+    out.append(END)
+    return "\n".join(out)
+
+
+def write(path, region):
+    text = open(path).read() if os.path.exists(path) else "# Benchmarks\n"
+    if BEGIN in text and END in text:
+        pre, rest = text.split(BEGIN, 1)
+        post = rest.split(END, 1)[1]
+        text = pre + region + post
+    else:
+        text = text.rstrip("\n") + "\n\n## Standard scenes against Bullet, ODE and MuJoCo\n\n" + region + "\n"
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--scenes", nargs="+", default=SCENES, choices=SCENES)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--max-seconds", type=float, default=120.0, help="stepping time per repeat before giving up")
+    ap.add_argument("--steps", type=int, default=0, help="override the scenes' steps (for a quick look)")
+    ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
+    ap.add_argument("--json-out", default=None, help="also write every run's JSON here (default BUILD/bench_scenes.json)")
+    ap.add_argument("--no-write", action="store_true", help="print the tables instead of writing BENCHMARKS.md")
+    args = ap.parse_args()
+    args.build_dir = os.path.abspath(args.build_dir)
+    bin_dir = os.path.join(args.build_dir, "bin")
+
+    started = datetime.datetime.now(datetime.timezone.utc)
+    load_before = "%.2f" % os.getloadavg()[0]
+    plan = [(scene,) + r for scene in args.scenes for r in runs(bin_dir)]
+    results = []
+    t_all = time.time()
+    for i, (scene, engine, binary, method, params) in enumerate(plan, 1):
+        label = method + ("" if not params else " " + " ".join(params))
+        print("[%2d/%d] %-12s %-10s %-28s" % (i, len(plan), scene, engine, label), end="", flush=True)
+        t0 = time.time()
+        r = run_one(bin_dir, binary, scene, method, params, args)
+        r.update(engine=engine, label=label, scene_name=scene)
+        results.append(r)
+        ms = r.get("ms_per_step")
+        print(" %9s ms/step  %5.0f s  %s" % (fmt(ms), time.time() - t0, r.get("status")), flush=True)
+    print("all runs: %.0f s" % (time.time() - t_all))
+
+    json_out = args.json_out or os.path.join(args.build_dir, "bench_scenes.json")
+    with open(json_out, "w") as f:
+        json.dump(results, f, indent=1)
+    region = render(results, args, started, load_before)
+    if args.no_write:
+        print(region)
+    else:
+        write(args.output, region)
+        print("wrote %s (and %s)" % (args.output, json_out))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

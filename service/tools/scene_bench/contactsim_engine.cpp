@@ -1,0 +1,41 @@
+#include "service/tools/scene_bench/contactsim_engine.h"
+
+#include <utility>
+
+namespace contactsim::bench {
+namespace {
+
+class ContactsimEngine : public SceneEngine {
+ public:
+  ContactsimEngine(std::unique_ptr<ContactMethod> method, World world)
+      : method_(std::move(method)), world_(std::move(world)) {}
+  Status SetBroadphase(const std::string& name) { return detector_.SetBroadphase(name); }
+  void Step() override { method_->Step(world_, detector_, &contacts_); }
+  const World& Sync() override { return world_; }
+  ParamMap Params() const override { return method_->Params(); }
+
+ private:
+  std::unique_ptr<ContactMethod> method_;
+  World world_;
+  CollisionDetector detector_;
+  ContactSet contacts_;
+};
+
+}  // namespace
+
+Status CreateContactsimEngine(const BenchOptions& options, const SceneSpec& scene, const World& world,
+                              std::unique_ptr<SceneEngine>* out) {
+  std::unique_ptr<ContactMethod> method;
+  Status st = CreateContactMethod(options.method, &method);
+  if (!st.ok()) return st;
+  ParamMap params;
+  if (scene.contact_method == options.method) params = scene.method_params;
+  for (const auto& [key, value] : options.params) params[key] = value;
+  if (!(st = method->SetParams(params)).ok()) return st;
+  auto engine = std::make_unique<ContactsimEngine>(std::move(method), world);
+  if (!(st = engine->SetBroadphase(options.broadphase)).ok()) return st;
+  *out = std::move(engine);
+  return Status::Ok();
+}
+
+}  // namespace contactsim::bench

@@ -1,0 +1,51 @@
+// One engine stepping a benchmark scene: a contactsim contact method or a
+// peer engine (bench/peers). The runner (run_scene.h) times Step() alone and
+// reads every engine's state through the same World mirror, so the metrics
+// (scene_metrics.h) are computed by the same code for every engine.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "service/contact/contact_method.h"
+#include "service/physics/status.h"
+#include "service/physics/world.h"
+#include "service/scene/scene_spec.h"
+
+namespace contactsim::bench {
+
+// What a run was asked for (the command line, bench_options.h).
+struct BenchOptions {
+  std::string scene;             // path of the .pbtxt scene
+  std::string method;            // engine-specific method name
+  ParamMap params;               // --param key=value
+  int steps = 0;                 // 0: the scene's `steps`
+  std::string broadphase = "sap";
+  int repeat = 3;
+  bool json = false;
+  double max_seconds = 0.0;      // s of stepping per repeat before giving up; 0: no limit
+};
+
+class SceneEngine {
+ public:
+  virtual ~SceneEngine() = default;
+  // Advances the engine by one step of the scene's dt (the timed part).
+  virtual void Step() = 0;
+  // Brings the mirror up to date (poses x, q and momenta P, L of every body,
+  // in the scene's body order) and returns it. Not timed.
+  virtual const World& Sync() = 0;
+  // The method's effective parameters, for the report.
+  virtual ParamMap Params() const = 0;
+  // Trouble the engine itself reports after a step (a full contact buffer,
+  // say); empty when none. The run stops there with this as its status.
+  virtual std::string Failure() const { return ""; }
+};
+
+// Builds a fresh engine for the scene (called once per repeat). `world` is
+// the scene as contactsim builds it (BuildWorld): shapes, poses, masses,
+// inertias and materials for a peer to copy.
+using EngineFactory = std::function<Status(const BenchOptions& options, const SceneSpec& scene,
+                                           const World& world, std::unique_ptr<SceneEngine>* out)>;
+
+}  // namespace contactsim::bench

@@ -1,0 +1,115 @@
+// Tests of contactsim-bench's scene mode, run as a program: the JSON it
+// prints and the physics it measures (the bounce's first apex against the
+// analytic e^2 h); and of the metrics' failure detection. No timing is
+// asserted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "service/tools/scene_bench/scene_metrics.h"
+#include "service/physics/body_settings.h"
+
+namespace contactsim::bench {
+namespace {
+
+struct Output {
+  int exit_code = -1;
+  std::string out;
+};
+
+Output RunBench(const std::string& args) {
+  const std::string cmd = std::string(CONTACTSIM_BIN_DIR) + "/contactsim-bench " + args + " 2>/dev/null";
+  Output o;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return o;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) o.out.append(buf, n);
+  const int status = pclose(pipe);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+std::string Scene(const char* name) { return std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/" + name; }
+
+// The text after "key": up to the next top-level ',' or '}' (values here
+// are numbers, strings without commas, null or a flat object).
+std::string Field(const std::string& json, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const size_t at = json.find(tag);
+  if (at == std::string::npos) return "";
+  const size_t start = at + tag.size();
+  const size_t end = json[start] == '{' ? json.find('}', start) + 1 : json.find_first_of(",}", start);
+  return json.substr(start, end - start);
+}
+
+double Number(const std::string& json, const std::string& key) {
+  const std::string v = Field(json, key);
+  return v.empty() || v == "null" ? std::numeric_limits<double>::quiet_NaN() : std::stod(v);
+}
+
+// Verifies that --json prints every field the issue lists, and that the
+// bounce scene's first apex under the impulse method is within 2% of the
+// analytic e^2 h = 0.5^2 * 0.9 m = 0.225 m.
+TEST(SceneBench, BounceJsonHasEveryFieldAndTheAnalyticApex) {
+  const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method impulse --repeat 1 --json");
+  ASSERT_EQ(o.exit_code, 0) << o.out;
+  for (const char* key : {"scene", "method", "params", "bodies", "steps", "dt", "ms_per_step", "ms_per_step_min",
+                          "ms_per_step_max", "max_penetration", "final_kinetic_energy", "top_displacement",
+                          "rebound_height", "peak_rss_mb"}) {
+    EXPECT_FALSE(Field(o.out, key).empty()) << key << " missing in " << o.out;
+  }
+  EXPECT_EQ(Field(o.out, "scene"), "\"bounce\"");
+  EXPECT_EQ(Field(o.out, "method"), "\"impulse\"");
+  EXPECT_NE(Field(o.out, "params").find("\"iterations\""), std::string::npos) << o.out;
+  EXPECT_EQ(Number(o.out, "bodies"), 2);
+  EXPECT_EQ(Number(o.out, "steps"), 480);
+  EXPECT_DOUBLE_EQ(Number(o.out, "dt"), 1.0 / 240.0);
+  EXPECT_EQ(Field(o.out, "top_displacement"), "null");  // no body "top"
+  EXPECT_EQ(Field(o.out, "status"), "\"ok\"");
+  EXPECT_GT(Number(o.out, "ms_per_step"), 0.0);
+  EXPECT_LE(Number(o.out, "ms_per_step_min"), Number(o.out, "ms_per_step"));
+  EXPECT_GT(Number(o.out, "peak_rss_mb"), 0.0);
+  const double apex = 0.5 * 0.5 * 0.9;  // m, e^2 h
+  EXPECT_NEAR(Number(o.out, "rebound_height"), apex, 0.02 * apex) << o.out;
+}
+
+// Verifies that an unknown method exits 1 with a JSON status naming it and
+// the known methods.
+TEST(SceneBench, UnknownMethodIsAnErrorNamingIt) {
+  const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method nosuch --repeat 1 --json");
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.out.find("\"status\": \"error: unknown contact method \\\"nosuch\\\""), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("impulse"), std::string::npos) << o.out;
+}
+
+World OneBall() {
+  World world;
+  BodySettings s;
+  s.name = "ball";
+  s.radius = 0.1;
+  s.position = Vec3(0, 0, 1);
+  RigidBody b;
+  EXPECT_TRUE(CreateBody(s, Material{}, &b).ok());
+  world.AddBody(b);
+  return world;
+}
+
+// Verifies that the metrics call a non-finite state "nan" and a body far
+// from its start "exploded", naming the body, and a sane state healthy.
+TEST(SceneBench, MetricsReportNanAndExplosion) {
+  World world = OneBall();
+  SceneMetrics metrics;
+  metrics.Start(world);
+  EXPECT_EQ(metrics.Check(world), "");
+  world.bodies()[0].x.z() = 1.0 + 2.0 * kEscapeDistance;
+  EXPECT_EQ(metrics.Check(world).rfind("exploded: \"ball\"", 0), 0u) << metrics.Check(world);
+  world.bodies()[0].P.x() = std::nan("");
+  EXPECT_EQ(metrics.Check(world).rfind("nan: \"ball\"", 0), 0u) << metrics.Check(world);
+}
+
+}  // namespace
+}  // namespace contactsim::bench
