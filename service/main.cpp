@@ -2,6 +2,7 @@
 //
 //   contactsim-server --config FILE [--scene FILE] [--lcm-url URL] [--prefix NAME]
 //                     [--log-level LEVEL] [--mode realtime|free_run] [--paused] [--no-live-line]
+//                     [--journal DIR]
 //
 // Two threads: this one runs the simulation loop (SimServer::Run), a second
 // one receives LCM messages and hands them to the server. SIGINT and SIGTERM
@@ -29,7 +30,7 @@ void OnSignal(int) { g_stop.store(true); }
 int main(int argc, char** argv) {
   using namespace contactsim;
   CLI::App app{"contactsim-server: rigid-body contact co-simulation over LCM"};
-  std::string config_path, scene_path, lcm_url, prefix, log_level, mode;
+  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir;
   bool paused = false, no_live_line = false;
   app.add_option("--config", config_path, "server configuration (protobuf text)")->required();
   app.add_option("--scene", scene_path, "scene file, overriding the config's");
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   app.add_option("--mode", mode, "realtime or free_run")->check(CLI::IsMember({"realtime", "free_run"}));
   app.add_flag("--paused", paused, "start paused");
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
+  app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
   CLI11_PARSE(app, argc, argv);
 
   auto logger = spdlog::stderr_color_mt("contactsim");
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
   if (!mode.empty()) setup.options.mode = mode == "free_run" ? RunMode::kFreeRun : RunMode::kRealtime;
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
+  if (!journal_dir.empty()) setup.options.journal_dir = journal_dir;
   const auto level = spdlog::level::from_str(setup.log_level);
   if (level == spdlog::level::off && setup.log_level != "off") {
     spdlog::critical("--log-level must be one of trace, debug, info, warn, error, critical, off, got \"{}\"",

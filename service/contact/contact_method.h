@@ -44,6 +44,16 @@ class ContactMethod {
   virtual StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) = 0;
   // Drops warm-start and other caches (on a switch, reset or scene load).
   virtual void ResetCaches() {}
+  // The caches an exact continuation needs (warm starts, friction anchors),
+  // as opaque bytes for snapshots (service/scene/snapshot.h); a method
+  // without caches saves nothing. LoadState replaces the caches with saved
+  // ones, or fails naming what was wrong and leaves them as they were.
+  virtual std::string SaveState() const { return {}; }
+  virtual Status LoadState(const std::string& bytes) {
+    if (bytes.empty()) return Status::Ok();
+    return Status::InvalidArgument(std::string("contact method ") + Name() + " keeps no state, got " +
+                                   std::to_string(bytes.size()) + " bytes");
+  }
 };
 
 // Known method names, in a stable order.

@@ -29,6 +29,39 @@ void FrictionAnchors::Clear() {
   next_.clear();
 }
 
+void FrictionAnchors::Save(ByteWriter* out) const {
+  out->Put(static_cast<uint64_t>(current_.size()));
+  for (const auto& [key, s] : current_) {
+    out->Put(std::get<0>(key));
+    out->Put(std::get<1>(key));
+    out->Put(std::get<2>(key));
+    out->PutVec3(s.stretch);
+    out->Put(static_cast<uint8_t>(s.penetrating));
+    out->Put(s.impact_speed);
+  }
+}
+
+bool FrictionAnchors::Load(ByteReader* in) {
+  uint64_t n = 0;
+  if (!in->Get(&n)) return false;
+  std::map<Key, AnchorState> loaded;
+  for (uint64_t i = 0; i < n; ++i) {
+    BodyId a = 0, b = 0;
+    uint32_t feature = 0;
+    AnchorState s;
+    uint8_t penetrating = 0;
+    if (!in->Get(&a) || !in->Get(&b) || !in->Get(&feature) || !in->GetVec3(&s.stretch) || !in->Get(&penetrating) ||
+        !in->Get(&s.impact_speed)) {
+      return false;
+    }
+    s.penetrating = penetrating != 0;
+    loaded[{a, b, feature}] = s;
+  }
+  current_.swap(loaded);
+  next_.clear();
+  return true;
+}
+
 Vec3 ProjectStretch(const Vec3& stretch, const Vec3& n) {
   const Vec3 t = stretch - n * n.dot(stretch);
   const double len = t.norm();

@@ -25,6 +25,7 @@
 #include <tuple>
 
 #include "service/collision/contact.h"
+#include "service/physics/byte_stream.h"
 
 namespace contactsim {
 
@@ -44,6 +45,10 @@ class FrictionAnchors {
   void Commit();
   void Clear();
   size_t size() const { return current_.size(); }
+  // The committed anchors, bit for bit, for snapshots; Load fails on
+  // truncated or trailing bytes and then leaves the anchors as they were.
+  void Save(ByteWriter* out) const;
+  bool Load(ByteReader* in);
 
  private:
   using Key = std::tuple<BodyId, BodyId, uint32_t>;

@@ -13,6 +13,27 @@ Status PenaltyMethod::SetParams(const ParamMap& params) {
 
 ParamMap PenaltyMethod::Params() const { return PenaltyParamsToMap(params_); }
 
+std::string PenaltyMethod::SaveState() const {
+  ByteWriter out;
+  anchors_.Save(&out);
+  return out.bytes();
+}
+
+Status PenaltyMethod::LoadState(const std::string& bytes) {
+  if (bytes.empty()) {  // saved by a run without anchors, or before any contact
+    anchors_.Clear();
+    return Status::Ok();
+  }
+  FrictionAnchors loaded;
+  ByteReader in(bytes);
+  if (!loaded.Load(&in) || !in.done()) {
+    return Status::InvalidArgument("penalty method state: malformed friction anchors (" +
+                                   std::to_string(bytes.size()) + " bytes)");
+  }
+  anchors_ = std::move(loaded);
+  return Status::Ok();
+}
+
 void PenaltyMethod::ExplicitSubstep(World& world, double h) {
   auto& bodies = world.bodies();
   for (PenaltyRow& row : rows_) {

@@ -53,6 +53,9 @@ class PenaltyMethod : public ContactMethod {
   ParamMap Params() const override;
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { anchors_.Clear(); }
+  // the friction anchors (FrictionAnchors::Save)
+  std::string SaveState() const override;
+  Status LoadState(const std::string& bytes) override;
   const PenaltyParams& params() const { return params_; }
   const FrictionAnchors& anchors() const { return anchors_; }
 

@@ -1,5 +1,7 @@
 #include "service/physics/world.h"
 
+#include "service/physics/fnv1a.h"
+
 #include <algorithm>
 #include <cstring>
 #include <string>
@@ -20,6 +22,22 @@ Status World::RemoveBody(BodyId id) {
   wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
                                  [id](const TimedWrench& w) { return w.body == id; }),
                   wrenches_.end());
+  Reindex();
+  return Status::Ok();
+}
+
+Status World::Assign(std::vector<RigidBody> bodies, std::vector<TimedWrench> wrenches, BodyId next) {
+  BodyId last = 0;
+  for (const RigidBody& b : bodies) {
+    if (b.id <= last || b.id >= next) {
+      return Status::InvalidArgument("body ids must ascend and stay below next_id " + std::to_string(next) +
+                                     ", got " + std::to_string(b.id) + " after " + std::to_string(last));
+    }
+    last = b.id;
+  }
+  bodies_ = std::move(bodies);
+  wrenches_ = std::move(wrenches);
+  next_id = next;
   Reindex();
   return Status::Ok();
 }
@@ -81,28 +99,6 @@ void World::Reindex() {
   index_.clear();
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) index_[bodies_[i].id] = i;
 }
-
-namespace {
-
-struct Fnv1a {
-  uint64_t h = 1469598103934665603ull;
-  void Bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) {
-      h ^= p[i];
-      h *= 1099511628211ull;
-    }
-  }
-  void Double(double d) {
-    if (d == 0.0) d = 0.0;  // -0.0 and +0.0 describe the same state
-    Bytes(&d, sizeof d);
-  }
-  void Vector(const Vec3& v) {
-    for (int i = 0; i < 3; ++i) Double(v[i]);
-  }
-};
-
-}  // namespace
 
 uint64_t HashWorldState(const World& world) {
   Fnv1a f;

@@ -34,6 +34,10 @@ class World {
   const std::vector<RigidBody>& bodies() const { return bodies_; }
 
   void AddWrench(const TimedWrench& wrench) { wrenches_.push_back(wrench); }
+  const std::vector<TimedWrench>& wrenches() const { return wrenches_; }
+  // Replaces the content with saved bodies (ids ascending, each < next_id)
+  // and wrenches, as a snapshot holds them; on error nothing changes.
+  Status Assign(std::vector<RigidBody> bodies, std::vector<TimedWrench> wrenches, BodyId next_id);
   // Sets each body's force and torque to gravity plus the active wrenches.
   void AccumulateForces();
   // Advances the clock by dt, ages the wrenches and drops expired ones.

@@ -21,6 +21,7 @@ struct Command {
   enum class Kind {
     kAddBody, kRemoveBody, kSetPose, kSetVelocity, kApplyForce, kApplyImpulse, kSetMass, kSetMaterial,
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
+    kSnapshot, kRestore, kRewind,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -45,6 +46,12 @@ struct Command {
   int steps = 0;                       // STEP
   RunMode mode = RunMode::kRealtime;   // SET_MODE
   double real_time_factor = 1.0;
+  std::string snapshot_name;           // SNAPSHOT, RESTORE: a slot, or
+  std::string snapshot_path;           //   a file
+  int64_t target_step = 0;             // REWIND
+
+  // The command as it arrived (LCM-encoded), for the journal.
+  std::string payload;
 };
 
 }  // namespace contactsim

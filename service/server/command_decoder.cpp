@@ -1,5 +1,8 @@
 #include "service/server/command_decoder.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include "service/physics/body_settings.h"
 #include "service/physics/validation.h"
 
@@ -43,6 +46,23 @@ Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command*
   if (m.has_friction) s.friction = m.friction;
   cmd->kind = Command::Kind::kAddBody;
   return CreateBody(s, default_material, &cmd->new_body);
+}
+
+// A slot name, or a path, exactly one of them.
+Status DecodeSnapshotTarget(const scene_cmd_t& m, Command* cmd) {
+  if (m.name.empty() == m.path.empty()) {
+    return Status::InvalidArgument("give exactly one of name or path, got name \"" + m.name + "\", path \"" +
+                                   m.path + "\"");
+  }
+  const bool name_ok = m.name.size() <= 64 && std::all_of(m.name.begin(), m.name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-';
+  });
+  if (!name_ok) {
+    return Status::InvalidArgument("name must be 1 to 64 of [A-Za-z0-9_.-], got \"" + m.name + "\"");
+  }
+  cmd->snapshot_name = m.name;
+  cmd->snapshot_path = m.path;
+  return Status::Ok();
 }
 
 }  // namespace
@@ -173,9 +193,22 @@ Status DecodeSceneCommand(const scene_cmd_t& m, Command* cmd) {
       cmd->mode = static_cast<RunMode>(m.mode);
       cmd->real_time_factor = m.real_time_factor == 0.0 ? 1.0 : m.real_time_factor;
       return CheckInRange("real_time_factor", cmd->real_time_factor, 1e-3, 1e3);
+    case scene_cmd_t::SNAPSHOT:
+      cmd->kind = Command::Kind::kSnapshot;
+      return DecodeSnapshotTarget(m, cmd);
+    case scene_cmd_t::RESTORE:
+      cmd->kind = Command::Kind::kRestore;
+      return DecodeSnapshotTarget(m, cmd);
+    case scene_cmd_t::REWIND:
+      cmd->kind = Command::Kind::kRewind;
+      cmd->target_step = m.target_step;
+      if (m.target_step < 0) {
+        return Status::InvalidArgument("target_step must be >= 0, got " + std::to_string(m.target_step));
+      }
+      return Status::Ok();
     default: break;
   }
-  return Status::InvalidArgument("op must be one of RESET=1 .. SET_MODE=9, got " + std::to_string(m.op));
+  return Status::InvalidArgument("op must be one of RESET=1 .. REWIND=12, got " + std::to_string(m.op));
 }
 
 }  // namespace contactsim

@@ -46,6 +46,15 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
     return Status::InvalidArgument(at("broadphase") + "broadphase must be sap or naive, got \"" +
                                    config->broadphase() + "\"");
   }
+  FsyncPolicy policy;
+  if (!(st = ParseFsyncPolicy(config->journal_fsync(), &policy)).ok()) {
+    return Status::InvalidArgument(at("journal_fsync") + st.message());
+  }
+  if (config->snapshot_every_steps() < 0 || config->max_snapshots() < 1) {
+    return Status::InvalidArgument(at("snapshot_every_steps") + "snapshot_every_steps must be >= 0 and max_snapshots >= 1, got " +
+                                   std::to_string(config->snapshot_every_steps()) + " and " +
+                                   std::to_string(config->max_snapshots()));
+  }
   ParamMap params;
   for (const auto& p : config->method_params()) params[p.name()] = p.value();
   std::shared_ptr<ContactMethod> method;
@@ -68,6 +77,13 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
   s.options.broadphase = config.broadphase();
   s.options.max_bodies = config.max_bodies();
   s.options.live_line = config.live_line();
+  if (!config.journal_dir().empty()) {
+    s.options.journal_dir =
+        config.journal_dir()[0] == '/' ? config.journal_dir() : Folder(config_path) + "/" + config.journal_dir();
+  }
+  ParseFsyncPolicy(config.journal_fsync(), &s.options.journal_fsync);  // checked by LoadServerConfig
+  s.options.snapshot_every = config.snapshot_every_steps();
+  s.options.max_snapshots = config.max_snapshots();
   s.lcm_url = config.lcm_url();
   s.log_level = config.log_level();
 

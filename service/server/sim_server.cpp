@@ -16,7 +16,7 @@ namespace contactsim {
 using Clock = std::chrono::steady_clock;
 
 SimServer::SimServer(ServerOptions options, Transport* transport)
-    : options_(std::move(options)), transport_(transport) {
+    : options_(std::move(options)), transport_(transport), snapshots_(options_.max_snapshots) {
   paused_ = options_.start_paused;
   mode_ = options_.mode;
   real_time_factor_ = options_.real_time_factor;
@@ -29,6 +29,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }
   method_ = std::move(method);
+  if (!(st = Recover()).ok()) return st;
   UpdateRates();
   last_status_wall_ = Clock::now();
   PublishStatus(last_status_wall_);
@@ -72,6 +73,7 @@ void SimServer::OnBodyMessage(const void* data, int size) {
   Command cmd;
   Status st = DecodeBodyCommand(msg, default_material_, &cmd);
   if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), "BODY_CMD");
+  cmd.payload.assign(static_cast<const char*>(data), size);
   Enqueue(std::move(cmd));
 }
 
@@ -86,6 +88,7 @@ void SimServer::OnSceneMessage(const void* data, int size) {
   Command cmd;
   Status st = DecodeSceneCommand(msg, &cmd);
   if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), "SCENE_CMD");
+  cmd.payload.assign(static_cast<const char*>(data), size);
   Enqueue(std::move(cmd));
 }
 
@@ -101,6 +104,8 @@ void SimServer::Enqueue(Command cmd) {
 
 void SimServer::SendReply(const std::string& client_id, int64_t request_id, const Status& status,
                           const std::string& message, const std::vector<int64_t>& ids) {
+  last_reply_ok_ = status.ok();
+  if (replaying_) return;
   reply_t r = MakeReply(client_id, request_id, status, world_);
   if (status.ok()) {
     r.message = message;
@@ -116,8 +121,29 @@ void SimServer::SendReply(const std::string& client_id, int64_t request_id, cons
   const int n = r.getEncodedSize();
   std::vector<uint8_t> buf(n);
   r.encode(buf.data(), 0, n);
-  transport_->Publish(Channel("REPLY"), buf.data(), n);
+  if (hold_replies_) {
+    held_replies_.push_back(std::move(buf));
+  } else {
+    PublishReply(buf);
+  }
 }
+
+// Commands whose effect the journal must carry to a replay: the ones that
+// change the world without replacing it (reset, load and restore start a
+// new timeline from a snapshot instead).
+static bool Journaled(Command::Kind kind) {
+  using K = Command::Kind;
+  switch (kind) {
+    case K::kAddBody: case K::kRemoveBody: case K::kSetPose: case K::kSetVelocity: case K::kApplyForce:
+    case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kSetGravity: case K::kSetTimestep:
+    case K::kSetMethod:
+      return true;
+    default:
+      return false;
+  }
+}
+
+static bool IsBodyCommand(Command::Kind kind) { return kind <= Command::Kind::kSetMaterial; }
 
 bool SimServer::DrainInbox() {
   std::deque<Command> batch;
@@ -126,7 +152,17 @@ bool SimServer::DrainInbox() {
     batch.swap(inbox_);
   }
   bool changed = false;
-  for (Command& cmd : batch) changed |= Apply(cmd);
+  // group commit: the batch's records are synced once, before its replies
+  hold_replies_ = true;
+  for (Command& cmd : batch) {
+    last_reply_ok_ = false;
+    changed |= Apply(cmd);
+    if (last_reply_ok_ && Journaled(cmd.kind)) {
+      JournalCommand(IsBodyCommand(cmd.kind) ? RecordKind::kBodyCommand : RecordKind::kSceneCommand, cmd.payload);
+    }
+  }
+  hold_replies_ = false;
+  FlushReplies();
   return changed;
 }
 
@@ -242,6 +278,7 @@ bool SimServer::Apply(Command& cmd) {
       method_->ResetCaches();
       contacts_.clear();
       UpdateRates();
+      StartTimeline();
       SendReply(cid, rid, Status::Ok(), "world reset");
       return true;
     case K::kLoadScene: {
@@ -256,6 +293,7 @@ bool SimServer::Apply(Command& cmd) {
       method_->ResetCaches();
       contacts_.clear();
       UpdateRates();
+      StartTimeline();
       SendReply(cid, rid, Status::Ok(), "loaded " + cmd.scene_path + " (" + std::to_string(world_.bodies().size()) +
                                             " bodies)");
       return true;
@@ -298,13 +336,23 @@ bool SimServer::Apply(Command& cmd) {
       reanchor_ = true;
       SendReply(cid, rid, Status::Ok(), mode_ == RunMode::kRealtime ? "mode realtime" : "mode free_run");
       return false;
+    case K::kSnapshot:
+      ApplySnapshotCommand(cmd);
+      return false;
+    case K::kRestore:
+    case K::kRewind:
+      ApplySnapshotCommand(cmd);
+      return last_reply_ok_;
   }
   return false;
 }
 
+void SimServer::SimulateStep() { last_stats_ = method_->Step(world_, detector_, &contacts_); }
+
 void SimServer::StepWorld() {
-  last_stats_ = method_->Step(world_, detector_, &contacts_);
+  SimulateStep();
   if (step_budget_ > 0) --step_budget_;
+  if (options_.snapshot_every > 0 && world_.step % options_.snapshot_every == 0) TakePeriodicSnapshot();
   if (world_.step % state_every_ == 0) PublishState();
   if (world_.step % contacts_every_ == 0) PublishContacts();
   FinishStepCommands();
@@ -316,6 +364,8 @@ void SimServer::FinishStepCommands() {
     if (last_state_step_ != world_.step) PublishState();
     const PendingStep p = pending_steps_.front();
     pending_steps_.pop_front();
+    // recovery brings the world back to the last step a reply acknowledged
+    JournalCommand(RecordKind::kStepTo, "");
     SendReply(p.client_id, p.request_id, Status::Ok(), "at step " + std::to_string(world_.step));
   }
 }

@@ -19,6 +19,8 @@
 #include "service/physics/world.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/command.h"
+#include "service/server/journal.h"
+#include "service/server/snapshot_store.h"
 #include "service/server/transport.h"
 
 namespace contactsim {
@@ -34,6 +36,10 @@ struct ServerOptions {
   std::string broadphase = "sap";
   int max_bodies = 100000;
   bool live_line = false;               // progress line on stderr
+  std::string journal_dir;              // "" = no journal on disk (REWIND still works)
+  FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
+  int64_t snapshot_every = 0;           // steps between periodic snapshots; 0 = none
+  int max_snapshots = 32;               // periodic snapshots kept in memory for REWIND
 };
 
 // Commands larger than this are refused before decoding.
@@ -43,7 +49,9 @@ class SimServer {
  public:
   SimServer(ServerOptions options, Transport* transport);
 
-  // Builds the initial world (a null scene gives an empty one) and method.
+  // Builds the initial world (a null scene gives an empty one) and method;
+  // with a journal folder that holds a snapshot, recovers from it instead
+  // (snapshot + the journal records after it).
   Status Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> method);
 
   // LCM thread.
@@ -63,6 +71,19 @@ class SimServer {
 
  private:
   void Enqueue(Command cmd);
+  // journal, snapshots, rewind and recovery (snapshot_commands.cpp)
+  Status Recover();
+  proto::Snapshot SaveDurableSnapshot();
+  void StartTimeline();
+  void TakePeriodicSnapshot();
+  void ApplySnapshotCommand(Command& cmd);
+  Status Rewind(int64_t step);
+  Status ReplayRecord(const JournalRecord& record);
+  void JournalCommand(RecordKind kind, const std::string& payload);
+  void SimulateStep();
+  void PublishReply(const std::vector<uint8_t>& bytes);
+  void FlushReplies();
+
   void Reject(const std::string& client_id, int64_t request_id, int32_t code, const std::string& message,
               const char* channel);
   void SendReply(const std::string& client_id, int64_t request_id, const Status& status, const std::string& message,
@@ -107,6 +128,12 @@ class SimServer {
   };
   std::deque<PendingStep> pending_steps_;
   int64_t step_budget_ = 0;
+  Journal journal_;
+  SnapshotStore snapshots_;
+  bool replaying_ = false;         // applying journal records: no replies, no journaling
+  bool hold_replies_ = false;      // a batch is being applied: reply after the journal sync
+  bool last_reply_ok_ = false;     // the status of the last SendReply
+  std::vector<std::vector<uint8_t>> held_replies_;
 
   // rates for STATUS and the live line
   std::chrono::steady_clock::time_point last_status_wall_;

@@ -83,8 +83,17 @@ class Server:
         except OSError:
             return ""
 
+    def kill(self):
+        """SIGKILL, as a crash: no clean shutdown, and stop() expects none."""
+        self.client.close()
+        self.proc.kill()
+        self.proc.wait()
+        self.killed = True
+
     def stop(self, check=True):
         """SIGINT, then SIGKILL after EXIT_TIMEOUT; returns the exit code."""
+        if getattr(self, "killed", False):
+            return self.proc.returncode
         self.client.close()
         killed = False
         if self.proc.poll() is None:

@@ -77,6 +77,36 @@ CommandResult Client::SetMode(Mode mode, double real_time_factor) {
   return Send(command);
 }
 
+CommandResult Client::SaveSnapshot(const std::string& name) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::SNAPSHOT);
+  command.name = name;
+  return Send(command);
+}
+
+CommandResult Client::SaveSnapshotToFile(const std::string& path) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::SNAPSHOT);
+  command.path = path;
+  return Send(command);
+}
+
+CommandResult Client::Restore(const std::string& name) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::RESTORE);
+  command.name = name;
+  return Send(command);
+}
+
+CommandResult Client::RestoreFromFile(const std::string& path) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::RESTORE);
+  command.path = path;
+  return Send(command);
+}
+
+CommandResult Client::Rewind(int64_t step) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::REWIND);
+  command.target_step = step;
+  return Send(command);
+}
+
 CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
   Copy(options.position, command.position);
   std::copy(options.orientation.begin(), options.orientation.end(),

@@ -18,6 +18,7 @@ import numpy as np
 
 from . import body_cmd_t, contacts_t, reply_t, scene_cmd_t, state_t, status_t
 from .errors import CommandError, TimeoutError
+from .snapshots import SnapshotCommands
 from .state import Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -68,7 +69,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client:
+class Client(SnapshotCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``

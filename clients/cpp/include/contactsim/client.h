@@ -110,6 +110,16 @@ class Client {
   CommandResult Step(int32_t n = 1);
   CommandResult SetMode(Mode mode, double real_time_factor = 1.0);
 
+  // --- snapshots (docs/snapshots.md) ---
+  // Saves the world to the server's slot `name` / to a file on its host.
+  CommandResult SaveSnapshot(const std::string& name);
+  CommandResult SaveSnapshotToFile(const std::string& path);
+  // Replaces the world by a snapshot; the run continues exactly as it did.
+  CommandResult Restore(const std::string& name);
+  CommandResult RestoreFromFile(const std::string& path);
+  // Back to the state after `step` steps (nearest snapshot + journal replay).
+  CommandResult Rewind(int64_t step);
+
   // --- body commands; Add* return the new id ---
   Result<int64_t> AddSphere(double radius, const BodyOptions& options = {});
   Result<int64_t> AddBox(const Eigen::Vector3d& half_extents,

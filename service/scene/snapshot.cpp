@@ -1,0 +1,255 @@
+#include "service/scene/snapshot.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "service/physics/convex_hull.h"
+
+namespace contactsim {
+namespace {
+
+using google::protobuf::RepeatedField;
+
+template <typename Derived>
+void PutAll(const Eigen::MatrixBase<Derived>& m, RepeatedField<double>* out) {
+  // row-major for matrices, so a reader needs no Eigen convention
+  for (int r = 0; r < m.rows(); ++r)
+    for (int c = 0; c < m.cols(); ++c) out->Add(m(r, c));
+}
+
+// Reads exactly rows x cols numbers into m, or names the field.
+template <typename Derived>
+Status GetAll(const RepeatedField<double>& in, const std::string& field, Eigen::MatrixBase<Derived>* m) {
+  if (in.size() != m->rows() * m->cols()) {
+    return Status::InvalidArgument("snapshot: " + field + " must hold " + std::to_string(m->rows() * m->cols()) +
+                                   " numbers, got " + std::to_string(in.size()));
+  }
+  int k = 0;
+  for (int r = 0; r < m->rows(); ++r)
+    for (int c = 0; c < m->cols(); ++c) (*m)(r, c) = in.Get(k++);
+  return Status::Ok();
+}
+
+void SaveHull(const ConvexHull& hull, proto::SnapshotHull* out) {
+  for (const Vec3& v : hull.vertices) PutAll(v, out->mutable_vertices());
+  for (const ConvexHull::Face& f : hull.faces) {
+    proto::SnapshotHull::Face* pf = out->add_faces();
+    PutAll(f.normal, pf->mutable_normal());
+    pf->set_offset(f.offset);
+    for (int i : f.vertices) pf->add_vertices(i);
+  }
+  for (const auto& e : hull.edges) {
+    out->add_edges(e[0]);
+    out->add_edges(e[1]);
+  }
+}
+
+Status LoadHull(const proto::SnapshotHull& in, const std::string& where, std::shared_ptr<const ConvexHull>* out) {
+  auto hull = std::make_shared<ConvexHull>();
+  const int nv = in.vertices_size() / 3;
+  if (in.vertices_size() % 3 != 0 || nv < 4 || in.edges_size() % 2 != 0 || in.faces_size() < 4) {
+    return Status::InvalidArgument("snapshot: " + where + " hull needs >= 4 vertices (x y z), >= 4 faces and edge pairs");
+  }
+  auto index_ok = [nv](int i) { return i >= 0 && i < nv; };
+  for (int i = 0; i < nv; ++i) hull->vertices.emplace_back(in.vertices(3 * i), in.vertices(3 * i + 1), in.vertices(3 * i + 2));
+  for (const auto& pf : in.faces()) {
+    ConvexHull::Face f;
+    Status st = GetAll(pf.normal(), where + " hull face normal", &f.normal);
+    if (!st.ok()) return st;
+    f.offset = pf.offset();
+    for (int i : pf.vertices()) {
+      if (!index_ok(i)) return Status::InvalidArgument("snapshot: " + where + " hull face vertex " + std::to_string(i) + " out of range");
+      f.vertices.push_back(i);
+    }
+    hull->faces.push_back(std::move(f));
+  }
+  for (int i = 0; i + 1 < in.edges_size(); i += 2) {
+    if (!index_ok(in.edges(i)) || !index_ok(in.edges(i + 1))) {
+      return Status::InvalidArgument("snapshot: " + where + " hull edge vertex out of range");
+    }
+    hull->edges.push_back({in.edges(i), in.edges(i + 1)});
+  }
+  *out = std::move(hull);
+  return Status::Ok();
+}
+
+void SaveBody(const RigidBody& b, proto::SnapshotBody* out) {
+  out->set_id(b.id);
+  out->set_name(b.name);
+  proto::SnapshotShape* s = out->mutable_shape();
+  s->set_type(static_cast<int>(b.shape.type));
+  s->set_radius(b.shape.radius);
+  PutAll(b.shape.half_extents, s->mutable_half_extents());
+  s->set_half_length(b.shape.half_length);
+  PutAll(b.shape.plane_normal, s->mutable_plane_normal());
+  s->set_plane_offset(b.shape.plane_offset);
+  if (b.shape.hull) SaveHull(*b.shape.hull, s->mutable_hull());
+  out->set_restitution(b.material.restitution);
+  out->set_friction(b.material.friction);
+  out->set_motion(static_cast<int>(b.motion));
+  out->set_mass(b.mass);
+  out->set_inv_mass(b.inv_mass);
+  PutAll(b.inertia_body, out->mutable_inertia_body());
+  PutAll(b.inv_inertia_body, out->mutable_inv_inertia_body());
+  PutAll(b.x, out->mutable_x());
+  for (double c : {b.q.w(), b.q.x(), b.q.y(), b.q.z()}) out->add_q(c);
+  PutAll(b.P, out->mutable_linear_momentum());
+  PutAll(b.L, out->mutable_angular_momentum());
+  PutAll(b.force, out->mutable_force());
+  PutAll(b.torque, out->mutable_torque());
+  PutAll(b.kinematic_v, out->mutable_kinematic_v());
+  PutAll(b.kinematic_w, out->mutable_kinematic_w());
+}
+
+Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
+  const std::string where = "body " + std::to_string(in.id());
+  b->id = in.id();
+  b->name = in.name();
+  const proto::SnapshotShape& s = in.shape();
+  if (s.type() < 0 || s.type() >= static_cast<int>(ShapeType::kCount)) {
+    return Status::InvalidArgument("snapshot: " + where + " shape type must be in [0, " +
+                                   std::to_string(static_cast<int>(ShapeType::kCount) - 1) + "], got " +
+                                   std::to_string(s.type()));
+  }
+  b->shape.type = static_cast<ShapeType>(s.type());
+  b->shape.radius = s.radius();
+  b->shape.half_length = s.half_length();
+  b->shape.plane_offset = s.plane_offset();
+  Status st;
+  if (!(st = GetAll(s.half_extents(), where + " half_extents", &b->shape.half_extents)).ok()) return st;
+  if (!(st = GetAll(s.plane_normal(), where + " plane_normal", &b->shape.plane_normal)).ok()) return st;
+  if (b->shape.type == ShapeType::kConvex && !(st = LoadHull(s.hull(), where, &b->shape.hull)).ok()) return st;
+  if (in.motion() < 0 || in.motion() > static_cast<int>(MotionType::kKinematic)) {
+    return Status::InvalidArgument("snapshot: " + where + " motion must be 0, 1 or 2, got " + std::to_string(in.motion()));
+  }
+  b->material = {in.restitution(), in.friction()};
+  b->motion = static_cast<MotionType>(in.motion());
+  b->mass = in.mass();
+  b->inv_mass = in.inv_mass();
+  Eigen::Vector4d q;
+  if (!(st = GetAll(in.inertia_body(), where + " inertia_body", &b->inertia_body)).ok()) return st;
+  if (!(st = GetAll(in.inv_inertia_body(), where + " inv_inertia_body", &b->inv_inertia_body)).ok()) return st;
+  if (!(st = GetAll(in.x(), where + " x", &b->x)).ok()) return st;
+  if (!(st = GetAll(in.q(), where + " q", &q)).ok()) return st;
+  if (!(st = GetAll(in.linear_momentum(), where + " linear_momentum", &b->P)).ok()) return st;
+  if (!(st = GetAll(in.angular_momentum(), where + " angular_momentum", &b->L)).ok()) return st;
+  if (!(st = GetAll(in.force(), where + " force", &b->force)).ok()) return st;
+  if (!(st = GetAll(in.torque(), where + " torque", &b->torque)).ok()) return st;
+  if (!(st = GetAll(in.kinematic_v(), where + " kinematic_v", &b->kinematic_v)).ok()) return st;
+  if (!(st = GetAll(in.kinematic_w(), where + " kinematic_w", &b->kinematic_w)).ok()) return st;
+  b->q = Quat(q[0], q[1], q[2], q[3]);  // as stored: no normalisation, bit for bit
+  return Status::Ok();
+}
+
+}  // namespace
+
+void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapshot* out) {
+  out->Clear();
+  out->set_format(1);
+  out->set_step(world.step);
+  out->set_time(world.time);
+  out->set_dt(world.dt);
+  PutAll(world.gravity, out->mutable_gravity());
+  out->set_next_id(world.next_id);
+  for (const RigidBody& b : world.bodies()) SaveBody(b, out->add_bodies());
+  for (const TimedWrench& w : world.wrenches()) {
+    proto::SnapshotWrench* pw = out->add_wrenches();
+    pw->set_body(w.body);
+    PutAll(w.force, pw->mutable_force());
+    PutAll(w.torque, pw->mutable_torque());
+    pw->set_remaining(w.remaining);
+  }
+  out->set_contact_method(method.Name());
+  for (const auto& [name, value] : method.Params()) {
+    proto::Param* p = out->add_method_params();
+    p->set_name(name);
+    p->set_value(value);
+  }
+  out->set_method_state(method.SaveState());
+  out->set_state_hash(HashWorldState(world));
+}
+
+Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<ContactMethod>* method) {
+  if (snap.format() != 1) {
+    return Status::InvalidArgument("snapshot: format must be 1, got " + std::to_string(snap.format()));
+  }
+  World w;
+  w.step = snap.step();
+  w.time = snap.time();
+  w.dt = snap.dt();
+  w.next_id = snap.next_id();
+  Status st = GetAll(snap.gravity(), "gravity", &w.gravity);
+  if (!st.ok()) return st;
+  std::vector<RigidBody> bodies(snap.bodies_size());
+  for (int i = 0; i < snap.bodies_size(); ++i) {
+    if (!(st = LoadBody(snap.bodies(i), &bodies[i])).ok()) return st;
+  }
+  std::vector<TimedWrench> wrenches(snap.wrenches_size());
+  for (int i = 0; i < snap.wrenches_size(); ++i) {
+    const proto::SnapshotWrench& pw = snap.wrenches(i);
+    wrenches[i].body = pw.body();
+    wrenches[i].remaining = pw.remaining();
+    if (!(st = GetAll(pw.force(), "wrench force", &wrenches[i].force)).ok()) return st;
+    if (!(st = GetAll(pw.torque(), "wrench torque", &wrenches[i].torque)).ok()) return st;
+  }
+  if (!(st = w.Assign(std::move(bodies), std::move(wrenches), snap.next_id())).ok()) {
+    return Status::InvalidArgument("snapshot: " + st.message());
+  }
+  if (snap.has_state_hash() && HashWorldState(w) != snap.state_hash()) {
+    return Status::InvalidArgument("snapshot: the bodies do not match the stored state hash");
+  }
+  std::unique_ptr<ContactMethod> m;
+  if (!(st = CreateContactMethod(snap.contact_method(), &m)).ok()) return st;
+  ParamMap params;
+  for (const proto::Param& p : snap.method_params()) params[p.name()] = p.value();
+  if (!(st = m->SetParams(params)).ok()) return st;
+  if (!(st = m->LoadState(snap.method_state())).ok()) return st;
+  *world = std::move(w);
+  *method = std::move(m);
+  return Status::Ok();
+}
+
+Status WriteSnapshotFile(const std::string& path, const proto::Snapshot& snap, bool sync) {
+  const std::string tmp = path + ".tmp";
+  const std::string bytes = snap.SerializeAsString();
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) return Status::FailedPrecondition("cannot write snapshot file " + tmp);
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
+  }
+  const bool ok = done == bytes.size() && (!sync || ::fsync(fd) == 0);
+  ::close(fd);
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    ::unlink(tmp.c_str());
+    return Status::FailedPrecondition("cannot write snapshot file " + path);
+  }
+  if (sync) {
+    // the rename is durable only once the folder is
+    const size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash == 0 ? 1 : slash);
+    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (dfd >= 0) {
+      ::fsync(dfd);
+      ::close(dfd);
+    }
+  }
+  return Status::Ok();
+}
+
+Status ReadSnapshotFile(const std::string& path, proto::Snapshot* snap) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::NotFound("cannot open snapshot file " + path);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  if (!snap->ParseFromString(bytes.str())) return Status::InvalidArgument(path + ": not a snapshot (binary protobuf)");
+  return Status::Ok();
+}
+
+}  // namespace contactsim

@@ -1,0 +1,207 @@
+// SimServer's journal, snapshot, rewind and recovery handling (the rest of
+// the class is in sim_server.cpp). Everything here runs on the simulation
+// thread.
+#include <spdlog/spdlog.h>
+
+#include "service/scene/snapshot.h"
+#include "service/server/command_decoder.h"
+#include "service/server/sim_server.h"
+
+namespace contactsim {
+
+void SimServer::PublishReply(const std::vector<uint8_t>& bytes) {
+  // nothing is acknowledged before its journal record is durable
+  Status st = journal_.Sync();
+  if (!st.ok()) spdlog::error("{}", st.message());
+  transport_->Publish(Channel("REPLY"), bytes.data(), static_cast<int>(bytes.size()));
+}
+
+void SimServer::FlushReplies() {
+  if (held_replies_.empty()) return;
+  Status st = journal_.Sync();
+  if (!st.ok()) spdlog::error("{}", st.message());
+  for (const auto& bytes : held_replies_) transport_->Publish(Channel("REPLY"), bytes.data(), static_cast<int>(bytes.size()));
+  held_replies_.clear();
+}
+
+void SimServer::JournalCommand(RecordKind kind, const std::string& payload) {
+  if (replaying_) return;
+  JournalRecord record;
+  Status st = journal_.Append(kind, world_.step, payload, &record);
+  if (!st.ok()) {
+    spdlog::error("{}", st.message());
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_error_ = st.message();
+  }
+  snapshots_.AddRecord(std::move(record));
+}
+
+// The current world as a snapshot that the journal continues from, written
+// to the journal folder when there is one.
+proto::Snapshot SimServer::SaveDurableSnapshot() {
+  proto::Snapshot s;
+  SaveSnapshot(world_, *method_, &s);
+  s.set_journal_seq(journal_.next_seq());
+  if (journal_.open()) {
+    Status st = journal_.WriteSnapshot(s);
+    if (!st.ok()) spdlog::error("{}", st.message());
+  }
+  return s;
+}
+
+// The world was replaced (start, reset, scene load, restore, recovery): the
+// current state becomes the base that REWIND and crash recovery start from.
+void SimServer::StartTimeline() { snapshots_.StartTimeline(SaveDurableSnapshot()); }
+
+void SimServer::TakePeriodicSnapshot() {
+  if (!replaying_) snapshots_.AddPeriodic(SaveDurableSnapshot());
+}
+
+Status SimServer::ReplayRecord(const JournalRecord& r) {
+  if (r.step < world_.step) {
+    return Status::FailedPrecondition("journal record " + std::to_string(r.seq) + " applies at step " +
+                                      std::to_string(r.step) + ", but the world is at step " +
+                                      std::to_string(world_.step));
+  }
+  while (world_.step < r.step) SimulateStep();
+  Command cmd;
+  Status st;
+  const int size = static_cast<int>(r.payload.size());
+  switch (r.kind) {
+    case RecordKind::kStepTo: return Status::Ok();
+    case RecordKind::kBodyCommand: {
+      body_cmd_t m;
+      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable body_cmd_t");
+      else st = DecodeBodyCommand(m, default_material_, &cmd);
+      break;
+    }
+    case RecordKind::kSceneCommand: {
+      scene_cmd_t m;
+      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable scene_cmd_t");
+      else st = DecodeSceneCommand(m, &cmd);
+      break;
+    }
+    case RecordKind::kInput:
+      st = Status::InvalidArgument("lockstep inputs are not supported by this server");
+      break;
+  }
+  if (st.ok()) {
+    last_reply_ok_ = false;
+    Apply(cmd);
+    if (!last_reply_ok_) st = Status::FailedPrecondition("no longer applies");
+  }
+  if (!st.ok()) return Status::FailedPrecondition("journal record " + std::to_string(r.seq) + ": " + st.message());
+  return Status::Ok();
+}
+
+Status SimServer::Recover() {
+  if (options_.journal_dir.empty()) {
+    StartTimeline();
+    return Status::Ok();
+  }
+  Status st = journal_.Open(options_.journal_dir, options_.journal_fsync);
+  if (!st.ok()) return st;
+  if (journal_.recovered_snapshot()) {
+    World world;
+    std::shared_ptr<ContactMethod> method;
+    if (!(st = LoadSnapshot(*journal_.recovered_snapshot(), &world, &method)).ok()) {
+      return Status::FailedPrecondition(options_.journal_dir + ": " + st.message());
+    }
+    world_ = std::move(world);
+    method_ = std::move(method);
+    detector_.Reset();
+    const int64_t from_step = world_.step;
+    replaying_ = true;
+    for (const JournalRecord& r : journal_.recovered_records()) {
+      if (!(st = ReplayRecord(r)).ok()) break;
+    }
+    replaying_ = false;
+    if (!st.ok()) return Status::FailedPrecondition(options_.journal_dir + ": " + st.message());
+    spdlog::info("recovered from {}: snapshot at step {} + {} journal records -> step {}, {} bodies",
+                 options_.journal_dir, from_step, journal_.recovered_records().size(), world_.step,
+                 world_.bodies().size());
+  }
+  journal_.DropRecovered();
+  StartTimeline();
+  return Status::Ok();
+}
+
+Status SimServer::Rewind(int64_t step) {
+  SnapshotStore::Plan plan;
+  Status st = snapshots_.PlanRewind(step, world_.step, &plan);
+  if (!st.ok()) return st;
+  World world;
+  std::shared_ptr<ContactMethod> method;
+  if (!(st = LoadSnapshot(*plan.from, &world, &method)).ok()) return st;
+  // replay on the live members, restoring them if the journal fails
+  World saved_world = std::move(world_);
+  std::shared_ptr<ContactMethod> saved_method = std::move(method_);
+  world_ = std::move(world);
+  method_ = std::move(method);
+  detector_.Reset();
+  replaying_ = true;
+  for (const JournalRecord* r : plan.records) {
+    if (!(st = ReplayRecord(*r)).ok()) break;
+  }
+  while (st.ok() && world_.step < step) SimulateStep();
+  replaying_ = false;
+  if (!st.ok()) {
+    world_ = std::move(saved_world);
+    method_ = std::move(saved_method);
+    detector_.Reset();
+    return st;
+  }
+  snapshots_.TruncateAfter(step);
+  // what the disk journal holds after `step` is no longer this run's future
+  if (journal_.open()) SaveDurableSnapshot();
+  return Status::Ok();
+}
+
+void SimServer::ApplySnapshotCommand(Command& cmd) {
+  using K = Command::Kind;
+  const std::string target = cmd.snapshot_name.empty() ? "file " + cmd.snapshot_path : "\"" + cmd.snapshot_name + "\"";
+  Status st;
+  if (cmd.kind == K::kSnapshot) {
+    proto::Snapshot s;
+    SaveSnapshot(world_, *method_, &s);
+    s.set_journal_seq(journal_.next_seq());
+    if (!cmd.snapshot_path.empty()) {
+      st = WriteSnapshotFile(cmd.snapshot_path, s, options_.journal_fsync == FsyncPolicy::kAlways);
+    } else {
+      snapshots_.Put(cmd.snapshot_name, std::move(s));
+    }
+    SendReply(cmd.client_id, cmd.request_id, st, "snapshot " + target + " at step " + std::to_string(world_.step));
+    return;
+  }
+  if (cmd.kind == K::kRewind) {
+    const int64_t from = world_.step;
+    st = Rewind(cmd.target_step);
+    if (st.ok()) CancelStepCommands("rewind");
+    SendReply(cmd.client_id, cmd.request_id, st,
+              "rewound from step " + std::to_string(from) + " to step " + std::to_string(world_.step));
+    return;
+  }
+  proto::Snapshot loaded;
+  const proto::Snapshot* s = nullptr;
+  if (!cmd.snapshot_path.empty()) {
+    st = ReadSnapshotFile(cmd.snapshot_path, &loaded);
+    s = &loaded;
+  } else if ((s = snapshots_.Find(cmd.snapshot_name)) == nullptr) {
+    st = Status::NotFound("no snapshot named \"" + cmd.snapshot_name + "\"");
+  }
+  World world;
+  std::shared_ptr<ContactMethod> method;
+  if (st.ok()) st = LoadSnapshot(*s, &world, &method);
+  if (st.ok()) {
+    CancelStepCommands("restore");
+    world_ = std::move(world);
+    method_ = std::move(method);
+    detector_.Reset();
+    contacts_.clear();
+    UpdateRates();
+    StartTimeline();
+  }
+  SendReply(cmd.client_id, cmd.request_id, st, "restored " + target + " at step " + std::to_string(world_.step));
+}
+
+}  // namespace contactsim
