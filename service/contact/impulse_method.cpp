@@ -7,6 +7,7 @@
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
 #include "service/contact/param_reader.h"
+#include "service/physics/byte_stream.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
@@ -38,6 +39,39 @@ ParamMap ImpulseMethod::Params() const {
           {"toi", params_.toi},
           {"max_substeps", std::to_string(params_.max_substeps)},
           {"warm_start", params_.warm_start ? "true" : "false"}};
+}
+
+std::string ImpulseMethod::SaveState() const {
+  ByteWriter out;
+  out.Put(static_cast<uint64_t>(warm_.size()));
+  for (const auto& [key, f] : warm_) {
+    out.Put(std::get<0>(key));
+    out.Put(std::get<1>(key));
+    out.Put(std::get<2>(key));
+    out.Put(f.normal);
+    out.PutVec3(f.tangent);
+  }
+  return out.bytes();
+}
+
+Status ImpulseMethod::LoadState(const std::string& bytes) {
+  std::map<WarmKey, WarmForce> loaded;
+  ByteReader in(bytes);
+  uint64_t n = 0;
+  bool ok = bytes.empty() || in.Get(&n);
+  for (uint64_t i = 0; ok && i < n; ++i) {
+    BodyId a = 0, b = 0;
+    uint32_t feature = 0;
+    WarmForce f;
+    ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&f.normal) && in.GetVec3(&f.tangent);
+    loaded[{a, b, feature}] = f;
+  }
+  if (!ok || !in.done()) {
+    return Status::InvalidArgument("impulse method state: malformed warm-start forces (" + std::to_string(bytes.size()) +
+                                   " bytes)");
+  }
+  warm_ = std::move(loaded);
+  return Status::Ok();
 }
 
 // Split impulse: pseudo-velocities solved like contact impulses for a

@@ -60,6 +60,9 @@ class ImpulseMethod : public ContactMethod {
   ParamMap Params() const override;
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { warm_.clear(); }
+  // the warm-start forces, bit for bit, for snapshots
+  std::string SaveState() const override;
+  Status LoadState(const std::string& bytes) override;
   const ImpulseParams& params() const { return params_; }
 
  private:

@@ -99,23 +99,27 @@ TEST(SnapshotTest, RestoredRunMatchesTheOriginalBitForBitForEveryMethod) {
   }
 }
 
-// Verifies that the penalty method's friction anchors are state an exact
-// continuation needs: restoring without them changes the trajectory (so the
-// test above would catch a snapshot that dropped them).
-TEST(SnapshotTest, PenaltyAnchorsAreNeededForAnExactContinuation) {
-  World world = MixedWorld();
-  auto method = Method("penalty");
-  RunSteps(world, *method, 60);
-  ASSERT_FALSE(method->SaveState().empty());
-  proto::Snapshot saved;
-  SaveSnapshot(world, *method, &saved);
-  const std::vector<uint64_t> original = RunSteps(world, *method, 40);
+// Verifies that the caches a method saves (penalty friction anchors,
+// impulse warm starts) are state an exact continuation needs: restoring
+// without them changes the trajectory, so the test above would catch a
+// snapshot that dropped them.
+TEST(SnapshotTest, MethodCachesAreNeededForAnExactContinuation) {
+  for (const std::string& name : ContactMethodNames()) {
+    SCOPED_TRACE(name);
+    World world = MixedWorld();
+    auto method = Method(name);
+    RunSteps(world, *method, 60);
+    if (method->SaveState().empty()) continue;  // a method without caches
+    proto::Snapshot saved;
+    SaveSnapshot(world, *method, &saved);
+    const std::vector<uint64_t> original = RunSteps(world, *method, 40);
 
-  saved.clear_method_state();
-  World restored;
-  std::shared_ptr<ContactMethod> without;
-  ASSERT_TRUE(LoadSnapshot(saved, &restored, &without).ok());
-  EXPECT_NE(RunSteps(restored, *without, 40), original);
+    saved.clear_method_state();
+    World restored;
+    std::shared_ptr<ContactMethod> without;
+    ASSERT_TRUE(LoadSnapshot(saved, &restored, &without).ok());
+    EXPECT_NE(RunSteps(restored, *without, 40), original);
+  }
 }
 
 // Verifies that a damaged snapshot is refused with a message naming the
