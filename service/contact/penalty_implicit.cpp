@@ -1,6 +1,7 @@
 #include "service/contact/penalty_implicit.h"
 
-#include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -71,9 +72,19 @@ class Island {
     for (const JacobianEntry& e : jac) sum += e.j.dot(du.segment<6>(6 * e.body));
     return sum;
   }
+  // coef u v^T as 6 x 6 blocks of triplets (duplicates are summed on
+  // assembly). Zeros are kept, and rows switched off add coef 0, so that the
+  // sparsity pattern stays the same across active-set passes and is
+  // analysed once per step.
   void AddOuter(const RowJacobian& u, const RowJacobian& v, double coef) {
     for (const JacobianEntry& eu : u) {
-      for (const JacobianEntry& ev : v) A_.block<6, 6>(6 * eu.body, 6 * ev.body) += coef * eu.j * ev.j.transpose();
+      for (const JacobianEntry& ev : v) {
+        for (int r = 0; r < 6; ++r) {
+          for (int c = 0; c < 6; ++c) {
+            triplets_.emplace_back(6 * eu.body + r, 6 * ev.body + c, coef * eu.j[r] * ev.j[c]);
+          }
+        }
+      }
     }
   }
   void AddRhs(const RowJacobian& u, double value) {
@@ -92,27 +103,34 @@ class Island {
   std::vector<int> bodies_;   // world indices, ascending
   std::vector<int>& local_;   // world index -> local index
   std::vector<int> members_;  // row indices
-  Eigen::MatrixXd A_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::SparseMatrix<double> A_;
   Eigen::VectorXd rhs_;
 };
 
 void Island::Assemble(const std::vector<RowState>& state) {
   const int n = static_cast<int>(bodies_.size());
-  A_.setZero(6 * n, 6 * n);
+  triplets_.clear();
   rhs_.setZero(6 * n);
   for (int j = 0; j < n; ++j) {
     const RigidBody& b = world_.bodies()[bodies_[j]];
-    A_.block<3, 3>(6 * j, 6 * j) = b.mass * Mat3::Identity();
-    A_.block<3, 3>(6 * j + 3, 6 * j + 3) = b.InertiaWorld();
+    const Mat3 inertia = b.InertiaWorld();
+    for (int r = 0; r < 3; ++r) {
+      triplets_.emplace_back(6 * j + r, 6 * j + r, b.mass);
+      for (int c = 0; c < 3; ++c) triplets_.emplace_back(6 * j + 3 + r, 6 * j + 3 + c, inertia(r, c));
+    }
     rhs_.segment<3>(6 * j) = h_ * b.force;
     rhs_.segment<3>(6 * j + 3) = h_ * b.torque;
   }
   for (size_t m = 0; m < members_.size(); ++m) {
     const RowState& st = state[m];
-    if (!st.on) continue;
     const PenaltyRow& row = rows_[members_[m]];
     const NormalLaw& l = row.law;
     const RowJacobian g = Jacobian(row, row.n);
+    if (!st.on) {
+      AddOuter(g, g, 0.0);  // keeps the pattern
+      continue;
+    }
     const double coef_n = h_ * theta_ * (theta_ * l.k * h_ + l.c);
     const double base = l.lambda0 - theta_ * l.k * h_ * row.vn0;
     AddOuter(g, g, coef_n);
@@ -132,6 +150,8 @@ void Island::Assemble(const std::vector<RowState>& state) {
       AddRhs(js, h_ * row.mu * base);
     }
   }
+  A_.resize(6 * n, 6 * n);
+  A_.setFromTriplets(triplets_.begin(), triplets_.end());
 }
 
 ImplicitStats Island::Solve(int max_iterations) {
@@ -149,10 +169,14 @@ ImplicitStats Island::Solve(int max_iterations) {
     }
   }
   Eigen::VectorXd du;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   for (int pass = 0; pass < max_iterations; ++pass) {
     ++stats.iterations;
     Assemble(state);
-    du = A_.partialPivLu().solve(rhs_);
+    if (pass == 0) lu.analyzePattern(A_);
+    lu.factorize(A_);
+    du = lu.info() == Eigen::Success ? Eigen::VectorXd(lu.solve(rhs_))
+                                     : Eigen::VectorXd::Constant(rhs_.size(), std::nan(""));
     bool changed = false;
     stats.residual = 0.0;
     for (size_t m = 0; m < members_.size(); ++m) {

@@ -30,10 +30,12 @@
 // sliding point whose slip reverses sticks, and the system is solved again,
 // up to `max_iterations` passes.
 //
-// The system is dense per contact island (bodies connected through dynamic-
-// dynamic contacts), 6 unknowns per body, solved by partial-pivoting LU:
-// cheap for the stacks and piles this is for (a 5-box stack is 30 x 30); an
-// island of hundreds of bodies would want a sparse factorisation.
+// One system per contact island (bodies connected through dynamic-dynamic
+// contacts), 6 unknowns per body, sparse (a 6 x 6 block per body and per
+// touching pair) and solved by sparse LU with COLAMD ordering (Eigen's
+// SparseLU; the sliding rows make it unsymmetric). The dense LU this
+// replaced took 1.2 s per step on a 1,000-sphere pile, one island of 6,000
+// unknowns.
 #pragma once
 
 #include <vector>
