@@ -106,7 +106,8 @@ def short_status(r):
 
 
 def table(scene, rows):
-    bullet = next((r for r in rows if r["engine"] == "bullet" and not failed(r)), None)
+    # a Bullet run that hit the time limit still has a per-step time to divide by
+    bullet = next((r for r in rows if r["engine"] == "bullet" and r.get("steps_done", 0) > 0), None)
     extra = {"box_pyramid": "top displacement", "bounce": "rebound height (analytic 0.225 m)"}.get(scene)
     head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "max penetration", "final KE"]
     if extra:
@@ -257,6 +258,10 @@ def main():
     ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
     ap.add_argument("--json-out", default=None, help="also write every run's JSON here (default BUILD/bench_scenes.json)")
     ap.add_argument("--no-write", action="store_true", help="print the tables instead of writing BENCHMARKS.md")
+    ap.add_argument("--only", nargs="+", default=None, metavar="ENGINE[:METHOD]",
+                    help="run only these rows, e.g. bullet contactsim:penalty")
+    ap.add_argument("--update-json", default=None, metavar="FILE",
+                    help="replace (or add) this run's rows in a saved run's JSON and render that")
     ap.add_argument("--from-json", default=None, help="render the tables from a previous run's JSON, running nothing")
     args = ap.parse_args()
     args.build_dir = os.path.abspath(args.build_dir)
@@ -271,7 +276,8 @@ def main():
         started = datetime.datetime.fromisoformat(meta["started"])
         load_before, args.repeat, args.max_seconds = meta["load_before"], meta["repeat"], meta["max_seconds"]
         return finish(results, args, started, load_before)
-    plan = [(scene,) + r for scene in args.scenes for r in runs(bin_dir)]
+    plan = [(scene,) + r for scene in args.scenes for r in runs(bin_dir)
+            if not args.only or r[0] in args.only or "%s:%s" % (r[0], r[2]) in args.only]
     results = []
     t_all = time.time()
     for i, (scene, engine, binary, method, params) in enumerate(plan, 1):
@@ -289,6 +295,17 @@ def main():
         json.dump({"meta": {"started": started.isoformat(), "load_before": load_before, "repeat": args.repeat,
                             "max_seconds": args.max_seconds}, "runs": results}, f, indent=1)
     print("results: %s" % json_out)
+    if args.update_json:
+        with open(args.update_json) as f:
+            saved = json.load(f)
+        key = lambda r: (r["scene_name"], r["engine"], r["label"])
+        fresh = {key(r): r for r in results}
+        merged = [fresh.pop(key(r), r) for r in saved["runs"]] + list(fresh.values())
+        with open(args.update_json, "w") as f:
+            json.dump({"meta": saved["meta"], "runs": merged}, f, indent=1)
+        meta = saved["meta"]
+        started = datetime.datetime.fromisoformat(meta["started"])
+        return finish(merged, args, started, meta["load_before"])
     return finish(results, args, started, load_before)
 
 
