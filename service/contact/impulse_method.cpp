@@ -214,7 +214,8 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
       const double old1 = row.lambda_t1, old2 = row.lambda_t2;
       double l1 = old1 - row.t1.dot(vrel) * row.mass_t1;
       double l2 = old2 - row.t2.dot(vrel) * row.mass_t2;
-      const double norm = std::hypot(l1, l2);
+      // not std::hypot: its overflow guard cost 15% of the step on the pyramid
+      const double norm = std::sqrt(l1 * l1 + l2 * l2);
       if (norm > limit) {
         const double scale = norm > 0.0 ? limit / norm : 0.0;
         l1 *= scale;
