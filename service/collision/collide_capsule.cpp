@@ -3,11 +3,9 @@
 // the segment (see collide_sphere.cpp for the sphere formulas).
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 #include "service/collision/closest_points.h"
 #include "service/collision/collide_pairs.h"
-#include "service/collision/polyhedron_distance.h"
 
 namespace contactsim {
 namespace {
@@ -18,36 +16,6 @@ namespace {
 constexpr double kParallelSin = 1e-3;
 // Overlap intervals shorter than this (m) are a single point.
 constexpr double kDistinctLength = 1e-6;
-// An interior point of a capsule's axis is added to its end contacts only when
-// it is nearer to the other shape than both ends by this much (m); the error
-// it allows in the deepest depth is this value.
-constexpr double kInteriorTolerance = 1e-7;
-// Golden-section iterations on [0, 1]: 0.618^80 ~ 2e-17 of the axis length.
-constexpr int kGoldenIterations = 80;
-
-// Minimiser of a convex function on [0, 1] by golden-section search.
-double MinimiseConvex(const std::function<double(double)>& f) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double lo = 0.0, hi = 1.0;
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  for (int i = 0; i < kGoldenIterations && hi - lo > 1e-15; ++i) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return 0.5 * (lo + hi);
-}
 
 }  // namespace
 
@@ -96,37 +64,6 @@ void CollideCapsulePlane(const RigidBody& a, const RigidBody& b, const CollideCo
   for (int k = 0; k < 2; ++k) {
     AppendSphereContact(ends[k], a.shape.radius, n.dot(ends[k]) - offset, n, k, ctx.margin, out);
   }
-}
-
-// capsule-box and capsule-convex: the signed distance of the polyhedron along
-// the capsule's axis is convex, so golden-section search finds its minimum.
-// Contacts: both cap spheres (so that a capsule lying on a face rests on two
-// points), and the minimiser when it is nearer than both ends (an axis lying
-// across an edge). The deepest contact is then the exact minimum up to
-// kInteriorTolerance, so the depth stays continuous.
-void CollideCapsulePolyhedron(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
-                              ContactSet* out) {
-  PosedPolyhedron poly;
-  const bool is_box = b.shape.type == ShapeType::kBox;
-  if (!is_box && !PosePolyhedron(b, &poly)) return;
-  const auto query = [&](const Vec3& p) {
-    return is_box ? BoxSignedDistance(b, p) : PolyhedronSignedDistance(poly, p);
-  };
-  Vec3 p0, p1;
-  CapsuleSegment(a, &p0, &p1);
-  const double r = a.shape.radius;
-
-  const SurfaceQuery q0 = query(p0);
-  const SurfaceQuery q1 = query(p1);
-  const double t = MinimiseConvex([&](double u) { return query(p0 + u * (p1 - p0)).distance; });
-  const Vec3 pt = p0 + t * (p1 - p0);
-  const SurfaceQuery qt = query(pt);
-
-  AppendSphereContact(p0, r, q0.distance, q0.normal, 0, ctx.margin, out);
-  if (qt.distance < std::min(q0.distance, q1.distance) - kInteriorTolerance) {
-    AppendSphereContact(pt, r, qt.distance, qt.normal, 2, ctx.margin, out);
-  }
-  AppendSphereContact(p1, r, q1.distance, q1.normal, 1, ctx.margin, out);
 }
 
 }  // namespace contactsim

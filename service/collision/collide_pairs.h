@@ -2,8 +2,8 @@
 // family as MuJoCo's engine_collision_*.c:
 //   collide_sphere.cpp      sphere-sphere, sphere-plane, sphere-box,
 //                           sphere-capsule, sphere-convex
-//   collide_capsule.cpp     capsule-capsule, capsule-plane, capsule-box,
-//                           capsule-convex
+//   collide_capsule.cpp     capsule-capsule, capsule-plane
+//   collide_capsule_polyhedron.cpp  capsule-box, capsule-convex (segment SAT)
 //   collide_polyhedron.cpp  box/convex-plane, box/convex-box/convex (SAT)
 //
 // Every function collides body `a` (the row shape of the table) with body `b`

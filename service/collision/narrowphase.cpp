@@ -106,15 +106,21 @@ int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margi
   return Dispatch(a, ia, b, ib, ctx, out);
 }
 
-double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin) {
+double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin, Vec3* normal) {
   PosedPolyhedron pa, pb;
   if (PoseIsFinite(a) && PoseIsFinite(b) && PosePolyhedron(a, &pa) && PosePolyhedron(b, &pb)) {
-    return std::min(margin, FindSeparatingAxis(pa, pb, margin).max_separation);
+    const SatResult sat = FindSeparatingAxis(pa, pb, margin);
+    if (normal != nullptr && sat.max_separation < margin) *normal = sat.max_normal;
+    return std::min(margin, sat.max_separation);
   }
   ContactSet contacts;
   Collide(a, 0, b, 1, margin, &contacts);
   double distance = margin;
-  for (const Contact& c : contacts) distance = std::min(distance, -c.depth);
+  for (const Contact& c : contacts) {
+    if (-c.depth >= distance) continue;
+    distance = -c.depth;
+    if (normal != nullptr) *normal = c.normal;
+  }
   return distance;
 }
 

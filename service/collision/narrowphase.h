@@ -27,8 +27,11 @@ int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margi
 // contact's depth (exact). Values above `margin` are returned as `margin`
 // (the pair is at least that far apart). Continuous in the poses and never
 // above the true distance, so conservative advancement cannot step over a
-// contact.
-double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin);
+// contact. `normal`, when given and the value is below `margin`, receives the
+// unit direction (world, from a to b) of that distance: for two polyhedra the
+// unbiased separating axis (the exact minimum-penetration direction when they
+// overlap, where a manifold's normal may prefer a face, polyhedron_sat.h).
+double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin, Vec3* normal = nullptr);
 
 // The same, remembering per body pair the axis that separated two polyhedra
 // (box, convex) so that the next call on a still-separated pair costs one axis

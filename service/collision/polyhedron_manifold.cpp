@@ -1,6 +1,7 @@
 // Face clipping and edge-edge contacts of two polyhedra (see polyhedron_manifold.h).
 #include "service/collision/polyhedron_manifold.h"
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -17,6 +18,9 @@ constexpr uint32_t kTagClip = 0xC11Fu;
 constexpr uint32_t kTagFace = 0xFACEu;
 constexpr uint32_t kTagEdge = 0xED6Eu;
 constexpr uint32_t kTagFallback = 0xFA11u;
+
+// Depths (m) closer than this are the same (round-off of ~1 m coordinates).
+constexpr double kDepthTol = 1e-9;
 
 struct ClipPoint {
   Vec3 p;
@@ -82,6 +86,7 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
 
   const uint32_t ref_side = ref_is_a ? 0u : 1u;
   const size_t first = out->size();
+  double deepest = -std::numeric_limits<double>::infinity();
   for (const ClipPoint& cp : poly) {
     const double s = n_ref.dot(cp.p) - ref_offset;  // < 0 below the reference face
     if (-s <= -margin) continue;
@@ -91,10 +96,13 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
                   FeatureId({kTagFace, ref_side, static_cast<uint32_t>(ref_face),
                              static_cast<uint32_t>(inc_face), cp.tag}),
                   out);
+    deepest = std::max(deepest, -s);
   }
-  if (out->size() == first && poly.empty()) {
-    // round-off left no incident point inside the reference face: fall back to
-    // the incident body's deepest vertex so a penetrating pair is not lost
+  if (deepest < -sat.separation - kDepthTol) {
+    // the incident body's deepest vertex, which defines the axis's depth, is
+    // off the incident face or outside the reference face's side planes (deep
+    // overlaps of hulls; or round-off left no point): add it, so that the
+    // deepest contact has the axis's depth and a penetrating pair is not lost
     const int v = SupportVertex(inc, -n_ref);
     const double s = n_ref.dot(inc.vertices[v]) - ref_offset;
     if (-s > -margin) {

@@ -4,7 +4,9 @@
 // incident face is the face of the other body most anti-parallel to it. The
 // incident polygon is clipped against the side planes of the reference face
 // (Sutherland-Hodgman), the points closer to the reference plane than the
-// margin are kept, and the manifold is reduced to four points. Each point gets
+// margin are kept, the incident body's deepest vertex is added when clipping
+// lost it (so the deepest contact has the axis's depth), and the manifold is
+// reduced to four points. Each point gets
 // a feature id from the two faces and the clip planes or vertex that made it.
 // Edge axis: one point, midway between the closest points of the two
 // supporting edges.

@@ -76,7 +76,9 @@ bool MinkowskiEdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b,
 
 // Depth threshold that a challenger must go below to replace a preferred axis
 // of depth d (see polyhedron_sat.h).
-double PreferenceThreshold(double d, double rel) { return std::min(rel * d, d) - kSatAbsTolerance; }
+double PreferenceThreshold(double d, double rel) {
+  return d - std::min((1.0 - rel) * std::max(d, 0.0), kSatMaxBias) - kSatAbsTolerance;
+}
 
 SatResult MakeResult(const SeparatingAxis& axis, const Vec3& normal, double separation) {
   SatResult r;
@@ -84,6 +86,7 @@ SatResult MakeResult(const SeparatingAxis& axis, const Vec3& normal, double sepa
   r.normal = normal;
   r.separation = separation;
   r.max_separation = separation;
+  r.max_normal = normal;
   return r;
 }
 
@@ -91,6 +94,7 @@ SatResult MakeResult(const SeparatingAxis& axis, const Vec3& normal, double sepa
 // is known of the maximum.
 SatResult WithMax(SatResult r) {
   r.max_separation = r.separation;
+  r.max_normal = r.normal;
   return r;
 }
 
@@ -142,13 +146,15 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
   const int edges_a = static_cast<int>(a.edge_dirs.size());
   const int edges_b = static_cast<int>(b.edge_dirs.size());
   for (int ea = 0; ea < edges_a; ++ea) {
-    const auto& fa = a.edge_faces[ea];
+    const std::array<int, 2>* fa = EdgeFaces(a, ea);
     for (int eb = 0; eb < edges_b; ++eb) {
-      const auto& fb = b.edge_faces[eb];
+      const std::array<int, 2>* fb = EdgeFaces(b, eb);
       Vec3 n;
       double sep;
-      if (fa[1] >= 0 && fb[1] >= 0) {
-        if (!IsMinkowskiFace(a.normals[fa[0]], a.normals[fa[1]], -b.normals[fb[0]], -b.normals[fb[1]])) continue;
+      if (fa != nullptr && fb != nullptr) {
+        const auto& na = a.normals;
+        const auto& nb = b.normals;
+        if (!IsMinkowskiFace(na[(*fa)[0]], na[(*fa)[1]], -nb[(*fb)[0]], -nb[(*fb)[1]])) continue;
         if (!MinkowskiEdgeSeparation(a, b, ea, eb, &n, &sep)) continue;
       } else if (!EdgeSeparation(a, b, ea, eb, &n, &sep)) {  // open topology: project
         continue;
@@ -158,8 +164,13 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
     }
   }
 
+  // the unbiased maximum (first of equals: faces of A, faces of B, edges)
+  const SatResult* max = &face_a;
+  if (face_b.separation > max->separation) max = &face_b;
+  if (edges.separation > max->separation) max = &edges;
+  const double max_separation = max->separation;
+  const Vec3 max_normal = max->normal;
   // prefer faces of A, then faces of B, then edges (depth d = -separation)
-  const double max_separation = std::max({face_a.separation, face_b.separation, edges.separation});
   SatResult best = face_a;
   if (-face_b.separation < PreferenceThreshold(-best.separation, kSatFaceRelTolerance)) best = face_b;
   if (edges.axis.kind != SeparatingAxis::Kind::kNone &&
@@ -167,6 +178,7 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
     best = edges;
   }
   best.max_separation = max_separation;
+  best.max_normal = max_normal;
   return best;
 }
 

@@ -2,9 +2,7 @@
 #include "service/collision/posed_polyhedron.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <limits>
-#include <utility>
 
 namespace contactsim {
 namespace {
@@ -28,29 +26,8 @@ ConvexHull MakeUnitBox() {
   }
   box.edges = {{0, 1}, {0, 2}, {0, 4}, {2, 3}, {4, 5}, {6, 7},
                {1, 3}, {4, 6}, {5, 7}, {1, 5}, {2, 6}, {3, 7}};
+  ConnectEdgeFaces(&box);
   return box;
-}
-
-uint64_t EdgeKey(int u, int v) {
-  return (static_cast<uint64_t>(std::min(u, v)) << 32) | static_cast<uint32_t>(std::max(u, v));
-}
-
-// Faces on both sides of each edge, from the faces' vertex loops.
-void FindEdgeFaces(const ConvexHull& topo, std::vector<std::array<int, 2>>* edge_faces) {
-  std::vector<std::pair<uint64_t, int>> sides;  // (edge key, face)
-  for (size_t f = 0; f < topo.faces.size(); ++f) {
-    const std::vector<int>& loop = topo.faces[f].vertices;
-    for (size_t k = 0; k < loop.size(); ++k) {
-      sides.emplace_back(EdgeKey(loop[k], loop[(k + 1) % loop.size()]), static_cast<int>(f));
-    }
-  }
-  std::sort(sides.begin(), sides.end());
-  edge_faces->assign(topo.edges.size(), {-1, -1});
-  for (size_t e = 0; e < topo.edges.size(); ++e) {
-    const uint64_t key = EdgeKey(topo.edges[e][0], topo.edges[e][1]);
-    auto it = std::lower_bound(sides.begin(), sides.end(), std::make_pair(key, -1));
-    for (int k = 0; k < 2 && it != sides.end() && it->first == key; ++k, ++it) (*edge_faces)[e][k] = it->second;
-  }
 }
 
 }  // namespace
@@ -91,7 +68,6 @@ bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out) {
   for (size_t e = 0; e < topo.edges.size(); ++e) {
     out->edge_dirs[e] = (out->vertices[topo.edges[e][1]] - out->vertices[topo.edges[e][0]]).normalized();
   }
-  FindEdgeFaces(topo, &out->edge_faces);
   return true;
 }
 

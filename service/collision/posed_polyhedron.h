@@ -18,11 +18,17 @@ struct PosedPolyhedron {
   std::vector<Vec3> normals;             // unit, world, outward, one per face
   std::vector<double> offsets;           // m: normals[f] . p = offsets[f] on face f
   std::vector<Vec3> edge_dirs;           // unit, world, one per topology edge
-  // The two faces that share each edge (-1 when the topology lacks one): their
-  // normals are the end points of the edge's arc on the Gauss map.
-  std::vector<std::array<int, 2>> edge_faces;
   Vec3 centre = Vec3::Zero();            // m, world (centre of mass)
 };
+
+// The two faces on edge e (ConvexHull::edge_faces), or nullptr when the
+// topology lacks one of them (an open or hand-built topology), where edge axes
+// are tested by projection instead.
+inline const std::array<int, 2>* EdgeFaces(const PosedPolyhedron& poly, int e) {
+  const auto& faces = poly.topology->edge_faces;
+  if (e >= static_cast<int>(faces.size()) || faces[e][0] < 0 || faces[e][1] < 0) return nullptr;
+  return &faces[e];
+}
 
 // The cube [-1, 1]^3: 8 vertices (index bits x, y, z), 6 faces, 12 edges.
 const ConvexHull& UnitBoxTopology();

@@ -193,9 +193,32 @@ Status BuildConvexHull(const std::vector<Vec3>& points, std::shared_ptr<const Co
     }
   }
   std::sort(out->edges.begin(), out->edges.end());
+  ConnectEdgeFaces(out.get());
   if (centroid_out != nullptr) *centroid_out = centroid;
   *hull = std::move(out);
   return Status::Ok();
+}
+
+void ConnectEdgeFaces(ConvexHull* hull) {
+  // directed edges of the loops, sorted, so each edge's two sides are found
+  // by binary search
+  std::vector<std::pair<int64_t, int>> sides;  // (directed edge key, face)
+  for (std::size_t f = 0; f < hull->faces.size(); ++f) {
+    const std::vector<int>& loop = hull->faces[f].vertices;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      sides.emplace_back(EdgeKey(loop[k], loop[(k + 1) % loop.size()]), static_cast<int>(f));
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  const auto face_of = [&](int u, int v) {
+    const auto it = std::lower_bound(sides.begin(), sides.end(), std::make_pair(EdgeKey(u, v), -1));
+    return it != sides.end() && it->first == EdgeKey(u, v) ? it->second : -1;
+  };
+  hull->edge_faces.resize(hull->edges.size());
+  for (std::size_t e = 0; e < hull->edges.size(); ++e) {
+    const int u = hull->edges[e][0], v = hull->edges[e][1];
+    hull->edge_faces[e] = {face_of(u, v), face_of(v, u)};
+  }
 }
 
 double ConvexHullVolume(const ConvexHull& hull) { return ComputePolyhedronIntegrals(hull).volume; }

@@ -22,7 +22,16 @@ struct ConvexHull {
   std::vector<Vec3> vertices;            // m, body frame (centre of mass at the origin)
   std::vector<Face> faces;
   std::vector<std::array<int, 2>> edges; // each undirected edge once
+  // The two faces on each edge (edge_faces[e][0] holds the edge as
+  // edges[e][0] -> edges[e][1] in its loop), -1 where a face is missing:
+  // their normals are the ends of the edge's arc on the Gauss map, which the
+  // separating-axis test uses to skip edge pairs.
+  std::vector<std::array<int, 2>> edge_faces;
 };
+
+// Fills hull->edge_faces from the face loops and edges (BuildConvexHull does;
+// call it after building a hull's topology by hand).
+void ConnectEdgeFaces(ConvexHull* hull);
 
 // Builds the hull of a point cloud, merging coplanar faces. Fails with a
 // message when there are fewer than four points, a non-finite coordinate,

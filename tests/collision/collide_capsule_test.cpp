@@ -1,10 +1,11 @@
-// Hand-computed cases of the capsule pair functions, and the capsule-box
-// search against dense sampling of the capsule's axis.
+// Hand-computed cases of the capsule pair functions, and capsule-box against
+// brute-force candidate axes and dense sampling of the capsule's axis.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "service/collision/narrowphase.h"
 #include "service/collision/polyhedron_distance.h"
@@ -104,24 +105,55 @@ TEST(CollideCapsuleTest, CapsuleOnCubeHullMatchesTheBox) {
   }
 }
 
-// Verifies on random poses that the deepest capsule-box contact equals
-// r - (minimum over dense samples of the axis of the box's signed distance).
-TEST(CollideCapsuleTest, CapsuleBoxDepthMatchesDenseSampling) {
+// Largest separation of segment [p0, p1] (A) and a box (B) over the box's
+// face normals and the crosses of the segment with the box's edges, both
+// orientations, without pruning: minus the segment's penetration depth when
+// they overlap (the faces of the polytope S - B are among these).
+double SegmentBoxMaxSeparation(const Vec3& p0, const Vec3& p1, const RigidBody& box) {
+  const Mat3 R = box.Rotation();
+  std::vector<Vec3> axes;
+  for (int k = 0; k < 3; ++k) {
+    axes.push_back(R.col(k));
+    const Vec3 c = (p1 - p0).cross(R.col(k));
+    if (c.norm() > 1e-9) axes.push_back(c.normalized());
+  }
+  double best = -1e300;
+  for (const Vec3& axis : axes) {
+    for (const Vec3& u : {axis, Vec3(-axis)}) {
+      double box_lo = u.dot(box.x);
+      for (int k = 0; k < 3; ++k) box_lo -= box.shape.half_extents[k] * std::abs(u.dot(R.col(k)));
+      best = std::max(best, box_lo - std::max(u.dot(p0), u.dot(p1)));
+    }
+  }
+  return best;
+}
+
+// Verifies on random poses that the deepest capsule-box contact is
+// r - sd(axis, box): r plus the axis's penetration depth (all candidate axes)
+// when the axis pokes into the box, r minus its distance (dense samples of the
+// axis) when apart; and that the contacts share one normal.
+TEST(CollideCapsuleTest, CapsuleBoxDepthIsRadiusMinusAxisSignedDistance) {
   // 20001 samples of a 0.8 m axis are 4e-5 m apart; the distance is
   // 1-Lipschitz, so the sampled minimum is within half of that.
   constexpr int kSamples = 20001;
   constexpr double kSampleTol = 2e-5;  // m
   std::mt19937_64 rng(21);
-  int compared = 0;
+  int overlapping = 0, apart = 0;
   for (int trial = 0; trial < 200; ++trial) {
     const RigidBody capsule =
         Capsule(1, 0.15, 0.4, testing_util::RandomVector(rng, 0.5), testing_util::RandomRotation(rng));
     const RigidBody box = Box(2, Vec3(0.3, 0.2, 0.25), Vec3::Zero(), testing_util::RandomRotation(rng));
     ContactSet out;
     if (Collide(capsule, 0, box, 1, 0.2, &out) == 0) continue;
-    Vec3 p0, p1;
-    p0 = capsule.x - capsule.q * Vec3(0, 0, 0.4);
-    p1 = capsule.x + capsule.q * Vec3(0, 0, 0.4);
+    for (const Contact& c : out) EXPECT_NEAR((c.normal - out[0].normal).norm(), 0.0, 1e-12);
+    const Vec3 p0 = capsule.x - capsule.q * Vec3(0, 0, 0.4);
+    const Vec3 p1 = capsule.x + capsule.q * Vec3(0, 0, 0.4);
+    const double separation = SegmentBoxMaxSeparation(p0, p1, box);
+    if (separation < 0.0) {
+      EXPECT_NEAR(MaxDepth(out), 0.15 - separation, kTol);
+      ++overlapping;
+      continue;
+    }
     double min_d = 1e300;
     for (int i = 0; i < kSamples; ++i) {
       min_d = std::min(min_d, BoxSignedDistance(box, p0 + (p1 - p0) * (double(i) / (kSamples - 1))).distance);
@@ -130,9 +162,51 @@ TEST(CollideCapsuleTest, CapsuleBoxDepthMatchesDenseSampling) {
     // sampled minimum allows
     EXPECT_LE(MaxDepth(out), 0.15 - min_d + kSampleTol);
     EXPECT_GE(MaxDepth(out), 0.15 - min_d - kSearchTol);
-    ++compared;
+    ++apart;
   }
-  EXPECT_GT(compared, 50);
+  EXPECT_GT(overlapping, 20);
+  EXPECT_GT(apart, 20);
+}
+
+// Verifies a capsule pushed halfway into a box's top face, lying flat: two
+// contacts under the caps with the depth r + the axis's depth below the face
+// (sampling the axis's point depths would give the same here, but the face,
+// not the nearest face of each point, sets the normal).
+TEST(CollideCapsuleTest, CapsuleSunkIntoBoxFacePushesOutOfThatFace) {
+  ContactSet out;
+  // axis 0.05 below the top face z = 0.5, along x, inside |x| <= 0.3 < 1
+  ASSERT_EQ(Collide(Capsule(1, 0.1, 0.3, Vec3(0, 0, 0.45), kAlongX), 0, Box(2, Vec3(1, 1, 0.5), Vec3::Zero()), 1,
+                    0.0, &out),
+            2);
+  for (const Contact& c : out) {
+    EXPECT_NEAR(c.depth, 0.15, kTol);
+    EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, kTol);
+  }
+}
+
+// Verifies a capsule whose axis passes through a box near a vertical edge,
+// tilted: the depth is set by the edge-axis cross product, deeper than any
+// single point of the axis is inside the box.
+TEST(CollideCapsuleTest, CapsuleThroughBoxCornerUsesTheEdgeAxis) {
+  // an axis near the box's +x+y vertical edge, tilted in the diagonal plane:
+  // it enters through the bottom and leaves through the top (PD 0.18 m along
+  // the cross of the axis and the x edges; no point of it is 0.15 m deep)
+  const RigidBody box = Box(2, Vec3(0.5, 0.5, 0.5), Vec3::Zero());
+  const Quat q(Eigen::AngleAxisd(0.4, Vec3(1, -1, 0).normalized()));
+  const RigidBody capsule = Capsule(1, 0.05, 0.8, Vec3(0.46, 0.46, 0), q);
+  ContactSet out;
+  ASSERT_GT(Collide(capsule, 0, box, 1, 0.0, &out), 0);
+  const Vec3 p0 = capsule.x - capsule.q * Vec3(0, 0, 0.8);
+  const Vec3 p1 = capsule.x + capsule.q * Vec3(0, 0, 0.8);
+  const double separation = SegmentBoxMaxSeparation(p0, p1, box);
+  ASSERT_LT(separation, 0.0);
+  EXPECT_NEAR(MaxDepth(out), 0.05 - separation, kTol);
+  // the deepest point of the axis is less deep than the segment's penetration
+  double deepest_point = 0.0;
+  for (int i = 0; i <= 1000; ++i) {
+    deepest_point = std::max(deepest_point, -BoxSignedDistance(box, p0 + (p1 - p0) * (i / 1000.0)).distance);
+  }
+  EXPECT_LT(deepest_point, -separation - 1e-3);
 }
 
 }  // namespace

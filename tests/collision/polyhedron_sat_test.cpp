@@ -65,6 +65,14 @@ double SampledMaxSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b) 
   return best;
 }
 
+// Deepest a preferred axis may be when the true depth is `depth` (m): the
+// relative preference (faces of B, then edges) compounded, capped at
+// kSatMaxBias, plus the absolute tolerance of each (polyhedron_sat.h).
+double PreferredDepthBound(double depth) {
+  const double relative = depth / (kSatEdgeRelTolerance * kSatFaceRelTolerance);
+  return std::min(relative, depth + kSatMaxBias) + 2 * kSatAbsTolerance + kTol;
+}
+
 struct Pair {
   PosedPolyhedron a, b;
   RigidBody body_a, body_b;
@@ -110,8 +118,10 @@ TEST(PolyhedronSatTest, MatchesBruteForceOverAllCandidateAxes) {
       if (brute < 0.0) {
         ++overlapping;
         // depth of the chosen axis within the preference band of the true depth
-        EXPECT_LE(-sat.separation, -brute / (kSatEdgeRelTolerance * kSatFaceRelTolerance) +
-                                       2 * kSatAbsTolerance + kTol);
+        EXPECT_LE(-sat.separation, PreferredDepthBound(-brute));
+        // the unbiased axis overlaps by exactly the true depth
+        EXPECT_NEAR(sat.max_normal.norm(), 1.0, kTol);
+        EXPECT_NEAR(Separation(p.a, p.b, sat.max_normal), sat.max_separation, kTol);
       }
     }
     EXPECT_GT(overlapping, kTrials / 5) << "kind " << kind;
@@ -133,8 +143,8 @@ TEST(PolyhedronSatTest, DepthIsTheMinimumOverlapOverAllDirections) {
 }
 
 // Verifies the manifold against the references: contacts exist iff the bodies
-// overlap, share one unit normal, are at most four, and are no deeper than the
-// chosen axis (itself within the preference band of the true depth).
+// overlap, share one unit normal, are at most four, and the deepest has the
+// chosen axis's depth (itself within the preference band of the true depth).
 TEST(PolyhedronSatTest, ManifoldIsNoDeeperThanTheTruePenetration) {
   std::mt19937_64 rng(9);
   for (int kind = 0; kind < 3; ++kind) {
@@ -146,7 +156,11 @@ TEST(PolyhedronSatTest, ManifoldIsNoDeeperThanTheTruePenetration) {
       Collide(p.body_a, 0, p.body_b, 1, 0.0, &out);
       EXPECT_EQ(!out.empty(), brute < 0.0) << "kind " << kind << " trial " << trial;
       EXPECT_LE(out.size(), 4u);
-      const double bound = -brute / (kSatEdgeRelTolerance * kSatFaceRelTolerance) + 2 * kSatAbsTolerance + kTol;
+      if (!out.empty()) {
+        const SatResult sat = FindSeparatingAxis(p.a, p.b, 1e300);
+        EXPECT_NEAR(testing_util::MaxDepth(out), -sat.separation, 1e-9) << "kind " << kind << " trial " << trial;
+      }
+      const double bound = PreferredDepthBound(-brute);
       for (const Contact& c : out) {
         EXPECT_LE(c.depth, bound);
         EXPECT_NEAR((c.normal - out[0].normal).norm(), 0.0, kTol);

@@ -24,7 +24,8 @@ std::vector<Vec3> BoxCorners(const Vec3& h, const Vec3& offset = Vec3::Zero()) {
 }
 
 // The hull is closed and consistent: Euler's formula, unit normals, every
-// vertex on or under every face, every face's vertices on its plane.
+// vertex on or under every face, every face's vertices on its plane, each
+// edge between the two faces edge_faces names.
 void ExpectWellFormed(const ConvexHull& hull, double tol) {
   EXPECT_EQ(static_cast<int>(hull.vertices.size()) - static_cast<int>(hull.edges.size()) +
                 static_cast<int>(hull.faces.size()),
@@ -40,6 +41,22 @@ void ExpectWellFormed(const ConvexHull& hull, double tol) {
       n += hull.vertices[face.vertices[i]].cross(hull.vertices[face.vertices[(i + 1) % face.vertices.size()]]);
     }
     EXPECT_GT(n.dot(face.normal), 0.0);
+  }
+  // each edge lies in the loops of its two faces: u -> v in the first, v -> u in the second
+  ASSERT_EQ(hull.edge_faces.size(), hull.edges.size());
+  const auto has_directed = [&](int f, int u, int v) {
+    const std::vector<int>& loop = hull.faces[f].vertices;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      if (loop[i] == u && loop[(i + 1) % loop.size()] == v) return true;
+    }
+    return false;
+  };
+  for (std::size_t e = 0; e < hull.edges.size(); ++e) {
+    const int u = hull.edges[e][0], v = hull.edges[e][1];
+    ASSERT_GE(hull.edge_faces[e][0], 0);
+    ASSERT_GE(hull.edge_faces[e][1], 0);
+    EXPECT_TRUE(has_directed(hull.edge_faces[e][0], u, v));
+    EXPECT_TRUE(has_directed(hull.edge_faces[e][1], v, u));
   }
 }
 
