@@ -3,10 +3,11 @@
 #include "service/contact/contact_method.h"
 #include "service/contact/impulse_method.h"
 #include "service/contact/penalty_method.h"
+#include "service/contact/xpbd/xpbd_method.h"
 
 namespace contactsim {
 
-std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty"}; }
+std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty", "xpbd"}; }
 
 Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out) {
   if (name == "impulse") {
@@ -15,6 +16,10 @@ Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMetho
   }
   if (name == "penalty") {
     *out = std::make_unique<PenaltyMethod>();
+    return Status::Ok();
+  }
+  if (name == "xpbd") {
+    *out = std::make_unique<XpbdMethod>();
     return Status::Ok();
   }
   std::string known;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
 #include "service/contact/param_reader.h"
@@ -253,25 +254,6 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
   return it;
 }
 
-namespace {
-
-// Radius of a sphere about the centre of mass that holds the shape (m).
-double BoundingRadius(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::kSphere: return s.radius;
-    case ShapeType::kBox: return s.half_extents.norm();
-    case ShapeType::kCapsule: return s.half_length + s.radius;
-    case ShapeType::kConvex: {
-      double r = 0.0;
-      for (const Vec3& v : s.hull->vertices) r = std::max(r, v.norm());
-      return r;
-    }
-    default: return 0.0;  // planes are static: no rotation sweeps them
-  }
-}
-
-}  // namespace
-
 double ImpulseMethod::FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs,
                                      double h, int* iterations) const {
   // Bound on how fast any pair can close during the sub-step (needed for
@@ -279,12 +261,7 @@ double ImpulseMethod::FindImpactTime(const World& start, const std::vector<std::
   // relative speed plus rotation sweep plus what the forces add over h.
   double max_closing = 0.0;
   for (const auto& [i, j] : pairs) {
-    const RigidBody& a = start.bodies()[i];
-    const RigidBody& b = start.bodies()[j];
-    const double accel = (a.force * a.inv_mass - b.force * b.inv_mass).norm() * h;
-    max_closing = std::max(max_closing, (a.LinearVelocity() - b.LinearVelocity()).norm() + accel +
-                                            a.AngularVelocity().norm() * BoundingRadius(a.shape) +
-                                            b.AngularVelocity().norm() * BoundingRadius(b.shape));
+    max_closing = std::max(max_closing, ClosingSpeedBound(start.bodies()[i], start.bodies()[j], h));
   }
   // Separations up to everything the sub-step can close are measured exactly
   // rather than clamped, so advancement takes full-size steps.

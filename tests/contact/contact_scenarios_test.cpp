@@ -11,6 +11,7 @@
 
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
+#include "tests/contact/method_sim.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
@@ -24,17 +25,7 @@ using testing::AddGround;
 using testing::AddSphere;
 using testing::AddValidBody;
 
-struct Sim {
-  World world;
-  CollisionDetector detector;
-  std::unique_ptr<ContactMethod> method;
-  ContactSet contacts;
-  explicit Sim(const std::string& name) {
-    const Status st = CreateContactMethod(name, &method);
-    EXPECT_TRUE(st.ok()) << st.message();
-  }
-  StepStats Step() { return method->Step(world, detector, &contacts); }
-};
+using Sim = testing::MethodSim;
 
 // A static plane through the origin tilted by `angle` about y, and a cube of
 // half size `half` resting on it, its bottom face on the slope. Returns the
@@ -122,12 +113,15 @@ TEST_P(EveryMethodTest, SphereWithZeroRestitutionDoesNotBounce) {
   std::printf("%s: e = 0, highest point after contact %.3g m\n", GetParam(), highest);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, EveryMethodTest, ::testing::Values("impulse", "penalty"));
+INSTANTIATE_TEST_SUITE_P(Methods, EveryMethodTest, ::testing::Values("impulse", "penalty", "xpbd"));
 
-// Verifies that a stack of five boxes stays standing for 10 s under the
-// impulse method: every box within 1 cm of where it started.
-TEST(ImpulseScenarios, StackOfFiveBoxesStandsForTenSeconds) {
-  Sim sim("impulse");
+// Methods that stand stacks and collide a face's corners together.
+class StackingMethodTest : public ::testing::TestWithParam<const char*> {};
+
+// Verifies that a stack of five boxes stays standing for 10 s: every box
+// within 1 cm of where it started.
+TEST_P(StackingMethodTest, StackOfFiveBoxesStandsForTenSeconds) {
+  Sim sim(GetParam());
   AddGround(sim.world, 0.0, 0.5);
   const double half = 0.1;
   for (int i = 0; i < 5; ++i) AddBox(sim.world, half, Vec3(0, 0, half * (1 + 2 * i)), 0.0, 0.5);
@@ -137,16 +131,16 @@ TEST(ImpulseScenarios, StackOfFiveBoxesStandsForTenSeconds) {
   for (size_t i = 0; i < sim.world.bodies().size(); ++i) {
     worst = std::max(worst, (sim.world.bodies()[i].x - start.bodies()[i].x).norm());
   }
-  EXPECT_LT(worst, 1e-2);
-  std::printf("impulse: five-box stack, largest displacement after 10 s %.3g m\n", worst);
+  EXPECT_LT(worst, 1e-2) << GetParam();
+  std::printf("%s: five-box stack, largest displacement after 10 s %.3g m\n", GetParam(), worst);
 }
 
 // Verifies that the four corners of a box landing flat collide together: it
 // rebounds to e^2 h within 2% and does not start to spin (one corner after
 // another would give the first the whole impulse and tip the box).
-TEST(ImpulseScenarios, BoxLandingFlatReboundsStraight) {
+TEST_P(StackingMethodTest, BoxLandingFlatReboundsStraight) {
   const double e = 0.5, h = 1.0, half = 0.1;
-  Sim sim("impulse");
+  Sim sim(GetParam());
   AddGround(sim.world, e, 0.5);
   const BodyId id = AddBox(sim.world, half, Vec3(0, 0, h + half), e, 0.5);
   bool bounced = false;
@@ -163,9 +157,13 @@ TEST(ImpulseScenarios, BoxLandingFlatReboundsStraight) {
     }
     last_vz = vz;
   }
-  EXPECT_NEAR(apex, e * e * h, 0.02 * e * e * h);
-  EXPECT_LT(worst_spin, 1e-4);  // the solver's velocity tolerance leaves ~2e-6 rad/s
+  EXPECT_NEAR(apex, e * e * h, 0.02 * e * e * h) << GetParam();
+  EXPECT_LT(worst_spin, 1e-4) << GetParam();  // impulse: its velocity tolerance leaves ~2e-6 rad/s
+  std::printf("%s: box landing flat rebounds to %.5f m (e^2 h = %.5f m), spin %.2g rad/s\n", GetParam(), apex,
+              e * e * h, worst_spin);
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, StackingMethodTest, ::testing::Values("impulse", "xpbd"));
 
 // Verifies that a sphere at 50 m/s does not pass through a 2 cm thick static
 // box (collision time by backtracking): it ends on the near side.

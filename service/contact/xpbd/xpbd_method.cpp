@@ -1,0 +1,118 @@
+#include "service/contact/xpbd/xpbd_method.h"
+
+#include <algorithm>
+#include <set>
+
+#include "service/collision/motion_bound.h"
+#include "service/collision/narrowphase.h"
+#include "service/contact/param_reader.h"
+#include "service/physics/integrator.h"
+
+namespace contactsim {
+
+Status XpbdMethod::SetParams(const ParamMap& params) {
+  XpbdParams p = params_;
+  ParamReader r(Name(), params);
+  r.Int("substeps", 1, 1000, &p.substeps);
+  r.Int("iterations", 1, 1000, &p.iterations);
+  r.Double("compliance", 0.0, 1.0, &p.compliance);
+  r.Double("restitution_threshold", 0.0, 100.0, &p.restitution_threshold);
+  r.Double("margin", 0.0, 1.0, &p.margin);
+  Status status = r.Finish();
+  if (status.ok()) params_ = p;
+  return status;
+}
+
+ParamMap XpbdMethod::Params() const {
+  return {{"substeps", std::to_string(params_.substeps)},
+          {"iterations", std::to_string(params_.iterations)},
+          {"compliance", FormatValue(params_.compliance)},
+          {"restitution_threshold", FormatValue(params_.restitution_threshold)},
+          {"margin", FormatValue(params_.margin)}};
+}
+
+void XpbdMethod::DetectAhead(const World& world, CollisionDetector& detector, double dt) {
+  detector.Detect(world, params_.margin, dt, &detected_);
+  // pairs that can close by more than the margin within the step are
+  // collided again with their own reach, so a fast body is seen before it
+  // arrives (and cannot pass through a thin one between two detections)
+  const auto& bodies = world.bodies();
+  std::set<BodyPair> fast;
+  std::vector<double> reach;
+  for (const BodyPair& p : detector.pairs()) {
+    const double r = ClosingSpeedBound(bodies[p.first], bodies[p.second], dt) * dt;
+    if (r <= params_.margin) continue;
+    fast.insert(p);
+    reach.push_back(r);
+  }
+  if (fast.empty()) return;
+  ContactSet kept;
+  for (const Contact& c : detected_) {
+    if (!fast.count({std::min(c.a, c.b), std::max(c.a, c.b)})) kept.push_back(c);
+  }
+  size_t k = 0;
+  for (const BodyPair& p : fast) {
+    Collide(bodies[p.first], p.first, bodies[p.second], p.second, params_.margin + reach[k++], &kept);
+  }
+  detected_.swap(kept);
+}
+
+StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  StepStats stats;
+  contacts_out->clear();
+  const double dt = world.dt;
+  const double h = dt / params_.substeps;
+  const double alpha_tilde = params_.compliance / (h * h);
+  const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
+  world.AccumulateForces();
+  DetectAhead(world, detector, dt);
+  contacts_.clear();
+  for (const Contact& c : detected_) contacts_.push_back(MakeXpbdContact(c, world));
+
+  auto& bodies = world.bodies();
+  start_.resize(bodies.size());
+  predicted_.resize(bodies.size());
+  for (int sub = 0; sub < params_.substeps; ++sub) {
+    for (size_t i = 0; i < bodies.size(); ++i) start_[i] = {bodies[i].x, bodies[i].q};
+    IntegrateMomenta(world, h);
+    IntegratePositions(world, h);
+    for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
+    BeginXpbdSubstep(world, &contacts_);
+    for (int it = 0; it < params_.iterations; ++it) {
+      SolveXpbdContactPositions(world, start_, h, alpha_tilde, &contacts_);
+    }
+    stats.iterations += params_.iterations;
+    // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      RigidBody& b = bodies[i];
+      if (!b.IsDynamic()) continue;
+      const Vec3 dx = b.x - predicted_[i].x;
+      Quat dq = b.q * predicted_[i].q.conjugate();
+      if (dx.isZero(0.0) && b.q.coeffs() == predicted_[i].q.coeffs()) continue;
+      if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
+      b.P += b.mass * dx / h;
+      b.L += b.InertiaWorld() * (2.0 / h * dq.vec());
+    }
+    SolveXpbdContactVelocities(world, h, threshold, &contacts_);
+  }
+
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const XpbdContact& x = contacts_[k];
+    Vec3 pa, pb;
+    const double depth = XpbdContactDepth(x, world, &pa, &pb);
+    if (depth <= 0.0 && x.impulse.isZero(0.0)) continue;
+    Contact c = detected_[k];
+    c.depth = depth;
+    c.point = 0.5 * (pa + pb);
+    c.normal_value = x.n.dot(x.impulse) / dt;
+    c.tangent_value = (x.impulse - x.n * x.n.dot(x.impulse)) / dt;
+    contacts_out->push_back(c);
+    stats.max_penetration = std::max(stats.max_penetration, depth);
+  }
+  world.FinishStep();
+  stats.substeps = params_.substeps;
+  stats.contacts = static_cast<int>(contacts_out->size());
+  return stats;
+}
+
+}  // namespace contactsim

@@ -1,0 +1,62 @@
+// The xpbd method: rigid bodies by extended position based dynamics
+// (Mueller, Macklin, Chentanez, Jeschke and Kim 2020, "Detailed rigid body
+// simulation with extended position based dynamics", SCA, Algorithm 2; the
+// rigid-body constraints of Deul, Charrier and Bender 2014).
+//
+// One step of dt: detect contacts once, with a margin widened per pair by
+// how far it can close in dt, so that every sub-step sees the pairs about to
+// meet; then `substeps` sub-steps of h = dt / substeps, each
+//  1. predict: P += F h, L += tau h, then x, q from the new velocities
+//     (the integrator of service/physics, so free flight is the same as
+//     under every other method);
+//  2. solve positions, `iterations` times: contacts (non-penetration, static
+//     friction; xpbd_contact.h) with compliance alpha (alpha~ = alpha / h^2);
+//  3. velocities from the poses: bodies moved by the solve get
+//     P += m dx / h and L += I dw with dw = 2 vec(dq) / h, dq the rotation the
+//     solve added (a body the solve left alone keeps its momenta exactly);
+//  4. velocity pass: dynamic friction and restitution (xpbd_contact.h).
+// Small sub-steps rather than many iterations is the paper's point: the
+// error of one Gauss-Seidel sweep shrinks with h^2, so stacks stay stiff.
+//
+// Contacts report forces (ValueKind kForce): the step's average force on B,
+// the sum of lambda / h (positional impulses) and the velocity pass's
+// impulses over the sub-steps, divided by dt; lambda / h^2 is a sub-step's
+// contact force.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "service/contact/contact_method.h"
+#include "service/contact/xpbd/xpbd_contact.h"
+
+namespace contactsim {
+
+struct XpbdParams {
+  int substeps = 20;                  // sub-steps per step
+  int iterations = 1;                 // position iterations per sub-step
+  double compliance = 0.0;            // m/N, inverse contact stiffness (0: rigid)
+  double restitution_threshold = 0.0; // m/s; restitution applies above max(this, 2 |g| h)
+  double margin = 0.01;               // m, detection distance beyond each pair's closing motion
+};
+
+class XpbdMethod : public ContactMethod {
+ public:
+  const char* Name() const override { return "xpbd"; }
+  ContactValueKind ValueKind() const override { return ContactValueKind::kForce; }
+  Status SetParams(const ParamMap& params) override;
+  ParamMap Params() const override;
+  StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
+  const XpbdParams& params() const { return params_; }
+
+ private:
+  // Contacts with depth > -(margin + closing distance over dt) per pair.
+  void DetectAhead(const World& world, CollisionDetector& detector, double dt);
+
+  XpbdParams params_;
+  ContactSet detected_;
+  std::vector<XpbdContact> contacts_;
+  std::vector<XpbdPose> start_, predicted_;
+};
+
+}  // namespace contactsim

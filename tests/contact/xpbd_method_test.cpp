@@ -1,0 +1,165 @@
+// Tests of the xpbd method (extended position based dynamics) against
+// analytic results (the stack and the incline are in
+// contact_scenarios_test.cpp): a resting box carries its weight, a
+// sliding box stops at the Coulomb distance, a dropped sphere rebounds to
+// e^2 h, compliance gives the spring's sag, and parameters are validated.
+#include "service/contact/xpbd/xpbd_method.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "service/physics/body_settings.h"
+#include "service/physics/integrator.h"
+#include "tests/contact/method_sim.h"
+#include "tests/contact/test_bodies.h"
+
+namespace contactsim {
+namespace {
+
+constexpr double kG = 9.81;  // m/s^2
+
+using testing::AddBox;
+using testing::AddGround;
+using testing::AddSphere;
+using testing::AddValidBody;
+using Sim = testing::MethodSim;
+
+// Verifies that a box resting on the ground stays put (the solve removes
+// exactly what gravity's prediction adds) and that its contacts report the
+// weight as a force.
+TEST(XpbdMethod, RestingBoxStaysAndCarriesItsWeight) {
+  Sim sim("xpbd");
+  AddGround(sim.world, 0.0, 0.5);
+  const double half = 0.1;
+  const BodyId id = AddBox(sim.world, half, Vec3(0, 0, half), 0.0, 0.5);
+  const Vec3 x0 = sim.world.Find(id)->x;
+  StepStats stats;
+  for (int i = 0; i < 480; ++i) stats = sim.Step();
+  const RigidBody& b = *sim.world.Find(id);
+  // one sub-step's gravity, g h^2, is the most the box can sink
+  const double h = sim.world.dt / 20.0;  // the default 20 sub-steps
+  EXPECT_LT((b.x - x0).norm(), kG * h * h + 1e-9);
+  EXPECT_LT(b.LinearVelocity().norm(), 1e-9);
+  EXPECT_LT(b.AngularVelocity().norm(), 1e-9);
+  ASSERT_EQ(sim.contacts.size(), 4u);
+  double total = 0.0;
+  for (const Contact& c : sim.contacts) total += c.normal_value;
+  EXPECT_NEAR(total, b.mass * kG, 1e-6 * b.mass * kG);
+  EXPECT_EQ(sim.method->ValueKind(), ContactValueKind::kForce);
+  EXPECT_EQ(stats.substeps, 20);
+  EXPECT_EQ(stats.iterations, 20);
+}
+
+// Verifies dynamic friction: a box sliding at 3 m/s with mu = 0.4 stops
+// after v0^2 / (2 mu g) within 5%, and stays stopped.
+TEST(XpbdMethod, SlidingBoxStopsAtTheCoulombDistance) {
+  const double mu = 0.4, v0 = 3.0, half = 0.1;
+  Sim sim("xpbd");
+  AddGround(sim.world, 0.0, mu);
+  const BodyId id = AddBox(sim.world, half, Vec3(0, 0, half), 0.0, mu, Vec3(v0, 0, 0));
+  for (int i = 0; i < 480; ++i) sim.Step();  // stops after v0 / (mu g) = 0.76 s
+  const RigidBody& b = *sim.world.Find(id);
+  const double expected = v0 * v0 / (2.0 * mu * kG);
+  EXPECT_NEAR(b.x.x(), expected, 0.05 * expected);
+  EXPECT_LT(b.LinearVelocity().norm(), 1e-6);
+  std::printf("xpbd: stopping distance %.4f m, analytic %.4f m (%+.2f%%)\n", b.x.x(), expected,
+              100.0 * (b.x.x() - expected) / expected);
+}
+
+// Verifies restitution in the velocity pass: a sphere dropped from 1 m
+// rebounds to e^2 h within 5% for e = 0.5 and 0.9.
+TEST(XpbdMethod, DroppedSphereReboundsToRestitutionSquaredHeight) {
+  for (const double e : {0.5, 0.9}) {
+    const double r = 0.1, h = 1.0;
+    Sim sim("xpbd");
+    AddGround(sim.world, e, 0.5);
+    const BodyId id = AddSphere(sim.world, r, Vec3(0, 0, h + r), e);
+    bool bounced = false;
+    double apex = 0.0, last_vz = 0.0;
+    for (int i = 0; i < 720; ++i) {
+      sim.Step();
+      const RigidBody& b = *sim.world.Find(id);
+      const double vz = b.LinearVelocity().z();
+      if (!bounced && last_vz < 0.0 && vz > 0.0) bounced = true;
+      if (bounced) {
+        apex = std::max(apex, b.x.z() - r);
+        if (vz < 0.0) break;
+      }
+      last_vz = vz;
+    }
+    EXPECT_NEAR(apex, e * e * h, 0.05 * e * e * h) << "e = " << e;
+    std::printf("xpbd: e = %.1f rebound %.5f m, analytic %.5f m (%+.2f%%)\n", e, apex, e * e * h,
+                100.0 * (apex - e * e * h) / (e * e * h));
+  }
+}
+
+// Verifies compliance: with alpha (m/N) per contact, each of a resting box's
+// four corners carries m g / 4 and sinks alpha m g / 4 (the XPBD constraint
+// is a spring of stiffness 1 / alpha).
+TEST(XpbdMethod, ComplianceSinksABoxByItsSpringDeflection) {
+  const double alpha = 1e-6, half = 0.1;
+  Sim sim("xpbd", {{"compliance", "1e-6"}});
+  AddGround(sim.world, 0.0, 0.5);
+  const BodyId id = AddBox(sim.world, half, Vec3(0, 0, half), 0.0, 0.5);
+  for (int i = 0; i < 480; ++i) sim.Step();
+  const RigidBody& b = *sim.world.Find(id);
+  const double expected = alpha * b.mass * kG / 4.0;
+  EXPECT_NEAR(half - b.x.z(), expected, 0.02 * expected);
+}
+
+// Verifies that a sphere at 50 m/s does not pass through a 2 cm static box:
+// the detection margin grows with the pair's closing speed.
+TEST(XpbdMethod, FastSphereDoesNotTunnelThroughThinBox) {
+  Sim sim("xpbd");
+  sim.world.gravity.setZero();
+  BodySettings wall;
+  wall.shape = ShapeType::kBox;
+  wall.half_extents = Vec3(0.01, 1.0, 1.0);
+  wall.fixed = true;
+  wall.restitution = 0.0;
+  AddValidBody(sim.world, wall);
+  const double r = 0.05;
+  const BodyId ball = AddSphere(sim.world, r, Vec3(-1.0, 0, 0), 0.0, 0.5, Vec3(50.0, 0, 0));
+  for (int i = 0; i < 60; ++i) sim.Step();
+  const RigidBody& b = *sim.world.Find(ball);
+  EXPECT_LT(b.x.x(), -0.01 - r + 1e-6);
+  EXPECT_LT(b.LinearVelocity().x(), 1e-6);
+}
+
+// Verifies that a body without contacts moves exactly as the integrator
+// moves it in the same sub-steps (the solve leaves its momenta alone).
+TEST(XpbdMethod, FreeFlightMatchesTheIntegrator) {
+  Sim sim("xpbd", {{"substeps", "4"}});
+  const BodyId id = AddBox(sim.world, Vec3(0.1, 0.2, 0.4), Vec3(0, 0, 5), 0.5, 0.5, Vec3(1, 2, 3));
+  sim.world.Find(id)->SetVelocity(Vec3(1, 2, 3), Vec3(3, -1, 2));
+  World reference = sim.world;
+  for (int i = 0; i < 24; ++i) {
+    sim.Step();
+    reference.AccumulateForces();
+    for (int s = 0; s < 4; ++s) {
+      IntegrateMomenta(reference, reference.dt / 4);
+      IntegratePositions(reference, reference.dt / 4);
+    }
+    reference.FinishStep();
+  }
+  EXPECT_EQ(HashWorldState(sim.world), HashWorldState(reference));
+}
+
+// Verifies parameter validation: a bad value is named and changes nothing.
+TEST(XpbdMethod, RejectsBadParametersAndKeepsTheOldOnes) {
+  XpbdMethod m;
+  const Status st = m.SetParams({{"substeps", "8"}, {"compliance", "-1"}});
+  EXPECT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("compliance"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("-1"), std::string::npos) << st.message();
+  EXPECT_EQ(m.params().substeps, 20);
+  EXPECT_TRUE(m.SetParams({{"substeps", "8"}, {"iterations", "2"}}).ok());
+  EXPECT_EQ(m.Params().at("substeps"), "8");
+  EXPECT_EQ(m.Params().at("iterations"), "2");
+}
+
+}  // namespace
+}  // namespace contactsim
