@@ -2,12 +2,13 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/impulse_method.h"
+#include "service/contact/lcp/lcp_method.h"
 #include "service/contact/penalty_method.h"
 #include "service/contact/xpbd/xpbd_method.h"
 
 namespace contactsim {
 
-std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty", "xpbd"}; }
+std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty", "xpbd", "lcp"}; }
 
 Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out) {
   if (name == "impulse") {
@@ -20,6 +21,10 @@ Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMetho
   }
   if (name == "xpbd") {
     *out = std::make_unique<XpbdMethod>();
+    return Status::Ok();
+  }
+  if (name == "lcp") {
+    *out = std::make_unique<LcpMethod>();
     return Status::Ok();
   }
   std::string known;

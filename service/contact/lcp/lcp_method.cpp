@@ -1,0 +1,108 @@
+#include "service/contact/lcp/lcp_method.h"
+
+#include <algorithm>
+
+#include "service/contact/contact_row.h"
+#include "service/contact/lcp/lcp_contact_rows.h"
+#include "service/contact/lcp/lemke_rows.h"
+#include "service/physics/integrator.h"
+
+namespace contactsim {
+
+Status LcpMethod::SetParams(const ParamMap& params) { return ParseLcpParams(Name(), params, params_, &params_); }
+
+void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts) {
+  if (params_.drift != "split" || params_.erp <= 0.0) return;
+  split_rows_.clear();
+  LoadSolverBodies(world, &bodies_);
+  for (const Contact& c : contacts) {
+    const double excess = c.depth - params_.slop;
+    if (excess <= 0.0) continue;
+    const RigidBody& A = world.bodies()[c.a];
+    const RigidBody& B = world.bodies()[c.b];
+    ConstraintRow row = DirectionRow(c.a, c.b, c.point - A.x, c.point - B.x, c.normal);
+    row.rhs = params_.erp * excess;  // m of separation this step (pseudo-velocity x 1 step)
+    split_rows_.push_back(row);
+  }
+  if (split_rows_.empty()) return;
+  for (SolverBody& s : bodies_) s.v.setZero(), s.w.setZero();
+  PgsOptions options;
+  options.iterations = params_.iterations;
+  options.tolerance = 1e-9;  // m
+  split_pgs_.Solve(split_rows_, bodies_, options);
+  auto& bodies = world.bodies();
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies[i].IsDynamic()) continue;
+    bodies[i].x += bodies_[i].v;
+    bodies[i].q = (QuatFromRotationVector(bodies_[i].w) * bodies[i].q).normalized();
+  }
+}
+
+void LcpMethod::Solve(std::vector<SolverBody>& bodies) {
+  const bool use_lemke =
+      params_.solver == "lemke" && static_cast<int>(rows_.size()) <= params_.max_lemke_rows;
+  if (use_lemke) {
+    LemkeOptions options;
+    options.max_pivots = params_.max_pivots;
+    const Status st = SolveRowsLemke(rows_, bodies, options, &report_);
+    if (st.ok() && report_.converged) return;
+  }
+  if (params_.solver == "lemke") ++lemke_fallbacks_;
+  PgsOptions options;
+  options.iterations = params_.iterations;
+  options.tolerance = params_.tolerance;
+  report_ = pgs_.Solve(rows_, bodies, options);
+}
+
+StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  StepStats stats;
+  const double h = world.dt;
+  world.AccumulateForces();
+  detector.Detect(world, params_.slop, h, &contacts_);
+  CorrectPositions(world, contacts_);
+
+  LoadSolverBodies(world, &before_);
+  rows_.clear();
+  ContactRowOptions row_options;
+  row_options.h = h;
+  row_options.restitution_threshold = params_.restitution_threshold;
+  row_options.slop = params_.slop;
+  row_options.baumgarte_erp = params_.drift == "baumgarte" ? params_.erp : 0.0;
+  AppendContactRows(contacts_, world, before_, row_options, &rows_);
+  if (params_.warm_start && params_.solver == "pgs") warm_start_.Load(contacts_, &rows_);
+
+  IntegrateMomenta(world, h);
+  LoadSolverBodies(world, &bodies_);
+  report_ = SolveReport();
+  if (!rows_.empty()) Solve(bodies_);
+  StoreSolverBodies(bodies_, world);
+  warm_start_.Store(contacts_, rows_);
+
+  // positions: untouched bodies ballistically (x0 + v0 h + F/(2m) h^2 =
+  // x0 + (v1 - F/(2m) h) h), the others with their end velocity
+  auto& bodies = world.bodies();
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    RigidBody& b = bodies[i];
+    const bool touched = bodies_[i].dP.squaredNorm() + bodies_[i].dL.squaredNorm() > 0.0;
+    if (b.IsDynamic() && !touched) b.x -= 0.5 * h * h * b.inv_mass * b.force;
+  }
+  IntegratePositions(world, h);
+
+  contacts_out->clear();
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    Contact c = contacts_[k];
+    const ConstraintRow& t1 = rows_[3 * k + 1];
+    const ConstraintRow& t2 = rows_[3 * k + 2];
+    c.normal_value = rows_[3 * k].lambda;
+    c.tangent_value = t1.lambda * t1.lin_b + t2.lambda * t2.lin_b;
+    contacts_out->push_back(c);
+    stats.max_penetration = std::max(stats.max_penetration, c.depth);
+  }
+  world.FinishStep();
+  stats.contacts = static_cast<int>(contacts_out->size());
+  stats.iterations = report_.iterations;
+  stats.residual = report_.residual;
+  return stats;
+}
+
+}  // namespace contactsim

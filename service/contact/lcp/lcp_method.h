@@ -1,0 +1,67 @@
+// The lcp contact method: contacts (and joints) as one complementarity
+// problem per step, velocity-level time stepping after Stewart and Trinkle
+// (IJNME 1996) and Anitescu and Potra (Nonlinear Dynamics 1997).
+//
+// One step of length h:
+//  1. detect contacts at the current poses (speculative within `slop`);
+//  2. drift = split (default): remove erp (depth - slop) of each
+//     penetration by a split impulse, pseudo-velocities solved by PGS on the
+//     normal rows and applied to positions only (Catto 2005; as the impulse
+//     method does), so the correction adds no kinetic energy. drift =
+//     baumgarte instead adds erp (depth - slop) / h to the normal rows'
+//     target velocity, which can add energy (a resting stack jitters);
+//  3. v* = v + h M^-1 f_ext (IntegrateMomenta);
+//  4. rows: per contact a normal row with Newton restitution above
+//     restitution_threshold and two friction rows (lcp_contact_rows.h);
+//  5. solve for the impulses: solver = pgs (pgs.h, warm-started from last
+//     step's impulses by feature id) or lemke (lemke_rows.h, the exact mixed
+//     LCP; if it fails or has more than max_lemke_rows rows the step falls
+//     back to PGS and lemke_fallbacks() counts it);
+//  6. positions: bodies that received no impulse fly ballistically,
+//     x += v0 h + F/(2m) h^2 (exact under gravity, as in the impulse method);
+//     the others x += v h; orientations by IntegratePositions.
+//
+// StepStats: iterations = PGS sweeps or Lemke pivots; residual = the
+// solver's residual (pgs: m/s, last sweep's largest row-velocity change);
+// contacts; max_penetration. last_report() adds the complementarity error.
+// Contact values are impulses (N s).
+#pragma once
+
+#include <vector>
+
+#include "service/contact/contact_method.h"
+#include "service/contact/lcp/lcp_params.h"
+#include "service/contact/lcp/pgs.h"
+#include "service/contact/lcp/warm_start_cache.h"
+
+namespace contactsim {
+
+class LcpMethod : public ContactMethod {
+ public:
+  const char* Name() const override { return "lcp"; }
+  ContactValueKind ValueKind() const override { return ContactValueKind::kImpulse; }
+  Status SetParams(const ParamMap& params) override;
+  ParamMap Params() const override { return LcpParamsToMap(params_); }
+  StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
+  void ResetCaches() override { warm_start_.Clear(); }
+
+  const LcpParams& params() const { return params_; }
+  const SolveReport& last_report() const { return report_; }
+  int lemke_fallbacks() const { return lemke_fallbacks_; }
+  const WarmStartCache& warm_start() const { return warm_start_; }
+
+ private:
+  void CorrectPositions(World& world, const ContactSet& contacts);
+  void Solve(std::vector<SolverBody>& bodies);
+
+  LcpParams params_;
+  ContactSet contacts_;
+  std::vector<SolverBody> before_, bodies_;
+  std::vector<ConstraintRow> rows_, split_rows_;
+  PgsSolver pgs_, split_pgs_;
+  WarmStartCache warm_start_;
+  SolveReport report_;
+  int lemke_fallbacks_ = 0;
+};
+
+}  // namespace contactsim

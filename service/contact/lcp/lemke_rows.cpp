@@ -1,0 +1,105 @@
+#include "service/contact/lcp/lemke_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "service/contact/lcp/delassus.h"
+#include "service/contact/lcp/mixed_lcp.h"
+#include "service/contact/lcp/row_complementarity.h"
+
+namespace contactsim {
+namespace {
+
+enum class Kind { kFree, kUnilateral, kFriction };
+
+Status Classify(const std::vector<ConstraintRow>& rows, std::vector<Kind>* kinds) {
+  kinds->resize(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ConstraintRow& r = rows[k];
+    if (r.normal_row >= 0) {
+      if (static_cast<size_t>(r.normal_row) >= rows.size() || rows[r.normal_row].normal_row >= 0 ||
+          rows[r.normal_row].lo != 0.0) {
+        return Status::InvalidArgument("row " + std::to_string(k) + ": normal_row " +
+                                       std::to_string(r.normal_row) + " is not a unilateral row");
+      }
+      (*kinds)[k] = Kind::kFriction;
+    } else if (r.lo == -ConstraintRow::kInf && r.hi == ConstraintRow::kInf) {
+      (*kinds)[k] = Kind::kFree;
+    } else if (r.lo == 0.0 && r.hi == ConstraintRow::kInf) {
+      (*kinds)[k] = Kind::kUnilateral;
+    } else {
+      return Status::InvalidArgument("row " + std::to_string(k) + ": bounds [" + std::to_string(r.lo) + ", " +
+                                     std::to_string(r.hi) + "] have no LCP form here (lemke takes free, [0, inf) "
+                                     "and friction rows)");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
+                      const LemkeOptions& options, SolveReport* report) {
+  *report = SolveReport();
+  std::vector<Kind> kinds;
+  if (Status st = Classify(rows, &kinds); !st.ok()) return st;
+  const int m = static_cast<int>(rows.size());
+  if (m == 0) {
+    report->converged = true;
+    return Status::Ok();
+  }
+
+  // variables: one per free or unilateral row; b+, b-, g per friction row
+  std::vector<int> var(m), minus(m, -1), slip(m, -1);
+  int nv = 0;
+  for (int k = 0; k < m; ++k) {
+    var[k] = nv++;
+    if (kinds[k] == Kind::kFriction) minus[k] = nv++, slip[k] = nv++;
+  }
+  // lambda = P y
+  MatX P = MatX::Zero(m, nv);
+  for (int k = 0; k < m; ++k) {
+    P(k, var[k]) = 1.0;
+    if (minus[k] >= 0) P(k, minus[k]) = -1.0;
+  }
+  const MatX GP = DenseDelassus(rows, bodies) * P;
+  VecX c = RowVelocities(rows, bodies);
+  for (int k = 0; k < m; ++k) c[k] -= rows[k].rhs;
+
+  MatX A = MatX::Zero(nv, nv);
+  VecX b = VecX::Zero(nv);
+  std::vector<bool> free(nv, false);
+  for (int k = 0; k < m; ++k) {
+    A.row(var[k]) = GP.row(k);
+    b[var[k]] = c[k];
+    if (kinds[k] == Kind::kFree) free[var[k]] = true;
+    if (kinds[k] != Kind::kFriction) continue;
+    A(var[k], slip[k]) += 1.0;
+    A.row(minus[k]) = -GP.row(k);
+    A(minus[k], slip[k]) += 1.0;
+    b[minus[k]] = -c[k];
+    A(slip[k], var[rows[k].normal_row]) = rows[k].mu;
+    A(slip[k], var[k]) = -1.0;
+    A(slip[k], minus[k]) = -1.0;
+  }
+
+  const LcpSolution sol = SolveMixedLcp(A, b, free, options);
+  report->iterations = sol.pivots;
+  report->outcome = sol.outcome;
+  if (sol.outcome != LcpOutcome::kSolved) return Status::Ok();
+  report->converged = true;
+  for (int k = 0; k < nv; ++k) {
+    const double wk = sol.w[k], zk = sol.z[k];
+    report->residual = std::max(report->residual, free[k] ? std::abs(wk) : std::max({-wk, -zk, std::abs(wk * zk)}));
+  }
+  const VecX lambda = P * sol.z;
+  for (int k = 0; k < m; ++k) {
+    rows[k].lambda = lambda[k];
+    rows[k].Apply(lambda[k], bodies);
+  }
+  report->complementarity = ComplementarityError(rows, bodies);
+  return Status::Ok();
+}
+
+}  // namespace contactsim

@@ -1,0 +1,39 @@
+// Constraint rows solved exactly as one mixed LCP by Lemke's method: the
+// velocity-level time-stepping problem of Stewart and Trinkle ("An implicit
+// time-stepping scheme for rigid body dynamics with inelastic collisions
+// and Coulomb friction", IJNME 1996) and Anitescu and Potra ("Formulating
+// dynamic multi-rigid-body contact problems with friction as solvable
+// linear complementarity problems", Nonlinear Dynamics 1997), with joints
+// as equality rows.
+//
+// With G = J M^-1 J^T and c = J v* - rhs (v* the velocities before the
+// solve) each row becomes:
+//   equality (lo = -inf, hi = +inf):  G_k lambda + c_k = 0, lambda_k free;
+//   unilateral (lo = 0, hi = +inf):   0 <= lambda_k  _|_  G_k lambda + c_k >= 0;
+//   friction (normal_row n, |lambda_k| <= mu lambda_n), lambda_k = b+ - b-
+//   with a slip-speed variable g (Stewart-Trinkle with the directions +-t_k):
+//     0 <= b+  _|_  u_k + g >= 0,    0 <= b-  _|_  -u_k + g >= 0,
+//     0 <= g   _|_  mu lambda_n - b+ - b- >= 0,   u_k = G_k lambda + c_k.
+// Each tangent row is its own 1D Coulomb law, so the friction set is the
+// box |lambda_t1|, |lambda_t2| <= mu lambda_n, the same four-sided pyramid
+// that PGS projects on. Anitescu and Potra show that Lemke's method
+// processes these LCPs (their matrix is copositive-plus after the
+// substitution), so ray termination means a modelling error, reported.
+// Other bounds (finite boxes) are not expressed here: InvalidArgument.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/constraint_row.h"
+#include "service/contact/lcp/lemke.h"
+#include "service/contact/lcp/solve_report.h"
+#include "service/physics/status.h"
+
+namespace contactsim {
+
+// On success rows' lambda hold the impulses and the bodies have received
+// them; on a Lemke failure (report->outcome) nothing is applied.
+Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
+                      const LemkeOptions& options, SolveReport* report);
+
+}  // namespace contactsim

@@ -1,0 +1,71 @@
+// Projected Gauss-Seidel on constraint rows, in body-velocity form
+// (Erleben, "Velocity-based shock propagation for multibody dynamics
+// animation", ACM TOG 2007; Catto, "Iterative dynamics with temporal
+// coherence", GDC 2005; Andrews, Erleben and Ferguson, SIGGRAPH 2022
+// course, section 6).
+//
+// The LCP w = A lambda + b with A = J M^-1 J^T is never formed: a sweep
+// visits each row k once and sets
+//   lambda_k <- clamp(lambda_k + (rhs_k - J_k v) / A_kk, lo_k, hi_k),
+//   v        <- v + M^-1 J_k^T (change of lambda_k),
+// which is Gauss-Seidel on A with projection onto the bounds. Friction
+// rows take their bounds +-mu lambda_n from their normal row's current
+// impulse (the boxed, "pyramid" friction of ODE's quickstep). Rows come in
+// with lambda as the warm start (last step's impulses), which is applied
+// first.
+//
+// Reported per solve:
+//   residual        m/s, the largest change of a row velocity J_k v made by
+//                   the last sweep (|change of lambda_k| A_kk); the solve
+//                   stops when it falls below the tolerance;
+//   complementarity J, ComplementarityError of the rows after the solve
+//                   (row_complementarity.h): zero exactly at a solution.
+//
+// Performance: rows are copied once per solve into a flat array holding
+// J and M^-1 J^T (so the sweep does no 3x3 products) and the reciprocal of
+// A_kk; velocities live in a dense array of (v, w) per body plus one
+// zero-velocity slot for the world, so a sweep is branch-free and
+// allocation-free (the workspace is reused between solves).
+#pragma once
+
+#include <vector>
+
+#include "service/contact/constraint_row.h"
+#include "service/contact/lcp/solve_report.h"
+
+namespace contactsim {
+
+struct PgsOptions {
+  int iterations = 30;        // sweeps at most
+  double tolerance = 1e-6;    // m/s: stop when no row velocity changes more in a sweep
+};
+
+class PgsSolver {
+ public:
+  // Solves for rows' lambda (warm start in, result out) and adds the
+  // impulses to the bodies (v, w, dP, dL as ConstraintRow::Apply does).
+  SolveReport Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies, const PgsOptions& options);
+
+ private:
+  struct Row {
+    int a, b;                     // velocity slots (the world: the last, zero slot)
+    Vec3 ja_lin, ja_ang, jb_lin, jb_ang;
+    Vec3 ma_lin, ma_ang, mb_lin, mb_ang;  // M^-1 J^T
+    double diag, inv_diag;
+    double rhs, lo, hi, mu, lambda;
+    int normal_row;
+  };
+  struct Velocity {
+    Vec3 v, w;
+  };
+  double RowVelocity(const Row& r) const {
+    const Velocity& A = vel_[r.a];
+    const Velocity& B = vel_[r.b];
+    return r.ja_lin.dot(A.v) + r.ja_ang.dot(A.w) + r.jb_lin.dot(B.v) + r.jb_ang.dot(B.w);
+  }
+
+  std::vector<Row> rows_;
+  std::vector<Velocity> vel_;
+};
+
+}  // namespace contactsim
