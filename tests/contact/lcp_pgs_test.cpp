@@ -155,5 +155,33 @@ TEST(Pgs, FrictionPyramidMatchesCoulombAndLemke) {
   }
 }
 
+// Verifies an upper-limit row (lambda <= 0, as a joint's upper limit) in
+// both solvers: it stops motion along +x (lambda = -m v) and lets motion
+// along -x go (lambda = 0).
+TEST(Pgs, UpperLimitRowPushesOneWayInBothSolvers) {
+  for (double vx : {1.0, -1.0}) {
+    for (const char* solver : {"pgs", "lemke"}) {
+      std::vector<SolverBody> bodies(1);
+      bodies[0].inv_mass = 0.5;
+      bodies[0].inv_inertia = Mat3::Identity();
+      bodies[0].v = Vec3(vx, 0, 0);
+      std::vector<ConstraintRow> rows(1);
+      rows[0].b = 0;
+      rows[0].lin_b = Vec3::UnitX();
+      rows[0].lo = -ConstraintRow::kInf;
+      rows[0].hi = 0.0;
+      SolveReport report;
+      if (std::string(solver) == "pgs") {
+        PgsSolver pgs;
+        report = pgs.Solve(rows, bodies, PgsOptions());
+      } else {
+        ASSERT_TRUE(SolveRowsLemke(rows, bodies, {}, &report).ok());
+      }
+      EXPECT_NEAR(rows[0].lambda, vx > 0 ? -2.0 * vx : 0.0, 1e-12) << solver << " vx " << vx;
+      EXPECT_NEAR(bodies[0].v.x(), vx > 0 ? 0.0 : vx, 1e-12) << solver << " vx " << vx;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace contactsim

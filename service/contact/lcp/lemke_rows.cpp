@@ -11,7 +11,7 @@
 namespace contactsim {
 namespace {
 
-enum class Kind { kFree, kUnilateral, kFriction };
+enum class Kind { kFree, kUnilateral, kUpper, kFriction };  // kUpper: lambda <= 0 (a joint's upper limit)
 
 Status Classify(const std::vector<ConstraintRow>& rows, std::vector<Kind>* kinds) {
   kinds->resize(rows.size());
@@ -28,6 +28,8 @@ Status Classify(const std::vector<ConstraintRow>& rows, std::vector<Kind>* kinds
       (*kinds)[k] = Kind::kFree;
     } else if (r.lo == 0.0 && r.hi == ConstraintRow::kInf) {
       (*kinds)[k] = Kind::kUnilateral;
+    } else if (r.lo == -ConstraintRow::kInf && r.hi == 0.0) {
+      (*kinds)[k] = Kind::kUpper;
     } else {
       return Status::InvalidArgument("row " + std::to_string(k) + ": bounds [" + std::to_string(r.lo) + ", " +
                                      std::to_string(r.hi) + "] have no LCP form here (lemke takes free, [0, inf) "
@@ -57,10 +59,10 @@ Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>&
     var[k] = nv++;
     if (kinds[k] == Kind::kFriction) minus[k] = nv++, slip[k] = nv++;
   }
-  // lambda = P y
+  // lambda = P y (an upper-limit row's variable is -lambda >= 0)
   MatX P = MatX::Zero(m, nv);
   for (int k = 0; k < m; ++k) {
-    P(k, var[k]) = 1.0;
+    P(k, var[k]) = kinds[k] == Kind::kUpper ? -1.0 : 1.0;
     if (minus[k] >= 0) P(k, minus[k]) = -1.0;
   }
   const MatX GP = DenseDelassus(rows, bodies) * P;
@@ -71,8 +73,9 @@ Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>&
   VecX b = VecX::Zero(nv);
   std::vector<bool> free(nv, false);
   for (int k = 0; k < m; ++k) {
-    A.row(var[k]) = GP.row(k);
-    b[var[k]] = c[k];
+    const double sign = kinds[k] == Kind::kUpper ? -1.0 : 1.0;  // w = -(G lambda + c) >= 0 for lambda <= 0
+    A.row(var[k]) = sign * GP.row(k);
+    b[var[k]] = sign * c[k];
     if (kinds[k] == Kind::kFree) free[var[k]] = true;
     if (kinds[k] != Kind::kFriction) continue;
     A(var[k], slip[k]) += 1.0;

@@ -10,6 +10,7 @@
 // solve) each row becomes:
 //   equality (lo = -inf, hi = +inf):  G_k lambda + c_k = 0, lambda_k free;
 //   unilateral (lo = 0, hi = +inf):   0 <= lambda_k  _|_  G_k lambda + c_k >= 0;
+//   upper limit (lo = -inf, hi = 0):  0 <= -lambda_k _|_  -(G_k lambda + c_k) >= 0;
 //   friction (normal_row n, |lambda_k| <= mu lambda_n), lambda_k = b+ - b-
 //   with a slip-speed variable g (Stewart-Trinkle with the directions +-t_k):
 //     0 <= b+  _|_  u_k + g >= 0,    0 <= b-  _|_  -u_k + g >= 0,
@@ -20,6 +21,7 @@
 // processes these LCPs (their matrix is copositive-plus after the
 // substitution), so ray termination means a modelling error, reported.
 // Other bounds (finite boxes) are not expressed here: InvalidArgument.
+// Friction rows must name a [0, inf) normal row.
 #pragma once
 
 #include <vector>
