@@ -11,6 +11,12 @@ namespace contactsim {
 
 Status LcpMethod::SetParams(const ParamMap& params) { return ParseLcpParams(Name(), params, params_, &params_); }
 
+Status LcpMethod::LoadState(const std::string& bytes) {
+  if (warm_start_.Restore(bytes)) return Status::Ok();
+  return Status::InvalidArgument("lcp method state: malformed warm-start impulses (" + std::to_string(bytes.size()) +
+                                 " bytes)");
+}
+
 void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   if (params_.drift != "split" || params_.erp <= 0.0) return;
   split_rows_.clear();

@@ -27,6 +27,7 @@
 // Contact values are impulses (N s).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "service/contact/contact_method.h"
@@ -44,6 +45,9 @@ class LcpMethod : public ContactMethod {
   ParamMap Params() const override { return LcpParamsToMap(params_); }
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { warm_start_.Clear(); }
+  // the warm-start impulses, bit for bit, for snapshots
+  std::string SaveState() const override { return warm_start_.Save(); }
+  Status LoadState(const std::string& bytes) override;
 
   const LcpParams& params() const { return params_; }
   const SolveReport& last_report() const { return report_; }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "service/physics/byte_stream.h"
+
 namespace contactsim {
 
 void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const {
@@ -23,6 +25,36 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
                          {rows[3 * k].lambda, rows[3 * k + 1].lambda, rows[3 * k + 2].lambda}, k});
   }
   std::sort(impulses_.begin(), impulses_.end());
+}
+
+std::string WarmStartCache::Save() const {
+  ByteWriter out;
+  out.Put(static_cast<uint64_t>(impulses_.size()));
+  for (const Entry& e : impulses_) {
+    out.Put(std::get<0>(e.key));
+    out.Put(std::get<1>(e.key));
+    out.Put(std::get<2>(e.key));
+    for (double l : e.lambda) out.Put(l);
+  }
+  return out.bytes();
+}
+
+bool WarmStartCache::Restore(const std::string& bytes) {
+  std::vector<Entry> loaded;
+  ByteReader in(bytes);
+  uint64_t n = 0;
+  bool ok = bytes.empty() || in.Get(&n);
+  for (uint64_t i = 0; ok && i < n; ++i) {
+    BodyId a = 0, b = 0;
+    uint32_t feature = 0;
+    std::array<double, 3> l{};
+    ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&l[0]) && in.Get(&l[1]) && in.Get(&l[2]);
+    loaded.push_back({Key{a, b, feature}, l, static_cast<size_t>(i)});
+  }
+  if (!ok || !in.done()) return false;
+  std::sort(loaded.begin(), loaded.end());
+  impulses_ = std::move(loaded);
+  return true;
 }
 
 }  // namespace contactsim

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -23,6 +24,11 @@ class WarmStartCache {
   // Replaces the cache by the rows' impulses.
   void Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows);
   void Clear() { impulses_.clear(); }
+  // The impulses bit for bit, for snapshots (ContactMethod::SaveState).
+  std::string Save() const;
+  // Replaces the impulses by saved ones; false (and nothing changed) when
+  // the bytes are malformed.
+  bool Restore(const std::string& bytes);
   size_t size() const { return impulses_.size(); }
 
  private:
