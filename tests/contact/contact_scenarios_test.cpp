@@ -113,7 +113,7 @@ TEST_P(EveryMethodTest, SphereWithZeroRestitutionDoesNotBounce) {
   std::printf("%s: e = 0, highest point after contact %.3g m\n", GetParam(), highest);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, EveryMethodTest, ::testing::Values("impulse", "penalty", "xpbd"));
+INSTANTIATE_TEST_SUITE_P(Methods, EveryMethodTest, ::testing::Values("impulse", "penalty", "xpbd", "lcp"));
 
 // Methods that stand stacks and collide a face's corners together.
 class StackingMethodTest : public ::testing::TestWithParam<const char*> {};
@@ -163,7 +163,7 @@ TEST_P(StackingMethodTest, BoxLandingFlatReboundsStraight) {
               e * e * h, worst_spin);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, StackingMethodTest, ::testing::Values("impulse", "xpbd"));
+INSTANTIATE_TEST_SUITE_P(Methods, StackingMethodTest, ::testing::Values("impulse", "xpbd", "lcp"));
 
 // Verifies that a sphere at 50 m/s does not pass through a 2 cm thick static
 // box (collision time by backtracking): it ends on the near side.

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "tests/contact/method_sim.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
@@ -28,16 +29,9 @@ double MechanicalEnergy(const World& world) {
   return e;
 }
 
-struct Sim {
-  explicit Sim(const std::string& solver) {
-    method = std::make_unique<LcpMethod>();
-    EXPECT_TRUE(method->SetParams({{"solver", solver}}).ok());
-  }
-  World world;
-  CollisionDetector detector;
-  std::unique_ptr<ContactMethod> method;
-  ContactSet contacts;
-  StepStats Step() { return method->Step(world, detector, &contacts); }
+// The shared MethodSim with lcp and a solver.
+struct Sim : testing::MethodSim {
+  explicit Sim(const std::string& solver) : MethodSim("lcp", {{"solver", solver}}) {}
   LcpMethod& lcp() { return static_cast<LcpMethod&>(*method); }
 };
 
