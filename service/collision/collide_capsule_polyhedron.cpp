@@ -30,13 +30,11 @@
 #include "service/collision/collide_pairs.h"
 #include "service/collision/feature_id.h"
 #include "service/collision/polyhedron_distance.h"
+#include "service/collision/polyhedron_sat.h"
 
 namespace contactsim {
 namespace {
 
-// Edge axes d x e with |d x e| below this are skipped (as polyhedron_sat.cpp):
-// a segment parallel to an edge is separated by that edge's faces.
-constexpr double kParallelSin = 1e-6;
 // Segments shorter than this (m) are a point (a capsule of half length 0).
 constexpr double kPointLength = 1e-12;
 // A clipped part shorter than this (m) gives one contact, not two.
@@ -102,7 +100,7 @@ SegmentAxis SegmentSeparatingAxis(const Vec3& p0, const Vec3& p1, const PosedPol
   for (int e = 0; e < static_cast<int>(b.edge_dirs.size()); ++e) {
     const Vec3 c = dir.cross(b.edge_dirs[e]);
     const double len = c.norm();
-    if (len < kParallelSin) continue;
+    if (len < kSatParallelSin) continue;  // parallel: the edge's faces separate
     Vec3 w = c / len;  // outward normal of B at the edge, along which S is
     const Vec3& pe = b.vertices[b.topology->edges[e][0]];
     double sep;

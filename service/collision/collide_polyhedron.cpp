@@ -33,24 +33,16 @@ void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const Collid
 }
 
 // box/convex (a) - box/convex (b): separating-axis test, with the axis that
-// separated the pair last call tried first when a cache is given (Baraff).
+// separated the pair last call tried first when a cache is given (Baraff);
+// only a miss poses the polyhedra.
 void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
                       ContactSet* out) {
-  PosedPolyhedron pa, pb;
-  if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
   // equal ids (callers without a world) cannot be told apart in the cache
   SeparatingAxisCache* cache = a.id != b.id ? ctx.cache : nullptr;
-  if (cache != nullptr) {
-    if (const SeparatingAxis* cached = cache->Find(a.id, b.id)) {
-      Vec3 n;
-      double sep;
-      if (AxisSeparation(pa, pb, *cached, &n, &sep) && sep > ctx.margin) {
-        cache->CountHit();
-        return;
-      }
-    }
-    cache->CountMiss();
-  }
+  // a hit is decided on the bodies' own frames, before anything is posed
+  if (cache != nullptr && cache->StillSeparates(a, b, ctx.margin)) return;
+  PosedPolyhedron pa, pb;
+  if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
   const SatResult sat = FindSeparatingAxis(pa, pb, ctx.margin);
   if (sat.separation > ctx.margin) {
     if (cache != nullptr) cache->Store(a.id, b.id, sat.axis);

@@ -7,10 +7,6 @@
 namespace contactsim {
 namespace {
 
-// Edge pairs with |dA x dB| below this are skipped: sin(angle) < 1e-6 gives an
-// ill-conditioned axis, and near-parallel edges are separated by face axes.
-constexpr double kParallelSin = 1e-6;
-
 // min over B of n.v - offset: the separation along outward face normal n of
 // the other body whose support value is `offset`.
 double FaceSeparation(const Vec3& n, double offset, const PosedPolyhedron& other) {
@@ -25,7 +21,7 @@ bool EdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, 
                     Vec3* normal, double* separation) {
   const Vec3 c = a.edge_dirs[ea].cross(b.edge_dirs[eb]);
   const double len = c.norm();
-  if (len < kParallelSin) return false;
+  if (len < kSatParallelSin) return false;
   const Vec3 u = c / len;
   double lo_a, hi_a, lo_b, hi_b;
   ProjectPolyhedron(a, u, &lo_a, &hi_a);
@@ -64,7 +60,7 @@ bool MinkowskiEdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b,
                              Vec3* normal, double* separation) {
   const Vec3 c = a.edge_dirs[ea].cross(b.edge_dirs[eb]);
   const double len = c.norm();
-  if (len < kParallelSin) return false;
+  if (len < kSatParallelSin) return false;
   const Vec3& pa = a.vertices[a.topology->edges[ea][0]];
   const Vec3& pb = b.vertices[b.topology->edges[eb][0]];
   Vec3 u = c / len;

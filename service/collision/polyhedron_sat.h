@@ -66,6 +66,10 @@ constexpr double kSatFaceRelTolerance = 0.98;
 constexpr double kSatAbsTolerance = 1e-5;  // m
 constexpr double kSatMaxBias = 5e-4;       // m
 
+// Edge pairs with |dA x dB| below this are skipped: sin(angle) < 1e-6 gives an
+// ill-conditioned axis, and near-parallel edges are separated by face axes.
+constexpr double kSatParallelSin = 1e-6;
+
 // Separation along one axis; false when the axis does not exist for these
 // polyhedra (index out of range, or parallel edges).
 bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const SeparatingAxis& axis,

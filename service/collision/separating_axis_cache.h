@@ -5,6 +5,11 @@
 // pair; the narrowphase tests it first and runs the full separating-axis test
 // only when it no longer separates (a miss).
 //
+// A hit must cost far less than the full test, so the cached axis is tested
+// on the bodies' own (body-frame) geometry: only the axis is rotated, into
+// each body's frame, and each body's support along it is taken there (a box
+// in closed form, a hull over its vertices); nothing is posed.
+//
 // Keys are ordered maps of body ids, so iteration and memory use do not depend
 // on hashing (ARCHITECTURE.md, determinism). Ids are never reused, so an entry
 // of a removed body is never looked up again; Clear() drops them all.
@@ -21,14 +26,17 @@ namespace contactsim {
 
 class SeparatingAxisCache {
  public:
+  // True (a hit) when the axis stored for bodies a and b (box or convex)
+  // separates them by more than `margin` (m) at their current poses; false (a
+  // miss) when there is none or it no longer separates. Counts the outcome.
+  bool StillSeparates(const RigidBody& a, const RigidBody& b, double margin);
+
   // The axis stored for the ordered pair (a, b), or nullptr.
   const SeparatingAxis* Find(BodyId a, BodyId b) const;
   void Store(BodyId a, BodyId b, const SeparatingAxis& axis);
   void Erase(BodyId a, BodyId b);
 
-  // Hit: the cached axis still separated the pair. Miss: the full test ran.
-  void CountHit() { ++hits_; }
-  void CountMiss() { ++misses_; }
+  // Calls of StillSeparates that returned true (hits) and false (misses).
   int64_t hits() const { return hits_; }
   int64_t misses() const { return misses_; }
   size_t size() const { return axes_.size(); }

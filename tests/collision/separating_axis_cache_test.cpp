@@ -6,8 +6,11 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
+#include <vector>
 
 #include "service/collision/narrowphase.h"
+#include "service/collision/posed_polyhedron.h"
 #include "tests/collision/narrowphase_test_util.h"
 
 namespace contactsim {
@@ -38,8 +41,14 @@ TEST(SeparatingAxisCacheTest, StoresFindsErasesAndClears) {
   ASSERT_NE(cache.Find(1, 2), nullptr);
   EXPECT_TRUE((*cache.Find(1, 2) == SeparatingAxis{SeparatingAxis::Kind::kEdges, 3, 4}));
   EXPECT_EQ(cache.Find(2, 1), nullptr);
-  cache.CountHit();
-  cache.CountMiss();
+  // boxes 1 and 2 apart along x: face 0 of A (+x) separates, nothing stored for (2, 1)
+  const RigidBody a = Box(1, Vec3(0.5, 0.5, 0.5), Vec3::Zero());
+  const RigidBody b = Box(2, Vec3(0.5, 0.5, 0.5), Vec3(2, 0, 0));
+  cache.Store(1, 2, {SeparatingAxis::Kind::kFaceA, 0, -1});
+  EXPECT_TRUE(cache.StillSeparates(a, b, 0.0));
+  EXPECT_FALSE(cache.StillSeparates(b, a, 0.0));
+  EXPECT_EQ(cache.hits(), 1);
+  EXPECT_EQ(cache.misses(), 1);
   cache.Erase(1, 2);
   EXPECT_EQ(cache.Find(1, 2), nullptr);
   cache.Store(5, 6, {SeparatingAxis::Kind::kFaceA, 0, -1});
@@ -88,6 +97,38 @@ TEST(SeparatingAxisCacheTest, CoherentMotionHitsAndMatchesUncached) {
   cached.Reset();
   EXPECT_EQ(cached.cache().hits(), 0);
   EXPECT_EQ(cached.cache().size(), 0u);
+}
+
+// Verifies on random poses that a cached axis, tested on the bodies' own
+// frames, separates exactly when the posed polyhedra's separation along it
+// exceeds the margin: faces of A, faces of B and edge pairs of boxes and hulls.
+TEST(SeparatingAxisCacheTest, BodyFrameTestAgreesWithPosedSeparation) {
+  // separations of ~1 m bodies computed two ways differ by round-off ~1e-15 m
+  constexpr double kRoundOff = 1e-12;  // m
+  std::mt19937_64 rng(17);
+  int compared = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const RigidBody a = trial % 2 == 0 ? Box(1, Vec3(0.4, 0.25, 0.15), Vec3::Zero(), testing_util::RandomRotation(rng))
+                                       : Convex(1, RockHull(), Vec3::Zero(), testing_util::RandomRotation(rng));
+    const RigidBody b = Convex(2, RockHull(), testing_util::RandomVector(rng, 0.8), testing_util::RandomRotation(rng));
+    PosedPolyhedron pa, pb;
+    ASSERT_TRUE(PosePolyhedron(a, &pa) && PosePolyhedron(b, &pb));
+    std::vector<SeparatingAxis> axes;
+    for (int f = 0; f < static_cast<int>(pa.normals.size()); ++f) axes.push_back({SeparatingAxis::Kind::kFaceA, f, -1});
+    for (int f = 0; f < static_cast<int>(pb.normals.size()); ++f) axes.push_back({SeparatingAxis::Kind::kFaceB, -1, f});
+    for (int e = 0; e < 5; ++e) axes.push_back({SeparatingAxis::Kind::kEdges, e, 2 * e + 1});
+    for (const SeparatingAxis& axis : axes) {
+      Vec3 n;
+      double sep;
+      if (!AxisSeparation(pa, pb, axis, &n, &sep)) continue;
+      SeparatingAxisCache cache;
+      cache.Store(1, 2, axis);
+      EXPECT_TRUE(cache.StillSeparates(a, b, sep - kRoundOff)) << "trial " << trial;
+      EXPECT_FALSE(cache.StillSeparates(a, b, sep + kRoundOff)) << "trial " << trial;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 2000);
 }
 
 // Verifies that bodies without distinct ids (no world) bypass the cache.
