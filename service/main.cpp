@@ -1,7 +1,7 @@
 // contactsim-server: owns one physics world and serves it over LCM.
 //
 //   contactsim-server --config FILE [--scene FILE] [--lcm-url URL] [--prefix NAME]
-//                     [--log-level LEVEL] [--mode realtime|free_run] [--paused] [--no-live-line]
+//                     [--log-level LEVEL] [--mode realtime|free_run|lockstep] [--paused] [--no-live-line]
 //                     [--journal DIR]
 //
 // Two threads: this one runs the simulation loop (SimServer::Run), a second
@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
   app.add_option("--lcm-url", lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else the project default)");
   app.add_option("--prefix", prefix, "channel prefix (default from config: CONTACTSIM)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
-  app.add_option("--mode", mode, "realtime or free_run")->check(CLI::IsMember({"realtime", "free_run"}));
+  app.add_option("--mode", mode, "realtime, free_run or lockstep")
+      ->check(CLI::IsMember({"realtime", "free_run", "lockstep"}));
   app.add_flag("--paused", paused, "start paused");
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
   app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
@@ -57,7 +58,9 @@ int main(int argc, char** argv) {
   if (!prefix.empty()) setup.options.prefix = prefix;
   if (!lcm_url.empty()) setup.lcm_url = lcm_url;
   if (!log_level.empty()) setup.log_level = log_level;
-  if (!mode.empty()) setup.options.mode = mode == "free_run" ? RunMode::kFreeRun : RunMode::kRealtime;
+  if (!mode.empty()) {
+    setup.options.mode = mode == "free_run" ? RunMode::kFreeRun : mode == "lockstep" ? RunMode::kLockstep : RunMode::kRealtime;
+  }
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
   if (!journal_dir.empty()) setup.options.journal_dir = journal_dir;
@@ -85,6 +88,9 @@ int main(int argc, char** argv) {
   transport.Subscribe(server.Channel("SCENE_CMD"), [&](const std::string&, const void* d, int n) {
     server.OnSceneMessage(d, n);
   });
+  transport.Subscribe(server.Channel("INPUT"), [&](const std::string&, const void* d, int n) {
+    server.OnInputMessage(d, n);
+  });
   if (!(st = server.Init(setup.scene.get(), setup.method)).ok()) {
     spdlog::critical("{}", st.message());
     return 1;
@@ -94,7 +100,8 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, OnSignal);
   spdlog::info("contactsim-server {} ready: {} bodies, method {}, {} mode{}, channels {}_*, LCM {}",
                CONTACTSIM_VERSION, server.world().bodies().size(), server.method().Name(),
-               setup.options.mode == RunMode::kRealtime ? "realtime" : "free_run",
+               setup.options.mode == RunMode::kRealtime ? "realtime"
+               : setup.options.mode == RunMode::kFreeRun ? "free_run" : "lockstep",
                setup.options.start_paused ? " (paused)" : "", setup.options.prefix, url);
 
   std::thread lcm_thread([&] {

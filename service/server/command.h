@@ -12,16 +12,17 @@
 #include "service/contact/contact_method.h"
 #include "service/physics/rigid_body.h"
 #include "service/scene/scene_spec.h"
+#include "service/server/lockstep.h"
 
 namespace contactsim {
 
-enum class RunMode { kRealtime = 1, kFreeRun = 2 };
+enum class RunMode { kRealtime = 1, kFreeRun = 2, kLockstep = 3 };
 
 struct Command {
   enum class Kind {
     kAddBody, kRemoveBody, kSetPose, kSetVelocity, kApplyForce, kApplyImpulse, kSetMass, kSetMaterial,
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
-    kSnapshot, kRestore, kRewind,
+    kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -49,6 +50,10 @@ struct Command {
   std::string snapshot_name;           // SNAPSHOT, RESTORE: a slot, or
   std::string snapshot_path;           //   a file
   int64_t target_step = 0;             // REWIND
+  LatePolicy late_policy = LatePolicy::kWait;  // REGISTER_CONTROLLER
+  double late_timeout = 0.0;           // REGISTER_CONTROLLER, s; 0 = the server's
+  bool late_default = true;            // REGISTER_CONTROLLER gave no policy
+  ControllerInput input;               // INPUT
 
   // The command as it arrived (LCM-encoded), for the journal.
   std::string payload;

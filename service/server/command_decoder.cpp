@@ -187,8 +187,9 @@ Status DecodeSceneCommand(const scene_cmd_t& m, Command* cmd) {
       return Status::Ok();
     case scene_cmd_t::SET_MODE:
       cmd->kind = Command::Kind::kSetMode;
-      if (m.mode != scene_cmd_t::REALTIME && m.mode != scene_cmd_t::FREE_RUN) {
-        return Status::InvalidArgument("mode must be REALTIME=1 or FREE_RUN=2, got " + std::to_string(m.mode));
+      if (m.mode != scene_cmd_t::REALTIME && m.mode != scene_cmd_t::FREE_RUN && m.mode != scene_cmd_t::LOCKSTEP) {
+        return Status::InvalidArgument("mode must be REALTIME=1, FREE_RUN=2 or LOCKSTEP=3, got " +
+                                       std::to_string(m.mode));
       }
       cmd->mode = static_cast<RunMode>(m.mode);
       cmd->real_time_factor = m.real_time_factor == 0.0 ? 1.0 : m.real_time_factor;
@@ -206,9 +207,53 @@ Status DecodeSceneCommand(const scene_cmd_t& m, Command* cmd) {
         return Status::InvalidArgument("target_step must be >= 0, got " + std::to_string(m.target_step));
       }
       return Status::Ok();
+    case scene_cmd_t::REGISTER_CONTROLLER:
+      cmd->kind = Command::Kind::kRegisterController;
+      if (m.late_policy < scene_cmd_t::LATE_DEFAULT || m.late_policy > scene_cmd_t::LATE_DROP) {
+        return Status::InvalidArgument("late_policy must be one of DEFAULT=0, WAIT=1, REUSE=2, DROP=3, got " +
+                                       std::to_string(m.late_policy));
+      }
+      cmd->late_default = m.late_policy == scene_cmd_t::LATE_DEFAULT;
+      if (!cmd->late_default) cmd->late_policy = static_cast<LatePolicy>(m.late_policy);
+      cmd->late_timeout = m.late_timeout;
+      if (m.late_timeout == 0.0) return Status::Ok();
+      return CheckInRange("late_timeout", m.late_timeout, 1e-4, 3600.0);
+    case scene_cmd_t::RELEASE_CONTROLLER:
+      cmd->kind = Command::Kind::kReleaseController;
+      return Status::Ok();
     default: break;
   }
-  return Status::InvalidArgument("op must be one of RESET=1 .. REWIND=12, got " + std::to_string(m.op));
+  return Status::InvalidArgument("op must be one of RESET=1 .. RELEASE_CONTROLLER=14, got " + std::to_string(m.op));
+}
+
+Status DecodeInput(const input_t& m, Command* cmd) {
+  cmd->kind = Command::Kind::kInput;
+  cmd->client_id = m.client_id;
+  cmd->request_id = m.request_id;
+  ControllerInput& in = cmd->input;
+  in.controller = m.client_id;
+  in.request_id = m.request_id;
+  in.step = m.step;
+  const size_t n = static_cast<size_t>(std::max(0, m.num_bodies));
+  if (m.num_bodies < 0 || m.body_ids.size() != n || m.forces.size() != n || m.torques.size() != n) {
+    return Status::InvalidArgument("num_bodies must equal the number of body ids, forces and torques, got " +
+                                   std::to_string(m.num_bodies));
+  }
+  Status st;
+  for (size_t i = 0; i < n; ++i) {
+    BodyInput b;
+    b.body = m.body_ids[i];
+    if (m.forces[i].size() != 3 || m.torques[i].size() != 3) {
+      return Status::InvalidArgument("forces and torques need 3 numbers each");
+    }
+    b.force = V3(m.forces[i].data());
+    b.torque = V3(m.torques[i].data());
+    const std::string at = "[" + std::to_string(i) + "]";
+    if (!(st = CheckFinite("forces" + at, b.force)).ok()) return st;
+    if (!(st = CheckFinite("torques" + at, b.torque)).ok()) return st;
+    in.bodies.push_back(b);
+  }
+  return Status::Ok();
 }
 
 }  // namespace contactsim

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <contactsim/body_cmd_t.hpp>
+#include <contactsim/input_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 
 #include "service/physics/status.h"
@@ -15,6 +16,8 @@ namespace contactsim {
 // field and the value.
 Status DecodeBodyCommand(const body_cmd_t& msg, const Material& default_material, Command* cmd);
 Status DecodeSceneCommand(const scene_cmd_t& msg, Command* cmd);
+// A lockstep controller's input (input_t): sizes agree, numbers finite.
+Status DecodeInput(const input_t& msg, Command* cmd);
 
 // Builds a contact method by name with text parameters, validating both.
 Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method);

@@ -55,6 +55,11 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
                                    std::to_string(config->snapshot_every_steps()) + " and " +
                                    std::to_string(config->max_snapshots()));
   }
+  LatePolicy late;
+  if (!(st = ParseLatePolicy(config->late_policy(), &late)).ok()) return Status::InvalidArgument(at("late_policy") + st.message());
+  if (!(st = CheckInRange("late_timeout_s", config->late_timeout_s(), 1e-4, 3600.0)).ok()) {
+    return Status::InvalidArgument(at("late_timeout_s") + st.message());
+  }
   ParamMap params;
   for (const auto& p : config->method_params()) params[p.name()] = p.value();
   std::shared_ptr<ContactMethod> method;
@@ -68,7 +73,7 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
                        const std::string& scene_override, ServerSetup* setup) {
   ServerSetup s;
   s.options.prefix = config.channel_prefix();
-  s.options.mode = config.mode() == proto::ServerConfig::FREE_RUN ? RunMode::kFreeRun : RunMode::kRealtime;
+  s.options.mode = static_cast<RunMode>(config.mode());  // equal values by design
   s.options.real_time_factor = config.real_time_factor();
   s.options.start_paused = config.start_paused();
   s.options.state_rate_hz = config.state_rate_hz();
@@ -83,6 +88,8 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
   }
   ParseFsyncPolicy(config.journal_fsync(), &s.options.journal_fsync);  // checked by LoadServerConfig
   s.options.snapshot_every = config.snapshot_every_steps();
+  ParseLatePolicy(config.late_policy(), &s.options.late_policy);  // checked by LoadServerConfig
+  s.options.late_timeout = config.late_timeout_s();
   s.options.max_snapshots = config.max_snapshots();
   s.lcm_url = config.lcm_url();
   s.log_level = config.log_level();

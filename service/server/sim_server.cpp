@@ -334,10 +334,16 @@ bool SimServer::Apply(Command& cmd) {
       mode_ = cmd.mode;
       real_time_factor_ = cmd.real_time_factor;
       reanchor_ = true;
-      SendReply(cid, rid, Status::Ok(), mode_ == RunMode::kRealtime ? "mode realtime" : "mode free_run");
+      SendReply(cid, rid, Status::Ok(),
+                mode_ == RunMode::kRealtime ? "mode realtime" : mode_ == RunMode::kFreeRun ? "mode free_run" : "mode lockstep");
       return false;
     case K::kSnapshot:
       ApplySnapshotCommand(cmd);
+      return false;
+    case K::kRegisterController:
+    case K::kReleaseController:
+    case K::kInput:
+      ApplyLockstepCommand(cmd);
       return false;
     case K::kRestore:
     case K::kRewind:
@@ -350,10 +356,12 @@ bool SimServer::Apply(Command& cmd) {
 void SimServer::SimulateStep() { last_stats_ = method_->Step(world_, detector_, &contacts_); }
 
 void SimServer::StepWorld() {
+  ApplyInputs();
   SimulateStep();
   if (step_budget_ > 0) --step_budget_;
   if (options_.snapshot_every > 0 && world_.step % options_.snapshot_every == 0) TakePeriodicSnapshot();
-  if (world_.step % state_every_ == 0) PublishState();
+  // controllers need every STATE
+  if (world_.step % state_every_ == 0 || (mode_ == RunMode::kLockstep && lockstep_.active())) PublishState();
   if (world_.step % contacts_every_ == 0) PublishContacts();
   FinishStepCommands();
 }
@@ -379,7 +387,9 @@ static void PublishMessage(Transport* transport, const std::string& channel, con
 }
 
 void SimServer::PublishState() {
-  PublishMessage(transport_, Channel("STATE"), MakeStateMessage(world_));
+  state_t msg = MakeStateMessage(world_);
+  msg.input_digest = static_cast<int64_t>(input_digest_);
+  PublishMessage(transport_, Channel("STATE"), msg);
   last_state_step_ = world_.step;
 }
 
@@ -399,7 +409,7 @@ void SimServer::PublishStatus(Clock::time_point now) {
 
   status_t s;
   s.version = CONTACTSIM_VERSION;
-  s.mode = mode_ == RunMode::kRealtime ? status_t::REALTIME : status_t::FREE_RUN;
+  s.mode = static_cast<int8_t>(mode_);  // equal values by design
   s.paused = paused_ && step_budget_ == 0;
   s.method = method_->Name();
   for (const auto& [k, v] : method_->Params()) s.method_params += (s.method_params.empty() ? "" : " ") + k + "=" + v;
@@ -415,6 +425,10 @@ void SimServer::PublishStatus(Clock::time_point now) {
   s.solver_iterations = last_stats_.iterations;
   s.commands_accepted = accepted_;
   s.commands_rejected = rejected_;
+  s.num_controllers = static_cast<int32_t>(lockstep_.size());
+  s.controllers = lockstep_.Describe();
+  s.late_events = lockstep_.late_events();
+  s.last_late_event = lockstep_.last_late_event();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     s.last_error = last_error_;
@@ -442,6 +456,7 @@ bool SimServer::Tick() {
     if (changed) PublishState();
     return false;
   }
+  if (mode_ == RunMode::kLockstep && !LockstepReady(nullptr)) return false;
   StepWorld();
   return true;
 }
@@ -487,6 +502,7 @@ void SimServer::Run(const std::atomic<bool>& stop) {
     } else {
       reanchor_ = true;
     }
+    if (mode_ == RunMode::kLockstep && !LockstepReady(&stop)) continue;
     StepWorld();
   }
   CancelStepCommands("server stopping");

@@ -40,6 +40,8 @@ struct ServerOptions {
   FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
   int64_t snapshot_every = 0;           // steps between periodic snapshots; 0 = none
   int max_snapshots = 32;               // periodic snapshots kept in memory for REWIND
+  LatePolicy late_policy = LatePolicy::kWait;  // for controllers registered without one
+  double late_timeout = 0.1;            // s of wall-clock time, likewise
 };
 
 // Commands larger than this are refused before decoding.
@@ -57,6 +59,7 @@ class SimServer {
   // LCM thread.
   void OnBodyMessage(const void* data, int size);
   void OnSceneMessage(const void* data, int size);
+  void OnInputMessage(const void* data, int size);  // input_t, lockstep
 
   // Simulation thread: runs until `stop` is set, then returns.
   void Run(const std::atomic<bool>& stop);
@@ -83,6 +86,11 @@ class SimServer {
   void SimulateStep();
   void PublishReply(const std::vector<uint8_t>& bytes);
   void FlushReplies();
+  // lockstep (lockstep_commands.cpp)
+  void ApplyLockstepCommand(Command& cmd);
+  bool LockstepReady(const std::atomic<bool>* stop);  // null: never blocks
+  void ApplyInputs();
+  void ApplyInput(const ControllerInput& input, bool live);
 
   void Reject(const std::string& client_id, int64_t request_id, int32_t code, const std::string& message,
               const char* channel);
@@ -134,6 +142,11 @@ class SimServer {
   bool hold_replies_ = false;      // a batch is being applied: reply after the journal sync
   bool last_reply_ok_ = false;     // the status of the last SendReply
   std::vector<std::vector<uint8_t>> held_replies_;
+  Lockstep lockstep_;
+  uint64_t input_digest_ = 0;      // of the inputs applied in the last step
+  bool republish_state_ = false;   // a controller registered: it needs the current STATE
+  bool lockstep_waiting_ = false;
+  std::chrono::steady_clock::time_point lockstep_wait_start_;
 
   // rates for STATUS and the live line
   std::chrono::steady_clock::time_point last_status_wall_;

@@ -81,9 +81,13 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
       else st = DecodeSceneCommand(m, &cmd);
       break;
     }
-    case RecordKind::kInput:
-      st = Status::InvalidArgument("lockstep inputs are not supported by this server");
-      break;
+    case RecordKind::kInput: {
+      input_t m;
+      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable input_t");
+      else st = DecodeInput(m, &cmd);
+      if (st.ok()) ApplyInput(cmd.input, false);
+      return st;
+    }
   }
   if (st.ok()) {
     last_reply_ok_ = false;

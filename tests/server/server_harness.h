@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <contactsim/body_cmd_t.hpp>
+#include <contactsim/input_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 
@@ -71,6 +72,12 @@ class ServerHarness {
     m.request_id = ++request_id;
     const auto bytes = Encode(m);
     server.OnSceneMessage(bytes.data(), static_cast<int>(bytes.size()));
+  }
+  void Post(input_t& m) {
+    m.request_id = ++request_id;
+    m.num_bodies = static_cast<int32_t>(m.body_ids.size());
+    const auto bytes = Encode(m);
+    server.OnInputMessage(bytes.data(), static_cast<int>(bytes.size()));
   }
   // STEP n, ticking until the server pauses again; the hash after each step.
   std::vector<uint64_t> Step(int n) {

@@ -108,6 +108,10 @@ int64_t Client::NextRequestId() {
   return ++last_request_id_;
 }
 
+bool Client::PublishRaw(const std::string& channel, const void* data, int size) {
+  return good() && lcm_->publish(channel, data, size) == 0;
+}
+
 CommandResult Client::Publish(const std::string& channel, int64_t request_id,
                               const void* data, int size) {
   CommandResult result;

@@ -107,6 +107,34 @@ CommandResult Client::Rewind(int64_t step) {
   return Send(command);
 }
 
+CommandResult Client::RegisterController(LatePolicy policy, double late_timeout) {
+  scene_cmd_t command = NewSceneCommand(scene_cmd_t::REGISTER_CONTROLLER);
+  command.late_policy = static_cast<int8_t>(policy);
+  command.late_timeout = late_timeout;
+  return Send(command);
+}
+
+CommandResult Client::ReleaseController() {
+  return Send(NewSceneCommand(scene_cmd_t::RELEASE_CONTROLLER));
+}
+
+int64_t Client::SendInput(int64_t step, const BodyInputs& inputs) {
+  input_t message{};
+  message.client_id = options_.client_id;
+  message.request_id = NextRequestId();
+  message.step = step;
+  for (const auto& [id, wrench] : inputs) {
+    message.body_ids.push_back(id);
+    message.forces.push_back({wrench.force.x(), wrench.force.y(), wrench.force.z()});
+    message.torques.push_back({wrench.torque.x(), wrench.torque.y(), wrench.torque.z()});
+  }
+  message.num_bodies = static_cast<int32_t>(message.body_ids.size());
+  std::vector<uint8_t> buffer(message.getEncodedSize());
+  message.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
+  if (!PublishRaw(Channel("INPUT"), buffer.data(), static_cast<int>(buffer.size()))) return 0;
+  return message.request_id;
+}
+
 CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
   Copy(options.position, command.position);
   std::copy(options.orientation.begin(), options.orientation.end(),

@@ -14,6 +14,7 @@
 #include <contactsim/body_state_t.hpp>
 #include <contactsim/contact_t.hpp>
 #include <contactsim/contacts_t.hpp>
+#include <contactsim/input_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 #include <contactsim/state_t.hpp>
@@ -34,6 +35,7 @@ int main() {
   Print<contactsim::body_state_t>();
   Print<contactsim::contact_t>();
   Print<contactsim::contacts_t>();
+  Print<contactsim::input_t>();
   Print<contactsim::reply_t>();
   Print<contactsim::scene_cmd_t>();
   Print<contactsim::state_t>();

@@ -18,6 +18,7 @@ TYPE_NAMES = (
     "body_state_t",
     "contact_t",
     "body_cmd_t",
+    "input_t",
     "scene_cmd_t",
     "reply_t",
     "state_t",

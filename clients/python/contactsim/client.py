@@ -18,11 +18,13 @@ import numpy as np
 
 from . import body_cmd_t, contacts_t, reply_t, scene_cmd_t, state_t, status_t
 from .errors import CommandError, TimeoutError
+from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
 from .state import Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
-MODES = {"realtime": scene_cmd_t.REALTIME, "free_run": scene_cmd_t.FREE_RUN}
+MODES = {"realtime": scene_cmd_t.REALTIME, "free_run": scene_cmd_t.FREE_RUN,
+         "lockstep": scene_cmd_t.LOCKSTEP}
 _STATE_FP = state_t._get_packed_fingerprint()
 
 
@@ -69,7 +71,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands):
+class Client(SnapshotCommands, LockstepCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -84,7 +86,7 @@ class Client(SnapshotCommands):
             socket.gethostname(), os.getpid(), uuid.uuid4().hex[:6])
         self.timeout = timeout
         self.channels = {k: "%s_%s" % (prefix, k) for k in
-                         ("BODY_CMD", "SCENE_CMD", "REPLY", "STATE", "CONTACTS", "STATUS")}
+                         ("BODY_CMD", "SCENE_CMD", "REPLY", "STATE", "CONTACTS", "STATUS", "INPUT")}
         self._lock = threading.Lock()
         self._cond = threading.Condition(self._lock)
         self._request_id = 0
@@ -539,7 +541,8 @@ class Client(SnapshotCommands):
         return reply
 
     def set_mode(self, mode, real_time_factor=1.0):
-        """"realtime" (paced to the wall clock times real_time_factor) or "free_run"."""
+        """"realtime" (paced to the wall clock times real_time_factor), "free_run", or
+        "lockstep" (each step waits for every registered controller's input)."""
         m = self._scene(scene_cmd_t.SET_MODE)
         if isinstance(mode, str):
             if mode.lower() not in MODES:

@@ -3,7 +3,7 @@ from collections import namedtuple
 
 import numpy as np
 
-MODE_NAMES = {1: "realtime", 2: "free_run"}
+MODE_NAMES = {1: "realtime", 2: "free_run", 3: "lockstep"}
 VALUE_KINDS = {1: "impulse", 2: "force"}
 
 
@@ -36,16 +36,18 @@ class BodyState:
 
 
 class State:
-    """The world after a step: ``time`` (s), ``step``, ``state_hash`` and
+    """The world after a step: ``time`` (s), ``step``, ``state_hash``,
+    ``input_digest`` (of the lockstep inputs applied in the step, 0 if none) and
     ``bodies``, a dict body id -> BodyState in ascending id order. Two states
     compare equal when every field of every body is bit-identical."""
 
-    __slots__ = ("time", "step", "state_hash", "bodies", "raw")
+    __slots__ = ("time", "step", "state_hash", "input_digest", "bodies", "raw")
 
     def __init__(self, msg):
         self.time = msg.time
         self.step = msg.step
         self.state_hash = msg.state_hash
+        self.input_digest = msg.input_digest
         self.bodies = {b.id: BodyState(b) for b in msg.bodies}
         self.raw = msg
 
@@ -96,12 +98,13 @@ class Contacts(list):
 
 class Status:
     """The server's heartbeat. Every status_t field is an attribute with the
-    same name; ``mode`` is "realtime" or "free_run". ``as_dict()`` gives a dict."""
+    same name; ``mode`` is "realtime", "free_run" or "lockstep". ``as_dict()`` gives a dict."""
 
     FIELDS = ("version", "mode", "paused", "method", "method_params", "time", "step", "dt",
               "step_rate", "real_time_factor", "target_real_time_factor", "num_bodies",
               "num_contacts", "max_penetration", "solver_iterations", "commands_accepted",
-              "commands_rejected", "last_error")
+              "commands_rejected", "last_error", "num_controllers", "controllers", "late_events",
+              "last_late_event")
 
     def __init__(self, msg):
         for f in self.FIELDS:

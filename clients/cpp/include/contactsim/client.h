@@ -29,6 +29,7 @@
 
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/contacts_t.hpp>
+#include <contactsim/input_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/result.h>
 #include <contactsim/scene_cmd_t.hpp>
@@ -57,7 +58,18 @@ struct ClientOptions {
   std::chrono::milliseconds reply_timeout{2000};
 };
 
-enum class Mode : int8_t { kRealtime = 1, kFreeRun = 2 };
+enum class Mode : int8_t { kRealtime = 1, kFreeRun = 2, kLockstep = 3 };
+
+// What the server does when a lockstep controller's input is late
+// (docs/lockstep.md); kDefault: the server's configured policy.
+enum class LatePolicy : int8_t { kDefault = 0, kWait = 1, kReuse = 2, kDrop = 3 };
+
+// A lockstep input for one body, acting for one step. SI, world frame.
+struct BodyWrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, at the centre of mass
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N m
+};
+using BodyInputs = std::map<int64_t, BodyWrench>;  // body id -> wrench
 
 // Initial state and material of a new body. Units are SI, world frame.
 struct BodyOptions {
@@ -119,6 +131,18 @@ class Client {
   CommandResult RestoreFromFile(const std::string& path);
   // Back to the state after `step` steps (nearest snapshot + journal replay).
   CommandResult Rewind(int64_t step);
+
+  // --- lockstep (docs/lockstep.md; contactsim/controller.h runs a loop) ---
+  // This client becomes a controller: in LOCKSTEP mode the server takes no
+  // step before this client's input for it. late_timeout in s (0: the
+  // server's) applies to kReuse and kDrop.
+  CommandResult RegisterController(LatePolicy policy = LatePolicy::kDefault, double late_timeout = 0.0);
+  CommandResult ReleaseController();
+  // Publishes the input for `step` (the last STATE's step + 1); empty
+  // inputs mean "no input". Returns at once with the request id (0 when
+  // LCM failed): the STATE of `step` acknowledges it, a refusal comes as an
+  // error reply (OnReply). Safe to call from an OnState callback.
+  int64_t SendInput(int64_t step, const BodyInputs& inputs);
 
   // --- body commands; Add* return the new id ---
   Result<int64_t> AddSphere(double radius, const BodyOptions& options = {});
@@ -188,6 +212,7 @@ class Client {
   body_cmd_t NewBodyCommand(int8_t op, int64_t body_id) const;
   scene_cmd_t NewSceneCommand(int8_t op) const;
   int64_t NextRequestId();
+  bool PublishRaw(const std::string& channel, const void* data, int size);  // no reply awaited
 
   void Run();
   void HandleReply(const lcm::ReceiveBuffer*, const std::string&,

@@ -1,0 +1,51 @@
+// contactsim::Controller: runs a callback state -> inputs in lockstep
+// (docs/lockstep.md). Each STATE k-1 is answered with the input for step k
+// from the client's receive thread, so a step costs one STATE and one input
+// on the wire. The callback runs on that thread: it must be quick and must
+// not call the blocking commands of the same Client.
+//
+//   contactsim::Controller ctl(client, [&](const state_t& s) { return Pd(s); });
+//   ctl.Start();                               // registers
+//   client.SetMode(contactsim::Mode::kLockstep);
+//   client.Resume();
+//   ctl.WaitForStep(720, std::chrono::seconds(30));
+//   ctl.Stop();                                // releases
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+
+#include "contactsim/client.h"
+
+namespace contactsim {
+
+class Controller {
+ public:
+  using Policy = std::function<BodyInputs(const state_t&)>;
+
+  Controller(Client& client, Policy policy);
+  ~Controller();  // stops listening (and releases, if still registered)
+  Controller(const Controller&) = delete;
+  Controller& operator=(const Controller&) = delete;
+
+  CommandResult Start(LatePolicy late = LatePolicy::kDefault, double late_timeout = 0.0);
+  CommandResult Stop();
+  // True once the STATE of `step` has been answered, false after `timeout`.
+  bool WaitForStep(int64_t step, std::chrono::milliseconds timeout);
+  int64_t answered() const;  // step of the last STATE answered, -1 before any
+
+ private:
+  void OnState(const state_t& state);
+
+  Client& client_;
+  Policy policy_;
+  int callback_id_ = -1;
+  bool registered_ = false;
+  mutable std::mutex mutex_;
+  std::condition_variable answered_cv_;
+  int64_t answered_ = -1;
+};
+
+}  // namespace contactsim
