@@ -43,6 +43,11 @@ Status Lockstep::Offer(ControllerInput input, int64_t next_step) {
   if (it == controllers_.end()) {
     return Status::FailedPrecondition("\"" + input.controller + "\" is not a registered controller");
   }
+  const Controller& c = it->second;
+  if (input.step < next_step && !c.last.controller.empty() && input.step == c.last.step &&
+      input.request_id == c.last.request_id) {
+    return Status::Ok();  // a resend of the input just applied (it answered a repeated STATE): nothing to do
+  }
   if (input.step < next_step) {
     return Status::FailedPrecondition("input for step " + std::to_string(input.step) + " came after it was taken (next step " +
                                       std::to_string(next_step) + ")");

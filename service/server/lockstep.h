@@ -49,8 +49,10 @@ class Lockstep {
   bool active() const { return !controllers_.empty(); }
   size_t size() const { return controllers_.size(); }
 
-  // Queues an input; refuses one from an unregistered client or for a step
-  // that is already taken (`next_step` is the step the server takes next).
+  // Queues an input (a second one for the same step replaces the first);
+  // refuses one from an unregistered client or for a step that is already
+  // taken (`next_step` is the step the server takes next), except a resend
+  // of the input applied last (same step and request id), which is ignored.
   Status Offer(ControllerInput input, int64_t next_step);
   // True when every controller has an input queued for `step`.
   bool Ready(int64_t step) const;

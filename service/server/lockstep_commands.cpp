@@ -11,6 +11,8 @@
 namespace contactsim {
 namespace {
 
+constexpr std::chrono::milliseconds kStateResendPeriod{200};
+
 // The input as applied, for the journal (a reused input carries its new step).
 std::string EncodeInput(const ControllerInput& in) {
   input_t m;
@@ -86,15 +88,22 @@ bool SimServer::LockstepReady(const std::atomic<bool>* stop) {
     lockstep_waiting_ = false;
     return true;
   }
-  if (republish_state_ || last_state_step_ != world_.step) {
+  const auto now = std::chrono::steady_clock::now();
+  // STATE k-1 goes out again every kStateResendPeriod while the server
+  // waits: a STATE or an input lost on UDP, or an input that raced ahead of
+  // its controller's registration, would otherwise stall a `wait` policy
+  // forever. Controllers answer a repeated STATE by resending their input.
+  const bool resend = lockstep_waiting_ && now - lockstep_last_state_ >= kStateResendPeriod;
+  if (republish_state_ || last_state_step_ != world_.step || resend) {
     republish_state_ = false;
     PublishState();
+    lockstep_last_state_ = now;
   }
   if (stop == nullptr) return false;  // Tick: tests drive the inputs
-  const auto now = std::chrono::steady_clock::now();
   if (!lockstep_waiting_) {
     lockstep_waiting_ = true;
     lockstep_wait_start_ = now;
+    lockstep_last_state_ = now;
   }
   const double waited = std::chrono::duration<double>(now - lockstep_wait_start_).count();
   for (const std::string& line : lockstep_.ResolveLate(k, waited)) spdlog::warn("{}", line);
@@ -103,7 +112,7 @@ bool SimServer::LockstepReady(const std::atomic<bool>* stop) {
     return true;
   }
   // wake for an input, the next late deadline, or (at the latest) 50 ms for
-  // STATUS and stop
+  // STATUS, the STATE resend and stop
   auto until = now + std::chrono::milliseconds(50);
   const double deadline = lockstep_.NextDeadline(k);
   if (deadline >= 0.0) {

@@ -147,6 +147,7 @@ class SimServer {
   bool republish_state_ = false;   // a controller registered: it needs the current STATE
   bool lockstep_waiting_ = false;
   std::chrono::steady_clock::time_point lockstep_wait_start_;
+  std::chrono::steady_clock::time_point lockstep_last_state_;  // last STATE sent while waiting
 
   // rates for STATUS and the live line
   std::chrono::steady_clock::time_point last_status_wall_;

@@ -47,3 +47,33 @@ def test_input_from_an_unregistered_client_is_refused(client):
     client.send_input(1, {})
     client.step(1)  # lets the server apply the inbox
     assert any("is not a registered controller" in e for e in errors), errors
+
+
+def test_a_lost_input_is_recovered_by_the_repeated_state(client):
+    """The server sends STATE again while it waits and the Controller answers
+    a repeated STATE by resending its input: losing an input (UDP, or one
+    that raced ahead of its registration) costs a resend period, not a stall."""
+    client.set_gravity((0, 0, 0))
+    box = client.add_box((0.1, 0.1, 0.1), position=(0, 0, 1), mass=1.0)
+    publish = client._publish_input
+    sent = []
+
+    def lossy(payload):  # drops every input of the first three steps once
+        sent.append(payload)
+        if len(sent) in (1, 3, 5):
+            return
+        publish(payload)
+
+    client._publish_input = lossy
+    errors = []
+    client.on_reply(lambda r: errors.append(r.message) if r.code != 0 else None)
+    with contactsim.Controller(client, lambda s: {box: (1.0, 0.0, 0.0)}, late="wait") as ctl:
+        client.set_mode("lockstep")
+        client.resume()
+        ctl.wait_for_step(12, timeout=10)
+        client.pause()
+    st = client.state()
+    # every step that was taken had its 1 N: none was skipped by the losses
+    assert st.bodies[box].linear_velocity[0] == pytest.approx(st.step / 240, rel=1e-9)
+    assert len(sent) > st.step  # the resends
+    assert errors == []

@@ -22,6 +22,22 @@ ControllerInput Input(const std::string& who, int64_t step, double fz) {
   return in;
 }
 
+// Verifies that a resend of the input just applied (a controller answering
+// a repeated STATE after its input had already arrived) is ignored quietly,
+// while any other input for a taken step is still refused.
+TEST(LockstepTest, ResendOfTheAppliedInputIsIgnored) {
+  Lockstep l;
+  ASSERT_TRUE(l.Register("a", LatePolicy::kWait, 0.1).ok());
+  ControllerInput in = Input("a", 3, 1.0);
+  in.request_id = 17;
+  ASSERT_TRUE(l.Offer(in, 3).ok());
+  ASSERT_EQ(l.Take(3).size(), 1u);
+  EXPECT_TRUE(l.Offer(in, 4).ok());
+  EXPECT_FALSE(l.Ready(4));  // the resend queued nothing
+  in.request_id = 18;
+  EXPECT_EQ(l.Offer(in, 4).code(), StatusCode::kFailedPrecondition);
+}
+
 // Verifies that a step is ready only when every controller has its input,
 // in controller id order, and that stale inputs are refused.
 TEST(LockstepTest, ReadyOnlyWithEveryControllersInput) {

@@ -118,10 +118,10 @@ CommandResult Client::ReleaseController() {
   return Send(NewSceneCommand(scene_cmd_t::RELEASE_CONTROLLER));
 }
 
-int64_t Client::SendInput(int64_t step, const BodyInputs& inputs) {
+int64_t Client::SendInput(int64_t step, const BodyInputs& inputs, int64_t request_id) {
   input_t message{};
   message.client_id = options_.client_id;
-  message.request_id = NextRequestId();
+  message.request_id = request_id > 0 ? request_id : NextRequestId();
   message.step = step;
   for (const auto& [id, wrench] : inputs) {
     message.body_ids.push_back(id);

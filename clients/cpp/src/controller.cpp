@@ -13,7 +13,7 @@ CommandResult Controller::Start(LatePolicy late, double late_timeout) {
   // listen first: the server republishes the current STATE on registration
   if (callback_id_ < 0) callback_id_ = client_.OnState([this](const state_t& s) { OnState(s); });
   CommandResult result = client_.RegisterController(late, late_timeout);
-  registered_ = result.ok();
+  registered_ = result.ok();  // from here on STATEs are answered
   return result;
 }
 
@@ -24,15 +24,27 @@ CommandResult Controller::Stop() {
   return client_.ReleaseController();
 }
 
+// A STATE before the registration is acknowledged is not answered (its
+// input could reach the server first and be refused); a STATE published
+// again while the server waits is answered by resending the same input,
+// which recovers an input lost on UDP or refused that way.
 void Controller::OnState(const state_t& state) {
+  if (!registered_) return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (state.step <= answered_) return;  // a STATE published again
+    if (state.step < answered_) return;
+    if (state.step == answered_) {
+      client_.SendInput(state.step + 1, last_inputs_, last_request_id_);
+      return;
+    }
   }
-  client_.SendInput(state.step + 1, policy_(state));
+  BodyInputs inputs = policy_(state);
+  const int64_t id = client_.SendInput(state.step + 1, inputs);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     answered_ = state.step;
+    last_inputs_ = std::move(inputs);
+    last_request_id_ = id;
   }
   answered_cv_.notify_all();
 }

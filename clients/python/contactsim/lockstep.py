@@ -46,6 +46,12 @@ class LockstepCommands:
         (force, torque); None or {} means no input. Returns at once: the
         STATE of ``step`` acknowledges it; a refused input gets an error
         reply (see on_reply). Safe to call from an on_state callback."""
+        request_id, payload = self._encode_input(step, forces)
+        self._publish_input(payload)
+        return request_id
+
+    def _encode_input(self, step, forces):
+        """-> (request id, encoded input_t); a resend reuses both."""
         m = input_t()
         m.client_id = self.client_id
         with self._lock:
@@ -58,8 +64,10 @@ class LockstepCommands:
             m.forces.append(f)
             m.torques.append(t)
         m.num_bodies = len(m.body_ids)
-        self._lc.publish(self.channels["INPUT"], m.encode())
-        return m.request_id
+        return m.request_id, m.encode()
+
+    def _publish_input(self, payload):
+        self._lc.publish(self.channels["INPUT"], payload)
 
 
 class Controller:
@@ -80,16 +88,28 @@ class Controller:
         self.error = None           # an exception raised by the callback
         self._cond = threading.Condition()
         self._remove = None
+        self._registered = False
+        self._last_payload = None   # the input that answered `answered`
 
     def _on_state(self, state):
-        if state.step <= self.answered or self.error is not None:
+        # A STATE before the registration is acknowledged is not answered: its
+        # input could reach the server first and be refused. The server sends
+        # STATE again while it waits, so nothing is missed.
+        if not self._registered or self.error is not None or state.step < self.answered:
+            return
+        if state.step == self.answered:
+            # published again because the server still waits: our input was
+            # lost (UDP) or refused; resend it unchanged (same request id, so
+            # a duplicate of an input already applied is ignored)
+            self.client._publish_input(self._last_payload)
             return
         try:
             forces = self.callback(state)
         except Exception as e:  # surfaced by wait_for_step
             self.error = e
             forces = None
-        self.client.send_input(state.step + 1, forces)
+        _, self._last_payload = self.client._encode_input(state.step + 1, forces)
+        self.client._publish_input(self._last_payload)
         with self._cond:
             self.answered = state.step
             self._cond.notify_all()
@@ -97,9 +117,11 @@ class Controller:
     def start(self):
         self._remove = self.client.on_state(self._on_state)
         reply = self.client.register_controller(self.late, self.timeout)
+        self._registered = True
         return reply
 
     def stop(self):
+        self._registered = False
         if self._remove is not None:
             self._remove()
             self._remove = None

@@ -142,7 +142,9 @@ class Client {
   // inputs mean "no input". Returns at once with the request id (0 when
   // LCM failed): the STATE of `step` acknowledges it, a refusal comes as an
   // error reply (OnReply). Safe to call from an OnState callback.
-  int64_t SendInput(int64_t step, const BodyInputs& inputs);
+  // `request_id` > 0 resends an input under its first id (the server
+  // ignores a resend of the input it has just applied).
+  int64_t SendInput(int64_t step, const BodyInputs& inputs, int64_t request_id = 0);
 
   // --- body commands; Add* return the new id ---
   Result<int64_t> AddSphere(double radius, const BodyOptions& options = {});

@@ -12,6 +12,7 @@
 //   ctl.Stop();                                // releases
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -42,10 +43,12 @@ class Controller {
   Client& client_;
   Policy policy_;
   int callback_id_ = -1;
-  bool registered_ = false;
+  std::atomic<bool> registered_{false};
   mutable std::mutex mutex_;
   std::condition_variable answered_cv_;
   int64_t answered_ = -1;
+  BodyInputs last_inputs_;      // the input that answered `answered_`
+  int64_t last_request_id_ = 0;
 };
 
 }  // namespace contactsim
