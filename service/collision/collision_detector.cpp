@@ -1,5 +1,7 @@
 #include "service/collision/collision_detector.h"
 
+#include <algorithm>
+
 #include "service/collision/narrowphase.h"
 
 namespace contactsim {
@@ -24,12 +26,29 @@ void CollisionDetector::Detect(const World& world, double margin, double sweep_d
     movable_[i] = bodies[i].IsDynamic();
   }
   broadphase_->FindPairs(boxes_, movable_, &pairs_);
+  DropJointedPairs(world);
   contacts->clear();
   for (const BodyPair& p : pairs_) {
     narrowphase_.Collide(bodies[p.first], p.first, bodies[p.second], p.second, margin, contacts);
   }
   stats_.candidate_pairs = static_cast<int>(pairs_.size());
   stats_.contacts = static_cast<int>(contacts->size());
+}
+
+void CollisionDetector::DropJointedPairs(const World& world) {
+  if (world.joints().empty()) return;
+  jointed_.clear();
+  for (const Joint& j : world.joints()) {
+    if (j.body_b == kWorldBody) continue;
+    const int a = world.IndexOf(j.body_a), b = world.IndexOf(j.body_b);
+    jointed_.push_back({std::min(a, b), std::max(a, b)});
+  }
+  std::sort(jointed_.begin(), jointed_.end());
+  pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                              [this](const BodyPair& p) {  // first < second, as jointed_
+                                return std::binary_search(jointed_.begin(), jointed_.end(), p);
+                              }),
+               pairs_.end());
 }
 
 }  // namespace contactsim

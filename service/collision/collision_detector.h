@@ -25,6 +25,10 @@ class CollisionDetector {
 
   // Contacts of the world at its current poses with depth > -margin (m).
   // Boxes are swept by v * sweep_dt so that pairs about to meet are found.
+  // Two bodies joined by a joint never collide with each other (as MuJoCo
+  // excludes a body and its parent, and Bullet's
+  // disableCollisionsBetweenLinkedBodies): the joint holds them, and the
+  // links of a chain touch at their joints.
   void Detect(const World& world, double margin, double sweep_dt, ContactSet* contacts);
   // The candidate pairs of the last Detect (body indices).
   const std::vector<BodyPair>& pairs() const { return pairs_; }
@@ -41,7 +45,10 @@ class CollisionDetector {
   Narrowphase narrowphase_;
   std::vector<Aabb> boxes_;
   std::vector<bool> movable_;
+  void DropJointedPairs(const World& world);
+
   std::vector<BodyPair> pairs_;
+  std::vector<BodyPair> jointed_;  // index pairs joined by a joint, sorted
   CollisionStats stats_;
 };
 

@@ -29,10 +29,7 @@ ContactRow MakeContactRow(const Contact& c, const World& world, const std::vecto
   row.ra = c.point - A.x;
   row.rb = c.point - B.x;
   row.n = c.normal;
-  // a tangent basis that depends only on n, so it is the same every step
-  row.t1 = std::abs(row.n.x()) < 0.57735 ? row.n.cross(Vec3::UnitX()).normalized()
-                                         : row.n.cross(Vec3::UnitY()).normalized();
-  row.t2 = row.n.cross(row.t1);
+  PerpendicularBasis(row.n, &row.t1, &row.t2);
   row.k_n = EffectiveInverseMass(row, row.n, s);
   row.mass_n = row.k_n > 0.0 ? 1.0 / row.k_n : 0.0;
   const double k1 = EffectiveInverseMass(row, row.t1, s);

@@ -7,6 +7,7 @@
 #include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
+#include "service/contact/joints/joint_solver.h"
 #include "service/contact/param_reader.h"
 #include "service/physics/byte_stream.h"
 #include "service/physics/integrator.h"
@@ -103,12 +104,7 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
     }
     if (worst < 1e-9) break;
   }
-  auto& bodies = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!bodies[i].IsDynamic()) continue;
-    bodies[i].x += solver_[i].v;
-    bodies[i].q = (QuatFromRotationVector(solver_[i].w) * bodies[i].q).normalized();
-  }
+  DisplaceBodies(solver_, world);
 }
 
 // The contacts of one body pair (a face-on-face manifold has four) collide
@@ -312,6 +308,7 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
     IntegrateMomenta(world, remaining);
     LoadSolverBodies(world, &solver_);
     stats.iterations += ContactPhase(contacts, remaining, rows_);
+    ApplyJointImpulses(world, remaining, solver_);
     StoreSolverBodies(solver_, world);
 
     auto& bodies = world.bodies();
@@ -358,6 +355,7 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
     ++stats.substeps;
     contacts_out->clear();
   }
+  ProjectJointPositions(world);
   world.FinishStep();
   stats.contacts = static_cast<int>(contacts_out->size());
   for (const Contact& c : *contacts_out) stats.max_penetration = std::max(stats.max_penetration, c.depth);

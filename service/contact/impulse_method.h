@@ -17,6 +17,8 @@
 //     warm-started from the previous step's contact forces matched by body
 //     pair and feature id (without it a stack of boxes never converges in
 //     the iteration cap and its friction creeps sideways);
+//  4b. joints: the equality-constraint velocity solve (contact/joints/
+//     joint_solver.h) after the forces and contact impulses;
 //  5. positions: bodies without contact impulses fly ballistically,
 //     x += v0 h + F/(2m) h^2 (exact under constant force, so bounce heights
 //     carry no O(dt) bias); the others x += v h;
@@ -24,7 +26,8 @@
 //     slop, go back to the start of the sub-step, find the first time t_c
 //     its depth reaches zero by bisection or regula falsi, move everything
 //     to t_c and start a new sub-step there (at most max_substeps).
-// Penetration left over is removed at the next step's start by a split
+// After the step the joints' drift is projected away (post-stabilisation,
+// joint_solver.h). Penetration left over is removed at the next step's start by a split
 // impulse (pseudo-velocities that move positions, never velocities), so the
 // correction adds no kinetic energy.
 #pragma once

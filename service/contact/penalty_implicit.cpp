@@ -4,7 +4,8 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+
+#include "service/contact/union_find.h"
 
 namespace contactsim {
 namespace {
@@ -17,24 +18,6 @@ struct JacobianEntry {
   Vec6 j = Vec6::Zero();
 };
 using RowJacobian = std::vector<JacobianEntry>;  // one or two entries
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int Root(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  // the smaller index becomes the root, so islands are named by their first body
-  void Join(int i, int j) {
-    i = Root(i);
-    j = Root(j);
-    if (i != j) parent_[std::max(i, j)] = std::min(i, j);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 enum class Friction { kStick, kSlide };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "service/contact/joints/joint_solver.h"
 #include "service/contact/penalty_implicit.h"
 #include "service/physics/integrator.h"
 
@@ -59,6 +60,7 @@ void PenaltyMethod::ExplicitSubstep(World& world, double h) {
     }
   }
   IntegrateMomenta(world, h);
+  SolveJointVelocities(world, h);
   IntegratePositions(world, h);
 }
 
@@ -70,6 +72,7 @@ void PenaltyMethod::ImplicitSubstep(World& world, double h, StepStats* stats) {
   const ImplicitStats s = ImplicitMomentumStep(world, rows_, h, theta, params_.iterations);
   stats->iterations += s.iterations;
   stats->residual = std::max(stats->residual, s.residual);
+  SolveJointVelocities(world, h);  // on the new momenta, before the positions use them
   // positions with the theta-weighted velocity (exact ballistic flight for
   // theta = 1/2): move with the blended momenta, then keep the new ones
   std::vector<Vec3> P1(bodies.size()), L1(bodies.size());
@@ -130,6 +133,7 @@ StepStats PenaltyMethod::Step(World& world, CollisionDetector& detector, Contact
       ExplicitSubstep(world, h);
     }
     KeepAnchors(world, contacts_, h);
+    ProjectJointPositions(world);
   }
   // the external wrench stays the accumulated one, as for other methods
   for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force[i], bodies[i].torque = torque[i];

@@ -29,6 +29,9 @@
 //     x += h ((1 - theta) v0 + theta v1) (same rotation update);
 //  3. the anchors advance by the slip: s += h v_t; anchors of points that
 //     carried no force are dropped.
+//  Joints: the equality-constraint velocity solve (contact/joints/
+//  joint_solver.h) on the momenta after step 2's momentum update, before the
+//  positions move; after the positions, their drift is projected away.
 // Contact::normal_value and tangent_value are forces (N): the normal force
 // on B and the friction force on B (world) of the last sub-step.
 // StepStats: iterations = active-set passes of the implicit solve (0 when

@@ -26,4 +26,13 @@ void StoreSolverBodies(const std::vector<SolverBody>& bodies, World& world) {
   }
 }
 
+void DisplaceBodies(const std::vector<SolverBody>& bodies, World& world) {
+  auto& dst = world.bodies();
+  for (size_t i = 0; i < dst.size(); ++i) {
+    if (!dst[i].IsDynamic()) continue;
+    dst[i].x += bodies[i].v;
+    dst[i].q = (QuatFromRotationVector(bodies[i].w) * dst[i].q).normalized();
+  }
+}
+
 }  // namespace contactsim

@@ -33,5 +33,8 @@ struct SolverBody {
 void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies);
 // Adds the summed impulses to each dynamic body's P and L.
 void StoreSolverBodies(const std::vector<SolverBody>& bodies, World& world);
+// Moves each dynamic body by its solver v (m) and rotates it by w (rad,
+// world): the displacement solves of split impulses and joint projection.
+void DisplaceBodies(const std::vector<SolverBody>& bodies, World& world);
 
 }  // namespace contactsim

@@ -7,8 +7,6 @@
 namespace contactsim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Solid capsule about its centre, axis z: a cylinder of length 2h plus two
 // hemispheres whose centres of mass sit 3r/8 beyond the cylinder ends
 // (parallel-axis theorem for the transverse moment).

@@ -22,6 +22,9 @@ Status World::RemoveBody(BodyId id) {
   wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
                                  [id](const TimedWrench& w) { return w.body == id; }),
                   wrenches_.end());
+  joints_.erase(std::remove_if(joints_.begin(), joints_.end(),
+                               [id](const Joint& j) { return j.body_a == id || j.body_b == id; }),
+                joints_.end());
   Reindex();
   return Status::Ok();
 }
@@ -40,6 +43,37 @@ Status World::Assign(std::vector<RigidBody> bodies, std::vector<TimedWrench> wre
   next_id = next;
   Reindex();
   return Status::Ok();
+}
+
+Status World::AddJoint(const JointSettings& settings, JointId* id) {
+  Status st = CheckJointSettings(settings);
+  if (!st.ok()) return st;
+  const RigidBody* a = Find(settings.body_a);
+  if (a == nullptr) return Status::NotFound("body_a: unknown body id " + std::to_string(settings.body_a));
+  const RigidBody* b = nullptr;
+  if (settings.body_b != kWorldBody) {
+    b = Find(settings.body_b);
+    if (b == nullptr) return Status::NotFound("body_b: unknown body id " + std::to_string(settings.body_b));
+  }
+  Joint joint;
+  st = CreateJoint(settings, *a, b, &joint);
+  if (!st.ok()) return st;
+  joint.id = next_joint_id++;
+  joints_.push_back(joint);  // ids grow, so the vector stays sorted
+  *id = joint.id;
+  return Status::Ok();
+}
+
+Status World::RemoveJoint(JointId id) {
+  const auto it = std::find_if(joints_.begin(), joints_.end(), [id](const Joint& j) { return j.id == id; });
+  if (it == joints_.end()) return Status::NotFound("unknown joint id " + std::to_string(id));
+  joints_.erase(it);
+  return Status::Ok();
+}
+
+const Joint* World::FindJoint(JointId id) const {
+  const auto it = std::find_if(joints_.begin(), joints_.end(), [id](const Joint& j) { return j.id == id; });
+  return it == joints_.end() ? nullptr : &*it;
 }
 
 RigidBody* World::Find(BodyId id) {
@@ -88,11 +122,13 @@ void World::Clear() {
   bodies_.clear();
   index_.clear();
   wrenches_.clear();
+  joints_.clear();
   gravity = DefaultGravity();
   dt = kDefaultDt;
   time = 0.0;
   step = 0;
   next_id = 1;
+  next_joint_id = 1;
 }
 
 void World::Reindex() {
@@ -111,6 +147,19 @@ uint64_t HashWorldState(const World& world) {
     f.Vector(b.q.vec());
     f.Vector(b.P);
     f.Vector(b.L);
+  }
+  for (const Joint& j : world.joints()) {
+    const int kind = static_cast<int>(j.kind);
+    f.Bytes(&j.id, sizeof j.id);
+    f.Bytes(&kind, sizeof kind);
+    f.Bytes(&j.body_a, sizeof j.body_a);
+    f.Bytes(&j.body_b, sizeof j.body_b);
+    for (const Vec3& v : {j.anchor_a, j.anchor_b, j.axis_a, j.axis_b, Vec3(j.rest.vec())}) f.Vector(v);
+    f.Double(j.rest.w());
+    f.Double(j.length);
+    f.Bytes(&j.limited, sizeof j.limited);
+    f.Double(j.lower);
+    f.Double(j.upper);
   }
   return f.h;
 }

@@ -1,11 +1,13 @@
-// The world: bodies in ascending id order, gravity, time step and clock, and
-// timed external wrenches. Iteration order is the id order, so the same
-// commands give the same state bit for bit (ARCHITECTURE.md, determinism).
+// The world: bodies in ascending id order, joints in ascending id order,
+// gravity, time step and clock, and timed external wrenches. Iteration order
+// is the id order, so the same commands give the same state bit for bit
+// (ARCHITECTURE.md, determinism).
 #pragma once
 
 #include <map>
 #include <vector>
 
+#include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/physics/status.h"
 
@@ -25,6 +27,8 @@ class World {
 
   // Adds a body, assigning it the next id (ids are never reused).
   BodyId AddBody(RigidBody body);
+  // Removes the body and every joint attached to it (as PyBullet's
+  // removeBody does), so that no joint ever refers to a missing body.
   Status RemoveBody(BodyId id);
   RigidBody* Find(BodyId id);
   const RigidBody* Find(BodyId id) const;
@@ -32,6 +36,14 @@ class World {
 
   std::vector<RigidBody>& bodies() { return bodies_; }
   const std::vector<RigidBody>& bodies() const { return bodies_; }
+
+  // Validates the settings (CreateJoint) and adds the joint with the next
+  // joint id (ids are never reused; a separate sequence from body ids). On
+  // error the world is unchanged.
+  Status AddJoint(const JointSettings& settings, JointId* id);
+  Status RemoveJoint(JointId id);
+  const Joint* FindJoint(JointId id) const;
+  const std::vector<Joint>& joints() const { return joints_; }
 
   void AddWrench(const TimedWrench& wrench) { wrenches_.push_back(wrench); }
   const std::vector<TimedWrench>& wrenches() const { return wrenches_; }
@@ -51,16 +63,20 @@ class World {
   double time = 0.0;     // s
   int64_t step = 0;      // steps taken
   BodyId next_id = 1;
+  JointId next_joint_id = 1;
 
  private:
   void Reindex();
   std::vector<RigidBody> bodies_;
   std::map<BodyId, int> index_;
   std::vector<TimedWrench> wrenches_;
+  std::vector<Joint> joints_;
 };
 
-// 64-bit FNV-1a hash over every body's id and state bits (x, q, P, L) and the
-// clock: equal hashes mean bit-identical worlds.
+// 64-bit FNV-1a hash over every body's id and state bits (x, q, P, L), every
+// joint (id, kind, bodies, anchors, axes, rest pose, length, limits) and the
+// clock: equal hashes mean bit-identical worlds. A world without joints
+// hashes as it did before joints existed.
 uint64_t HashWorldState(const World& world);
 
 }  // namespace contactsim

@@ -1,6 +1,7 @@
 #include "service/scene/scene_spec.h"
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "service/physics/validation.h"
@@ -81,6 +82,28 @@ Eigen::Vector4d RandomOrientation(std::mt19937_64& rng) {
                          b * std::sin(two_pi * u3));
 }
 
+Status ToSceneJoint(const proto::Joint& j, const std::string& where, SceneJoint* out) {
+  SceneJoint sj;
+  if (!ParseJointKind(j.kind(), &sj.settings.kind)) {
+    return Status::InvalidArgument(where + ": kind must be one of distance, ball, hinge, fixed, got \"" + j.kind() +
+                                   "\"");
+  }
+  if (j.body_a().empty()) return Status::InvalidArgument(where + ": body_a must name a body");
+  sj.body_a = j.body_a();
+  sj.body_b = j.body_b();
+  sj.settings.anchor = ToVec3(j.anchor());
+  if (j.has_axis()) sj.settings.axis = ToVec3(j.axis());
+  if (j.has_length()) sj.settings.length = j.length();
+  if (j.has_limits()) {
+    if (!j.limits().has_lower() || !j.limits().has_upper()) {
+      return Status::InvalidArgument(where + ": limits need both lower and upper");
+    }
+    sj.settings.limits = std::make_pair(j.limits().lower(), j.limits().upper());
+  }
+  *out = std::move(sj);
+  return Status::Ok();
+}
+
 Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Material& default_material,
                   SceneSpec* scene) {
   if (g.nx() < 1 || g.ny() < 1 || g.nz() < 1 || int64_t{g.nx()} * g.ny() * g.nz() > 1000000) {
@@ -144,6 +167,13 @@ Status Convert(const proto::Scene& p, const std::string& filename, const TextFor
                                    std::to_string(p.steps()));
   }
   scene.steps = p.steps();
+  for (int i = 0; i < p.joints_size(); ++i) {
+    const std::string where = FieldLocation(filename, tree, p, "joints", i) + ": joints[" + std::to_string(i) + "]";
+    SceneJoint joint;
+    if (!(st = ToSceneJoint(p.joints(i), where, &joint)).ok()) return st;
+    scene.joints.push_back(std::move(joint));
+    scene.joint_origins.push_back(where);
+  }
   scene.contact_method = p.contact_method();
   for (const auto& param : p.method_params()) scene.method_params[param.name()] = param.value();
   *out = std::move(scene);
@@ -168,16 +198,45 @@ Status LoadSceneFile(const std::string& path, SceneSpec* scene) {
   return Convert(p, path, &tree, scene);
 }
 
-Status BuildWorld(const SceneSpec& scene, World* world) {
-  std::vector<RigidBody> bodies(scene.bodies.size());
-  for (size_t i = 0; i < scene.bodies.size(); ++i) {
-    Status st = CreateBody(scene.bodies[i], scene.default_material, &bodies[i]);
-    if (!st.ok()) return Status::InvalidArgument(scene.origins[i] + ": " + st.message());
+namespace {
+
+// The id of the one body called `name`.
+Status ResolveBodyName(const std::multimap<std::string, BodyId>& names, const std::string& field,
+                       const std::string& name, BodyId* id) {
+  const auto count = names.count(name);
+  if (count == 1) {
+    *id = names.find(name)->second;
+    return Status::Ok();
   }
-  world->Clear();
-  world->gravity = scene.gravity;
-  world->dt = scene.dt;
-  for (RigidBody& b : bodies) world->AddBody(std::move(b));
+  return Status::InvalidArgument(field + " \"" + name + "\" must name exactly one body, " +
+                                 (count == 0 ? std::string("no body has this name")
+                                             : std::to_string(count) + " bodies have it"));
+}
+
+}  // namespace
+
+Status BuildWorld(const SceneSpec& scene, World* world) {
+  World next;
+  next.gravity = scene.gravity;
+  next.dt = scene.dt;
+  std::multimap<std::string, BodyId> names;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    RigidBody body;
+    Status st = CreateBody(scene.bodies[i], scene.default_material, &body);
+    if (!st.ok()) return Status::InvalidArgument(scene.origins[i] + ": " + st.message());
+    const BodyId id = next.AddBody(std::move(body));
+    if (!scene.bodies[i].name.empty()) names.emplace(scene.bodies[i].name, id);
+  }
+  for (size_t i = 0; i < scene.joints.size(); ++i) {
+    const SceneJoint& j = scene.joints[i];
+    JointSettings s = j.settings;
+    Status st = ResolveBodyName(names, "body_a", j.body_a, &s.body_a);
+    if (st.ok() && !j.body_b.empty()) st = ResolveBodyName(names, "body_b", j.body_b, &s.body_b);
+    JointId id = 0;
+    if (st.ok()) st = next.AddJoint(s, &id);
+    if (!st.ok()) return Status::InvalidArgument(scene.joint_origins[i] + ": " + st.message());
+  }
+  *world = std::move(next);
   return Status::Ok();
 }
 

@@ -1,5 +1,6 @@
 // A scene as the engine sees it: world settings and validated-on-build body
-// settings, converted from the protobuf Scene (service/proto/scene.proto).
+// and joint settings, converted from the protobuf Scene
+// (service/proto/scene.proto).
 #pragma once
 
 #include <string>
@@ -11,12 +12,21 @@
 
 namespace contactsim {
 
+// A joint of a scene: its settings with the bodies still named (resolved to
+// ids by BuildWorld).
+struct SceneJoint {
+  JointSettings settings;
+  std::string body_a, body_b;  // body names; empty body_b: the world
+};
+
 struct SceneSpec {
   Vec3 gravity = World::DefaultGravity();  // m/s^2
   double dt = World::kDefaultDt;           // s
   Material default_material;
   std::vector<BodySettings> bodies;
   std::vector<std::string> origins;        // "FILE:LINE" of each body, for errors
+  std::vector<SceneJoint> joints;
+  std::vector<std::string> joint_origins;  // "FILE:LINE: joints[i]" of each joint
   std::string contact_method;              // empty: keep the current one
   ParamMap method_params;
   int steps = 0;                           // benchmark length; 0: not given
@@ -27,8 +37,9 @@ struct SceneSpec {
 Status LoadSceneFile(const std::string& path, SceneSpec* scene);
 Status ParseSceneText(const std::string& text, const std::string& filename, SceneSpec* scene);
 
-// Builds every body first and replaces the world's content only if all are
-// valid; on error the world is untouched.
+// Builds every body and then every joint (bodies named by a unique name) and
+// replaces the world's content only if all are valid; on error the world is
+// untouched.
 Status BuildWorld(const SceneSpec& scene, World* world);
 
 }  // namespace contactsim

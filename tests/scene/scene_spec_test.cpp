@@ -79,7 +79,7 @@ TEST(SceneSpec, GridIsDeterministicForASeed) {
 
 // Verifies that the default scene shipped in config/ loads and builds.
 TEST(SceneSpec, ShippedScenesLoad) {
-  for (const char* name : {"default"}) {
+  for (const char* name : {"default", "joints"}) {
     SceneSpec scene;
     const std::string path = std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/" + name + ".pbtxt";
     const Status st = LoadSceneFile(path, &scene);

@@ -1,0 +1,166 @@
+#include "service/contact/joints/joint_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "service/contact/joints/joint_dense_solver.h"
+#include "service/contact/joints/joint_tree_solver.h"
+#include "service/contact/union_find.h"
+
+namespace contactsim {
+namespace {
+
+// The rows of the kept blocks, renumbered; `source` maps back.
+struct RowSubset {
+  std::vector<ConstraintRow> rows;
+  std::vector<JointBlock> blocks;
+  std::vector<int> source;
+};
+
+// Keeps the rows with keep[k] (all when keep is empty) of the given blocks.
+RowSubset Subset(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                 const std::vector<int>& block_ids, const std::vector<char>& keep) {
+  RowSubset out;
+  for (int id : block_ids) {
+    JointBlock blk = blocks[id];
+    const int first = static_cast<int>(out.rows.size());
+    for (int k = blk.first; k < blk.first + blk.count; ++k) {
+      if (!keep.empty() && !keep[k]) continue;
+      out.rows.push_back(rows[k]);
+      out.source.push_back(k);
+    }
+    blk.first = first;
+    blk.count = static_cast<int>(out.rows.size()) - first;
+    if (blk.count > 0) out.blocks.push_back(blk);
+  }
+  return out;
+}
+
+Eigen::VectorXd Gather(const Eigen::VectorXd& v, const std::vector<int>& source) {
+  Eigen::VectorXd out(source.size());
+  for (size_t i = 0; i < source.size(); ++i) out[i] = v[source[i]];
+  return out;
+}
+
+std::vector<int> AllBlocks(const std::vector<JointBlock>& blocks) {
+  std::vector<int> ids(blocks.size());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
+  return ids;
+}
+
+// Solves the rows with keep[k]; lambda is 0 for the others.
+Eigen::VectorXd SolveKept(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                          const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
+                          const std::vector<char>& keep, JointSolverKind solver) {
+  const RowSubset sub = Subset(rows, blocks, AllBlocks(blocks), keep);
+  const Eigen::VectorXd x = SolveJointSystem(sub.rows, sub.blocks, bodies, Gather(b, sub.source), solver);
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(rows.size());
+  for (size_t i = 0; i < sub.source.size(); ++i) lambda[sub.source[i]] = x[i];
+  return lambda;
+}
+
+}  // namespace
+
+Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                                 const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
+                                 JointSolverKind solver) {
+  Eigen::VectorXd lambda;
+  if (solver == JointSolverKind::kDense) return SolveJointsDense(rows, bodies, b);
+  if (SolveJointsTree(rows, blocks, bodies, b, &lambda)) return lambda;
+  // a loop somewhere: split into components, dense only where the loop is
+  UnionFind sets(static_cast<int>(bodies.size()));
+  auto dynamic = [&bodies](int i) { return i >= 0 && bodies[i].inv_mass > 0.0; };
+  for (const JointBlock& blk : blocks) {
+    if (dynamic(blk.a) && dynamic(blk.b)) sets.Join(blk.a, blk.b);
+  }
+  std::map<int, std::vector<int>> components;  // keyed by first body: deterministic order
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    components[sets.Root(dynamic(blocks[k].a) ? blocks[k].a : blocks[k].b)].push_back(static_cast<int>(k));
+  }
+  lambda = Eigen::VectorXd::Zero(rows.size());
+  for (const auto& [root, ids] : components) {
+    const RowSubset sub = Subset(rows, blocks, ids, {});
+    const Eigen::VectorXd sub_b = Gather(b, sub.source);
+    Eigen::VectorXd x;
+    if (!SolveJointsTree(sub.rows, sub.blocks, bodies, sub_b, &x)) x = SolveJointsDense(sub.rows, bodies, sub_b);
+    for (size_t i = 0; i < sub.source.size(); ++i) lambda[sub.source[i]] = x[i];
+  }
+  return lambda;
+}
+
+JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
+                              const JointSolveOptions& options) {
+  JointStats stats;
+  std::vector<ConstraintRow> rows;
+  std::vector<JointBlock> blocks;
+  AppendJointRows(world, bodies, h, JointRowMode::kVelocity, &rows, &blocks);
+  if (rows.empty()) return stats;
+  const int n = static_cast<int>(rows.size());
+  Eigen::VectorXd b(n);
+  for (int k = 0; k < n; ++k) b[k] = rows[k].rhs - rows[k].Velocity(bodies);
+  // active set over the one-sided limit rows
+  std::vector<char> keep(n, 1);
+  Eigen::VectorXd lambda;
+  for (int pass = 0;; ++pass) {
+    lambda = SolveKept(rows, blocks, bodies, b, keep, options.solver);
+    ++stats.limit_passes;
+    bool dropped = false;
+    for (int k = 0; k < n; ++k) {
+      if (keep[k] && IsLimitRow(rows[k]) && (lambda[k] < rows[k].lo || lambda[k] > rows[k].hi)) {
+        keep[k] = 0;
+        dropped = true;
+      }
+    }
+    if (!dropped || pass + 1 >= options.max_limit_passes) break;
+  }
+  for (int k = 0; k < n; ++k) {
+    if (!keep[k]) continue;
+    rows[k].lambda = std::clamp(lambda[k], rows[k].lo, rows[k].hi);
+    rows[k].Apply(rows[k].lambda, bodies);
+    ++stats.rows;
+  }
+  return stats;
+}
+
+JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions& options) {
+  if (world.joints().empty()) return {};
+  std::vector<SolverBody> bodies;
+  LoadSolverBodies(world, &bodies);
+  const JointStats stats = ApplyJointImpulses(world, h, bodies, options);
+  StoreSolverBodies(bodies, world);
+  return stats;
+}
+
+JointStats ProjectJointPositions(World& world, const JointSolveOptions& options) {
+  JointStats stats;
+  if (world.joints().empty()) return stats;
+  std::vector<SolverBody> bodies;
+  std::vector<ConstraintRow> rows;
+  std::vector<JointBlock> blocks;
+  std::vector<double> errors;
+  for (;;) {
+    LoadSolverBodies(world, &bodies);
+    rows.clear();
+    blocks.clear();
+    errors.clear();
+    AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks, &errors);
+    stats.max_error = 0.0;
+    for (double e : errors) stats.max_error = std::max(stats.max_error, std::abs(e));
+    if (stats.max_error <= options.projection_tolerance ||
+        stats.projection_iterations >= options.max_projection_iterations) {
+      break;
+    }
+    ++stats.projection_iterations;
+    const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
+    const Eigen::VectorXd delta = SolveJointSystem(rows, blocks, bodies, b, options.solver);
+    // the solver bodies carry the displacement: v = M^-1 J^T delta (m),
+    // w = I^-1 J^T delta (rad)
+    for (SolverBody& s : bodies) s.v.setZero(), s.w.setZero();
+    for (size_t k = 0; k < rows.size(); ++k) rows[k].Apply(delta[k], bodies);
+    DisplaceBodies(bodies, world);
+  }
+  return stats;
+}
+
+}  // namespace contactsim

@@ -1,0 +1,71 @@
+// Joints in a time step, shared by the contact methods that solve contacts
+// on their own (impulse, penalty): an equality-constraint velocity solve
+// after the forces and contact impulses, and a projection of the positions
+// back onto C = 0 after the positions moved.
+//
+// Velocity: the rows of joint_rows.h at the current poses and the bodies'
+// velocities qdot* (forces and contact impulses included); solve
+//   (J M^-1 J^T + R) lambda = rhs - J qdot*
+// and add M^-1 J^T lambda (Lagrange multipliers as impulses). Hinge limit
+// rows are one-sided: a limit row whose lambda comes out on the wrong side
+// (pulling) is dropped and the system solved again (active set, at most
+// max_limit_passes solves).
+//
+// Drift: the velocity solve keeps C constant only to O(h^2) per step, so C
+// drifts. Post-stabilisation (Cline and Pai, "Post-stabilization for rigid
+// body simulation with contact and constraints", ICRA 2003) removes it after
+// every step: Newton iterations on C(q) = 0 along the mass-weighted gradient,
+//   (J M^-1 J^T + R) delta = -C,   x += M^-1 J^T delta (positions and
+// rotations, momenta untouched),
+// until every |C| is below the tolerance (quadratic convergence: 2-3
+// iterations). Unlike Baumgarte stabilisation it adds no stiffness or
+// parameters and leaves the velocities (and so the energy) alone, and it
+// holds C to round-off, which the 1e-6 drift bound over 10 s needs.
+//
+// The system is split into components (joints connected through dynamic
+// bodies); a loop-free component is solved by the tree solver
+// (joint_tree_solver.h), one with a loop by the dense solver
+// (joint_dense_solver.h); `solver = kDense` solves everything densely.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "service/contact/joints/joint_rows.h"
+
+namespace contactsim {
+
+enum class JointSolverKind { kTree, kDense };
+
+struct JointSolveOptions {
+  JointSolverKind solver = JointSolverKind::kTree;
+  int max_limit_passes = 8;             // active-set solves per velocity step at most
+  int max_projection_iterations = 10;   // Newton iterations per projection at most
+  double projection_tolerance = 1e-12;  // m, or rad for angular rows: largest |C| left
+};
+
+struct JointStats {
+  int rows = 0;                   // rows in the final velocity solve
+  int limit_passes = 0;           // velocity solves (1 without active limits)
+  int projection_iterations = 0;  // Newton iterations of the projection
+  double max_error = 0.0;         // largest |C| after the projection (m or rad)
+};
+
+// Solves (J M^-1 J^T + R) lambda = b for rows grouped by `blocks`.
+Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                                 const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
+                                 JointSolverKind solver);
+
+// The velocity solve on solver bodies (LoadSolverBodies of `world`, with the
+// step's forces and contact impulses already in v and w); h (s) is the step.
+// The impulses are added through ConstraintRow::Apply, so dP and dL hold them.
+JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
+                              const JointSolveOptions& options = {});
+
+// The same on the world's momenta P and L.
+JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions& options = {});
+
+// Post-stabilisation of the positions and orientations (see above).
+JointStats ProjectJointPositions(World& world, const JointSolveOptions& options = {});
+
+}  // namespace contactsim

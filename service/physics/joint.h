@@ -1,0 +1,91 @@
+// Joints: equality constraints between two bodies, or a body and the world
+// (Witkin and Baraff, SIGGRAPH 1997 course notes, "Constrained Dynamics";
+// Baraff 1996, "Linear-time dynamics using Lagrange multipliers").
+//
+// Anchors and axes are stored in each body's frame (origin at its centre of
+// mass), so they move with the bodies; for the world they are world
+// coordinates. With p_A = x_A + R_A anchor_a and p_B likewise:
+//   distance  C = 1/2 (d.d - length^2), d = p_A - p_B       (1 equation)
+//             the classic pendulum form; A is attached at its centre of
+//             mass (anchor_a = 0), the anchor is the point on B
+//   ball      C = p_A - p_B                                  (3)
+//   hinge     ball, and the axis fixed in A stays parallel to the axis
+//             fixed in B (2 more); optional limits on the hinge angle (1)
+//   fixed     ball, and the orientation of B relative to A stays the one
+//             it had at creation (3 more): a weld
+// The hinge angle is the rotation of B relative to A about the axis,
+// right-handed, measured from the relative orientation at creation (so a new
+// hinge is at angle 0); limits bound it in [lower, upper] within [-pi, pi].
+// The rows, their solvers and the drift correction live in
+// service/contact/joints/.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "service/physics/rigid_body.h"
+#include "service/physics/status.h"
+
+namespace contactsim {
+
+using JointId = int64_t;
+
+// body_b of a joint to the world (body ids start at 1)
+constexpr BodyId kWorldBody = 0;
+
+enum class JointKind { kDistance, kBall, kHinge, kFixed };
+
+const char* JointKindName(JointKind kind);  // "distance", "ball", "hinge", "fixed"
+// Parses a name as printed by JointKindName; false when unknown.
+bool ParseJointKind(const std::string& name, JointKind* kind);
+
+struct Joint {
+  JointId id = 0;
+  JointKind kind = JointKind::kBall;
+  BodyId body_a = 0;
+  BodyId body_b = kWorldBody;
+  Vec3 anchor_a = Vec3::Zero();  // m, A's frame
+  Vec3 anchor_b = Vec3::Zero();  // m, B's frame (world frame for the world)
+  Vec3 axis_a = Vec3::UnitZ();   // unit, A's frame (hinge)
+  Vec3 axis_b = Vec3::UnitZ();   // unit, B's frame (hinge)
+  Quat rest = Quat::Identity();  // q_A^-1 q_B at creation (hinge angle 0, weld pose)
+  double length = 0.0;           // m (distance)
+  bool limited = false;          // hinge angle limits
+  double lower = 0.0, upper = 0.0;  // rad
+};
+
+// A joint as it arrives from a command or a scene file: everything in world
+// coordinates at the moment of creation.
+struct JointSettings {
+  JointKind kind = JointKind::kBall;
+  BodyId body_a = 0;
+  BodyId body_b = kWorldBody;
+  Vec3 anchor = Vec3::Zero();     // m, world: the joint point (distance: the point on B)
+  std::optional<Vec3> axis;       // world, hinge only; normalised here
+  std::optional<double> length;   // m, distance only; default: the current distance
+  std::optional<std::pair<double, double>> limits;  // rad (lower, upper), hinge only
+};
+
+// The checks that need no world: finite anchor, a nonzero hinge axis, a
+// positive length, lower <= upper within [-pi, pi], fields given only to the
+// kinds they apply to, body_a a body and body_b another one (or the world).
+// The message names the field and the value.
+Status CheckJointSettings(const JointSettings& settings);
+
+// Validates the settings (CheckJointSettings) against the two bodies
+// (b == nullptr: the world) and builds the joint; on error `joint` is
+// untouched. The caller has looked the ids up; a joint needs at least one
+// dynamic body.
+Status CreateJoint(const JointSettings& settings, const RigidBody& a, const RigidBody* b, Joint* joint);
+
+// World position of an anchor stored in `body`'s frame (nullptr: the world).
+Vec3 AnchorWorld(const Vec3& local, const RigidBody* body);
+// Orientation of `body` (identity for the world).
+Quat BodyOrientation(const RigidBody* body);
+// Hinge angle (rad, in (-pi, pi]): rotation of B relative to A about the
+// axis since creation.
+double HingeAngle(const Joint& joint, const RigidBody& a, const RigidBody* b);
+
+}  // namespace contactsim
