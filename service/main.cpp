@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
   transport.Subscribe(server.Channel("INPUT"), [&](const std::string&, const void* d, int n) {
     server.OnInputMessage(d, n);
   });
+  transport.Subscribe(server.Channel("JOINT_CMD"), [&](const std::string&, const void* d, int n) {
+    server.OnJointMessage(d, n);
+  });
   if (!(st = server.Init(setup.scene.get(), setup.method)).ok()) {
     spdlog::critical("{}", st.message());
     return 1;

@@ -45,6 +45,23 @@ Status World::Assign(std::vector<RigidBody> bodies, std::vector<TimedWrench> wre
   return Status::Ok();
 }
 
+Status World::AssignJoints(std::vector<Joint> joints, JointId next) {
+  JointId last = 0;
+  for (const Joint& j : joints) {
+    if (j.id <= last || j.id >= next) {
+      return Status::InvalidArgument("joint ids must ascend and stay below next_joint_id " + std::to_string(next) +
+                                     ", got " + std::to_string(j.id) + " after " + std::to_string(last));
+    }
+    if (Find(j.body_a) == nullptr || (j.body_b != kWorldBody && Find(j.body_b) == nullptr)) {
+      return Status::InvalidArgument("joint " + std::to_string(j.id) + " refers to a missing body");
+    }
+    last = j.id;
+  }
+  joints_ = std::move(joints);
+  next_joint_id = next;
+  return Status::Ok();
+}
+
 Status World::AddJoint(const JointSettings& settings, JointId* id) {
   Status st = CheckJointSettings(settings);
   if (!st.ok()) return st;

@@ -50,6 +50,9 @@ class World {
   // Replaces the content with saved bodies (ids ascending, each < next_id)
   // and wrenches, as a snapshot holds them; on error nothing changes.
   Status Assign(std::vector<RigidBody> bodies, std::vector<TimedWrench> wrenches, BodyId next_id);
+  // Replaces the joints with saved ones (ids ascending, each < next, bodies
+  // present), as a snapshot holds them; on error nothing changes.
+  Status AssignJoints(std::vector<Joint> joints, JointId next);
   // Sets each body's force and torque to gravity plus the active wrenches.
   void AccumulateForces();
   // Advances the clock by dt, ages the wrenches and drops expired ones.

@@ -147,6 +147,46 @@ Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
 
 }  // namespace
 
+void SaveJoint(const Joint& j, proto::SnapshotJoint* out) {
+  out->set_id(j.id);
+  out->set_kind(static_cast<int32_t>(j.kind));
+  out->set_body_a(j.body_a);
+  out->set_body_b(j.body_b);
+  PutAll(j.anchor_a, out->mutable_anchor_a());
+  PutAll(j.anchor_b, out->mutable_anchor_b());
+  PutAll(j.axis_a, out->mutable_axis_a());
+  PutAll(j.axis_b, out->mutable_axis_b());
+  PutAll(Eigen::Vector4d(j.rest.w(), j.rest.x(), j.rest.y(), j.rest.z()), out->mutable_rest());
+  out->set_length(j.length);
+  out->set_limited(j.limited);
+  out->set_lower(j.lower);
+  out->set_upper(j.upper);
+}
+
+Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
+  if (p.kind() < 0 || p.kind() > static_cast<int32_t>(JointKind::kFixed)) {
+    return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) + " kind must be in [0, 3], got " +
+                                   std::to_string(p.kind()));
+  }
+  j->id = p.id();
+  j->kind = static_cast<JointKind>(p.kind());
+  j->body_a = p.body_a();
+  j->body_b = p.body_b();
+  Eigen::Vector4d rest;
+  Status st = GetAll(p.anchor_a(), "joint anchor_a", &j->anchor_a);
+  if (st.ok()) st = GetAll(p.anchor_b(), "joint anchor_b", &j->anchor_b);
+  if (st.ok()) st = GetAll(p.axis_a(), "joint axis_a", &j->axis_a);
+  if (st.ok()) st = GetAll(p.axis_b(), "joint axis_b", &j->axis_b);
+  if (st.ok()) st = GetAll(p.rest(), "joint rest", &rest);
+  if (!st.ok()) return st;
+  j->rest = Quat(rest[0], rest[1], rest[2], rest[3]);
+  j->length = p.length();
+  j->limited = p.limited();
+  j->lower = p.lower();
+  j->upper = p.upper();
+  return Status::Ok();
+}
+
 void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapshot* out) {
   out->Clear();
   out->set_format(1);
@@ -163,6 +203,8 @@ void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapsh
     PutAll(w.torque, pw->mutable_torque());
     pw->set_remaining(w.remaining);
   }
+  for (const Joint& j : world.joints()) SaveJoint(j, out->add_joints());
+  out->set_next_joint_id(world.next_joint_id);
   out->set_contact_method(method.Name());
   for (const auto& [name, value] : method.Params()) {
     proto::Param* p = out->add_method_params();
@@ -197,6 +239,13 @@ Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<C
     if (!(st = GetAll(pw.torque(), "wrench torque", &wrenches[i].torque)).ok()) return st;
   }
   if (!(st = w.Assign(std::move(bodies), std::move(wrenches), snap.next_id())).ok()) {
+    return Status::InvalidArgument("snapshot: " + st.message());
+  }
+  std::vector<Joint> joints(snap.joints_size());
+  for (int i = 0; i < snap.joints_size(); ++i) {
+    if (!(st = LoadJoint(snap.joints(i), &joints[i])).ok()) return st;
+  }
+  if (!(st = w.AssignJoints(std::move(joints), snap.next_joint_id())).ok()) {
     return Status::InvalidArgument("snapshot: " + st.message());
   }
   if (snap.has_state_hash() && HashWorldState(w) != snap.state_hash()) {

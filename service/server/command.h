@@ -10,6 +10,7 @@
 #include <string>
 
 #include "service/contact/contact_method.h"
+#include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/lockstep.h"
@@ -23,6 +24,7 @@ struct Command {
     kAddBody, kRemoveBody, kSetPose, kSetVelocity, kApplyForce, kApplyImpulse, kSetMass, kSetMaterial,
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
+    kAddJoint, kRemoveJoint,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -38,6 +40,8 @@ struct Command {
   std::optional<Vec3> point;           // APPLY_IMPULSE
   std::optional<double> mass, density; // SET_MASS
   std::optional<double> restitution, friction;  // SET_MATERIAL
+  JointSettings joint;                 // ADD joint (checked but for the bodies' existence)
+  JointId joint_id = 0;                // REMOVE joint
 
   std::shared_ptr<SceneSpec> scene;    // LOAD_SCENE
   std::string scene_path;

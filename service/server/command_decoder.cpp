@@ -256,4 +256,35 @@ Status DecodeInput(const input_t& m, Command* cmd) {
   return Status::Ok();
 }
 
+Status DecodeJointCommand(const joint_cmd_t& m, Command* cmd) {
+  cmd->client_id = m.client_id;
+  cmd->request_id = m.request_id;
+  if (m.op == joint_cmd_t::REMOVE) {
+    cmd->kind = Command::Kind::kRemoveJoint;
+    cmd->joint_id = m.joint_id;
+    return Status::Ok();
+  }
+  if (m.op != joint_cmd_t::ADD) {
+    return Status::InvalidArgument("op must be ADD=1 or REMOVE=2, got " + std::to_string(m.op));
+  }
+  cmd->kind = Command::Kind::kAddJoint;
+  JointSettings& s = cmd->joint;
+  switch (m.kind) {
+    case joint_cmd_t::DISTANCE: s.kind = JointKind::kDistance; break;
+    case joint_cmd_t::BALL: s.kind = JointKind::kBall; break;
+    case joint_cmd_t::HINGE: s.kind = JointKind::kHinge; break;
+    case joint_cmd_t::FIXED: s.kind = JointKind::kFixed; break;
+    default:
+      return Status::InvalidArgument("kind must be one of DISTANCE=1, BALL=2, HINGE=3, FIXED=4, got " +
+                                     std::to_string(m.kind));
+  }
+  s.body_a = m.body_a;
+  s.body_b = m.body_b;
+  s.anchor = V3(m.anchor);
+  if (m.has_axis) s.axis = V3(m.axis);
+  if (m.has_length) s.length = m.length;
+  if (m.has_limits) s.limits = std::make_pair(m.lower, m.upper);
+  return CheckJointSettings(s);
+}
+
 }  // namespace contactsim

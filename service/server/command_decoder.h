@@ -5,6 +5,7 @@
 
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
+#include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 
 #include "service/physics/status.h"
@@ -18,6 +19,9 @@ Status DecodeBodyCommand(const body_cmd_t& msg, const Material& default_material
 Status DecodeSceneCommand(const scene_cmd_t& msg, Command* cmd);
 // A lockstep controller's input (input_t): sizes agree, numbers finite.
 Status DecodeInput(const input_t& msg, Command* cmd);
+// Joint commands: every check of the settings but whether the bodies exist
+// (CheckJointSettings); the simulation thread adds the joint.
+Status DecodeJointCommand(const joint_cmd_t& msg, Command* cmd);
 
 // Builds a contact method by name with text parameters, validating both.
 Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method);

@@ -35,6 +35,7 @@ enum class RecordKind : uint8_t {
   kSceneCommand = 2,  // scene_cmd_t (gravity, dt, contact method)
   kInput = 3,         // input_t: a lockstep controller's forces for one step
   kStepTo = 4,        // no payload: the world reached `step` (a STEP finished)
+  kJointCommand = 5,  // joint_cmd_t
 };
 
 struct JournalRecord {

@@ -62,34 +62,37 @@ void SimServer::Reject(const std::string& client_id, int64_t request_id, int32_t
   transport_->Publish(Channel("REPLY"), buf.data(), n);
 }
 
-void SimServer::OnBodyMessage(const void* data, int size) {
-  body_cmd_t msg;
+// Decodes one command payload of type Msg from `suffix`'s channel and checks
+// it with decode(msg, &cmd): a bad one is answered at once, a good one queued.
+template <typename Msg, typename Decode>
+void SimServer::Receive(const void* data, int size, const char* suffix, Decode decode) {
+  Msg msg;
   if (size > kMaxCommandBytes || msg.decode(data, 0, size) < 0) {
     Reject("", -1, reply_t::DECODE_ERROR,
-           "undecodable body_cmd_t payload of " + std::to_string(size) + " bytes on " + Channel("BODY_CMD"),
-           "BODY_CMD");
+           std::string("undecodable ") + Msg::getTypeName() + " payload of " + std::to_string(size) + " bytes on " +
+               Channel(suffix),
+           suffix);
     return;
   }
   Command cmd;
-  Status st = DecodeBodyCommand(msg, default_material_, &cmd);
-  if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), "BODY_CMD");
+  const Status st = decode(msg, &cmd);
+  if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), suffix);
   cmd.payload.assign(static_cast<const char*>(data), size);
   Enqueue(std::move(cmd));
 }
 
+void SimServer::OnBodyMessage(const void* data, int size) {
+  Receive<body_cmd_t>(data, size, "BODY_CMD", [this](const body_cmd_t& m, Command* cmd) {
+    return DecodeBodyCommand(m, default_material_, cmd);
+  });
+}
+
 void SimServer::OnSceneMessage(const void* data, int size) {
-  scene_cmd_t msg;
-  if (size > kMaxCommandBytes || msg.decode(data, 0, size) < 0) {
-    Reject("", -1, reply_t::DECODE_ERROR,
-           "undecodable scene_cmd_t payload of " + std::to_string(size) + " bytes on " + Channel("SCENE_CMD"),
-           "SCENE_CMD");
-    return;
-  }
-  Command cmd;
-  Status st = DecodeSceneCommand(msg, &cmd);
-  if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), "SCENE_CMD");
-  cmd.payload.assign(static_cast<const char*>(data), size);
-  Enqueue(std::move(cmd));
+  Receive<scene_cmd_t>(data, size, "SCENE_CMD", DecodeSceneCommand);
+}
+
+void SimServer::OnJointMessage(const void* data, int size) {
+  Receive<joint_cmd_t>(data, size, "JOINT_CMD", DecodeJointCommand);
 }
 
 void SimServer::Enqueue(Command cmd) {
@@ -136,14 +139,18 @@ static bool Journaled(Command::Kind kind) {
   switch (kind) {
     case K::kAddBody: case K::kRemoveBody: case K::kSetPose: case K::kSetVelocity: case K::kApplyForce:
     case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kSetGravity: case K::kSetTimestep:
-    case K::kSetMethod:
+    case K::kSetMethod: case K::kAddJoint: case K::kRemoveJoint:
       return true;
     default:
       return false;
   }
 }
 
-static bool IsBodyCommand(Command::Kind kind) { return kind <= Command::Kind::kSetMaterial; }
+static RecordKind RecordKindOf(Command::Kind kind) {
+  if (kind <= Command::Kind::kSetMaterial) return RecordKind::kBodyCommand;
+  if (kind == Command::Kind::kAddJoint || kind == Command::Kind::kRemoveJoint) return RecordKind::kJointCommand;
+  return RecordKind::kSceneCommand;
+}
 
 bool SimServer::DrainInbox() {
   std::deque<Command> batch;
@@ -158,7 +165,7 @@ bool SimServer::DrainInbox() {
     last_reply_ok_ = false;
     changed |= Apply(cmd);
     if (last_reply_ok_ && Journaled(cmd.kind)) {
-      JournalCommand(IsBodyCommand(cmd.kind) ? RecordKind::kBodyCommand : RecordKind::kSceneCommand, cmd.payload);
+      JournalCommand(RecordKindOf(cmd.kind), cmd.payload);
     }
   }
   hold_replies_ = false;
@@ -213,9 +220,24 @@ bool SimServer::Apply(Command& cmd) {
       return true;
     }
     case K::kRemoveBody: {
+      const size_t joints = world_.joints().size();
       Status st = world_.RemoveBody(cmd.body_id);
       if (st.ok()) detector_.Reset();
-      SendReply(cid, rid, st, "removed body " + std::to_string(cmd.body_id));
+      std::string text = "removed body " + std::to_string(cmd.body_id);
+      if (world_.joints().size() < joints) text += " and its " + std::to_string(joints - world_.joints().size()) + " joint(s)";
+      SendReply(cid, rid, st, text);
+      return st.ok();
+    }
+    case K::kAddJoint: {
+      JointId id = 0;
+      const Status st = world_.AddJoint(cmd.joint, &id);
+      SendReply(cid, rid, st, std::string("added ") + JointKindName(cmd.joint.kind) + " joint " + std::to_string(id),
+                st.ok() ? std::vector<int64_t>{id} : std::vector<int64_t>{});
+      return st.ok();
+    }
+    case K::kRemoveJoint: {
+      const Status st = world_.RemoveJoint(cmd.joint_id);
+      SendReply(cid, rid, st, "removed joint " + std::to_string(cmd.joint_id));
       return st.ok();
     }
     case K::kSetPose: {

@@ -1,5 +1,5 @@
 // The server's core, independent of LCM: the LCM thread hands it raw command
-// payloads (OnBodyMessage, OnSceneMessage), which are decoded and checked at
+// payloads (OnBodyMessage, OnSceneMessage, OnJointMessage), which are decoded and checked at
 // once; good commands wait in an inbox until the simulation thread (Run)
 // applies them in arrival order at a step boundary. Only the simulation
 // thread touches the world, so the engine needs no locks.
@@ -60,6 +60,7 @@ class SimServer {
   void OnBodyMessage(const void* data, int size);
   void OnSceneMessage(const void* data, int size);
   void OnInputMessage(const void* data, int size);  // input_t, lockstep
+  void OnJointMessage(const void* data, int size);
 
   // Simulation thread: runs until `stop` is set, then returns.
   void Run(const std::atomic<bool>& stop);
@@ -73,6 +74,8 @@ class SimServer {
   bool paused() const { return paused_; }
 
  private:
+  template <typename Msg, typename Decode>
+  void Receive(const void* data, int size, const char* suffix, Decode decode);
   void Enqueue(Command cmd);
   // journal, snapshots, rewind and recovery (snapshot_commands.cpp)
   Status Recover();

@@ -81,6 +81,12 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
       else st = DecodeSceneCommand(m, &cmd);
       break;
     }
+    case RecordKind::kJointCommand: {
+      joint_cmd_t m;
+      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable joint_cmd_t");
+      else st = DecodeJointCommand(m, &cmd);
+      break;
+    }
     case RecordKind::kInput: {
       input_t m;
       if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable input_t");

@@ -153,26 +153,11 @@ CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
   return Send(command);
 }
 
-namespace {
-
-Result<int64_t> WithId(CommandResult status) {
-  Result<int64_t> result;
-  if (status.ok() && status.ids.empty()) {
-    status.code = ReplyCode::kInternal;
-    status.message = "ADD replied OK without a body id: " + status.message;
-  }
-  if (status.ok()) result.value = status.ids.front();
-  result.status = std::move(status);
-  return result;
-}
-
-}  // namespace
-
 Result<int64_t> Client::AddSphere(double radius, const BodyOptions& options) {
   body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
   command.shape = body_cmd_t::SPHERE;
   command.radius = radius;
-  return WithId(AddBody(command, options));
+  return WithNewId(AddBody(command, options));
 }
 
 Result<int64_t> Client::AddBox(const Eigen::Vector3d& half_extents,
@@ -180,7 +165,7 @@ Result<int64_t> Client::AddBox(const Eigen::Vector3d& half_extents,
   body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
   command.shape = body_cmd_t::BOX;
   Copy(half_extents, command.half_extents);
-  return WithId(AddBody(command, options));
+  return WithNewId(AddBody(command, options));
 }
 
 Result<int64_t> Client::AddCapsule(double radius, double half_length,
@@ -189,7 +174,7 @@ Result<int64_t> Client::AddCapsule(double radius, double half_length,
   command.shape = body_cmd_t::CAPSULE;
   command.radius = radius;
   command.half_length = half_length;
-  return WithId(AddBody(command, options));
+  return WithNewId(AddBody(command, options));
 }
 
 Result<int64_t> Client::AddConvex(const std::vector<Eigen::Vector3d>& points,
@@ -199,7 +184,7 @@ Result<int64_t> Client::AddConvex(const std::vector<Eigen::Vector3d>& points,
   for (const Eigen::Vector3d& p : points) {
     command.points.push_back({p.x(), p.y(), p.z()});
   }
-  return WithId(AddBody(command, options));
+  return WithNewId(AddBody(command, options));
 }
 
 Result<int64_t> Client::AddPlane(const Eigen::Vector3d& normal, double offset,
@@ -215,7 +200,7 @@ Result<int64_t> Client::AddPlane(const Eigen::Vector3d& normal, double offset,
   plane.friction = options.friction;
   plane.name = options.name;
   plane.fixed = true;
-  return WithId(AddBody(command, plane));
+  return WithNewId(AddBody(command, plane));
 }
 
 CommandResult Client::RemoveBody(int64_t id) {

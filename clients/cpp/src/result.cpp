@@ -2,6 +2,7 @@
 #include "contactsim/result.h"
 
 #include <sstream>
+#include <utility>
 
 namespace contactsim {
 
@@ -40,6 +41,17 @@ std::string ToString(const CommandResult& result) {
 
 std::ostream& operator<<(std::ostream& os, const CommandResult& result) {
   return os << ToString(result);
+}
+
+Result<int64_t> WithNewId(CommandResult status) {
+  Result<int64_t> result;
+  if (status.ok() && status.ids.empty()) {
+    status.code = ReplyCode::kInternal;
+    status.message = "ADD replied OK without a new id: " + status.message;
+  }
+  if (status.ok()) result.value = status.ids.front();
+  result.status = std::move(status);
+  return result;
 }
 
 }  // namespace contactsim

@@ -5,6 +5,7 @@
 //   contactsim-ctl add sphere --radius 0.1 --position 0 0 1 --mass 2
 //   contactsim-ctl method impulse restitution=0.3
 //   contactsim-ctl step 10
+//   contactsim-ctl joint add hinge 3 0 --anchor 0 0 1 --axis 0 1 0 --limits -0.5 0.5
 //
 // Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout) or LCM
 // unusable; CLI11's own codes for a bad command line.
@@ -192,6 +193,52 @@ int main(int argc, char** argv) {
         run = [&](Client& client) { return ExitCode(client.RemoveBody(body_id)); };
       })
       ->add_option("id", body_id, "body id")
+      ->required();
+
+  CLI::App* joint = app.add_subcommand("joint", "add or remove a joint");
+  joint->require_subcommand(1);
+  const std::map<std::string, contactsim::JointType> joint_types = {
+      {"distance", contactsim::JointType::kDistance},
+      {"ball", contactsim::JointType::kBall},
+      {"hinge", contactsim::JointType::kHinge},
+      {"fixed", contactsim::JointType::kFixed}};
+  contactsim::JointType joint_type = contactsim::JointType::kBall;
+  int64_t body_a = 0, body_b = 0;
+  std::array<double, 3> anchor{0, 0, 0}, axis{0, 0, 0};
+  std::optional<double> length;
+  std::vector<double> limits;
+  CLI::App* joint_add = joint->add_subcommand("add", "add a joint; prints its id");
+  joint_add->add_option("kind", joint_type, "distance | ball | hinge | fixed")
+      ->required()
+      ->transform(CLI::CheckedTransformer(joint_types, CLI::ignore_case));
+  joint_add->add_option("body_a", body_a, "body id")->required();
+  joint_add->add_option("body_b", body_b, "body id, or 0 for the world")
+      ->capture_default_str();
+  joint_add->add_option("--anchor,-a", anchor,
+                        "m, world: the joint point (distance: the point on body_b)")
+      ->required();
+  CLI::Option* axis_opt = joint_add->add_option("--axis", axis, "world, hinge only");
+  joint_add->add_option("--length,-l", length, "m, distance only (default: current)");
+  joint_add->add_option("--limits", limits, "rad: lower upper, hinge only")
+      ->expected(2);
+  joint_add->callback([&] {
+    run = [&](Client& client) {
+      contactsim::JointOptions joint_options;
+      if (axis_opt->count() > 0) joint_options.axis = ToVector(axis);
+      joint_options.length = length;
+      if (limits.size() == 2) joint_options.limits = std::make_pair(limits[0], limits[1]);
+      return ExitCode(client
+                          .AddJoint(joint_type, body_a, body_b, ToVector(anchor),
+                                    joint_options)
+                          .status);
+    };
+  });
+  int64_t joint_id = 0;
+  joint->add_subcommand("remove", "remove a joint")
+      ->callback([&] {
+        run = [&](Client& client) { return ExitCode(client.RemoveJoint(joint_id)); };
+      })
+      ->add_option("id", joint_id, "joint id")
       ->required();
 
   std::string method;

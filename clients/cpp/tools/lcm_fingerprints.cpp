@@ -15,6 +15,7 @@
 #include <contactsim/contact_t.hpp>
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
+#include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 #include <contactsim/state_t.hpp>
@@ -36,6 +37,7 @@ int main() {
   Print<contactsim::contact_t>();
   Print<contactsim::contacts_t>();
   Print<contactsim::input_t>();
+  Print<contactsim::joint_cmd_t>();
   Print<contactsim::reply_t>();
   Print<contactsim::scene_cmd_t>();
   Print<contactsim::state_t>();

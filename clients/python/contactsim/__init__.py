@@ -25,6 +25,6 @@ __version__ = "0.1.0"
 __all__ = [
     "Client", "Controller", "CommandError", "TimeoutError", "State", "BodyState", "Contact", "Contacts",
     "Status", "Reply", "DEFAULT_URL", "default_url",
-    "body_cmd_t", "body_state_t", "contact_t", "contacts_t", "reply_t", "scene_cmd_t",
+    "body_cmd_t", "body_state_t", "contact_t", "contacts_t", "joint_cmd_t", "reply_t", "scene_cmd_t",
     "state_t", "status_t", "input_t",
 ]

@@ -20,6 +20,7 @@ TYPE_NAMES = (
     "body_cmd_t",
     "input_t",
     "scene_cmd_t",
+    "joint_cmd_t",
     "reply_t",
     "state_t",
     "contacts_t",

@@ -17,9 +17,11 @@ import lcm
 import numpy as np
 
 from . import body_cmd_t, contacts_t, reply_t, scene_cmd_t, state_t, status_t
+from ._fields import vector as _vec
 from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
+from .joints import JointCommands
 from .state import Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -31,14 +33,6 @@ _STATE_FP = state_t._get_packed_fingerprint()
 def default_url():
     """LCM_DEFAULT_URL when set, else the project default (host-only, 8 MiB buffer)."""
     return os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
-
-
-def _vec(value, n, field):
-    """A length-n list of floats; only the shape is checked (the server validates values)."""
-    a = np.asarray(value, dtype=np.float64)
-    if a.shape != (n,):
-        raise ValueError("%s must have %d components, got shape %s" % (field, n, a.shape))
-    return [float(x) for x in a]
 
 
 def _param_text(value):
@@ -71,7 +65,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands, LockstepCommands):
+class Client(SnapshotCommands, LockstepCommands, JointCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -86,7 +80,8 @@ class Client(SnapshotCommands, LockstepCommands):
             socket.gethostname(), os.getpid(), uuid.uuid4().hex[:6])
         self.timeout = timeout
         self.channels = {k: "%s_%s" % (prefix, k) for k in
-                         ("BODY_CMD", "SCENE_CMD", "REPLY", "STATE", "CONTACTS", "STATUS", "INPUT")}
+                         ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "REPLY", "STATE", "CONTACTS", "STATUS",
+                          "INPUT")}
         self._lock = threading.Lock()
         self._cond = threading.Condition(self._lock)
         self._request_id = 0

@@ -16,10 +16,11 @@
 // (tangent at the end of the step) adds about (h w)^2 of the kinetic energy
 // per step, w the swing rate, and no term (tangent at the start) removes as
 // much: a double pendulum (w up to 9 rad/s at h = 1/240 s) then gains or
-// loses tens of percent of its energy in 10 s, against 0.7% with the half
+// loses tens of percent of its energy in 10 s, against 0.6% with the half
 // term.
-// A row's rhs holds -(h/2) Jdot qdot; the solver subtracts J qdot*
-// (joint_solver.h).
+// A row's rhs holds -(h/2) Jdot qdot at the velocities it was given;
+// BuildJointVelocityRows (joint_solver.h) gives it the velocity the step
+// ends with, and the solver subtracts J qdot*.
 //
 // Rows per kind, r_A = p_A - x_A, r_B = p_B - x_B (world), lever arms of the
 // anchors, and the velocity product vp = Jdot qdot of each row:

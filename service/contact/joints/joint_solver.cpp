@@ -89,12 +89,38 @@ Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const s
   return lambda;
 }
 
+void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& bodies, double h,
+                            JointSolverKind solver, std::vector<ConstraintRow>* rows,
+                            std::vector<JointBlock>* blocks) {
+  AppendJointRows(world, bodies, h, JointRowMode::kVelocity, rows, blocks);
+  if (rows->empty()) return;
+  // the velocity tangent to every row (all as equalities): qdot* + M^-1 J^T lambda0
+  const int n = static_cast<int>(rows->size());
+  Eigen::VectorXd b(n);
+  for (int k = 0; k < n; ++k) b[k] = -(*rows)[k].Velocity(bodies);
+  const Eigen::VectorXd lambda0 = SolveJointSystem(*rows, *blocks, bodies, b, solver);
+  std::vector<SolverBody> tangent = bodies;
+  for (int k = 0; k < n; ++k) (*rows)[k].Apply(lambda0[k], tangent);
+  // the velocity products there, for the equality rows (the first rows of
+  // each block; the same joints in the same order)
+  std::vector<ConstraintRow> at_tangent;
+  std::vector<JointBlock> tangent_blocks;
+  AppendJointRows(world, tangent, h, JointRowMode::kVelocity, &at_tangent, &tangent_blocks);
+  for (size_t i = 0; i < blocks->size(); ++i) {
+    const JointBlock& blk = (*blocks)[i];
+    for (int r = 0; r < blk.count; ++r) {
+      ConstraintRow& row = (*rows)[blk.first + r];
+      if (!IsLimitRow(row)) row.rhs = at_tangent[tangent_blocks[i].first + r].rhs;
+    }
+  }
+}
+
 JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
                               const JointSolveOptions& options) {
   JointStats stats;
   std::vector<ConstraintRow> rows;
   std::vector<JointBlock> blocks;
-  AppendJointRows(world, bodies, h, JointRowMode::kVelocity, &rows, &blocks);
+  BuildJointVelocityRows(world, bodies, h, options.solver, &rows, &blocks);
   if (rows.empty()) return stats;
   const int n = static_cast<int>(rows.size());
   Eigen::VectorXd b(n);

@@ -1,7 +1,7 @@
 // contactsim::Client: a C++ client of contactsim-server that speaks only the
 // LCM types of docs/protocol.md (it never includes server code).
 //
-// Every command is published on <prefix>_BODY_CMD or <prefix>_SCENE_CMD with
+// Every command is published on <prefix>_BODY_CMD, _SCENE_CMD or _JOINT_CMD with
 // this client's id and a fresh request id, and the call blocks until the
 // matching reply_t arrives on <prefix>_REPLY or the reply timeout passes.
 // Nothing throws across this API: failures come back as a CommandResult code.
@@ -23,6 +23,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -30,6 +31,7 @@
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
+#include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/result.h>
 #include <contactsim/scene_cmd_t.hpp>
@@ -84,6 +86,16 @@ struct BodyOptions {
   bool fixed = false;                 // static body
   bool kinematic = false;             // infinite mass, moves with its velocity
   std::string name;                   // label in logs and snapshots
+};
+
+// Joint kinds, as joint_cmd_t codes (docs/physics.md, "Joints").
+enum class JointType : int8_t { kDistance = 1, kBall = 2, kHinge = 3, kFixed = 4 };
+
+// The optional fields of a new joint. World frame, at the moment of creation.
+struct JointOptions {
+  std::optional<Eigen::Vector3d> axis;  // hinge only, required there
+  std::optional<double> length;         // m, distance only; unset: the current distance
+  std::optional<std::pair<double, double>> limits;  // rad (lower, upper), hinge only
 };
 
 class Client {
@@ -177,10 +189,20 @@ class Client {
   CommandResult SetMaterial(int64_t id, std::optional<double> restitution,
                             std::optional<double> friction);
 
+  // --- joint commands ---
+  // Adds a joint between body_a and body_b (0: the world) at `anchor` (m,
+  // world; distance: the point on body_b, body_a held at its centre of
+  // mass); returns the new joint id.
+  Result<int64_t> AddJoint(JointType type, int64_t body_a, int64_t body_b,
+                           const Eigen::Vector3d& anchor,
+                           const JointOptions& options = {});
+  CommandResult RemoveJoint(int64_t id);
+
   // Raw commands: client_id and request_id are filled in here. For fields
   // the typed methods do not cover, and for tests of the server's checks.
   CommandResult Send(body_cmd_t command);
   CommandResult Send(scene_cmd_t command);
+  CommandResult Send(joint_cmd_t command);
 
   // --- subscriptions ---
   // Each returns an id for RemoveCallback. Callbacks run on the LCM thread,

@@ -56,4 +56,8 @@ struct Result {
   const std::string& message() const { return status.message; }
 };
 
+// The first new id of an ADD reply (a body or a joint); an OK reply without
+// one becomes kInternal.
+Result<int64_t> WithNewId(CommandResult status);
+
 }  // namespace contactsim

@@ -1,0 +1,130 @@
+"""Joints through the real server: a pendulum's period, bad input, removal."""
+import math
+
+import numpy as np
+import pytest
+
+import contactsim
+from contactsim import reply_t
+
+G = 9.81
+PIVOT = np.array([0.0, 0.0, 2.0])
+
+
+def pendulum(client, length=1.0, theta0=0.05):
+    """A sphere on a distance joint to the world at PIVOT, released at theta0."""
+    client.reset()
+    start = PIVOT + length * np.array([math.sin(theta0), 0.0, -math.cos(theta0)])
+    bob = client.add_sphere(0.05, position=start)
+    joint = client.add_joint("distance", bob, None, anchor=PIVOT)
+    return bob, joint
+
+
+def test_pendulum_period_is_two_pi_root_l_over_g(client):
+    """10 s of a 1 m pendulum at 0.05 rad, x sampled from every STATE (60 Hz):
+    the zero crossings give the period 2 pi sqrt(l/g) to 0.5%."""
+    bob, joint = pendulum(client)
+    assert joint == 1
+    samples = []
+    client.on_state(lambda s: samples.append((s.time, s.bodies[bob].position[0])))
+    client.step(2400)
+    t, x = np.array(samples).T
+    assert t[-1] == pytest.approx(10.0, rel=1e-9) and len(t) > 500
+    down = np.nonzero(np.signbit(x[1:]) != np.signbit(x[:-1]))[0]
+    crossings = t[down] + (t[down + 1] - t[down]) * x[down] / (x[down] - x[down + 1])
+    period = 2.0 * (crossings[-1] - crossings[0]) / (len(crossings) - 1)
+    expected = 2.0 * math.pi * math.sqrt(1.0 / G)
+    assert period == pytest.approx(expected, rel=0.005)
+    # the rod keeps its length
+    p = np.array(client.state().bodies[bob].position)
+    assert np.linalg.norm(p - PIVOT) == pytest.approx(1.0, abs=1e-9)
+
+
+def test_removing_the_joint_frees_the_body(client):
+    bob, joint = pendulum(client, theta0=0.0)
+    client.step(10)
+    assert client.state().bodies[bob].linear_velocity[2] == pytest.approx(0.0, abs=1e-9)
+    client.remove_joint(joint)
+    r = client.step(1)
+    assert client.state().bodies[bob].linear_velocity[2] == pytest.approx(-G * r.time / r.step, rel=1e-9)
+    with pytest.raises(contactsim.CommandError) as e:
+        client.remove_joint(joint)
+    assert e.value.code == reply_t.NOT_FOUND and "unknown joint id 1" in e.value.message
+
+
+def test_hinge_with_limits_and_a_world_weld(client):
+    client.reset()
+    door = client.add_box((0.4, 0.02, 0.8), position=(0.4, 0, 1))
+    hinge = client.add_joint("hinge", door, None, anchor=(0, 0, 1), axis=(0, 0, 1), limits=(-0.5, 0.5))
+    crate = client.add_box((0.1, 0.1, 0.1), position=(3, 0, 3))
+    weld = client.add_joint("fixed", crate, None, anchor=(3, 0, 3))
+    assert (hinge, weld) == (1, 2)
+    client.set_velocity(door, (0, 0.8, 0), (0, 0, 2))  # swings about the hinge at 2 rad/s
+    client.step(240)
+    s = client.state()
+    # the door turned to its stop (0.5 rad about +z, i.e. -0.5 rad of the world
+    # relative to the door) and the crate has not moved
+    w, x, y, z = s.bodies[door].orientation
+    assert 2.0 * math.atan2(z, w) == pytest.approx(0.5, abs=1e-6)
+    np.testing.assert_allclose(s.bodies[crate].position, (3, 0, 3), atol=1e-9)
+
+
+BAD = [
+    ("unknown_body_a", lambda c, b: c.add_joint("ball", 999, None, anchor=(0, 0, 1)),
+     ["body_a", "999"], reply_t.NOT_FOUND),
+    ("unknown_body_b", lambda c, b: c.add_joint("ball", b, 999, anchor=(0, 0, 1)),
+     ["body_b", "999"], reply_t.NOT_FOUND),
+    ("self_joint", lambda c, b: c.add_joint("ball", b, b, anchor=(0, 0, 1)),
+     ["itself", str(1)], reply_t.INVALID_ARGUMENT),
+    ("zero_length", lambda c, b: c.add_joint("distance", b, None, anchor=(0, 0, 2), length=0.0),
+     ["length", "0"], reply_t.INVALID_ARGUMENT),
+    ("negative_length", lambda c, b: c.add_joint("distance", b, None, anchor=(0, 0, 2), length=-1.0),
+     ["length", "-1"], reply_t.INVALID_ARGUMENT),
+    ("nan_anchor", lambda c, b: c.add_joint("ball", b, None, anchor=(math.nan, 0, 1)),
+     ["anchor"], reply_t.INVALID_ARGUMENT),
+    ("zero_axis", lambda c, b: c.add_joint("hinge", b, None, anchor=(0, 0, 1), axis=(0, 0, 0)),
+     ["axis"], reply_t.INVALID_ARGUMENT),
+    ("swapped_limits", lambda c, b: c.add_joint("hinge", b, None, anchor=(0, 0, 1), axis=(0, 1, 0),
+                                                limits=(0.5, -0.5)),
+     ["lower", "upper"], reply_t.INVALID_ARGUMENT),
+    ("remove_unknown", lambda c, b: c.remove_joint(999), ["999"], reply_t.NOT_FOUND),
+]
+
+
+def run(client, bad=None):
+    """Final state and the next joint id of: a pendulum, step, [bad], step, a
+    probe joint, step."""
+    bob, _ = pendulum(client, theta0=0.3)
+    client.step(3)
+    if bad is not None:
+        bad(client, bob)
+    client.step(3)
+    probe_body = client.add_sphere(0.05, position=(2, 0, 1))
+    probe = client.add_joint("ball", probe_body, None, anchor=(2, 0, 1.5))
+    client.step(3)
+    return client.state(), probe
+
+
+@pytest.mark.parametrize("name,bad,words,code", BAD, ids=[b[0] for b in BAD])
+def test_bad_joint_input_is_rejected_and_changes_nothing(client, name, bad, words, code):
+    reference, ref_probe = run(client)
+    errors = []
+
+    def checked(c, bob):
+        with pytest.raises(contactsim.CommandError) as e:
+            bad(c, bob)
+        errors.append(e.value)
+
+    after, probe = run(client, checked)
+    err = errors[0]
+    for w in words:
+        assert w in err.message, "message %r does not name %r" % (err.message, w)
+    assert err.code == code, "code %s, want %s (%s)" % (err.code_name, code, err.message)
+    assert after.state_hash == reference.state_hash
+    assert after == reference, "world changed by a rejected joint command"
+    assert probe == ref_probe, "a rejected command used up a joint id"
+
+
+def test_unknown_kind_is_refused_by_the_client(client):
+    with pytest.raises(ValueError, match="kind must be one of"):
+        client.add_joint("slider", 1, None, anchor=(0, 0, 0))
