@@ -19,7 +19,8 @@ using testing::AddValidBody;
 
 // A scene with every kind of state a snapshot must carry: resting and
 // sliding contact with friction (penalty anchors), a stack, a tumbling
-// convex hull, a capsule, a timed wrench that outlives the snapshot step.
+// convex hull, a capsule, a timed wrench that outlives the snapshot step,
+// a pendulum and a hinge with limits.
 World MixedWorld() {
   World w;
   AddGround(w, 0.2, 0.6);
@@ -41,6 +42,21 @@ World MixedWorld() {
   capsule.orientation = Eigen::Vector4d(0.9, 0.3, 0.1, 0);
   AddValidBody(w, capsule);
   w.AddWrench({2, Vec3(3, 1, 0), Vec3(0, 0, 0.2), 0.5});
+  // joints are world state too: a swinging pendulum and a door on a hinge
+  // with limits
+  JointId id = 0;
+  JointSettings rod;
+  rod.kind = JointKind::kDistance;
+  rod.body_a = AddSphere(w, 0.05, Vec3(1.5, 0, 1.0), 0.5, 0.4);
+  rod.anchor = Vec3(1.2, 0, 1.5);
+  EXPECT_TRUE(w.AddJoint(rod, &id).ok());
+  JointSettings hinge;
+  hinge.kind = JointKind::kHinge;
+  hinge.body_a = AddBox(w, Vec3(0.3, 0.02, 0.2), Vec3(-1.3, 0, 0.5), 0.1, 0.6, Vec3(0, 0.5, 0));
+  hinge.anchor = Vec3(-1.6, 0, 0.5);
+  hinge.axis = Vec3::UnitZ();
+  hinge.limits = std::make_pair(-0.4, 0.4);
+  EXPECT_TRUE(w.AddJoint(hinge, &id).ok());
   return w;
 }
 
