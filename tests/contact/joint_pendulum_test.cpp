@@ -1,5 +1,6 @@
-// Pendulums through the contact methods that honour joints (impulse and
-// penalty), against analytic periods, the constraint itself and energy.
+// Pendulums through the contact methods that honour joints (impulse,
+// penalty, lcp with both solvers), against analytic periods, the constraint
+// itself and energy.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -112,7 +113,8 @@ TEST_P(JointPendulumTest, DoublePendulumConservesEnergy) {
   EXPECT_LT(worst / (e0 - rest), 0.01);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, JointPendulumTest, ::testing::Values("impulse", "penalty"));
+INSTANTIATE_TEST_SUITE_P(Methods, JointPendulumTest,
+                         ::testing::Values("impulse", "penalty", "lcp:pgs", "lcp:lemke"));
 
 }  // namespace
 }  // namespace contactsim

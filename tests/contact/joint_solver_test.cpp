@@ -244,7 +244,8 @@ TEST_P(JointChainTest, FixedJointKeepsTheRelativePose) {
   EXPECT_GT(sim.world.Find(b)->AngularVelocity().norm(), 0.5);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, JointChainTest, ::testing::Values("impulse", "penalty"));
+INSTANTIATE_TEST_SUITE_P(Methods, JointChainTest,
+                         ::testing::Values("impulse", "penalty", "lcp:pgs", "lcp:lemke"));
 
 }  // namespace
 }  // namespace contactsim

@@ -11,6 +11,7 @@
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/world.h"
+#include "tests/contact/method_sim.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
@@ -18,16 +19,16 @@ namespace testing {
 
 constexpr double kG = 9.81;  // m/s^2, World::DefaultGravity
 
-struct JointSim {
-  explicit JointSim(const std::string& method_name) {
-    const Status st = CreateContactMethod(method_name, &method);
-    EXPECT_TRUE(st.ok()) << st.message();
+// A contact method named by `spec`: a method name, or "lcp:pgs" /
+// "lcp:lemke" for the lcp method with that solver.
+struct JointSim : MethodSim {
+  explicit JointSim(const std::string& spec) : MethodSim(MethodOf(spec), SolverOf(spec)) {}
+  static std::string MethodOf(const std::string& spec) { return spec.substr(0, spec.find(':')); }
+  static ParamMap SolverOf(const std::string& spec) {
+    const size_t colon = spec.find(':');
+    if (colon == std::string::npos) return {};
+    return {{"solver", spec.substr(colon + 1)}};
   }
-  World world;
-  CollisionDetector detector;
-  std::unique_ptr<ContactMethod> method;
-  ContactSet contacts;
-  StepStats Step() { return method->Step(world, detector, &contacts); }
 };
 
 inline JointId AddJoint(World& world, const JointSettings& s) {

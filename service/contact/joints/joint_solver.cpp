@@ -100,7 +100,10 @@ void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& b
   for (int k = 0; k < n; ++k) b[k] = -(*rows)[k].Velocity(bodies);
   const Eigen::VectorXd lambda0 = SolveJointSystem(*rows, *blocks, bodies, b, solver);
   std::vector<SolverBody> tangent = bodies;
-  for (int k = 0; k < n; ++k) (*rows)[k].Apply(lambda0[k], tangent);
+  for (int k = 0; k < n; ++k) {
+    (*rows)[k].Apply(lambda0[k], tangent);
+    (*rows)[k].lambda = std::clamp(lambda0[k], (*rows)[k].lo, (*rows)[k].hi);
+  }
   // the velocity products there, for the equality rows (the first rows of
   // each block; the same joints in the same order)
   std::vector<ConstraintRow> at_tangent;

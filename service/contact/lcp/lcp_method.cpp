@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/contact/contact_row.h"
+#include "service/contact/joints/joint_solver.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
 #include "service/contact/lcp/lemke_rows.h"
 #include "service/physics/integrator.h"
@@ -79,10 +80,26 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
 
   IntegrateMomenta(world, h);
   LoadSolverBodies(world, &bodies_);
+  // the joint rows see v* (their velocity products are taken at the
+  // velocity the step ends with, see BuildJointVelocityRows)
+  joint_rows_.clear();
+  joint_blocks_.clear();
+  BuildJointVelocityRows(world, bodies_, h, JointSolverKind::kTree, &joint_rows_, &joint_blocks_);
+  const size_t first_joint_row = rows_.size();
+  rows_.insert(rows_.end(), joint_rows_.begin(), joint_rows_.end());
+  // joint rows start from last step's impulses, else (a new joint) from the
+  // joint-only solution BuildJointVelocityRows leaves in them; cold: from 0
+  if (params_.warm_start && params_.solver == "pgs") {
+    warm_start_.LoadJoints(joint_blocks_, first_joint_row, &rows_);
+  } else {
+    for (size_t k = first_joint_row; k < rows_.size(); ++k) rows_[k].lambda = 0.0;
+  }
+
   report_ = SolveReport();
   if (!rows_.empty()) Solve(bodies_);
   StoreSolverBodies(bodies_, world);
   warm_start_.Store(contacts_, rows_);
+  warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);
 
   // positions: untouched bodies ballistically (x0 + v0 h + F/(2m) h^2 =
   // x0 + (v1 - F/(2m) h) h), the others with their end velocity
@@ -93,6 +110,7 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
     if (b.IsDynamic() && !touched) b.x -= 0.5 * h * h * b.inv_mass * b.force;
   }
   IntegratePositions(world, h);
+  ProjectJointPositions(world);
 
   contacts_out->clear();
   for (size_t k = 0; k < contacts_.size(); ++k) {

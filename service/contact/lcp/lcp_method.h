@@ -13,13 +13,24 @@
 //  3. v* = v + h M^-1 f_ext (IntegrateMomenta);
 //  4. rows: per contact a normal row with Newton restitution above
 //     restitution_threshold and two friction rows (lcp_contact_rows.h);
-//  5. solve for the impulses: solver = pgs (pgs.h, warm-started from last
-//     step's impulses by feature id) or lemke (lemke_rows.h, the exact mixed
-//     LCP; if it fails or has more than max_lemke_rows rows the step falls
-//     back to PGS and lemke_fallbacks() counts it);
+//     then the joints' rows (BuildJointVelocityRows, joint_solver.h: the
+//     same Jacobians and velocity products as under impulse and penalty),
+//     bilateral (lo = -inf, hi = +inf) except hinge limits, so that joints
+//     and contacts are ONE problem: a pendulum resting on a box gets its
+//     rod tension and the contact force from the same solve;
+//  5. solve for the impulses: solver = pgs (pgs.h: joint rows are unclamped
+//     rows of the same sweeps; contact rows warm-started from last step's
+//     impulses by feature id, joint rows by joint id) or lemke
+//     (lemke_rows.h, the exact mixed LCP, joint rows its free variables; if
+//     it fails or has more than max_lemke_rows rows the step falls back to
+//     PGS and lemke_fallbacks() counts it);
 //  6. positions: bodies that received no impulse fly ballistically,
 //     x += v0 h + F/(2m) h^2 (exact under gravity, as in the impulse method);
-//     the others x += v h; orientations by IntegratePositions.
+//     the others x += v h; orientations by IntegratePositions;
+//  7. joint drift: post-stabilisation (ProjectJointPositions, Cline and Pai
+//     2003), as the impulse and penalty methods do: the velocity rows keep
+//     C constant only to O(h^2) per step, the projection puts the positions
+//     back on C = 0 without touching the velocities.
 //
 // StepStats: iterations = PGS sweeps or Lemke pivots; residual = the
 // solver's residual (pgs: m/s, last sweep's largest row-velocity change);
@@ -31,6 +42,7 @@
 #include <vector>
 
 #include "service/contact/contact_method.h"
+#include "service/contact/joints/joint_rows.h"
 #include "service/contact/lcp/lcp_params.h"
 #include "service/contact/lcp/pgs.h"
 #include "service/contact/lcp/warm_start_cache.h"
@@ -61,7 +73,8 @@ class LcpMethod : public ContactMethod {
   LcpParams params_;
   ContactSet contacts_;
   std::vector<SolverBody> before_, bodies_;
-  std::vector<ConstraintRow> rows_, split_rows_;
+  std::vector<ConstraintRow> rows_, split_rows_, joint_rows_;
+  std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;
   WarmStartCache warm_start_;
   SolveReport report_;

@@ -27,6 +27,32 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
   std::sort(impulses_.begin(), impulses_.end());
 }
 
+void WarmStartCache::LoadJoints(const std::vector<JointBlock>& blocks, size_t first_row,
+                                std::vector<ConstraintRow>* rows) const {
+  for (const JointBlock& blk : blocks) {
+    for (int r = 0; r < blk.count; ++r) {
+      ConstraintRow& row = (*rows)[first_row + blk.first + r];
+      const auto it = std::lower_bound(joint_impulses_.begin(), joint_impulses_.end(),
+                                       std::make_pair(JointKey{blk.id, r}, -ConstraintRow::kInf));
+      const bool found = it != joint_impulses_.end() && it->first == JointKey{blk.id, r};
+      if (found) row.lambda = std::clamp(it->second, row.lo, row.hi);
+    }
+  }
+}
+
+void WarmStartCache::StoreJoints(const std::vector<JointBlock>& blocks, size_t first_row,
+                                 const std::vector<ConstraintRow>& rows) {
+  joint_impulses_.clear();
+  for (const JointBlock& blk : blocks) {
+    for (int r = 0; r < blk.count; ++r) {
+      joint_impulses_.push_back({JointKey{blk.id, r}, rows[first_row + blk.first + r].lambda});
+    }
+  }
+  std::sort(joint_impulses_.begin(), joint_impulses_.end());
+}
+
+// Layout: the contact entries; then, when there are joint rows, their count
+// and entries (snapshots written before joints end after the contacts).
 std::string WarmStartCache::Save() const {
   ByteWriter out;
   out.Put(static_cast<uint64_t>(impulses_.size()));
@@ -35,6 +61,14 @@ std::string WarmStartCache::Save() const {
     out.Put(std::get<1>(e.key));
     out.Put(std::get<2>(e.key));
     for (double l : e.lambda) out.Put(l);
+  }
+  if (!joint_impulses_.empty()) {
+    out.Put(static_cast<uint64_t>(joint_impulses_.size()));
+    for (const auto& [key, lambda] : joint_impulses_) {
+      out.Put(key.first);
+      out.Put(key.second);
+      out.Put(lambda);
+    }
   }
   return out.bytes();
 }
@@ -51,9 +85,20 @@ bool WarmStartCache::Restore(const std::string& bytes) {
     ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&l[0]) && in.Get(&l[1]) && in.Get(&l[2]);
     loaded.push_back({Key{a, b, feature}, l, static_cast<size_t>(i)});
   }
+  std::vector<std::pair<JointKey, double>> joints;
+  uint64_t m = 0;
+  if (ok && !in.done()) ok = in.Get(&m);
+  for (uint64_t i = 0; ok && i < m; ++i) {
+    JointKey key;
+    double lambda = 0.0;
+    ok = in.Get(&key.first) && in.Get(&key.second) && in.Get(&lambda);
+    joints.push_back({key, lambda});
+  }
   if (!ok || !in.done()) return false;
   std::sort(loaded.begin(), loaded.end());
+  std::sort(joints.begin(), joints.end());
   impulses_ = std::move(loaded);
+  joint_impulses_ = std::move(joints);
   return true;
 }
 

@@ -4,16 +4,23 @@
 // (deterministic, and no allocation once its capacity is reached); contact
 // pairs come in a canonical body order (docs/conventions.md), so A and B do
 // not swap between steps. Three rows per contact: normal, t1, t2.
+// Joint rows are kept too, per (joint id, row within the joint's block):
+// the equality rows of a joint come in a fixed order (joint_rows.h), so a
+// hanging chain starts each step from last step's tensions. A hinge limit
+// row (the last of its block, present only near the limit) takes its cached
+// impulse clamped to its current bounds.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "service/collision/contact.h"
 #include "service/contact/constraint_row.h"
+#include "service/contact/joints/joint_rows.h"
 
 namespace contactsim {
 
@@ -23,13 +30,21 @@ class WarmStartCache {
   void Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const;
   // Replaces the cache by the rows' impulses.
   void Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows);
-  void Clear() { impulses_.clear(); }
+  // The same for joint rows: blocks index rows from `first_row` on; a row
+  // with no cached impulse (a new joint) keeps the lambda it came with.
+  void LoadJoints(const std::vector<JointBlock>& blocks, size_t first_row, std::vector<ConstraintRow>* rows) const;
+  void StoreJoints(const std::vector<JointBlock>& blocks, size_t first_row, const std::vector<ConstraintRow>& rows);
+  void Clear() {
+    impulses_.clear();
+    joint_impulses_.clear();
+  }
   // The impulses bit for bit, for snapshots (ContactMethod::SaveState).
   std::string Save() const;
   // Replaces the impulses by saved ones; false (and nothing changed) when
   // the bytes are malformed.
   bool Restore(const std::string& bytes);
   size_t size() const { return impulses_.size(); }
+  size_t joint_rows() const { return joint_impulses_.size(); }
 
  private:
   using Key = std::tuple<BodyId, BodyId, uint32_t>;
@@ -40,6 +55,9 @@ class WarmStartCache {
     bool operator<(const Entry& o) const { return std::tie(key, order) < std::tie(o.key, o.order); }
   };
   std::vector<Entry> impulses_;
+  // (joint id, row within the block) -> lambda, sorted by key
+  using JointKey = std::pair<JointId, int32_t>;
+  std::vector<std::pair<JointKey, double>> joint_impulses_;
 };
 
 }  // namespace contactsim
