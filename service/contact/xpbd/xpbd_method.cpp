@@ -18,6 +18,7 @@ Status XpbdMethod::SetParams(const ParamMap& params) {
   r.Double("compliance", 0.0, 1.0, &p.compliance);
   r.Double("restitution_threshold", 0.0, 100.0, &p.restitution_threshold);
   r.Double("margin", 0.0, 1.0, &p.margin);
+  r.Double("joint_compliance", 0.0, 1.0, &p.joint_compliance);
   Status status = r.Finish();
   if (status.ok()) params_ = p;
   return status;
@@ -28,7 +29,8 @@ ParamMap XpbdMethod::Params() const {
           {"iterations", std::to_string(params_.iterations)},
           {"compliance", FormatValue(params_.compliance)},
           {"restitution_threshold", FormatValue(params_.restitution_threshold)},
-          {"margin", FormatValue(params_.margin)}};
+          {"margin", FormatValue(params_.margin)},
+          {"joint_compliance", FormatValue(params_.joint_compliance)}};
 }
 
 void XpbdMethod::DetectAhead(const World& world, CollisionDetector& detector, double dt) {
@@ -63,6 +65,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   const double dt = world.dt;
   const double h = dt / params_.substeps;
   const double alpha_tilde = params_.compliance / (h * h);
+  const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   world.AccumulateForces();
   DetectAhead(world, detector, dt);
@@ -78,7 +81,9 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
     IntegratePositions(world, h);
     for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
     BeginXpbdSubstep(world, &contacts_);
+    joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
     for (int it = 0; it < params_.iterations; ++it) {
+      SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
       SolveXpbdContactPositions(world, start_, h, alpha_tilde, &contacts_);
     }
     stats.iterations += params_.iterations;

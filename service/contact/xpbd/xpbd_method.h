@@ -9,8 +9,9 @@
 //  1. predict: P += F h, L += tau h, then x, q from the new velocities
 //     (the integrator of service/physics, so free flight is the same as
 //     under every other method);
-//  2. solve positions, `iterations` times: contacts (non-penetration, static
-//     friction; xpbd_contact.h) with compliance alpha (alpha~ = alpha / h^2);
+//  2. solve positions, `iterations` times: joints (xpbd_joints.h, with
+//     joint_compliance), then contacts (non-penetration, static friction;
+//     xpbd_contact.h) with compliance alpha (alpha~ = alpha / h^2);
 //  3. velocities from the poses: bodies moved by the solve get
 //     P += m dx / h and L += I dw with dw = 2 vec(dq) / h, dq the rotation the
 //     solve added (a body the solve left alone keeps its momenta exactly);
@@ -29,6 +30,7 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/xpbd/xpbd_contact.h"
+#include "service/contact/xpbd/xpbd_joints.h"
 
 namespace contactsim {
 
@@ -38,6 +40,7 @@ struct XpbdParams {
   double compliance = 0.0;            // m/N, inverse contact stiffness (0: rigid)
   double restitution_threshold = 0.0; // m/s; restitution applies above max(this, 2 |g| h)
   double margin = 0.01;               // m, detection distance beyond each pair's closing motion
+  double joint_compliance = 0.0;      // m/N (and rad/(N m)), inverse joint stiffness (0: rigid)
 };
 
 class XpbdMethod : public ContactMethod {
@@ -57,6 +60,7 @@ class XpbdMethod : public ContactMethod {
   ContactSet detected_;
   std::vector<XpbdContact> contacts_;
   std::vector<XpbdPose> start_, predicted_;
+  std::vector<XpbdJointLambda> joint_lambdas_;
 };
 
 }  // namespace contactsim
