@@ -1,4 +1,6 @@
-"""Joints through the real server: a pendulum's period, bad input, removal."""
+"""Joints through the real server: a pendulum's period under impulse, lcp
+(both solvers) and xpbd, a live switch to lcp with a joint present, bad
+input, removal."""
 import math
 
 import numpy as np
@@ -20,10 +22,15 @@ def pendulum(client, length=1.0, theta0=0.05):
     return bob, joint
 
 
-def test_pendulum_period_is_two_pi_root_l_over_g(client):
+METHODS = [("impulse", {}), ("lcp", {"solver": "pgs"}), ("lcp", {"solver": "lemke"}), ("xpbd", {})]
+
+
+@pytest.mark.parametrize("method,params", METHODS, ids=["impulse", "lcp-pgs", "lcp-lemke", "xpbd"])
+def test_pendulum_period_is_two_pi_root_l_over_g(client, method, params):
     """10 s of a 1 m pendulum at 0.05 rad, x sampled from every STATE (60 Hz):
     the zero crossings give the period 2 pi sqrt(l/g) to 0.5%."""
     bob, joint = pendulum(client)
+    client.set_contact_method(method, **params)
     assert joint == 1
     samples = []
     client.on_state(lambda s: samples.append((s.time, s.bodies[bob].position[0])))
@@ -38,6 +45,43 @@ def test_pendulum_period_is_two_pi_root_l_over_g(client):
     # the rod keeps its length
     p = np.array(client.state().bodies[bob].position)
     assert np.linalg.norm(p - PIVOT) == pytest.approx(1.0, abs=1e-9)
+    assert client.wait_for_status(timeout=3.0).method == method
+
+
+def swing(client, method=None, params=None, steps=30):
+    """A 1 m pendulum released at 0.3 rad swings 60 steps (0.25 s) under the
+    server's default method (impulse); then, when `method` is given, the
+    method is switched live; then `steps` single steps. Returns the bob's
+    (position, velocity) after each of them."""
+    bob, _ = pendulum(client, theta0=0.3)
+    client.step(60)
+    if method is not None:
+        client.set_contact_method(method, **params)
+    out = []
+    for _ in range(steps):
+        client.step(1)
+        b = client.state().bodies[bob]
+        out.append((np.array(b.position), np.array(b.linear_velocity)))
+    return out
+
+
+@pytest.mark.parametrize("solver", ["pgs", "lemke"])
+def test_live_switch_to_lcp_with_a_joint_keeps_the_swing(client, solver):
+    """A swinging pendulum switched live from impulse to lcp continues as if
+    it had not been switched: lcp solves the same joint rows (exactly, for one
+    row, by either solver) with the same post-stabilisation, so every step
+    of the switched run stays within 1e-9 m and 1e-9 m/s of the unswitched
+    one (a jump, a lost velocity or a re-solved pose would show), the rod
+    keeps its length and the server reports the new method."""
+    reference = swing(client)
+    switched = swing(client, "lcp", {"solver": solver})
+    for i, ((x_ref, v_ref), (x, v)) in enumerate(zip(reference, switched)):
+        assert np.linalg.norm(x - x_ref) < 1e-9, "step %d: %.2e m off" % (i, np.linalg.norm(x - x_ref))
+        assert np.linalg.norm(v - v_ref) < 1e-9, "step %d: %.2e m/s off" % (i, np.linalg.norm(v - v_ref))
+        assert np.linalg.norm(x - PIVOT) == pytest.approx(1.0, abs=1e-9)
+    assert np.linalg.norm(switched[-1][1]) > 0.5  # still swinging
+    st = client.wait_for_status(timeout=3.0)
+    assert st.method == "lcp" and ("solver=%s" % solver) in st.method_params.split()
 
 
 def test_removing_the_joint_frees_the_body(client):
