@@ -1,5 +1,7 @@
-// Ericson, "Real-Time Collision Detection", 2005: point-segment (5.1.2) and
-// segment-segment (5.1.9, ClosestPtSegmentSegment) closest points.
+// Ericson, "Real-Time Collision Detection", 2005: point-segment (5.1.2),
+// segment-segment (5.1.9, ClosestPtSegmentSegment) and point-triangle
+// (5.1.5, ClosestPtPointTriangle: Voronoi regions of the vertices, then the
+// edges, then the face) closest points.
 #include "service/collision/closest_points.h"
 
 #include <algorithm>
@@ -62,6 +64,42 @@ SegmentClosestPoints ClosestPointsOfSegments(const Vec3& p1, const Vec3& q1, con
   out.c1 = p1 + s * d1;
   out.c2 = p2 + t * d2;
   return out;
+}
+
+Vec3 ClosestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* bary) {
+  Vec3 unused;
+  Vec3& w = bary != nullptr ? *bary : unused;
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return w = Vec3(1, 0, 0), a;  // vertex a
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return w = Vec3(0, 1, 0), b;  // vertex b
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {  // edge ab
+    const double v = d1 / (d1 - d3);
+    w = Vec3(1 - v, v, 0);
+    return a + v * ab;
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return w = Vec3(0, 0, 1), c;  // vertex c
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {  // edge ac
+    const double t = d2 / (d2 - d6);
+    w = Vec3(1 - t, 0, t);
+    return a + t * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {  // edge bc
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    w = Vec3(0, 1 - t, t);
+    return b + t * (c - b);
+  }
+  const double denom = 1.0 / (va + vb + vc);  // inside the face
+  const double v = vb * denom, t = vc * denom;
+  w = Vec3(1 - v - t, v, t);
+  return a + v * ab + t * ac;
 }
 
 }  // namespace contactsim

@@ -1,5 +1,6 @@
-// Closest points between a point and a segment, and between two segments
-// (Ericson, "Real-Time Collision Detection", 2005, sections 5.1.2 and 5.1.9).
+// Closest points between a point and a segment, between two segments and
+// between a point and a triangle (Ericson, "Real-Time Collision Detection",
+// 2005, sections 5.1.2, 5.1.9 and 5.1.5).
 // Capsules are segments with a radius, and edge-edge contacts of polyhedra are
 // the closest points of the two edges, so both families use these.
 #pragma once
@@ -22,5 +23,9 @@ struct SegmentClosestPoints {
 // Ericson's (s = 0 when the whole overlap is equally close).
 SegmentClosestPoints ClosestPointsOfSegments(const Vec3& p1, const Vec3& q1, const Vec3& p2,
                                              const Vec3& q2);
+
+// Closest point to p on the triangle (a, b, c); `bary` receives its
+// barycentric weights (u, v, w), closest = u a + v b + w c, all in [0, 1].
+Vec3 ClosestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* bary = nullptr);
 
 }  // namespace contactsim

@@ -1,6 +1,7 @@
 #include <memory>
 
 #include "service/contact/contact_method.h"
+#include "service/contact/barrier/barrier_method.h"
 #include "service/contact/impulse_method.h"
 #include "service/contact/lcp/lcp_method.h"
 #include "service/contact/penalty_method.h"
@@ -8,7 +9,7 @@
 
 namespace contactsim {
 
-std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty", "xpbd", "lcp"}; }
+std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty", "xpbd", "lcp", "barrier"}; }
 
 Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out) {
   if (name == "impulse") {
@@ -25,6 +26,10 @@ Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMetho
   }
   if (name == "lcp") {
     *out = std::make_unique<LcpMethod>();
+    return Status::Ok();
+  }
+  if (name == "barrier") {
+    *out = std::make_unique<BarrierMethod>();
     return Status::Ok();
   }
   std::string known;

@@ -1,0 +1,382 @@
+#include "service/contact/barrier/barrier_solver.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "service/contact/barrier/barrier_potential.h"
+#include "service/contact/contact_row.h"
+#include "service/physics/integrator.h"
+#include "service/physics/mass_properties.h"
+
+namespace contactsim {
+namespace {
+
+constexpr double kFloor = 1e-2;  // of d_hat: pairs closer at the start are shifted; kappa grows below it
+
+double BoundingRadius(const BodyGeometry& g) {
+  double r = 0.0;
+  for (const Vec3& X : g.points) r = std::max(r, X.norm());
+  return r + g.radius;
+}
+
+// Bound on how far any point of a body of radius r moves under the step dq.
+double MotionBound(const Vec12& dq, double r) {
+  return dq.head<3>().norm() + dq.tail<9>().norm() * r;
+}
+
+using Key = std::tuple<int, int, int, int, int, bool>;
+Key KeyOf(int a, int b, const PrimitivePair& p) {
+  return {a, b, static_cast<int>(p.kind), p.ia, p.ib, p.swapped};
+}
+
+// A tangent basis (3x2) of the plane normal to the unit n.
+Eigen::Matrix<double, 3, 2> TangentBasis(const Vec3& n) {
+  const Vec3 t1 = std::abs(n.x()) < 0.57735 ? n.cross(Vec3::UnitX()).normalized() : n.cross(Vec3::UnitY()).normalized();
+  Eigen::Matrix<double, 3, 2> T;
+  T << t1, n.cross(t1);
+  return T;
+}
+
+}  // namespace
+
+void BarrierSolver::Setup(World& world, const BarrierParams& params) {
+  params_ = params;
+  h_ = world.dt;
+  bodies_.clear();
+  dofs_ = 0;
+  auto& rigid = world.bodies();
+  for (size_t i = 0; i < rigid.size(); ++i) {
+    RigidBody& r = rigid[i];
+    Body b;
+    b.index = static_cast<int>(i);
+    b.geometry = MakeBodyGeometry(r.shape);
+    b.radius = BoundingRadius(b.geometry);
+    b.material = r.material;
+    if (r.motion == MotionType::kKinematic) AdvanceBallistic(r, h_);  // prescribed: moved first, then fixed
+    if (r.IsDynamic()) {
+      b.dof = dofs_++;
+      b.mass = AffineMassOf(r);
+      b.k_ortho = params.kappa_ortho * ComputeMassProperties(r.shape, 1.0).mass;  // volume at unit density
+      Vec12 qdot;
+      RigidToAffine(r, &b.q0, &qdot);
+      const Vec12 f = AffineGeneralisedForce(r.force, r.torque, r.Rotation());
+      b.q_pred = b.q0 + h_ * qdot + h_ * h_ * b.mass.Solve(f);
+    } else {
+      b.q0 = AffineFromPose(r.x, r.Rotation());
+      b.q_pred = b.q0;
+    }
+    b.q = b.q0;
+    bodies_.push_back(std::move(b));
+  }
+}
+
+void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* out) const {
+  out->clear();
+  const double d_hat = params_.d_hat;
+  std::vector<double> move(bodies_.size(), 0.0);
+  if (step != nullptr) {
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+      if (bodies_[i].dof >= 0) move[i] = MotionBound((*step)[bodies_[i].dof], bodies_[i].radius);
+    }
+  }
+  std::vector<PrimitivePair> pairs;
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    for (size_t j = i + 1; j < bodies_.size(); ++j) {
+      const Body& A = bodies_[i];
+      const Body& B = bodies_[j];
+      if (A.dof < 0 && B.dof < 0) continue;
+      // bounding spheres (|A X| <= ||A||_F |X|), or sphere against plane
+      const double reach = d_hat + move[i] + move[j];
+      if (A.geometry.plane || B.geometry.plane) {
+        const Body& P = A.geometry.plane ? A : B;
+        const Body& S = A.geometry.plane ? B : A;
+        const Mat3 R = AffineMatrix(P.q);
+        const Vec3 n = (R * P.geometry.plane_normal).normalized();
+        const double offset = P.geometry.plane_offset + n.dot(AffinePosition(P.q));
+        const double r = AffineMatrix(S.q).norm() * S.radius;
+        if (n.dot(AffinePosition(S.q)) - offset - r > reach) continue;
+      } else {
+        const double ra = AffineMatrix(A.q).norm() * A.radius, rb = AffineMatrix(B.q).norm() * B.radius;
+        if ((AffinePosition(A.q) - AffinePosition(B.q)).norm() - ra - rb > reach) continue;
+      }
+      EnumeratePrimitivePairs(A.geometry, B.geometry, &pairs);
+      const Vec3 pa = AffinePosition(A.q), pb = AffinePosition(B.q);
+      const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
+      for (const PrimitivePair& p : pairs) {
+        Entry e;
+        e.a = static_cast<int>(i);
+        e.b = static_cast<int>(j);
+        e.pair = p;
+        e.dist = EvaluatePair(A.geometry, pa, Aa, B.geometry, pb, Ab, p);
+        const auto it = shift_.find(KeyOf(e.a, e.b, p));
+        if (it != shift_.end()) e.shift = it->second;
+        if (step != nullptr) {
+          // d can shrink by at most max_ij |dv_i - du_j| over the vertices
+          const PairVertices v = PrimitiveVertices(A.geometry, B.geometry, p);
+          const Vec12 za = A.dof >= 0 ? (*step)[A.dof] : Vec12::Zero();
+          const Vec12 zb = B.dof >= 0 ? (*step)[B.dof] : Vec12::Zero();
+          std::array<Vec3, 3> da, db;
+          for (int k = 0; k < v.na; ++k) da[k] = AffinePoint(za, v.a[k]);
+          for (int k = 0; k < v.nb; ++k) db[k] = AffinePoint(zb, v.b[k]);
+          if (v.na == 0) da[0].setZero();
+          if (v.nb == 0) db[0].setZero();
+          double worst = 0.0;
+          for (int k = 0; k < std::max(v.na, 1); ++k) {
+            for (int l = 0; l < std::max(v.nb, 1); ++l) worst = std::max(worst, (da[k] - db[l]).norm());
+          }
+          e.motion = worst;
+        }
+        if (EffectiveDistance(e) - e.motion < d_hat) out->push_back(e);
+      }
+    }
+  }
+}
+
+double BarrierSolver::Energy(const std::vector<Entry>& entries) const {
+  double inertia = 0.0, potential = 0.0;
+  for (const Body& b : bodies_) {
+    if (b.dof < 0) continue;
+    const Vec12 dq = b.q - b.q_pred;
+    inertia += 0.5 * dq.dot(b.mass.Times(dq));
+    potential += OrthogonalityEnergy(b.q, b.k_ortho);
+  }
+  std::vector<PrimitivePair> unused;
+  for (const Entry& e : entries) {
+    const Body& A = bodies_[e.a];
+    const Body& B = bodies_[e.b];
+    const PairDistance d = EvaluatePair(A.geometry, AffinePosition(A.q), AffineMatrix(A.q), B.geometry,
+                                        AffinePosition(B.q), AffineMatrix(B.q), e.pair);
+    const double b = Barrier(d.d - e.shift, params_.d_hat);
+    if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
+    potential += kappa_ * b;
+  }
+  const double eps = params_.eps_v * h_;
+  for (const Friction& f : friction_) {
+    const Body& A = bodies_[f.a];
+    const Body& B = bodies_[f.b];
+    const Vec3 rel = (AffinePoint(B.q, f.Xb) - AffinePoint(B.q0, f.Xb)) - (AffinePoint(A.q, f.Xa) - AffinePoint(A.q0, f.Xa));
+    potential += f.mu_lambda * FrictionF0((f.T.transpose() * rel).norm(), eps);
+  }
+  return inertia + h_ * h_ * potential;
+}
+
+void BarrierSolver::Lag(const std::vector<Entry>& entries) {
+  friction_.clear();
+  for (const Entry& e : entries) {
+    const double d = EffectiveDistance(e);
+    if (d >= params_.d_hat) continue;
+    const double mu = CombineFriction(bodies_[e.a].material, bodies_[e.b].material);
+    if (mu <= 0.0) continue;
+    Friction f;
+    f.a = e.a;
+    f.b = e.b;
+    f.Xa = e.dist.Xa;
+    f.Xb = e.dist.Xb;
+    f.T = TangentBasis(e.dist.n);
+    f.mu_lambda = mu * kappa_ * std::abs(BarrierFirstDerivative(d, params_.d_hat));
+    friction_.push_back(f);
+  }
+}
+
+
+BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params, ContactSet* contacts) {
+  BarrierStepResult result;
+  Setup(world, params);
+  const double d_hat = params_.d_hat, h2 = h_ * h_;
+
+  // pairs that start closer than the floor get a shifted zero
+  shift_.clear();
+  std::vector<Entry> entries;
+  Collect(nullptr, &entries);
+  for (const Entry& e : entries) {
+    if (e.dist.d < kFloor * d_hat) shift_[KeyOf(e.a, e.b, e.pair)] = e.dist.d - kFloor * d_hat;
+  }
+  Collect(nullptr, &entries);
+
+  // initial kappa: balance the barrier's gradient against inertia and
+  // orthogonality at q_n (IPC sec. 4.3), at least kappa_min
+  double mass_sum = 0.0;
+  int dynamic = 0;
+  for (const Body& b : bodies_) {
+    if (b.dof >= 0) mass_sum += b.mass.m, ++dynamic;
+  }
+  const double kappa_min = (dynamic > 0 ? mass_sum / dynamic : 1.0) * std::max(world.gravity.norm(), 1.0) /
+                           std::abs(BarrierFirstDerivative(0.5 * d_hat, d_hat));
+  const double kappa_max = 1e6 * kappa_min;
+  {
+    Eigen::VectorXd gE = Eigen::VectorXd::Zero(12 * dofs_), gB = Eigen::VectorXd::Zero(12 * dofs_);
+    for (const Body& b : bodies_) {
+      if (b.dof < 0) continue;
+      Vec12 go;
+      Mat12 unused;
+      OrthogonalityDerivatives(b.q, b.k_ortho, &go, &unused);
+      gE.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
+    }
+    for (const Entry& e : entries) {
+      const double db = h2 * BarrierFirstDerivative(EffectiveDistance(e), d_hat);
+      if (bodies_[e.a].dof >= 0) gB.segment<12>(12 * bodies_[e.a].dof) -= db * AffineJacobianT(e.dist.Xa, e.dist.n);
+      if (bodies_[e.b].dof >= 0) gB.segment<12>(12 * bodies_[e.b].dof) += db * AffineJacobianT(e.dist.Xb, e.dist.n);
+    }
+    const double gg = gB.squaredNorm();
+    kappa_ = gg > 0.0 ? std::clamp(-gB.dot(gE) / gg, kappa_min, kappa_max) : kappa_min;
+  }
+  Lag(entries);
+
+  const double eps = params_.eps_v * h_;
+  double last_min = std::numeric_limits<double>::infinity();
+  std::vector<Vec12> step(dofs_);
+  std::vector<Entry> line;
+  for (int it = 0; it < params_.max_iterations && dofs_ > 0; ++it) {
+    Collect(nullptr, &entries);
+    // gradient and Hessian, per-body dense 12x12 blocks
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(12 * dofs_);
+    std::map<std::pair<int, int>, Mat12> blocks;
+    for (const Body& b : bodies_) {
+      if (b.dof < 0) continue;
+      Vec12 go;
+      Mat12 Ho;
+      OrthogonalityDerivatives(b.q, b.k_ortho, &go, &Ho);
+      g.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
+      blocks[{b.dof, b.dof}] = b.mass.Matrix() + h2 * Ho;
+    }
+    // a term with gradient directions Ga (body a) and Gb (body b) and weight w:
+    // g += w' [Ga; Gb], H += w'' [Ga; Gb][Ga; Gb]^T (w'' >= 0)
+    auto add = [&](int ia, int ib, const Eigen::Matrix<double, 12, Eigen::Dynamic>& Ga,
+                   const Eigen::Matrix<double, 12, Eigen::Dynamic>& Gb, const Eigen::VectorXd& grad,
+                   const Eigen::MatrixXd& hess) {
+      const int da = bodies_[ia].dof, db = bodies_[ib].dof;
+      if (da >= 0) g.segment<12>(12 * da) += Ga * grad;
+      if (db >= 0) g.segment<12>(12 * db) += Gb * grad;
+      if (da >= 0) blocks[{da, da}] += Ga * hess * Ga.transpose();
+      if (db >= 0) blocks[{db, db}] += Gb * hess * Gb.transpose();
+      if (da >= 0 && db >= 0) {
+        blocks[{da, db}] += Ga * hess * Gb.transpose();
+        blocks[{db, da}] += Gb * hess * Ga.transpose();
+      }
+    };
+    for (const Entry& e : entries) {
+      const double d = EffectiveDistance(e);
+      if (d >= d_hat) continue;
+      Eigen::Matrix<double, 12, Eigen::Dynamic> Ga = -AffineJacobianT(e.dist.Xa, e.dist.n);
+      Eigen::Matrix<double, 12, Eigen::Dynamic> Gb = AffineJacobianT(e.dist.Xb, e.dist.n);
+      add(e.a, e.b, Ga, Gb, Eigen::VectorXd::Constant(1, h2 * kappa_ * BarrierFirstDerivative(d, d_hat)),
+          Eigen::MatrixXd::Constant(1, 1, h2 * kappa_ * BarrierSecondDerivative(d, d_hat)));
+    }
+    for (const Friction& f : friction_) {
+      const Body& A = bodies_[f.a];
+      const Body& B = bodies_[f.b];
+      const Vec3 rel = (AffinePoint(B.q, f.Xb) - AffinePoint(B.q0, f.Xb)) - (AffinePoint(A.q, f.Xa) - AffinePoint(A.q0, f.Xa));
+      const Eigen::Vector2d u = f.T.transpose() * rel;
+      const double w = h2 * f.mu_lambda * FrictionF1OverY(u.norm(), eps);
+      Eigen::Matrix<double, 12, Eigen::Dynamic> Ga(12, 2), Gb(12, 2);
+      for (int k = 0; k < 2; ++k) {
+        Ga.col(k) = -AffineJacobianT(f.Xa, f.T.col(k));
+        Gb.col(k) = AffineJacobianT(f.Xb, f.T.col(k));
+      }
+      add(f.a, f.b, Ga, Gb, w * u, w * Eigen::Matrix2d::Identity());
+    }
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (const auto& [key, m] : blocks) {
+      for (int r = 0; r < 12; ++r) {
+        for (int c = 0; c < 12; ++c) {
+          if (m(r, c) != 0.0) triplets.emplace_back(12 * key.first + r, 12 * key.second + c, m(r, c));
+        }
+      }
+    }
+    Eigen::SparseMatrix<double> H(12 * dofs_, 12 * dofs_);
+    H.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
+    if (ldlt.info() != Eigen::Success) break;
+    const Eigen::VectorXd dq = ldlt.solve(-g);
+    ++result.iterations;
+
+    // converged when every vertex would move slower than the tolerance
+    double fastest = 0.0;
+    for (const Body& b : bodies_) {
+      if (b.dof < 0) continue;
+      step[b.dof] = dq.segment<12>(12 * b.dof);
+      fastest = std::max(fastest, MotionBound(step[b.dof], b.radius) / h_);
+    }
+    if (fastest < params_.tolerance) {
+      result.converged = true;
+      break;
+    }
+
+    // line search: the CCD bound, then halving until the energy decreases
+    Collect(&step, &line);
+    double alpha = 1.0;
+    for (const Entry& e : line) {
+      if (e.motion > 0.0) alpha = std::min(alpha, (1.0 - params_.ccd_fraction) * EffectiveDistance(e) / e.motion);
+    }
+    const double e0 = Energy(line);
+    std::vector<Vec12> start(bodies_.size());
+    for (size_t i = 0; i < bodies_.size(); ++i) start[i] = bodies_[i].q;
+    bool accepted = false;
+    for (int halving = 0; halving < 40; ++halving, alpha *= 0.5) {
+      for (Body& b : bodies_) {
+        if (b.dof >= 0) b.q = start[&b - bodies_.data()] + alpha * step[b.dof];
+      }
+      if (Energy(line) <= e0) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      for (size_t i = 0; i < bodies_.size(); ++i) bodies_[i].q = start[i];
+      break;
+    }
+
+    // adaptive kappa: double it while the closest pair keeps closing below the floor
+    double min_d = std::numeric_limits<double>::infinity();
+    Collect(nullptr, &entries);
+    for (const Entry& e : entries) min_d = std::min(min_d, EffectiveDistance(e));
+    if (min_d < kFloor * d_hat && min_d < last_min) kappa_ = std::min(kappa_max, 2.0 * kappa_);
+    last_min = min_d;
+  }
+
+  // write back: position, rotation by polar decomposition, velocities from the step
+  auto& rigid = world.bodies();
+  for (const Body& b : bodies_) {
+    if (b.dof < 0) continue;
+    RigidBody& r = rigid[b.index];
+    const Mat3 R0 = AffineMatrix(b.q0);
+    const Mat3 R = NearestRotation(AffineMatrix(b.q));
+    const Vec3 x = AffinePosition(b.q);
+    const Eigen::AngleAxisd turn(R * R0.transpose());
+    const Vec3 v = (x - AffinePosition(b.q0)) / h_;
+    const Vec3 w = turn.angle() * turn.axis() / h_;
+    r.x = x;
+    r.q = Quat(R).normalized();
+    r.SetVelocity(v, w);
+  }
+
+  // contacts and the smallest distance at the end
+  contacts->clear();
+  Collect(nullptr, &entries);
+  result.min_distance = d_hat;
+  for (const Entry& e : entries) {
+    const double d = EffectiveDistance(e);
+    if (d >= d_hat) continue;
+    result.min_distance = std::min(result.min_distance, e.dist.d);
+    const Body& A = bodies_[e.a];
+    const Body& B = bodies_[e.b];
+    Contact c;
+    c.a = A.index;
+    c.b = B.index;
+    c.id_a = rigid[A.index].id;
+    c.id_b = rigid[B.index].id;
+    const Vec3 ca = AffinePoint(A.q, e.dist.Xa), cb = AffinePoint(B.q, e.dist.Xb);
+    c.point = 0.5 * (ca + cb);
+    c.normal = e.dist.n;
+    c.depth = -e.dist.d;
+    c.feature_id = static_cast<uint32_t>(static_cast<int>(e.pair.kind) * 1000003 + e.pair.ia * 1009 + e.pair.ib * 2 + e.pair.swapped);
+    c.normal_value = kappa_ * std::abs(BarrierFirstDerivative(d, d_hat));
+    contacts->push_back(c);
+  }
+  result.kappa = kappa_;
+  return result;
+}
+
+}  // namespace contactsim

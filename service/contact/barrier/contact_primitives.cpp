@@ -1,0 +1,200 @@
+#include "service/contact/barrier/contact_primitives.h"
+
+#include "service/collision/closest_points.h"
+#include "service/collision/posed_polyhedron.h"
+#include "service/physics/convex_hull.h"
+
+namespace contactsim {
+namespace {
+
+// Faces of a hull as triangle fans (faces are convex, counter-clockwise).
+void AddHull(const ConvexHull& hull, const std::vector<Vec3>& points, BodyGeometry* g) {
+  g->points = points;
+  g->edges = hull.edges;
+  for (const ConvexHull::Face& f : hull.faces) {
+    for (size_t k = 1; k + 1 < f.vertices.size(); ++k) g->triangles.push_back({f.vertices[0], f.vertices[k], f.vertices[k + 1]});
+  }
+}
+
+}  // namespace
+
+BodyGeometry MakeBodyGeometry(const Shape& shape) {
+  BodyGeometry g;
+  switch (shape.type) {
+    case ShapeType::kSphere:
+      g.points = {Vec3::Zero()};
+      g.radius = shape.radius;
+      break;
+    case ShapeType::kCapsule:
+      g.points = {Vec3(0, 0, -shape.half_length), Vec3(0, 0, shape.half_length)};
+      g.edges = {{0, 1}};
+      g.radius = shape.radius;
+      break;
+    case ShapeType::kBox: {
+      const ConvexHull& cube = UnitBoxTopology();
+      std::vector<Vec3> points;
+      for (const Vec3& v : cube.vertices) points.push_back(v.cwiseProduct(shape.half_extents));
+      AddHull(cube, points, &g);
+      break;
+    }
+    case ShapeType::kConvex:
+      AddHull(*shape.hull, shape.hull->vertices, &g);
+      break;
+    case ShapeType::kPlane:
+      g.plane = true;
+      g.plane_normal = shape.plane_normal;
+      g.plane_offset = shape.plane_offset;
+      break;
+    default: break;
+  }
+  return g;
+}
+
+void EnumeratePrimitivePairs(const BodyGeometry& a, const BodyGeometry& b, std::vector<PrimitivePair>* out) {
+  out->clear();
+  if (a.plane && b.plane) return;
+  if (a.plane || b.plane) {
+    const BodyGeometry& solid = a.plane ? b : a;
+    for (int i = 0; i < static_cast<int>(solid.points.size()); ++i) out->push_back({PrimitiveKind::kPointPlane, i, 0, a.plane});
+    return;
+  }
+  const int na = static_cast<int>(a.points.size()), nb = static_cast<int>(b.points.size());
+  for (int i = 0; i < na; ++i) {
+    for (int t = 0; t < static_cast<int>(b.triangles.size()); ++t) out->push_back({PrimitiveKind::kPointTriangle, i, t, false});
+  }
+  for (int i = 0; i < nb; ++i) {
+    for (int t = 0; t < static_cast<int>(a.triangles.size()); ++t) out->push_back({PrimitiveKind::kPointTriangle, i, t, true});
+  }
+  for (int e = 0; e < static_cast<int>(a.edges.size()); ++e) {
+    for (int f = 0; f < static_cast<int>(b.edges.size()); ++f) out->push_back({PrimitiveKind::kEdgeEdge, e, f, false});
+  }
+  if (b.triangles.empty()) {
+    for (int i = 0; i < na; ++i) {
+      for (int e = 0; e < static_cast<int>(b.edges.size()); ++e) out->push_back({PrimitiveKind::kPointEdge, i, e, false});
+    }
+  }
+  if (a.triangles.empty()) {
+    for (int i = 0; i < nb; ++i) {
+      for (int e = 0; e < static_cast<int>(a.edges.size()); ++e) out->push_back({PrimitiveKind::kPointEdge, i, e, true});
+    }
+  }
+  if (a.edges.empty() && b.edges.empty()) {
+    for (int i = 0; i < na; ++i) {
+      for (int j = 0; j < nb; ++j) out->push_back({PrimitiveKind::kPointPoint, i, j, false});
+    }
+  }
+}
+
+PairVertices PrimitiveVertices(const BodyGeometry& a, const BodyGeometry& b, const PrimitivePair& pair) {
+  PairVertices v;
+  const BodyGeometry& point_side = pair.swapped ? b : a;
+  const BodyGeometry& other = pair.swapped ? a : b;
+  std::array<Vec3, 3> p{}, o{};
+  int np = 0, no = 0;
+  switch (pair.kind) {
+    case PrimitiveKind::kPointTriangle:
+      p[np++] = point_side.points[pair.ia];
+      for (int k = 0; k < 3; ++k) o[no++] = other.points[other.triangles[pair.ib][k]];
+      break;
+    case PrimitiveKind::kEdgeEdge:
+      for (int k = 0; k < 2; ++k) p[np++] = a.points[a.edges[pair.ia][k]];
+      for (int k = 0; k < 2; ++k) o[no++] = b.points[b.edges[pair.ib][k]];
+      break;
+    case PrimitiveKind::kPointEdge:
+      p[np++] = point_side.points[pair.ia];
+      for (int k = 0; k < 2; ++k) o[no++] = other.points[other.edges[pair.ib][k]];
+      break;
+    case PrimitiveKind::kPointPoint:
+      p[np++] = point_side.points[pair.ia];
+      o[no++] = other.points[pair.ib];
+      break;
+    case PrimitiveKind::kPointPlane:
+      p[np++] = point_side.points[pair.ia];
+      break;  // the plane is static: no vertices move
+  }
+  const bool point_is_a = !pair.swapped || pair.kind == PrimitiveKind::kEdgeEdge;
+  if (point_is_a) {
+    v.a = p, v.na = np, v.b = o, v.nb = no;
+  } else {
+    v.b = p, v.nb = np, v.a = o, v.na = no;
+  }
+  return v;
+}
+
+PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa, const BodyGeometry& b,
+                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair) {
+  PairDistance out;
+  const bool swapped = pair.swapped && pair.kind != PrimitiveKind::kEdgeEdge;
+  // the point side's and the other side's geometry and maps
+  const BodyGeometry& g1 = swapped ? b : a;
+  const BodyGeometry& g2 = swapped ? a : b;
+  const Vec3& p1 = swapped ? pb : pa;
+  const Vec3& p2 = swapped ? pa : pb;
+  const Mat3& A1 = swapped ? Ab : Aa;
+  const Mat3& A2 = swapped ? Aa : Ab;
+  auto world1 = [&](int i) { return Vec3(p1 + A1 * g1.points[i]); };
+  auto world2 = [&](int i) { return Vec3(p2 + A2 * g2.points[i]); };
+  Vec3 X1, X2, c1, c2;
+  switch (pair.kind) {
+    case PrimitiveKind::kPointPlane: {
+      // the plane's world normal and offset (its map is a rigid motion)
+      X1 = g1.points[pair.ia];
+      c1 = world1(pair.ia);
+      const Vec3 n_W = (A2 * g2.plane_normal).normalized();
+      const double offset_W = g2.plane_offset + n_W.dot(p2);
+      const double s = n_W.dot(c1) - offset_W;
+      c2 = c1 - s * n_W;
+      X2 = A2.inverse() * (c2 - p2);
+      out.d = s - g1.radius;
+      const Vec3 n12 = -n_W;  // from the point towards the solid below the plane
+      out.n = swapped ? -n12 : n12;
+      out.Xa = swapped ? X2 : X1;
+      out.Xb = swapped ? X1 : X2;
+      return out;
+    }
+    case PrimitiveKind::kPointTriangle: {
+      const auto& t = g2.triangles[pair.ib];
+      Vec3 w;
+      c1 = world1(pair.ia);
+      c2 = ClosestPointOnTriangle(c1, world2(t[0]), world2(t[1]), world2(t[2]), &w);
+      X1 = g1.points[pair.ia];
+      X2 = w(0) * g2.points[t[0]] + w(1) * g2.points[t[1]] + w(2) * g2.points[t[2]];
+      break;
+    }
+    case PrimitiveKind::kEdgeEdge: {
+      const auto& e = g1.edges[pair.ia];
+      const auto& f = g2.edges[pair.ib];
+      const SegmentClosestPoints s = ClosestPointsOfSegments(world1(e[0]), world1(e[1]), world2(f[0]), world2(f[1]));
+      c1 = s.c1;
+      c2 = s.c2;
+      X1 = (1 - s.s) * g1.points[e[0]] + s.s * g1.points[e[1]];
+      X2 = (1 - s.t) * g2.points[f[0]] + s.t * g2.points[f[1]];
+      break;
+    }
+    case PrimitiveKind::kPointEdge: {
+      const auto& e = g2.edges[pair.ib];
+      double t = 0.0;
+      c1 = world1(pair.ia);
+      c2 = ClosestPointOnSegment(c1, world2(e[0]), world2(e[1]), &t);
+      X1 = g1.points[pair.ia];
+      X2 = (1 - t) * g2.points[e[0]] + t * g2.points[e[1]];
+      break;
+    }
+    case PrimitiveKind::kPointPoint:
+      X1 = g1.points[pair.ia];
+      X2 = g2.points[pair.ib];
+      c1 = world1(pair.ia);
+      c2 = world2(pair.ib);
+      break;
+  }
+  const Vec3 gap = c2 - c1;
+  const double len = gap.norm();
+  const Vec3 n12 = len > 0.0 ? Vec3(gap / len) : Vec3::UnitZ();
+  out.d = len - g1.radius - g2.radius;
+  out.n = swapped ? -n12 : n12;
+  out.Xa = swapped ? X2 : X1;
+  out.Xb = swapped ? X1 : X2;
+  return out;
+}
+
+}  // namespace contactsim
