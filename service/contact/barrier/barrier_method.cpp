@@ -29,6 +29,14 @@ ParamMap BarrierMethod::Params() const {
           {"ccd_fraction", FormatValue(params_.ccd_fraction)}};
 }
 
+Status BarrierMethod::LoadState(const std::string& bytes) {
+  if (!solver_.mutable_state().Restore(bytes)) {
+    return Status::InvalidArgument("barrier method state: " + std::to_string(bytes.size()) +
+                                   " bytes are not a saved affine state and friction lag");
+  }
+  return Status::Ok();
+}
+
 StepStats BarrierMethod::Step(World& world, CollisionDetector& /*detector*/, ContactSet* contacts) {
   world.AccumulateForces();
   last_ = solver_.Step(world, params_, contacts);

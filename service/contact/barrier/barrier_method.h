@@ -20,6 +20,10 @@ class BarrierMethod : public ContactMethod {
   Status SetParams(const ParamMap& params) override;
   ParamMap Params() const override;
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
+  // The affine state and lagged friction (barrier_state.h) are the caches.
+  void ResetCaches() override { solver_.mutable_state().Clear(); }
+  std::string SaveState() const override { return solver_.state().Save(); }
+  Status LoadState(const std::string& bytes) override;
   const BarrierParams& params() const { return params_; }
   // N/m, the barrier stiffness kappa of the last step
   double barrier_stiffness() const { return last_.kappa; }

@@ -59,8 +59,17 @@ void BarrierSolver::Setup(World& world, const BarrierParams& params) {
       b.dof = dofs_++;
       b.mass = AffineMassOf(r);
       b.k_ortho = params.kappa_ortho * ComputeMassProperties(r.shape, 1.0).mass;  // volume at unit density
+      // the affine state carried from the last step, unless the rigid state
+      // was changed from outside since (barrier_state.h)
       Vec12 qdot;
-      RigidToAffine(r, &b.q0, &qdot);
+      const auto kept = state_.bodies.find(r.id);
+      if (kept != state_.bodies.end() && kept->second.Matches(r)) {
+        b.q0 = kept->second.q;
+        qdot = kept->second.qdot;
+      } else {
+        RigidToAffine(r, &b.q0, &qdot);
+        b.restarted = true;
+      }
       const Vec12 f = AffineGeneralisedForce(r.force, r.torque, r.Rotation());
       b.q_pred = b.q0 + h_ * qdot + h_ * h_ * b.mass.Solve(f);
     } else {
@@ -110,6 +119,7 @@ void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* 
         e.b = static_cast<int>(j);
         e.pair = p;
         e.dist = EvaluatePair(A.geometry, pa, Aa, B.geometry, pb, Ab, p);
+        e.mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, p);
         const auto it = shift_.find(KeyOf(e.a, e.b, p));
         if (it != shift_.end()) e.shift = it->second;
         if (step != nullptr) {
@@ -127,6 +137,15 @@ void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* 
             for (int l = 0; l < std::max(v.nb, 1); ++l) worst = std::max(worst, (da[k] - db[l]).norm());
           }
           e.motion = worst;
+          if (p.kind == PrimitiveKind::kPointPlane && (p.swapped ? A.dof : B.dof) < 0) {
+            // a point against a static plane: d is linear in alpha (affine
+            // maps are linear in q), so only the approach along the normal
+            // counts, exactly; sliding along the plane does not shrink alpha
+            const bool point_is_b = p.swapped;
+            const Vec3 moved = point_is_b ? AffinePoint(zb, e.dist.Xb) : AffinePoint(za, e.dist.Xa);
+            const Vec3 n_plane_to_point = point_is_b ? e.dist.n : Vec3(-e.dist.n);
+            e.motion = std::max(0.0, -n_plane_to_point.dot(moved));
+          }
         }
         if (EffectiveDistance(e) - e.motion < d_hat) out->push_back(e);
       }
@@ -150,7 +169,8 @@ double BarrierSolver::Energy(const std::vector<Entry>& entries) const {
                                         AffinePosition(B.q), AffineMatrix(B.q), e.pair);
     const double b = Barrier(d.d - e.shift, params_.d_hat);
     if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
-    potential += kappa_ * b;
+    if (b == 0.0) continue;
+    potential += kappa_ * MollifyEdgeEdge(A.geometry, AffineMatrix(A.q), B.geometry, AffineMatrix(B.q), e.pair).m * b;
   }
   const double eps = params_.eps_v * h_;
   for (const Friction& f : friction_) {
@@ -175,11 +195,40 @@ void BarrierSolver::Lag(const std::vector<Entry>& entries) {
     f.Xa = e.dist.Xa;
     f.Xb = e.dist.Xb;
     f.T = TangentBasis(e.dist.n);
-    f.mu_lambda = mu * kappa_ * std::abs(BarrierFirstDerivative(d, params_.d_hat));
+    f.mu_lambda = mu * kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, params_.d_hat));
+    if (f.mu_lambda <= 0.0) continue;
     friction_.push_back(f);
   }
 }
 
+void BarrierSolver::LagFromState(const World& world) {
+  friction_.clear();
+  std::map<BodyId, int> index;
+  for (size_t i = 0; i < bodies_.size(); ++i) index[world.bodies()[bodies_[i].index].id] = static_cast<int>(i);
+  for (const LaggedFriction& l : state_.friction) {
+    const auto a = index.find(l.a), b = index.find(l.b);
+    if (a == index.end() || b == index.end()) continue;
+    friction_.push_back({a->second, b->second, l.Xa, l.Xb, l.T, l.mu_lambda});
+  }
+}
+
+void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entries) {
+  const auto& rigid = world.bodies();
+  std::map<BodyId, AffineBodyState> kept;
+  for (const Body& b : bodies_) {
+    if (b.dof < 0) continue;
+    AffineBodyState& s = kept[rigid[b.index].id];
+    s.q = b.q;
+    s.qdot = (b.q - b.q0) / h_;   // implicit Euler's velocity
+    s.Stamp(rigid[b.index]);
+  }
+  state_.bodies = std::move(kept);
+  Lag(entries);
+  state_.friction.clear();
+  for (const Friction& f : friction_) {
+    state_.friction.push_back({rigid[bodies_[f.a].index].id, rigid[bodies_[f.b].index].id, f.Xa, f.Xb, f.T, f.mu_lambda});
+  }
+}
 
 BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params, ContactSet* contacts) {
   BarrierStepResult result;
@@ -202,7 +251,9 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   for (const Body& b : bodies_) {
     if (b.dof >= 0) mass_sum += b.mass.m, ++dynamic;
   }
-  const double kappa_min = (dynamic > 0 ? mass_sum / dynamic : 1.0) * std::max(world.gravity.norm(), 1.0) /
+  // (a quarter of the weight per pair: a box face resting on its four
+  // corners at d_hat / 2 is then in balance, not launched by 4 m g)
+  const double kappa_min = 0.25 * (dynamic > 0 ? mass_sum / dynamic : 1.0) * std::max(world.gravity.norm(), 1.0) /
                            std::abs(BarrierFirstDerivative(0.5 * d_hat, d_hat));
   const double kappa_max = 1e6 * kappa_min;
   {
@@ -215,125 +266,167 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
       gE.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
     }
     for (const Entry& e : entries) {
-      const double db = h2 * BarrierFirstDerivative(EffectiveDistance(e), d_hat);
+      const double db = h2 * e.mollifier.m * BarrierFirstDerivative(EffectiveDistance(e), d_hat);
       if (bodies_[e.a].dof >= 0) gB.segment<12>(12 * bodies_[e.a].dof) -= db * AffineJacobianT(e.dist.Xa, e.dist.n);
       if (bodies_[e.b].dof >= 0) gB.segment<12>(12 * bodies_[e.b].dof) += db * AffineJacobianT(e.dist.Xb, e.dist.n);
     }
     const double gg = gB.squaredNorm();
     kappa_ = gg > 0.0 ? std::clamp(-gB.dot(gE) / gg, kappa_min, kappa_max) : kappa_min;
   }
-  Lag(entries);
+  // friction lagged from the end of the last step (IPC sec. 5), or from now
+  // when a body restarted from its rigid state
+  bool restarted = false;
+  for (const Body& b : bodies_) restarted = restarted || b.restarted;
+  if (restarted) {
+    Lag(entries);
+  } else {
+    LagFromState(world);
+  }
 
   const double eps = params_.eps_v * h_;
   double last_min = std::numeric_limits<double>::infinity();
   std::vector<Vec12> step(dofs_);
   std::vector<Entry> line;
-  for (int it = 0; it < params_.max_iterations && dofs_ > 0; ++it) {
-    Collect(nullptr, &entries);
-    // gradient and Hessian, per-body dense 12x12 blocks
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(12 * dofs_);
-    std::map<std::pair<int, int>, Mat12> blocks;
-    for (const Body& b : bodies_) {
-      if (b.dof < 0) continue;
-      Vec12 go;
-      Mat12 Ho;
-      OrthogonalityDerivatives(b.q, b.k_ortho, &go, &Ho);
-      g.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
-      blocks[{b.dof, b.dof}] = b.mass.Matrix() + h2 * Ho;
+  // A step with a restarted body has no lag from a previous step: its
+  // first lambda comes from the start of the step, which for bodies placed
+  // touching (shifted pairs at 1e-2 d_hat) is many times their weight. As
+  // IPC's lagged iterations (sec. 5), the minimisation is then repeated once
+  // from its solution with the friction lagged there.
+  const int passes = restarted && !friction_.empty() ? 2 : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    if (pass > 0) {
+      Collect(nullptr, &entries);
+      Lag(entries);
+      result.converged = false;
     }
-    // a term with gradient directions Ga (body a) and Gb (body b) and weight w:
-    // g += w' [Ga; Gb], H += w'' [Ga; Gb][Ga; Gb]^T (w'' >= 0)
-    auto add = [&](int ia, int ib, const Eigen::Matrix<double, 12, Eigen::Dynamic>& Ga,
-                   const Eigen::Matrix<double, 12, Eigen::Dynamic>& Gb, const Eigen::VectorXd& grad,
-                   const Eigen::MatrixXd& hess) {
-      const int da = bodies_[ia].dof, db = bodies_[ib].dof;
-      if (da >= 0) g.segment<12>(12 * da) += Ga * grad;
-      if (db >= 0) g.segment<12>(12 * db) += Gb * grad;
-      if (da >= 0) blocks[{da, da}] += Ga * hess * Ga.transpose();
-      if (db >= 0) blocks[{db, db}] += Gb * hess * Gb.transpose();
-      if (da >= 0 && db >= 0) {
-        blocks[{da, db}] += Ga * hess * Gb.transpose();
-        blocks[{db, da}] += Gb * hess * Ga.transpose();
+    for (int it = 0; it < params_.max_iterations && dofs_ > 0; ++it) {
+      Collect(nullptr, &entries);
+      // gradient and Hessian, per-body dense 12x12 blocks
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(12 * dofs_);
+      std::map<std::pair<int, int>, Mat12> blocks;
+      for (const Body& b : bodies_) {
+        if (b.dof < 0) continue;
+        Vec12 go;
+        Mat12 Ho;
+        OrthogonalityDerivatives(b.q, b.k_ortho, &go, &Ho);
+        g.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
+        blocks[{b.dof, b.dof}] = b.mass.Matrix() + h2 * Ho;
       }
-    };
-    for (const Entry& e : entries) {
-      const double d = EffectiveDistance(e);
-      if (d >= d_hat) continue;
-      Eigen::Matrix<double, 12, Eigen::Dynamic> Ga = -AffineJacobianT(e.dist.Xa, e.dist.n);
-      Eigen::Matrix<double, 12, Eigen::Dynamic> Gb = AffineJacobianT(e.dist.Xb, e.dist.n);
-      add(e.a, e.b, Ga, Gb, Eigen::VectorXd::Constant(1, h2 * kappa_ * BarrierFirstDerivative(d, d_hat)),
-          Eigen::MatrixXd::Constant(1, 1, h2 * kappa_ * BarrierSecondDerivative(d, d_hat)));
-    }
-    for (const Friction& f : friction_) {
-      const Body& A = bodies_[f.a];
-      const Body& B = bodies_[f.b];
-      const Vec3 rel = (AffinePoint(B.q, f.Xb) - AffinePoint(B.q0, f.Xb)) - (AffinePoint(A.q, f.Xa) - AffinePoint(A.q0, f.Xa));
-      const Eigen::Vector2d u = f.T.transpose() * rel;
-      const double w = h2 * f.mu_lambda * FrictionF1OverY(u.norm(), eps);
-      Eigen::Matrix<double, 12, Eigen::Dynamic> Ga(12, 2), Gb(12, 2);
-      for (int k = 0; k < 2; ++k) {
-        Ga.col(k) = -AffineJacobianT(f.Xa, f.T.col(k));
-        Gb.col(k) = AffineJacobianT(f.Xb, f.T.col(k));
-      }
-      add(f.a, f.b, Ga, Gb, w * u, w * Eigen::Matrix2d::Identity());
-    }
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (const auto& [key, m] : blocks) {
-      for (int r = 0; r < 12; ++r) {
-        for (int c = 0; c < 12; ++c) {
-          if (m(r, c) != 0.0) triplets.emplace_back(12 * key.first + r, 12 * key.second + c, m(r, c));
+      // a term with gradient directions Ga (body a) and Gb (body b) and weight w:
+      // g += w' [Ga; Gb], H += w'' [Ga; Gb][Ga; Gb]^T (w'' >= 0)
+      // (fixed-size: Ga, Gb are 12 x 1 for a barrier pair, 12 x 2 for friction)
+      // (a new block starts at zero: Eigen's fixed-size default is uninitialised)
+      auto block = [&](int r, int c) -> Mat12& { return blocks.try_emplace({r, c}, Mat12::Zero()).first->second; };
+      auto add = [&](int ia, int ib, const auto& Ga, const auto& Gb, const auto& grad, const auto& hess) {
+        const int da = bodies_[ia].dof, db = bodies_[ib].dof;
+        if (da >= 0) g.segment<12>(12 * da) += Ga * grad;
+        if (db >= 0) g.segment<12>(12 * db) += Gb * grad;
+        if (da >= 0) block(da, da).noalias() += Ga * hess * Ga.transpose();
+        if (db >= 0) block(db, db).noalias() += Gb * hess * Gb.transpose();
+        if (da >= 0 && db >= 0) {
+          const Mat12 cross = Ga * hess * Gb.transpose();
+          block(da, db) += cross;
+          block(db, da) += cross.transpose();
+        }
+      };
+      for (const Entry& e : entries) {
+        const double d = EffectiveDistance(e);
+        if (d >= d_hat) continue;
+        const Vec12 Ga = -AffineJacobianT(e.dist.Xa, e.dist.n);
+        const Vec12 Gb = AffineJacobianT(e.dist.Xb, e.dist.n);
+        // kappa m(x) b(d): the product rule adds kappa b grad m (edge-edge);
+        // the Hessian keeps the PSD Gauss-Newton part kappa m b'' grad d grad d^T
+        const double m = e.mollifier.m;
+        add(e.a, e.b, Ga, Gb, Eigen::Matrix<double, 1, 1>(h2 * kappa_ * m * BarrierFirstDerivative(d, d_hat)),
+            Eigen::Matrix<double, 1, 1>(h2 * kappa_ * m * BarrierSecondDerivative(d, d_hat)));
+        if (m < 1.0) {
+          const double kb = h2 * kappa_ * Barrier(d, d_hat);
+          if (bodies_[e.a].dof >= 0) g.segment<12>(12 * bodies_[e.a].dof) += kb * e.mollifier.grad_a;
+          if (bodies_[e.b].dof >= 0) g.segment<12>(12 * bodies_[e.b].dof) += kb * e.mollifier.grad_b;
         }
       }
-    }
-    Eigen::SparseMatrix<double> H(12 * dofs_, 12 * dofs_);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
-    if (ldlt.info() != Eigen::Success) break;
-    const Eigen::VectorXd dq = ldlt.solve(-g);
-    ++result.iterations;
-
-    // converged when every vertex would move slower than the tolerance
-    double fastest = 0.0;
-    for (const Body& b : bodies_) {
-      if (b.dof < 0) continue;
-      step[b.dof] = dq.segment<12>(12 * b.dof);
-      fastest = std::max(fastest, MotionBound(step[b.dof], b.radius) / h_);
-    }
-    if (fastest < params_.tolerance) {
-      result.converged = true;
-      break;
-    }
-
-    // line search: the CCD bound, then halving until the energy decreases
-    Collect(&step, &line);
-    double alpha = 1.0;
-    for (const Entry& e : line) {
-      if (e.motion > 0.0) alpha = std::min(alpha, (1.0 - params_.ccd_fraction) * EffectiveDistance(e) / e.motion);
-    }
-    const double e0 = Energy(line);
-    std::vector<Vec12> start(bodies_.size());
-    for (size_t i = 0; i < bodies_.size(); ++i) start[i] = bodies_[i].q;
-    bool accepted = false;
-    for (int halving = 0; halving < 40; ++halving, alpha *= 0.5) {
-      for (Body& b : bodies_) {
-        if (b.dof >= 0) b.q = start[&b - bodies_.data()] + alpha * step[b.dof];
+      for (const Friction& f : friction_) {
+        const Body& A = bodies_[f.a];
+        const Body& B = bodies_[f.b];
+        const Vec3 rel = (AffinePoint(B.q, f.Xb) - AffinePoint(B.q0, f.Xb)) - (AffinePoint(A.q, f.Xa) - AffinePoint(A.q0, f.Xa));
+        const Eigen::Vector2d u = f.T.transpose() * rel;
+        const double y = u.norm();
+        const double w = h2 * f.mu_lambda * FrictionF1OverY(y, eps);
+        // Hessian of mu lambda f0(|u|) in u (IPC appendix): f1/y I +
+        // (f1' y - f1) / y^3 u u^T; PSD for the f1 of barrier_potential.h:
+        // for y >= eps it is (I - u u^T / y^2) / y, below eps
+        // f1/y I - u u^T / (eps^2 y)
+        Eigen::Matrix2d hess = w * Eigen::Matrix2d::Identity();
+        if (y >= eps) {
+          hess -= (w / (y * y)) * u * u.transpose();
+        } else if (y > 1e-12 * eps) {
+          hess -= (h2 * f.mu_lambda / (eps * eps * y)) * u * u.transpose();
+        }
+        Eigen::Matrix<double, 12, 2> Ga, Gb;
+        for (int k = 0; k < 2; ++k) {
+          Ga.col(k) = -AffineJacobianT(f.Xa, f.T.col(k));
+          Gb.col(k) = AffineJacobianT(f.Xb, f.T.col(k));
+        }
+        add(f.a, f.b, Ga, Gb, Eigen::Vector2d(w * u), hess);
       }
-      if (Energy(line) <= e0) {
-        accepted = true;
+      std::vector<Eigen::Triplet<double>> triplets;
+      for (const auto& [key, m] : blocks) {
+        for (int r = 0; r < 12; ++r) {
+          for (int c = 0; c < 12; ++c) {
+            if (m(r, c) != 0.0) triplets.emplace_back(12 * key.first + r, 12 * key.second + c, m(r, c));
+          }
+        }
+      }
+      Eigen::SparseMatrix<double> H(12 * dofs_, 12 * dofs_);
+      H.setFromTriplets(triplets.begin(), triplets.end());
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
+      if (ldlt.info() != Eigen::Success) break;
+      const Eigen::VectorXd dq = ldlt.solve(-g);
+      ++result.iterations;
+
+      // converged when every vertex would move slower than the tolerance
+      double fastest = 0.0;
+      for (const Body& b : bodies_) {
+        if (b.dof < 0) continue;
+        step[b.dof] = dq.segment<12>(12 * b.dof);
+        fastest = std::max(fastest, MotionBound(step[b.dof], b.radius) / h_);
+      }
+      if (fastest < params_.tolerance) {
+        result.converged = true;
         break;
       }
-    }
-    if (!accepted) {
-      for (size_t i = 0; i < bodies_.size(); ++i) bodies_[i].q = start[i];
-      break;
-    }
 
-    // adaptive kappa: double it while the closest pair keeps closing below the floor
-    double min_d = std::numeric_limits<double>::infinity();
-    Collect(nullptr, &entries);
-    for (const Entry& e : entries) min_d = std::min(min_d, EffectiveDistance(e));
-    if (min_d < kFloor * d_hat && min_d < last_min) kappa_ = std::min(kappa_max, 2.0 * kappa_);
-    last_min = min_d;
+      // line search: the CCD bound, then halving until the energy decreases
+      Collect(&step, &line);
+      double alpha = 1.0;
+      for (const Entry& e : line) {
+        if (e.motion > 0.0) alpha = std::min(alpha, (1.0 - params_.ccd_fraction) * EffectiveDistance(e) / e.motion);
+      }
+      const double e0 = Energy(line);
+      std::vector<Vec12> start(bodies_.size());
+      for (size_t i = 0; i < bodies_.size(); ++i) start[i] = bodies_[i].q;
+      bool accepted = false;
+      for (int halving = 0; halving < 40; ++halving, alpha *= 0.5) {
+        for (Body& b : bodies_) {
+          if (b.dof >= 0) b.q = start[&b - bodies_.data()] + alpha * step[b.dof];
+        }
+        if (Energy(line) <= e0) {
+          accepted = true;
+          break;
+        }
+      }
+      if (!accepted) {
+        for (size_t i = 0; i < bodies_.size(); ++i) bodies_[i].q = start[i];
+        break;
+      }
+
+      // adaptive kappa: double it while the closest pair keeps closing below the floor
+      double min_d = std::numeric_limits<double>::infinity();
+      Collect(nullptr, &entries);
+      for (const Entry& e : entries) min_d = std::min(min_d, EffectiveDistance(e));
+      if (min_d < kFloor * d_hat && min_d < last_min) kappa_ = std::min(kappa_max, 2.0 * kappa_);
+      last_min = min_d;
+    }
   }
 
   // write back: position, rotation by polar decomposition, velocities from the step
@@ -372,10 +465,11 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
     c.normal = e.dist.n;
     c.depth = -e.dist.d;
     c.feature_id = static_cast<uint32_t>(static_cast<int>(e.pair.kind) * 1000003 + e.pair.ia * 1009 + e.pair.ib * 2 + e.pair.swapped);
-    c.normal_value = kappa_ * std::abs(BarrierFirstDerivative(d, d_hat));
+    c.normal_value = kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, d_hat));
     contacts->push_back(c);
   }
   result.kappa = kappa_;
+  Remember(world, entries);
   return result;
 }
 

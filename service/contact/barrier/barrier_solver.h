@@ -5,15 +5,21 @@
 //          + h^2 (sum V_ortho + kappa sum_k b(d_k) + sum_k mu lambda_k f0(|u_k|)),
 //   q_pred = q_n + h qdot_n + h^2 M^-1 f_ext   (implicit Euler),
 // with b the log barrier on each primitive pair's distance (barrier_potential.h,
-// contact_primitives.h) and lagged friction: lambda_k = kappa |b'(d_k)| (N),
-// the closest points and tangent basis T_k from the step's start, and u_k
-// the tangential motion of the closest points over the step.
+// contact_primitives.h; edge-edge pairs times IPC's mollifier,
+// edge_mollifier.h) and lagged friction (IPC sec. 5): lambda_k =
+// kappa |b'(d_k)| (N), the closest points X_a, X_b (body frames) and the
+// tangent basis T_k of the pair at the end of the previous step
+// (barrier_state.h), and u_k = T_k^T (x_b(X_b) - x_a(X_a)) the tangential
+// motion of those body points over this step, so the friction force
+// -mu lambda f1(|u|) T u/|u| acts at the contact point with the affine
+// (rigid plus stretch) motion there. q_n and qdot_n are the affine state the
+// last step left (barrier_state.h), not re-derived from the rigid pose.
 //
 // Each Newton iteration solves H dq = -g with H the sum of M, the projected
 // Hessian of the orthogonality potential, the Gauss-Newton barrier term
 // kappa b''(d) grad d grad d^T (positive semi-definite; the curvature term
-// b'(d) grad^2 d is dropped) and the friction term mu lambda f1(y)/y G G^T,
-// assembled from dense 12x12 blocks into a sparse matrix (SimplicialLDLT).
+// b'(d) grad^2 d is dropped) and the friction term G H_f G^T with H_f the
+// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled from dense 12x12 blocks into a sparse matrix (SimplicialLDLT).
 // The line search starts at the largest alpha in [0, 1] for which no pair's
 // distance can fall below ccd_fraction of its current value: a point of a
 // primitive moves by a convex combination of its vertices' motions (affine
@@ -25,12 +31,17 @@
 // Barrier stiffness (IPC sec. 4.3, adaptive): at the step's start kappa
 // balances the barrier's gradient against the rest,
 // kappa = -(g_B . g_E) / |g_B|^2, clamped to [kappa_min, 1e6 kappa_min] with
-// kappa_min = m_avg max(|g|, 1 m/s^2) / |b'(d_hat / 2)| (one pair at d_hat / 2
-// holds the average body's weight); during the iterations it doubles while
-// the smallest distance is below 1e-2 d_hat and still shrinking.
-// Known gap: a box placed at d_hat / 2 rests on four such pairs, is pushed
-// up by four times its weight in its first step, and with friction that
-// jolt tips a sliding box (the friction test is disabled, -84%).
+// kappa_min = m_avg max(|g|, 1 m/s^2) / (4 |b'(d_hat / 2)|) (four pairs at
+// d_hat / 2, a box face on its corners, hold the average body's weight; a
+// larger floor would launch such a box by a multiple of its weight in its
+// first step); during the iterations it doubles while the smallest distance
+// is below 1e-2 d_hat and still shrinking.
+//
+// Line-search bound for a point against a static plane: d is linear in
+// alpha, d(alpha) = d + alpha n . dx, so the bound is exact and uses only the
+// approach along n. With the vertex-motion bound a box sliding at 3 m/s
+// (12 mm a step, 0.5 mm above the ground) could take 4% of each Newton step
+// and ran out of iterations, losing most of its momentum in a step.
 //
 // Pairs that start closer than 1e-2 d_hat (bodies placed touching, or left
 // overlapping by another method) are measured from a shifted zero,
@@ -46,7 +57,9 @@
 
 #include "service/collision/contact.h"
 #include "service/contact/barrier/affine_body.h"
+#include "service/contact/barrier/barrier_state.h"
 #include "service/contact/barrier/contact_primitives.h"
+#include "service/contact/barrier/edge_mollifier.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -72,6 +85,10 @@ class BarrierSolver {
   // Advances the world by world.dt with world.AccumulateForces() already
   // called; fills `contacts` with the pairs within d_hat (forces on B).
   BarrierStepResult Step(World& world, const BarrierParams& params, ContactSet* contacts);
+  // The affine state and lagged friction carried between steps
+  // (barrier_state.h).
+  const BarrierState& state() const { return state_; }
+  BarrierState& mutable_state() { return state_; }
 
  private:
   struct Body {
@@ -83,11 +100,13 @@ class BarrierSolver {
     double radius = 0.0;        // m, bounding radius about X = 0 (planes: 0)
     Material material;
     Vec12 q, q0, q_pred;
+    bool restarted = false;     // started from its rigid state (no matching affine state)
   };
   struct Entry {                // one primitive pair near contact
     int a = -1, b = -1;         // indices into bodies_
     PrimitivePair pair;
     PairDistance dist;
+    EdgeMollifier mollifier;    // edge-edge pairs: IPC's factor for nearly parallel edges
     double shift = 0.0;         // m, subtracted from dist.d
     double motion = 0.0;        // m, bound on how much d can shrink over the step dq
   };
@@ -103,7 +122,12 @@ class BarrierSolver {
   // `step`, motion bounds along it.
   void Collect(const std::vector<Vec12>* step, std::vector<Entry>* out) const;
   double Energy(const std::vector<Entry>& entries) const;
+  // Lagged friction of the pairs in `entries` at the bodies' q.
   void Lag(const std::vector<Entry>& entries);
+  // The previous step's lagged friction, for bodies still present.
+  void LagFromState(const World& world);
+  // Stores the bodies' affine state and the end-of-step friction lag.
+  void Remember(const World& world, const std::vector<Entry>& entries);
   double EffectiveDistance(const Entry& e) const { return e.dist.d - e.shift; }
 
   BarrierParams params_;
@@ -114,6 +138,7 @@ class BarrierSolver {
   std::map<std::tuple<int, int, int, int, int, bool>, double> shift_;
   std::vector<Friction> friction_;
   int dofs_ = 0;
+  BarrierState state_;
 };
 
 }  // namespace contactsim

@@ -134,7 +134,7 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
   const Mat3& A2 = swapped ? Aa : Ab;
   auto world1 = [&](int i) { return Vec3(p1 + A1 * g1.points[i]); };
   auto world2 = [&](int i) { return Vec3(p2 + A2 * g2.points[i]); };
-  Vec3 X1, X2, c1, c2;
+  Vec3 X1 = Vec3::Zero(), X2 = Vec3::Zero(), c1 = Vec3::Zero(), c2 = Vec3::Zero();
   switch (pair.kind) {
     case PrimitiveKind::kPointPlane: {
       // the plane's world normal and offset (its map is a rigid motion)
