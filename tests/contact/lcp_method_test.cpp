@@ -171,6 +171,33 @@ TEST(LcpMethod, WarmStartByFeatureIdConvergesInOneSweep) {
   EXPECT_GT(sim.Step().iterations, 1);
 }
 
+// Verifies that Lemke's fallback is the pgs solver, warm start included:
+// with max_lemke_rows = 0 every step falls back, and a stack of four boxes
+// with a pendulum (contact and joint rows) runs bit for bit as under
+// solver = pgs, with every step counted as a fallback.
+TEST(LcpMethod, LemkeFallsBackToTheWarmStartedPgsSolver) {
+  auto run = [](const ParamMap& params, int* fallbacks) {
+    testing::MethodSim sim("lcp", params);
+    AddGround(sim.world, 0.0, 0.5);
+    for (int i = 0; i < 4; ++i) AddBox(sim.world, 0.1, Vec3(0.02 * i, 0, 0.1 + 0.2 * i), 0.0, 0.5);
+    JointSettings rod;
+    rod.kind = JointKind::kDistance;
+    rod.body_a = AddSphere(sim.world, 0.05, Vec3(1.3, 0, 1.0), 0.0);
+    rod.anchor = Vec3(1.0, 0, 1.5);
+    JointId id = 0;
+    EXPECT_TRUE(sim.world.AddJoint(rod, &id).ok());
+    for (int i = 0; i < 240; ++i) sim.Step();
+    *fallbacks = static_cast<LcpMethod&>(*sim.method).lemke_fallbacks();
+    return HashWorldState(sim.world);
+  };
+  int pgs_fallbacks = -1, lemke_fallbacks = -1;
+  const uint64_t pgs = run({{"solver", "pgs"}}, &pgs_fallbacks);
+  const uint64_t lemke = run({{"solver", "lemke"}, {"max_lemke_rows", "0"}}, &lemke_fallbacks);
+  EXPECT_EQ(lemke, pgs);
+  EXPECT_EQ(pgs_fallbacks, 0);
+  EXPECT_EQ(lemke_fallbacks, 240);
+}
+
 // Verifies that bad parameters are rejected with the name and the value,
 // and leave the parameters unchanged.
 TEST(LcpMethod, RejectsBadParametersByName) {

@@ -55,6 +55,14 @@ void LcpMethod::Solve(std::vector<SolverBody>& bodies) {
     if (st.ok() && report_.converged) return;
   }
   if (params_.solver == "lemke") ++lemke_fallbacks_;
+  // PGS (also as Lemke's fallback) starts from last step's impulses; joint
+  // rows without one keep the joint-only solution they were built with
+  if (params_.warm_start) {
+    warm_start_.Load(contacts_, &rows_);
+    warm_start_.LoadJoints(joint_blocks_, 3 * contacts_.size(), &rows_);
+  } else {
+    for (size_t k = 3 * contacts_.size(); k < rows_.size(); ++k) rows_[k].lambda = 0.0;
+  }
   PgsOptions options;
   options.iterations = params_.iterations;
   options.tolerance = params_.tolerance;
@@ -76,7 +84,6 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
   row_options.slop = params_.slop;
   row_options.baumgarte_erp = params_.drift == "baumgarte" ? params_.erp : 0.0;
   AppendContactRows(contacts_, world, before_, row_options, &rows_);
-  if (params_.warm_start && params_.solver == "pgs") warm_start_.Load(contacts_, &rows_);
 
   IntegrateMomenta(world, h);
   LoadSolverBodies(world, &bodies_);
@@ -87,13 +94,6 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
   BuildJointVelocityRows(world, bodies_, h, JointSolverKind::kTree, &joint_rows_, &joint_blocks_);
   const size_t first_joint_row = rows_.size();
   rows_.insert(rows_.end(), joint_rows_.begin(), joint_rows_.end());
-  // joint rows start from last step's impulses, else (a new joint) from the
-  // joint-only solution BuildJointVelocityRows leaves in them; cold: from 0
-  if (params_.warm_start && params_.solver == "pgs") {
-    warm_start_.LoadJoints(joint_blocks_, first_joint_row, &rows_);
-  } else {
-    for (size_t k = first_joint_row; k < rows_.size(); ++k) rows_[k].lambda = 0.0;
-  }
 
   report_ = SolveReport();
   if (!rows_.empty()) Solve(bodies_);

@@ -23,7 +23,7 @@
 //     impulses by feature id, joint rows by joint id) or lemke
 //     (lemke_rows.h, the exact mixed LCP, joint rows its free variables; if
 //     it fails or has more than max_lemke_rows rows the step falls back to
-//     PGS and lemke_fallbacks() counts it);
+//     PGS, warm-started as solver = pgs is, and lemke_fallbacks() counts it);
 //  6. positions: bodies that received no impulse fly ballistically,
 //     x += v0 h + F/(2m) h^2 (exact under gravity, as in the impulse method);
 //     the others x += v h; orientations by IntegratePositions;
