@@ -1,5 +1,7 @@
 #include "service/contact/lcp/lcp_contact_rows.h"
 
+#include <cmath>
+
 #include "service/contact/contact_row.h"
 
 namespace contactsim {
@@ -17,13 +19,48 @@ ConstraintRow DirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const V
   return row;
 }
 
-void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
-                       const ContactRowOptions& options, std::vector<ConstraintRow>* rows) {
+Impact PredictImpact(double depth, double vn_before, double vn_free, double restitution,
+                     const ContactRowOptions& options) {
+  Impact impact;
+  const double h = options.h;
+  if (vn_before >= -options.restitution_threshold) return impact;
+  const double a = (vn_free - vn_before) / h;  // relative normal acceleration
+  const double disc = vn_before * vn_before + 2.0 * a * depth;
+  if (disc <= 0.0) return impact;  // no approach reaches the surface
+  const double vc = -std::sqrt(disc);
+  const double t = 2.0 * depth / (vn_before + vc);  // g(t) = 0; < 0: in the past
+  if (t < -h || t > h) return impact;  // not explained by one step
+  const double s = h - t;
+  const double e = restitution;
+  if (-e * vc * s + 0.5 * a * s * s < 0.0) return impact;  // lands again within the step
+  impact.exact = true;
+  impact.end_velocity = -e * vc + a * s;
+  impact.end_offset = t * (e * vc + vn_before) + a * (t * t - 0.5 * h * h);
+  return impact;
+}
+
+void PredictImpacts(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
+                    const std::vector<SolverBody>& free, const ContactRowOptions& options,
+                    std::vector<Impact>* impacts) {
+  impacts->clear();
   for (const Contact& c : contacts) {
+    const ContactRow basis = MakeContactRow(c, world, before);
+    impacts->push_back(PredictImpact(c.depth, basis.NormalVelocity(before), basis.NormalVelocity(free),
+                                     basis.restitution, options));
+  }
+}
+
+void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
+                       const std::vector<Impact>& impacts, const ContactRowOptions& options,
+                       std::vector<ConstraintRow>* rows) {
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
     const ContactRow basis = MakeContactRow(c, world, before);
     ConstraintRow normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
     const double vn_before = basis.NormalVelocity(before);
-    if (vn_before < -options.restitution_threshold) {
+    if (impacts[k].exact) {
+      normal.rhs = impacts[k].end_velocity;
+    } else if (vn_before < -options.restitution_threshold) {
       normal.rhs = -basis.restitution * vn_before;
     } else if (c.depth < 0.0) {
       normal.rhs = c.depth / options.h;

@@ -18,17 +18,26 @@ Status LcpMethod::LoadState(const std::string& bytes) {
                                  " bytes)");
 }
 
-void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts) {
-  if (params_.drift != "split" || params_.erp <= 0.0) return;
+void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts) {
+  const bool split = params_.drift == "split" && params_.erp > 0.0;
   split_rows_.clear();
   LoadSolverBodies(world, &bodies_);
-  for (const Contact& c : contacts) {
-    const double excess = c.depth - params_.slop;
-    if (excess <= 0.0) continue;
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    // m of separation this step (pseudo-velocity x 1 step): an impact's
+    // exact end position (lcp_contact_rows.h, under either drift rule, as
+    // it is not drift), else erp of the penetration beyond the slop
+    double rhs = 0.0;
+    if (impacts[k].exact) {
+      rhs = impacts[k].end_offset;
+    } else if (split) {
+      rhs = params_.erp * (c.depth - params_.slop);
+    }
+    if (rhs <= 0.0) continue;
     const RigidBody& A = world.bodies()[c.a];
     const RigidBody& B = world.bodies()[c.b];
     ConstraintRow row = DirectionRow(c.a, c.b, c.point - A.x, c.point - B.x, c.normal);
-    row.rhs = params_.erp * excess;  // m of separation this step (pseudo-velocity x 1 step)
+    row.rhs = rhs;
     split_rows_.push_back(row);
   }
   if (split_rows_.empty()) return;
@@ -74,16 +83,26 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
   const double h = world.dt;
   world.AccumulateForces();
   detector.Detect(world, params_.slop, h, &contacts_);
-  CorrectPositions(world, contacts_);
-
-  LoadSolverBodies(world, &before_);
-  rows_.clear();
   ContactRowOptions row_options;
   row_options.h = h;
   row_options.restitution_threshold = params_.restitution_threshold;
   row_options.slop = params_.slop;
   row_options.baumgarte_erp = params_.drift == "baumgarte" ? params_.erp : 0.0;
-  AppendContactRows(contacts_, world, before_, row_options, &rows_);
+  // impacts from the velocities before and after this step's forces
+  LoadSolverBodies(world, &before_);
+  free_ = before_;
+  const auto& forced = world.bodies();
+  for (size_t i = 0; i < forced.size(); ++i) {
+    SolverBody& s = free_[i];
+    s.v += h * s.inv_mass * forced[i].force;
+    s.w += h * (s.inv_inertia * forced[i].torque);
+  }
+  PredictImpacts(contacts_, world, before_, free_, row_options, &impacts_);
+  CorrectPositions(world, contacts_, impacts_);
+
+  LoadSolverBodies(world, &before_);
+  rows_.clear();
+  AppendContactRows(contacts_, world, before_, impacts_, row_options, &rows_);
 
   IntegrateMomenta(world, h);
   LoadSolverBodies(world, &bodies_);

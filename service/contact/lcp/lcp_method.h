@@ -4,7 +4,12 @@
 //
 // One step of length h:
 //  1. detect contacts at the current poses (speculative within `slop`);
-//  2. drift = split (default): remove erp (depth - slop) of each
+//  2. colliding contacts are traced back to their moment of impact under
+//     the step's constant forces (PredictImpact, lcp_contact_rows.h): the
+//     normal row gets the exact end velocity after the bounce, and the
+//     position the step would miss is added by the split impulse below
+//     (under either drift rule);
+//     drift = split (default): remove erp (depth - slop) of each
 //     penetration by a split impulse, pseudo-velocities solved by PGS on the
 //     normal rows and applied to positions only (Catto 2005; as the impulse
 //     method does), so the correction adds no kinetic energy. drift =
@@ -43,6 +48,7 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/joints/joint_rows.h"
+#include "service/contact/lcp/lcp_contact_rows.h"
 #include "service/contact/lcp/lcp_params.h"
 #include "service/contact/lcp/pgs.h"
 #include "service/contact/lcp/warm_start_cache.h"
@@ -67,12 +73,13 @@ class LcpMethod : public ContactMethod {
   const WarmStartCache& warm_start() const { return warm_start_; }
 
  private:
-  void CorrectPositions(World& world, const ContactSet& contacts);
+  void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts);
   void Solve(std::vector<SolverBody>& bodies);
 
   LcpParams params_;
   ContactSet contacts_;
-  std::vector<SolverBody> before_, bodies_;
+  std::vector<SolverBody> before_, free_, bodies_;
+  std::vector<Impact> impacts_;
   std::vector<ConstraintRow> rows_, split_rows_, joint_rows_;
   std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;
