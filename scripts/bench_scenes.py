@@ -105,11 +105,19 @@ def short_status(r):
     return "**%s**" % s.replace("|", "/")
 
 
+def min_distance(r):
+    """The smallest gap between two bodies over the run (negative: overlap)."""
+    if "min_distance" not in r:
+        return "-"  # a row from before the bench measured it
+    d = r["min_distance"]
+    return "> 10 mm" if d is None else "%s mm" % fmt(1e3 * d)
+
+
 def table(scene, rows):
     # a Bullet run that hit the time limit still has a per-step time to divide by
     bullet = next((r for r in rows if r["engine"] == "bullet" and r.get("steps_done", 0) > 0), None)
     extra = {"box_pyramid": "top displacement", "bounce": "rebound height (analytic 0.225 m)"}.get(scene)
-    head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "max penetration", "final KE"]
+    head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "max penetration", "min distance", "final KE"]
     if extra:
         head.append(extra)
     head += ["peak memory", "status"]
@@ -121,6 +129,7 @@ def table(scene, rows):
                  "%s (%s-%s)" % (fmt(ms), fmt(r.get("ms_per_step_min")), fmt(r.get("ms_per_step_max"))) if has_time else "-",
                  "%.2fx" % (ms / bullet["ms_per_step"]) if has_time and bullet else "-",
                  "%s mm" % fmt(1e3 * r["max_penetration"]) if r.get("max_penetration") is not None else "-",
+                 min_distance(r),
                  "%s J" % fmt(r["final_kinetic_energy"]) if r.get("final_kinetic_energy") is not None else "-"]
         if scene == "box_pyramid":
             cells.append("%s m" % fmt(r["top_displacement"]) if r.get("top_displacement") is not None else "-")

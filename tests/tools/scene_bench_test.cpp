@@ -58,7 +58,7 @@ TEST(SceneBench, BounceJsonHasEveryFieldAndTheAnalyticApex) {
   const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method impulse --repeat 1 --json");
   ASSERT_EQ(o.exit_code, 0) << o.out;
   for (const char* key : {"scene", "method", "params", "bodies", "steps", "dt", "ms_per_step", "ms_per_step_min",
-                          "ms_per_step_max", "max_penetration", "final_kinetic_energy", "top_displacement",
+                          "ms_per_step_max", "max_penetration", "min_distance", "final_kinetic_energy", "top_displacement",
                           "rebound_height", "peak_rss_mb"}) {
     EXPECT_FALSE(Field(o.out, key).empty()) << key << " missing in " << o.out;
   }
@@ -75,6 +75,9 @@ TEST(SceneBench, BounceJsonHasEveryFieldAndTheAnalyticApex) {
   EXPECT_GT(Number(o.out, "peak_rss_mb"), 0.0);
   const double apex = 0.5 * 0.5 * 0.9;  // m, e^2 h
   EXPECT_NEAR(Number(o.out, "rebound_height"), apex, 0.02 * apex) << o.out;
+  // the ball touched the plane: its closest approach is the deepest contact
+  EXPECT_GT(Number(o.out, "max_penetration"), 0.0) << o.out;
+  EXPECT_DOUBLE_EQ(Number(o.out, "min_distance"), -Number(o.out, "max_penetration")) << o.out;
 }
 
 // Verifies that an unknown method exits 1 with a JSON status naming it and

@@ -53,7 +53,7 @@ std::string ToJson(const BenchResult& r) {
   o << "}, \"bodies\": " << r.bodies << ", \"steps\": " << r.steps << ", \"steps_done\": " << r.steps_done
     << ", \"dt\": " << Number(r.dt, 17) << ", \"ms_per_step\": " << Number(r.ms_per_step)
     << ", \"ms_per_step_min\": " << Number(r.ms_per_step_min) << ", \"ms_per_step_max\": " << Number(r.ms_per_step_max)
-    << ", \"max_penetration\": " << Number(r.max_penetration)
+    << ", \"max_penetration\": " << Number(r.max_penetration) << ", \"min_distance\": " << Number(r.min_distance)
     << ", \"final_kinetic_energy\": " << Number(r.final_kinetic_energy)
     << ", \"top_displacement\": " << Number(r.top_displacement) << ", \"rebound_height\": " << Number(r.rebound_height)
     << ", \"peak_rss_mb\": " << Number(r.peak_rss_mb) << ", \"status\": " << Quote(r.status) << "}";
@@ -76,6 +76,7 @@ void PrintTable(const BenchResult& r, std::ostream& out) {
   row("ms per step", Number(r.ms_per_step) + " (median of " + std::to_string(r.ms_per_step_repeats.size()) +
                          "; min " + Number(r.ms_per_step_min) + ", max " + Number(r.ms_per_step_max) + ")");
   row("max penetration", Number(r.max_penetration) + " m");
+  row("min distance", Text(r.min_distance, "m"));
   row("final kinetic energy", Number(r.final_kinetic_energy) + " J");
   row("top displacement", Text(r.top_displacement, "m"));
   row("rebound height", Text(r.rebound_height, "m"));

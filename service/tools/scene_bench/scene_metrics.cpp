@@ -55,8 +55,11 @@ std::string SceneMetrics::Check(const World& world) const {
 
 void SceneMetrics::Observe(const World& world) {
   const auto& bodies = world.bodies();
-  detector_.Detect(world, 0.0, 0.0, &contacts_);
-  for (const Contact& c : contacts_) max_penetration_ = std::max(max_penetration_, c.depth);
+  detector_.Detect(world, kGapMargin, 0.0, &contacts_);
+  for (const Contact& c : contacts_) {
+    max_penetration_ = std::max(max_penetration_, c.depth);
+    min_distance_ = std::min(min_distance_.value_or(kGapMargin), -c.depth);
+  }
   final_kinetic_energy_ = KineticEnergy(world);
   if (top_ >= 0) top_displacement_ = (bodies[top_].x - start_[top_]).norm();
   if (ball_ >= 0 && plane_ >= 0 && bounce_phase_ < 3) {

@@ -3,6 +3,10 @@
 //  * max penetration: deepest contact over all steps, found by contactsim's
 //    own collision detector on the engine's poses (margin 0), so engines are
 //    judged by one ruler rather than by their own detectors;
+//  * min distance: the smallest signed distance between two bodies over all
+//    steps (negative: the deepest penetration), from contacts found within
+//    kGapMargin, so a method that keeps bodies apart (barrier) shows its
+//    gap; none when no two bodies ever came within kGapMargin;
 //  * final kinetic energy: sum of m v^2 / 2 + w . L / 2 of dynamic bodies;
 //  * top displacement: |x - x0| of the body named "top";
 //  * rebound height: the first apex of the lowest point of the body named
@@ -26,6 +30,7 @@ namespace contactsim::bench {
 
 constexpr double kEscapeDistance = 50.0;  // m
 constexpr double kEscapeSpeed = 50.0;     // m/s
+constexpr double kGapMargin = 0.01;       // m: how far apart the min distance looks
 
 // Follows one run (one object per run). Start() with the initial world, then Check() after every
 // step (cheap: finiteness and bounds), and Observe() after the steps whose
@@ -38,6 +43,7 @@ class SceneMetrics {
   void Observe(const World& world);
 
   double max_penetration() const { return max_penetration_; }
+  std::optional<double> min_distance() const { return min_distance_; }
   double final_kinetic_energy() const { return final_kinetic_energy_; }
   std::optional<double> top_displacement() const { return top_displacement_; }
   std::optional<double> rebound_height() const { return rebound_height_; }
@@ -48,6 +54,7 @@ class SceneMetrics {
   CollisionDetector detector_;
   ContactSet contacts_;
   double max_penetration_ = 0.0;
+  std::optional<double> min_distance_;
   double final_kinetic_energy_ = 0.0;
   std::optional<double> top_displacement_;
   std::optional<double> rebound_height_;
