@@ -32,7 +32,10 @@ Impact PredictImpact(double depth, double vn_before, double vn_free, double rest
   if (t < -h || t > h) return impact;  // not explained by one step
   const double s = h - t;
   const double e = restitution;
-  if (-e * vc * s + 0.5 * a * s * s < 0.0) return impact;  // lands again within the step
+  // the pair must bounce (rebound speed above the threshold; not e = 0) and
+  // be apart at the step's end (not landing again within the step), else
+  // it is in contact and the step-start rule applies
+  if (-e * vc <= options.restitution_threshold || -e * vc * s + 0.5 * a * s * s <= 0.0) return impact;
   impact.exact = true;
   impact.end_velocity = -e * vc + a * s;
   impact.end_offset = t * (e * vc + vn_before) + a * (t * t - 0.5 * h * h);

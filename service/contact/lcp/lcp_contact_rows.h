@@ -35,10 +35,11 @@
 // split impulse before the solve (it moves positions only). This is the
 // impulse method's backtracking to the time of impact (Mirtich 1996),
 // closed-form for constant force instead of root finding, so the contact
-// state after the step is that of the exact trajectory. Impacts whose
-// rebound lands again in the same step (e small: gap at the end < 0), or
-// that no approach within one step explains, keep the old rule, so resting
-// contact, stacks and e = 0 are unchanged.
+// state after the step is that of the exact trajectory. Impacts that do
+// not bounce (-e vc at most restitution_threshold, e = 0 among them), whose
+// rebound lands again in the same step (gap at the end <= 0), or that no
+// approach within one step explains keep the old rule, so resting contact,
+// stacks and e = 0 are unchanged.
 #pragma once
 
 #include <vector>
