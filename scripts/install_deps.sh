@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs every dependency of contactsim on Debian bookworm, idempotently:
 # the Debian packages the C++ build needs and a Python virtual environment
-# (.venv) with the lcm bindings, numpy, pytest and the contactsim client
+# (.venv) with the lcm bindings, numpy, matplotlib, tqdm, pytest and the contactsim client
 # installed editable. Works as root and through sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -48,7 +48,7 @@ if [ ! -x .venv/bin/python ]; then
   echo "deps: creating .venv"
   "$PY" -m venv .venv
 fi
-if ! .venv/bin/python -c "import lcm, numpy, pytest" 2>/dev/null \
+if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest" 2>/dev/null \
    || ! .venv/bin/pip show -q contactsim >/dev/null 2>&1; then
   echo "deps: installing Python packages into .venv"
   .venv/bin/pip install -q --upgrade pip

@@ -181,4 +181,18 @@ uint64_t HashWorldState(const World& world) {
   return f.h;
 }
 
+double KineticEnergy(const World& world) {
+  double e = 0.0;
+  for (const RigidBody& b : world.bodies()) e += b.KineticEnergy();  // 0 for static and kinematic bodies
+  return e;
+}
+
+double PotentialEnergy(const World& world) {
+  double e = 0.0;
+  for (const RigidBody& b : world.bodies()) {
+    if (b.IsDynamic()) e -= b.mass * world.gravity.dot(b.x);
+  }
+  return e;
+}
+
 }  // namespace contactsim

@@ -82,4 +82,10 @@ class World {
 // hashes as it did before joints existed.
 uint64_t HashWorldState(const World& world);
 
+// Total kinetic energy of the dynamic bodies (J): sum of |P|^2 / 2m + L.w / 2.
+double KineticEnergy(const World& world);
+// Gravitational potential energy of the dynamic bodies (J), zero at the
+// origin: V = -sum m g . x, so that T + V is conserved in free flight.
+double PotentialEnergy(const World& world);
+
 }  // namespace contactsim

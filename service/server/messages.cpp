@@ -14,6 +14,9 @@ state_t MakeStateMessage(const World& world) {
   msg.time = world.time;
   msg.step = world.step;
   msg.state_hash = static_cast<int64_t>(HashWorldState(world));
+  // energies for plots of a recorded run: masses are not on the wire
+  msg.kinetic_energy = KineticEnergy(world);
+  msg.potential_energy = PotentialEnergy(world);
   msg.num_bodies = static_cast<int32_t>(world.bodies().size());
   msg.bodies.resize(world.bodies().size());
   for (size_t i = 0; i < world.bodies().size(); ++i) {

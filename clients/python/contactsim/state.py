@@ -37,17 +37,21 @@ class BodyState:
 
 class State:
     """The world after a step: ``time`` (s), ``step``, ``state_hash``,
-    ``input_digest`` (of the lockstep inputs applied in the step, 0 if none) and
+    ``input_digest`` (of the lockstep inputs applied in the step, 0 if none),
+    ``kinetic_energy`` and ``potential_energy`` (J, of the dynamic bodies) and
     ``bodies``, a dict body id -> BodyState in ascending id order. Two states
     compare equal when every field of every body is bit-identical."""
 
-    __slots__ = ("time", "step", "state_hash", "input_digest", "bodies", "raw")
+    __slots__ = ("time", "step", "state_hash", "input_digest", "kinetic_energy", "potential_energy", "bodies",
+                 "raw")
 
     def __init__(self, msg):
         self.time = msg.time
         self.step = msg.step
         self.state_hash = msg.state_hash
         self.input_digest = msg.input_digest
+        self.kinetic_energy = msg.kinetic_energy
+        self.potential_energy = msg.potential_energy
         self.bodies = {b.id: BodyState(b) for b in msg.bodies}
         self.raw = msg
 

@@ -20,14 +20,6 @@ std::string Describe(const RigidBody& b, int index) {
 
 }  // namespace
 
-double KineticEnergy(const World& world) {
-  double e = 0.0;
-  for (const RigidBody& b : world.bodies()) {
-    if (b.IsDynamic()) e += b.KineticEnergy();
-  }
-  return e;
-}
-
 void SceneMetrics::Start(const World& world) {
   const auto& bodies = world.bodies();
   for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {

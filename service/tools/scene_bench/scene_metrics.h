@@ -63,7 +63,4 @@ class SceneMetrics {
   double apex_ = 0.0;
 };
 
-// Total kinetic energy of the dynamic bodies (J).
-double KineticEnergy(const World& world);
-
 }  // namespace contactsim::bench
