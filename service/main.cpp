@@ -2,7 +2,11 @@
 //
 //   contactsim-server --config FILE [--scene FILE] [--lcm-url URL] [--prefix NAME]
 //                     [--log-level LEVEL] [--mode realtime|free_run|lockstep] [--paused] [--no-live-line]
-//                     [--journal DIR]
+//                     [--journal DIR] [--replay LOG]
+//
+// With --replay LOG it serves nothing: it re-simulates a run recorded with
+// lcm-logger from the same config and scene and compares state hashes
+// (service/server/log_replay.h); exit code 0 identical, 2 diverged.
 //
 // Two threads: this one runs the simulation loop (SimServer::Run), a second
 // one receives LCM messages and hands them to the server. SIGINT and SIGTERM
@@ -16,6 +20,7 @@
 #include <thread>
 
 #include "service/server/lcm_transport.h"
+#include "service/server/log_replay.h"
 #include "service/server/server_config.h"
 #include "service/server/sim_server.h"
 
@@ -30,7 +35,7 @@ void OnSignal(int) { g_stop.store(true); }
 int main(int argc, char** argv) {
   using namespace contactsim;
   CLI::App app{"contactsim-server: rigid-body contact co-simulation over LCM"};
-  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir;
+  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir, replay_log;
   bool paused = false, no_live_line = false;
   app.add_option("--config", config_path, "server configuration (protobuf text)")->required();
   app.add_option("--scene", scene_path, "scene file, overriding the config's");
@@ -42,6 +47,8 @@ int main(int argc, char** argv) {
   app.add_flag("--paused", paused, "start paused");
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
   app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
+  app.add_option("--replay", replay_log,
+                 "re-simulate an lcm-logger log of a run from this config and scene; report the first divergent step");
   CLI11_PARSE(app, argc, argv);
 
   auto logger = spdlog::stderr_color_mt("contactsim");
@@ -71,6 +78,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   spdlog::set_level(level);
+  if (!replay_log.empty()) return RunReplay(std::move(setup), replay_log);
 
   const std::string url = ResolveLcmUrl(setup.lcm_url);
   LcmTransport transport(url);

@@ -42,6 +42,7 @@ struct ServerOptions {
   int max_snapshots = 32;               // periodic snapshots kept in memory for REWIND
   LatePolicy late_policy = LatePolicy::kWait;  // for controllers registered without one
   double late_timeout = 0.1;            // s of wall-clock time, likewise
+  bool write_files = true;              // false (a replay): SNAPSHOT to a file writes nothing
 };
 
 // Commands larger than this are refused before decoding.
@@ -67,6 +68,13 @@ class SimServer {
   // One turn of the loop without pacing, for tests: applies the inbox and,
   // unless paused with no STEP pending, takes one step. True if it stepped.
   bool Tick();
+
+  // Re-simulation of a recorded run (log_replay.h) drives these instead of
+  // Run: the commands given so far are applied now, and steps are taken
+  // when the log says, without pacing or lockstep waits.
+  void ApplyInbox() { DrainInbox(); }
+  void StepOnce() { StepWorld(); }
+  uint64_t input_digest() const { return input_digest_; }  // of the last step's inputs
 
   std::string Channel(const char* suffix) const { return options_.prefix + "_" + suffix; }
   const World& world() const { return world_; }

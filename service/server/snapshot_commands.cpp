@@ -176,7 +176,8 @@ void SimServer::ApplySnapshotCommand(Command& cmd) {
     SaveSnapshot(world_, *method_, &s);
     s.set_journal_seq(journal_.next_seq());
     if (!cmd.snapshot_path.empty()) {
-      st = WriteSnapshotFile(cmd.snapshot_path, s, options_.journal_fsync == FsyncPolicy::kAlways);
+      // a replay must not overwrite the recorded run's file (a RESTORE from it comes later)
+      if (options_.write_files) st = WriteSnapshotFile(cmd.snapshot_path, s, options_.journal_fsync == FsyncPolicy::kAlways);
     } else {
       snapshots_.Put(cmd.snapshot_name, std::move(s));
     }
