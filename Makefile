@@ -5,7 +5,7 @@ JOBS       ?= 2
 CONFIG     ?= config/server.pbtxt
 SANITIZE   ?= OFF
 
-.PHONY: all deps build run test test-cpp test-py test-asan bench bench-micro clean
+.PHONY: all deps build run test test-cpp test-py test-asan bench bench-micro bench-lockstep clean
 
 all: build
 
@@ -45,6 +45,11 @@ bench: build
 # The Google Benchmark micro benchmarks (broadphase, narrowphase, penalty).
 bench-micro: build
 	$(BUILD)/bin/contactsim-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+
+# Lockstep cycles per second (one controller, 1 and 100 bodies) beside a raw
+# LCM ping-pong between two processes, measured in the same run (BENCHMARKS.md).
+bench-lockstep: build
+	$(BUILD)/bin/contactsim-bench-lockstep --config $(CONFIG)
 
 clean:
 	rm -rf $(BUILD)

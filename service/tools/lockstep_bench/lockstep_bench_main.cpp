@@ -1,0 +1,198 @@
+// contactsim-bench-lockstep (`make bench-lockstep`): lockstep cycles per
+// second with one controller, for 1 and 100 bodies, beside a raw LCM
+// ping-pong between two processes measured in the same run (the
+// transport's own limit; lcm_ping_pong.h). Every party is its own process:
+// the server (contactsim-server beside this binary), the controller (this
+// process, contactsim::Controller) and the pong (this binary, --pong).
+//
+//   contactsim-bench-lockstep [--config FILE] [--bodies 1,100] [--seconds S] [--lcm-url URL]
+//
+// A benchmark, not a test: it prints numbers and asserts none.
+#include <CLI/CLI.hpp>
+#include <contactsim/input_t.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fcntl.h>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "contactsim/client.h"
+#include "contactsim/controller.h"
+#include "service/tools/lockstep_bench/lcm_ping_pong.h"
+
+namespace {
+
+using namespace contactsim;
+using Clock = std::chrono::steady_clock;
+
+std::string SelfPath() {
+  std::vector<char> buf(4096);
+  const ssize_t n = readlink("/proc/self/exe", buf.data(), buf.size() - 1);
+  return n > 0 ? std::string(buf.data(), static_cast<size_t>(n)) : std::string();
+}
+
+// Starts argv[0] with argv; its output goes to /dev/null when `quiet`.
+pid_t Spawn(const std::vector<std::string>& args, bool quiet) {
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  if (quiet) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+  }
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  execv(argv[0], argv.data());
+  _exit(127);
+}
+
+// SIGINT (when asked), then waits up to 10 s, then SIGKILL.
+void Reap(pid_t pid, bool interrupt) {
+  if (interrupt) kill(pid, SIGINT);
+  for (int i = 0; i < 100; ++i) {
+    if (waitpid(pid, nullptr, WNOHANG) == pid) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+}
+
+struct LockstepResult {
+  double cycles_per_second = 0.0;
+  int state_bytes = 0, input_bytes = 0;
+  std::string error;
+};
+
+// n spheres resting on a plane in a grid (contacts, no motion to speak of),
+// one controller pushing body 1 with zero force: each cycle is one STATE of
+// n bodies and one input of one body.
+LockstepResult MeasureLockstep(Client& client, int bodies, double seconds) {
+  LockstepResult r;
+  auto fail = [&](const char* what, const CommandResult& c) {
+    r.error = std::string(what) + ": " + ToString(c);
+    return r;
+  };
+  CommandResult c;
+  if (!(c = client.Pause()).ok()) return fail("pause", c);
+  if (!(c = client.Reset()).ok()) return fail("reset", c);
+  if (!(c = client.AddPlane(Eigen::Vector3d::UnitZ(), 0.0).status).ok()) return fail("add plane", c);
+  const int side = static_cast<int>(std::ceil(std::sqrt(bodies)));
+  int64_t first = 0;
+  for (int i = 0; i < bodies; ++i) {
+    BodyOptions o;
+    o.position = Eigen::Vector3d(0.2 * (i % side), 0.2 * (i / side), 0.05);
+    o.mass = 1.0;
+    const auto id = client.AddSphere(0.05, o);
+    if (!id.status.ok()) return fail("add sphere", id.status);
+    if (i == 0) first = id.value;
+  }
+  if (!(c = client.Step(10)).ok()) return fail("step", c);
+  const auto state = client.LatestState();
+  r.state_bytes = state ? state->getEncodedSize() : 0;
+  input_t in{};
+  in.client_id = client.client_id();
+  in.num_bodies = 1;
+  in.body_ids = {first};
+  in.forces = {{0.0, 0.0, 0.0}};
+  in.torques = {{0.0, 0.0, 0.0}};
+  r.input_bytes = in.getEncodedSize();
+
+  Controller controller(client, [first](const state_t&) { return BodyInputs{{first, BodyWrench{}}}; });
+  if (!(c = controller.Start(LatePolicy::kWait)).ok()) return fail("register controller", c);
+  if (!(c = client.SetMode(Mode::kLockstep)).ok() || !(c = client.Resume()).ok()) return fail("lockstep", c);
+  const int64_t warm = (state ? state->step : 0) + 50;
+  if (!controller.WaitForStep(warm, std::chrono::seconds(30))) {
+    r.error = "lockstep did not reach step " + std::to_string(warm);
+    return r;
+  }
+  const int64_t s0 = controller.answered();
+  const auto t0 = Clock::now();
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  const int64_t s1 = controller.answered();
+  const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.cycles_per_second = (s1 - s0) / elapsed;
+  client.Pause();
+  controller.Stop();
+  client.SetMode(Mode::kFreeRun);
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"contactsim-bench-lockstep: lockstep cycles per second beside a raw LCM ping-pong"};
+  std::string config = CONTACTSIM_SOURCE_DIR "/config/server.pbtxt", url, pong_channel;
+  std::vector<int> body_counts{1, 100};
+  double seconds = 3.0;
+  int pong_bytes = 0;
+  app.add_option("--config", config, "server configuration");
+  app.add_option("--bodies", body_counts, "body counts to measure")->delimiter(',');
+  app.add_option("--seconds", seconds, "measuring time per row and kind (s)");
+  app.add_option("--lcm-url", url, "LCM URL (default: $LCM_DEFAULT_URL, else the project default)");
+  app.add_option("--pong", pong_channel, "internal: run as the pong process on this channel");
+  app.add_option("--pong-bytes", pong_bytes, "internal: pong payload size");
+  CLI11_PARSE(app, argc, argv);
+  url = ResolveLcmUrl(url);
+  if (!pong_channel.empty()) return bench::RunPong(url, pong_channel, pong_bytes, 30.0);
+
+  const std::string self = SelfPath();
+  const std::string server_bin = self.substr(0, self.rfind('/') + 1) + "contactsim-server";
+  const std::string prefix = "LOCKSTEP_BENCH_" + std::to_string(getpid());
+  std::printf("lockstep cycles per second, one C++ controller, %g s per measurement, LCM %s\n\n", seconds,
+              url.c_str());
+  std::printf("| bodies | STATE bytes | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong |\n");
+  std::printf("|---:|---:|---:|---:|---:|\n");
+  std::fflush(stdout);
+
+  const pid_t server = Spawn({server_bin, "--config", config, "--lcm-url", url, "--prefix", prefix, "--mode",
+                              "free_run", "--paused", "--no-live-line", "--log-level", "warn"},
+                             true);
+  ClientOptions options;
+  options.url = url;
+  options.prefix = prefix;
+  options.reply_timeout = std::chrono::milliseconds(10000);
+  int rc = 0;
+  {
+    Client client(options);
+    if (!client.WaitForServer(std::chrono::seconds(20))) {
+      std::fprintf(stderr, "no STATUS from %s within 20 s\n", server_bin.c_str());
+      Reap(server, true);
+      return 1;
+    }
+    for (int n : body_counts) {
+      const LockstepResult ls = MeasureLockstep(client, n, seconds);
+      if (!ls.error.empty()) {
+        std::fprintf(stderr, "%d bodies: %s\n", n, ls.error.c_str());
+        rc = 1;
+        break;
+      }
+      // the transport alone, between two processes, with the same sizes
+      const std::string channel = prefix + "_PP" + std::to_string(n);
+      const pid_t pong = Spawn({self, "--lcm-url", url, "--pong", channel, "--pong-bytes",
+                                std::to_string(ls.input_bytes)},
+                               false);
+      bench::PingPongResult pp;
+      const bool ok = bench::RunPing(url, channel, ls.state_bytes, seconds, 20.0, &pp);
+      Reap(pong, !ok);
+      if (!ok) {
+        std::fprintf(stderr, "%d bodies: the pong process never answered\n", n);
+        rc = 1;
+        break;
+      }
+      std::printf("| %d | %d | %.0f | %.0f | %.2f |\n", n, ls.state_bytes, ls.cycles_per_second, pp.per_second(),
+                  ls.cycles_per_second / pp.per_second());
+      if (pp.resends > 0) std::printf("(%lld ping(s) resent after 1 s: lost on UDP)\n", static_cast<long long>(pp.resends));
+      std::fflush(stdout);
+    }
+  }
+  Reap(server, true);
+  return rc;
+}
