@@ -30,7 +30,10 @@ LcpSolution SolveMixedLcp(const MatX& A, const VecX& b, const std::vector<bool>&
   const MatX Aff = Gather(A, F, F), Afc = Gather(A, F, C), Acf = Gather(A, C, F), Acc = Gather(A, C, C);
   const VecX bf = Gather(b, F), bc = Gather(b, C);
   const Eigen::CompleteOrthogonalDecomposition<MatX> ff(Aff);
-  const MatX X = ff.solve(Afc);  // A_FF^+ A_FC
+  // A_FF^+ A_FC; with no complementary rows (joints only) A_FC has no
+  // columns, and Eigen's triangular solve would bind a reference to the
+  // empty block's null data (UBSan), so it is not called
+  const MatX X = C.empty() ? MatX(F.size(), 0) : MatX(ff.solve(Afc));
   const VecX y = ff.solve(bf);   // A_FF^+ b_F
   LcpSolution reduced = SolveLemke(Acc - Acf * X, bc - Acf * y, options);
 
