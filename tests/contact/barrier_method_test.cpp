@@ -28,19 +28,7 @@ using testing::AddSphere;
 using testing::AddValidBody;
 using Sim = testing::MethodSim;
 
-// Smallest signed distance (m) between any two bodies, by the narrowphase.
-double SmallestGap(const World& world) {
-  double gap = std::numeric_limits<double>::infinity();
-  const auto& b = world.bodies();
-  for (size_t i = 0; i < b.size(); ++i) {
-    for (size_t j = i + 1; j < b.size(); ++j) {
-      if (!b[i].IsDynamic() && !b[j].IsDynamic()) continue;
-      gap = std::min(gap, PairSignedDistance(b[i], b[j], 1.0));
-    }
-  }
-  return gap;
-}
-
+using testing::SmallestGap;
 // Verifies that a box resting on the ground never touches it, carries its
 // weight through the barrier and stays within d_hat of where it started.
 TEST(BarrierMethod, RestingBoxNeverTouchesAndCarriesItsWeight) {

@@ -62,14 +62,6 @@ inline JointId AddHinge(World& world, BodyId a, BodyId b, const Vec3& anchor, co
 }
 
 // Kinetic plus gravitational potential energy of every dynamic body (J).
-inline double MechanicalEnergy(const World& world) {
-  double e = 0.0;
-  for (const RigidBody& b : world.bodies()) {
-    if (b.IsDynamic()) e += b.KineticEnergy() - b.mass * world.gravity.dot(b.x);
-  }
-  return e;
-}
-
 // Energy errors of a run, relative to the energy above the hanging rest
 // state (the part that moves, independent of the height datum).
 struct EnergyRecord {

@@ -21,14 +21,7 @@ using testing::AddBox;
 using testing::AddGround;
 using testing::AddSphere;
 
-double MechanicalEnergy(const World& world) {
-  double e = 0.0;
-  for (const RigidBody& b : world.bodies()) {
-    if (b.IsDynamic()) e += b.KineticEnergy() - b.mass * world.gravity.dot(b.x);
-  }
-  return e;
-}
-
+using testing::MechanicalEnergy;
 // The shared MethodSim with lcp and a solver.
 struct Sim : testing::MethodSim {
   explicit Sim(const std::string& solver) : MethodSim("lcp", {{"solver", solver}}) {}

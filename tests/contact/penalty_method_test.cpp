@@ -23,15 +23,7 @@ using testing::AddBox;
 using testing::AddGround;
 using testing::AddSphere;
 
-// Kinetic plus gravitational potential energy of the dynamic bodies (J).
-double MechanicalEnergy(const World& world) {
-  double e = 0.0;
-  for (const RigidBody& b : world.bodies()) {
-    if (b.IsDynamic()) e += b.KineticEnergy() - b.mass * world.gravity.dot(b.x);
-  }
-  return e;
-}
-
+using testing::MechanicalEnergy;
 struct Sim {
   World world;
   CollisionDetector detector;

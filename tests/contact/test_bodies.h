@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+
+#include "service/collision/narrowphase.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/world.h"
 
@@ -53,6 +57,24 @@ inline BodyId AddBox(World& world, const Vec3& half, const Vec3& p, double resti
 inline BodyId AddBox(World& world, double half, const Vec3& p, double restitution, double friction,
                      const Vec3& v = Vec3::Zero()) {
   return AddBox(world, Vec3::Constant(half), p, restitution, friction, v);
+}
+
+// Kinetic plus gravitational potential energy of the dynamic bodies (J).
+inline double MechanicalEnergy(const World& world) { return KineticEnergy(world) + PotentialEnergy(world); }
+
+// Smallest signed distance (m) between two bodies (one of them dynamic) by
+// the narrowphase: exact for planes and spheres, a lower bound for two
+// polyhedra, so > 0 means apart.
+inline double SmallestGap(const World& world) {
+  double gap = std::numeric_limits<double>::infinity();
+  const auto& b = world.bodies();
+  for (size_t i = 0; i < b.size(); ++i) {
+    for (size_t j = i + 1; j < b.size(); ++j) {
+      if (!b[i].IsDynamic() && !b[j].IsDynamic()) continue;
+      gap = std::min(gap, PairSignedDistance(b[i], b[j], 1.0));
+    }
+  }
+  return gap;
 }
 
 }  // namespace testing

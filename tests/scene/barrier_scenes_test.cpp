@@ -23,6 +23,7 @@
 #include "service/collision/narrowphase.h"
 #include "service/contact/barrier/barrier_method.h"
 #include "service/scene/scene_spec.h"
+#include "tests/contact/test_bodies.h"
 
 namespace contactsim {
 namespace {
@@ -47,20 +48,7 @@ void Reduce(World* world, const std::function<bool(const RigidBody&)>& keep) {
   for (BodyId id : drop) EXPECT_TRUE(world->RemoveBody(id).ok());
 }
 
-// Smallest signed distance (m) between two bodies by the narrowphase: exact
-// for planes and spheres, a lower bound for two polyhedra, so > 0 means apart.
-double SmallestGap(const World& world) {
-  double gap = std::numeric_limits<double>::infinity();
-  const auto& b = world.bodies();
-  for (size_t i = 0; i < b.size(); ++i) {
-    for (size_t j = i + 1; j < b.size(); ++j) {
-      if (!b[i].IsDynamic() && !b[j].IsDynamic()) continue;
-      gap = std::min(gap, PairSignedDistance(b[i], b[j], 1.0));
-    }
-  }
-  return gap;
-}
-
+using testing::SmallestGap;
 struct Outcome {
   double smallest_gap = std::numeric_limits<double>::infinity();  // m, narrowphase, every step
   double smallest_barrier = std::numeric_limits<double>::infinity();  // m, the method's own (StepStats residual)
