@@ -1,9 +1,13 @@
 #include "service/scene/scene_spec.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 
+#include "service/collision/aabb.h"
+#include "service/collision/narrowphase.h"
 #include "service/physics/validation.h"
 #include "service/proto/scene.pb.h"
 #include "service/scene/proto_text.h"
@@ -104,6 +108,68 @@ Status ToSceneJoint(const proto::Joint& j, const std::string& where, SceneJoint*
   return Status::Ok();
 }
 
+// Random orientations redrawn until a grid body overlaps none of the grid's
+// bodies placed before it: a lattice tighter than the bodies' diameter (the
+// issue's box_rain: 0.3 m spacing, 0.173 m half-diagonals) would otherwise
+// start with interpenetrating pairs, which every contact method then pushes
+// apart violently, and which no barrier method can start from.
+class GridOverlapCheck {
+ public:
+  GridOverlapCheck(const proto::BodyGrid& g, const BodySettings& prototype, const Material& default_material)
+      : nx_(g.nx()), ny_(g.ny()), material_(default_material) {
+    RigidBody body;
+    BodySettings centred = prototype;
+    centred.position = Vec3::Zero();
+    valid_ = CreateBody(centred, default_material, &body).ok() && body.shape.type != ShapeType::kPlane;
+    if (!valid_) return;  // BuildWorld reports the prototype's error
+    // a sphere about the origin that holds the body in any orientation
+    const Aabb box = ComputeAabb(body, 0.0, 0.0);
+    const double reach = 2.0 * (0.5 * (box.max + box.min).norm() + 0.5 * (box.max - box.min).norm());
+    const Vec3 spacing = ToVec3(g.spacing()).cwiseAbs();
+    for (int a = 0; a < 3; ++a) {
+      const int n = a == 0 ? g.nx() : a == 1 ? g.ny() : g.nz();
+      cells_[a] = spacing(a) > 0.0 ? std::min(n, static_cast<int>(std::ceil(reach / spacing(a)))) : n;
+    }
+    placed_.resize(static_cast<size_t>(g.nx()) * g.ny() * g.nz());
+  }
+
+  // True when `s` at lattice cell (i, j, k) is clear of every body placed at
+  // an earlier cell within reach (separation > 0).
+  bool Clear(const BodySettings& s, int i, int j, int k) const {
+    if (!valid_) return true;
+    RigidBody body;
+    if (!CreateBody(s, material_, &body).ok()) return true;
+    const Aabb box = ComputeAabb(body, 0.0, 0.0);
+    for (int kk = std::max(0, k - cells_[2]); kk <= k; ++kk) {
+      for (int jj = std::max(0, j - cells_[1]); jj < std::min(ny_, j + cells_[1] + 1); ++jj) {
+        for (int ii = std::max(0, i - cells_[0]); ii < std::min(nx_, i + cells_[0] + 1); ++ii) {
+          const size_t at = Index(ii, jj, kk);
+          if (at >= Index(i, j, k)) continue;  // not placed yet
+          const RigidBody& other = placed_[at];
+          if (!box.Overlaps(ComputeAabb(other, 0.0, 0.0))) continue;
+          if (PairSignedDistance(body, other, 1.0) <= 0.0) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  void Place(const BodySettings& s, int i, int j, int k) {
+    if (valid_) CreateBody(s, material_, &placed_[Index(i, j, k)]);
+  }
+
+ private:
+  size_t Index(int i, int j, int k) const { return (static_cast<size_t>(k) * ny_ + j) * nx_ + i; }
+
+  int nx_, ny_;
+  Material material_;
+  bool valid_ = false;
+  int cells_[3] = {0, 0, 0};  // lattice cells within two bounding radii, per axis
+  std::vector<RigidBody> placed_;
+};
+
+constexpr int kMaxOrientationDraws = 1000;
+
 Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Material& default_material,
                   SceneSpec* scene) {
   if (g.nx() < 1 || g.ny() < 1 || g.nz() < 1 || int64_t{g.nx()} * g.ny() * g.nz() > 1000000) {
@@ -116,6 +182,8 @@ Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Mate
   std::mt19937_64 rng(g.seed());
   const BodySettings proto_body = ToBodySettings(g.prototype(), default_material);
   const Vec3 origin = ToVec3(g.origin()), spacing = ToVec3(g.spacing());
+  std::optional<GridOverlapCheck> overlap;
+  if (g.random_orientation()) overlap.emplace(g, proto_body, default_material);
   for (int k = 0; k < g.nz(); ++k) {
     for (int j = 0; j < g.ny(); ++j) {
       for (int i = 0; i < g.nx(); ++i) {
@@ -123,7 +191,19 @@ Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Mate
         s.position = origin + Vec3(i, j, k).cwiseProduct(spacing) + s.position;
         s.position.x() += g.jitter() * (2.0 * Uniform01(rng) - 1.0);
         s.position.y() += g.jitter() * (2.0 * Uniform01(rng) - 1.0);
-        if (g.random_orientation()) s.orientation = RandomOrientation(rng);
+        if (overlap) {
+          int draws = 0;
+          do {
+            if (++draws > kMaxOrientationDraws) {
+              return Status::InvalidArgument(where + ": grids body (" + std::to_string(i) + ", " + std::to_string(j) +
+                                             ", " + std::to_string(k) + ") overlaps a neighbour in each of " +
+                                             std::to_string(kMaxOrientationDraws) +
+                                             " random orientations; make the spacing larger");
+            }
+            s.orientation = RandomOrientation(rng);
+          } while (!overlap->Clear(s, i, j, k));
+          overlap->Place(s, i, j, k);
+        }
         if (!s.name.empty()) s.name += "_" + std::to_string(scene->bodies.size());
         scene->bodies.push_back(std::move(s));
         scene->origins.push_back(where);

@@ -77,6 +77,20 @@ TEST(SceneSpec, GridIsDeterministicForASeed) {
   EXPECT_DOUBLE_EQ(a.bodies.back().position.z(), 0.5 + 0.9);
 }
 
+// Verifies that a randomly oriented lattice too tight for any orientation
+// (1 m cubes 1 m apart touch in every orientation) is refused with the grid
+// named, instead of starting with overlapping bodies.
+TEST(SceneSpec, GridTooTightForAnyOrientationIsRefused) {
+  const char* text =
+      "grids { prototype { box { half_extents { x: 0.5 y: 0.5 z: 0.5 } } } nx: 2 ny: 1 nz: 1\n"
+      "        spacing { x: 0.9 } random_orientation: true }\n";
+  SceneSpec scene;
+  const Status st = ParseSceneText(text, "g.pbtxt", &scene);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("g.pbtxt:1: grids[0]: grids body (1, 0, 0) overlaps a neighbour"), std::string::npos)
+      << st.message();
+}
+
 // Verifies that the default scene shipped in config/ loads and builds.
 TEST(SceneSpec, ShippedScenesLoad) {
   for (const char* name : {"default", "joints"}) {
