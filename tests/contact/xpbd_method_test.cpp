@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "service/contact/xpbd/positional_correction.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/integrator.h"
 #include "tests/contact/method_sim.h"
@@ -51,6 +52,51 @@ TEST(XpbdMethod, RestingBoxStaysAndCarriesItsWeight) {
   EXPECT_EQ(sim.method->ValueKind(), ContactValueKind::kForce);
   EXPECT_EQ(stats.substeps, 20);
   EXPECT_EQ(stats.iterations, 20);
+}
+
+// Verifies the pair block solve on a face's four corners, whose coupling
+// matrix has rank 3 (the corners' normal forces make a force and two
+// torques): the solution is the minimum-norm one (equal to the
+// pseudo-inverse's, which spreads a level box's load evenly) and satisfies
+// the consistent equations; the eight friction rows (rank 5 for the tilted
+// box) likewise.
+TEST(XpbdMethod, PairBlockIsTheMinimumNormSolution) {
+  World world;
+  const BodyId ground = AddGround(world, 0.0, 0.5);
+  const BodyId box = AddBox(world, Vec3(0.1, 0.2, 0.05), Vec3(0.01, -0.02, 0.05), 0.0, 0.5);
+  RigidBody& B = *world.Find(box);
+  B.q = Quat(Eigen::AngleAxisd(0.3, Vec3(0.2, 0.1, 1.0).normalized()));
+  const RigidBody& A = *world.Find(ground);
+  std::vector<PairRow> normal, tangent;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 corner = B.q * Vec3(i & 1 ? 0.1 : -0.1, i & 2 ? 0.2 : -0.2, -0.05);
+    normal.push_back({B.x + corner - A.x, corner, Vec3::UnitZ()});
+    tangent.push_back({B.x + corner - A.x, corner, Vec3::UnitX()});
+    tangent.push_back({B.x + corner - A.x, corner, Vec3::UnitY()});
+  }
+  for (const auto* rows : {&normal, &tangent}) {
+    const PairMatrix K = PairCoupling(A, B, *rows);
+    const Eigen::MatrixXd Kd = K;
+    ASSERT_EQ(Eigen::FullPivLU<Eigen::MatrixXd>(Kd).rank(), rows == &normal ? 3 : 5);
+    // a right-hand side in K's range: the rows' response to some impulses
+    Eigen::VectorXd y(rows->size());
+    for (int k = 0; k < y.size(); ++k) y(k) = 0.3 + 0.1 * k * (k % 3 == 1 ? -1 : 1);
+    const Eigen::VectorXd r = Kd * y;
+    const std::vector<double> rhs(r.data(), r.data() + r.size());
+    const Eigen::VectorXd x = SolvePairBlock(A, B, *rows, rhs, 0.0, false);
+    const Eigen::VectorXd pinv = Kd.completeOrthogonalDecomposition().pseudoInverse() * r;
+    EXPECT_LT((Kd * x - r).norm(), 1e-9 * r.norm());
+    EXPECT_LT((x - pinv).norm(), 1e-9 * pinv.norm());
+  }
+  // a level box on its four corners: each carries a quarter
+  B.q = Quat::Identity();
+  normal.clear();
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 corner(i & 1 ? 0.1 : -0.1, i & 2 ? 0.2 : -0.2, -0.05);
+    normal.push_back({B.x + corner - A.x, corner, Vec3::UnitZ()});
+  }
+  const Eigen::VectorXd x = SolvePairBlock(A, B, normal, {1e-3, 1e-3, 1e-3, 1e-3}, 0.0, true);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(x(i), 0.25 * B.mass * 1e-3, 1e-12) << i;
 }
 
 // Verifies dynamic friction: a box sliding at 3 m/s with mu = 0.4 stops

@@ -52,19 +52,27 @@ struct PairRow {
   Vec3 ra, rb, d;
 };
 
-// The pair's coupling matrix (Delassus operator) of the rows:
+// A pair block has at most two rows (the friction tangents) for each of a
+// manifold's points (kMaxManifoldPoints = 4); fixed-capacity storage keeps
+// the block solves, a few thousand per sub-step, off the heap.
+constexpr int kMaxPairRows = 8;
+using PairMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPairRows, kMaxPairRows>;
+using PairVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxPairRows, 1>;
+
+// The pair's coupling matrix (Delassus operator) of the rows (at most
+// kMaxPairRows):
 //   K_kl = sum over A, B of (1/m d_k . d_l + (r_k x d_k)^T I^-1 (r_l x d_l)),
 // the change of row k's relative displacement (or velocity) per unit x_l.
-Eigen::MatrixXd PairCoupling(const RigidBody& a, const RigidBody& b, const std::vector<PairRow>& rows);
+PairMatrix PairCoupling(const RigidBody& a, const RigidBody& b, const std::vector<PairRow>& rows);
 
 // The minimum-norm x of (K + alpha~ I) x = rhs with K = PairCoupling (a
 // face's four corners give a rank-3 K: min-norm spreads the load evenly);
 // with `nonnegative`, rows whose x would be negative are dropped (x = 0) and
 // the rest solved again.
-Eigen::VectorXd SolvePairBlock(const RigidBody& a, const RigidBody& b, const std::vector<PairRow>& rows,
-                               const std::vector<double>& rhs, double alpha_tilde, bool nonnegative);
+PairVector SolvePairBlock(const RigidBody& a, const RigidBody& b, const std::vector<PairRow>& rows,
+                          const std::vector<double>& rhs, double alpha_tilde, bool nonnegative);
 
 // Moves the pair by the positional impulses x_k along the rows, all at once.
-void ApplyPairPositional(RigidBody& a, RigidBody& b, const std::vector<PairRow>& rows, const Eigen::VectorXd& x);
+void ApplyPairPositional(RigidBody& a, RigidBody& b, const std::vector<PairRow>& rows, const PairVector& x);
 
 }  // namespace contactsim

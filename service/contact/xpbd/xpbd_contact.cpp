@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/collision/manifold_reduction.h"
 #include "service/contact/contact_row.h"
 #include "service/contact/xpbd/positional_correction.h"
 
@@ -10,12 +11,16 @@ namespace contactsim {
 namespace {
 
 // [begin, end) of each body pair's contacts (the detector appends a pair's
-// manifold contiguously).
+// manifold contiguously), at most kMaxManifoldPoints to a group so that a
+// group's friction rows fit a pair block (kMaxPairRows).
 std::vector<std::pair<size_t, size_t>> PairGroups(const std::vector<XpbdContact>& contacts) {
   std::vector<std::pair<size_t, size_t>> groups;
   for (size_t k = 0; k < contacts.size();) {
     size_t end = k + 1;
-    while (end < contacts.size() && contacts[end].a == contacts[k].a && contacts[end].b == contacts[k].b) ++end;
+    while (end < contacts.size() && end - k < kMaxManifoldPoints && contacts[end].a == contacts[k].a &&
+           contacts[end].b == contacts[k].b) {
+      ++end;
+    }
     groups.push_back({k, end});
     k = end;
   }
@@ -71,15 +76,16 @@ void BeginXpbdSubstep(const World& world, std::vector<XpbdContact>* contacts) {
 void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start, double h, double alpha_tilde,
                                std::vector<XpbdContact>* contacts) {
   auto& bodies = world.bodies();
-  std::vector<PairRow> rows;
+  std::vector<PairRow> rows, trows;
   std::vector<size_t> which;
+  std::vector<double> rhs, trhs;
   for (const auto& [begin, end] : PairGroups(*contacts)) {
     RigidBody& A = bodies[(*contacts)[begin].a];
     RigidBody& B = bodies[(*contacts)[begin].b];
     // non-penetration of every penetrating point of the pair at once
     rows.clear();
     which.clear();
-    std::vector<double> rhs;
+    rhs.clear();
     for (size_t k = begin; k < end; ++k) {
       XpbdContact& c = (*contacts)[k];
       Vec3 pa, pb;
@@ -90,7 +96,7 @@ void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start,
       rhs.push_back(d - alpha_tilde * c.lambda_n);
     }
     if (rows.empty()) continue;
-    const Eigen::VectorXd x = SolvePairBlock(A, B, rows, rhs, alpha_tilde, true);
+    const PairVector x = SolvePairBlock(A, B, rows, rhs, alpha_tilde, true);
     ApplyPairPositional(A, B, rows, x);
     double lambda_n = 0.0;
     for (size_t i = 0; i < which.size(); ++i) {
@@ -104,8 +110,8 @@ void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start,
     // sub-step if the pair's friction multipliers stay in mu sum(lambda_n)
     const double mu = (*contacts)[begin].friction;
     if (mu <= 0.0 || lambda_n <= 0.0) continue;
-    std::vector<PairRow> trows;
-    std::vector<double> trhs;
+    trows.clear();
+    trhs.clear();
     for (size_t k : which) {
       const XpbdContact& c = (*contacts)[k];
       Vec3 pa, pb;
@@ -117,7 +123,7 @@ void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start,
       trhs.push_back(dp.dot(t1) - alpha_tilde * c.lambda_t.dot(t1));
       trhs.push_back(dp.dot(t2) - alpha_tilde * c.lambda_t.dot(t2));
     }
-    const Eigen::VectorXd xt = SolvePairBlock(A, B, trows, trhs, alpha_tilde, false);
+    const PairVector xt = SolvePairBlock(A, B, trows, trhs, alpha_tilde, false);
     double lambda_t = 0.0;
     for (size_t i = 0; i < which.size(); ++i) {
       const XpbdContact& c = (*contacts)[which[i]];
@@ -134,35 +140,68 @@ void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start,
   }
 }
 
+namespace {
+
+// A body's velocities and world inverse inertia, computed once for a pair's
+// velocity pass and kept in step with the impulses applied to the body
+// (w = I_W^-1 L, so L += r x J gives w += I_W^-1 (r x J)).
+struct PairBodyMotion {
+  explicit PairBodyMotion(const RigidBody& b)
+      : dynamic(b.IsDynamic()), inv_mass(b.inv_mass), inv_I(b.InvInertiaWorld()), v(b.LinearVelocity()),
+        w(b.AngularVelocity()) {}
+  Vec3 PointVelocity(const Vec3& r) const { return v + w.cross(r); }
+  // w of the body for an impulse along the unit t at lever arm r (eq. 2-3)
+  double InverseMass(const Vec3& r, const Vec3& t) const {
+    if (!dynamic) return 0.0;
+    const Vec3 rt = r.cross(t);
+    return inv_mass + rt.dot(inv_I * rt);
+  }
+  void Apply(RigidBody& body, const Vec3& J, const Vec3& r) {
+    if (!dynamic) return;
+    body.ApplyImpulse(J, body.x + r);
+    v += inv_mass * J;
+    w += inv_I * r.cross(J);
+  }
+  bool dynamic;
+  double inv_mass;
+  Mat3 inv_I;
+  Vec3 v, w;
+};
+
+}  // namespace
+
 void SolveXpbdContactVelocities(World& world, double h, double restitution_threshold,
                                 std::vector<XpbdContact>* contacts) {
   auto& bodies = world.bodies();
   std::vector<PairRow> rows;
   std::vector<size_t> which;
+  std::vector<double> rhs;
   for (const auto& [begin, end] : PairGroups(*contacts)) {
     RigidBody& A = bodies[(*contacts)[begin].a];
     RigidBody& B = bodies[(*contacts)[begin].b];
+    PairBodyMotion ma(A), mb(B);
     // restitution: the pushing points of the pair leave at max(-e v~_n, 0) together
     rows.clear();
     which.clear();
-    std::vector<double> rhs;
+    rhs.clear();
     for (size_t k = begin; k < end; ++k) {
       const XpbdContact& c = (*contacts)[k];
       if (c.lambda_n <= 0.0) continue;
       Vec3 pa, pb;
       XpbdContactDepth(c, world, &pa, &pb);
-      const double vn = c.n.dot(B.PointVelocity(pb) - A.PointVelocity(pa));
+      const Vec3 ra = pa - A.x, rb = pb - B.x;
+      const double vn = c.n.dot(mb.PointVelocity(rb) - ma.PointVelocity(ra));
       const double e = std::abs(c.vn_before) > restitution_threshold ? c.restitution : 0.0;
-      rows.push_back({pa - A.x, pb - B.x, c.n});
+      rows.push_back({ra, rb, c.n});
       which.push_back(k);
       rhs.push_back(std::max(-e * c.vn_before, 0.0) - vn);
     }
     if (rows.empty()) continue;
-    const Eigen::VectorXd x = SolvePairBlock(A, B, rows, rhs, 0.0, false);
+    const PairVector x = SolvePairBlock(A, B, rows, rhs, 0.0, false);
     for (size_t i = 0; i < which.size(); ++i) {
       const Vec3 J = x(i) * rows[i].d;
-      B.ApplyImpulse(J, B.x + rows[i].rb);
-      A.ApplyImpulse(-J, A.x + rows[i].ra);
+      mb.Apply(B, J, rows[i].rb);
+      ma.Apply(A, -J, rows[i].ra);
       (*contacts)[which[i]].impulse += J;
     }
     // dynamic friction, point by point: the impulse that stops v_t, at most
@@ -171,16 +210,16 @@ void SolveXpbdContactVelocities(World& world, double h, double restitution_thres
     for (size_t i = 0; i < which.size(); ++i) {
       XpbdContact& c = (*contacts)[which[i]];
       const Vec3 ra = rows[i].ra, rb = rows[i].rb;
-      const Vec3 v = B.PointVelocity(B.x + rb) - A.PointVelocity(A.x + ra);
+      const Vec3 v = mb.PointVelocity(rb) - ma.PointVelocity(ra);
       const Vec3 vt = v - c.n * c.n.dot(v);
       const double speed = vt.norm();
       if (speed <= 0.0) continue;
       const Vec3 t = vt / speed;
-      const double w = GeneralizedInverseMass(A, ra, t) + GeneralizedInverseMass(B, rb, t);
+      const double w = ma.InverseMass(ra, t) + mb.InverseMass(rb, t);
       if (w <= 0.0) continue;
       const Vec3 J = -t * std::min(c.friction * c.lambda_n / h, speed / w);
-      B.ApplyImpulse(J, B.x + rb);
-      A.ApplyImpulse(-J, A.x + ra);
+      mb.Apply(B, J, rb);
+      ma.Apply(A, -J, ra);
       c.impulse += J;
     }
   }
