@@ -17,8 +17,17 @@ void SnapshotStore::StartTimeline(proto::Snapshot base) {
 
 void SnapshotStore::AddPeriodic(proto::Snapshot snapshot) {
   snapshots_.push_back(std::move(snapshot));
-  // keep the base: it bounds how far back REWIND reaches
-  while (static_cast<int>(snapshots_.size()) > max_periodic_ + 1) snapshots_.erase(snapshots_.begin() + 1);
+  // Beyond max_periodic_ periodic snapshots the oldest snapshot goes, and
+  // with it the records that only it needed (those before the next one's
+  // journal_seq are in that snapshot's state): the next snapshot becomes the
+  // base, so a long run's history stays bounded (max_periodic_ + 1
+  // snapshots and the records since the oldest) and REWIND reaches back
+  // max_periodic_ snapshot periods.
+  while (static_cast<int>(snapshots_.size()) > max_periodic_ + 1) {
+    snapshots_.pop_front();
+    const int64_t kept_from = snapshots_.front().journal_seq();
+    while (!records_.empty() && records_.front().seq < kept_from) records_.pop_front();
+  }
 }
 
 size_t SnapshotStore::FirstRecordAtOrAfter(int64_t step) const {
@@ -34,7 +43,9 @@ int64_t SnapshotStore::SeqAt(size_t i, int64_t fallback) const {
 Status SnapshotStore::PlanRewind(int64_t step, int64_t current_step, Plan* plan) const {
   if (snapshots_.empty() || step < base_step() || step > current_step) {
     return Status::InvalidArgument("step must be in [" + std::to_string(base_step()) + ", " +
-                                   std::to_string(current_step) + "] (since the last reset, load or restore), got " +
+                                   std::to_string(current_step) +
+                                   "] (the oldest state kept: the last reset, load or restore, or the oldest of the "
+                                   "max_snapshots periodic snapshots), got " +
                                    std::to_string(step));
   }
   const size_t end = FirstRecordAtOrAfter(step);

@@ -1,6 +1,9 @@
 // The server's in-memory history, for SAVE / RESTORE / REWIND: named
 // snapshot slots, and the current timeline — a base snapshot, periodic
-// snapshots and every journal record since the base.
+// snapshots and every journal record since the base. The base is the
+// timeline's start until more than max_periodic periodic snapshots were
+// taken; then the oldest snapshot and its records are dropped, so the
+// history of a long run stays bounded.
 //
 // A timeline starts whenever the world is replaced rather than changed by
 // a journaled command (start, reset, scene load, restore); REWIND reaches

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "service/scene/snapshot.h"
+#include "service/server/snapshot_store.h"
 #include "tests/server/server_harness.h"
 
 namespace contactsim {
@@ -148,6 +149,74 @@ TEST(SnapshotCommandsErrorsTest, FileSnapshotsRestore) {
   ASSERT_EQ(r.code, reply_t::OK) << r.message;
   EXPECT_EQ(HashWorldState(h.server.world()), at25);
   EXPECT_EQ(h.Step(10), after);
+}
+
+}  // namespace
+}  // namespace contactsim
+
+namespace contactsim {
+namespace {
+
+// Verifies that a long run's history is bounded: beyond max_snapshots
+// periodic snapshots the oldest one and the journal records before the
+// next one are dropped, REWIND reaches back to the oldest snapshot kept and
+// no further (with a reply naming the range), and a rewind inside the range
+// still lands on the original run's state bit for bit.
+TEST(SnapshotHistoryTest, OldHistoryIsDroppedAndRewindStaysExact) {
+  ServerOptions options;
+  options.prefix = "H";
+  options.snapshot_every = 10;
+  options.max_snapshots = 2;
+  ServerHarness h(options);
+  BuildScene(h);
+  const std::vector<uint64_t> original = RunWithCommands(h, 0, 60);  // a command every 20 steps
+  ASSERT_EQ(original.size(), 60u);
+  // snapshots at 40, 50 and 60 are kept (the base and two periodic ones)
+  scene_cmd_t rewind = h.Scene(scene_cmd_t::REWIND);
+  rewind.target_step = 35;
+  reply_t r = h.Send(rewind);
+  EXPECT_EQ(r.code, reply_t::INVALID_ARGUMENT);
+  EXPECT_NE(r.message.find("step must be in [40, 60]"), std::string::npos) << r.message;
+  EXPECT_EQ(h.server.world().step, 60);
+  EXPECT_EQ(HashWorldState(h.server.world()), original.back());
+  for (int target : {45, 40}) {
+    rewind.target_step = target;
+    r = h.Send(rewind);
+    ASSERT_EQ(r.code, reply_t::OK) << r.message;
+    EXPECT_EQ(HashWorldState(h.server.world()), original[target - 1]) << "rewind to " << target;
+  }
+}
+
+// Verifies the store's bookkeeping: records older than the oldest kept
+// snapshot are dropped with it, so memory stays bounded on a long run.
+TEST(SnapshotHistoryTest, StoreKeepsOnlyRecordsAfterTheOldestSnapshot) {
+  SnapshotStore store(2);
+  auto snapshot = [](int64_t step, int64_t seq) {
+    proto::Snapshot s;
+    s.set_step(step);
+    s.set_journal_seq(seq);
+    return s;
+  };
+  store.StartTimeline(snapshot(0, 0));
+  int64_t seq = 0;
+  for (int64_t step = 1; step <= 100; ++step) {
+    JournalRecord record;
+    record.seq = seq++;
+    record.step = step;
+    store.AddRecord(record);
+    if (step % 10 == 0) store.AddPeriodic(snapshot(step, seq));
+    EXPECT_LE(store.snapshot_count(), 3u);
+    EXPECT_LE(store.record_count(), 30u) << "at step " << step;
+  }
+  EXPECT_EQ(store.base_step(), 80);
+  SnapshotStore::Plan plan;
+  EXPECT_FALSE(store.PlanRewind(79, 100, &plan).ok());
+  ASSERT_TRUE(store.PlanRewind(95, 100, &plan).ok());
+  EXPECT_EQ(plan.from->step(), 90);
+  // the records of boundaries 91..94 (the one of boundary 90 is in the
+  // snapshot here; a record of boundary 95 comes after the state at 95)
+  ASSERT_EQ(plan.records.size(), 4u);
+  EXPECT_EQ(plan.records.front()->step, 91);
 }
 
 }  // namespace
