@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "service/contact/barrier/additive_ccd.h"
 #include "service/contact/barrier/barrier_potential.h"
 #include "service/contact/contact_row.h"
 #include "service/physics/integrator.h"
@@ -81,76 +82,71 @@ void BarrierSolver::Setup(World& world, const BarrierParams& params) {
   }
 }
 
-void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* out) const {
+void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* out) {
   out->clear();
   const double d_hat = params_.d_hat;
-  std::vector<double> move(bodies_.size(), 0.0);
-  if (step != nullptr) {
-    for (size_t i = 0; i < bodies_.size(); ++i) {
-      if (bodies_[i].dof >= 0) move[i] = MotionBound((*step)[bodies_[i].dof], bodies_[i].radius);
-    }
-  }
-  std::vector<PrimitivePair> pairs;
+  search_bodies_.resize(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {
-    for (size_t j = i + 1; j < bodies_.size(); ++j) {
-      const Body& A = bodies_[i];
-      const Body& B = bodies_[j];
-      if (A.dof < 0 && B.dof < 0) continue;
-      // bounding spheres (|A X| <= ||A||_F |X|), or sphere against plane
-      const double reach = d_hat + move[i] + move[j];
-      if (A.geometry.plane || B.geometry.plane) {
-        const Body& P = A.geometry.plane ? A : B;
-        const Body& S = A.geometry.plane ? B : A;
-        const Mat3 R = AffineMatrix(P.q);
-        const Vec3 n = (R * P.geometry.plane_normal).normalized();
-        const double offset = P.geometry.plane_offset + n.dot(AffinePosition(P.q));
-        const double r = AffineMatrix(S.q).norm() * S.radius;
-        if (n.dot(AffinePosition(S.q)) - offset - r > reach) continue;
-      } else {
-        const double ra = AffineMatrix(A.q).norm() * A.radius, rb = AffineMatrix(B.q).norm() * B.radius;
-        if ((AffinePosition(A.q) - AffinePosition(B.q)).norm() - ra - rb > reach) continue;
-      }
-      EnumeratePrimitivePairs(A.geometry, B.geometry, &pairs);
-      const Vec3 pa = AffinePosition(A.q), pb = AffinePosition(B.q);
-      const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
-      for (const PrimitivePair& p : pairs) {
-        Entry e;
-        e.a = static_cast<int>(i);
-        e.b = static_cast<int>(j);
-        e.pair = p;
-        e.dist = EvaluatePair(A.geometry, pa, Aa, B.geometry, pb, Ab, p);
-        e.mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, p);
-        const auto it = shift_.find(KeyOf(e.a, e.b, p));
-        if (it != shift_.end()) e.shift = it->second;
-        if (step != nullptr) {
-          // d can shrink by at most max_ij |dv_i - du_j| over the vertices
-          const PairVertices v = PrimitiveVertices(A.geometry, B.geometry, p);
-          const Vec12 za = A.dof >= 0 ? (*step)[A.dof] : Vec12::Zero();
-          const Vec12 zb = B.dof >= 0 ? (*step)[B.dof] : Vec12::Zero();
-          std::array<Vec3, 3> da, db;
-          for (int k = 0; k < v.na; ++k) da[k] = AffinePoint(za, v.a[k]);
-          for (int k = 0; k < v.nb; ++k) db[k] = AffinePoint(zb, v.b[k]);
-          if (v.na == 0) da[0].setZero();
-          if (v.nb == 0) db[0].setZero();
-          double worst = 0.0;
-          for (int k = 0; k < std::max(v.na, 1); ++k) {
-            for (int l = 0; l < std::max(v.nb, 1); ++l) worst = std::max(worst, (da[k] - db[l]).norm());
-          }
-          e.motion = worst;
-          if (p.kind == PrimitiveKind::kPointPlane && (p.swapped ? A.dof : B.dof) < 0) {
-            // a point against a static plane: d is linear in alpha (affine
-            // maps are linear in q), so only the approach along the normal
-            // counts, exactly; sliding along the plane does not shrink alpha
-            const bool point_is_b = p.swapped;
-            const Vec3 moved = point_is_b ? AffinePoint(zb, e.dist.Xb) : AffinePoint(za, e.dist.Xa);
-            const Vec3 n_plane_to_point = point_is_b ? e.dist.n : Vec3(-e.dist.n);
-            e.motion = std::max(0.0, -n_plane_to_point.dot(moved));
-          }
-        }
-        if (EffectiveDistance(e) - e.motion < d_hat) out->push_back(e);
-      }
-    }
+    const Body& b = bodies_[i];
+    SearchBody& s = search_bodies_[i];
+    s.geometry = &b.geometry;
+    s.q = b.q;
+    s.q_end = step != nullptr && b.dof >= 0 ? Vec12(b.q + (*step)[b.dof]) : b.q;
+    s.movable = b.dof >= 0;
   }
+  // (shifts are <= 0, so d - shift < d_hat needs d < d_hat)
+  search_.Find(search_bodies_, d_hat, &candidates_);
+  for (const CandidatePair& c : candidates_) {
+    Entry e;
+    e.a = c.a;
+    e.b = c.b;
+    e.pair = c.pair;
+    if (!shift_.empty()) {
+      const auto it = shift_.find(KeyOf(e.a, e.b, e.pair));
+      if (it != shift_.end()) e.shift = it->second;
+    }
+    Evaluate(&e);
+    // along a step: those that can come within d_hat by the pair's motion bound
+    const double reach = step != nullptr ? RelativeMotionBound(CcdPairOf(e, *step)) : 0.0;
+    if (EffectiveDistance(e) - reach < d_hat) out->push_back(e);
+  }
+}
+
+CcdPair BarrierSolver::CcdPairOf(const Entry& e, const std::vector<Vec12>& step) const {
+  const Body& A = bodies_[e.a];
+  const Body& B = bodies_[e.b];
+  CcdPair p;
+  p.a = &A.geometry;
+  p.b = &B.geometry;
+  p.qa = A.q;
+  p.qb = B.q;
+  p.dqa = A.dof >= 0 ? step[A.dof] : Vec12::Zero();
+  p.dqb = B.dof >= 0 ? step[B.dof] : Vec12::Zero();
+  p.pair = e.pair;
+  p.shift = e.shift;
+  return p;
+}
+
+void BarrierSolver::Evaluate(Entry* e) const {
+  const Body& A = bodies_[e->a];
+  const Body& B = bodies_[e->b];
+  const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
+  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair);
+  e->mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e->pair);
+}
+
+void BarrierSolver::Refresh(const std::vector<Entry>& line, std::vector<Entry>* out) const {
+  out->clear();
+  for (Entry e : line) {
+    Evaluate(&e);
+    if (EffectiveDistance(e) < params_.d_hat) out->push_back(e);
+  }
+}
+
+double BarrierSolver::LineSearchStart(const std::vector<Vec12>& step, const std::vector<Entry>& line) const {
+  double alpha = 1.0;
+  for (const Entry& e : line) alpha = AdditiveCcd(CcdPairOf(e, step), params_.ccd_fraction, alpha);
+  return alpha;
 }
 
 double BarrierSolver::Energy(const std::vector<Entry>& entries) const {
@@ -232,6 +228,7 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
 
 BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params, ContactSet* contacts) {
   BarrierStepResult result;
+  if (world.bodies().size() != bodies_.size()) search_.Reset();
   Setup(world, params);
   const double d_hat = params_.d_hat, h2 = h_ * h_;
 
@@ -300,7 +297,6 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
       result.converged = false;
     }
     for (int it = 0; it < params_.max_iterations && dofs_ > 0; ++it) {
-      Collect(nullptr, &entries);
       // gradient and Hessian, per-body dense 12x12 blocks
       Eigen::VectorXd g = Eigen::VectorXd::Zero(12 * dofs_);
       std::map<std::pair<int, int>, Mat12> blocks;
@@ -398,10 +394,7 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
 
       // line search: the CCD bound, then halving until the energy decreases
       Collect(&step, &line);
-      double alpha = 1.0;
-      for (const Entry& e : line) {
-        if (e.motion > 0.0) alpha = std::min(alpha, (1.0 - params_.ccd_fraction) * EffectiveDistance(e) / e.motion);
-      }
+      double alpha = LineSearchStart(step, line);
       const double e0 = Energy(line);
       std::vector<Vec12> start(bodies_.size());
       for (size_t i = 0; i < bodies_.size(); ++i) start[i] = bodies_[i].q;
@@ -420,9 +413,10 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
         break;
       }
 
-      // adaptive kappa: double it while the closest pair keeps closing below the floor
+      // adaptive kappa: double it while the closest pair keeps closing below
+      // the floor (the line's candidates hold every pair within d_hat now)
       double min_d = std::numeric_limits<double>::infinity();
-      Collect(nullptr, &entries);
+      Refresh(line, &entries);
       for (const Entry& e : entries) min_d = std::min(min_d, EffectiveDistance(e));
       if (min_d < kFloor * d_hat && min_d < last_min) kappa_ = std::min(kappa_max, 2.0 * kappa_);
       last_min = min_d;
@@ -445,9 +439,8 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
     r.SetVelocity(v, w);
   }
 
-  // contacts and the smallest distance at the end
+  // contacts and the smallest distance at the end (entries are those at q)
   contacts->clear();
-  Collect(nullptr, &entries);
   result.min_distance = d_hat;
   for (const Entry& e : entries) {
     const double d = EffectiveDistance(e);

@@ -19,14 +19,18 @@
 // Hessian of the orthogonality potential, the Gauss-Newton barrier term
 // kappa b''(d) grad d grad d^T (positive semi-definite; the curvature term
 // b'(d) grad^2 d is dropped) and the friction term G H_f G^T with H_f the
-// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled from dense 12x12 blocks into a sparse matrix (SimplicialLDLT).
+// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled from
+// dense 12x12 blocks into a sparse matrix (SimplicialLDLT).
 // The line search starts at the largest alpha in [0, 1] for which no pair's
-// distance can fall below ccd_fraction of its current value: a point of a
-// primitive moves by a convex combination of its vertices' motions (affine
-// maps are linear in q), so d(alpha) >= d - alpha max_ij |dv_i - du_j|, and
-// alpha = (1 - ccd_fraction) d / max_ij |dv_i - du_j| is safe (conservative
-// additive CCD, no root finding). It then halves alpha until E decreases.
-// Every accepted iterate is therefore intersection-free.
+// distance can fall below ccd_fraction of its current value, by additive
+// CCD per pair (additive_ccd.h: conservative advancement with the pair's own
+// relative vertex motion, re-measured along the step, so pairs sliding past
+// each other do not cut alpha to d / |motion|). It then halves alpha until E
+// decreases. Every accepted iterate is therefore intersection-free.
+// The pairs are found by a broadphase over swept boxes (pair_search.h): one
+// search along each Newton step gives every pair that can come within d_hat
+// on it, which serves the CCD, the line search's energies and, re-measured
+// at the accepted iterate, the next iteration's gradient and Hessian.
 //
 // Barrier stiffness (IPC sec. 4.3, adaptive): at the step's start kappa
 // balances the barrier's gradient against the rest,
@@ -39,9 +43,8 @@
 //
 // Line-search bound for a point against a static plane: d is linear in
 // alpha, d(alpha) = d + alpha n . dx, so the bound is exact and uses only the
-// approach along n. With the vertex-motion bound a box sliding at 3 m/s
-// (12 mm a step, 0.5 mm above the ground) could take 4% of each Newton step
-// and ran out of iterations, losing most of its momentum in a step.
+// approach along n (a box sliding at 3 m/s, 12 mm a step, 0.5 mm above the
+// ground, would otherwise take small fractions of each Newton step).
 //
 // Pairs that start closer than 1e-2 d_hat (bodies placed touching, or left
 // overlapping by another method) are measured from a shifted zero,
@@ -56,10 +59,12 @@
 #include <vector>
 
 #include "service/collision/contact.h"
+#include "service/contact/barrier/additive_ccd.h"
 #include "service/contact/barrier/affine_body.h"
 #include "service/contact/barrier/barrier_state.h"
 #include "service/contact/barrier/contact_primitives.h"
 #include "service/contact/barrier/edge_mollifier.h"
+#include "service/contact/barrier/pair_search.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -108,7 +113,6 @@ class BarrierSolver {
     PairDistance dist;
     EdgeMollifier mollifier;    // edge-edge pairs: IPC's factor for nearly parallel edges
     double shift = 0.0;         // m, subtracted from dist.d
-    double motion = 0.0;        // m, bound on how much d can shrink over the step dq
   };
   struct Friction {             // lagged at the step's start
     int a = -1, b = -1;
@@ -118,9 +122,17 @@ class BarrierSolver {
   };
 
   void Setup(World& world, const BarrierParams& params);
-  // Primitive pairs with d - shift - motion < d_hat at the bodies' q; with
-  // `step`, motion bounds along it.
-  void Collect(const std::vector<Vec12>* step, std::vector<Entry>* out) const;
+  // Primitive pairs with d - shift < d_hat at the bodies' q; with `step`,
+  // every pair that can come within d_hat on the way to q + step
+  // (pair_search.h), evaluated at q.
+  void Collect(const std::vector<Vec12>* step, std::vector<Entry>* out);
+  // Distance and mollifier of an entry at the bodies' q.
+  void Evaluate(Entry* e) const;
+  // The entries of `line` (a Collect along the step just taken) within d_hat at q.
+  void Refresh(const std::vector<Entry>& line, std::vector<Entry>* out) const;
+  CcdPair CcdPairOf(const Entry& e, const std::vector<Vec12>& step) const;
+  // The largest safe alpha along `step` by additive CCD over `line`.
+  double LineSearchStart(const std::vector<Vec12>& step, const std::vector<Entry>& line) const;
   double Energy(const std::vector<Entry>& entries) const;
   // Lagged friction of the pairs in `entries` at the bodies' q.
   void Lag(const std::vector<Entry>& entries);
@@ -138,6 +150,9 @@ class BarrierSolver {
   std::map<std::tuple<int, int, int, int, int, bool>, double> shift_;
   std::vector<Friction> friction_;
   int dofs_ = 0;
+  PrimitivePairSearch search_;
+  std::vector<SearchBody> search_bodies_;
+  std::vector<CandidatePair> candidates_;
   BarrierState state_;
 };
 
