@@ -201,10 +201,46 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
     }
     row.Apply(row.lambda_n * row.n + row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
   }
+  // The angular velocity change per unit impulse along n, t1, t2 of each
+  // row's bodies, I^-1 (r x d) (world), computed once: the sweeps below
+  // then do no 3x3 products (as Bullet's angularComponentA/B).
+  responses_.resize(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ContactRow& row = rows[k];
+    const Mat3& Ia = solver_[row.a].inv_inertia;
+    const Mat3& Ib = solver_[row.b].inv_inertia;
+    AngularResponse& r = responses_[k];
+    r.a_n = Ia * row.ra.cross(row.n);
+    r.a_t1 = Ia * row.ra.cross(row.t1);
+    r.a_t2 = Ia * row.ra.cross(row.t2);
+    r.b_n = Ib * row.rb.cross(row.n);
+    r.b_t1 = Ib * row.rb.cross(row.t1);
+    r.b_t2 = Ib * row.rb.cross(row.t2);
+  }
+  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
+  // (the same sums as SolverBody::ApplyImpulse)
+  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb) {
+    SolverBody& A = solver_[row.a];
+    SolverBody& B = solver_[row.b];
+    if (B.inv_mass != 0.0) {
+      B.v += B.inv_mass * J;
+      B.w += dwb;
+      B.dP += J;
+      B.dL += row.rb.cross(J);
+    }
+    if (A.inv_mass != 0.0) {
+      A.v -= A.inv_mass * J;
+      A.w -= dwa;
+      A.dP -= J;
+      A.dL -= row.ra.cross(J);
+    }
+  };
   int it = 0;
   for (; it < params_.iterations; ++it) {
     double worst = 0.0;  // largest change of a relative velocity, m/s
-    for (ContactRow& row : rows) {
+    for (size_t k = 0; k < rows.size(); ++k) {
+      ContactRow& row = rows[k];
+      const AngularResponse& r = responses_[k];
       // friction first, limited by the normal impulse of the last sweep
       const Vec3 vrel = row.RelativeVelocity(solver_);
       const double limit = row.friction * row.lambda_n;
@@ -220,14 +256,15 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
       }
       row.lambda_t1 = l1;
       row.lambda_t2 = l2;
-      const Vec3 dJt = (l1 - old1) * row.t1 + (l2 - old2) * row.t2;
-      row.Apply(dJt, solver_);
+      const double d1 = l1 - old1, d2 = l2 - old2;
+      const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
+      apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2);
 
       const double vn = row.NormalVelocity(solver_);
       const double next = std::max(0.0, row.lambda_n - vn * row.mass_n);
       const double dn = next - row.lambda_n;
       row.lambda_n = next;
-      row.Apply(dn * row.n, solver_);
+      apply(row, dn * row.n, dn * r.a_n, dn * r.b_n);
       worst = std::max({worst, std::abs(dn) * row.k_n, dJt.norm() * row.k_n});
     }
     if (worst < params_.velocity_tolerance) {

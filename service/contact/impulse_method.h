@@ -78,6 +78,10 @@ class ImpulseMethod : public ContactMethod {
 
   ImpulseParams params_;
   std::vector<SolverBody> solver_;
+  struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
+    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
+  };
+  std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
   // Contact-phase force (N, world: normal and tangent parts) of each contact
   // point of the last sub-step, by (body A, body B, feature id). Forces, not
