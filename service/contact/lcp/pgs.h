@@ -23,14 +23,19 @@
 //
 // Performance: rows are copied once per solve into a flat array holding
 // J and M^-1 J^T (so the sweep does no 3x3 products) and the reciprocal of
-// A_kk; velocities live in a dense array of (v, w) per body plus one
-// zero-velocity slot for the world, so a sweep is branch-free and
-// allocation-free (the workspace is reused between solves).
+// A_kk, in the order of RowSchedule (row_schedule.h): consecutive rows
+// touch different bodies, so their updates do not wait on each other's
+// velocity stores. Velocities live in a dense array of (v, w) per body plus
+// one zero-velocity slot for the world and one write-only slot where rows
+// put the (unchanged) velocity of a body without mass, so a sweep is
+// branch-free, allocation-free (the workspace is reused between solves)
+// and carries no false dependency through a static body's velocity.
 #pragma once
 
 #include <vector>
 
 #include "service/contact/constraint_row.h"
+#include "service/contact/lcp/row_schedule.h"
 #include "service/contact/lcp/solve_report.h"
 
 namespace contactsim {
@@ -48,22 +53,27 @@ class PgsSolver {
 
  private:
   struct Row {
-    int a, b;                     // velocity slots (the world: the last, zero slot)
+    int a, b;                     // velocity slots read (the world: the zero slot)
+    int write_a, write_b;         // velocity slots written (the sink for bodies without mass)
     Vec3 ja_lin, ja_ang, jb_lin, jb_ang;
     Vec3 ma_lin, ma_ang, mb_lin, mb_ang;  // M^-1 J^T
     double diag, inv_diag;
     double rhs, lo, hi, mu, lambda;
-    int normal_row;
+    int normal_row;               // in rows_ order
+    int source;                   // index in the caller's rows
   };
   struct Velocity {
     Vec3 v, w;
   };
-  double RowVelocity(const Row& r) const {
-    const Velocity& A = vel_[r.a];
-    const Velocity& B = vel_[r.b];
-    return r.ja_lin.dot(A.v) + r.ja_ang.dot(A.w) + r.jb_lin.dot(B.v) + r.jb_ang.dot(B.w);
+  // Writes the velocities A, B of the row's bodies plus M^-1 J^T d to the
+  // row's write slots (a body without mass: to the sink, which nothing reads).
+  void Apply(const Row& r, const Velocity A, const Velocity B, double d) {
+    vel_[r.write_a] = {A.v + r.ma_lin * d, A.w + r.ma_ang * d};
+    vel_[r.write_b] = {B.v + r.mb_lin * d, B.w + r.mb_ang * d};
   }
 
+  RowSchedule schedule_;
+  std::vector<int> order_, position_;  // sweep order; position_[row] = index in rows_
   std::vector<Row> rows_;
   std::vector<Velocity> vel_;
 };
