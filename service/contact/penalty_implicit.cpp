@@ -4,6 +4,8 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "service/contact/union_find.h"
 
@@ -17,7 +19,16 @@ struct JacobianEntry {
   int body = -1;  // local index in the island
   Vec6 j = Vec6::Zero();
 };
-using RowJacobian = std::vector<JacobianEntry>;  // one or two entries
+// A row's Jacobian: one entry per dynamic body of the pair (fixed storage:
+// rows are built many times per active-set pass).
+struct RowJacobian {
+  JacobianEntry entries[2];
+  int count = 0;
+  void push_back(const JacobianEntry& e) { entries[count++] = e; }
+  const JacobianEntry* begin() const { return entries; }
+  const JacobianEntry* end() const { return entries + count; }
+};
+using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 enum class Friction { kStick, kSlide };
 
@@ -55,19 +66,19 @@ class Island {
     for (const JacobianEntry& e : jac) sum += e.j.dot(du.segment<6>(6 * e.body));
     return sum;
   }
-  // coef u v^T as 6 x 6 blocks of triplets (duplicates are summed on
-  // assembly). Zeros are kept, and rows switched off add coef 0, so that the
-  // sparsity pattern stays the same across active-set passes and is
-  // analysed once per step.
+  // coef u v^T into the 6 x 6 blocks of the body pairs. Every block a row
+  // touches is kept (rows switched off add coef 0), so that the sparsity
+  // pattern stays the same across active-set passes and is analysed once
+  // per step; summing into blocks first keeps the triplets at 36 per block
+  // instead of 36 per row and body pair.
+  Mat6& Block(int u, int v) {
+    const auto [it, added] = block_index_.try_emplace({u, v}, static_cast<int>(blocks_.size()));
+    if (added) blocks_.emplace_back(u, v, Mat6::Zero());
+    return std::get<2>(blocks_[it->second]);
+  }
   void AddOuter(const RowJacobian& u, const RowJacobian& v, double coef) {
     for (const JacobianEntry& eu : u) {
-      for (const JacobianEntry& ev : v) {
-        for (int r = 0; r < 6; ++r) {
-          for (int c = 0; c < 6; ++c) {
-            triplets_.emplace_back(6 * eu.body + r, 6 * ev.body + c, coef * eu.j[r] * ev.j[c]);
-          }
-        }
-      }
+      for (const JacobianEntry& ev : v) Block(eu.body, ev.body).noalias() += (coef * eu.j) * ev.j.transpose();
     }
   }
   void AddRhs(const RowJacobian& u, double value) {
@@ -86,6 +97,8 @@ class Island {
   std::vector<int> bodies_;   // world indices, ascending
   std::vector<int>& local_;   // world index -> local index
   std::vector<int> members_;  // row indices
+  std::vector<std::tuple<int, int, Mat6>> blocks_;   // (row body, column body, block), first-use order
+  std::map<std::pair<int, int>, int> block_index_;   // into blocks_
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> A_;
   Eigen::VectorXd rhs_;
@@ -93,15 +106,13 @@ class Island {
 
 void Island::Assemble(const std::vector<RowState>& state) {
   const int n = static_cast<int>(bodies_.size());
-  triplets_.clear();
+  for (auto& block : blocks_) std::get<2>(block).setZero();
   rhs_.setZero(6 * n);
   for (int j = 0; j < n; ++j) {
     const RigidBody& b = world_.bodies()[bodies_[j]];
-    const Mat3 inertia = b.InertiaWorld();
-    for (int r = 0; r < 3; ++r) {
-      triplets_.emplace_back(6 * j + r, 6 * j + r, b.mass);
-      for (int c = 0; c < 3; ++c) triplets_.emplace_back(6 * j + 3 + r, 6 * j + 3 + c, inertia(r, c));
-    }
+    Mat6& M = Block(j, j);
+    M.topLeftCorner<3, 3>().diagonal().array() += b.mass;
+    M.bottomRightCorner<3, 3>() += b.InertiaWorld();
     rhs_.segment<3>(6 * j) = h_ * b.force;
     rhs_.segment<3>(6 * j + 3) = h_ * b.torque;
   }
@@ -131,6 +142,12 @@ void Island::Assemble(const std::vector<RowState>& state) {
       const RowJacobian js = Jacobian(row, st.s);
       AddOuter(js, g, row.mu * coef_n);
       AddRhs(js, h_ * row.mu * base);
+    }
+  }
+  triplets_.clear();
+  for (const auto& [u, v, block] : blocks_) {
+    for (int r = 0; r < 6; ++r) {
+      for (int c = 0; c < 6; ++c) triplets_.emplace_back(6 * u + r, 6 * v + c, block(r, c));
     }
   }
   A_.resize(6 * n, 6 * n);
