@@ -10,7 +10,7 @@ constexpr double kClose = 0.05;    // stop when the gap to the target is this pa
 
 double DistanceAt(const CcdPair& p, double t) {
   const Vec12 qa = p.qa + t * p.dqa, qb = p.qb + t * p.dqb;
-  return EvaluatePair(*p.a, AffinePosition(qa), AffineMatrix(qa), *p.b, AffinePosition(qb), AffineMatrix(qb), p.pair).d -
+  return EvaluatePair(*p.a, AffinePosition(qa), AffineMatrix(qa), *p.b, AffinePosition(qb), AffineMatrix(qb), p.pair, p.signed_depth).d -
          p.shift;
 }
 

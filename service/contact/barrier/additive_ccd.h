@@ -27,6 +27,7 @@ struct CcdPair {
   Vec12 dqa, dqb;     // the step (zero for a body that does not move)
   PrimitivePair pair;
   double shift = 0.0; // m, subtracted from the distance (barrier_solver.h)
+  double signed_depth = 0.0;  // m, EvaluatePair's
 };
 
 // l above: over the whole step no point of one primitive gets nearer to the

@@ -124,6 +124,7 @@ CcdPair BarrierSolver::CcdPairOf(const Entry& e, const std::vector<Vec12>& step)
   p.dqb = B.dof >= 0 ? step[B.dof] : Vec12::Zero();
   p.pair = e.pair;
   p.shift = e.shift;
+  p.signed_depth = SignedDepth();
   return p;
 }
 
@@ -131,7 +132,7 @@ void BarrierSolver::Evaluate(Entry* e) const {
   const Body& A = bodies_[e->a];
   const Body& B = bodies_[e->b];
   const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
-  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair);
+  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair, SignedDepth());
   e->mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e->pair);
 }
 
@@ -149,6 +150,8 @@ double BarrierSolver::LineSearchStart(const std::vector<Vec12>& step, const std:
   return alpha;
 }
 
+double BarrierSolver::SignedDepth() const { return 2.0 * kFloor * params_.d_hat; }
+
 double BarrierSolver::Energy(const std::vector<Entry>& entries) const {
   double inertia = 0.0, potential = 0.0;
   for (const Body& b : bodies_) {
@@ -162,7 +165,7 @@ double BarrierSolver::Energy(const std::vector<Entry>& entries) const {
     const Body& A = bodies_[e.a];
     const Body& B = bodies_[e.b];
     const PairDistance d = EvaluatePair(A.geometry, AffinePosition(A.q), AffineMatrix(A.q), B.geometry,
-                                        AffinePosition(B.q), AffineMatrix(B.q), e.pair);
+                                        AffinePosition(B.q), AffineMatrix(B.q), e.pair, SignedDepth());
     const double b = Barrier(d.d - e.shift, params_.d_hat);
     if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
     if (b == 0.0) continue;
@@ -237,7 +240,10 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   std::vector<Entry> entries;
   Collect(nullptr, &entries);
   for (const Entry& e : entries) {
-    if (e.dist.d < kFloor * d_hat) shift_[KeyOf(e.a, e.b, e.pair)] = e.dist.d - kFloor * d_hat;
+    // (one zero, -floor, for every pair not deeper: a pair pressed below
+    // d = 0 in one step does not get a lower zero in the next)
+    const double floor = kFloor * d_hat;
+    if (e.dist.d < floor) shift_[KeyOf(e.a, e.b, e.pair)] = e.dist.d < -floor ? e.dist.d - floor : -floor;
   }
   Collect(nullptr, &entries);
 

@@ -46,12 +46,18 @@
 // approach along n (a box sliding at 3 m/s, 12 mm a step, 0.5 mm above the
 // ground, would otherwise take small fractions of each Newton step).
 //
-// Pairs that start closer than 1e-2 d_hat (bodies placed touching, or left
-// overlapping by another method) are measured from a shifted zero,
-// d' = d - (d_0 - 1e-2 d_hat), so the barrier pushes them apart instead of
-// being infinite; unsigned distances cannot see an overlap of two polyhedra,
-// so the guarantee assumes an intersection-free start (planes and spheres
-// have signed distances and recover).
+// Pairs that start a step closer than floor = 1e-2 d_hat (bodies placed
+// exactly touching, as the pyramid's, or pressed together) are measured
+// from a shifted zero, d' = d + floor, so the barrier pushes them apart
+// instead of being infinite. The zero is the same -floor in every step, so
+// a pair pressed below d = 0 gets no lower zero in the next step (a zero at
+// d_0 - floor, re-taken every step, let the pyramid sink 0.69 mm in 120
+// steps); near d = 0 point-triangle and crossing edge-edge distances are
+// signed (contact_primitives.h), so d' > 0 means d > -floor. Pairs that
+// start deeper than -floor (bodies overlapping) get d' = floor at their
+// start; unsigned distances cannot see a deep overlap of two polyhedra, so
+// the guarantee assumes an intersection-free start (planes and spheres have
+// signed distances and recover).
 #pragma once
 
 #include <map>
@@ -141,6 +147,9 @@ class BarrierSolver {
   // Stores the bodies' affine state and the end-of-step friction lag.
   void Remember(const World& world, const std::vector<Entry>& entries);
   double EffectiveDistance(const Entry& e) const { return e.dist.d - e.shift; }
+  // m, how far behind a face a point still counts as inside (EvaluatePair):
+  // past the lowest shifted zero, -floor
+  double SignedDepth() const;
 
   BarrierParams params_;
   double h_ = 0.0;

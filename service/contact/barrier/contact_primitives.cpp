@@ -16,6 +16,17 @@ void AddHull(const ConvexHull& hull, const std::vector<Vec3>& points, BodyGeomet
   }
 }
 
+// The distance d and the unit normal n12 from the point side's closest point
+// to the other's, in a's and b's terms.
+PairDistance Finish(double d, const Vec3& n12, const Vec3& X1, const Vec3& X2, bool swapped) {
+  PairDistance out;
+  out.d = d;
+  out.n = swapped ? -n12 : n12;
+  out.Xa = swapped ? X2 : X1;
+  out.Xb = swapped ? X1 : X2;
+  return out;
+}
+
 }  // namespace
 
 BodyGeometry MakeBodyGeometry(const Shape& shape) {
@@ -122,7 +133,7 @@ PairVertices PrimitiveVertices(const BodyGeometry& a, const BodyGeometry& b, con
 }
 
 PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa, const BodyGeometry& b,
-                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair) {
+                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair, double signed_depth) {
   PairDistance out;
   const bool swapped = pair.swapped && pair.kind != PrimitiveKind::kEdgeEdge;
   // the point side's and the other side's geometry and maps
@@ -154,21 +165,42 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
     }
     case PrimitiveKind::kPointTriangle: {
       const auto& t = g2.triangles[pair.ib];
+      const Vec3 v0 = world2(t[0]), v1 = world2(t[1]), v2 = world2(t[2]);
       Vec3 w;
       c1 = world1(pair.ia);
-      c2 = ClosestPointOnTriangle(c1, world2(t[0]), world2(t[1]), world2(t[2]), &w);
+      c2 = ClosestPointOnTriangle(c1, v0, v1, v2, &w);
       X1 = g1.points[pair.ia];
       X2 = w(0) * g2.points[t[0]] + w(1) * g2.points[t[1]] + w(2) * g2.points[t[2]];
+      // on the face's side or just behind it, with the foot inside the
+      // triangle: the signed distance along the outward normal (faces are
+      // counter-clockwise seen from outside)
+      const Vec3 n_out = (v1 - v0).cross(v2 - v0).normalized();
+      const double s = n_out.dot(c1 - v0);
+      if (s >= -signed_depth && (c1 - s * n_out - c2).squaredNorm() <= 1e-24 + 1e-20 * (c1 - c2).squaredNorm()) {
+        return Finish(s - g1.radius - g2.radius, -n_out, X1, X2, swapped);
+      }
       break;
     }
     case PrimitiveKind::kEdgeEdge: {
       const auto& e = g1.edges[pair.ia];
       const auto& f = g2.edges[pair.ib];
-      const SegmentClosestPoints s = ClosestPointsOfSegments(world1(e[0]), world1(e[1]), world2(f[0]), world2(f[1]));
-      c1 = s.c1;
-      c2 = s.c2;
-      X1 = (1 - s.s) * g1.points[e[0]] + s.s * g1.points[e[1]];
-      X2 = (1 - s.t) * g2.points[f[0]] + s.t * g2.points[f[1]];
+      const Vec3 a0 = world1(e[0]), a1 = world1(e[1]), b0 = world2(f[0]), b1 = world2(f[1]);
+      const SegmentClosestPoints sc = ClosestPointsOfSegments(a0, a1, b0, b1);
+      c1 = sc.c1;
+      c2 = sc.c2;
+      X1 = (1 - sc.s) * g1.points[e[0]] + sc.s * g1.points[e[1]];
+      X2 = (1 - sc.t) * g2.points[f[0]] + sc.t * g2.points[f[1]];
+      // crossing edges, closest points inside both: the signed distance along
+      // e_a x e_b turned from a's centre towards b's (the separating plane of
+      // two convex bodies touching edge on edge contains both edges)
+      const Vec3 cross = (a1 - a0).cross(b1 - b0);
+      const double sin2 = cross.squaredNorm() / ((a1 - a0).squaredNorm() * (b1 - b0).squaredNorm());
+      if (sin2 > 1e-6 && sc.s > 0.0 && sc.s < 1.0 && sc.t > 0.0 && sc.t < 1.0) {
+        Vec3 n = cross.normalized();
+        if (n.dot(p2 - p1) < 0.0) n = -n;
+        const double s = n.dot(c2 - c1);
+        if (s >= -signed_depth) return Finish(s - g1.radius - g2.radius, n, X1, X2, false);
+      }
       break;
     }
     case PrimitiveKind::kPointEdge: {
@@ -189,12 +221,10 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
   }
   const Vec3 gap = c2 - c1;
   const double len = gap.norm();
-  const Vec3 n12 = len > 0.0 ? Vec3(gap / len) : Vec3::UnitZ();
-  out.d = len - g1.radius - g2.radius;
-  out.n = swapped ? -n12 : n12;
-  out.Xa = swapped ? X2 : X1;
-  out.Xb = swapped ? X1 : X2;
-  return out;
+  // touching (no direction between the closest points): from centre to centre
+  const Vec3 centres = p2 - p1;
+  const Vec3 n12 = len > 0.0 ? Vec3(gap / len) : centres.norm() > 0.0 ? Vec3(centres.normalized()) : Vec3::UnitZ();
+  return Finish(len - g1.radius - g2.radius, n12, X1, X2, swapped);
 }
 
 }  // namespace contactsim

@@ -54,13 +54,25 @@ struct PairVertices {
 };
 PairVertices PrimitiveVertices(const BodyGeometry& a, const BodyGeometry& b, const PrimitivePair& pair);
 
-// Distance of a pair with the two bodies' world maps x = p + A X.
+// Distance of a pair with the two bodies' world maps x = p + A X. Signed
+// where the geometry gives a side: point-plane always; point-triangle when
+// the point's foot on the triangle's plane lies in the triangle and the
+// point is at most `signed_depth` behind it (the outward normal of the face
+// is the direction); edge-edge when the closest points are inside both
+// non-parallel edges and at most `signed_depth` past each other (e_a x e_b,
+// turned from a's centre towards b's). So a pair measured from a shifted
+// zero below d = 0 (barrier_solver.h) cannot pass through d = 0 unseen,
+// and bodies placed exactly touching get the normal of the touching faces
+// rather than none. Deeper, the distance is unsigned (a point far behind a
+// face plane, as seen from a face on the other side of a body, is not
+// inside). Elsewhere unsigned, with the normal from centre to centre when
+// the closest points coincide.
 struct PairDistance {
-  double d = 0.0;         // m, unsigned distance minus radii (point-plane: signed)
+  double d = 0.0;         // m, distance minus radii
   Vec3 Xa, Xb;            // body-frame coordinates of the closest points
   Vec3 n = Vec3::UnitZ(); // unit, world, from a's closest point to b's
 };
 PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa, const BodyGeometry& b,
-                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair);
+                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair, double signed_depth = 0.0);
 
 }  // namespace contactsim
