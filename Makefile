@@ -31,12 +31,14 @@ test-cpp:
 test-py:
 	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
 
-# The C++ suite again on a Debug build (-O1) with AddressSanitizer and
-# UndefinedBehaviorSanitizer. The 210-box pyramid (10 s of simulation) takes
-# over 5 minutes under the sanitizers and is left to `make test`.
+# Both suites again on a Debug build (-O1) with AddressSanitizer and
+# UndefinedBehaviorSanitizer (the Python tests drive the instrumented server
+# and tools). The 210-box pyramid (10 s of simulation) takes over 5 minutes
+# under the sanitizers and is left to `make test`. CI runs this after `make test`.
 test-asan:
 	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 	cd build-asan && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid'
+	@$(MAKE) --no-print-directory test-py BUILD=build-asan
 
 # The standard scenes in contactsim (every contact method), Bullet, ODE and
 # MuJoCo, side by side; rewrites the generated tables in BENCHMARKS.md
