@@ -2,6 +2,7 @@
 // vertices) and against each other (separating-axis test + face clipping).
 #include <cstdint>
 
+#include "service/collision/box_box_sat.h"
 #include "service/collision/collide_pairs.h"
 #include "service/collision/feature_id.h"
 #include "service/collision/manifold_reduction.h"
@@ -34,21 +35,29 @@ void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const Collid
 
 // box/convex (a) - box/convex (b): separating-axis test, with the axis that
 // separated the pair last call tried first when a cache is given (Baraff);
-// only a miss poses the polyhedra.
+// two boxes take the closed-form test (box_box_sat.h), so that only a
+// touching pair of boxes is posed (for its manifold).
 void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
                       ContactSet* out) {
   // equal ids (callers without a world) cannot be told apart in the cache
   SeparatingAxisCache* cache = a.id != b.id ? ctx.cache : nullptr;
   // a hit is decided on the bodies' own frames, before anything is posed
   if (cache != nullptr && cache->StillSeparates(a, b, ctx.margin)) return;
+  const bool boxes = a.shape.type == ShapeType::kBox && b.shape.type == ShapeType::kBox;
   PosedPolyhedron pa, pb;
-  if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
-  const SatResult sat = FindSeparatingAxis(pa, pb, ctx.margin);
+  SatResult sat;
+  if (boxes) {
+    sat = FindBoxBoxSeparatingAxis(a, b, ctx.margin);
+  } else {
+    if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
+    sat = FindSeparatingAxis(pa, pb, ctx.margin);
+  }
   if (sat.separation > ctx.margin) {
     if (cache != nullptr) cache->Store(a.id, b.id, sat.axis);
     return;
   }
   if (cache != nullptr) cache->Erase(a.id, b.id);
+  if (boxes && (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb))) return;
   PolyhedronManifold(pa, pb, sat, ctx.margin, out);
 }
 

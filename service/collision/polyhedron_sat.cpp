@@ -76,7 +76,9 @@ double PreferenceThreshold(double d, double rel) {
   return d - std::min((1.0 - rel) * std::max(d, 0.0), kSatMaxBias) - kSatAbsTolerance;
 }
 
-SatResult MakeResult(const SeparatingAxis& axis, const Vec3& normal, double separation) {
+}  // namespace
+
+SatResult MakeSatResult(const SeparatingAxis& axis, const Vec3& normal, double separation) {
   SatResult r;
   r.axis = axis;
   r.normal = normal;
@@ -86,15 +88,11 @@ SatResult MakeResult(const SeparatingAxis& axis, const Vec3& normal, double sepa
   return r;
 }
 
-// An early-out result: its axis separates more than asked, which is all that
-// is known of the maximum.
-SatResult WithMax(SatResult r) {
+SatResult EarlyOutResult(SatResult r) {
   r.max_separation = r.separation;
   r.max_normal = r.normal;
   return r;
 }
-
-}  // namespace
 
 bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const SeparatingAxis& axis,
                     Vec3* normal, double* separation) {
@@ -129,14 +127,14 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
   // faces of A: outward normals point from A to B
   for (int f = 0; f < static_cast<int>(a.normals.size()); ++f) {
     const double sep = FaceSeparation(a.normals[f], a.offsets[f], b);
-    if (sep > face_a.separation) face_a = MakeResult({SeparatingAxis::Kind::kFaceA, f, -1}, a.normals[f], sep);
-    if (sep > early_out) return WithMax(face_a);
+    if (sep > face_a.separation) face_a = MakeSatResult({SeparatingAxis::Kind::kFaceA, f, -1}, a.normals[f], sep);
+    if (sep > early_out) return EarlyOutResult(face_a);
   }
   // faces of B: outward normals point from B to A
   for (int f = 0; f < static_cast<int>(b.normals.size()); ++f) {
     const double sep = FaceSeparation(b.normals[f], b.offsets[f], a);
-    if (sep > face_b.separation) face_b = MakeResult({SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep);
-    if (sep > early_out) return WithMax(face_b);
+    if (sep > face_b.separation) face_b = MakeSatResult({SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep);
+    if (sep > early_out) return EarlyOutResult(face_b);
   }
   // one edge of each, where they form a Minkowski face; parallel pairs skipped
   const int edges_a = static_cast<int>(a.edge_dirs.size());
@@ -155,11 +153,15 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
       } else if (!EdgeSeparation(a, b, ea, eb, &n, &sep)) {  // open topology: project
         continue;
       }
-      if (sep > edges.separation) edges = MakeResult({SeparatingAxis::Kind::kEdges, ea, eb}, n, sep);
-      if (sep > early_out) return WithMax(edges);
+      if (sep > edges.separation) edges = MakeSatResult({SeparatingAxis::Kind::kEdges, ea, eb}, n, sep);
+      if (sep > early_out) return EarlyOutResult(edges);
     }
   }
 
+  return ChooseSeparatingAxis(face_a, face_b, edges);
+}
+
+SatResult ChooseSeparatingAxis(const SatResult& face_a, const SatResult& face_b, const SatResult& edges) {
   // the unbiased maximum (first of equals: faces of A, faces of B, edges)
   const SatResult* max = &face_a;
   if (face_b.separation > max->separation) max = &face_b;

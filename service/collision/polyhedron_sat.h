@@ -80,4 +80,16 @@ bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const Se
 // that margin exists and the result need not be the best axis.
 SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out);
 
+// The steps of a separating-axis test, shared by FindSeparatingAxis and the
+// closed-form box-box test (box_box_sat.h):
+// a candidate axis (its max_* equal to its own normal and separation);
+SatResult MakeSatResult(const SeparatingAxis& axis, const Vec3& normal, double separation);
+// an early-out result: its axis separates more than asked, which is all
+// that is known of the maximum;
+SatResult EarlyOutResult(SatResult r);
+// the result from the best face of A, the best face of B and the best edge
+// pair (separation -inf and kind kNone where there is none), with the
+// preferences above and the unbiased maximum.
+SatResult ChooseSeparatingAxis(const SatResult& face_a, const SatResult& face_b, const SatResult& edges);
+
 }  // namespace contactsim
