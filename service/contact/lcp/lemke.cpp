@@ -44,20 +44,33 @@ class Tableau {
     return std::abs(ri - rj) <= tol * (1.0 + std::max(std::abs(ri), std::abs(rj)));
   }
 
-  // Gauss-Jordan pivot on (row, col); col becomes basic in row.
+  // Gauss-Jordan pivot on (row, col); col becomes basic in row. Only the
+  // pivot row's nonzero columns change the other rows: contact tableaus are
+  // sparse (a row couples the few contacts of two bodies), so the update
+  // touches a fraction of the 2n + 2 columns; skipping exact zeros leaves
+  // every value as the full row operation would.
   void Pivot(int row, int col) {
     t_.row(row) /= t_(row, col);
+    nonzero_.clear();
+    for (int k = 0; k < t_.cols(); ++k) {
+      if (t_(row, k) != 0.0) nonzero_.push_back(k);
+    }
+    const double* pivot = &t_(row, 0);
     for (int i = 0; i < n_; ++i) {
       if (i == row) continue;
       const double f = t_(i, col);
-      if (f != 0.0) t_.row(i) -= f * t_.row(row);
+      if (f == 0.0) continue;
+      double* target = &t_(i, 0);
+      for (const int k : nonzero_) target[k] -= f * pivot[k];
     }
     basis_[row] = col;
   }
 
  private:
   int n_;
-  MatX t_;
+  // row-major, so that a row operation walks contiguous memory
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> t_;
+  std::vector<int> nonzero_;     // columns of the pivot row that are not zero
   std::vector<int> basis_;
 };
 
