@@ -1,5 +1,6 @@
 #include "service/contact/penalty_implicit.h"
 
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <algorithm>
@@ -169,14 +170,32 @@ ImplicitStats Island::Solve(int max_iterations) {
     }
   }
   Eigen::VectorXd du;
+  // Without sliding points the system is the mass matrix plus sums of
+  // g g^T terms, symmetric positive definite: a sparse Cholesky (LDL^T)
+  // solves it several times faster than the LU that a sliding point's
+  // unsymmetric s g^T term needs. Each is analysed once per step.
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  bool lu_ready = false, ldlt_ready = false;
   for (int pass = 0; pass < max_iterations; ++pass) {
     ++stats.iterations;
     Assemble(state);
-    if (pass == 0) lu.analyzePattern(A_);
-    lu.factorize(A_);
-    du = lu.info() == Eigen::Success ? Eigen::VectorXd(lu.solve(rhs_))
-                                     : Eigen::VectorXd::Constant(rhs_.size(), std::nan(""));
+    const bool symmetric = std::none_of(state.begin(), state.end(), [](const RowState& st) {
+      return st.on && st.friction == Friction::kSlide;
+    });
+    bool solved = false;
+    if (symmetric) {
+      if (!ldlt_ready) ldlt.analyzePattern(A_), ldlt_ready = true;
+      ldlt.factorize(A_);
+      solved = ldlt.info() == Eigen::Success;
+      if (solved) du = ldlt.solve(rhs_);
+    } else {
+      if (!lu_ready) lu.analyzePattern(A_), lu_ready = true;
+      lu.factorize(A_);
+      solved = lu.info() == Eigen::Success;
+      if (solved) du = lu.solve(rhs_);
+    }
+    if (!solved) du = Eigen::VectorXd::Constant(rhs_.size(), std::nan(""));
     bool changed = false;
     stats.residual = 0.0;
     for (size_t m = 0; m < members_.size(); ++m) {
