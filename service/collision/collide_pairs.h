@@ -15,15 +15,24 @@
 #include <cstdint>
 
 #include "service/collision/contact.h"
+#include "service/collision/polyhedron_manifold.h"
 #include "service/physics/rigid_body.h"
 
 namespace contactsim {
 
 class SeparatingAxisCache;
 
+// Posed polyhedra and clip polygons of the polyhedron pairs, reused between
+// pairs (and steps) so that a step allocates nothing once warmed up.
+struct PolyhedronScratch {
+  PosedPolyhedron a, b;
+  ClipBuffers clip;
+};
+
 struct CollideContext {
   double margin = 0.0;                  // m: report pairs with separation < margin
   SeparatingAxisCache* cache = nullptr; // optional, used by the polyhedron pairs
+  PolyhedronScratch* scratch = nullptr; // optional, used by the polyhedron pairs
 };
 
 using PairCollider = void (*)(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,

@@ -19,7 +19,8 @@ namespace contactsim {
 // the plane gives its corners; more than four are reduced to four.
 void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
                             ContactSet* out) {
-  PosedPolyhedron poly;
+  PosedPolyhedron local;
+  PosedPolyhedron& poly = ctx.scratch != nullptr ? ctx.scratch->a : local;
   if (!PosePolyhedron(a, &poly)) return;
   Vec3 n;
   double offset;
@@ -44,7 +45,10 @@ void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideConte
   // a hit is decided on the bodies' own frames, before anything is posed
   if (cache != nullptr && cache->StillSeparates(a, b, ctx.margin)) return;
   const bool boxes = a.shape.type == ShapeType::kBox && b.shape.type == ShapeType::kBox;
-  PosedPolyhedron pa, pb;
+  PolyhedronScratch local;
+  PolyhedronScratch& scratch = ctx.scratch != nullptr ? *ctx.scratch : local;
+  PosedPolyhedron& pa = scratch.a;
+  PosedPolyhedron& pb = scratch.b;
   SatResult sat;
   if (boxes) {
     sat = FindBoxBoxSeparatingAxis(a, b, ctx.margin);
@@ -58,7 +62,7 @@ void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideConte
   }
   if (cache != nullptr) cache->Erase(a.id, b.id);
   if (boxes && (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb))) return;
-  PolyhedronManifold(pa, pb, sat, ctx.margin, out);
+  PolyhedronManifold(pa, pb, sat, ctx.margin, out, &scratch.clip);
 }
 
 }  // namespace contactsim

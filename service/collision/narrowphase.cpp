@@ -129,6 +129,7 @@ int Narrowphase::Collide(const RigidBody& a, int ia, const RigidBody& b, int ib,
   CollideContext ctx;
   ctx.margin = margin;
   ctx.cache = &cache_;
+  ctx.scratch = &scratch_;
   return Dispatch(a, ia, b, ib, ctx, out);
 }
 

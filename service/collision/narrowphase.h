@@ -9,6 +9,7 @@
 // points and feature ids with flipped normals.
 #pragma once
 
+#include "service/collision/collide_pairs.h"
 #include "service/collision/contact.h"
 #include "service/collision/separating_axis_cache.h"
 #include "service/physics/rigid_body.h"
@@ -46,6 +47,7 @@ class Narrowphase {
 
  private:
   SeparatingAxisCache cache_;
+  PolyhedronScratch scratch_;
 };
 
 }  // namespace contactsim

@@ -22,11 +22,6 @@ constexpr uint32_t kTagFallback = 0xFA11u;
 // Depths (m) closer than this are the same (round-off of ~1 m coordinates).
 constexpr double kDepthTol = 1e-9;
 
-struct ClipPoint {
-  Vec3 p;
-  uint32_t tag;  // incident vertex index, or hash of the clip that made it
-};
-
 // Sutherland-Hodgman: keeps the part of `poly` with n.p <= offset.
 void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double offset, uint32_t plane,
                       std::vector<ClipPoint>* out) {
@@ -46,7 +41,7 @@ void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double 
 }
 
 void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
-                  double margin, ContactSet* out) {
+                  double margin, ContactSet* out, ClipBuffers* buffers) {
   const bool ref_is_a = sat.axis.kind == SeparatingAxis::Kind::kFaceA;
   const PosedPolyhedron& ref = ref_is_a ? a : b;
   const PosedPolyhedron& inc = ref_is_a ? b : a;
@@ -66,7 +61,9 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
     }
   }
 
-  std::vector<ClipPoint> poly, clipped;
+  std::vector<ClipPoint>& poly = buffers->poly;
+  std::vector<ClipPoint>& clipped = buffers->clipped;
+  poly.clear();
   for (int v : inc.topology->faces[inc_face].vertices) {
     poly.push_back({inc.vertices[v], static_cast<uint32_t>(v)});
   }
@@ -137,11 +134,11 @@ void EdgeManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
 }  // namespace
 
 void PolyhedronManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
-                        double margin, ContactSet* out) {
+                        double margin, ContactSet* out, ClipBuffers* buffers) {
   if (sat.axis.kind == SeparatingAxis::Kind::kEdges) {
     EdgeManifold(a, b, sat, margin, out);
   } else if (sat.axis.kind != SeparatingAxis::Kind::kNone) {
-    FaceManifold(a, b, sat, margin, out);
+    FaceManifold(a, b, sat, margin, out, buffers);
   }
 }
 

@@ -14,13 +14,28 @@
 // Creation for Physics Simulations", GDC 2015.)
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "service/collision/contact.h"
 #include "service/collision/polyhedron_sat.h"
 
 namespace contactsim {
 
+// A point of the clipped incident polygon: its position and the incident
+// vertex index, or the hash of the clip that made it.
+struct ClipPoint {
+  Vec3 p;
+  uint32_t tag;
+};
+// Polygons of the clipping, kept by a caller between calls so that a step
+// allocates nothing once their capacity is reached.
+struct ClipBuffers {
+  std::vector<ClipPoint> poly, clipped;
+};
+
 // Appends the contacts (depth > -margin) of the axis in `sat`; normals from A to B.
 void PolyhedronManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
-                        double margin, ContactSet* out);
+                        double margin, ContactSet* out, ClipBuffers* buffers);
 
 }  // namespace contactsim

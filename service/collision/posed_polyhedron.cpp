@@ -55,6 +55,25 @@ bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out) {
   for (size_t i = 0; i < topo.vertices.size(); ++i) {
     out->vertices[i] = R * topo.vertices[i].cwiseProduct(scale) + body.x;
   }
+  if (body.shape.type == ShapeType::kBox) {
+    // the unit box's face normals and edges lie along the frame axes: face
+    // 2i + s has normal (-1)^s R e_i and offset n . x + h_i, and the edges
+    // of topo.edges run from the lower vertex index to the higher, along +R e_i
+    out->normals.resize(6);
+    out->offsets.resize(6);
+    for (int f = 0; f < 6; ++f) {
+      const int i = f / 2;
+      const Vec3 n = f % 2 == 0 ? Vec3(R.col(i)) : Vec3(-R.col(i));
+      out->normals[f] = n;
+      out->offsets[f] = n.dot(body.x) + scale[i];
+    }
+    out->edge_dirs.resize(topo.edges.size());
+    for (size_t e = 0; e < topo.edges.size(); ++e) {
+      const int bit = topo.edges[e][0] ^ topo.edges[e][1];
+      out->edge_dirs[e] = R.col(bit == 1 ? 0 : bit == 2 ? 1 : 2);
+    }
+    return true;
+  }
   // a plane n . p = o maps under p' = S p to (S^-1 n) . p' = o
   const Vec3 inv_scale = scale.cwiseInverse();
   out->normals.resize(topo.faces.size());
