@@ -20,7 +20,7 @@ double EffectiveInverseMass(const ContactRow& row, const Vec3& d, const std::vec
   return A.inv_mass + B.inv_mass + ra_d.dot(A.inv_inertia * ra_d) + rb_d.dot(B.inv_inertia * rb_d);
 }
 
-ContactRow MakeContactRow(const Contact& c, const World& world, const std::vector<SolverBody>& s) {
+ContactRow MakeContactBasis(const Contact& c, const World& world) {
   const RigidBody& A = world.bodies()[c.a];
   const RigidBody& B = world.bodies()[c.b];
   ContactRow row;
@@ -30,14 +30,19 @@ ContactRow MakeContactRow(const Contact& c, const World& world, const std::vecto
   row.rb = c.point - B.x;
   row.n = c.normal;
   PerpendicularBasis(row.n, &row.t1, &row.t2);
+  row.friction = CombineFriction(A.material, B.material);
+  row.restitution = CombineRestitution(A.material, B.material);
+  return row;
+}
+
+ContactRow MakeContactRow(const Contact& c, const World& world, const std::vector<SolverBody>& s) {
+  ContactRow row = MakeContactBasis(c, world);
   row.k_n = EffectiveInverseMass(row, row.n, s);
   row.mass_n = row.k_n > 0.0 ? 1.0 / row.k_n : 0.0;
   const double k1 = EffectiveInverseMass(row, row.t1, s);
   const double k2 = EffectiveInverseMass(row, row.t2, s);
   row.mass_t1 = k1 > 0.0 ? 1.0 / k1 : 0.0;
   row.mass_t2 = k2 > 0.0 ? 1.0 / k2 : 0.0;
-  row.friction = CombineFriction(A.material, B.material);
-  row.restitution = CombineRestitution(A.material, B.material);
   return row;
 }
 

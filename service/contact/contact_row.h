@@ -46,6 +46,9 @@ double CombineRestitution(const Material& a, const Material& b);
 double CombineFriction(const Material& a, const Material& b);
 
 ContactRow MakeContactRow(const Contact& c, const World& world, const std::vector<SolverBody>& s);
+// The same without the effective masses (k_n, mass_*: left 0), for
+// solvers that take them from their own rows (the lcp method).
+ContactRow MakeContactBasis(const Contact& c, const World& world);
 
 // K_d for direction d at the row's lever arms.
 double EffectiveInverseMass(const ContactRow& row, const Vec3& d, const std::vector<SolverBody>& s);

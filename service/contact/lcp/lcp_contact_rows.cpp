@@ -47,7 +47,7 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
                     std::vector<Impact>* impacts) {
   impacts->clear();
   for (const Contact& c : contacts) {
-    const ContactRow basis = MakeContactRow(c, world, before);
+    const ContactRow basis = MakeContactBasis(c, world);
     impacts->push_back(PredictImpact(c.depth, basis.NormalVelocity(before), basis.NormalVelocity(free),
                                      basis.restitution, options));
   }
@@ -58,7 +58,7 @@ void AppendContactRows(const ContactSet& contacts, const World& world, const std
                        std::vector<ConstraintRow>* rows) {
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
-    const ContactRow basis = MakeContactRow(c, world, before);
+    const ContactRow basis = MakeContactBasis(c, world);
     ConstraintRow normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
     const double vn_before = basis.NormalVelocity(before);
     if (impacts[k].exact) {
