@@ -28,6 +28,7 @@ struct StepStats {
   int substeps = 0;            // collision-time sub-steps taken
   double residual = 0.0;       // method specific, documented by the method
   double max_penetration = 0.0;// m, deepest contact at the end of the step
+  double stiffness = 0.0;      // method specific (barrier: kappa, N/m); 0 when none
 };
 
 class ContactMethod {

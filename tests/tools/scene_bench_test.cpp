@@ -80,6 +80,19 @@ TEST(SceneBench, BounceJsonHasEveryFieldAndTheAnalyticApex) {
   EXPECT_DOUBLE_EQ(Number(o.out, "min_distance"), -Number(o.out, "max_penetration")) << o.out;
 }
 
+// Verifies that the method's own report reaches the JSON: the barrier
+// method's Newton iterations and stiffness, and its smallest distance, which
+// for a sphere over a plane is the exact distance the metrics measure too.
+TEST(SceneBench, BarrierBounceJsonHasTheMethodsReport) {
+  const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method barrier --repeat 1 --json");
+  ASSERT_EQ(o.exit_code, 0) << o.out;
+  EXPECT_GE(Number(o.out, "iterations_mean"), 1.0) << o.out;
+  EXPECT_GE(Number(o.out, "iterations_max"), Number(o.out, "iterations_mean")) << o.out;
+  EXPECT_GT(Number(o.out, "stiffness_max"), 0.0) << o.out;
+  EXPECT_GT(Number(o.out, "residual_min"), 0.0) << o.out;
+  EXPECT_NEAR(Number(o.out, "residual_min"), Number(o.out, "min_distance"), 1e-12) << o.out;
+}
+
 // Verifies that an unknown method exits 1 with a JSON status naming it and
 // the known methods.
 TEST(SceneBench, UnknownMethodIsAnErrorNamingIt) {

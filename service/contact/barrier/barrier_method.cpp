@@ -45,6 +45,7 @@ StepStats BarrierMethod::Step(World& world, CollisionDetector& /*detector*/, Con
   stats.iterations = last_.iterations;
   stats.substeps = last_.converged ? 1 : 0;
   stats.residual = last_.min_distance;
+  stats.stiffness = last_.kappa;
   stats.contacts = static_cast<int>(contacts->size());
   stats.max_penetration = std::max(0.0, -last_.min_distance);
   return stats;

@@ -3,7 +3,8 @@
 // barrier_solver.h. StepStats: iterations = Newton iterations, residual =
 // the smallest distance (m) between two bodies' primitives within d_hat at
 // the end of the step (d_hat when none is nearer), converged or not in
-// substeps (1) / 0; the barrier stiffness is barrier_stiffness(). Contacts
+// substeps (1) / 0, stiffness = the barrier stiffness kappa (N/m), also
+// barrier_stiffness(). Contacts
 // are the primitive pairs within d_hat, with depth = -distance and the
 // barrier force kappa |b'(d)| (N) as normal_value (ValueKind kForce).
 #pragma once

@@ -56,6 +56,8 @@ std::string ToJson(const BenchResult& r) {
     << ", \"max_penetration\": " << Number(r.max_penetration) << ", \"min_distance\": " << Number(r.min_distance)
     << ", \"final_kinetic_energy\": " << Number(r.final_kinetic_energy)
     << ", \"top_displacement\": " << Number(r.top_displacement) << ", \"rebound_height\": " << Number(r.rebound_height)
+    << ", \"iterations_mean\": " << Number(r.iterations_mean) << ", \"iterations_max\": " << Number(r.iterations_max)
+    << ", \"residual_min\": " << Number(r.residual_min) << ", \"stiffness_max\": " << Number(r.stiffness_max)
     << ", \"peak_rss_mb\": " << Number(r.peak_rss_mb) << ", \"status\": " << Quote(r.status) << "}";
   return o.str();
 }
@@ -77,6 +79,9 @@ void PrintTable(const BenchResult& r, std::ostream& out) {
                          "; min " + Number(r.ms_per_step_min) + ", max " + Number(r.ms_per_step_max) + ")");
   row("max penetration", Number(r.max_penetration) + " m");
   row("min distance", Text(r.min_distance, "m"));
+  row("iterations", r.iterations_mean ? Number(*r.iterations_mean) + " a step (at most " + Number(r.iterations_max) + ")" : "-");
+  row("method residual", Text(r.residual_min, "(smallest)"));
+  row("method stiffness", Text(r.stiffness_max, "(largest)"));
   row("final kinetic energy", Number(r.final_kinetic_energy) + " J");
   row("top displacement", Text(r.top_displacement, "m"));
   row("rebound height", Text(r.rebound_height, "m"));

@@ -10,7 +10,8 @@ class ContactsimEngine : public SceneEngine {
   ContactsimEngine(std::unique_ptr<ContactMethod> method, World world)
       : method_(std::move(method)), world_(std::move(world)) {}
   Status SetBroadphase(const std::string& name) { return detector_.SetBroadphase(name); }
-  void Step() override { method_->Step(world_, detector_, &contacts_); }
+  void Step() override { stats_ = method_->Step(world_, detector_, &contacts_); }
+  std::optional<StepStats> LastStats() const override { return stats_; }
   const World& Sync() override { return world_; }
   ParamMap Params() const override { return method_->Params(); }
 
@@ -19,6 +20,7 @@ class ContactsimEngine : public SceneEngine {
   World world_;
   CollisionDetector detector_;
   ContactSet contacts_;
+  StepStats stats_;
 };
 
 }  // namespace

@@ -24,6 +24,16 @@ double Median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// Folds the method's report of step `done` (1-based) into the run's.
+void Accumulate(const std::optional<StepStats>& stats, int done, BenchResult* r) {
+  if (!stats) return;
+  const double n = stats->iterations;
+  r->iterations_mean = r->iterations_mean.value_or(0.0) + (n - r->iterations_mean.value_or(0.0)) / done;
+  r->iterations_max = std::max(r->iterations_max.value_or(n), n);
+  r->residual_min = std::min(r->residual_min.value_or(stats->residual), stats->residual);
+  r->stiffness_max = std::max(r->stiffness_max.value_or(stats->stiffness), stats->stiffness);
+}
+
 }  // namespace
 
 double PeakRssMb() {
@@ -63,6 +73,7 @@ BenchResult RunScene(const BenchOptions& options, const SceneSpec& scene, const 
       failure = engine->Failure();
       if (failure.empty()) failure = metrics.Check(state);
       if (measure && failure.empty()) metrics.Observe(state);
+      if (measure) Accumulate(engine->LastStats(), done, &r);
       if (progress) progress(repeat, done, r.steps);
       if (!failure.empty()) break;
       if (options.max_seconds > 0.0 && std::chrono::duration<double>(stepping).count() > options.max_seconds) {

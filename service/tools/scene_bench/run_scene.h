@@ -33,6 +33,11 @@ struct BenchResult {
   double final_kinetic_energy = 0.0;  // J
   std::optional<double> top_displacement;  // m
   std::optional<double> rebound_height;    // m
+  // the method's own report over the measured steps (contactsim engines;
+  // none for the peers): solver iterations per step (barrier: Newton
+  // iterations), the smallest residual (barrier: its own smallest distance,
+  // m) and the largest stiffness (barrier: kappa, N/m)
+  std::optional<double> iterations_mean, iterations_max, residual_min, stiffness_max;
   double peak_rss_mb = 0.0;       // MiB, getrusage
   std::string status = "ok";      // "ok", or "nan: ...", "exploded: ...", "timeout: ...", "error: ..."
 };

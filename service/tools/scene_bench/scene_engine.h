@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "service/contact/contact_method.h"
@@ -40,6 +41,9 @@ class SceneEngine {
   // Trouble the engine itself reports after a step (a full contact buffer,
   // say); empty when none. The run stops there with this as its status.
   virtual std::string Failure() const { return ""; }
+  // The contact method's own report of the last step (iterations, residual,
+  // stiffness: contact_method.h); none for the peers.
+  virtual std::optional<StepStats> LastStats() const { return std::nullopt; }
 };
 
 // Builds a fresh engine for the scene (called once per repeat). `world` is
