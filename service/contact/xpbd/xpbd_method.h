@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "service/collision/narrowphase.h"
 #include "service/contact/contact_method.h"
 #include "service/contact/xpbd/xpbd_contact.h"
 #include "service/contact/xpbd/xpbd_joints.h"
@@ -56,8 +57,26 @@ class XpbdMethod : public ContactMethod {
   // Contacts with depth > -(margin + closing distance over dt) per pair.
   void DetectAhead(const World& world, CollisionDetector& detector, double dt);
 
+  // The body pairs of detected_ (sorted, unique): the sub-steps' narrowphase.
+  void CandidatePairs();
+  // contacts_ (and substep_contacts_) at the current poses of the candidates.
+  void CollideCandidates(const World& world);
+  // The last sub-step's contacts with the step's impulses of their features.
+  void ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats);
+
+  using ContactKey = std::tuple<int, int, uint32_t>;  // body a, body b, feature id
+  struct KeyedImpulse {
+    ContactKey key;
+    Vec3 impulse;  // N s on B over one sub-step
+  };
+  static ContactKey KeyOf(const Contact& c);
+
   XpbdParams params_;
-  ContactSet detected_;
+  Narrowphase narrowphase_;               // with its own separating-axis cache
+  ContactSet detected_;                   // once per step, with each pair's reach
+  std::vector<BodyPair> candidates_;
+  ContactSet substep_contacts_;           // this sub-step's, parallel to contacts_
+  std::vector<KeyedImpulse> impulses_;
   std::vector<XpbdContact> contacts_;
   std::vector<XpbdPose> start_, predicted_;
   std::vector<XpbdJointLambda> joint_lambdas_;
