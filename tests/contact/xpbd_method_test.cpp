@@ -175,6 +175,40 @@ TEST(XpbdMethod, FastSphereDoesNotTunnelThroughThinBox) {
   EXPECT_LT(b.LinearVelocity().x(), 1e-6);
 }
 
+// Verifies that a tumbling box is held by the corners it presents during a
+// step, not only by those it presented at the step's start (box_rain's
+// boxes, landing on each other at 1-3 m/s while spinning at 10-20 rad/s,
+// sank 15 mm into each other within 90 steps and exploded when contacts
+// were found once per step): 0.2 m boxes spinning at ~20 rad/s (0.08 rad
+// a step) drop at 2 m/s onto a tilted fixed box, from eight orientations,
+// and no pose at the end of a step overlaps by more than two sub-steps'
+// approach, 2 v h.
+TEST(XpbdMethod, TumblingBoxIsHeldByTheCornersItTurnsDown) {
+  const double v = 2.0;
+  double deepest = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    Sim sim("xpbd");
+    BodySettings base;
+    base.shape = ShapeType::kBox;
+    base.half_extents = Vec3::Constant(0.1);
+    const Quat tilt(Eigen::AngleAxisd(0.3 + 0.2 * k, Vec3(1, 2, 3).normalized()));
+    base.orientation = Eigen::Vector4d(tilt.w(), tilt.x(), tilt.y(), tilt.z());
+    base.fixed = true;
+    AddValidBody(sim.world, base);
+    const BodyId id = AddBox(sim.world, 0.1, Vec3(0.03 * (k % 3), -0.02 * (k % 2), 0.45), 0.0, 0.5);
+    RigidBody& b = *sim.world.Find(id);
+    b.q = Quat(Eigen::AngleAxisd(0.7 * k, Vec3(3, -1, 2).normalized()));
+    b.SetVelocity(Vec3(0, 0, -v), Vec3(10.0 - 2.0 * k, -15.0 + 3.0 * k, 5.0));
+    for (int i = 0; i < 60; ++i) {
+      sim.Step();
+      deepest = std::min(deepest, testing::SmallestGap(sim.world));
+    }
+  }
+  const double h = (1.0 / 240.0) / 20.0;
+  std::printf("deepest overlap of the tumbling boxes %.3g mm\n", -deepest * 1e3);
+  EXPECT_GT(deepest, -2.0 * v * h);
+}
+
 // Verifies that a body without contacts moves exactly as the integrator
 // moves it in the same sub-steps (the solve leaves its momenta alone).
 TEST(XpbdMethod, FreeFlightMatchesTheIntegrator) {

@@ -2,10 +2,10 @@
 // 2020, "Detailed rigid body simulation with extended position based
 // dynamics", sec. 3.5-3.6).
 //
-// A contact is found once per step (with a margin, so that the sub-steps see
-// pairs that are about to touch) and remembered by its two surface points in
-// the bodies' frames and its world normal n (from A to B, held over the
-// step). In every sub-step its depth is re-evaluated at the current poses,
+// A contact is found in every sub-step at the predicted poses (xpbd_method.h)
+// and remembered by its two surface points in the bodies' frames and its
+// world normal n (from A to B, held over the sub-step). In the position
+// solve its depth is re-evaluated at the current poses,
 //   d = (p_a - p_b) . n,  p_i = x_i + R_i r_i,
 // and only penetrating contacts (d > 0) are solved:
 //   * non-penetration: the positional constraints move B by d along n
@@ -49,8 +49,7 @@ struct XpbdContact {
   double lambda_n = 0.0;      // kg m, accumulated normal multiplier
   Vec3 lambda_t = Vec3::Zero(); // kg m, accumulated static friction multiplier (world)
   double vn_before = 0.0;     // m/s, v_n before the position solve
-  // per step
-  Vec3 impulse = Vec3::Zero();  // N s on B (world): lambda / h of every sub-step plus the velocity pass
+  Vec3 impulse = Vec3::Zero();  // N s on B (world): lambda / h plus the velocity pass, this sub-step
 };
 
 // Poses at the start of a sub-step, for the static friction's displacement.

@@ -3,12 +3,15 @@
 // simulation with extended position based dynamics", SCA, Algorithm 2; the
 // rigid-body constraints of Deul, Charrier and Bender 2014).
 //
-// One step of dt: detect contacts once, with a margin widened per pair by
-// how far it can close in dt, so that every sub-step sees the pairs about to
-// meet; then `substeps` sub-steps of h = dt / substeps, each
+// One step of dt: find the candidate pairs once, those with a contact within
+// a margin widened per pair by how far it can close in dt, so that every
+// sub-step sees the pairs about to meet; then `substeps` sub-steps of
+// h = dt / substeps, each
 //  1. predict: P += F h, L += tau h, then x, q from the new velocities
 //     (the integrator of service/physics, so free flight is the same as
-//     under every other method);
+//     under every other method), and collide the candidate pairs at the
+//     predicted poses (the paper's sec. 3.5: broadphase once per step,
+//     narrowphase per sub-step);
 //  2. solve positions, `iterations` times: joints (xpbd_joints.h, with
 //     joint_compliance), then contacts (non-penetration, static friction;
 //     xpbd_contact.h) with compliance alpha (alpha~ = alpha / h^2);
@@ -19,10 +22,10 @@
 // Small sub-steps rather than many iterations is the paper's point: the
 // error of one Gauss-Seidel sweep shrinks with h^2, so stacks stay stiff.
 //
-// Contacts report forces (ValueKind kForce): the step's average force on B,
-// the sum of lambda / h (positional impulses) and the velocity pass's
-// impulses over the sub-steps, divided by dt; lambda / h^2 is a sub-step's
-// contact force.
+// Contacts report forces (ValueKind kForce): the last sub-step's contacts,
+// each with the step's average force on B of its feature pair, the sum of
+// lambda / h (positional impulses) and the velocity pass's impulses over the
+// sub-steps, divided by dt; lambda / h^2 is a sub-step's contact force.
 #pragma once
 
 #include <string>
