@@ -1,7 +1,7 @@
 # Generates C++ and Python code from lcmtypes/*.lcm with lcm-gen at build time.
 # C++ headers land in ${LCMTYPES_CPP_DIR}/contactsim/*.hpp (target
 # contactsim_lcmtypes), Python modules in ${LCMTYPES_PY_DIR}/contactsim/*.py,
-# which the Python client adds to its package path.
+# which the Python client adds to its package path, and wire_check.hpp.
 file(GLOB LCM_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
 set(LCMTYPES_CPP_DIR ${CMAKE_BINARY_DIR}/lcmtypes/cpp)
 set(LCMTYPES_PY_DIR ${CMAKE_BINARY_DIR}/lcmtypes/python)
@@ -17,7 +17,17 @@ add_custom_command(
   COMMAND ${LCM_GEN} --cpp --cpp-hpath ${LCMTYPES_CPP_DIR} --python --ppath ${LCMTYPES_PY_DIR} ${LCM_FILES}
   DEPENDS ${LCM_FILES}
   COMMENT "lcm-gen: C++ and Python code for lcmtypes/*.lcm")
-add_custom_target(contactsim_lcmtypes_gen ALL DEPENDS ${LCM_OUTPUTS})
+# wire_check.hpp: bounds checks of every type's encoding, run before a
+# generated decoder sees bytes from the network (cmake/lcm_wire_check.py).
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+set(LCM_WIRE_CHECK ${LCMTYPES_CPP_DIR}/contactsim/wire_check.hpp)
+add_custom_command(
+  OUTPUT ${LCM_WIRE_CHECK}
+  COMMAND ${CMAKE_COMMAND} -E make_directory ${LCMTYPES_CPP_DIR}/contactsim
+  COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${LCM_WIRE_CHECK} ${LCM_FILES}
+  DEPENDS ${LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py
+  COMMENT "lcm_wire_check.py: bounds checks for lcmtypes/*.lcm")
+add_custom_target(contactsim_lcmtypes_gen ALL DEPENDS ${LCM_OUTPUTS} ${LCM_WIRE_CHECK})
 add_library(contactsim_lcmtypes INTERFACE)
 add_dependencies(contactsim_lcmtypes contactsim_lcmtypes_gen)
 target_include_directories(contactsim_lcmtypes INTERFACE ${LCMTYPES_CPP_DIR})

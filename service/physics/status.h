@@ -7,7 +7,18 @@
 
 namespace contactsim {
 
-enum class StatusCode { kOk = 0, kInvalidArgument = 1, kNotFound = 2, kFailedPrecondition = 4 };
+// The values are reply_t's codes (lcmtypes/reply_t.lcm), so that a status
+// becomes a reply code by a cast.
+enum class StatusCode {
+  kOk = 0,
+  kInvalidArgument = 1,
+  kNotFound = 2,
+  kDecodeError = 3,
+  kFailedPrecondition = 4,
+  kInternal = 5,
+  kUnauthenticated = 6,
+  kResourceExhausted = 7,
+};
 
 class Status {
  public:
@@ -19,6 +30,14 @@ class Status {
   static Status NotFound(std::string message) { return Status(StatusCode::kNotFound, std::move(message)); }
   static Status FailedPrecondition(std::string message) {
     return Status(StatusCode::kFailedPrecondition, std::move(message));
+  }
+  static Status DecodeError(std::string message) { return Status(StatusCode::kDecodeError, std::move(message)); }
+  static Status Internal(std::string message) { return Status(StatusCode::kInternal, std::move(message)); }
+  static Status Unauthenticated(std::string message) {
+    return Status(StatusCode::kUnauthenticated, std::move(message));
+  }
+  static Status ResourceExhausted(std::string message) {
+    return Status(StatusCode::kResourceExhausted, std::move(message));
   }
 
   bool ok() const { return code_ == StatusCode::kOk; }

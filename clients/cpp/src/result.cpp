@@ -14,6 +14,8 @@ std::string ReplyCodeName(ReplyCode code) {
     case ReplyCode::kDecodeError: return "DECODE_ERROR";
     case ReplyCode::kFailedPrecondition: return "FAILED_PRECONDITION";
     case ReplyCode::kInternal: return "INTERNAL";
+    case ReplyCode::kUnauthenticated: return "UNAUTHENTICATED";
+    case ReplyCode::kResourceExhausted: return "RESOURCE_EXHAUSTED";
     case ReplyCode::kTimeout: return "TIMEOUT";
     case ReplyCode::kTransport: return "TRANSPORT";
   }

@@ -104,13 +104,9 @@ class Status:
     """The server's heartbeat. Every status_t field is an attribute with the
     same name; ``mode`` is "realtime", "free_run" or "lockstep". ``as_dict()`` gives a dict."""
 
-    FIELDS = ("version", "mode", "paused", "method", "method_params", "time", "step", "dt",
-              "step_rate", "real_time_factor", "target_real_time_factor", "num_bodies",
-              "num_contacts", "max_penetration", "solver_iterations", "commands_accepted",
-              "commands_rejected", "last_error", "num_controllers", "controllers", "late_events",
-              "last_late_event")
-
     def __init__(self, msg):
+        # the generated type lists its fields once; take them from there
+        self.FIELDS = tuple(type(msg).__slots__)
         for f in self.FIELDS:
             setattr(self, f, getattr(msg, f))
         self.mode = MODE_NAMES.get(msg.mode, str(msg.mode))

@@ -20,6 +20,8 @@ enum class ReplyCode : int32_t {
   kDecodeError = 3,
   kFailedPrecondition = 4,
   kInternal = 5,
+  kUnauthenticated = 6,
+  kResourceExhausted = 7,
   kTimeout = -1,    // no matching reply (or STATE) within the reply timeout
   kTransport = -2,  // LCM could not be opened or the publish failed
 };
