@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 APT_PACKAGES=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ccache
+  clang libclang-rt-14-dev                   # the sanitizer and libFuzzer build (make test-asan, make fuzz)
   liblcm-dev liblcm-bin libglib2.0-dev      # LCM (lcm-gen, lcm-logger); lcm.pc needs glib
   libeigen3-dev                              # math
   libprotobuf-dev protobuf-compiler          # config, scene and snapshot files
