@@ -7,8 +7,8 @@
 //   contactsim-ctl step 10
 //   contactsim-ctl joint add hinge 3 0 --anchor 0 0 1 --axis 0 1 0 --limits -0.5 0.5
 //
-// Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout) or LCM
-// unusable; CLI11's own codes for a bad command line.
+// Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout), LCM unusable
+// or an unusable auth key file; CLI11's own codes for a bad command line.
 #include <algorithm>
 #include <array>
 #include <chrono>
