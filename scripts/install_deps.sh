@@ -16,6 +16,7 @@ APT_PACKAGES=(
   libgtest-dev libgmock-dev                  # unit tests
   libbenchmark-dev                           # contactsim-bench micro benchmarks
   libcli11-dev                               # command-line parsing
+  libsodium-dev                              # HMAC-SHA256 of signed messages (docs/protocol.md, Authentication)
   libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
   libbullet-dev libode-dev libmujoco-dev     # peer runners of `make bench` only (bench/peers), never in the service
   python3 python3-venv python3-dev           # Python client

@@ -26,6 +26,9 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "clients" / "python"))
 BUILD = Path(os.environ.get("CONTACTSIM_BUILD_DIR") or (REPO / "build")).resolve()
 os.environ["CONTACTSIM_BUILD_DIR"] = str(BUILD)
+# Clients sign when this is set (docs/protocol.md, "Authentication"); the
+# tests' servers have no key, and the auth tests pass theirs explicitly.
+os.environ.pop("CONTACTSIM_AUTH_KEY_FILE", None)
 SERVER_BIN = Path(os.environ.get("CONTACTSIM_SERVER") or (BUILD / "bin" / "contactsim-server"))
 CONFIG = REPO / "config" / "server.pbtxt"
 EMPTY_SCENE = "gravity { z: -9.81 }\n"
