@@ -17,19 +17,26 @@ using LongCommandTest = ServerTest;
 TEST_F(LongCommandTest, StepOutlastsTheReplyTimeoutWhileProgressComes) {
   ASSERT_TRUE(client_->LoadScene(std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/box_pyramid.pbtxt").ok());
   ASSERT_TRUE(client_->SetContactMethod("xpbd").ok());
+  // a timeout a few steps long and a STEP several timeouts long, whatever
+  // this build and machine make of a step
+  auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(client_->Step(2).ok());
+  const double per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 2;
+  const double timeout = std::max(0.3, 4 * per_step);
+  const int n = static_cast<int>(4 * timeout / per_step) + 1;
   ClientOptions options;
   options.url = server_.url();
   options.prefix = server_.prefix();
-  options.reply_timeout = std::chrono::milliseconds(300);
+  options.reply_timeout = std::chrono::milliseconds(static_cast<int64_t>(timeout * 1000));
   Client impatient(options);
   std::vector<int64_t> done;
-  const auto t0 = std::chrono::steady_clock::now();
-  const CommandResult r = impatient.Step(24, [&](const progress_t& p) {
-    EXPECT_EQ(p.total, 24);
+  t0 = std::chrono::steady_clock::now();
+  const CommandResult r = impatient.Step(n, [&](const progress_t& p) {
+    EXPECT_EQ(p.total, n);
     done.push_back(p.done);
   });
   ASSERT_TRUE(r.ok()) << r;
-  EXPECT_EQ(r.step, 24);
+  EXPECT_EQ(r.step, n + 2);
   EXPECT_GT(std::chrono::steady_clock::now() - t0, options.reply_timeout) << "too fast to test the wait";
   ASSERT_FALSE(done.empty());
   EXPECT_EQ(done.front(), 0);

@@ -83,8 +83,9 @@ def test_replayed_and_stale_commands_are_refused(launch, key_file):
     signer = auth.Signer(KEY)
     packet = signer.sign(channel, _add_payload("replayer", 1, 0.0))
     replies = _replies_to(s, "replayer", lambda lc: (lc.publish(channel, packet), lc.publish(channel, packet)), 2)
-    assert [r.code for r in replies] == [0, contactsim.reply_t.UNAUTHENTICATED]
-    assert "replayed" in replies[1].message
+    # the refusal is answered at once, the command at the next step boundary
+    assert sorted(r.code for r in replies) == [0, contactsim.reply_t.UNAUTHENTICATED]
+    assert any("replayed" in r.message for r in replies)
 
     old = auth.trailer(KEY, channel, _add_payload("stale", 1, 1.0), time.time_ns() - int(120e9))
     stale = _add_payload("stale", 1, 1.0) + old

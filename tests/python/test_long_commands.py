@@ -21,14 +21,21 @@ def _slow_server(launch):
 
 def test_a_step_longer_than_the_timeout_returns_while_progress_comes(launch):
     s = _slow_server(launch)
-    c = contactsim.Client(url=s.url, prefix=s.prefix, timeout=0.3)
+    # a timeout a few steps long and a STEP several timeouts long, whatever
+    # this build and machine make of a step
+    t0 = time.monotonic()
+    s.client.step(2, timeout=60.0)
+    per_step = (time.monotonic() - t0) / 2
+    timeout = max(0.3, 4 * per_step)
+    n = int(4 * timeout / per_step) + 1
+    c = contactsim.Client(url=s.url, prefix=s.prefix, timeout=timeout)
     reports = []
     t0 = time.monotonic()
-    r = c.step(24, progress=reports.append)
+    r = c.step(n, progress=reports.append)
     took = time.monotonic() - t0
-    assert r.step == 24 and c.state().step == 24
-    assert took > 0.3, "the steps were too fast to test waiting past the timeout (%.2f s)" % took
-    assert reports and all(p.total == 24 and p.command == "STEP" for p in reports)
+    assert r.step == n + 2 and c.state().step == n + 2
+    assert took > timeout, "the steps were too fast to test waiting past the timeout (%.2f s)" % took
+    assert reports and all(p.total == n and p.command == "STEP" for p in reports)
     dones = [p.done for p in reports]
     assert dones == sorted(dones) and dones[0] == 0
     c.close()

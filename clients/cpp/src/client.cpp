@@ -185,7 +185,9 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
   std::optional<reply_t> reply = std::move(pending_[request_id]);
   pending_.erase(request_id);
   heard_.erase(request_id);
-  progress_callbacks_.erase(request_id);  if (!replied) {
+  progress_callbacks_.erase(request_id);
+  // a progress callback still running may use what its caller owns
+  changed_.wait(lock, [&] { return progress_in_flight_ == 0; });  if (!replied) {
     result.code = ReplyCode::kTimeout;
     result.message = "no reply to request " + std::to_string(request_id) +
                      " on " + Channel("REPLY") + " and no progress for " +
@@ -268,10 +270,17 @@ void Client::HandleProgress(const progress_t* progress) {
     if (it == heard_.end()) return;
     it->second = Clock::now();
     auto cb = progress_callbacks_.find(progress->request_id);
-    if (cb != progress_callbacks_.end()) callback = cb->second;
+    if (cb != progress_callbacks_.end()) {
+      callback = cb->second;
+      ++progress_in_flight_;
+    }
     changed_.notify_all();
   }
-  if (callback) callback(*progress);
+  if (!callback) return;
+  callback(*progress);
+  std::lock_guard<std::mutex> lock(mutex_);
+  --progress_in_flight_;
+  changed_.notify_all();
 }
 
 // Each handler runs the callbacks before it hands the message to waiting

@@ -299,6 +299,7 @@ class Client {
   // request id -> the last sign of the server working on it (sent, or PROGRESS)
   std::map<int64_t, std::chrono::steady_clock::time_point> heard_;
   std::map<int64_t, ProgressCallback> progress_callbacks_;  // request id -> Step's callback
+  int progress_in_flight_ = 0;  // progress callbacks running now
   std::optional<state_t> latest_state_;
   uint64_t states_received_ = 0;  // lets Step ignore states older than its command
   std::optional<contacts_t> latest_contacts_;
