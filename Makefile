@@ -4,8 +4,15 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS       ?= 2
 CONFIG     ?= config/server.pbtxt
 SANITIZE   ?= OFF
+FUZZ       ?= OFF
+FUZZ_RUNS  ?= 20000
+FUZZ_SECONDS ?= 600
+# ccache (installed by make deps) keeps objects across build folders and clones
+export CCACHE_BASEDIR := $(CURDIR)
+# clang for the fuzz build (libFuzzer); the default compiler otherwise
+CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run test test-cpp test-py test-asan bench bench-micro bench-lockstep clean
+.PHONY: all deps build run test test-cpp test-py test-asan fuzz bench bench-micro bench-lockstep clean
 
 all: build
 
@@ -14,7 +21,8 @@ deps:
 	@bash scripts/install_deps.sh
 
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCONTACTSIM_SANITIZE=$(SANITIZE)
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCONTACTSIM_SANITIZE=$(SANITIZE) \
+	  -DCONTACTSIM_FUZZ=$(FUZZ) $(CMAKE_CXX) $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache,)
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)
@@ -31,14 +39,22 @@ test-cpp:
 test-py:
 	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
 
-# Both suites again on a Debug build (-O1) with AddressSanitizer and
+# Both suites again on a clang Debug build (-O1) with AddressSanitizer and
 # UndefinedBehaviorSanitizer (the Python tests drive the instrumented server
-# and tools). The 210-box pyramid (10 s of simulation) takes over 5 minutes
+# and tools), then every libFuzzer target for FUZZ_RUNS executions from its
+# seed corpus. The 210-box pyramid (10 s of simulation) takes over 5 minutes
 # under the sanitizers and is left to `make test`. CI runs this after `make test`.
 test-asan:
-	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
+	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
 	cd build-asan && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid'
 	@$(MAKE) --no-print-directory test-py BUILD=build-asan
+	scripts/fuzz.sh build-asan -runs=$(FUZZ_RUNS)
+
+# The fuzz targets for FUZZ_SECONDS each (the corpus in build-asan/fuzz grows
+# across runs; a crash input is left there as crash-*).
+fuzz:
+	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
+	scripts/fuzz.sh build-asan -max_total_time=$(FUZZ_SECONDS)
 
 # The standard scenes in contactsim (every contact method), Bullet, ODE and
 # MuJoCo, side by side; rewrites the generated tables in BENCHMARKS.md

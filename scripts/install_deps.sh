@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 APT_PACKAGES=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ccache
+  clang libclang-rt-14-dev                   # the sanitizer and libFuzzer build (make test-asan, make fuzz)
   liblcm-dev liblcm-bin libglib2.0-dev      # LCM (lcm-gen, lcm-logger); lcm.pc needs glib
   libeigen3-dev                              # math
   libprotobuf-dev protobuf-compiler          # config, scene and snapshot files
@@ -15,6 +16,7 @@ APT_PACKAGES=(
   libgtest-dev libgmock-dev                  # unit tests
   libbenchmark-dev                           # contactsim-bench micro benchmarks
   libcli11-dev                               # command-line parsing
+  libsodium-dev                              # HMAC-SHA256 of signed messages (docs/protocol.md, Authentication)
   libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
   libbullet-dev libode-dev libmujoco-dev     # peer runners of `make bench` only (bench/peers), never in the service
   python3 python3-venv python3-dev           # Python client

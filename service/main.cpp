@@ -43,13 +43,18 @@ int main(int argc, char** argv) {
   app.add_option("--prefix", prefix, "channel prefix (default from config: CONTACTSIM)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
   app.add_option("--mode", mode, "realtime, free_run or lockstep")
-      ->check(CLI::IsMember({"realtime", "free_run", "lockstep"}));
+      ->check([](const std::string& name) {
+        RunMode m;
+        return ParseRunMode(name, &m) ? std::string() : std::string("must be realtime, free_run or lockstep");
+      });
   app.add_flag("--paused", paused, "start paused");
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
   app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
   app.add_option("--replay", replay_log,
                  "re-simulate an lcm-logger log of a run from this config and scene; report the first divergent step");
   CLI11_PARSE(app, argc, argv);
+  // a file size limit makes journal writes fail (answered INTERNAL), not the server die
+  std::signal(SIGXFSZ, SIG_IGN);
 
   auto logger = spdlog::stderr_color_mt("contactsim");
   spdlog::set_default_logger(logger);
@@ -66,7 +71,7 @@ int main(int argc, char** argv) {
   if (!lcm_url.empty()) setup.lcm_url = lcm_url;
   if (!log_level.empty()) setup.log_level = log_level;
   if (!mode.empty()) {
-    setup.options.mode = mode == "free_run" ? RunMode::kFreeRun : mode == "lockstep" ? RunMode::kLockstep : RunMode::kRealtime;
+    ParseRunMode(mode, &setup.options.mode);  // checked by CLI11
   }
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
@@ -90,18 +95,9 @@ int main(int argc, char** argv) {
   // Subscribe before Init announces the server (STATUS): LCM opens its
   // receive socket on the first subscribe, and a client may answer the
   // announcement at once.
-  transport.Subscribe(server.Channel("BODY_CMD"), [&](const std::string&, const void* d, int n) {
-    server.OnBodyMessage(d, n);
-  });
-  transport.Subscribe(server.Channel("SCENE_CMD"), [&](const std::string&, const void* d, int n) {
-    server.OnSceneMessage(d, n);
-  });
-  transport.Subscribe(server.Channel("INPUT"), [&](const std::string&, const void* d, int n) {
-    server.OnInputMessage(d, n);
-  });
-  transport.Subscribe(server.Channel("JOINT_CMD"), [&](const std::string&, const void* d, int n) {
-    server.OnJointMessage(d, n);
-  });
+  for (const std::string& channel : server.CommandChannelNames()) {
+    transport.Subscribe(channel, [&](const std::string& c, const void* d, int n) { server.OnMessage(c, d, n); });
+  }
   if (!(st = server.Init(setup.scene.get(), setup.method)).ok()) {
     spdlog::critical("{}", st.message());
     return 1;
@@ -109,10 +105,10 @@ int main(int argc, char** argv) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+
   spdlog::info("contactsim-server {} ready: {} bodies, method {}, {} mode{}, channels {}_*, LCM {}",
                CONTACTSIM_VERSION, server.world().bodies().size(), server.method().Name(),
-               setup.options.mode == RunMode::kRealtime ? "realtime"
-               : setup.options.mode == RunMode::kFreeRun ? "free_run" : "lockstep",
+               NameOf(setup.options.mode),
                setup.options.start_paused ? " (paused)" : "", setup.options.prefix, url);
 
   std::thread lcm_thread([&] {

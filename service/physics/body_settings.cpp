@@ -80,7 +80,7 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   if (!(st = CheckFinite("linear_velocity", s.linear_velocity)).ok()) return st;
   if (!(st = CheckFinite("angular_velocity", s.angular_velocity)).ok()) return st;
   Quat q;
-  if (!(st = MakeOrientation("orientation", s.orientation, &q)).ok()) return st;
+  if (!(st = MakeOrientation("orientation", s.orientation, true, &q)).ok()) return st;
   if (!(st = CheckMaterial(s.restitution, s.friction)).ok()) return st;
   if (s.kinematic && s.fixed) {
     return Status::InvalidArgument("a body is fixed or kinematic, not both (kinematic true, fixed true)");

@@ -40,6 +40,9 @@ class Status {
     return Status(StatusCode::kResourceExhausted, std::move(message));
   }
 
+  // The same code with `prefix` before the message.
+  Status Prefixed(const std::string& prefix) const { return Status(code_, prefix + message_); }
+
   bool ok() const { return code_ == StatusCode::kOk; }
   StatusCode code() const { return code_; }
   const std::string& message() const { return message_; }

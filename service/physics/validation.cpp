@@ -42,13 +42,13 @@ Status CheckInRange(const std::string& field, double v, double lo, double hi) {
                                  FormatValue(v));
 }
 
-Status MakeOrientation(const std::string& field, const Eigen::Vector4d& wxyz, Quat* q) {
+Status MakeOrientation(const std::string& field, const Eigen::Vector4d& wxyz, bool zero_is_identity, Quat* q) {
   if (!wxyz.allFinite()) {
     return Status::InvalidArgument(field + " must be finite, got (" + FormatValue(wxyz[0]) + ", " +
                                    FormatValue(wxyz[1]) + ", " + FormatValue(wxyz[2]) + ", " +
                                    FormatValue(wxyz[3]) + ")");
   }
-  if (wxyz.isZero(0.0)) {
+  if (zero_is_identity && wxyz.isZero(0.0)) {
     *q = Quat::Identity();
     return Status::Ok();
   }

@@ -19,8 +19,10 @@ Status CheckPositive(const std::string& field, double v);  // finite and > 0
 Status CheckNonNegative(const std::string& field, double v);
 Status CheckInRange(const std::string& field, double v, double lo, double hi);
 
-// (w, x, y, z) -> unit quaternion; all zeros means the identity. Rejects
-// non-finite values and norms below 1e-9.
-Status MakeOrientation(const std::string& field, const Eigen::Vector4d& wxyz, Quat* q);
+// (w, x, y, z) -> unit quaternion. Rejects non-finite values and norms
+// below 1e-9, except that all zeros means the identity where
+// zero_is_identity (a new body whose orientation was left unset); setting a
+// pose to the zero quaternion is an error.
+Status MakeOrientation(const std::string& field, const Eigen::Vector4d& wxyz, bool zero_is_identity, Quat* q);
 
 }  // namespace contactsim

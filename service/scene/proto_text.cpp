@@ -2,6 +2,7 @@
 
 #include <google/protobuf/io/tokenizer.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -37,13 +38,32 @@ Status ParseTextProto(const std::string& text, const std::string& filename, goog
   return Status::Ok();
 }
 
-Status ReadTextProto(const std::string& path, google::protobuf::Message* message,
-                     google::protobuf::TextFormat::ParseInfoTree* tree) {
-  std::ifstream in(path);
+Status ReadFileBounded(const std::string& path, std::string* bytes) {
+  // a path comes from the network: a device or fifo could be read forever
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) return Status::NotFound(path + ": cannot open file");
+  if (!std::filesystem::is_regular_file(status)) return Status::InvalidArgument(path + ": not a regular file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return Status::NotFound(path + ": cannot open file");
+  if (size > kMaxFileBytes) {
+    return Status::ResourceExhausted(path + ": " + std::to_string(size) + " bytes, more than the " +
+                                     std::to_string(kMaxFileBytes >> 20) + " MiB a scene or snapshot file may have");
+  }
+  std::ifstream in(path, std::ios::binary);
   if (!in) return Status::NotFound(path + ": cannot open file");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return ParseTextProto(buffer.str(), path, message, tree);
+  *bytes = buffer.str();
+  return Status::Ok();
+}
+
+Status ReadTextProto(const std::string& path, google::protobuf::Message* message,
+                     google::protobuf::TextFormat::ParseInfoTree* tree) {
+  std::string text;
+  const Status st = ReadFileBounded(path, &text);
+  if (!st.ok()) return st;
+  return ParseTextProto(text, path, message, tree);
 }
 
 std::string FieldLocation(const std::string& filename, const google::protobuf::TextFormat::ParseInfoTree* tree,

@@ -6,11 +6,19 @@
 #include <google/protobuf/message.h>
 #include <google/protobuf/text_format.h>
 
+#include <cstdint>
 #include <string>
 
 #include "service/physics/status.h"
 
 namespace contactsim {
+
+// Scene and snapshot files are at most this large.
+constexpr uint64_t kMaxFileBytes = uint64_t{256} << 20;
+
+// Reads a whole regular file of at most kMaxFileBytes; paths come from the
+// network, so devices, fifos and folders are refused instead of read.
+Status ReadFileBounded(const std::string& path, std::string* bytes);
 
 Status ReadTextProto(const std::string& path, google::protobuf::Message* message,
                      google::protobuf::TextFormat::ParseInfoTree* tree);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "service/physics/convex_hull.h"
+#include "service/scene/proto_text.h"
 
 namespace contactsim {
 namespace {
@@ -293,11 +294,10 @@ Status WriteSnapshotFile(const std::string& path, const proto::Snapshot& snap, b
 }
 
 Status ReadSnapshotFile(const std::string& path, proto::Snapshot* snap) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::NotFound("cannot open snapshot file " + path);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  if (!snap->ParseFromString(bytes.str())) return Status::InvalidArgument(path + ": not a snapshot (binary protobuf)");
+  std::string bytes;
+  const Status st = ReadFileBounded(path, &bytes);
+  if (!st.ok()) return st.Prefixed("snapshot file ");
+  if (!snap->ParseFromString(bytes)) return Status::InvalidArgument(path + ": not a snapshot (binary protobuf)");
   return Status::Ok();
 }
 

@@ -13,11 +13,36 @@
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/scene/scene_spec.h"
+#include "service/server/journal.h"
 #include "service/server/lockstep.h"
 
 namespace contactsim {
 
 enum class RunMode { kRealtime = 1, kFreeRun = 2, kLockstep = 3 };
+
+// The run modes' names ("realtime", "free_run", "lockstep"), once.
+struct RunModeName {
+  RunMode mode;
+  const char* name;
+};
+inline constexpr RunModeName kRunModeNames[] = {
+    {RunMode::kRealtime, "realtime"}, {RunMode::kFreeRun, "free_run"}, {RunMode::kLockstep, "lockstep"}};
+inline const char* NameOf(RunMode mode) {
+  for (const RunModeName& m : kRunModeNames) {
+    if (m.mode == mode) return m.name;
+  }
+  return "unknown";
+}
+// False for a name that is none of them.
+inline bool ParseRunMode(const std::string& name, RunMode* mode) {
+  for (const RunModeName& m : kRunModeNames) {
+    if (name == m.name) {
+      *mode = m.mode;
+      return true;
+    }
+  }
+  return false;
+}
 
 struct Command {
   enum class Kind {
@@ -59,8 +84,9 @@ struct Command {
   bool late_default = true;            // REGISTER_CONTROLLER gave no policy
   ControllerInput input;               // INPUT
 
-  // The command as it arrived (LCM-encoded), for the journal.
+  // The command as it arrived (LCM-encoded), and how the journal stores it.
   std::string payload;
+  RecordKind record = RecordKind::kStepTo;
 };
 
 }  // namespace contactsim

@@ -90,7 +90,7 @@ Status DecodeBodyCommand(const body_cmd_t& m, const Material& default_material, 
       if (!(st = CheckFinite("position", cmd->position)).ok()) return st;
       return MakeOrientation("orientation",
                              Eigen::Vector4d(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]),
-                             &cmd->orientation);
+                             false, &cmd->orientation);
     case body_cmd_t::SET_VELOCITY:
       cmd->kind = Command::Kind::kSetVelocity;
       cmd->linear = V3(m.linear_velocity);

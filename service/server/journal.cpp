@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <array>
 #include <cstring>
 #include <filesystem>
@@ -117,11 +118,10 @@ bool DecodeRecord(const std::string& bytes, size_t* offset, JournalRecord* r) {
 Journal::~Journal() { Close(); }
 
 void Journal::Close() {
-  if (file_ != nullptr) {
-    std::fflush(file_);
-    if (policy_ == FsyncPolicy::kAlways) ::fdatasync(fileno(file_));
-    std::fclose(file_);
-    file_ = nullptr;
+  if (fd_ >= 0) {
+    if (policy_ == FsyncPolicy::kAlways) ::fdatasync(fd_);
+    ::close(fd_);
+    fd_ = -1;
   }
 }
 
@@ -183,27 +183,41 @@ void Journal::DropRecovered() {
 }
 
 Status Journal::OpenSegment() {
-  if (file_ != nullptr) std::fclose(file_);
+  Close();
   segment_start_ = next_seq_;
   const std::string path = Numbered(dir_, "journal", segment_start_, ".bin");
-  file_ = std::fopen(path.c_str(), "ab");
-  if (file_ == nullptr) return Status::FailedPrecondition("cannot open journal segment " + path);
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd_ < 0) return Status::Internal("cannot open journal segment " + path + ": " + std::strerror(errno));
+  segment_bytes_ = ::lseek(fd_, 0, SEEK_END);
   if (policy_ == FsyncPolicy::kAlways) SyncDir(dir_);
   return Status::Ok();
 }
 
+// Records go to the kernel at once (write(2), no stdio buffer), so a full
+// or failing disk shows here, before the command is acknowledged.
 Status Journal::Append(RecordKind kind, int64_t step, const std::string& payload, JournalRecord* out) {
+  if (failed_) return Status::Internal("the journal in " + dir_ + " failed earlier and takes no more records");
   JournalRecord r;
   r.seq = next_seq_;
   r.step = step;
   r.kind = kind;
   r.payload = payload;
-  if (file_ != nullptr) {
+  if (open()) {
     std::string bytes;
     EncodeRecord(r, &bytes);
-    if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) {
-      return Status::FailedPrecondition("cannot append to the journal in " + dir_);
+    size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const std::string why = n < 0 ? std::strerror(errno) : "short write";
+        // cut the partial record off so that the segment stays readable
+        if (::ftruncate(fd_, segment_bytes_) != 0) failed_ = true;
+        return Status::Internal("cannot append to the journal in " + dir_ + ": " + why);
+      }
+      done += static_cast<size_t>(n);
     }
+    segment_bytes_ += static_cast<int64_t>(bytes.size());
     dirty_ = true;
   }
   ++next_seq_;
@@ -212,18 +226,31 @@ Status Journal::Append(RecordKind kind, int64_t step, const std::string& payload
 }
 
 Status Journal::Sync() {
-  if (file_ == nullptr || !dirty_) return Status::Ok();
+  if (!open() || !dirty_) return Status::Ok();
   dirty_ = false;
-  // fflush hands the records to the kernel (enough to survive a killed
-  // server); fdatasync puts them on the disk
-  if (std::fflush(file_) != 0 || (policy_ == FsyncPolicy::kAlways && ::fdatasync(fileno(file_)) != 0)) {
-    return Status::FailedPrecondition("cannot sync the journal in " + dir_);
+  // write(2) already handed the records to the kernel (enough to survive a
+  // killed server); fdatasync puts them on the disk
+  if (policy_ == FsyncPolicy::kAlways && ::fdatasync(fd_) != 0) {
+    return Status::Internal("cannot sync the journal in " + dir_ + ": " + std::strerror(errno));
   }
   return Status::Ok();
 }
 
+Status Journal::RollBack(const Mark& mark) {
+  next_seq_ = mark.seq;
+  dirty_ = false;
+  if (!open() || mark.segment_start != segment_start_) return Status::Ok();
+  if (::ftruncate(fd_, mark.bytes) != 0 || (policy_ == FsyncPolicy::kAlways && ::fdatasync(fd_) != 0)) {
+    failed_ = true;
+    return Status::Internal("cannot cut the journal in " + dir_ + " back to record " + std::to_string(mark.seq) +
+                            ": " + std::strerror(errno) + "; the journal takes no more records until restart");
+  }
+  segment_bytes_ = mark.bytes;
+  return Status::Ok();
+}
+
 Status Journal::WriteSnapshot(proto::Snapshot snapshot) {
-  if (file_ == nullptr) return Status::FailedPrecondition("no journal folder configured");
+  if (!open()) return Status::FailedPrecondition("no journal folder configured");
   Status st = Sync();
   if (!st.ok()) return st;
   snapshot.set_journal_seq(next_seq_);

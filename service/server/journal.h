@@ -20,7 +20,6 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,7 +59,10 @@ class Journal {
   // Opens (creating it) the folder and reads what a previous run left: the
   // latest snapshot and the records after it (a torn tail is cut off).
   Status Open(const std::string& dir, FsyncPolicy policy);
-  bool open() const { return file_ != nullptr; }
+  bool open() const { return fd_ >= 0; }
+  // A rollback that could not cut the segment back leaves the journal
+  // unusable: it refuses records until the server restarts.
+  bool failed() const { return failed_; }
   const std::string& dir() const { return dir_; }
   // What Open found; empty when the folder was new.
   const std::optional<proto::Snapshot>& recovered_snapshot() const { return recovered_snapshot_; }
@@ -69,11 +71,23 @@ class Journal {
 
   // The sequence number the next record gets.
   int64_t next_seq() const { return next_seq_; }
-  // Assigns the next seq; writes the record when the journal is open.
+  // Assigns the next seq; writes the record when the journal is open (an
+  // INTERNAL status when the disk refuses it: nothing of it stays).
   Status Append(RecordKind kind, int64_t step, const std::string& payload, JournalRecord* out = nullptr);
   // Makes every appended record durable (per the policy).
   Status Sync();
   bool dirty() const { return dirty_; }
+
+  // Where the journal stands, and a way back there: the records appended
+  // since the mark are cut off, as if never written (a batch whose sync
+  // failed is undone this way).
+  struct Mark {
+    int64_t seq = 0;
+    int64_t segment_start = 0;
+    int64_t bytes = 0;
+  };
+  Mark mark() const { return {next_seq_, segment_start_, segment_bytes_}; }
+  Status RollBack(const Mark& mark);
 
   // Writes `snapshot` (its journal_seq set to next_seq()) durably and starts
   // a new segment; older snapshots and segments are deleted.
@@ -85,8 +99,10 @@ class Journal {
 
   std::string dir_;
   FsyncPolicy policy_ = FsyncPolicy::kAlways;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;                // the open segment, O_APPEND
   int64_t segment_start_ = 0;
+  int64_t segment_bytes_ = 0;  // its length
+  bool failed_ = false;
   int64_t next_seq_ = 0;
   bool dirty_ = false;
   std::optional<proto::Snapshot> recovered_snapshot_;

@@ -1,6 +1,9 @@
 #include "service/server/lcm_transport.h"
 
+#include <spdlog/spdlog.h>
+
 #include <cstdlib>
+#include <exception>
 
 namespace contactsim {
 
@@ -16,8 +19,16 @@ class LcmTransport::Relay {
   explicit Relay(RawHandler handler) : handler_(std::move(handler)) {}
   // A plain function, not a pointer to member: UBSan flags LCM's
   // pointer-to-member dispatch in lcm-cpp-impl.hpp.
+  // The last guard of the LCM boundary: a handler that throws (it should
+  // not: decoding answers every error) loses one message, not the server.
   static void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Relay* relay) {
-    relay->handler_(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+    try {
+      relay->handler_(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+    } catch (const std::exception& e) {
+      spdlog::error("a message on {} was dropped: {}", channel, e.what());
+    } catch (...) {
+      spdlog::error("a message on {} was dropped: unknown exception", channel);
+    }
   }
 
  private:

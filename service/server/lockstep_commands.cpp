@@ -5,7 +5,6 @@
 #include <contactsim/reply_t.hpp>
 #include <spdlog/spdlog.h>
 
-#include "service/server/command_decoder.h"
 #include "service/server/sim_server.h"
 
 namespace contactsim {
@@ -32,20 +31,7 @@ std::string EncodeInput(const ControllerInput& in) {
 
 }  // namespace
 
-void SimServer::OnInputMessage(const void* data, int size) {
-  input_t msg;
-  if (size > kMaxCommandBytes || msg.decode(data, 0, size) < 0) {
-    Reject("", -1, reply_t::DECODE_ERROR,
-           "undecodable input_t payload of " + std::to_string(size) + " bytes on " + Channel("INPUT"), "INPUT");
-    return;
-  }
-  Command cmd;
-  Status st = DecodeInput(msg, &cmd);
-  if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), "INPUT");
-  Enqueue(std::move(cmd));
-}
-
-void SimServer::ApplyLockstepCommand(Command& cmd) {
+Outcome SimServer::ApplyLockstepCommand(Command& cmd) {
   using K = Command::Kind;
   Status st;
   switch (cmd.kind) {
@@ -58,23 +44,26 @@ void SimServer::ApplyLockstepCommand(Command& cmd) {
         spdlog::info("controller \"{}\" registered (late policy {}, timeout {} s)", cmd.client_id,
                      LatePolicyName(policy), timeout);
       }
-      SendReply(cmd.client_id, cmd.request_id, st,
-                "controller \"" + cmd.client_id + "\" registered; send input for step " +
-                    std::to_string(world_.step + 1));
-      return;
+      if (!st.ok()) return Outcome::Failed(st);
+      return Outcome::Done("controller \"" + cmd.client_id + "\" registered; send input for step " +
+                               std::to_string(world_.step + 1),
+                           false);
     }
     case K::kReleaseController:
       st = lockstep_.Release(cmd.client_id);
       if (st.ok()) spdlog::info("controller \"{}\" released", cmd.client_id);
-      SendReply(cmd.client_id, cmd.request_id, st, "controller \"" + cmd.client_id + "\" released");
-      return;
-    case K::kInput:
+      if (!st.ok()) return Outcome::Failed(st);
+      return Outcome::Done("controller \"" + cmd.client_id + "\" released", false);
+    case K::kInput: {
       // a good input is acknowledged by the STATE of its step, not a reply
       st = lockstep_.Offer(std::move(cmd.input), world_.step + 1);
-      if (!st.ok()) SendReply(cmd.client_id, cmd.request_id, st, "");
-      return;
+      if (!st.ok()) return Outcome::Failed(st);
+      Outcome o;
+      o.deferred = true;
+      return o;
+    }
     default:
-      return;
+      return Outcome::Failed(Status::Internal("not a lockstep command"));
   }
 }
 
@@ -128,7 +117,8 @@ void SimServer::ApplyInputs() {
   const std::vector<ControllerInput> inputs = lockstep_.Take(world_.step + 1);
   input_digest_ = DigestInputs(inputs);
   for (const ControllerInput& in : inputs) {
-    JournalCommand(RecordKind::kInput, EncodeInput(in));
+    const Status st = JournalCommand(RecordKind::kInput, EncodeInput(in));
+    if (!st.ok()) spdlog::error("input of \"{}\" for step {}: {}", in.controller, in.step, st.message());
     ApplyInput(in, true);
   }
 }

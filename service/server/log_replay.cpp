@@ -1,9 +1,6 @@
 #include "service/server/log_replay.h"
 
-#include <contactsim/body_cmd_t.hpp>
-#include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/reply_t.hpp>
-#include <contactsim/scene_cmd_t.hpp>
 #include <contactsim/state_t.hpp>
 #include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
@@ -28,16 +25,6 @@ class NullTransport : public Transport {
  public:
   void Publish(const std::string&, const void*, int) override {}
 };
-
-// The (client id, request id) of a command payload; false if undecodable.
-template <typename Msg>
-bool Header(const void* data, int size, std::string* client_id, int64_t* request_id) {
-  Msg m;
-  if (m.decode(data, 0, size) < 0) return false;
-  *client_id = m.client_id;
-  *request_id = m.request_id;
-  return true;
-}
 
 }  // namespace
 
@@ -65,41 +52,37 @@ std::string ReplayReport::Summary() const {
 }
 
 LogReplayer::LogReplayer(SimServer* server)
-    : server_(server),
-      body_(server->Channel("BODY_CMD")),
-      scene_(server->Channel("SCENE_CMD")),
-      joint_(server->Channel("JOINT_CMD")),
-      input_(server->Channel("INPUT")),
-      reply_(server->Channel("REPLY")),
-      state_(server->Channel("STATE")) {}
+    : server_(server), reply_(server->Channel("REPLY")), state_(server->Channel("STATE")) {
+  for (const CommandChannel& c : CommandChannels()) channels_[server->Channel(c.suffix)] = &c;
+}
 
 bool LogReplayer::OnEvent(const std::string& channel, const void* data, int size) {
   if (report_.diverged) return false;
-  std::string cid;
-  int64_t rid = 0;
-  if (channel == body_) {
-    if (Header<body_cmd_t>(data, size, &cid, &rid)) OnCommand(Source::kBody, cid, rid, data, size);
-  } else if (channel == scene_) {
-    if (Header<scene_cmd_t>(data, size, &cid, &rid)) OnCommand(Source::kScene, cid, rid, data, size);
-  } else if (channel == joint_) {
-    if (Header<joint_cmd_t>(data, size, &cid, &rid)) OnCommand(Source::kJoint, cid, rid, data, size);
-  } else if (channel == input_) {
-    // accepted inputs get no reply: queued now, applied at their step
-    server_->OnInputMessage(data, size);
-    server_->ApplyInbox();
-    ++report_.inputs_fed;
+  const auto it = channels_.find(channel);
+  if (it != channels_.end()) {
+    OnCommand(channel, *it->second, data, size);
   } else if (channel == reply_) {
     OnReply(data, size);
   } else if (channel == state_) {
     OnState(data, size);
   }
-  // an undecodable command changed nothing live (DECODE_ERROR): nothing to feed
   return !report_.diverged;
 }
 
-void LogReplayer::OnCommand(Source source, const std::string& client_id, int64_t request_id, const void* data,
+void LogReplayer::OnCommand(const std::string& channel_name, const CommandChannel& channel, const void* data,
                             int size) {
-  pending_[{client_id, request_id}] = {source, std::string(static_cast<const char*>(data), size)};
+  if (!channel.replied) {
+    // accepted inputs get no reply: queued now, applied at their step
+    server_->OnMessage(channel_name, data, size);
+    server_->ApplyInbox();
+    ++report_.inputs_fed;
+    return;
+  }
+  Command header;
+  const Status st = channel.decode(data, size, DecodeContext{}, &header);
+  // an undecodable command changed nothing live (DECODE_ERROR): nothing to feed
+  if (st.code() == StatusCode::kDecodeError) return;
+  pending_[{header.client_id, header.request_id}] = {channel_name, std::string(static_cast<const char*>(data), size)};
 }
 
 void LogReplayer::OnReply(const void* data, int size) {
@@ -107,26 +90,18 @@ void LogReplayer::OnReply(const void* data, int size) {
   if (r.decode(data, 0, size) < 0) return;
   auto it = pending_.find({r.client_id, r.request_id});
   if (it == pending_.end()) return;  // an input's error reply, or a command sent before the log began
+  const Pending p = std::move(it->second);
+  pending_.erase(it);
+  // a refused command changed nothing live (some refusals, such as a rate
+  // limit, depend on the wall clock and would not repeat here)
+  if (r.code != reply_t::OK) return;
   // the live world was at reply.step when the command applied
   StepTo(r.step);
-  Feed(it->second.source, it->second.payload);
-  report_.last_command = std::string(it->second.source == Source::kBody    ? "BODY_CMD"
-                                     : it->second.source == Source::kScene ? "SCENE_CMD"
-                                                                           : "JOINT_CMD") +
-                         " from \"" + r.client_id + "\" #" + std::to_string(r.request_id) + " at step " +
-                         std::to_string(r.step) + " (" + r.message + ")";
-  pending_.erase(it);
-}
-
-void LogReplayer::Feed(Source source, const std::string& payload) {
-  const int n = static_cast<int>(payload.size());
-  switch (source) {
-    case Source::kBody: server_->OnBodyMessage(payload.data(), n); break;
-    case Source::kScene: server_->OnSceneMessage(payload.data(), n); break;
-    case Source::kJoint: server_->OnJointMessage(payload.data(), n); break;
-  }
+  server_->OnMessage(p.channel, p.payload.data(), static_cast<int>(p.payload.size()));
   server_->ApplyInbox();
   ++report_.commands_fed;
+  report_.last_command = p.channel + " from \"" + r.client_id + "\" #" + std::to_string(r.request_id) +
+                         " at step " + std::to_string(r.step) + " (" + r.message + ")";
 }
 
 void LogReplayer::StepTo(int64_t step) {
@@ -174,6 +149,8 @@ int RunReplay(ServerSetup setup, const std::string& log_path) {
   setup.options.journal_dir.clear();
   setup.options.write_files = false;
   setup.options.live_line = false;
+  // the log holds only what the live server admitted; refusals are skipped
+  setup.options.max_commands_per_second = 0.0;
   NullTransport transport;
   SimServer server(setup.options, &transport);
   Status st = server.Init(setup.scene.get(), setup.method);

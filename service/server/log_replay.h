@@ -1,7 +1,7 @@
 // Re-simulation of a recorded run (`contactsim-server --replay LOG`): the
-// command channels of an lcm-logger log (BODY_CMD, SCENE_CMD, JOINT_CMD,
-// INPUT) are fed, in their logged order, through the server's own decoding
-// and applying path (SimServer::On*Message) into a fresh world, and every
+// command channels of an lcm-logger log (command_channels.h) are fed, in
+// their logged order, through the server's own decoding and applying path
+// (SimServer::OnMessage) into a fresh world, and every
 // logged STATE's state_hash is compared with the re-simulated world's.
 //
 // When a command applies: the live server applied it at the step boundary
@@ -9,7 +9,8 @@
 // STATE. So a command is fed when its reply appears in the log, after the
 // world has stepped to reply.step. This is exact in every mode, also in
 // REALTIME where STATE is decimated and a command lands between two logged
-// STATEs. (For RESET, LOAD_SCENE, RESTORE and REWIND reply.step is the step
+// STATEs. A command whose reply is an error changed nothing and is not fed.
+// (For RESET, LOAD_SCENE, RESTORE and REWIND reply.step is the step
 // after the command; stepping towards it first is harmless, as the world is
 // replaced.) A STATE says how far the world has stepped: the replay steps
 // to state.step and compares. A lockstep input gets no reply when accepted;
@@ -64,19 +65,18 @@ class LogReplayer {
   const ReplayReport& report() const { return report_; }
 
  private:
-  enum class Source { kBody, kScene, kJoint };
   struct Pending {
-    Source source;
+    std::string channel;
     std::string payload;
   };
-  void OnCommand(Source source, const std::string& client_id, int64_t request_id, const void* data, int size);
+  void OnCommand(const std::string& channel_name, const CommandChannel& channel, const void* data, int size);
   void OnReply(const void* data, int size);
   void OnState(const void* data, int size);
-  void Feed(Source source, const std::string& payload);
   void StepTo(int64_t step);
 
   SimServer* server_;
-  std::string body_, scene_, joint_, input_, reply_, state_;  // channel names
+  std::string reply_, state_;                          // channel names
+  std::map<std::string, const CommandChannel*> channels_;  // the command channels, by full name
   // commands waiting for their reply, by (client id, request id); ordered
   // containers only (determinism)
   std::map<std::pair<std::string, int64_t>, Pending> pending_;

@@ -31,9 +31,30 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
   for (const auto& r : ranges) {
     if (!(st = CheckInRange(r.name, r.value, r.lo, r.hi)).ok()) return Status::InvalidArgument(at(r.name) + st.message());
   }
-  if (config->max_bodies() < 1) {
-    return Status::InvalidArgument(at("max_bodies") + "max_bodies must be >= 1, got " +
-                                   std::to_string(config->max_bodies()));
+  const struct {
+    const char* name;
+    int64_t value, lo;
+  } counts[] = {
+      {"max_bodies", config->max_bodies(), 1},
+      {"max_joints", config->max_joints(), 0},
+      {"max_convex_points", config->max_convex_points(), 4},
+      {"max_body_cmd_bytes", config->max_body_cmd_bytes(), 256},
+      {"max_scene_cmd_bytes", config->max_scene_cmd_bytes(), 256},
+      {"max_joint_cmd_bytes", config->max_joint_cmd_bytes(), 256},
+      {"max_input_bytes", config->max_input_bytes(), 256},
+      {"max_queued_commands", config->max_queued_commands(), 1},
+  };
+  for (const auto& c : counts) {
+    if (c.value < c.lo) {
+      return Status::InvalidArgument(at(c.name) + c.name + " must be >= " + std::to_string(c.lo) + ", got " +
+                                     std::to_string(c.value));
+    }
+  }
+  if (!(st = CheckInRange("max_commands_per_second", config->max_commands_per_second(), 0.0, 1e9)).ok()) {
+    return Status::InvalidArgument(at("max_commands_per_second") + st.message());
+  }
+  if (!(st = CheckInRange("command_burst", config->command_burst(), 1.0, 1e9)).ok()) {
+    return Status::InvalidArgument(at("command_burst") + st.message());
   }
   static const char* kLevels[] = {"trace", "debug", "info", "warn", "error", "critical", "off"};
   bool level_ok = false;
@@ -81,6 +102,12 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
   s.options.status_rate_hz = config.status_rate_hz();
   s.options.broadphase = config.broadphase();
   s.options.max_bodies = config.max_bodies();
+  s.options.max_joints = config.max_joints();
+  s.options.decode_limits = {config.max_convex_points(), config.max_body_cmd_bytes(), config.max_scene_cmd_bytes(),
+                             config.max_joint_cmd_bytes(), config.max_input_bytes()};
+  s.options.max_commands_per_second = config.max_commands_per_second();
+  s.options.command_burst = config.command_burst();
+  s.options.max_queued_commands = config.max_queued_commands();
   s.options.live_line = config.live_line();
   if (!config.journal_dir().empty()) {
     s.options.journal_dir =

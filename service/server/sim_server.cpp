@@ -8,7 +8,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include "service/server/command_decoder.h"
+#include "service/physics/validation.h"
 #include "service/server/messages.h"
 
 namespace contactsim {
@@ -16,7 +16,12 @@ namespace contactsim {
 using Clock = std::chrono::steady_clock;
 
 SimServer::SimServer(ServerOptions options, Transport* transport)
-    : options_(std::move(options)), transport_(transport), snapshots_(options_.max_snapshots) {
+    : options_(std::move(options)),
+      transport_(transport),
+      rate_limiter_(options_.max_commands_per_second, options_.command_burst),
+      snapshots_(options_.max_snapshots) {
+  decode_context_.default_material = default_material_;
+  decode_context_.limits = options_.decode_limits;
   paused_ = options_.start_paused;
   mode_ = options_.mode;
   real_time_factor_ = options_.real_time_factor;
@@ -39,20 +44,30 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
 
 // ---- LCM thread -----------------------------------------------------------
 
-void SimServer::Reject(const std::string& client_id, int64_t request_id, int32_t code, const std::string& message,
-                       const char* channel) {
+std::vector<std::string> SimServer::CommandChannelNames() const {
+  std::vector<std::string> names;
+  for (const CommandChannel& c : CommandChannels()) names.push_back(Channel(c.suffix));
+  return names;
+}
+
+void SimServer::CountRejection(const Status& status) {
   ++rejected_;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    last_error_ = message;
-  }
-  spdlog::warn("rejected {} from \"{}\" #{}: {}", channel, client_id, request_id, message);
+  if (status.code() == StatusCode::kUnauthenticated) ++unauthenticated_;
+  if (status.code() == StatusCode::kResourceExhausted) ++limited_;
+  std::lock_guard<std::mutex> lock(mutex_);
+  last_error_ = status.message();
+}
+
+// An answer before the command reaches the simulation thread (it carries no
+// step: the world belongs to that thread).
+void SimServer::Reject(const std::string& client_id, int64_t request_id, const Status& status, const char* channel) {
+  CountRejection(status);
+  spdlog::warn("rejected {} from \"{}\" #{}: {}", channel, client_id, request_id, status.message());
   reply_t r;
   r.client_id = client_id;
   r.request_id = request_id;
-  r.code = code;
-  r.message = message;
-  // the world belongs to the simulation thread: early errors carry no step
+  r.code = static_cast<int32_t>(status.code());
+  r.message = status.message();
   r.step = -1;
   r.time = 0.0;
   r.num_ids = 0;
@@ -62,115 +77,46 @@ void SimServer::Reject(const std::string& client_id, int64_t request_id, int32_t
   transport_->Publish(Channel("REPLY"), buf.data(), n);
 }
 
-// Decodes one command payload of type Msg from `suffix`'s channel and checks
-// it with decode(msg, &cmd): a bad one is answered at once, a good one queued.
-template <typename Msg, typename Decode>
-void SimServer::Receive(const void* data, int size, const char* suffix, Decode decode) {
-  Msg msg;
-  if (size > kMaxCommandBytes || msg.decode(data, 0, size) < 0) {
-    Reject("", -1, reply_t::DECODE_ERROR,
-           std::string("undecodable ") + Msg::getTypeName() + " payload of " + std::to_string(size) + " bytes on " +
-               Channel(suffix),
-           suffix);
-    return;
-  }
+// Called by a channel's decoder once the sender is known, before the
+// command's own checks (a LOAD_SCENE reads a file): commands beyond a
+// client's rate are refused unread. Lockstep inputs come at the step rate
+// and are bounded by the inbox instead.
+Status SimServer::AdmitClient(const CommandChannel& channel, const std::string& client_id) {
+  if (!channel.replied || rate_limiter_.Admit(client_id, RateLimiter::Clock::now())) return Status::Ok();
+  return Status::ResourceExhausted("client \"" + client_id + "\" exceeds max_commands_per_second = " +
+                                   FormatValue(options_.max_commands_per_second) + " (burst " +
+                                   FormatValue(options_.command_burst) + ")");
+}
+
+void SimServer::OnMessage(const std::string& channel_name, const void* data, int size) {
+  const std::string prefix = options_.prefix + "_";
+  if (channel_name.compare(0, prefix.size(), prefix) != 0) return;
+  const CommandChannel* channel = ChannelOfSuffix(channel_name.substr(prefix.size()));
+  if (channel == nullptr) return;
   Command cmd;
-  const Status st = decode(msg, &cmd);
-  if (!st.ok()) return Reject(msg.client_id, msg.request_id, static_cast<int32_t>(st.code()), st.message(), suffix);
-  cmd.payload.assign(static_cast<const char*>(data), size);
-  Enqueue(std::move(cmd));
+  cmd.request_id = -1;
+  DecodeContext context = decode_context_;
+  context.admit = [this, channel](const std::string& client_id) { return AdmitClient(*channel, client_id); };
+  Status st = channel->decode(data, size, context, &cmd);
+  cmd.record = channel->record;
+  if (st.ok()) st = Enqueue(std::move(cmd));
+  if (st.ok()) return;
+  // an undecodable payload has no sender to name
+  if (st.code() == StatusCode::kDecodeError) Reject("", -1, st, channel->suffix);
+  else Reject(cmd.client_id, cmd.request_id, st, channel->suffix);
 }
 
-void SimServer::OnBodyMessage(const void* data, int size) {
-  Receive<body_cmd_t>(data, size, "BODY_CMD", [this](const body_cmd_t& m, Command* cmd) {
-    return DecodeBodyCommand(m, default_material_, cmd);
-  });
-}
-
-void SimServer::OnSceneMessage(const void* data, int size) {
-  Receive<scene_cmd_t>(data, size, "SCENE_CMD", DecodeSceneCommand);
-}
-
-void SimServer::OnJointMessage(const void* data, int size) {
-  Receive<joint_cmd_t>(data, size, "JOINT_CMD", DecodeJointCommand);
-}
-
-void SimServer::Enqueue(Command cmd) {
+Status SimServer::Enqueue(Command cmd) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (static_cast<int>(inbox_.size()) >= options_.max_queued_commands) {
+      return Status::ResourceExhausted("the server's inbox holds max_queued_commands = " +
+                                       std::to_string(options_.max_queued_commands) + " commands; try again");
+    }
     inbox_.push_back(std::move(cmd));
   }
   wake_.notify_one();
-}
-
-// ---- simulation thread ----------------------------------------------------
-
-void SimServer::SendReply(const std::string& client_id, int64_t request_id, const Status& status,
-                          const std::string& message, const std::vector<int64_t>& ids) {
-  last_reply_ok_ = status.ok();
-  if (replaying_) return;
-  reply_t r = MakeReply(client_id, request_id, status, world_);
-  if (status.ok()) {
-    r.message = message;
-    ++accepted_;
-  } else {
-    ++rejected_;
-    std::lock_guard<std::mutex> lock(mutex_);
-    last_error_ = status.message();
-  }
-  if (!status.ok()) spdlog::warn("rejected command from \"{}\" #{}: {}", client_id, request_id, status.message());
-  r.ids = ids;
-  r.num_ids = static_cast<int32_t>(ids.size());
-  const int n = r.getEncodedSize();
-  std::vector<uint8_t> buf(n);
-  r.encode(buf.data(), 0, n);
-  if (hold_replies_) {
-    held_replies_.push_back(std::move(buf));
-  } else {
-    PublishReply(buf);
-  }
-}
-
-// Commands whose effect the journal must carry to a replay: the ones that
-// change the world without replacing it (reset, load and restore start a
-// new timeline from a snapshot instead).
-static bool Journaled(Command::Kind kind) {
-  using K = Command::Kind;
-  switch (kind) {
-    case K::kAddBody: case K::kRemoveBody: case K::kSetPose: case K::kSetVelocity: case K::kApplyForce:
-    case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kSetGravity: case K::kSetTimestep:
-    case K::kSetMethod: case K::kAddJoint: case K::kRemoveJoint:
-      return true;
-    default:
-      return false;
-  }
-}
-
-static RecordKind RecordKindOf(Command::Kind kind) {
-  if (kind <= Command::Kind::kSetMaterial) return RecordKind::kBodyCommand;
-  if (kind == Command::Kind::kAddJoint || kind == Command::Kind::kRemoveJoint) return RecordKind::kJointCommand;
-  return RecordKind::kSceneCommand;
-}
-
-bool SimServer::DrainInbox() {
-  std::deque<Command> batch;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    batch.swap(inbox_);
-  }
-  bool changed = false;
-  // group commit: the batch's records are synced once, before its replies
-  hold_replies_ = true;
-  for (Command& cmd : batch) {
-    last_reply_ok_ = false;
-    changed |= Apply(cmd);
-    if (last_reply_ok_ && Journaled(cmd.kind)) {
-      JournalCommand(RecordKindOf(cmd.kind), cmd.payload);
-    }
-  }
-  hold_replies_ = false;
-  FlushReplies();
-  return changed;
+  return Status::Ok();
 }
 
 void SimServer::UpdateRates() {
@@ -188,191 +134,6 @@ void SimServer::CancelStepCommands(const std::string& why) {
   }
   pending_steps_.clear();
   step_budget_ = 0;
-}
-
-// Applies one command; returns true if the world's content changed.
-bool SimServer::Apply(Command& cmd) {
-  using K = Command::Kind;
-  const std::string& cid = cmd.client_id;
-  const int64_t rid = cmd.request_id;
-  auto body_or_reply = [&](bool need_dynamic) -> RigidBody* {
-    RigidBody* b = world_.Find(cmd.body_id);
-    if (b == nullptr) {
-      SendReply(cid, rid, Status::NotFound("unknown body id " + std::to_string(cmd.body_id)), "");
-    } else if (need_dynamic && !b->IsDynamic()) {
-      const char* what = b->motion == MotionType::kKinematic ? " is kinematic (infinite mass)" : " is static";
-      SendReply(cid, rid, Status::FailedPrecondition("body " + std::to_string(cmd.body_id) + what), "");
-      return nullptr;
-    }
-    return b;
-  };
-  switch (cmd.kind) {
-    case K::kAddBody: {
-      if (static_cast<int>(world_.bodies().size()) >= options_.max_bodies) {
-        SendReply(cid, rid, Status::FailedPrecondition("the world holds max_bodies = " +
-                                                       std::to_string(options_.max_bodies) + " bodies already"), "");
-        return false;
-      }
-      const char* shape = ShapeTypeName(cmd.new_body.shape.type);
-      const BodyId id = world_.AddBody(std::move(cmd.new_body));
-      detector_.Reset();
-      SendReply(cid, rid, Status::Ok(), std::string("added ") + shape + " " + std::to_string(id), {id});
-      return true;
-    }
-    case K::kRemoveBody: {
-      const size_t joints = world_.joints().size();
-      Status st = world_.RemoveBody(cmd.body_id);
-      if (st.ok()) detector_.Reset();
-      std::string text = "removed body " + std::to_string(cmd.body_id);
-      if (world_.joints().size() < joints) text += " and its " + std::to_string(joints - world_.joints().size()) + " joint(s)";
-      SendReply(cid, rid, st, text);
-      return st.ok();
-    }
-    case K::kAddJoint: {
-      JointId id = 0;
-      const Status st = world_.AddJoint(cmd.joint, &id);
-      SendReply(cid, rid, st, std::string("added ") + JointKindName(cmd.joint.kind) + " joint " + std::to_string(id),
-                st.ok() ? std::vector<int64_t>{id} : std::vector<int64_t>{});
-      return st.ok();
-    }
-    case K::kRemoveJoint: {
-      const Status st = world_.RemoveJoint(cmd.joint_id);
-      SendReply(cid, rid, st, "removed joint " + std::to_string(cmd.joint_id));
-      return st.ok();
-    }
-    case K::kSetPose: {
-      RigidBody* b = body_or_reply(false);
-      if (b == nullptr) return false;
-      const Vec3 v = b->LinearVelocity(), w = b->AngularVelocity();
-      b->x = cmd.position;
-      b->q = cmd.orientation;
-      b->SetVelocity(v, w);  // keep w, not L, across the rotation
-      SendReply(cid, rid, Status::Ok(), "pose of body " + std::to_string(cmd.body_id) + " set");
-      return true;
-    }
-    case K::kSetVelocity: {
-      RigidBody* b = body_or_reply(false);
-      if (b == nullptr) return false;
-      if (b->motion == MotionType::kStatic) {
-        SendReply(cid, rid, Status::FailedPrecondition("body " + std::to_string(cmd.body_id) + " is static"), "");
-        return false;
-      }
-      b->SetVelocity(cmd.linear, cmd.angular);
-      SendReply(cid, rid, Status::Ok(), "velocity of body " + std::to_string(cmd.body_id) + " set");
-      return true;
-    }
-    case K::kApplyForce: {
-      RigidBody* b = body_or_reply(true);
-      if (b == nullptr) return false;
-      world_.AddWrench({cmd.body_id, cmd.linear, cmd.angular, cmd.duration});
-      SendReply(cid, rid, Status::Ok(), "force on body " + std::to_string(cmd.body_id) + " for " +
-                                            std::to_string(cmd.duration) + " s");
-      return true;
-    }
-    case K::kApplyImpulse: {
-      RigidBody* b = body_or_reply(true);
-      if (b == nullptr) return false;
-      b->ApplyImpulse(cmd.linear, cmd.point.value_or(b->x));
-      SendReply(cid, rid, Status::Ok(), "impulse on body " + std::to_string(cmd.body_id));
-      return true;
-    }
-    case K::kSetMass: {
-      RigidBody* b = body_or_reply(true);
-      if (b == nullptr) return false;
-      if (cmd.mass) b->SetMass(*cmd.mass);
-      else b->SetMassFromDensity(*cmd.density);
-      SendReply(cid, rid, Status::Ok(), "mass of body " + std::to_string(cmd.body_id) + " is " +
-                                            std::to_string(b->mass) + " kg");
-      return true;
-    }
-    case K::kSetMaterial: {
-      RigidBody* b = body_or_reply(false);
-      if (b == nullptr) return false;
-      if (cmd.restitution) b->material.restitution = *cmd.restitution;
-      if (cmd.friction) b->material.friction = *cmd.friction;
-      SendReply(cid, rid, Status::Ok(), "material of body " + std::to_string(cmd.body_id) + " set");
-      return true;
-    }
-    case K::kReset:
-      CancelStepCommands("reset");
-      world_.Clear();
-      detector_.Reset();
-      method_->ResetCaches();
-      contacts_.clear();
-      UpdateRates();
-      StartTimeline();
-      SendReply(cid, rid, Status::Ok(), "world reset");
-      return true;
-    case K::kLoadScene: {
-      CancelStepCommands("scene loaded");
-      Status st = BuildWorld(*cmd.scene, &world_);
-      if (!st.ok()) {
-        SendReply(cid, rid, st, "");
-        return false;
-      }
-      detector_.Reset();
-      if (cmd.method) method_ = cmd.method;
-      method_->ResetCaches();
-      contacts_.clear();
-      UpdateRates();
-      StartTimeline();
-      SendReply(cid, rid, Status::Ok(), "loaded " + cmd.scene_path + " (" + std::to_string(world_.bodies().size()) +
-                                            " bodies)");
-      return true;
-    }
-    case K::kSetGravity:
-      world_.gravity = cmd.gravity;
-      SendReply(cid, rid, Status::Ok(), "gravity set");
-      return true;
-    case K::kSetTimestep:
-      world_.dt = cmd.dt;
-      UpdateRates();
-      SendReply(cid, rid, Status::Ok(), "time step set");
-      return true;
-    case K::kSetMethod: {
-      // a switch keeps every body's state and drops only the old method's caches
-      method_ = cmd.method;
-      std::string text = std::string("contact method ") + method_->Name();
-      for (const auto& [k, v] : method_->Params()) text += " " + k + "=" + v;
-      spdlog::info("{}", text);
-      SendReply(cid, rid, Status::Ok(), text);
-      return false;
-    }
-    case K::kPause:
-      paused_ = true;
-      SendReply(cid, rid, Status::Ok(), "paused");
-      return false;
-    case K::kResume:
-      paused_ = false;
-      reanchor_ = true;
-      SendReply(cid, rid, Status::Ok(), "running");
-      return false;
-    case K::kStep:
-      paused_ = true;
-      step_budget_ += cmd.steps;
-      pending_steps_.push_back({cid, rid, world_.step + step_budget_});
-      return false;
-    case K::kSetMode:
-      mode_ = cmd.mode;
-      real_time_factor_ = cmd.real_time_factor;
-      reanchor_ = true;
-      SendReply(cid, rid, Status::Ok(),
-                mode_ == RunMode::kRealtime ? "mode realtime" : mode_ == RunMode::kFreeRun ? "mode free_run" : "mode lockstep");
-      return false;
-    case K::kSnapshot:
-      ApplySnapshotCommand(cmd);
-      return false;
-    case K::kRegisterController:
-    case K::kReleaseController:
-    case K::kInput:
-      ApplyLockstepCommand(cmd);
-      return false;
-    case K::kRestore:
-    case K::kRewind:
-      ApplySnapshotCommand(cmd);
-      return last_reply_ok_;
-  }
-  return false;
 }
 
 void SimServer::SimulateStep() { last_stats_ = method_->Step(world_, detector_, &contacts_); }
@@ -395,8 +156,10 @@ void SimServer::FinishStepCommands() {
     const PendingStep p = pending_steps_.front();
     pending_steps_.pop_front();
     // recovery brings the world back to the last step a reply acknowledged
-    JournalCommand(RecordKind::kStepTo, "");
-    SendReply(p.client_id, p.request_id, Status::Ok(), "at step " + std::to_string(world_.step));
+    Status st = JournalCommand(RecordKind::kStepTo, "");
+    if (st.ok()) st = journal_.Sync();
+    if (!st.ok()) st = Status::Internal("steps taken, but a restart would not keep them: " + st.message());
+    SendReply(p.client_id, p.request_id, st, "at step " + std::to_string(world_.step));
   }
 }
 
@@ -447,6 +210,8 @@ void SimServer::PublishStatus(Clock::time_point now) {
   s.solver_iterations = last_stats_.iterations;
   s.commands_accepted = accepted_;
   s.commands_rejected = rejected_;
+  s.commands_unauthenticated = unauthenticated_;
+  s.commands_limited = limited_;
   s.num_controllers = static_cast<int32_t>(lockstep_.size());
   s.controllers = lockstep_.Describe();
   s.late_events = lockstep_.late_events();

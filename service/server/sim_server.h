@@ -1,8 +1,9 @@
-// The server's core, independent of LCM: the LCM thread hands it raw command
-// payloads (OnBodyMessage, OnSceneMessage, OnJointMessage), which are decoded and checked at
-// once; good commands wait in an inbox until the simulation thread (Run)
-// applies them in arrival order at a step boundary. Only the simulation
-// thread touches the world, so the engine needs no locks.
+// The server's core, independent of LCM: the LCM thread hands it raw
+// payloads of the command channels (OnMessage; command_channels.h), which
+// are decoded and checked at once against the limits; good commands wait in
+// a bounded inbox until the simulation thread (Run) applies them in arrival
+// order at a step boundary. Only the simulation thread touches the world, so
+// the engine needs no locks.
 #pragma once
 
 #include <atomic>
@@ -11,15 +12,20 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <contactsim/reply_t.hpp>
 
 #include "service/collision/collision_detector.h"
 #include "service/contact/contact_method.h"
 #include "service/physics/world.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/command.h"
+#include "service/server/command_channels.h"
 #include "service/server/journal.h"
+#include "service/server/rate_limiter.h"
 #include "service/server/snapshot_store.h"
 #include "service/server/transport.h"
 
@@ -34,7 +40,12 @@ struct ServerOptions {
   double contacts_rate_hz = 30.0;       // of simulated time; 0 = every step
   double status_rate_hz = 1.0;          // of wall-clock time
   std::string broadphase = "sap";
-  int max_bodies = 100000;
+  int max_bodies = 100000;              // ADD beyond this is refused
+  int max_joints = 100000;              // joint ADD beyond this is refused
+  DecodeLimits decode_limits;           // points of a convex, bytes per channel
+  double max_commands_per_second = 5000.0;  // per client id (token bucket); 0 = no limit
+  double command_burst = 10000.0;       // commands a client may send at once
+  int max_queued_commands = 20000;      // waiting in the inbox, all clients together
   bool live_line = false;               // progress line on stderr
   std::string journal_dir;              // "" = no journal on disk (REWIND still works)
   FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
@@ -45,8 +56,27 @@ struct ServerOptions {
   bool write_files = true;              // false (a replay): SNAPSHOT to a file writes nothing
 };
 
-// Commands larger than this are refused before decoding.
-constexpr int kMaxCommandBytes = 16 << 20;
+// What applying one command did: the reply's status and text, the new ids,
+// and whether the world's content changed.
+struct Outcome {
+  Status status;
+  std::string message;       // the reply's text when the status is OK
+  std::vector<int64_t> ids;  // ADD: the new id
+  bool changed = false;      // the world's content changed
+  bool deferred = false;     // answered later (STEP when its last step is done; an accepted input by its STATE)
+
+  static Outcome Done(std::string message, bool changed) {
+    Outcome o;
+    o.message = std::move(message);
+    o.changed = changed;
+    return o;
+  }
+  static Outcome Failed(Status status) {
+    Outcome o;
+    o.status = std::move(status);
+    return o;
+  }
+};
 
 class SimServer {
  public:
@@ -57,11 +87,12 @@ class SimServer {
   // (snapshot + the journal records after it).
   Status Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> method);
 
-  // LCM thread.
-  void OnBodyMessage(const void* data, int size);
-  void OnSceneMessage(const void* data, int size);
-  void OnInputMessage(const void* data, int size);  // input_t, lockstep
-  void OnJointMessage(const void* data, int size);
+  // LCM thread: one payload received on `channel`; a command channel's
+  // payload is decoded, checked and queued or answered at once (anything
+  // else is ignored). Never throws.
+  void OnMessage(const std::string& channel, const void* data, int size);
+  // The full names of the command channels, to subscribe to.
+  std::vector<std::string> CommandChannelNames() const;
 
   // Simulation thread: runs until `stop` is set, then returns.
   void Run(const std::atomic<bool>& stop);
@@ -82,33 +113,39 @@ class SimServer {
   bool paused() const { return paused_; }
 
  private:
-  template <typename Msg, typename Decode>
-  void Receive(const void* data, int size, const char* suffix, Decode decode);
-  void Enqueue(Command cmd);
+  Status Enqueue(Command cmd);
+  Status AdmitClient(const CommandChannel& channel, const std::string& client_id);
   // journal, snapshots, rewind and recovery (snapshot_commands.cpp)
   Status Recover();
   proto::Snapshot SaveDurableSnapshot();
   void StartTimeline();
   void TakePeriodicSnapshot();
-  void ApplySnapshotCommand(Command& cmd);
+  Outcome ApplySnapshotCommand(Command& cmd);
   Status Rewind(int64_t step);
   Status ReplayRecord(const JournalRecord& record);
-  void JournalCommand(RecordKind kind, const std::string& payload);
+  Status JournalCommand(RecordKind kind, const std::string& payload);
   void SimulateStep();
-  void PublishReply(const std::vector<uint8_t>& bytes);
+  // batches, replies and their undo (command_batch.cpp)
+  bool DrainInbox();  // true if a command changed the world
+  void ApplyFromInbox(Command& cmd, bool* changed);
+  void CommitBatch();
+  void UndoBatch(const Status& why);
+  void PublishReply(const reply_t& reply);
   void FlushReplies();
   // lockstep (lockstep_commands.cpp)
-  void ApplyLockstepCommand(Command& cmd);
+  Outcome ApplyLockstepCommand(Command& cmd);
   bool LockstepReady(const std::atomic<bool>* stop);  // null: never blocks
   void ApplyInputs();
   void ApplyInput(const ControllerInput& input, bool live);
 
-  void Reject(const std::string& client_id, int64_t request_id, int32_t code, const std::string& message,
-              const char* channel);
+  void Reject(const std::string& client_id, int64_t request_id, const Status& status, const char* channel);
+  void CountRejection(const Status& status);
   void SendReply(const std::string& client_id, int64_t request_id, const Status& status, const std::string& message,
                  const std::vector<int64_t>& ids = {});
-  bool DrainInbox();  // true if a command changed the world
-  bool Apply(Command& cmd);
+  Outcome Apply(Command& cmd);
+  Outcome ApplyBodyCommand(Command& cmd);   // bodies and joints (body_commands.cpp)
+  Outcome ApplyWorldCommand(Command& cmd);  // scene, method, running (world_commands.cpp)
+  RigidBody* FindBody(BodyId id, bool need_dynamic, Status* status);
   void StepWorld();
   void FinishStepCommands();
   void CancelStepCommands(const std::string& why);
@@ -125,8 +162,12 @@ class SimServer {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Command> inbox_;
-  std::atomic<int64_t> accepted_{0}, rejected_{0};
+  std::atomic<int64_t> accepted_{0}, rejected_{0}, unauthenticated_{0}, limited_{0};
   std::string last_error_;  // guarded by mutex_
+
+  // LCM thread only
+  DecodeContext decode_context_;
+  RateLimiter rate_limiter_;
 
   // simulation thread only
   World world_;
@@ -151,8 +192,22 @@ class SimServer {
   SnapshotStore snapshots_;
   bool replaying_ = false;         // applying journal records: no replies, no journaling
   bool hold_replies_ = false;      // a batch is being applied: reply after the journal sync
-  bool last_reply_ok_ = false;     // the status of the last SendReply
-  std::vector<std::vector<uint8_t>> held_replies_;
+  // Replies of the batch, sent once its journal records are durable; those
+  // of journaled commands become INTERNAL if the batch is undone.
+  struct HeldReply {
+    reply_t reply;
+    bool undoable;
+  };
+  std::vector<HeldReply> held_replies_;
+  bool reply_undoable_ = false;    // the reply being sent is a journaled command's
+  // The world before the batch's first journaled command, kept while a disk
+  // journal may still refuse the batch (a failed write or sync undoes it).
+  struct UndoPoint {
+    World world;
+    std::shared_ptr<ContactMethod> method;
+    Journal::Mark mark;
+  };
+  std::optional<UndoPoint> undo_;
   Lockstep lockstep_;
   uint64_t input_digest_ = 0;      // of the inputs applied in the last step
   bool republish_state_ = false;   // a controller registered: it needs the current STATE

@@ -3,38 +3,12 @@
 // thread.
 #include <spdlog/spdlog.h>
 
+#include <climits>
+
 #include "service/scene/snapshot.h"
-#include "service/server/command_decoder.h"
 #include "service/server/sim_server.h"
 
 namespace contactsim {
-
-void SimServer::PublishReply(const std::vector<uint8_t>& bytes) {
-  // nothing is acknowledged before its journal record is durable
-  Status st = journal_.Sync();
-  if (!st.ok()) spdlog::error("{}", st.message());
-  transport_->Publish(Channel("REPLY"), bytes.data(), static_cast<int>(bytes.size()));
-}
-
-void SimServer::FlushReplies() {
-  if (held_replies_.empty()) return;
-  Status st = journal_.Sync();
-  if (!st.ok()) spdlog::error("{}", st.message());
-  for (const auto& bytes : held_replies_) transport_->Publish(Channel("REPLY"), bytes.data(), static_cast<int>(bytes.size()));
-  held_replies_.clear();
-}
-
-void SimServer::JournalCommand(RecordKind kind, const std::string& payload) {
-  if (replaying_) return;
-  JournalRecord record;
-  Status st = journal_.Append(kind, world_.step, payload, &record);
-  if (!st.ok()) {
-    spdlog::error("{}", st.message());
-    std::lock_guard<std::mutex> lock(mutex_);
-    last_error_ = st.message();
-  }
-  snapshots_.AddRecord(std::move(record));
-}
 
 // The current world as a snapshot that the journal continues from, written
 // to the journal folder when there is one.
@@ -57,6 +31,21 @@ void SimServer::TakePeriodicSnapshot() {
   if (!replaying_) snapshots_.AddPeriodic(SaveDurableSnapshot());
 }
 
+namespace {
+
+// Records were accepted under the limits of their day: a replay applies
+// them whatever the limits are now.
+const DecodeContext& RecordContext() {
+  static const DecodeContext context = [] {
+    DecodeContext c;
+    c.limits = {INT_MAX, INT_MAX, INT_MAX, INT_MAX, INT_MAX};
+    return c;
+  }();
+  return context;
+}
+
+}  // namespace
+
 Status SimServer::ReplayRecord(const JournalRecord& r) {
   if (r.step < world_.step) {
     return Status::FailedPrecondition("journal record " + std::to_string(r.seq) + " applies at step " +
@@ -64,41 +53,16 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
                                       std::to_string(world_.step));
   }
   while (world_.step < r.step) SimulateStep();
+  if (r.kind == RecordKind::kStepTo) return Status::Ok();
+  const CommandChannel* channel = ChannelOfRecord(r.kind);
   Command cmd;
-  Status st;
-  const int size = static_cast<int>(r.payload.size());
-  switch (r.kind) {
-    case RecordKind::kStepTo: return Status::Ok();
-    case RecordKind::kBodyCommand: {
-      body_cmd_t m;
-      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable body_cmd_t");
-      else st = DecodeBodyCommand(m, default_material_, &cmd);
-      break;
-    }
-    case RecordKind::kSceneCommand: {
-      scene_cmd_t m;
-      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable scene_cmd_t");
-      else st = DecodeSceneCommand(m, &cmd);
-      break;
-    }
-    case RecordKind::kJointCommand: {
-      joint_cmd_t m;
-      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable joint_cmd_t");
-      else st = DecodeJointCommand(m, &cmd);
-      break;
-    }
-    case RecordKind::kInput: {
-      input_t m;
-      if (m.decode(r.payload.data(), 0, size) < 0) st = Status::InvalidArgument("undecodable input_t");
-      else st = DecodeInput(m, &cmd);
-      if (st.ok()) ApplyInput(cmd.input, false);
-      return st;
-    }
-  }
-  if (st.ok()) {
-    last_reply_ok_ = false;
-    Apply(cmd);
-    if (!last_reply_ok_) st = Status::FailedPrecondition("no longer applies");
+  Status st = channel == nullptr ? Status::DecodeError("unknown record kind")
+                                 : channel->decode(r.payload.data(), static_cast<int>(r.payload.size()),
+                                                   RecordContext(), &cmd);
+  if (st.ok() && cmd.kind == Command::Kind::kInput) {
+    ApplyInput(cmd.input, false);
+  } else if (st.ok() && !(st = Apply(cmd).status).ok()) {
+    st = Status::FailedPrecondition("no longer applies: " + st.message());
   }
   if (!st.ok()) return Status::FailedPrecondition("journal record " + std::to_string(r.seq) + ": " + st.message());
   return Status::Ok();
@@ -167,7 +131,7 @@ Status SimServer::Rewind(int64_t step) {
   return Status::Ok();
 }
 
-void SimServer::ApplySnapshotCommand(Command& cmd) {
+Outcome SimServer::ApplySnapshotCommand(Command& cmd) {
   using K = Command::Kind;
   const std::string target = cmd.snapshot_name.empty() ? "file " + cmd.snapshot_path : "\"" + cmd.snapshot_name + "\"";
   Status st;
@@ -181,16 +145,15 @@ void SimServer::ApplySnapshotCommand(Command& cmd) {
     } else {
       snapshots_.Put(cmd.snapshot_name, std::move(s));
     }
-    SendReply(cmd.client_id, cmd.request_id, st, "snapshot " + target + " at step " + std::to_string(world_.step));
-    return;
+    if (!st.ok()) return Outcome::Failed(st);
+    return Outcome::Done("snapshot " + target + " at step " + std::to_string(world_.step), false);
   }
   if (cmd.kind == K::kRewind) {
     const int64_t from = world_.step;
     st = Rewind(cmd.target_step);
-    if (st.ok()) CancelStepCommands("rewind");
-    SendReply(cmd.client_id, cmd.request_id, st,
-              "rewound from step " + std::to_string(from) + " to step " + std::to_string(world_.step));
-    return;
+    if (!st.ok()) return Outcome::Failed(st);
+    CancelStepCommands("rewind");
+    return Outcome::Done("rewound from step " + std::to_string(from) + " to step " + std::to_string(world_.step), true);
   }
   proto::Snapshot loaded;
   const proto::Snapshot* s = nullptr;
@@ -203,16 +166,15 @@ void SimServer::ApplySnapshotCommand(Command& cmd) {
   World world;
   std::shared_ptr<ContactMethod> method;
   if (st.ok()) st = LoadSnapshot(*s, &world, &method);
-  if (st.ok()) {
-    CancelStepCommands("restore");
-    world_ = std::move(world);
-    method_ = std::move(method);
-    detector_.Reset();
-    contacts_.clear();
-    UpdateRates();
-    StartTimeline();
-  }
-  SendReply(cmd.client_id, cmd.request_id, st, "restored " + target + " at step " + std::to_string(world_.step));
+  if (!st.ok()) return Outcome::Failed(st);
+  CancelStepCommands("restore");
+  world_ = std::move(world);
+  method_ = std::move(method);
+  detector_.Reset();
+  contacts_.clear();
+  UpdateRates();
+  StartTimeline();
+  return Outcome::Done("restored " + target + " at step " + std::to_string(world_.step), true);
 }
 
 }  // namespace contactsim

@@ -35,6 +35,10 @@ class SnapshotStore {
   void StartTimeline(proto::Snapshot base);
   void AddPeriodic(proto::Snapshot snapshot);
   void AddRecord(JournalRecord record) { records_.push_back(std::move(record)); }
+  // Forgets the records from `seq` on (a batch the disk journal refused).
+  void DropRecordsFrom(int64_t seq) {
+    while (!records_.empty() && records_.back().seq >= seq) records_.pop_back();
+  }
   int64_t base_step() const { return snapshots_.empty() ? 0 : snapshots_.front().step(); }
 
   // How to reach the state after `step` steps: the latest snapshot at or

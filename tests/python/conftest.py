@@ -1,6 +1,6 @@
 """Fixtures of the Python client tests.
 
-* ``launch(scene=None, args=())``: starts the REAL contactsim-server
+* ``launch(scene=None, args=(), wrapper=())``: starts the REAL contactsim-server
   ($CONTACTSIM_BUILD_DIR/bin/contactsim-server, or $CONTACTSIM_SERVER) with
   config/server.pbtxt, a scene (default: an empty one with gravity), its own
   multicast port (8800-9799; the C++ integration tests use 7800-8799) and its
@@ -26,6 +26,9 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "clients" / "python"))
 BUILD = Path(os.environ.get("CONTACTSIM_BUILD_DIR") or (REPO / "build")).resolve()
 os.environ["CONTACTSIM_BUILD_DIR"] = str(BUILD)
+# Clients sign when this is set (docs/protocol.md, "Authentication"); the
+# tests' servers have no key, and the auth tests pass theirs explicitly.
+os.environ.pop("CONTACTSIM_AUTH_KEY_FILE", None)
 SERVER_BIN = Path(os.environ.get("CONTACTSIM_SERVER") or (BUILD / "bin" / "contactsim-server"))
 CONFIG = REPO / "config" / "server.pbtxt"
 EMPTY_SCENE = "gravity { z: -9.81 }\n"
@@ -52,7 +55,7 @@ def unique_endpoint(tag="PY"):
 class Server:
     """One contactsim-server child process and a Client connected to it."""
 
-    def __init__(self, tmp_path, scene=None, args=()):
+    def __init__(self, tmp_path, scene=None, args=(), wrapper=()):
         if not SERVER_BIN.exists():
             pytest.skip("%s is not built (run `make`)" % SERVER_BIN)
         self.url, self.prefix = unique_endpoint()
@@ -61,7 +64,8 @@ class Server:
             scene.write_text(EMPTY_SCENE)
         self.scene = Path(scene)
         self.log_path = tmp_path / ("server-%s.log" % self.prefix)
-        self.cmd = [str(SERVER_BIN), "--config", str(CONFIG), "--scene", str(self.scene),
+        # wrapper: a command that execs the server, e.g. ("prlimit", "--fsize=N", "--")
+        self.cmd = [*wrapper, str(SERVER_BIN), "--config", str(CONFIG), "--scene", str(self.scene),
                     "--lcm-url", self.url, "--mode", "free_run", "--paused", "--no-live-line",
                     "--prefix", self.prefix, *args]
         # Subscribe before the server starts, so that its first STATUS is heard.
@@ -116,8 +120,8 @@ class Server:
 def launch(tmp_path):
     servers = []
 
-    def start(scene=None, args=()):
-        s = Server(tmp_path, scene, args)
+    def start(scene=None, args=(), wrapper=()):
+        s = Server(tmp_path, scene, args, wrapper)
         servers.append(s)
         return s
 

@@ -11,29 +11,14 @@
 
 #include "service/scene/snapshot.h"
 #include "tests/server/server_harness.h"
+#include "tests/server/temp_dir.h"
 
 namespace contactsim {
 namespace {
 
 namespace fs = std::filesystem;
 using testing::ServerHarness;
-
-// A fresh folder under /tmp, removed at the end.
-class TempDir {
- public:
-  TempDir() {
-    char name[] = "/tmp/contactsim-journal-XXXXXX";
-    path_ = ::mkdtemp(name);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using testing::TempDir;
 
 // Verifies that records survive encoding, and that any damage (a flipped
 // byte, a cut) is detected rather than read as a different command.

@@ -66,18 +66,18 @@ class ServerHarness {
   void Post(body_cmd_t& m) {
     m.request_id = ++request_id;
     const auto bytes = Encode(m);
-    server.OnBodyMessage(bytes.data(), static_cast<int>(bytes.size()));
+    server.OnMessage(server.Channel("BODY_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   }
   void Post(scene_cmd_t& m) {
     m.request_id = ++request_id;
     const auto bytes = Encode(m);
-    server.OnSceneMessage(bytes.data(), static_cast<int>(bytes.size()));
+    server.OnMessage(server.Channel("SCENE_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   }
   void Post(input_t& m) {
     m.request_id = ++request_id;
     m.num_bodies = static_cast<int32_t>(m.body_ids.size());
     const auto bytes = Encode(m);
-    server.OnInputMessage(bytes.data(), static_cast<int>(bytes.size()));
+    server.OnMessage(server.Channel("INPUT"), bytes.data(), static_cast<int>(bytes.size()));
   }
   // STEP n, ticking until the server pauses again; the hash after each step.
   std::vector<uint64_t> Step(int n) {

@@ -58,13 +58,13 @@ class SimServerTest : public ::testing::Test {
   }
   reply_t Send(const body_cmd_t& m) {
     const auto bytes = Encode(m);
-    server_.OnBodyMessage(bytes.data(), static_cast<int>(bytes.size()));
+    server_.OnMessage(server_.Channel("BODY_CMD"), bytes.data(), static_cast<int>(bytes.size()));
     server_.Tick();
     return transport_.All<reply_t>("T_REPLY").back();
   }
   reply_t Send(const scene_cmd_t& m) {
     const auto bytes = Encode(m);
-    server_.OnSceneMessage(bytes.data(), static_cast<int>(bytes.size()));
+    server_.OnMessage(server_.Channel("SCENE_CMD"), bytes.data(), static_cast<int>(bytes.size()));
     server_.Tick();
     return transport_.All<reply_t>("T_REPLY").back();
   }
@@ -81,7 +81,7 @@ class SimServerTest : public ::testing::Test {
   }
   reply_t Send(const joint_cmd_t& m) {
     const auto bytes = Encode(m);
-    server_.OnJointMessage(bytes.data(), static_cast<int>(bytes.size()));
+    server_.OnMessage(server_.Channel("JOINT_CMD"), bytes.data(), static_cast<int>(bytes.size()));
     server_.Tick();
     return transport_.All<reply_t>("T_REPLY").back();
   }

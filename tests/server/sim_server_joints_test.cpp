@@ -94,7 +94,7 @@ TEST_F(SimServerJointsTest, BadJointCommandsAreRejectedAndLeaveTheWorld) {
 // Verifies that an undecodable joint payload gets a DECODE_ERROR reply.
 TEST_F(SimServerJointsTest, UndecodableJointPayloadGetsDecodeError) {
   const uint8_t garbage[] = {1, 2, 3};
-  server_.OnJointMessage(garbage, sizeof garbage);
+  server_.OnMessage(server_.Channel("JOINT_CMD"), garbage, sizeof garbage);
   const reply_t r = transport_.All<reply_t>("T_REPLY").back();
   EXPECT_EQ(r.code, reply_t::DECODE_ERROR);
   EXPECT_NE(r.message.find("T_JOINT_CMD"), std::string::npos);

@@ -88,7 +88,7 @@ TEST_F(SimServerTest, BadInputIsRejectedAndLeavesTheWorldUntouched) {
   EXPECT_NE(r.message.find("iterations"), std::string::npos) << r.message;
 
   const uint8_t garbage[] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
-  server_.OnBodyMessage(garbage, sizeof garbage);
+  server_.OnMessage(server_.Channel("BODY_CMD"), garbage, sizeof garbage);
   r = transport_.All<reply_t>("T_REPLY").back();
   EXPECT_EQ(r.code, reply_t::DECODE_ERROR);
   EXPECT_EQ(r.request_id, -1);
@@ -103,7 +103,7 @@ TEST_F(SimServerTest, StepPublishesTheLastStateBeforeReplying) {
   scene_cmd_t step = Scene(scene_cmd_t::STEP);
   step.steps = 7;
   const auto bytes = Encode(step);
-  server_.OnSceneMessage(bytes.data(), static_cast<int>(bytes.size()));
+  server_.OnMessage(server_.Channel("SCENE_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   int ticks = 0;
   while (server_.Tick()) ++ticks;
   EXPECT_EQ(ticks, 7);

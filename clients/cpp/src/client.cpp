@@ -10,6 +10,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "client_auth.h"
+
 namespace contactsim {
 namespace {
 
@@ -57,23 +59,42 @@ std::string ResolveLcmUrl(const std::string& url) {
   return kDefaultLcmUrl;
 }
 
-void Client::OnReply(const lcm::ReceiveBuffer* rb, const std::string& ch, const reply_t* m, Client* c) {
-  c->HandleReply(rb, ch, m);
+// Raw subscriptions, so that a signature is checked before any decoder
+// reads the bytes.
+template <typename Msg>
+bool Client::Unwrap(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Msg* msg) {
+  const int size = static_cast<int>(rbuf->data_size);
+  const int payload = auth_ ? auth_->Unwrap(channel, rbuf->data, size) : UnsignedSize(rbuf->data, size);
+  return payload >= 0 && msg->decode(rbuf->data, 0, payload) >= 0;
 }
-void Client::OnState(const lcm::ReceiveBuffer* rb, const std::string& ch, const state_t* m, Client* c) {
-  c->HandleState(rb, ch, m);
+
+void Client::OnReply(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  reply_t m;
+  if (c->Unwrap(rb, ch, &m)) c->HandleReply(rb, ch, &m);
 }
-void Client::OnContacts(const lcm::ReceiveBuffer* rb, const std::string& ch, const contacts_t* m, Client* c) {
-  c->HandleContacts(rb, ch, m);
+void Client::OnState(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  state_t m;
+  if (c->Unwrap(rb, ch, &m)) c->HandleState(rb, ch, &m);
 }
-void Client::OnStatus(const lcm::ReceiveBuffer* rb, const std::string& ch, const status_t* m, Client* c) {
-  c->HandleStatus(rb, ch, m);
+void Client::OnContacts(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  contacts_t m;
+  if (c->Unwrap(rb, ch, &m)) c->HandleContacts(rb, ch, &m);
+}
+void Client::OnStatus(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  status_t m;
+  if (c->Unwrap(rb, ch, &m)) c->HandleStatus(rb, ch, &m);
 }
 
 Client::Client(ClientOptions options)
     : options_(std::move(options)), callbacks_(std::make_unique<Callbacks>()) {
   options_.url = ResolveLcmUrl(options_.url);
   if (options_.client_id.empty()) options_.client_id = DefaultClientId();
+  const std::string key_file = options_.auth_key_file ? *options_.auth_key_file : ResolveAuthKeyFile("");
+  if (!key_file.empty()) {
+    std::string key;
+    if (!LoadAuthKey(key_file, &key, &error_)) return;  // never opens LCM: nothing unsigned goes out
+    auth_ = std::make_unique<ClientAuth>(std::move(key), options_.auth_window_s);
+  }
   lcm_ = std::make_unique<lcm::LCM>(options_.url);
   if (!lcm_->good()) return;
   // LCM drops messages beyond 30 queued per subscription by default; a
@@ -93,7 +114,16 @@ Client::~Client() {
   if (thread_.joinable()) thread_.join();
 }
 
-bool Client::good() const { return lcm_ && lcm_->good(); }
+bool Client::good() const { return error_.empty() && lcm_ && lcm_->good(); }
+
+std::string Client::error() const {
+  if (!error_.empty()) return error_;
+  return good() ? "" : "LCM is not usable with url " + options_.url;
+}
+
+uint64_t Client::auth_failures() const { return auth_ ? auth_->failures() : 0; }
+
+std::string Client::last_auth_failure() const { return auth_ ? auth_->last_failure() : ""; }
 
 std::string Client::Channel(const std::string& suffix) const {
   return options_.prefix + "_" + suffix;
@@ -108,8 +138,14 @@ int64_t Client::NextRequestId() {
   return ++last_request_id_;
 }
 
+bool Client::Transmit(const std::string& channel, const void* data, int size) {
+  if (!auth_) return lcm_->publish(channel, data, size) == 0;
+  const std::string signed_message = auth_->Sign(channel, data, size);
+  return lcm_->publish(channel, signed_message.data(), static_cast<unsigned>(signed_message.size())) == 0;
+}
+
 bool Client::PublishRaw(const std::string& channel, const void* data, int size) {
-  return good() && lcm_->publish(channel, data, size) == 0;
+  return good() && Transmit(channel, data, size);
 }
 
 CommandResult Client::Publish(const std::string& channel, int64_t request_id,
@@ -118,14 +154,14 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
   result.request_id = request_id;
   if (!good()) {
     result.code = ReplyCode::kTransport;
-    result.message = "LCM is not usable with url " + options_.url;
+    result.message = error();
     return result;
   }
   std::unique_lock<std::mutex> lock(mutex_);
   // Registered before publishing: the reply may arrive before publish returns.
   pending_[request_id] = std::nullopt;
   lock.unlock();
-  if (lcm_->publish(channel, data, size) != 0) {
+  if (!Transmit(channel, data, size)) {
     lock.lock();
     pending_.erase(request_id);
     result.code = ReplyCode::kTransport;
@@ -143,6 +179,10 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
     result.message = "no reply to request " + std::to_string(request_id) +
                      " on " + Channel("REPLY") + " within " +
                      std::to_string(options_.reply_timeout.count()) + " ms";
+    if (auth_ && auth_->failures() > 0) {  // the likely cause: a server with another key, or none
+      result.message += " (" + std::to_string(auth_->failures()) +
+                        " server messages failed their signature check, the last: " + auth_->last_failure() + ")";
+    }
     return result;
   }
   result.code = static_cast<ReplyCode>(reply->code);

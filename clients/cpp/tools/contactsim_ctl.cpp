@@ -7,8 +7,8 @@
 //   contactsim-ctl step 10
 //   contactsim-ctl joint add hinge 3 0 --anchor 0 0 1 --axis 0 1 0 --limits -0.5 0.5
 //
-// Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout) or LCM
-// unusable; CLI11's own codes for a bad command line.
+// Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout), LCM unusable
+// or an unusable auth key file; CLI11's own codes for a bad command line.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -131,6 +131,11 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout_s, "s to wait for a reply")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  std::string auth_key_file;
+  CLI::Option* auth_opt = app.add_option(
+      "--auth-key-file", auth_key_file,
+      "sign commands and check the server's signatures with this key "
+      "(default: $CONTACTSIM_AUTH_KEY_FILE; docs/protocol.md, Authentication)");
 
   // Each subcommand sets `run`, which needs the Client that exists only
   // after parsing (the URL and prefix are options too).
@@ -143,7 +148,9 @@ int main(int argc, char** argv) {
               std::chrono::milliseconds>(std::chrono::duration<double>(timeout_s));
           // STATUS comes at ~1 Hz, so the wait is at least a second.
           if (!client.WaitForServer(std::max(timeout, std::chrono::milliseconds(1500)))) {
-            std::cerr << "no STATUS on " << client.Channel("STATUS") << "\n";
+            std::cerr << "no STATUS on " << client.Channel("STATUS");
+            if (client.auth_failures() > 0) std::cerr << " (dropped, last: " << client.last_auth_failure() << ")";
+            std::cerr << "\n";
             return kExitNoReply;
           }
           PrintStatus(*client.LatestStatus());
@@ -282,9 +289,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   options.reply_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(
       std::chrono::duration<double>(timeout_s));
+  if (auth_opt->count() > 0) options.auth_key_file = auth_key_file;
   Client client(options);
   if (!client.good()) {
-    std::cerr << "cannot open LCM with url " << client.url() << "\n";
+    std::cerr << "contactsim-ctl: " << client.error() << "\n";
     return kExitNoReply;
   }
   return run(client);

@@ -1,16 +1,16 @@
 """contactsim-py: one command to a running contactsim server.
 
-    contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] COMMAND ...
+    contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] [--auth-key-file FILE] COMMAND ...
       status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET
       remove ID | method NAME [key=value ...] | pause | resume | step [N] | reset
 
-Exit status: 0 OK, 1 error reply, 2 no reply (timeout).
+Exit status: 0 OK, 1 error reply, 2 no reply (timeout) or an unusable auth key file.
 """
 import argparse
 import sys
 
 from .client import Client
-from .errors import CommandError, TimeoutError
+from .errors import AuthKeyError, CommandError, TimeoutError
 
 
 def _parser():
@@ -18,6 +18,9 @@ def _parser():
     p.add_argument("--lcm-url", default=None, help="LCM URL (default: $LCM_DEFAULT_URL or project default)")
     p.add_argument("--prefix", default="CONTACTSIM", help="channel prefix")
     p.add_argument("--timeout", type=float, default=2.0, help="reply timeout, s")
+    p.add_argument("--auth-key-file", default=None, metavar="FILE",
+                   help="sign commands and check the server's signatures with this key "
+                        "(default: $CONTACTSIM_AUTH_KEY_FILE; docs/protocol.md, Authentication)")
     sub = p.add_subparsers(dest="cmd", required=True)
     sub.add_parser("status", help="print the latest STATUS")
     add = sub.add_parser("add", help="add a body").add_subparsers(dest="shape", required=True)
@@ -77,7 +80,12 @@ def _run(c, a):
 
 def main(argv=None):
     a = _parser().parse_args(argv)
-    with Client(url=a.lcm_url, prefix=a.prefix, timeout=a.timeout) as c:
+    try:
+        client = Client(url=a.lcm_url, prefix=a.prefix, timeout=a.timeout, auth_key_file=a.auth_key_file)
+    except AuthKeyError as e:
+        print("contactsim-py: %s" % e, file=sys.stderr)
+        return 2
+    with client as c:
         try:
             _run(c, a)
         except TimeoutError as e:

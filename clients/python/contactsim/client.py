@@ -5,6 +5,11 @@ A background thread runs ``lcm.handle_timeout``; callbacks (``on_state``,
 ``on_contacts``, ``on_status``, ``on_reply``) run on it, so they must be quick
 and must not send commands (that would wait for a reply the same thread has to
 receive: a RuntimeError says so).
+
+With an auth key (``auth_key_file``, or $CONTACTSIM_AUTH_KEY_FILE) every
+message the client publishes is signed, and server messages whose signature
+fails are dropped and counted (``auth_failures``; docs/protocol.md,
+"Authentication").
 """
 import os
 import socket
@@ -17,6 +22,7 @@ import lcm
 import numpy as np
 
 from . import body_cmd_t, contacts_t, reply_t, scene_cmd_t, state_t, status_t
+from .auth import DEFAULT_WINDOW_S, Authenticator, unsigned_size
 from ._fields import vector as _vec
 from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
@@ -70,10 +76,16 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
     None: a unique "py-<host>-<pid>-<random>". ``timeout`` (s) bounds the
-    wait for each reply. Use as a context manager, or call ``close()``.
+    wait for each reply. ``auth_key_file``: sign commands and check the
+    server's signatures with this key (None: $CONTACTSIM_AUTH_KEY_FILE; ""
+    or unset: no signing); a bad key file raises ``contactsim.AuthKeyError``.
+    ``auth_window_s``: how far (s) a signed seq may be from this clock. Use
+    as a context manager, or call ``close()``.
     """
 
-    def __init__(self, url=None, prefix="CONTACTSIM", client_id=None, timeout=2.0):
+    def __init__(self, url=None, prefix="CONTACTSIM", client_id=None, timeout=2.0,
+                 auth_key_file=None, auth_window_s=DEFAULT_WINDOW_S):
+        self._auth = Authenticator.from_key_file(auth_key_file, auth_window_s)  # before LCM: may raise
         self.url = url or default_url()
         self.prefix = prefix
         self.client_id = client_id or "py-%s-%d-%s" % (
@@ -139,6 +151,34 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             except Exception as e:  # noqa: BLE001 - keep receiving
                 warnings.warn("contactsim: LCM receive error: %s" % e)
 
+    # ------------------------------------------------------------ signing
+    @property
+    def signs(self):
+        """True when this client signs its messages (an auth key is set)."""
+        return self._auth is not None
+
+    @property
+    def auth_failures(self):
+        """Server messages dropped because their signature, freshness or seq failed."""
+        return self._auth.failures if self._auth else 0
+
+    @property
+    def last_auth_failure(self):
+        """Why the last one was dropped ("<channel>: <why>"), "" before any."""
+        return self._auth.last_failure if self._auth else ""
+
+    def _publish(self, channel, payload):
+        if self._auth is not None:
+            payload = self._auth.sign(channel, payload)
+        self._lc.publish(channel, payload)
+
+    def _unwrap(self, channel, data):
+        """The payload of a received message (None: dropped): verified with a
+        key, else stripped of any trailer."""
+        if self._auth is not None:
+            return self._auth.unwrap(channel, data)
+        return data[:unsigned_size(data)]
+
     def _call(self, kind, obj):
         for cb in list(self._callbacks[kind]):
             try:
@@ -148,6 +188,9 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
 
     # -------------------------------------------------------------- handlers
     def _on_reply_msg(self, channel, data):
+        data = self._unwrap(channel, data)
+        if data is None:
+            return
         try:
             msg = reply_t.decode(data)
         except Exception:  # noqa: BLE001 - not ours to judge
@@ -161,7 +204,8 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         self._call("reply", msg)
 
     def _on_state_msg(self, channel, data):
-        if len(data) < 24 or data[:8] != _STATE_FP:
+        data = self._unwrap(channel, data)
+        if data is None or len(data) < 24 or data[:8] != _STATE_FP:
             return
         _, step = struct.unpack_from(">dq", data, 8)
         with self._lock:
@@ -180,6 +224,9 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._cond.notify_all()
 
     def _on_contacts_msg(self, channel, data):
+        data = self._unwrap(channel, data)
+        if data is None:
+            return
         try:
             msg = contacts_t.decode(data)
         except Exception:  # noqa: BLE001
@@ -190,6 +237,9 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._call("contacts", Contacts(msg))
 
     def _on_status_msg(self, channel, data):
+        data = self._unwrap(channel, data)
+        if data is None:
+            return
         try:
             st = Status(status_t.decode(data))
         except Exception:  # noqa: BLE001
@@ -285,9 +335,9 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             with self._lock:
                 if w in registry:
                     registry.remove(w)
-            raise TimeoutError("no %s%s within %gs on %s" % (
+            raise TimeoutError("no %s%s within %gs on %s%s" % (
                 what, " matching the predicate" if predicate else "",
-                self.timeout if timeout is None else timeout, self.url))
+                self.timeout if timeout is None else timeout, self.url, self._auth_hint()))
         if w.error is not None:
             raise w.error
         return w.result
@@ -323,17 +373,25 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._pending[rid] = slot
         msg.client_id = self.client_id
         msg.request_id = rid
-        self._lc.publish(self.channels[channel], msg.encode())
+        self._publish(self.channels[channel], msg.encode())
         timeout = self.timeout if timeout is None else timeout
         if not slot.event.wait(timeout):
             with self._lock:
                 self._pending.pop(rid, None)
             raise TimeoutError("no reply to %s request %d within %gs (is the server running on %s "
-                               "with prefix %s?)" % (channel, rid, timeout, self.url, self.prefix))
+                               "with prefix %s?)%s" % (channel, rid, timeout, self.url, self.prefix,
+                                                       self._auth_hint()))
         r = slot.reply
         if r.code != reply_t.OK:
             raise CommandError(r.message, r.code, r)
         return reply_from_msg(r)
+
+    def _auth_hint(self):
+        # the likely cause of a silence: a server with another key, or none
+        if not self.auth_failures:
+            return ""
+        return " (%d server messages failed their signature check, the last: %s)" % (
+            self.auth_failures, self.last_auth_failure)
 
     def _body(self, op, body_id=0):
         m = body_cmd_t()

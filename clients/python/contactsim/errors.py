@@ -45,3 +45,8 @@ class TimeoutError(CommandError, builtins.TimeoutError):
 
     def __init__(self, message):
         CommandError.__init__(self, message)
+
+
+class AuthKeyError(ValueError):
+    """An auth key file that cannot be read or holds too short a key
+    (docs/protocol.md, "Authentication"); the message names the file."""

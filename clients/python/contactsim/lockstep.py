@@ -67,7 +67,7 @@ class LockstepCommands:
         return m.request_id, m.encode()
 
     def _publish_input(self, payload):
-        self._lc.publish(self.channels["INPUT"], payload)
+        self._publish(self.channels["INPUT"], payload)
 
 
 class Controller:

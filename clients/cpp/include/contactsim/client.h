@@ -10,6 +10,10 @@
 // Callbacks run on that thread, so they must return quickly and must not
 // call the blocking commands of the same Client (whose replies that very
 // thread would have to deliver).
+//
+// With an auth key (ClientOptions::auth_key_file) every message this client
+// publishes is signed, and REPLY, STATE, CONTACTS and STATUS messages whose
+// signature fails are dropped and counted (docs/protocol.md, "Authentication").
 #pragma once
 
 #include <array>
@@ -35,6 +39,7 @@
 #include <contactsim/reply_t.hpp>
 #include <contactsim/result.h>
 #include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/signature.h>
 #include <contactsim/state_t.hpp>
 #include <contactsim/status_t.hpp>
 
@@ -58,7 +63,14 @@ struct ClientOptions {
   std::string prefix = "CONTACTSIM";  // channel prefix <P>
   std::string client_id;              // "" -> "cpp-<pid>" (unique per Client)
   std::chrono::milliseconds reply_timeout{2000};
+  // Key file for signed messages; nullopt -> $CONTACTSIM_AUTH_KEY_FILE, and
+  // "" (or the variable unset) -> no signing. A key that cannot be loaded
+  // leaves the client !good() with error() saying why.
+  std::optional<std::string> auth_key_file;
+  double auth_window_s = kDefaultAuthWindowSeconds;  // s, |seq - now| accepted
 };
+
+class ClientAuth;
 
 enum class Mode : int8_t { kRealtime = 1, kFreeRun = 2, kLockstep = 3 };
 
@@ -114,10 +126,19 @@ class Client {
   // False when LCM could not be opened (bad URL, no multicast route); every
   // command then returns ReplyCode::kTransport.
   bool good() const;
+  // Why good() is false ("" when it is true).
+  std::string error() const;
   const std::string& client_id() const { return options_.client_id; }
   const std::string& url() const { return options_.url; }
   const std::string& prefix() const { return options_.prefix; }
   std::string Channel(const std::string& suffix) const;  // "<P>_<suffix>"
+
+  // --- signed messages (with an auth key) ---
+  bool signs() const { return auth_ != nullptr; }
+  // Server messages dropped because their signature, freshness or seq
+  // failed, and the reason of the last one ("<channel>: <why>").
+  uint64_t auth_failures() const;
+  std::string last_auth_failure() const;
 
   // --- scene commands ---
   CommandResult Reset();
@@ -237,6 +258,11 @@ class Client {
   scene_cmd_t NewSceneCommand(int8_t op) const;
   int64_t NextRequestId();
   bool PublishRaw(const std::string& channel, const void* data, int size);  // no reply awaited
+  bool Transmit(const std::string& channel, const void* data, int size);    // signs with a key
+  // Decodes a received message after checking its signature (with a key)
+  // or stripping a trailer (without); false drops it.
+  template <typename Msg>
+  bool Unwrap(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Msg* msg);
 
   void Run();
   void HandleReply(const lcm::ReceiveBuffer*, const std::string&,
@@ -247,12 +273,14 @@ class Client {
                       const contacts_t* contacts);
   void HandleStatus(const lcm::ReceiveBuffer*, const std::string&,
                     const status_t* status);
-  static void OnReply(const lcm::ReceiveBuffer*, const std::string&, const reply_t*, Client*);
-  static void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t*, Client*);
-  static void OnContacts(const lcm::ReceiveBuffer*, const std::string&, const contacts_t*, Client*);
-  static void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const status_t*, Client*);
+  static void OnReply(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  static void OnState(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  static void OnContacts(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  static void OnStatus(const lcm::ReceiveBuffer*, const std::string&, Client*);
 
   ClientOptions options_;
+  std::string error_;               // why the client is not usable (an auth key problem)
+  std::unique_ptr<ClientAuth> auth_;  // null: no signing
   std::unique_ptr<lcm::LCM> lcm_;
 
   mutable std::mutex mutex_;  // guards everything below

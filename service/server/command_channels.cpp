@@ -1,0 +1,88 @@
+#include "service/server/command_channels.h"
+
+#include <contactsim/body_cmd_t.hpp>
+#include <contactsim/input_t.hpp>
+#include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/wire_check.hpp>
+
+#include <exception>
+#include <new>
+
+#include "service/server/command_decoder.h"
+
+namespace contactsim {
+namespace {
+
+Status CheckBody(const body_cmd_t& m, const DecodeContext& context, Command* cmd) {
+  if (m.num_points > context.limits.max_convex_points) {
+    return Status::ResourceExhausted("num_points " + std::to_string(m.num_points) + " exceeds max_convex_points = " +
+                                     std::to_string(context.limits.max_convex_points));
+  }
+  return DecodeBodyCommand(m, context.default_material, cmd);
+}
+
+Status CheckScene(const scene_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeSceneCommand(m, cmd); }
+Status CheckJoint(const joint_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeJointCommand(m, cmd); }
+Status CheckInput(const input_t& m, const DecodeContext&, Command* cmd) { return DecodeInput(m, cmd); }
+
+// The total decoder of one channel: size limit, bounds check of the
+// encoding, the generated decode, then the command's own checks, with
+// anything thrown on the way (an allocation failure) turned into a status.
+template <typename Msg, int DecodeLimits::*kMaxBytes,
+          Status (*kCheck)(const Msg&, const DecodeContext&, Command*)>
+Status Decode(const void* data, int size, const DecodeContext& context, Command* cmd) {
+  const std::string what = std::string(Msg::getTypeName()) + " payload of " + std::to_string(size) + " bytes";
+  if (size > context.limits.*kMaxBytes) {
+    return Status::ResourceExhausted(what + " exceeds the channel's limit of " +
+                                     std::to_string(context.limits.*kMaxBytes) + " bytes");
+  }
+  std::string why;
+  if (data == nullptr || !wire::Check<Msg>(data, size, &why)) return Status::DecodeError("undecodable " + what + ": " + why);
+  try {
+    Msg msg;
+    if (msg.decode(data, 0, size) != size) return Status::DecodeError("undecodable " + what);
+    cmd->client_id = msg.client_id;
+    cmd->request_id = msg.request_id;
+    Status st = context.admit ? context.admit(msg.client_id) : Status::Ok();
+    if (st.ok()) st = kCheck(msg, context, cmd);
+    if (st.ok()) cmd->payload.assign(static_cast<const char*>(data), size);
+    return st;
+  } catch (const std::bad_alloc&) {
+    return Status::ResourceExhausted(what + ": out of memory while decoding");
+  } catch (const std::exception& e) {
+    return Status::DecodeError(what + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+const std::vector<CommandChannel>& CommandChannels() {
+  static const std::vector<CommandChannel> kChannels = {
+      {"BODY_CMD", "body_cmd_t", RecordKind::kBodyCommand, true,
+       &Decode<body_cmd_t, &DecodeLimits::max_body_cmd_bytes, CheckBody>},
+      {"SCENE_CMD", "scene_cmd_t", RecordKind::kSceneCommand, true,
+       &Decode<scene_cmd_t, &DecodeLimits::max_scene_cmd_bytes, CheckScene>},
+      {"JOINT_CMD", "joint_cmd_t", RecordKind::kJointCommand, true,
+       &Decode<joint_cmd_t, &DecodeLimits::max_joint_cmd_bytes, CheckJoint>},
+      {"INPUT", "input_t", RecordKind::kInput, false,
+       &Decode<input_t, &DecodeLimits::max_input_bytes, CheckInput>},
+  };
+  return kChannels;
+}
+
+const CommandChannel* ChannelOfRecord(RecordKind kind) {
+  for (const CommandChannel& c : CommandChannels()) {
+    if (c.record == kind) return &c;
+  }
+  return nullptr;
+}
+
+const CommandChannel* ChannelOfSuffix(const std::string& suffix) {
+  for (const CommandChannel& c : CommandChannels()) {
+    if (suffix == c.suffix) return &c;
+  }
+  return nullptr;
+}
+
+}  // namespace contactsim

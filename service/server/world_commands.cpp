@@ -1,0 +1,76 @@
+// SimServer's world commands (SCENE_CMD but snapshots and controllers):
+// reset, scene load, gravity, time step, contact method, pause / resume /
+// step and run mode. Simulation thread.
+#include <spdlog/spdlog.h>
+
+#include "service/server/sim_server.h"
+
+namespace contactsim {
+Outcome SimServer::ApplyWorldCommand(Command& cmd) {
+  using K = Command::Kind;
+  switch (cmd.kind) {
+    case K::kReset:
+      CancelStepCommands("reset");
+      world_.Clear();
+      detector_.Reset();
+      method_->ResetCaches();
+      contacts_.clear();
+      UpdateRates();
+      StartTimeline();
+      return Outcome::Done("world reset", true);
+    case K::kLoadScene: {
+      // built into a fresh world first, so that a failure leaves the old one
+      World world;
+      Status st = BuildWorld(*cmd.scene, &world);
+      if (!st.ok()) return Outcome::Failed(st);
+      CancelStepCommands("scene loaded");
+      world_ = std::move(world);
+      detector_.Reset();
+      if (cmd.method) method_ = cmd.method;
+      method_->ResetCaches();
+      contacts_.clear();
+      UpdateRates();
+      StartTimeline();
+      return Outcome::Done("loaded " + cmd.scene_path + " (" + std::to_string(world_.bodies().size()) + " bodies)", true);
+    }
+    case K::kSetGravity:
+      world_.gravity = cmd.gravity;
+      return Outcome::Done("gravity set", true);
+    case K::kSetTimestep:
+      world_.dt = cmd.dt;
+      UpdateRates();
+      return Outcome::Done("time step set", true);
+    case K::kSetMethod: {
+      // a switch keeps every body's state and drops only the old method's caches
+      method_ = cmd.method;
+      std::string text = std::string("contact method ") + method_->Name();
+      for (const auto& [k, v] : method_->Params()) text += " " + k + "=" + v;
+      spdlog::info("{}", text);
+      return Outcome::Done(text, false);
+    }
+    case K::kPause:
+      paused_ = true;
+      return Outcome::Done("paused", false);
+    case K::kResume:
+      paused_ = false;
+      reanchor_ = true;
+      return Outcome::Done("running", false);
+    case K::kStep: {
+      paused_ = true;
+      step_budget_ += cmd.steps;
+      pending_steps_.push_back({cmd.client_id, cmd.request_id, world_.step + step_budget_});
+      Outcome o;
+      o.deferred = true;  // FinishStepCommands answers at the last step
+      return o;
+    }
+    case K::kSetMode:
+      mode_ = cmd.mode;
+      real_time_factor_ = cmd.real_time_factor;
+      reanchor_ = true;
+      return Outcome::Done(std::string("mode ") + NameOf(mode_), false);
+    default:
+      return Outcome::Failed(Status::Internal("not a world command"));
+  }
+}
+
+}  // namespace contactsim
