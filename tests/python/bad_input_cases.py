@@ -37,7 +37,9 @@ joints { kind: "distance" body_a: "bob" anchor { x: 2 y: 2 z: 2 } }
 IDS = dict(ground=1, ball=2, crate=3, slider=4, pillar=5, door=6, bob=7)
 JOINTS = (1, 2)
 
-Case = namedtuple("Case", "id channel op send code words")
+Case = namedtuple("Case", "id channel op send code words gap", defaults=(None,))
+Case.__doc__ = """One bad input. ``gap``: why the server's answer falls short today
+(the test expects it to, strictly, so that a fix is noticed); None for most."""
 
 
 # ------------------------------------------------------------ senders
@@ -302,8 +304,9 @@ def cases(tmp):
         Case("add_kinematic_plane", "BODY_CMD", "ADD", bodycmd(lambda: add(B.PLANE, kinematic=True, fixed=False)), IA,
              ["plane", "kinematic"]),
         Case("add_unknown_shape", "BODY_CMD", "ADD", bodycmd(lambda: add(9)), IA, ["shape", "9"]),
-        Case("add_oversized_name", "BODY_CMD", "ADD", bodycmd(lambda: add(B.SPHERE, name="n" * 200000)), RE,
-             ["max_body_cmd_bytes"]),
+        Case("add_oversized_name", "BODY_CMD", "ADD",
+             rawcmd("BODY_CMD", lambda c: _with_client_id(add(B.SPHERE, name="n" * 200000), c.client_id)), RE,
+             ["body_cmd_t", "131072"]),
         # ---- BODY_CMD, the other ops
         Case("body_unknown_op", "BODY_CMD", "op 42", bodycmd(lambda: body(42, ball)), IA, ["op", "42"]),
         Case("remove_unknown_body", "BODY_CMD", "REMOVE", bodycmd(lambda: body(B.REMOVE, MISSING)), NF, [str(MISSING)]),
@@ -370,7 +373,7 @@ def cases(tmp):
         Case("load_scene_missing_file", "SCENE_CMD", "LOAD_SCENE",
              scenecmd(lambda: scene(S.LOAD_SCENE, path="/nonexistent/scene.pbtxt")), None, ["/nonexistent/scene.pbtxt"]),
         Case("load_scene_empty_path", "SCENE_CMD", "LOAD_SCENE", scenecmd(lambda: scene(S.LOAD_SCENE, path="")), None,
-             ["path"]),
+             ["path"], gap='the reply is ": cannot open file", naming neither the field nor the (empty) value'),
         Case("load_scene_syntax_error", "SCENE_CMD", "LOAD_SCENE", scenecmd(lambda: scene(S.LOAD_SCENE, path=syntax)),
              IA, [syntax]),
         Case("load_scene_negative_radius", "SCENE_CMD", "LOAD_SCENE",
@@ -437,7 +440,8 @@ def cases(tmp):
         Case("release_unregistered", "SCENE_CMD", "RELEASE_CONTROLLER", scenecmd(lambda: scene(S.RELEASE_CONTROLLER)), None,
              ["not a registered controller"]),
         Case("scene_oversized_path", "SCENE_CMD", "LOAD_SCENE",
-             scenecmd(lambda: scene(S.LOAD_SCENE, path="/tmp/" + "p" * 100000)), RE, ["max_scene_cmd_bytes"]),
+             rawcmd("SCENE_CMD", lambda c: _with_client_id(scene(S.LOAD_SCENE, path="/tmp/" + "p" * 100000), c.client_id)),
+             RE, ["scene_cmd_t", "65536"]),
         # ---- JOINT_CMD
         Case("joint_unknown_op", "JOINT_CMD", "op 7", jointcmd(lambda: joint(7)), IA, ["op", "7"]),
         Case("joint_unknown_kind", "JOINT_CMD", "ADD", jointcmd(lambda: joint(J.ADD, kind=9, body_a=ball)), IA,
@@ -479,7 +483,7 @@ def cases(tmp):
              [str(MISSING)]),
         Case("joint_oversized_client_id", "JOINT_CMD", "REMOVE",
              rawcmd("JOINT_CMD", lambda c: _with_client_id(joint(J.REMOVE, joint_id=MISSING), "c" * 8000)), RE,
-             ["max_joint_cmd_bytes"]),
+             ["joint_cmd_t", "4096"]),
         # ---- INPUT
         Case("input_unregistered", "INPUT", "input", inputcmd(lambda: inp(1, [ball])), FP, ["not a registered controller"]),
         Case("input_count_too_large", "INPUT", "input", rawcmd("INPUT", recount(lambda: inp(1, [ball, crate]), "num_bodies", 3)),

@@ -42,7 +42,8 @@ def catalogue(files):
     return bad.cases(files)
 
 
-CASE_IDS = [c.id for c in bad.cases("/unused")]
+CASES = bad.cases("/unused")
+CASE_IDS = [c.id for c in CASES]
 
 
 @pytest.fixture(scope="module")
@@ -70,7 +71,9 @@ def test_the_catalogue_covers_every_channel_and_op(catalogue):
                                            reply_t.DECODE_ERROR, reply_t.RESOURCE_EXHAUSTED}
 
 
-@pytest.mark.parametrize("index", range(len(CASE_IDS)), ids=CASE_IDS)
+@pytest.mark.parametrize("index", [
+    pytest.param(i, marks=pytest.mark.xfail(strict=True, reason=c.gap)) if c.gap else i for i, c in enumerate(CASES)],
+    ids=CASE_IDS)
 def test_bad_input_is_refused_with_a_message_naming_it_and_changes_nothing(world, catalogue, index):
     case = catalogue[index]
     client = world.client
