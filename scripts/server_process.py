@@ -8,7 +8,8 @@ flood.py, bad_input_table.py), outside pytest.
 Like tests/python/conftest.py it starts the real binary on config/server.pbtxt
 (or another config), free_run and paused, on a multicast port and channel
 prefix of its own on loopback (ttl=0), waits for the first STATUS and
-connects a contactsim.Client; on exit it sends SIGINT and reports the exit
+connects a contactsim.Client. ``config_overrides`` ({field: text value})
+writes a copy of config/server.pbtxt with those fields set. On exit it sends SIGINT and reports the exit
 status (``returncode``), SIGKILL after 10 s.
 """
 import os
@@ -56,7 +57,7 @@ def rss_kib(pid):
 
 class ServerProcess:
     def __init__(self, build_dir=None, scene_text="gravity { z: -9.81 }\n", config=None, args=(), tag="REL",
-                 workdir=None, timeout=5.0, url=None, prefix=None):
+                 workdir=None, timeout=5.0, url=None, prefix=None, config_overrides=None):
         self.binary = server_binary(build_dir)
         if not self.binary.exists():
             raise FileNotFoundError("%s is not built (make, or --build-dir)" % self.binary)
@@ -70,6 +71,12 @@ class ServerProcess:
         self.scene = self.workdir / "scene.pbtxt"
         self.scene.write_text(scene_text)
         self.config = Path(config or CONFIG)
+        if config_overrides:
+            # the default config with some fields replaced
+            self.config = self.workdir / "server.pbtxt"
+            drop = ("scene",) + tuple(config_overrides)
+            lines = [ln for ln in CONFIG.read_text().splitlines() if ln.split(":")[0].strip() not in drop]
+            self.config.write_text("\n".join(lines + ["%s: %s" % kv for kv in config_overrides.items()]) + "\n")
         self.log_path = self.workdir / "server.log"
         self.cmd = [str(self.binary), "--config", str(self.config), "--scene", str(self.scene),
                     "--lcm-url", self.url, "--mode", "free_run", "--paused", "--no-live-line",

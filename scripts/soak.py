@@ -68,6 +68,11 @@ joints { kind: "hinge" body_a: "door" anchor { y: 1 z: 0.45 } axis { z: 1 } limi
 joints { kind: "distance" body_a: "bob" anchor { x: -1 y: -1 z: 1.5 } }
 """
 SLOTS = ("a", "b", "c")
+# STATE and CONTACTS at rates of simulated time that lcm-logger keeps up with
+# while the server runs free at thousands of steps a second: at the default
+# 60 Hz it gets a STATE every 4 steps, and a recording that lost one command
+# or reply in a burst cannot be replayed (see complete_recording).
+CONFIG_OVERRIDES = {"state_rate_hz": "10", "contacts_rate_hz": "1"}
 NAN, INF = math.nan, math.inf
 
 
@@ -209,7 +214,7 @@ class BodyWorker(Worker):
                 friction=rng.uniform(0, 1.5)))
         elif op == 8:
             if len(self.soak.joints) >= self.soak.max_joints:
-                jid = self.soak.joints.pop(0)
+                jid = self.soak.joints.pop(0) if self.soak.joints else rng.randrange(1, 60)
                 self.send("remove_joint", lambda: c.remove_joint(jid))
             elif len(dynamic) >= 2:
                 a, b = rng.sample(dynamic, 2)
@@ -290,10 +295,11 @@ class WorldWorker(Worker):
             self.send("resume", c.resume)
 
     def finish(self):
-        try:
-            self.client.set_mode("free_run")
-        except contactsim.CommandError:
-            pass
+        with self.soak.session:  # not in the middle of a controller's session
+            try:
+                self.client.set_mode("free_run")
+            except contactsim.CommandError:
+                pass
 
 
 def _scene_op(op, **fields):
@@ -354,8 +360,17 @@ class GarbageWorker(Worker):
         self.lc = lcm.LCM(soak.url)
 
     def one(self):
-        kind = self.rng.choice(lcm_wire.Garbage.KINDS)
-        channel, payload, _ = self.garbage.one(kind)
+        # only payloads no decoder reads as a command: a mutant that still
+        # decodes is a command from a sender id that may hold a NUL, whose
+        # reply (under the id cut at the NUL) neither lcm-logger's reader nor
+        # a replay can pair with it; the workers send well-formed invalid
+        # commands, and test_garbage.py the rest
+        while True:
+            channel, payload, _ = self.garbage.one(self.rng.choice(lcm_wire.Garbage.KINDS))
+            try:
+                lcm_wire.lenient_decode(lcm_wire.CHANNEL_TYPES[channel], payload)
+            except lcm_wire.Malformed:
+                break
         if len(payload) > 60000:
             payload = payload[:60000]
         self.lc.publish("%s_%s" % (self.soak.prefix, channel), payload)
@@ -405,6 +420,30 @@ def registered_methods(client):
     raise RuntimeError("the server accepted an unknown contact method")
 
 
+def complete_recording(log_path, prefix, clients):
+    """(commands logged without their reply, replies logged without their
+    command), counting only the well-behaved clients' (garbage has no
+    reliable sender): both 0 when lcm-logger lost no command or reply on
+    UDP, which a replay needs. Lockstep inputs count when refused (a good
+    one gets no reply)."""
+    commands, replies = set(), set()
+    for e in lcm.EventLog(str(log_path), "r"):
+        ch = e.channel[len(prefix) + 1:]
+        if ch in ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT"):
+            try:
+                m = getattr(contactsim, ch.lower() + "_t").decode(e.data)
+            except Exception:  # noqa: BLE001 - garbage
+                continue
+            if m.client_id in clients:
+                commands.add((ch == "INPUT", m.client_id, m.request_id))
+        elif ch == "REPLY":
+            r = contactsim.reply_t.decode(e.data)
+            if r.client_id in clients:
+                replies.add((r.client_id, r.request_id))
+    sent = {(c, r) for _, c, r in commands}
+    return len({(c, r) for is_input, c, r in commands if not is_input} - replies), len(replies - sent)
+
+
 def check_states(log_path, prefix):
     """(STATEs in the recording, those with a NaN or infinity, first bad step)."""
     channel = prefix + "_STATE"
@@ -446,7 +485,7 @@ class Soak:
         log_path = work / "soak.lcmlog"
         self.scene_path = str(work / "scene.pbtxt")
         srv = ServerProcess(a.build_dir, scene_text=SCENE, args=["--journal", str(journal)], tag="SOAK",
-                            workdir=work, timeout=a.reply_timeout)
+                            workdir=work, timeout=a.reply_timeout, config_overrides=CONFIG_OVERRIDES)
         self.url, self.prefix = srv.url, srv.prefix
         summary = dict(steps_target=a.steps, seed=a.seed, workdir=str(work))
         rss = []  # (steps, KiB)
@@ -508,6 +547,9 @@ class Soak:
             summary["rss_growth_after_warmup"] = round((summary["rss_end_kib"] - warm[0]) / warm[0], 4)
         n, bad, first = check_states(log_path, self.prefix)
         summary.update(states_recorded=n, states_with_nan=bad, first_nan_step=first)
+        unanswered, orphans = complete_recording(log_path, self.prefix,
+                                                 {w.client.client_id for w in workers} | {srv.client.client_id})
+        summary.update(recording_commands_without_reply=unanswered, recording_replies_without_command=orphans)
         out = subprocess.run([str(srv.binary), "--config", str(srv.config), "--scene", str(srv.scene),
                               "--prefix", self.prefix, "--replay", str(log_path)],
                              capture_output=True, text=True, timeout=a.replay_timeout)
@@ -519,6 +561,7 @@ class Soak:
             "no worker failed": not summary["worker_errors"],
             "no NaN or infinity in any STATE": n > 0 and bad == 0,
             "RSS growth after warm-up < 5%": bool(warm) and summary["rss_growth_after_warmup"] < 0.05,
+            "recording complete (no command or reply lost by lcm-logger)": unanswered == 0 and orphans == 0,
             "replay identical": out.returncode == 0,
         }
         summary["checks"] = checks
