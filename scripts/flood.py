@@ -47,22 +47,22 @@ def adder(url, prefix, count, quiet):
     lc = lcm.LCM(url)
     codes = collections.Counter()
     got = set()
+    last = [time.monotonic()]  # when the last reply to A came
 
     def on_reply(channel, data):
         r = contactsim.reply_t.decode(data)
         if r.client_id == ADDER_ID:
             codes[r.code] += 1
             got.add(r.request_id)
+            last[0] = time.monotonic()
 
     sub = lc.subscribe(prefix + "_REPLY", on_reply)
     sub.set_queue_capacity(1000000)
     stop = threading.Event()
-    last = [time.monotonic()]
 
     def receive():
         while not stop.is_set():
-            if lc.handle_timeout(50) > 0:
-                last[0] = time.monotonic()
+            lc.handle_timeout(50)
 
     rx = threading.Thread(target=receive, daemon=True)
     rx.start()

@@ -213,7 +213,15 @@ class BodyWorker(Worker):
                 target, restitution=rng.uniform(0, 1) if valid else rng.choice([-0.5, 1.5, NAN]),
                 friction=rng.uniform(0, 1.5)))
         elif op == 8:
-            if len(self.soak.joints) >= self.soak.max_joints:
+            if self.soak.max_joints == 0 and dynamic:
+                # joints the server refuses (added joints can blow the physics up: --max-joints)
+                a = rng.choice(dynamic)
+                kind, b, extra = rng.choice([("ball", 999999, {}), ("ball", a, {}), ("hinge", None, {}),
+                                             ("distance", None, dict(length=-1.0)),
+                                             ("ball", None, dict(axis=(0, 0, 1)))])
+                anchor = self.bad_vec() if rng.random() < 0.3 else (0.0, 0.0, 1.0)
+                self.send("add_joint", lambda: c.add_joint(kind, a, b, anchor=anchor, **extra))
+            elif len(self.soak.joints) >= self.soak.max_joints:
                 jid = self.soak.joints.pop(0) if self.soak.joints else rng.randrange(1, 60)
                 self.send("remove_joint", lambda: c.remove_joint(jid))
             elif len(dynamic) >= 2:
@@ -599,7 +607,9 @@ def main(argv=None):
     p.add_argument("--build-dir", default=None, help="build folder (default $CONTACTSIM_BUILD_DIR or build)")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--max-bodies", type=int, default=24, help="bodies the workers add up to")
-    p.add_argument("--max-joints", type=int, default=3, help="joints the workers keep at most")
+    p.add_argument("--max-joints", type=int, default=0,
+                   help="joints the workers add and keep at most (default 0: only joints the server refuses, and "
+                        "removals; with joints added among random bodies the physics can blow up to NaN)")
     p.add_argument("--warmup", type=float, default=0.2, help="fraction of the steps before the RSS reference")
     p.add_argument("--wild", action="store_true",
                    help="poses anywhere (overlapping bodies) and joints without limit: valid, but the physics may "

@@ -244,7 +244,8 @@ ball, crate, slider, pillar, ground, door, bob = (IDS[k] for k in ("ball", "crat
 
 def cases(tmp):
     """Every case; ``tmp`` is the folder of write_files (scene and snapshot files some cases name)."""
-    bad_scene, syntax, not_snapshot = (str(Path(tmp) / n) for n in FILES)
+    tmp = Path(tmp)
+    bad_scene, syntax, not_snapshot = (str(tmp / n) for n in FILES)
     c = [
         # ---- BODY_CMD ADD: every field group non-finite or out of range
         Case("add_sphere_nan_radius", "BODY_CMD", "ADD", bodycmd(lambda: add(B.SPHERE, radius=NAN)), IA, ["radius", "nan"]),
