@@ -12,7 +12,7 @@ export CCACHE_BASEDIR := $(CURDIR)
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run test test-cpp test-py test-asan fuzz bench bench-micro bench-lockstep clean
+.PHONY: all deps build run test test-cpp test-py test-asan fuzz bench bench-micro bench-lockstep soak flood clean
 
 all: build
 

@@ -553,6 +553,8 @@ class Soak:
             summary.update(rss_start_kib=rss[0][1], rss_after_warmup_kib=warm[0], rss_end_kib=end_rss or warm[-1],
                            rss_max_kib=max(k for _, k in rss if k is not None))
             summary["rss_growth_after_warmup"] = round((summary["rss_end_kib"] - warm[0]) / warm[0], 4)
+            pts = [(st, k) for st, k in rss if k is not None]
+            summary["rss_series"] = pts[::max(1, len(pts) // 20)] + pts[-1:]  # (steps, KiB), for a trend
         n, bad, first = check_states(log_path, self.prefix)
         summary.update(states_recorded=n, states_with_nan=bad, first_nan_step=first)
         unanswered, orphans = complete_recording(log_path, self.prefix,
