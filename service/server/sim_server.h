@@ -23,6 +23,7 @@
 #include "service/physics/world.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/command.h"
+#include "service/server/command_auth.h"
 #include "service/server/command_channels.h"
 #include "service/server/journal.h"
 #include "service/server/rate_limiter.h"
@@ -46,6 +47,8 @@ struct ServerOptions {
   double max_commands_per_second = 5000.0;  // per client id (token bucket); 0 = no limit
   double command_burst = 10000.0;       // commands a client may send at once
   int max_queued_commands = 20000;      // waiting in the inbox, all clients together
+  std::string auth_key;                 // "" = commands need no signature (docs/protocol.md)
+  double auth_window_s = 30.0;          // freshness of a signed command
   bool live_line = false;               // progress line on stderr
   std::string journal_dir;              // "" = no journal on disk (REWIND still works)
   FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
@@ -113,7 +116,7 @@ class SimServer {
   bool paused() const { return paused_; }
 
  private:
-  Status Enqueue(Command cmd);
+  Status Enqueue(Command& cmd);
   Status AdmitClient(const CommandChannel& channel, const std::string& client_id);
   // journal, snapshots, rewind and recovery (snapshot_commands.cpp)
   Status Recover();
@@ -168,6 +171,7 @@ class SimServer {
   // LCM thread only
   DecodeContext decode_context_;
   RateLimiter rate_limiter_;
+  std::unique_ptr<CommandAuthenticator> auth_;  // null without a key
 
   // simulation thread only
   World world_;
