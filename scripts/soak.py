@@ -429,12 +429,12 @@ def registered_methods(client):
 
 
 def complete_recording(log_path, prefix, clients):
-    """(commands logged without their reply, replies logged without their
-    command), counting only the well-behaved clients' (garbage has no
-    reliable sender): both 0 when lcm-logger lost no command or reply on
-    UDP, which a replay needs. Lockstep inputs count when refused (a good
-    one gets no reply)."""
-    commands, replies = set(), set()
+    """(commands logged without their reply, or steps whose STATE shows
+    applied lockstep inputs without an INPUT in the log; replies logged
+    without their command), counting only the well-behaved clients' (garbage
+    has no reliable sender): both 0 when lcm-logger lost no command, input
+    or reply on UDP, which a replay needs. A good input gets no reply."""
+    commands, replies, input_steps, digest_steps = set(), set(), set(), set()
     for e in lcm.EventLog(str(log_path), "r"):
         ch = e.channel[len(prefix) + 1:]
         if ch in ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT"):
@@ -444,12 +444,19 @@ def complete_recording(log_path, prefix, clients):
                 continue
             if m.client_id in clients:
                 commands.add((ch == "INPUT", m.client_id, m.request_id))
+                if ch == "INPUT":
+                    input_steps.add(m.step)
         elif ch == "REPLY":
             r = contactsim.reply_t.decode(e.data)
             if r.client_id in clients:
                 replies.add((r.client_id, r.request_id))
+        elif ch == "STATE":
+            m = contactsim.state_t.decode(e.data)
+            if m.input_digest != 0:  # inputs were applied in this step: one must be in the log
+                digest_steps.add(m.step)
     sent = {(c, r) for _, c, r in commands}
-    return len({(c, r) for is_input, c, r in commands if not is_input} - replies), len(replies - sent)
+    unanswered = len({(c, r) for is_input, c, r in commands if not is_input} - replies)
+    return unanswered + len(digest_steps - input_steps), len(replies - sent)
 
 
 def check_states(log_path, prefix):
