@@ -619,7 +619,9 @@ def main(argv=None):
     p.add_argument("--max-joints", type=int, default=0,
                    help="joints the workers add and keep at most (default 0: only joints the server refuses, and "
                         "removals; with joints added among random bodies the physics can blow up to NaN)")
-    p.add_argument("--warmup", type=float, default=0.2, help="fraction of the steps before the RSS reference")
+    p.add_argument("--warmup", type=float, default=0.5,
+                   help="fraction of the steps before the RSS reference (default 0.5: RSS rises for the first tens of "
+                        "thousands of steps, then stays flat)")
     p.add_argument("--wild", action="store_true",
                    help="poses anywhere (overlapping bodies) and joints without limit: valid, but the physics may "
                         "blow up, so expect NaN")
