@@ -54,7 +54,7 @@ from contactsim import reply_t  # noqa: E402
 
 import lcm_wire  # noqa: E402
 from lcm_recorder import LcmRecorder  # noqa: E402
-from server_process import ServerProcess, rss_kib  # noqa: E402
+from server_process import ServerProcess  # noqa: E402
 
 SCENE = """
 gravity { z: -9.81 }
