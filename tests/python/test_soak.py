@@ -2,8 +2,8 @@
 valid and invalid commands from several clients on every channel, then no
 crash and a clean exit, no NaN or infinity in any recorded STATE, and
 `contactsim-server --replay` of the recording identical. A recording that
-lost a command or reply on UDP cannot be replayed, so it is made again (up
-to three times). RSS is printed, not asserted: a run of seconds is too short
+lost a command, input or reply on UDP may not replay, so a run whose replay
+diverged on an incomplete recording is made again (up to three times). RSS is printed, not asserted: a run of seconds is too short
 for a growth figure; `make soak` checks it over 100,000 steps."""
 import json
 import os
@@ -29,8 +29,8 @@ def test_short_soak_keeps_the_server_healthy_and_replayable(tmp_path):
         assert out.stdout.strip(), out.stderr[-3000:]
         s = json.loads(out.stdout.strip().splitlines()[-1])
         checks = s["checks"]
-        if checks["recording complete (no command or reply lost by lcm-logger)"]:
-            break
+        if checks["replay identical"] or s["recording_complete"]:
+            break  # else the divergence may be lcm-logger's loss, not the server's
     print("\nsoak: %d steps, %d commands (%s), %d garbage; RSS %s -> %s KiB; replay: %s" % (
         s["steps"], s["commands_sent"], s["replies_by_code"], s["garbage_sent"], s.get("rss_after_warmup_kib"),
         s.get("rss_end_kib"), s["replay"]))
