@@ -3,6 +3,7 @@
 #include <contactsim/status_t.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <thread>
@@ -153,13 +154,21 @@ void SimServer::UpdateRates() {
 
 void SimServer::CancelStepCommands(const std::string& why) {
   for (const PendingStep& p : pending_steps_) {
-    SendReply(p.client_id, p.request_id, Status::FailedPrecondition("step interrupted: " + why), "");
+    const int64_t done = std::clamp<int64_t>(p.steps - (p.target_step - world_.step), 0, p.steps);
+    SendReply(p.client_id, p.request_id,
+              Status::FailedPrecondition("step interrupted: " + why + " after " + std::to_string(done) + " of " +
+                                         std::to_string(p.steps) + " steps (at step " +
+                                         std::to_string(world_.step) + ")"),
+              "");
   }
   pending_steps_.clear();
   step_budget_ = 0;
 }
 
-void SimServer::SimulateStep() { last_stats_ = method_->Step(world_, detector_, &contacts_); }
+void SimServer::SimulateStep() {
+  last_stats_ = method_->Step(world_, detector_, &contacts_);
+  if (rewinding_) ReportRewindProgress();
+}
 
 void SimServer::StepWorld() {
   ApplyInputs();
@@ -170,6 +179,7 @@ void SimServer::StepWorld() {
   if (world_.step % state_every_ == 0 || (mode_ == RunMode::kLockstep && lockstep_.active())) PublishState();
   if (world_.step % contacts_every_ == 0) PublishContacts();
   FinishStepCommands();
+  ReportStepProgress(false);
 }
 
 // Replies to the STEP commands whose last step is done, after their STATE.

@@ -124,7 +124,7 @@ class SimServer {
   void StartTimeline();
   void TakePeriodicSnapshot();
   Outcome ApplySnapshotCommand(Command& cmd);
-  Status Rewind(int64_t step);
+  Status Rewind(int64_t step, const Command* cmd = nullptr);
   Status ReplayRecord(const JournalRecord& record);
   Status JournalCommand(RecordKind kind, const std::string& payload);
   void SimulateStep();
@@ -152,6 +152,12 @@ class SimServer {
   void StepWorld();
   void FinishStepCommands();
   void CancelStepCommands(const std::string& why);
+  // progress of long commands on PROGRESS (progress_t), at most every
+  // kProgressPeriod unless `now` is set (progress.cpp)
+  void ReportStepProgress(bool now);
+  void ReportRewindProgress();
+  void PublishProgress(const std::string& client_id, int64_t request_id, const char* command, int64_t done,
+                       int64_t total, std::chrono::steady_clock::time_point since);
   void UpdateRates();
   void PublishState();
   void PublishContacts();
@@ -189,8 +195,18 @@ class SimServer {
     std::string client_id;
     int64_t request_id;
     int64_t target_step;
+    int64_t steps;  // asked for: the first is target_step - steps + 1
+    std::chrono::steady_clock::time_point accepted;
   };
   std::deque<PendingStep> pending_steps_;
+  std::chrono::steady_clock::time_point last_progress_{};
+  struct Rewinding {  // a REWIND re-simulating, for its progress reports
+    std::string client_id;
+    int64_t request_id;
+    int64_t from, to;  // steps
+    std::chrono::steady_clock::time_point accepted, last;
+  };
+  std::optional<Rewinding> rewinding_;
   int64_t step_budget_ = 0;
   Journal journal_;
   SnapshotStore snapshots_;
