@@ -376,7 +376,7 @@ def cases(tmp):
         Case("load_scene_missing_file", "SCENE_CMD", "LOAD_SCENE",
              scenecmd(lambda: scene(S.LOAD_SCENE, path="/nonexistent/scene.pbtxt")), None, ["/nonexistent/scene.pbtxt"]),
         Case("load_scene_empty_path", "SCENE_CMD", "LOAD_SCENE", scenecmd(lambda: scene(S.LOAD_SCENE, path="")), None,
-             ["path"], gap='the reply is ": cannot open file", naming neither the field nor the (empty) value'),
+             ["path"]),
         Case("load_scene_syntax_error", "SCENE_CMD", "LOAD_SCENE", scenecmd(lambda: scene(S.LOAD_SCENE, path=syntax)),
              IA, [syntax]),
         Case("load_scene_negative_radius", "SCENE_CMD", "LOAD_SCENE",
