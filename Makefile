@@ -12,7 +12,7 @@ export CCACHE_BASEDIR := $(CURDIR)
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep clean
+.PHONY: all deps build run test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
 
 all: build
 
@@ -82,6 +82,21 @@ bench-micro: build
 # LCM ping-pong between two processes, measured in the same run (BENCHMARKS.md).
 bench-lockstep: build
 	$(BUILD)/bin/contactsim-bench-lockstep --config $(CONFIG)
+
+# A real server under random valid and invalid commands from several
+# clients for STEPS steps (default 100,000), recorded with lcm-logger: no
+# crash, no NaN, RSS growth after warm-up < 5%, an identical --replay
+# (docs/reliability.md). `make test` runs a 3,000-step version.
+STEPS ?= 100000
+soak: build
+	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/soak.py --steps $(STEPS)
+
+# One client publishes ADDS ADD commands (default 100,000) without waiting
+# while another measures its reply latency every 20 ms; prints latencies and
+# the server's RSS (docs/reliability.md). `make test` runs 20,000.
+ADDS ?= 100000
+flood: build
+	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/flood.py --adds $(ADDS)
 
 clean:
 	rm -rf $(BUILD)
