@@ -2,8 +2,8 @@
 build): while client A publishes ADDs without waiting, every one of client
 B's cheap commands (one every 20 ms) is answered within the client's normal
 timeout, client A's replies are OK or RESOURCE_EXHAUSTED (the rate limit)
-and every OK is a body, and the server stays alive with a bounded RSS and
-exits cleanly. Latencies are printed, not asserted (docs/reliability.md has
+and no more OKs than bodies, and the server stays alive with a bounded RSS
+and exits cleanly. Latencies are printed, not asserted (docs/reliability.md has
 the measured figures)."""
 import json
 import sys
@@ -42,8 +42,8 @@ def test_a_flood_from_one_client_starves_no_other(tmp_path):
     assert b["unanswered"] == 0 and b["answered"] >= 50, b
     assert not b["errors"], b
     assert "error" not in a, a
-    # every OK is a body in the world (the ground plane is the other one);
-    # ADDs lost on UDP before the server read them get no reply at all
-    assert a["codes"].get("OK", 0) == r["bodies_after"] - 1, r
+    # every OK A heard of is a body in the world (the ground plane is the
+    # other one); an ADD or a reply lost on UDP is a body, or none, without it
+    assert a["codes"].get("OK", 0) <= r["bodies_after"] - 1, r
     assert set(a["codes"]) <= {"OK", "RESOURCE_EXHAUSTED"}, a
     assert rss["peak"] < RSS_BOUND_KIB, rss
