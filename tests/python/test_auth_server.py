@@ -72,7 +72,7 @@ def test_signed_clients_drive_a_signing_server_and_others_are_refused(launch, ke
 
     st = signed.wait_for_status(lambda x: x.commands_unauthenticated >= 2, timeout=5.0)
     assert "forged" in st.last_error or "must be signed" in st.last_error
-    assert sorted(signed.state().bodies) == [ball]
+    assert sorted(signed.wait_for_state(lambda x: sorted(x.bodies) == [ball], timeout=5.0).bodies) == [ball]
     for c in (signed, unsigned, forger):
         c.close()
 
@@ -91,7 +91,7 @@ def test_replayed_and_stale_commands_are_refused(launch, key_file):
     stale = _add_payload("stale", 1, 1.0) + old
     replies = _replies_to(s, "stale", lambda lc: lc.publish(channel, stale), 1)
     assert replies[0].code == contactsim.reply_t.UNAUTHENTICATED and "stale" in replies[0].message
-    assert len(s.client.state().bodies) == 1
+    assert len(s.client.wait_for_state(lambda x: len(x.bodies) == 1, timeout=5.0).bodies) == 1
 
 
 def test_a_restarted_client_and_a_restarted_server_carry_on(launch, key_file, tmp_path):
@@ -110,5 +110,6 @@ def test_a_restarted_client_and_a_restarted_server_carry_on(launch, key_file, tm
     third = _client(s2, key_file, client_id="robot")
     third.wait_for_server()
     third.add_sphere(0.1, position=(2, 0, 1), density=1000)
-    assert len(third.state().bodies) == 3
+    # the paused server publishes a STATE after the change; it may trail the reply
+    assert len(third.wait_for_state(lambda x: len(x.bodies) == 3, timeout=5.0).bodies) == 3
     third.close()
