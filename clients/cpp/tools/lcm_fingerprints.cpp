@@ -16,6 +16,7 @@
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/progress_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 #include <contactsim/state_t.hpp>
@@ -38,6 +39,7 @@ int main() {
   Print<contactsim::contacts_t>();
   Print<contactsim::input_t>();
   Print<contactsim::joint_cmd_t>();
+  Print<contactsim::progress_t>();
   Print<contactsim::reply_t>();
   Print<contactsim::scene_cmd_t>();
   Print<contactsim::state_t>();
