@@ -6,7 +6,7 @@
 # BUILD/fuzz/crash-* and fails the run.
 #   scripts/fuzz.sh BUILD_DIR [libFuzzer flags...]
 set -euo pipefail
-build=$1; shift
+build=$(cd "$1" && pwd); shift
 bin=$build/bin
 work=$build/fuzz
 rm -rf "$work/seeds"
