@@ -1,5 +1,5 @@
 // Always-on check of the broadphase input: one movable flag per box. A
-// mismatch is a programmer error (STYLE.md, three tiers of errors), so it
+// mismatch is a programmer error (docs/architecture.md, errors), so it
 // aborts with a message rather than reading out of bounds.
 #pragma once
 

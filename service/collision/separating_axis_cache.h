@@ -11,7 +11,7 @@
 // in closed form, a hull over its vertices); nothing is posed.
 //
 // Keys are ordered maps of body ids, so iteration and memory use do not depend
-// on hashing (ARCHITECTURE.md, determinism). Ids are never reused, so an entry
+// on hashing (docs/architecture.md, determinism). Ids are never reused, so an entry
 // of a removed body is never looked up again; Clear() drops them all.
 #pragma once
 

@@ -1,5 +1,5 @@
 // The contact method interface. A method owns the whole step
-// (ARCHITECTURE.md): the methods differ in what they need (collision time,
+// (docs/architecture.md): the methods differ in what they need (collision time,
 // forces before integration, a global solve), so each one calls the
 // collision detector and the integrator itself.
 #pragma once

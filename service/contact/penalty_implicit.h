@@ -9,7 +9,7 @@
 // positions moving by dx = h ((1 - theta) u0 + theta u1) and forces taken at
 // the same theta point, f(theta) = f0 + theta (K dx + D du), du = u1 - u0:
 //   (M - theta h D - theta^2 h^2 K) du = h (f0 + theta h K u0).
-// theta = 1 is the brief's (M - h D - h^2 K) du = h (f + h K u) (linearly
+// theta = 1 is the classic (M - h D - h^2 K) du = h (f + h K u) (linearly
 // implicit Euler: L-stable, damps stiff modes, and damps a bounce too);
 // theta = 1/2 is the trapezoidal rule (no numerical damping of a linear
 // spring, so restitution is reproduced, but stiff modes are not damped).

@@ -1,7 +1,7 @@
 // The world: bodies in ascending id order, joints in ascending id order,
 // gravity, time step and clock, and timed external wrenches. Iteration order
 // is the id order, so the same commands give the same state bit for bit
-// (ARCHITECTURE.md, determinism).
+// (docs/architecture.md, determinism).
 #pragma once
 
 #include <map>

@@ -1,7 +1,7 @@
 // The command journal: every accepted command that changes the world is
 // appended, with the step index at which it applied, before it is
 // acknowledged; replaying a snapshot plus the records after it reproduces
-// every later step bit for bit (ARCHITECTURE.md, determinism).
+// every later step bit for bit (docs/architecture.md, determinism).
 //
 // On disk (a folder): snapshot-<S>.pb, the latest durable snapshot, whose
 // journal_seq is S, and journal-<S>.bin segments holding records S, S+1, ...

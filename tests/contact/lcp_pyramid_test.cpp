@@ -17,7 +17,7 @@ using testing::AddGround;
 // touching boxes, each row offset by half a box) stands for 10 s (2,400
 // steps at 1/240 s) under pgs with warm starting and 10 sweeps per step
 // (Bullet's default; it keeps the test at ~10 s), the top box moving less
-// than 5 cm (the bound) and no box falling off.
+// than 5 cm (the required bound) and no box falling off.
 TEST(LcpPyramid, TwentyRowsStandTenSecondsWithPgs) {
   constexpr int kRows = 20;
   constexpr double kMaxTopDrift = 0.05;  // m

@@ -74,7 +74,7 @@ class PenaltyBounceTest : public ::testing::TestWithParam<std::tuple<double, int
 // Verifies that a sphere dropped from h rebounds to e^2 h within 10% with kd
 // derived from e, for both integrators.
 TEST_P(PenaltyBounceTest, SphereReboundsToESquaredTimesDropHeight) {
-  // 10%: the brief's bound; the rest is physics of the model (the contact
+  // 10%: the required bound; the rest is physics of the model (the contact
   // lets go at depth kd v / kp, and gravity acts during the contact: 4.5%
   // low at kp = 1e5 for e = 0.5 in the continuous model) and the step
   const double kTolerance = 0.10;
@@ -144,7 +144,7 @@ double FrictionStiffness(const ParamMap& params) {
 // Verifies that a box sliding at v0 with friction mu stops after
 // v0^2 / (2 mu g) within 3% (the anchor slides at |f_t| = mu lambda).
 TEST_P(PenaltyIntegratorTest, SlidingBoxStopsAtAnalyticDistance) {
-  const double kTolerance = 0.03;  // the brief's bound
+  const double kTolerance = 0.03;  // the required bound
   const double mu = 0.4, v0 = 3.0, half = 0.1;
   Sim sim(FrictionParams(GetParam()));
   AddGround(sim.world, 0.0, mu);
@@ -197,7 +197,7 @@ TEST_P(PenaltyIntegratorTest, BoxHoldsBelowCoulombLimitAndSlidesAbove) {
 // balances its weight, kp d = m g (linear) and kp d^n = m g (Hunt-Crossley),
 // within 5%.
 TEST_P(PenaltyIntegratorTest, RestingBoxSettlesAtWeightBalancingDepth) {
-  const double kTolerance = 0.05;  // the bound; measured to round-off
+  const double kTolerance = 0.05;  // the required bound; measured to round-off
   const double kp = 1e5, half = 0.1;
   for (const char* model : {"linear", "hunt_crossley"}) {
     Sim sim({{"integrator", GetParam()}, {"model", model}, {"kp", "1e5"}});

@@ -1,5 +1,5 @@
 // Cross-checks the narrowphase against FCL (libfcl, tests only) on 10,000
-// random pose pairs per pair type (issue 3): the same collide / no-collide
+// random pose pairs per pair type: the same collide / no-collide
 // verdict outside a 1e-6 m band, and, where they collide, the same
 // penetration depth and normal within 1e-3.
 //
@@ -50,7 +50,7 @@
 namespace contactsim {
 namespace {
 
-constexpr int kPoses = 10000;         // per pair type (issue 3)
+constexpr int kPoses = 10000;         // per pair type
 constexpr double kVerdictBand = 1e-6; // m: inside it either verdict is right
 constexpr double kTolerance = 1e-3;   // m, and unit-normal difference
 // Two axes whose overlaps agree to this (m) are both a minimum-penetration

@@ -1,5 +1,5 @@
 // Tests of the barrier method's guarantee on the standard scenes
-// (config/scenes, issue 8): no two bodies touch at any step, measured
+// (config/scenes): no two bodies touch at any step, measured
 // independently of the method's own report by the narrowphase on the rigid
 // poses written back to the world (SmallestGap, what users see). The scenes
 // are loaded by the scene loader and cut to a faithful part (the same

@@ -1,4 +1,4 @@
-// Tests of the four standard benchmark scenes (config/scenes, issue 7):
+// Tests of the four standard benchmark scenes (config/scenes):
 // each loads, builds, and has the bodies, steps and layout the issue states.
 #include <gtest/gtest.h>
 

@@ -20,7 +20,7 @@ namespace {
 
 // libsodium picks its SHA-256 implementation in sodium_init(); a failure
 // there is a broken installation, not bad input, so it aborts (the
-// programmer-error tier of STYLE.md) rather than signing wrongly.
+// always-on check for what is not the caller's fault) rather than signing wrongly.
 void InitSodiumOnce() {
   static const bool ready = [] {
     if (sodium_init() < 0) {

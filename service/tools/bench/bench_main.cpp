@@ -1,5 +1,5 @@
 // contactsim-bench: with --scene (or --list-methods), runs a scene file with a
-// contact method and reports speed and physics (scene_bench/, issue 7);
+// contact method and reports speed and physics (scene_bench/);
 // otherwise runs the Google Benchmark micro benchmarks that every
 // *_bench.cpp in this folder registers.
 #include <benchmark/benchmark.h>
