@@ -89,9 +89,15 @@ PairVector SolvePairBlock(const RigidBody& a, const RigidBody& b, const std::vec
     }
     // minimum norm (least squares) by a complete orthogonal decomposition;
     // a pivoted Cholesky S = B B^T with S^+ = B (B^T B)^-2 B^T was 1.6x
-    // faster on the pyramid but let box_rain's boxes explode at step 125
-    Eigen::CompleteOrthogonalDecomposition<PairMatrix> cod(Ks);
+    // faster on the pyramid but let box_rain's boxes explode at step 125.
+    // The threshold is set before compute(): the decomposition fixes the
+    // rank, and the Householder vectors of Z, with the threshold it has
+    // then, while solve() re-reads the rank with the current one, so a
+    // threshold set afterwards can make solve() use a Z that was never
+    // computed (uninitialised memory: results that differed between builds)
+    Eigen::CompleteOrthogonalDecomposition<PairMatrix> cod(n, n);
     cod.setThreshold(1e-10);
+    cod.compute(Ks);
     const PairVector xs = cod.solve(rs);
     int worst = -1;
     for (int i = 0; i < n; ++i) {
