@@ -12,7 +12,7 @@ export CCACHE_BASEDIR := $(CURDIR)
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run test test-cpp test-py test-asan fuzz bench bench-micro bench-lockstep clean
+.PHONY: all deps build run test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
 
 all: build
 
@@ -39,22 +39,34 @@ test-cpp:
 test-py:
 	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
 
-# Both suites again on a clang Debug build (-O1) with AddressSanitizer and
+# Both suites again on a Debug build (-O1) with AddressSanitizer and
 # UndefinedBehaviorSanitizer (the Python tests drive the instrumented server
 # and tools), then every libFuzzer target for FUZZ_RUNS executions from its
-# seed corpus. The 210-box pyramid (10 s of simulation) takes over 5 minutes
-# under the sanitizers and is left to `make test`. CI runs this after `make test`.
+# seed corpus (fuzz-ci). The 210-box pyramid (10 s of simulation) takes over
+# 5 minutes under the sanitizers and is left to `make test`. CI runs this
+# after `make test`.
 test-asan:
-	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
+	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 	cd build-asan && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid'
 	@$(MAKE) --no-print-directory test-py BUILD=build-asan
-	scripts/fuzz.sh build-asan -runs=$(FUZZ_RUNS)
+	@$(MAKE) --no-print-directory fuzz-ci
 
-# The fuzz targets for FUZZ_SECONDS each (the corpus in build-asan/fuzz grows
+# The libFuzzer targets need clang: their own build folder, in which only
+# they (and the libraries they link) are built, with ASan and UBSan.
+FUZZ_TARGETS = fuzz_decode_body_cmd fuzz_decode_scene_cmd fuzz_decode_joint_cmd fuzz_decode_input \
+               fuzz_server_apply contactsim-fuzz-seeds
+fuzz-build: deps
+	@[ -f build-fuzz/CMakeCache.txt ] || $(MAKE) --no-print-directory build-fuzz/CMakeCache.txt BUILD=build-fuzz \
+	  BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
+	cmake --build build-fuzz -j$(JOBS) --target $(FUZZ_TARGETS)
+
+fuzz-ci: fuzz-build
+	scripts/fuzz.sh build-fuzz -runs=$(FUZZ_RUNS)
+
+# The fuzz targets for FUZZ_SECONDS each (the corpus in build-fuzz/fuzz grows
 # across runs; a crash input is left there as crash-*).
-fuzz:
-	@$(MAKE) --no-print-directory build BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
-	scripts/fuzz.sh build-asan -max_total_time=$(FUZZ_SECONDS)
+fuzz: fuzz-build
+	scripts/fuzz.sh build-fuzz -max_total_time=$(FUZZ_SECONDS)
 
 # The standard scenes in contactsim (every contact method), Bullet, ODE and
 # MuJoCo, side by side; rewrites the generated tables in BENCHMARKS.md
@@ -70,6 +82,21 @@ bench-micro: build
 # LCM ping-pong between two processes, measured in the same run (BENCHMARKS.md).
 bench-lockstep: build
 	$(BUILD)/bin/contactsim-bench-lockstep --config $(CONFIG)
+
+# A real server under random valid and invalid commands from several
+# clients for STEPS steps (default 100,000), recorded with lcm-logger: no
+# crash, no NaN, RSS growth after warm-up < 5%, an identical --replay
+# (docs/reliability.md). `make test` runs a 3,000-step version.
+STEPS ?= 100000
+soak: build
+	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/soak.py --steps $(STEPS)
+
+# One client publishes ADDS ADD commands (default 100,000) without waiting
+# while another measures its reply latency every 20 ms; prints latencies and
+# the server's RSS (docs/reliability.md). `make test` runs 20,000.
+ADDS ?= 100000
+flood: build
+	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/flood.py --adds $(ADDS)
 
 clean:
 	rm -rf $(BUILD)

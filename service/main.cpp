@@ -2,7 +2,7 @@
 //
 //   contactsim-server --config FILE [--scene FILE] [--lcm-url URL] [--prefix NAME]
 //                     [--log-level LEVEL] [--mode realtime|free_run|lockstep] [--paused] [--no-live-line]
-//                     [--journal DIR] [--replay LOG]
+//                     [--journal DIR] [--auth-key-file FILE] [--replay LOG]
 //
 // With --replay LOG it serves nothing: it re-simulates a run recorded with
 // lcm-logger from the same config and scene and compares state hashes
@@ -22,6 +22,7 @@
 #include "service/server/lcm_transport.h"
 #include "service/server/log_replay.h"
 #include "service/server/server_config.h"
+#include "service/server/signing_transport.h"
 #include "service/server/sim_server.h"
 
 namespace {
@@ -35,7 +36,7 @@ void OnSignal(int) { g_stop.store(true); }
 int main(int argc, char** argv) {
   using namespace contactsim;
   CLI::App app{"contactsim-server: rigid-body contact co-simulation over LCM"};
-  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir, replay_log;
+  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir, replay_log, auth_key_file;
   bool paused = false, no_live_line = false;
   app.add_option("--config", config_path, "server configuration (protobuf text)")->required();
   app.add_option("--scene", scene_path, "scene file, overriding the config's");
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
       });
   app.add_flag("--paused", paused, "start paused");
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
+  app.add_option("--auth-key-file", auth_key_file, "shared key: commands must be signed with it (config auth_key_file)");
   app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
   app.add_option("--replay", replay_log,
                  "re-simulate an lcm-logger log of a run from this config and scene; report the first divergent step");
@@ -76,6 +78,13 @@ int main(int argc, char** argv) {
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
   if (!journal_dir.empty()) setup.options.journal_dir = journal_dir;
+  if (!auth_key_file.empty()) {
+    std::string error;
+    if (!LoadAuthKey(auth_key_file, &setup.options.auth_key, &error)) {
+      spdlog::critical("--auth-key-file: {}", error);
+      return 1;
+    }
+  }
   const auto level = spdlog::level::from_str(setup.log_level);
   if (level == spdlog::level::off && setup.log_level != "off") {
     spdlog::critical("--log-level must be one of trace, debug, info, warn, error, critical, off, got \"{}\"",
@@ -91,7 +100,10 @@ int main(int argc, char** argv) {
     spdlog::critical("cannot open LCM at {} (no multicast route? see README, troubleshooting)", url);
     return 1;
   }
-  SimServer server(setup.options, &transport);
+  // with a key, everything the server publishes is signed (docs/protocol.md)
+  SigningTransport signing(&transport, setup.options.auth_key);
+  Transport* out = setup.options.auth_key.empty() ? static_cast<Transport*>(&transport) : &signing;
+  SimServer server(setup.options, out);
   // Subscribe before Init announces the server (STATUS): LCM opens its
   // receive socket on the first subscribe, and a client may answer the
   // announcement at once.

@@ -145,6 +145,7 @@ Status DecodeSceneCommand(const scene_cmd_t& m, Command* cmd) {
     case scene_cmd_t::LOAD_SCENE: {
       cmd->kind = Command::Kind::kLoadScene;
       cmd->scene_path = m.path;
+      if (m.path.empty()) return Status::InvalidArgument("path must name a scene file on the server's host, got \"\"");
       auto scene = std::make_shared<SceneSpec>();
       if (!(st = LoadSceneFile(m.path, scene.get())).ok()) return st;
       // build once here so that a bad body is reported now, not mid-run

@@ -1,6 +1,7 @@
 #include "service/server/log_replay.h"
 
 #include <contactsim/reply_t.hpp>
+#include <contactsim/signature.h>
 #include <contactsim/state_t.hpp>
 #include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
@@ -79,7 +80,7 @@ void LogReplayer::OnCommand(const std::string& channel_name, const CommandChanne
     return;
   }
   Command header;
-  const Status st = channel.decode(data, size, DecodeContext{}, &header);
+  const Status st = channel.decode(data, UnsignedSize(data, size), DecodeContext{}, &header);
   // an undecodable command changed nothing live (DECODE_ERROR): nothing to feed
   if (st.code() == StatusCode::kDecodeError) return;
   pending_[{header.client_id, header.request_id}] = {channel_name, std::string(static_cast<const char*>(data), size)};
@@ -100,7 +101,7 @@ void LogReplayer::OnReply(const void* data, int size) {
   server_->OnMessage(p.channel, p.payload.data(), static_cast<int>(p.payload.size()));
   server_->ApplyInbox();
   ++report_.commands_fed;
-  report_.last_command = p.channel + " from \"" + r.client_id + "\" #" + std::to_string(r.request_id) +
+  report_.last_command = std::string(channels_.at(p.channel)->suffix) + " from \"" + r.client_id + "\" #" + std::to_string(r.request_id) +
                          " at step " + std::to_string(r.step) + " (" + r.message + ")";
 }
 
@@ -149,8 +150,11 @@ int RunReplay(ServerSetup setup, const std::string& log_path) {
   setup.options.journal_dir.clear();
   setup.options.write_files = false;
   setup.options.live_line = false;
-  // the log holds only what the live server admitted; refusals are skipped
+  // the log holds only what the live server admitted; refusals are skipped,
+  // and signatures were checked live (their seqs are stale now): without a
+  // key the server cuts the trailers off
   setup.options.max_commands_per_second = 0.0;
+  setup.options.auth_key.clear();
   NullTransport transport;
   SimServer server(setup.options, &transport);
   Status st = server.Init(setup.scene.get(), setup.method);

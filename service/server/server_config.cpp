@@ -1,5 +1,7 @@
 #include "service/server/server_config.h"
 
+#include <contactsim/signature.h>
+
 #include "service/physics/validation.h"
 #include "service/scene/proto_text.h"
 #include "service/server/command_decoder.h"
@@ -56,6 +58,9 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
   if (!(st = CheckInRange("command_burst", config->command_burst(), 1.0, 1e9)).ok()) {
     return Status::InvalidArgument(at("command_burst") + st.message());
   }
+  if (!(st = CheckInRange("auth_window_s", config->auth_window_s(), 1e-3, 1e6)).ok()) {
+    return Status::InvalidArgument(at("auth_window_s") + st.message());
+  }
   static const char* kLevels[] = {"trace", "debug", "info", "warn", "error", "critical", "off"};
   bool level_ok = false;
   for (const char* l : kLevels) level_ok |= config->log_level() == l;
@@ -108,6 +113,15 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
   s.options.max_commands_per_second = config.max_commands_per_second();
   s.options.command_burst = config.command_burst();
   s.options.max_queued_commands = config.max_queued_commands();
+  s.options.auth_window_s = config.auth_window_s();
+  if (!config.auth_key_file().empty()) {
+    const std::string path = config.auth_key_file()[0] == '/' ? config.auth_key_file()
+                                                              : Folder(config_path) + "/" + config.auth_key_file();
+    std::string error;
+    if (!LoadAuthKey(path, &s.options.auth_key, &error)) {
+      return Status::InvalidArgument(config_path + ": auth_key_file: " + error);
+    }
+  }
   s.options.live_line = config.live_line();
   if (!config.journal_dir().empty()) {
     s.options.journal_dir =

@@ -3,6 +3,7 @@
 #include <contactsim/status_t.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <thread>
@@ -20,6 +21,9 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
       transport_(transport),
       rate_limiter_(options_.max_commands_per_second, options_.command_burst),
       snapshots_(options_.max_snapshots) {
+  if (!options_.auth_key.empty()) {
+    auth_ = std::make_unique<CommandAuthenticator>(options_.auth_key, options_.auth_window_s);
+  }
   decode_context_.default_material = default_material_;
   decode_context_.limits = options_.decode_limits;
   paused_ = options_.start_paused;
@@ -93,20 +97,40 @@ void SimServer::OnMessage(const std::string& channel_name, const void* data, int
   if (channel_name.compare(0, prefix.size(), prefix) != 0) return;
   const CommandChannel* channel = ChannelOfSuffix(channel_name.substr(prefix.size()));
   if (channel == nullptr) return;
+  // a signature is checked before anything is decoded; without a key, a
+  // trailer a signing client added is cut off unread
+  int payload_size = UnsignedSize(data, size);
+  uint64_t seq = 0;
+  const Status signed_ok = auth_ ? auth_->Admit(channel_name, data, size, &payload_size, &seq) : Status::Ok();
+  if (!signed_ok.ok()) payload_size = UnsignedSize(data, size);
   Command cmd;
   cmd.request_id = -1;
   DecodeContext context = decode_context_;
-  context.admit = [this, channel](const std::string& client_id) { return AdmitClient(*channel, client_id); };
-  Status st = channel->decode(data, size, context, &cmd);
+  // asked once the sender is known: a refused signature still names the
+  // sender in its reply, but nothing of its command is checked or run
+  context.admit = [&](const std::string& client_id) {
+    if (!signed_ok.ok()) return signed_ok;
+    if (auth_) {
+      const Status st = auth_->AcceptSequence(client_id, seq);
+      if (!st.ok()) return st;
+    }
+    return AdmitClient(*channel, client_id);
+  };
+  Status st = channel->decode(data, payload_size, context, &cmd);
   cmd.record = channel->record;
-  if (st.ok()) st = Enqueue(std::move(cmd));
+  if (st.ok()) st = Enqueue(cmd);
   if (st.ok()) return;
+  if (!signed_ok.ok() && st.code() == StatusCode::kDecodeError) st = signed_ok;
   // an undecodable payload has no sender to name
-  if (st.code() == StatusCode::kDecodeError) Reject("", -1, st, channel->suffix);
-  else Reject(cmd.client_id, cmd.request_id, st, channel->suffix);
+  if (st.code() == StatusCode::kDecodeError) {
+    Reject("", -1, Status::DecodeError(st.message() + " (on " + channel_name + ")"), channel->suffix);
+  } else {
+    Reject(cmd.client_id, cmd.request_id, st, channel->suffix);
+  }
 }
 
-Status SimServer::Enqueue(Command cmd) {
+// Moves `cmd` into the inbox, or leaves it as it was when the inbox is full.
+Status SimServer::Enqueue(Command& cmd) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (static_cast<int>(inbox_.size()) >= options_.max_queued_commands) {
@@ -130,13 +154,21 @@ void SimServer::UpdateRates() {
 
 void SimServer::CancelStepCommands(const std::string& why) {
   for (const PendingStep& p : pending_steps_) {
-    SendReply(p.client_id, p.request_id, Status::FailedPrecondition("step interrupted: " + why), "");
+    const int64_t done = std::clamp<int64_t>(p.steps - (p.target_step - world_.step), 0, p.steps);
+    SendReply(p.client_id, p.request_id,
+              Status::FailedPrecondition("step interrupted: " + why + " after " + std::to_string(done) + " of " +
+                                         std::to_string(p.steps) + " steps (at step " +
+                                         std::to_string(world_.step) + ")"),
+              "");
   }
   pending_steps_.clear();
   step_budget_ = 0;
 }
 
-void SimServer::SimulateStep() { last_stats_ = method_->Step(world_, detector_, &contacts_); }
+void SimServer::SimulateStep() {
+  last_stats_ = method_->Step(world_, detector_, &contacts_);
+  if (rewinding_) ReportRewindProgress();
+}
 
 void SimServer::StepWorld() {
   ApplyInputs();
@@ -147,6 +179,7 @@ void SimServer::StepWorld() {
   if (world_.step % state_every_ == 0 || (mode_ == RunMode::kLockstep && lockstep_.active())) PublishState();
   if (world_.step % contacts_every_ == 0) PublishContacts();
   FinishStepCommands();
+  ReportStepProgress(false);
 }
 
 // Replies to the STEP commands whose last step is done, after their STATE.

@@ -23,6 +23,7 @@
 #include "service/physics/world.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/command.h"
+#include "service/server/command_auth.h"
 #include "service/server/command_channels.h"
 #include "service/server/journal.h"
 #include "service/server/rate_limiter.h"
@@ -46,6 +47,8 @@ struct ServerOptions {
   double max_commands_per_second = 5000.0;  // per client id (token bucket); 0 = no limit
   double command_burst = 10000.0;       // commands a client may send at once
   int max_queued_commands = 20000;      // waiting in the inbox, all clients together
+  std::string auth_key;                 // "" = commands need no signature (docs/protocol.md)
+  double auth_window_s = 30.0;          // freshness of a signed command
   bool live_line = false;               // progress line on stderr
   std::string journal_dir;              // "" = no journal on disk (REWIND still works)
   FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
@@ -113,7 +116,7 @@ class SimServer {
   bool paused() const { return paused_; }
 
  private:
-  Status Enqueue(Command cmd);
+  Status Enqueue(Command& cmd);
   Status AdmitClient(const CommandChannel& channel, const std::string& client_id);
   // journal, snapshots, rewind and recovery (snapshot_commands.cpp)
   Status Recover();
@@ -121,7 +124,7 @@ class SimServer {
   void StartTimeline();
   void TakePeriodicSnapshot();
   Outcome ApplySnapshotCommand(Command& cmd);
-  Status Rewind(int64_t step);
+  Status Rewind(int64_t step, const Command* cmd = nullptr);
   Status ReplayRecord(const JournalRecord& record);
   Status JournalCommand(RecordKind kind, const std::string& payload);
   void SimulateStep();
@@ -149,6 +152,12 @@ class SimServer {
   void StepWorld();
   void FinishStepCommands();
   void CancelStepCommands(const std::string& why);
+  // progress of long commands on PROGRESS (progress_t), at most every
+  // kProgressPeriod unless `now` is set (progress.cpp)
+  void ReportStepProgress(bool now);
+  void ReportRewindProgress();
+  void PublishProgress(const std::string& client_id, int64_t request_id, const char* command, int64_t done,
+                       int64_t total, std::chrono::steady_clock::time_point since);
   void UpdateRates();
   void PublishState();
   void PublishContacts();
@@ -168,6 +177,7 @@ class SimServer {
   // LCM thread only
   DecodeContext decode_context_;
   RateLimiter rate_limiter_;
+  std::unique_ptr<CommandAuthenticator> auth_;  // null without a key
 
   // simulation thread only
   World world_;
@@ -185,8 +195,18 @@ class SimServer {
     std::string client_id;
     int64_t request_id;
     int64_t target_step;
+    int64_t steps;  // asked for: the first is target_step - steps + 1
+    std::chrono::steady_clock::time_point accepted;
   };
   std::deque<PendingStep> pending_steps_;
+  std::chrono::steady_clock::time_point last_progress_{};
+  struct Rewinding {  // a REWIND re-simulating, for its progress reports
+    std::string client_id;
+    int64_t request_id;
+    int64_t from, to;  // steps
+    std::chrono::steady_clock::time_point accepted, last;
+  };
+  std::optional<Rewinding> rewinding_;
   int64_t step_budget_ = 0;
   Journal journal_;
   SnapshotStore snapshots_;

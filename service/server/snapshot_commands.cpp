@@ -100,7 +100,7 @@ Status SimServer::Recover() {
   return Status::Ok();
 }
 
-Status SimServer::Rewind(int64_t step) {
+Status SimServer::Rewind(int64_t step, const Command* cmd) {
   SnapshotStore::Plan plan;
   Status st = snapshots_.PlanRewind(step, world_.step, &plan);
   if (!st.ok()) return st;
@@ -114,11 +114,17 @@ Status SimServer::Rewind(int64_t step) {
   method_ = std::move(method);
   detector_.Reset();
   replaying_ = true;
+  if (cmd != nullptr) {
+    const auto now = std::chrono::steady_clock::now();
+    rewinding_ = Rewinding{cmd->client_id, cmd->request_id, world_.step, step, now, now};
+    PublishProgress(cmd->client_id, cmd->request_id, "REWIND", 0, step - world_.step, now);
+  }
   for (const JournalRecord* r : plan.records) {
     if (!(st = ReplayRecord(*r)).ok()) break;
   }
   while (st.ok() && world_.step < step) SimulateStep();
   replaying_ = false;
+  rewinding_.reset();
   if (!st.ok()) {
     world_ = std::move(saved_world);
     method_ = std::move(saved_method);
@@ -150,7 +156,7 @@ Outcome SimServer::ApplySnapshotCommand(Command& cmd) {
   }
   if (cmd.kind == K::kRewind) {
     const int64_t from = world_.step;
-    st = Rewind(cmd.target_step);
+    st = Rewind(cmd.target_step, &cmd);
     if (!st.ok()) return Outcome::Failed(st);
     CancelStepCommands("rewind");
     return Outcome::Done("rewound from step " + std::to_string(from) + " to step " + std::to_string(world_.step), true);

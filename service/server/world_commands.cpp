@@ -50,6 +50,8 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
     }
     case K::kPause:
       paused_ = true;
+      // a running STEP stops at this step boundary, and says how far it got
+      CancelStepCommands("cancelled by PAUSE from \"" + cmd.client_id + "\"");
       return Outcome::Done("paused", false);
     case K::kResume:
       paused_ = false;
@@ -58,7 +60,9 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
     case K::kStep: {
       paused_ = true;
       step_budget_ += cmd.steps;
-      pending_steps_.push_back({cmd.client_id, cmd.request_id, world_.step + step_budget_});
+      pending_steps_.push_back(
+          {cmd.client_id, cmd.request_id, world_.step + step_budget_, cmd.steps, std::chrono::steady_clock::now()});
+      ReportStepProgress(true);  // accepted: the client may wait as long as progress comes
       Outcome o;
       o.deferred = true;  // FinishStepCommands answers at the last step
       return o;

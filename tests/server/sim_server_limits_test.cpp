@@ -32,7 +32,7 @@ joint_cmd_t Ball(int64_t a) {
 
 reply_t SendJoint(ServerHarness& h, joint_cmd_t m) {
   m.request_id = ++h.request_id;
-  const auto bytes = Encode(m);
+  const auto bytes = testing::Encode(m);
   h.server.OnMessage(h.server.Channel("JOINT_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   h.server.Tick();
   return h.transport.All<reply_t>(h.server.Channel("REPLY")).back();
@@ -74,7 +74,9 @@ TEST(SimServerLimitsTest, AClientBeyondItsRateIsRefusedAndOthersAreNot) {
   h.server.Tick();
   int ok = 0, limited = 0;
   for (const reply_t& r : h.transport.All<reply_t>(h.server.Channel("REPLY"))) {
-    if (r.client_id == "polite") EXPECT_EQ(r.code, reply_t::OK);
+    if (r.client_id == "polite") {
+      EXPECT_EQ(r.code, reply_t::OK);
+    }
     ok += r.code == reply_t::OK;
     if (r.code == reply_t::RESOURCE_EXHAUSTED) {
       ++limited;

@@ -84,6 +84,10 @@ void Client::OnStatus(const lcm::ReceiveBuffer* rb, const std::string& ch, Clien
   status_t m;
   if (c->Unwrap(rb, ch, &m)) c->HandleStatus(rb, ch, &m);
 }
+void Client::OnProgress(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  progress_t m;
+  if (c->Unwrap(rb, ch, &m)) c->HandleProgress(&m);
+}
 
 Client::Client(ClientOptions options)
     : options_(std::move(options)), callbacks_(std::make_unique<Callbacks>()) {
@@ -106,6 +110,7 @@ Client::Client(ClientOptions options)
   lcm_->subscribeFunction(Channel("STATE"), &OnState, this)->setQueueCapacity(kQueueCapacity);
   lcm_->subscribeFunction(Channel("CONTACTS"), &OnContacts, this)->setQueueCapacity(kQueueCapacity);
   lcm_->subscribeFunction(Channel("STATUS"), &OnStatus, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel("PROGRESS"), &OnProgress, this)->setQueueCapacity(kQueueCapacity);
   thread_ = std::thread(&Client::Run, this);
 }
 
@@ -169,15 +174,23 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
     return result;
   }
   lock.lock();
-  const bool replied = changed_.wait_for(lock, options_.reply_timeout, [&] {
-    return pending_[request_id].has_value();
-  });
+  // as long as the server reports progress on it (HandleProgress)
+  heard_[request_id] = Clock::now();
+  while (!pending_[request_id].has_value()) {
+    const Clock::time_point silent_until = heard_[request_id] + options_.reply_timeout;
+    if (Clock::now() >= silent_until) break;
+    changed_.wait_until(lock, silent_until);
+  }
+  const bool replied = pending_[request_id].has_value();
   std::optional<reply_t> reply = std::move(pending_[request_id]);
   pending_.erase(request_id);
-  if (!replied) {
+  heard_.erase(request_id);
+  progress_callbacks_.erase(request_id);
+  // a progress callback still running may use what its caller owns
+  changed_.wait(lock, [&] { return progress_in_flight_ == 0; });  if (!replied) {
     result.code = ReplyCode::kTimeout;
     result.message = "no reply to request " + std::to_string(request_id) +
-                     " on " + Channel("REPLY") + " within " +
+                     " on " + Channel("REPLY") + " and no progress for " +
                      std::to_string(options_.reply_timeout.count()) + " ms";
     if (auth_ && auth_->failures() > 0) {  // the likely cause: a server with another key, or none
       result.message += " (" + std::to_string(auth_->failures()) +
@@ -205,9 +218,13 @@ CommandResult Client::Send(body_cmd_t command) {
                  static_cast<int>(buffer.size()));
 }
 
-CommandResult Client::Send(scene_cmd_t command) {
+CommandResult Client::Send(scene_cmd_t command, ProgressCallback progress) {
   command.client_id = options_.client_id;
   command.request_id = NextRequestId();
+  if (progress) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    progress_callbacks_[command.request_id] = std::move(progress);
+  }
   command.num_params = static_cast<int32_t>(command.param_names.size());
   command.param_values.resize(command.param_names.size());
   std::vector<uint8_t> buffer(command.getEncodedSize());
@@ -216,17 +233,17 @@ CommandResult Client::Send(scene_cmd_t command) {
                  static_cast<int>(buffer.size()));
 }
 
-CommandResult Client::Step(int32_t n) {
+CommandResult Client::Step(int32_t n, ProgressCallback progress) {
   uint64_t states_before = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     states_before = states_received_;
   }
-  const Clock::time_point deadline = Clock::now() + options_.reply_timeout;
   scene_cmd_t command = NewSceneCommand(scene_cmd_t::STEP);
   command.steps = n;
-  CommandResult result = Send(command);
+  CommandResult result = Send(command, std::move(progress));
   if (!result.ok()) return result;
+  const Clock::time_point deadline = Clock::now() + options_.reply_timeout;
   // The server publishes the last step's STATE before the reply, but the two
   // may be received in either order; a state from before the command (e.g.
   // from before a RESET, with a larger step) must not count.
@@ -242,6 +259,28 @@ CommandResult Client::Step(int32_t n) {
                      Channel("STATE");
   }
   return result;
+}
+
+void Client::HandleProgress(const progress_t* progress) {
+  ProgressCallback callback;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (progress->client_id != options_.client_id) return;
+    auto it = heard_.find(progress->request_id);
+    if (it == heard_.end()) return;
+    it->second = Clock::now();
+    auto cb = progress_callbacks_.find(progress->request_id);
+    if (cb != progress_callbacks_.end()) {
+      callback = cb->second;
+      ++progress_in_flight_;
+    }
+    changed_.notify_all();
+  }
+  if (!callback) return;
+  callback(*progress);
+  std::lock_guard<std::mutex> lock(mutex_);
+  --progress_in_flight_;
+  changed_.notify_all();
 }
 
 // Each handler runs the callbacks before it hands the message to waiting

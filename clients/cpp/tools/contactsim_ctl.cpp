@@ -20,11 +20,27 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
 #include "contactsim/client.h"
 
 namespace {
+
+// "[#########           ]  450/1000 steps  812 steps/s  0.7 s left" on
+// stderr, redrawn in place as PROGRESS reports arrive.
+void DrawProgress(const contactsim::progress_t& p) {
+  constexpr int kWidth = 30;
+  const double frac = p.total > 0 ? static_cast<double>(p.done) / static_cast<double>(p.total) : 0.0;
+  const double rate = p.elapsed > 0.0 ? static_cast<double>(p.done) / p.elapsed : 0.0;
+  const double left = rate > 0.0 ? static_cast<double>(p.total - p.done) / rate : 0.0;
+  const int filled = static_cast<int>(frac * kWidth);
+  std::fprintf(stderr, "\r[%s%s] %lld/%lld steps  %.0f steps/s  %.1f s left ", std::string(filled, '#').c_str(),
+               std::string(kWidth - filled, ' ').c_str(), static_cast<long long>(p.done),
+               static_cast<long long>(p.total), rate, left);
+  std::fflush(stderr);
+}
 
 using contactsim::BodyOptions;
 using contactsim::Client;
@@ -281,7 +297,12 @@ int main(int argc, char** argv) {
   int32_t steps = 1;
   app.add_subcommand("step", "take N steps, then stay paused")
       ->callback([&] {
-        run = [&](Client& client) { return ExitCode(client.Step(steps)); };
+        run = [&](Client& client) {
+          const bool bar = isatty(fileno(stderr));
+          const CommandResult r = client.Step(steps, bar ? DrawProgress : Client::ProgressCallback{});
+          if (bar) std::fputc('\n', stderr);
+          return ExitCode(r);
+        };
       })
       ->add_option("n", steps, "number of steps")
       ->required();

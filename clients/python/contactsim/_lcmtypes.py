@@ -25,6 +25,7 @@ TYPE_NAMES = (
     "state_t",
     "contacts_t",
     "status_t",
+    "progress_t",
 )
 
 

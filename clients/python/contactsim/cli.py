@@ -47,7 +47,10 @@ def _parser():
     m.add_argument("params", nargs="*", metavar="key=value")
     for name in ("pause", "resume", "reset"):
         sub.add_parser(name)
-    sub.add_parser("step").add_argument("n", type=int, nargs="?", default=1)
+    st = sub.add_parser("step", help="take N steps; a progress bar on a terminal")
+    st.add_argument("n", type=int, nargs="?", default=1)
+    st.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                    help="draw a progress bar (default: when stderr is a terminal)")
     return p
 
 
@@ -72,7 +75,9 @@ def _run(c, a):
         params = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in a.params)
         r = c.set_contact_method(a.name, **params)
     elif a.cmd == "step":
-        r = c.step(a.n, timeout=max(a.timeout, 10.0))
+        # waits as long as the server reports progress, a.timeout s of silence at most
+        bar = sys.stderr.isatty() if a.progress is None else a.progress
+        r = c.step(a.n, timeout=a.timeout, progress=bar)
     else:
         r = getattr(c, a.cmd)()
     print("ok: step %d, time %.6f s%s" % (r.step, r.time, ": " + r.message if r.message else ""))

@@ -15,13 +15,14 @@ import os
 import socket
 import struct
 import threading
+import time
 import uuid
 import warnings
 
 import lcm
 import numpy as np
 
-from . import body_cmd_t, contacts_t, reply_t, scene_cmd_t, state_t, status_t
+from . import body_cmd_t, contacts_t, progress_t, reply_t, scene_cmd_t, state_t, status_t
 from .auth import DEFAULT_WINDOW_S, Authenticator, unsigned_size
 from ._fields import vector as _vec
 from .errors import CommandError, TimeoutError
@@ -50,11 +51,13 @@ def _param_text(value):
 
 
 class _Pending:
-    __slots__ = ("event", "reply")
+    __slots__ = ("event", "reply", "heard", "on_progress")
 
-    def __init__(self):
+    def __init__(self, on_progress=None):
         self.event = threading.Event()
         self.reply = None
+        self.heard = time.monotonic()  # the last sign of the server working on it
+        self.on_progress = on_progress
 
 
 class _Waiter:
@@ -93,7 +96,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         self.timeout = timeout
         self.channels = {k: "%s_%s" % (prefix, k) for k in
                          ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "REPLY", "STATE", "CONTACTS", "STATUS",
-                          "INPUT")}
+                          "INPUT", "PROGRESS")}
         self._lock = threading.Lock()
         self._cond = threading.Condition(self._lock)
         self._request_id = 0
@@ -114,6 +117,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._lc.subscribe(self.channels["STATE"], self._on_state_msg),
             self._lc.subscribe(self.channels["CONTACTS"], self._on_contacts_msg),
             self._lc.subscribe(self.channels["STATUS"], self._on_status_msg),
+            self._lc.subscribe(self.channels["PROGRESS"], self._on_progress_msg),
         ]
         # LCM keeps at most 30 undelivered messages per subscription and drops
         # the rest; a free-running server sends STATE in bursts far larger.
@@ -187,13 +191,19 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
                 warnings.warn("contactsim: %s callback raised %r" % (kind, e))
 
     # -------------------------------------------------------------- handlers
-    def _on_reply_msg(self, channel, data):
+    def _decode(self, channel, data, msg_type):
+        """The received message, or None when it fails its check or does not decode."""
         data = self._unwrap(channel, data)
         if data is None:
-            return
+            return None
         try:
-            msg = reply_t.decode(data)
+            return msg_type.decode(data)
         except Exception:  # noqa: BLE001 - not ours to judge
+            return None
+
+    def _on_reply_msg(self, channel, data):
+        msg = self._decode(channel, data, reply_t)
+        if msg is None:
             return
         if msg.client_id == self.client_id:
             with self._lock:
@@ -202,6 +212,21 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
                 slot.reply = msg
                 slot.event.set()
         self._call("reply", msg)
+
+    def _on_progress_msg(self, channel, data):
+        msg = self._decode(channel, data, progress_t)
+        if msg is None or msg.client_id != self.client_id:
+            return
+        with self._lock:
+            slot = self._pending.get(msg.request_id)
+        if slot is None:
+            return
+        slot.heard = time.monotonic()
+        if slot.on_progress is not None:
+            try:
+                slot.on_progress(msg)
+            except Exception as e:  # noqa: BLE001 - a bad callback must not stop the thread
+                warnings.warn("contactsim: progress callback raised %r" % (e,))
 
     def _on_state_msg(self, channel, data):
         data = self._unwrap(channel, data)
@@ -224,12 +249,8 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._cond.notify_all()
 
     def _on_contacts_msg(self, channel, data):
-        data = self._unwrap(channel, data)
-        if data is None:
-            return
-        try:
-            msg = contacts_t.decode(data)
-        except Exception:  # noqa: BLE001
+        msg = self._decode(channel, data, contacts_t)
+        if msg is None:
             return
         with self._lock:
             self._contacts_msg = msg
@@ -237,13 +258,10 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._call("contacts", Contacts(msg))
 
     def _on_status_msg(self, channel, data):
-        data = self._unwrap(channel, data)
-        if data is None:
+        msg = self._decode(channel, data, status_t)
+        if msg is None:
             return
-        try:
-            st = Status(status_t.decode(data))
-        except Exception:  # noqa: BLE001
-            return
+        st = Status(msg)
         with self._cond:
             self._status = st
             self._status_seq += 1
@@ -362,11 +380,14 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         if threading.current_thread() is self._thread:
             raise RuntimeError("contactsim: commands and waits cannot run inside a callback")
 
-    def _send(self, channel, msg, timeout=None):
+    def _send(self, channel, msg, timeout=None, deadline=None, on_progress=None):
+        """Publishes msg and waits for its reply as long as the server shows
+        progress on it (PROGRESS): TimeoutError after `timeout` s of silence
+        (None: the client's), or at `deadline` (time.monotonic(); None: none)."""
         self._check_thread()
         if self._stop.is_set():
             raise RuntimeError("contactsim: client is closed")
-        slot = _Pending()
+        slot = _Pending(on_progress)
         with self._lock:
             self._request_id += 1
             rid = self._request_id
@@ -375,12 +396,21 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         msg.request_id = rid
         self._publish(self.channels[channel], msg.encode())
         timeout = self.timeout if timeout is None else timeout
-        if not slot.event.wait(timeout):
-            with self._lock:
-                self._pending.pop(rid, None)
-            raise TimeoutError("no reply to %s request %d within %gs (is the server running on %s "
-                               "with prefix %s?)%s" % (channel, rid, timeout, self.url, self.prefix,
-                                                       self._auth_hint()))
+        while not slot.event.is_set():
+            now = time.monotonic()
+            silent_until = slot.heard + timeout
+            if now >= silent_until or (deadline is not None and now >= deadline):
+                with self._lock:
+                    mine = self._pending.pop(rid, None)
+                if mine is None:  # the reply is being handed over right now
+                    slot.event.wait()
+                    break
+                why = ("by the deadline" if deadline is not None and now >= deadline
+                       else "and no progress for %gs" % timeout)
+                raise TimeoutError("no reply to %s request %d %s (is the server running on %s "
+                                   "with prefix %s?)%s" % (channel, rid, why, self.url, self.prefix,
+                                                           self._auth_hint()))
+            slot.event.wait(min(silent_until, deadline if deadline is not None else silent_until) - now)
         r = slot.reply
         if r.code != reply_t.OK:
             raise CommandError(r.message, r.code, r)
@@ -574,16 +604,37 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
     def resume(self):
         return self._send("SCENE_CMD", self._scene(scene_cmd_t.RESUME))
 
-    def step(self, n=1, *, timeout=None):
+    def step(self, n=1, *, timeout=None, deadline=None, progress=False):
         """Takes n steps now (the server stays paused afterwards). Returns the
         reply once the client also holds the STATE of the last step
         (``state().step == reply.step``) and on_state callbacks have seen it.
-        timeout None: the client's timeout."""
+
+        Waits as long as the server reports progress: TimeoutError after
+        `timeout` s without any (None: the client's timeout), or `deadline` s
+        after the call (None: no limit). progress=True draws a tqdm bar (steps
+        per second, time left); a callable gets each progress_t. A PAUSE from
+        any client stops the steps: CommandError "step interrupted: cancelled
+        by PAUSE ... after k of n steps"."""
         m = self._scene(scene_cmd_t.STEP)
         m.steps = int(n)
         with self._lock:
             seq0 = self._state_seq
-        reply = self._send("SCENE_CMD", m, timeout=timeout)
+        bar = None
+        on_progress = progress if callable(progress) else None
+        if progress is True:
+            from tqdm.auto import tqdm
+            bar = tqdm(total=int(n), unit="step", desc="step")
+
+            def on_progress(p):
+                bar.update(p.done - bar.n)
+        end = None if deadline is None else time.monotonic() + deadline
+        try:
+            reply = self._send("SCENE_CMD", m, timeout=timeout, deadline=end, on_progress=on_progress)
+            if bar is not None:
+                bar.update(int(n) - bar.n)
+        finally:
+            if bar is not None:
+                bar.close()
         wait = self.timeout if timeout is None else timeout
         with self._cond:
             ok = self._cond.wait_for(

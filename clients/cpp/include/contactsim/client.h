@@ -36,6 +36,7 @@
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/progress_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/result.h>
 #include <contactsim/scene_cmd_t.hpp>
@@ -116,6 +117,7 @@ class Client {
   using ContactsCallback = std::function<void(const contacts_t&)>;
   using StatusCallback = std::function<void(const status_t&)>;
   using ReplyCallback = std::function<void(const reply_t&)>;
+  using ProgressCallback = std::function<void(const progress_t&)>;
   using Clock = std::chrono::steady_clock;
 
   explicit Client(ClientOptions options = {});
@@ -152,7 +154,11 @@ class Client {
   CommandResult Resume();
   // Takes n steps and leaves the run paused. Returns after the reply AND once
   // a STATE with step >= reply.step has arrived (so LatestState() shows it).
-  CommandResult Step(int32_t n = 1);
+  // Waits as long as the server reports progress (PROGRESS): kTimeout only
+  // after reply_timeout without any. `progress` (on the receive thread) gets
+  // each report. A PAUSE from any client stops the steps: FAILED_PRECONDITION
+  // "step interrupted: cancelled by PAUSE ... after k of n steps".
+  CommandResult Step(int32_t n = 1, ProgressCallback progress = {});
   CommandResult SetMode(Mode mode, double real_time_factor = 1.0);
 
   // --- snapshots (docs/snapshots.md) ---
@@ -222,7 +228,8 @@ class Client {
   // Raw commands: client_id and request_id are filled in here. For fields
   // the typed methods do not cover, and for tests of the server's checks.
   CommandResult Send(body_cmd_t command);
-  CommandResult Send(scene_cmd_t command);
+  // progress: called with each PROGRESS report of this command (STEP, REWIND).
+  CommandResult Send(scene_cmd_t command, ProgressCallback progress = {});
   CommandResult Send(joint_cmd_t command);
 
   // --- subscriptions ---
@@ -277,6 +284,8 @@ class Client {
   static void OnState(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnContacts(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnStatus(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  static void OnProgress(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  void HandleProgress(const progress_t* progress);
 
   ClientOptions options_;
   std::string error_;               // why the client is not usable (an auth key problem)
@@ -287,6 +296,10 @@ class Client {
   std::condition_variable changed_;  // a reply, state or status arrived
   int64_t last_request_id_ = 0;
   std::map<int64_t, std::optional<reply_t>> pending_;  // request id -> reply
+  // request id -> the last sign of the server working on it (sent, or PROGRESS)
+  std::map<int64_t, std::chrono::steady_clock::time_point> heard_;
+  std::map<int64_t, ProgressCallback> progress_callbacks_;  // request id -> Step's callback
+  int progress_in_flight_ = 0;  // progress callbacks running now
   std::optional<state_t> latest_state_;
   uint64_t states_received_ = 0;  // lets Step ignore states older than its command
   std::optional<contacts_t> latest_contacts_;
