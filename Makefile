@@ -52,15 +52,18 @@ test-asan:
 	@$(MAKE) --no-print-directory fuzz-ci
 
 # The libFuzzer targets need clang: their own build folder, in which only
-# they (and the libraries they link) are built, with ASan and UBSan.
+# they (and the libraries they link) are built, with ASan and UBSan. The
+# scene tests too: the clang build must end every method on the same pinned
+# hashes as the g++ builds (docs/snapshots.md, "Determinism across builds").
 FUZZ_TARGETS = fuzz_decode_body_cmd fuzz_decode_scene_cmd fuzz_decode_joint_cmd fuzz_decode_input \
-               fuzz_server_apply contactsim-fuzz-seeds
+               fuzz_server_apply contactsim-fuzz-seeds scene_tests
 fuzz-build: deps
 	@[ -f build-fuzz/CMakeCache.txt ] || $(MAKE) --no-print-directory build-fuzz/CMakeCache.txt BUILD=build-fuzz \
 	  BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
 	cmake --build build-fuzz -j$(JOBS) --target $(FUZZ_TARGETS)
 
 fuzz-ci: fuzz-build
+	build-fuzz/bin/scene_tests --gtest_filter='*DeterminismTest*'
 	scripts/fuzz.sh build-fuzz -runs=$(FUZZ_RUNS)
 
 # The fuzz targets for FUZZ_SECONDS each (the corpus in build-fuzz/fuzz grows

@@ -3,10 +3,10 @@
 // (config/scenes/determinism.pbtxt: boxes and spheres in a stack, a slide
 // and a bounce, a pendulum and a hinge with limits) for the scene's steps
 // and must end on the world hash pinned here. The same pins hold for the
-// g++ RelWithDebInfo build (`make test`) and the clang Debug -O1 sanitizer
-// build (`make test-asan`); CI runs both, so a change that makes a
-// method's result depend on the compiler, the optimisation level or
-// uninitialised memory fails one of them. A change meant to change the
+// g++ RelWithDebInfo build (`make test`), the Debug -O1 sanitizer build
+// (`make test-asan`) and the clang libFuzzer build (`make fuzz-ci`); CI
+// runs all three, so a change that makes a method's result depend on the
+// compiler, the optimisation level or uninitialised memory fails one. A change meant to change the
 // physics changes the pins: run `scene_tests --gtest_filter='*Determinism*'`
 // and copy the printed hashes.
 #include <gtest/gtest.h>
