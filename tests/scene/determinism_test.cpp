@@ -37,7 +37,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0x9ed0c23fb80d14deull},
       {"penalty", {}, 0x19f84e2b61daaef5ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x26bd4c98c83532bfull},
-      {"xpbd", {}, 0x9a6b72592af062edull},
+      {"xpbd", {}, 0x67737c8bc6935e6cull},
       {"lcp", {{"solver", "pgs"}}, 0xc308cb9078677086ull},
       {"lcp", {{"solver", "lemke"}}, 0x590d23c5e606b36full},
       {"barrier", {}, 0xf310fe672c76914eull},
