@@ -137,6 +137,7 @@ class LiveRun {
   size_t kick_index() const { return kick_index_; }
   const std::vector<size_t>& input_index() const { return input_index_; }
   int64_t final_step() const { return live_.server.world().step; }
+  uint64_t final_hash() const { return HashWorldState(live_.server.world()); }
 
  private:
   ServerHarness live_;
@@ -191,11 +192,15 @@ TEST(LogReplayTest, ReplayOfAnUntouchedRunIsIdentical) {
 // Verifies that a run through every contact method (the registry's, lcp
 // with both solvers) on a scene with stacked, sliding and bouncing bodies
 // and joints replays bit for bit: each method's step is a function of the
-// world and the commands alone, whatever it ran after.
+// world and the commands alone, whatever it ran after. The run ends on a
+// pinned hash, the same in every build (docs/snapshots.md, "Determinism
+// across builds"), so a log from one build replays on another; a change
+// to any method's physics changes it (the failure prints the new one).
 TEST(LogReplayTest, ReplayOfARunThroughEveryMethodIsIdentical) {
   LiveRun run;
   run.RecordEveryMethod(20);
   ASSERT_TRUE(run.AllAccepted());
+  EXPECT_EQ(run.final_hash(), 0x0b2f571b5fa5dcfbull) << "got 0x" << std::hex << run.final_hash();
   const ReplayReport r = Replay(run.tape());
   EXPECT_FALSE(r.diverged) << r.Summary();
   EXPECT_EQ(r.states_compared, CountStates(run.tape()));
