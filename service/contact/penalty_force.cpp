@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/physics/portable_math.h"
+
 namespace contactsim {
 
 NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, double nc, double damping) {
@@ -21,9 +23,9 @@ NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, dou
   const double factor = 1.0 - 1.5 * damping * vn;
   // separating so fast that the damping would pull: no force, no slope
   if (factor <= 0.0) return law;
-  const double dn = std::pow(depth, p.hc_exponent);
+  const double dn = portable::Pow(depth, p.hc_exponent);
   law.lambda0 = p.kp * dn * factor / nc;
-  law.k = p.hc_exponent * p.kp * std::pow(depth, p.hc_exponent - 1.0) * factor / nc;
+  law.k = p.hc_exponent * p.kp * portable::Pow(depth, p.hc_exponent - 1.0) * factor / nc;
   law.c = 1.5 * damping * p.kp * dn / nc;
   return law;
 }
@@ -35,19 +37,22 @@ double NoTensionRestitution(double zeta) {
   const double b = zeta;
   if (std::abs(zeta - 1.0) < 1e-9) {
     // critical: x = t e^-t, force e^-t (2 - t) = 0 at t = 2
-    return std::exp(-2.0);
+    return portable::Exp(-2.0);
   }
   if (zeta < 1.0) {
     // x = e^-bt sin(wd t) / wd: (1 - 2 b^2) sin + 2 b wd cos = 0
     const double wd = std::sqrt(1.0 - b * b);
-    const double phase = std::atan2(2.0 * b * wd, -(1.0 - 2.0 * b * b));  // in (0, pi)
+    const double phase = portable::Atan2(2.0 * b * wd, -(1.0 - 2.0 * b * b));  // in (0, pi)
     const double t = phase / wd;
-    return -std::exp(-b * t) * (wd * std::cos(phase) - b * std::sin(phase)) / wd;
+    return -portable::Exp(-b * t) * (wd * portable::Cos(phase) - b * portable::Sin(phase)) / wd;
   }
-  // x = e^-bt sinh(wo t) / wo: tanh(wo t) = 2 b wo / (2 b^2 - 1) < 1
+  // x = e^-bt sinh(wo t) / wo: tanh(wo t) = y = 2 b wo / (2 b^2 - 1) < 1, so
+  // wo t = atanh y = ln((1 + y) / (1 - y)) / 2, and
+  // -e^-bt (cosh wo t - b / wo sinh wo t) in exponentials alone
   const double wo = std::sqrt(b * b - 1.0);
-  const double t = std::atanh(2.0 * b * wo / (2.0 * b * b - 1.0)) / wo;
-  return -std::exp(-b * t) * (std::cosh(wo * t) - b / wo * std::sinh(wo * t));
+  const double y = 2.0 * b * wo / (2.0 * b * b - 1.0);
+  const double t = 0.5 * portable::Log((1.0 + y) / (1.0 - y)) / wo;
+  return -0.5 * (portable::Exp((wo - b) * t) * (1.0 - b / wo) + portable::Exp(-(wo + b) * t) * (1.0 + b / wo));
 }
 
 double ZetaFromRestitution(double e) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "service/physics/portable_math.h"
 #include "service/physics/validation.h"
 
 namespace contactsim {
@@ -116,7 +117,7 @@ double HingeAngle(const Joint& joint, const RigidBody& a, const RigidBody* b) {
   // q_B = q_A q_twist rest, with q_twist a rotation about axis_a (A's frame)
   Quat twist = a.q.conjugate() * BodyOrientation(b) * joint.rest.conjugate();
   if (twist.w() < 0.0) twist.coeffs() = -twist.coeffs();  // same rotation, angle within [-pi, pi]
-  return 2.0 * std::atan2(twist.vec().dot(joint.axis_a), twist.w());
+  return 2.0 * portable::Atan2(twist.vec().dot(joint.axis_a), twist.w());
 }
 
 }  // namespace contactsim

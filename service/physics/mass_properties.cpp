@@ -26,7 +26,7 @@ Mat3 CapsuleInertia(double r, double h, double density) {
 
 double ShapeVolume(const Shape& shape) {
   switch (shape.type) {
-    case ShapeType::kSphere: return 4.0 / 3.0 * kPi * std::pow(shape.radius, 3);
+    case ShapeType::kSphere: return 4.0 / 3.0 * kPi * shape.radius * shape.radius * shape.radius;
     case ShapeType::kBox: return 8.0 * shape.half_extents.prod();
     case ShapeType::kCapsule:
       return kPi * shape.radius * shape.radius * (2.0 * shape.half_length + 4.0 / 3.0 * shape.radius);

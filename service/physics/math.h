@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "service/physics/portable_math.h"
+
 namespace contactsim {
 
 using Vec3 = Eigen::Vector3d;
@@ -32,14 +34,27 @@ inline bool IsFinite(const Vec3& v) { return v.allFinite(); }
 inline bool IsFinite(const Quat& q) { return q.coeffs().allFinite(); }
 
 // Rotation by the vector phi (axis * angle) as a unit quaternion; exact for
-// any angle, and well defined as |phi| -> 0.
+// any angle, and well defined as |phi| -> 0. The half angle's sine and
+// cosine are portable_math.h's, not the C library's (Eigen::AngleAxis), so
+// that the rotation is the same on every machine.
 inline Quat QuatFromRotationVector(const Vec3& phi) {
   const double angle = phi.norm();
   if (angle < 1e-12) {
     Quat q(1.0, 0.5 * phi.x(), 0.5 * phi.y(), 0.5 * phi.z());
     return q.normalized();
   }
-  return Quat(Eigen::AngleAxisd(angle, phi / angle));
+  const Vec3 v = portable::Sin(0.5 * angle) * (phi / angle);
+  return Quat(portable::Cos(0.5 * angle), v.x(), v.y(), v.z());
+}
+
+// The rotation vector (axis * angle, angle in [0, pi]) of a unit
+// quaternion, the inverse of QuatFromRotationVector; with portable_math.h's
+// atan2 in place of Eigen::AngleAxis's.
+inline Vec3 RotationVector(const Quat& q) {
+  const double s = q.vec().norm();
+  if (s == 0.0) return Vec3::Zero();
+  const double angle = 2.0 * portable::Atan2(s, std::abs(q.w()));
+  return (q.w() < 0.0 ? -angle : angle) / s * q.vec();
 }
 
 }  // namespace contactsim

@@ -8,6 +8,7 @@
 
 #include "service/collision/aabb.h"
 #include "service/collision/narrowphase.h"
+#include "service/physics/portable_math.h"
 #include "service/physics/validation.h"
 #include "service/proto/scene.pb.h"
 #include "service/scene/proto_text.h"
@@ -82,8 +83,8 @@ Eigen::Vector4d RandomOrientation(std::mt19937_64& rng) {
   const double u1 = Uniform01(rng), u2 = Uniform01(rng), u3 = Uniform01(rng);
   const double two_pi = 6.283185307179586;
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-  return Eigen::Vector4d(b * std::cos(two_pi * u3), a * std::sin(two_pi * u2), a * std::cos(two_pi * u2),
-                         b * std::sin(two_pi * u3));
+  return Eigen::Vector4d(b * portable::Cos(two_pi * u3), a * portable::Sin(two_pi * u2),
+                         a * portable::Cos(two_pi * u2), b * portable::Sin(two_pi * u3));
 }
 
 Status ToSceneJoint(const proto::Joint& j, const std::string& where, SceneJoint* out) {

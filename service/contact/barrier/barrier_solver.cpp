@@ -437,9 +437,8 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
     const Mat3 R0 = AffineMatrix(b.q0);
     const Mat3 R = NearestRotation(AffineMatrix(b.q));
     const Vec3 x = AffinePosition(b.q);
-    const Eigen::AngleAxisd turn(R * R0.transpose());
     const Vec3 v = (x - AffinePosition(b.q0)) / h_;
-    const Vec3 w = turn.angle() * turn.axis() / h_;
+    const Vec3 w = RotationVector(Quat(Mat3(R * R0.transpose()))) / h_;
     r.x = x;
     r.q = Quat(R).normalized();
     r.SetVelocity(v, w);

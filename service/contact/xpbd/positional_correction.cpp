@@ -89,9 +89,15 @@ PairVector SolvePairBlock(const RigidBody& a, const RigidBody& b, const std::vec
     }
     // minimum norm (least squares) by a complete orthogonal decomposition;
     // a pivoted Cholesky S = B B^T with S^+ = B (B^T B)^-2 B^T was 1.6x
-    // faster on the pyramid but let box_rain's boxes explode at step 125
-    Eigen::CompleteOrthogonalDecomposition<PairMatrix> cod(Ks);
-    cod.setThreshold(1e-10);
+    // faster on the pyramid but let box_rain's boxes explode at step 125.
+    // The rank is Eigen's default (pivots below n eps of the largest are
+    // zero): a face's rank-3 matrix is taken as rank 3 and every other
+    // block solved exactly. A threshold of 1e-10 solved nearly singular
+    // blocks by least squares, and a five-box stack moved 12 mm in 10 s
+    // instead of 7 um; set after compute() it also made solve() apply a Z
+    // that compute() never built (uninitialised memory, so each build
+    // computed its own physics)
+    const Eigen::CompleteOrthogonalDecomposition<PairMatrix> cod(Ks);
     const PairVector xs = cod.solve(rs);
     int worst = -1;
     for (int i = 0; i < n; ++i) {

@@ -29,7 +29,7 @@
 // pair's. One corner at a time lifts and tilts the box, so that the first
 // corner slips by half its depth and leaves the cone: measured on a resting
 // 0.2 m box with 20 sub-steps, a steady drift of 0.14 mm/s and a spin of
-// 7e-4 rad/s, and a five-box stack moving 2 cm in 10 s (now 0.2 mm).
+// 7e-4 rad/s, and a five-box stack moving 2 cm in 10 s (now 7 um).
 #pragma once
 
 #include <vector>

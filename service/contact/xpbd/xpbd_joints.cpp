@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/xpbd/positional_correction.h"
+#include "service/physics/portable_math.h"
 
 namespace contactsim {
 namespace {
@@ -30,7 +31,7 @@ void SolveJoint(const Joint& j, RigidBody& a, RigidBody& b, double alpha_tilde, 
     const Vec3 axis_a = a.q * j.axis_a;
     const Vec3 cross = (b.q * j.axis_b).cross(axis_a);
     const double s = cross.norm();
-    if (s > 0.0) Turn(a, b, cross / s * std::asin(std::min(1.0, s)), alpha_tilde, &lambda[0]);
+    if (s > 0.0) Turn(a, b, cross / s * portable::Asin(std::min(1.0, s)), alpha_tilde, &lambda[0]);
     if (j.limited) {
       const double angle = HingeAngle(j, a, &b);
       const double excess = angle < j.lower ? j.lower - angle : angle > j.upper ? j.upper - angle : 0.0;
@@ -40,7 +41,7 @@ void SolveJoint(const Joint& j, RigidBody& a, RigidBody& b, double alpha_tilde, 
     Quat e = a.q * j.rest * b.q.conjugate();
     if (e.w() < 0.0) e.coeffs() = -e.coeffs();
     const double s = e.vec().norm();
-    if (s > 0.0) Turn(a, b, e.vec() / s * (2.0 * std::atan2(s, e.w())), alpha_tilde, &lambda[0]);
+    if (s > 0.0) Turn(a, b, e.vec() / s * (2.0 * portable::Atan2(s, e.w())), alpha_tilde, &lambda[0]);
   }
   Attach(a, b, j, j.kind == JointKind::kDistance ? j.length : 0.0, alpha_tilde, &lambda[2]);
 }

@@ -1,0 +1,101 @@
+// The same run on any build (docs/snapshots.md, "Determinism across
+// builds"): every registered contact method runs the determinism scene
+// (config/scenes/determinism.pbtxt: boxes and spheres in a stack, a slide
+// and a bounce, a pendulum and a hinge with limits) for the scene's steps
+// and must end on the world hash pinned here. The same pins hold for the
+// g++ RelWithDebInfo build (`make test`), the Debug -O1 sanitizer build
+// (`make test-asan`) and the clang libFuzzer build (`make fuzz-ci`); CI
+// runs all three, so a change that makes a method's result depend on the
+// compiler, the optimisation level or uninitialised memory fails one. A change meant to change the
+// physics changes the pins: run `scene_tests --gtest_filter='*Determinism*'`
+// and copy the printed hashes.
+#include <gtest/gtest.h>
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "service/contact/contact_method.h"
+#include "service/scene/scene_spec.h"
+
+namespace contactsim {
+namespace {
+
+// A method's configurations and the hash each must end on. Every method
+// runs with its defaults; lcp also with Lemke's method, penalty also with
+// the Hunt-Crossley law (whose d^1.5 is portable_math.h's pow).
+struct Pinned {
+  std::string method;
+  ParamMap params;
+  uint64_t hash;
+};
+
+const std::vector<Pinned>& PinnedRuns() {
+  static const std::vector<Pinned> pinned = {
+      {"impulse", {}, 0x9ed0c23fb80d14deull},
+      {"penalty", {}, 0x19f84e2b61daaef5ull},
+      {"penalty", {{"model", "hunt_crossley"}}, 0x26bd4c98c83532bfull},
+      {"xpbd", {}, 0x67737c8bc6935e6cull},
+      {"lcp", {{"solver", "pgs"}}, 0xc308cb9078677086ull},
+      {"lcp", {{"solver", "lemke"}}, 0x590d23c5e606b36full},
+      {"barrier", {}, 0xf310fe672c76914eull},
+  };
+  return pinned;
+}
+
+std::string Describe(const std::string& method, const ParamMap& params) {
+  std::string s = method;
+  for (const auto& [k, v] : params) s += " " + k + "=" + v;
+  return s;
+}
+
+// The world hash at the end of the scene under one configuration.
+uint64_t RunScene(const std::string& method_name, const ParamMap& params) {
+  SceneSpec spec;
+  World world;
+  Status st = LoadSceneFile(std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/determinism.pbtxt", &spec);
+  EXPECT_TRUE(st.ok()) << st.message();
+  st = BuildWorld(spec, &world);
+  EXPECT_TRUE(st.ok()) << st.message();
+  std::unique_ptr<ContactMethod> method;
+  st = CreateContactMethod(method_name, &method);
+  EXPECT_TRUE(st.ok()) << st.message();
+  if (!st.ok()) return 0;
+  st = method->SetParams(params);
+  EXPECT_TRUE(st.ok()) << st.message();
+  CollisionDetector detector;
+  ContactSet contacts;
+  EXPECT_GT(spec.steps, 0);
+  for (int i = 0; i < spec.steps; ++i) method->Step(world, detector, &contacts);
+  EXPECT_EQ(world.step, spec.steps);
+  EXPECT_TRUE(std::isfinite(KineticEnergy(world)));
+  return HashWorldState(world);
+}
+
+class DeterminismTest : public ::testing::TestWithParam<std::string> {};
+
+// Verifies that each configuration of the method ends the scene on its
+// pinned hash, bit for bit, whatever the compiler and optimisation level.
+TEST_P(DeterminismTest, MethodEndsTheSceneOnItsPinnedHash) {
+  int runs = 0;
+  for (const Pinned& p : PinnedRuns()) {
+    if (p.method != GetParam()) continue;
+    ++runs;
+    const uint64_t hash = RunScene(p.method, p.params);
+    std::printf("%-24s %016" PRIx64 "\n", Describe(p.method, p.params).c_str(), hash);
+    EXPECT_EQ(hash, p.hash) << Describe(p.method, p.params) << ": got 0x" << std::hex << hash << ", pinned 0x"
+                            << p.hash;
+  }
+  EXPECT_GT(runs, 0) << "no pinned hash for the registered method " << GetParam()
+                     << ": add its hash to PinnedRuns()";
+}
+
+// The methods come from the registry, so a new method fails until its
+// hash is pinned.
+INSTANTIATE_TEST_SUITE_P(EveryMethod, DeterminismTest, ::testing::ValuesIn(ContactMethodNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+}  // namespace
+}  // namespace contactsim
