@@ -8,8 +8,12 @@ FUZZ       ?= OFF
 FUZZ_RUNS  ?= 20000
 FUZZ_CI_SECONDS ?= 30
 FUZZ_SECONDS ?= 600
-# ccache (installed by make deps) keeps objects across build folders and clones
+# ccache (installed by make deps) keeps objects across build folders and
+# clones: paths below the clone are hashed relative to it, and the working
+# folder that -g records is left out of the hash (the debug info may then
+# name another clone's folder)
 export CCACHE_BASEDIR := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
