@@ -1,0 +1,57 @@
+"""The viewer's web server (aiohttp): the page, its scripts, three.js from
+the local npm install, and the WebSocket at /ws."""
+import asyncio
+import json
+import logging
+import os
+
+from aiohttp import WSMsgType, web
+
+from .connection import Connection
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+STATIC_DIR = os.path.join(HERE, "static")
+THREE_DIR = os.path.join(HERE, "vendor", "node_modules", "three")
+
+log = logging.getLogger("contactsim.viewer")
+
+
+async def _index(request):
+    return web.FileResponse(os.path.join(STATIC_DIR, "index.html"),
+                            headers={"Cache-Control": "no-store"})
+
+
+async def _websocket(request):
+    ws = web.WebSocketResponse(max_msg_size=1 << 20)
+    await ws.prepare(request)
+    source = request.app["source"]
+    conn = Connection(ws, source)
+    await conn.send_json(source.hello())
+    await conn.send_catalog()
+    pusher = asyncio.create_task(conn.push_live()) if source.mode == "live" else None
+    try:
+        async for msg in ws:
+            if msg.type != WSMsgType.TEXT:
+                continue
+            try:
+                await conn.handle(json.loads(msg.data))
+            except (ValueError, KeyError, TypeError) as e:
+                await conn.send_json({"type": "error", "message": "bad message: %s" % e})
+    finally:
+        if pusher is not None:
+            pusher.cancel()
+    return ws
+
+
+def make_app(source):
+    """The aiohttp application serving one source (live or replay)."""
+    if not os.path.isfile(os.path.join(THREE_DIR, "build", "three.module.js")):
+        log.warning("three.js is not installed in %s: run `make deps`", THREE_DIR)
+    app = web.Application()
+    app["source"] = source
+    app.router.add_get("/", _index)
+    app.router.add_get("/ws", _websocket)
+    app.router.add_static("/static/", STATIC_DIR)
+    if os.path.isdir(THREE_DIR):
+        app.router.add_static("/vendor/three/", THREE_DIR)
+    return app

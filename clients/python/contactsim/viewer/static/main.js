@@ -1,0 +1,99 @@
+// Wires the page: socket -> bodies, overlays, panel; controls -> commands.
+// window.contactsimViewer exposes the scene state to tests and scripts.
+import { Bodies } from './bodies.js';
+import { showMethod, setOptions, wireLiveControls } from './controls.js';
+import { Contacts, Joints } from './overlays.js';
+import { Panel } from './panel.js';
+import { connect } from './socket.js';
+import { Timeline } from './timeline.js';
+import { World } from './world.js';
+
+const $ = (id) => document.getElementById(id);
+const world = new World($('view'));
+const bodies = new Bodies(world.scene);
+const contacts = new Contacts(world.scene);
+const joints = new Joints(world.scene);
+const panel = new Panel();
+const state = { hello: null, status: null, pending: null, drawn: 0, step: null, selected: null,
+                framed: false, frameLog: [], timeline: null, replies: [] };
+
+const socket = connect({
+  hello(msg) {
+    state.hello = msg;
+    $('mode').textContent = msg.mode === 'replay' ? `replay: ${msg.log}` : `live: ${msg.prefix}`;
+    if (msg.mode === 'replay') { state.timeline = new Timeline(socket, msg, panel); return; }
+    showMethod(msg.methods.slice(), null);
+    setOptions('scene-select', msg.scenes, (p) => p.split('/').pop());
+  },
+  catalog(msg) { bodies.setCatalog(msg.bodies); joints.setCatalog(msg.joints); state.framed = false; },
+  status(msg) { state.status = msg; panel.status(msg); showMethod(state.hello.methods.slice(), msg.method); },
+  poses(frame) { state.pending = frame; },   // drawn at the next animation frame
+  contacts(frame) { contacts.apply(frame); panel.contacts(frame.n); },
+  reply(msg) { state.replies.push(msg); panel.message(`${msg.cmd}: ${msg.message}`, msg.ok); },
+  error(msg) { panel.message(msg.message, false); },
+  body(msg) { $('selection').textContent = describe(msg); },
+  closed() { panel.message('disconnected from the bridge', false); },
+});
+if (!state.timeline) wireLiveControls(socket);
+
+function describe(b) {
+  const v = (a) => (a ? a.map((x) => x.toFixed(3)).join(', ') : '-');
+  return `id ${b.id} ${b.name ? `"${b.name}"` : ''}\n${b.shape ? b.shape.kind : 'shape unknown'}, ${b.motion || ''}` +
+    `\nmass ${b.mass !== undefined ? b.mass.toFixed(4) + ' kg' : '-'}\nposition ${v(b.position)}` +
+    `\nvelocity ${v(b.linear_velocity)} m/s\nangular ${v(b.angular_velocity)} rad/s`;
+}
+
+// draws the newest frame, then tells the bridge it may send the next
+function draw(frame) {
+  bodies.apply(frame);
+  panel.poses(frame);
+  if (!state.timeline && Number.isFinite(frame.kinetic)) panel.pushEnergy(frame.kinetic, frame.potential);
+  if (!state.framed) {
+    const { centre, radius } = bodies.bounds();
+    world.fit(centre, radius);
+    contacts.normalLength = Math.max(0.05, radius * 0.04);
+    state.framed = true;
+  }
+}
+
+function animate(now) {
+  requestAnimationFrame(animate);
+  const frame = state.pending;
+  state.pending = null;
+  if (frame) draw(frame);
+  if (state.timeline) state.timeline.tick(now);
+  joints.update(bodies);
+  const sel = state.selected !== null && $('follow').checked ? bodies.pose(state.selected) : null;
+  if (sel) world.follow(sel.p);
+  world.render();
+  if (frame) {
+    state.drawn += 1; state.step = frame.step;
+    state.frameLog.push([frame.step, performance.timeOrigin + performance.now()]);
+    if (state.frameLog.length > 100000) state.frameLog.splice(0, 50000);
+    if (state.timeline) state.timeline.drawn(); else socket.send({ cmd: 'ack' });
+  }
+}
+requestAnimationFrame(animate);
+
+world.renderer.domElement.addEventListener('click', (ev) => {
+  const id = bodies.pick(world.ray(ev));
+  if (id === null) return;
+  state.selected = id;
+  if (state.hello && state.hello.mode === 'live') socket.send({ cmd: 'body', id });
+  else $('selection').textContent = describe({ id, ...(bodies.catalog.get(id) || {}) });
+});
+$('btn-fit').addEventListener('click', () => { const b = bodies.bounds(); world.fit(b.centre, b.radius); });
+
+window.contactsimViewer = {
+  bodies: () => bodies.positions(),          // id -> [x, y, z] from the instance matrices
+  framesDrawn: () => state.drawn,
+  step: () => state.step,
+  mode: () => (state.hello ? state.hello.mode : null),
+  status: () => state.status,
+  contactCount: () => contacts.count,
+  frameLog: () => state.frameLog,            // [step, epoch ms when drawn]
+  replies: () => state.replies,
+  seek: (i) => state.timeline && state.timeline.seek(i),
+  select: (id) => { state.selected = id; },
+  internals: { world, bodies, contacts, joints },
+};

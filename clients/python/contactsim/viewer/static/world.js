@@ -1,0 +1,65 @@
+// The three.js scene, camera (z up, as the simulation), lights, orbit
+// controls, and the camera that follows a selected body.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+export class World {
+  constructor(container) {
+    this.container = container;
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x1b1d22);
+    this.camera = new THREE.PerspectiveCamera(50, 1, 0.01, 2000);
+    this.camera.up.set(0, 0, 1);
+    this.camera.position.set(6, -8, 5);
+    // preserveDrawingBuffer: screenshots read what was drawn
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    container.appendChild(this.renderer.domElement);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+    sun.position.set(5, -3, 10);
+    this.scene.add(sun);
+    this.raycaster = new THREE.Raycaster();
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+  }
+
+  resize() {
+    const w = this.container.clientWidth || 1, h = this.container.clientHeight || 1;
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+  }
+
+  // looks at a sphere (centre, radius) from the current direction
+  fit(centre, radius) {
+    const dir = this.camera.position.clone().sub(this.controls.target).normalize();
+    this.controls.target.copy(centre);
+    this.camera.position.copy(centre).addScaledVector(dir, radius * 2.6);
+    this.camera.near = radius / 100;
+    this.camera.far = radius * 200;
+    this.camera.updateProjectionMatrix();
+  }
+
+  // moves camera and target with a followed body, keeping the view's offset
+  follow(p) {
+    const offset = this.camera.position.clone().sub(this.controls.target);
+    this.controls.target.copy(p);
+    this.camera.position.copy(p).add(offset);
+  }
+
+  // the ray under a mouse event, in normalised device coordinates
+  ray(event) {
+    const r = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1,
+                                  -((event.clientY - r.top) / r.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    return this.raycaster;
+  }
+
+  render() {
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+}
