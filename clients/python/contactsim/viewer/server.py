@@ -26,6 +26,7 @@ async def _websocket(request):
     await ws.prepare(request)
     source = request.app["source"]
     conn = Connection(ws, source)
+    request.app["sockets"].add(ws)
     await conn.send_json(source.hello())
     await conn.send_catalog()
     pusher = asyncio.create_task(conn.push_live()) if source.mode == "live" else None
@@ -38,9 +39,16 @@ async def _websocket(request):
             except (ValueError, KeyError, TypeError) as e:
                 await conn.send_json({"type": "error", "message": "bad message: %s" % e})
     finally:
+        request.app["sockets"].discard(ws)
         if pusher is not None:
             pusher.cancel()
     return ws
+
+
+async def _close_sockets(app):
+    # an open page would otherwise hold the shutdown until its timeout
+    for ws in list(app["sockets"]):
+        await ws.close(code=1001, message=b"viewer stopping")
 
 
 def make_app(source):
@@ -49,6 +57,8 @@ def make_app(source):
         log.warning("three.js is not installed in %s: run `make deps`", THREE_DIR)
     app = web.Application()
     app["source"] = source
+    app["sockets"] = set()
+    app.on_shutdown.append(_close_sockets)
     app.router.add_get("/", _index)
     app.router.add_get("/ws", _websocket)
     app.router.add_static("/static/", STATIC_DIR)

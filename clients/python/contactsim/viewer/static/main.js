@@ -94,6 +94,7 @@ window.contactsimViewer = {
   frameLog: () => state.frameLog,            // [step, epoch ms when drawn]
   replies: () => state.replies,
   seek: (i) => state.timeline && state.timeline.seek(i),
+  timelineSteps: () => (state.timeline ? state.timeline.steps : []),
   select: (id) => { state.selected = id; },
   internals: { world, bodies, contacts, joints },
 };
