@@ -8,6 +8,12 @@ import { planeObject, shapeGroup } from './shapes.js';
 const COLORS = { sphere: 0xd9a441, box: 0x5b8fd9, capsule: 0x6fbf73, convex: 0xb07cd9, marker: 0xaaaaaa };
 const STATIC_COLOR = 0x7a7f88;
 
+// neighbours of one kind differ a little in lightness, so that a stack reads as bodies
+function shade(color, id) {
+  const c = new THREE.Color(color);
+  return c.offsetHSL(0, 0, (((id * 2654435761) >>> 0) % 17 - 8) / 100);
+}
+
 export class Bodies {
   constructor(scene) {
     this.root = new THREE.Group();
@@ -48,11 +54,15 @@ export class Bodies {
     }
     for (const { g, still, ids: members } of groups.values()) {
       const color = still ? STATIC_COLOR : COLORS[g.key.split(':')[0]];
-      const mesh = new THREE.InstancedMesh(g.make(), new THREE.MeshStandardMaterial({ color, roughness: 0.6 }),
+      // white material: the per-instance colours (shade) carry the kind's colour
+      const mesh = new THREE.InstancedMesh(g.make(), new THREE.MeshStandardMaterial({ roughness: 0.6 }),
                                            members.length);
       mesh.frustumCulled = false;   // instances move; the geometry's bounds say nothing of them
       mesh.userData.ids = members;
-      members.forEach((id, index) => this.slots.set(id, { mesh, index, scale: g.scale }));
+      members.forEach((id, index) => {
+        this.slots.set(id, { mesh, index, scale: g.scale });
+        mesh.setColorAt(index, shade(color, id));
+      });
       this.root.add(mesh); this.meshes.push(mesh);
     }
   }

@@ -15,7 +15,7 @@ const contacts = new Contacts(world.scene);
 const joints = new Joints(world.scene);
 const panel = new Panel();
 const state = { hello: null, status: null, pending: null, drawn: 0, step: null, selected: null,
-                framed: false, frameLog: [], timeline: null, replies: [] };
+                framed: false, renders: 0, frameLog: [], timeline: null, replies: [] };
 
 const socket = connect({
   hello(msg) {
@@ -66,6 +66,7 @@ function animate(now) {
   const sel = state.selected !== null && $('follow').checked ? bodies.pose(state.selected) : null;
   if (sel) world.follow(sel.p);
   world.render();
+  state.renders += 1;
   if (frame) {
     state.drawn += 1; state.step = frame.step;
     state.frameLog.push([frame.step, performance.timeOrigin + performance.now()]);
@@ -82,11 +83,13 @@ world.renderer.domElement.addEventListener('click', (ev) => {
   if (state.hello && state.hello.mode === 'live') socket.send({ cmd: 'body', id });
   else $('selection').textContent = describe({ id, ...(bodies.catalog.get(id) || {}) });
 });
+$('show-contacts').addEventListener('change', (ev) => contacts.setVisible(ev.target.checked));
 $('btn-fit').addEventListener('click', () => { const b = bodies.bounds(); world.fit(b.centre, b.radius); });
 
 window.contactsimViewer = {
   bodies: () => bodies.positions(),          // id -> [x, y, z] from the instance matrices
-  framesDrawn: () => state.drawn,
+  framesDrawn: () => state.drawn,           // POSES frames drawn
+  renders: () => state.renders,              // animation frames rendered
   step: () => state.step,
   mode: () => (state.hello ? state.hello.mode : null),
   status: () => state.status,

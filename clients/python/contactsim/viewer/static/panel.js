@@ -40,20 +40,22 @@ export class Panel {
     this.plot(this.energy);
   }
 
-  // kinetic (orange), potential (blue) and their sum (white), scaled to the samples shown
+  // kinetic (orange), potential (blue) and their sum (white), each on its own
+  // scale: potential energy is often orders of magnitude above kinetic
   plot(samples) {
     const c = this.canvas, g = c.getContext('2d');
     g.clearRect(0, 0, c.width, c.height);
     if (samples.length < 2) return;
-    let lo = Infinity, hi = -Infinity;
-    for (const [k, p] of samples) { lo = Math.min(lo, k, p, k + p); hi = Math.max(hi, k, p, k + p); }
-    if (hi - lo < 1e-9) { hi += 1; lo -= 1; }
     const x = (i) => (i / (this.maxSamples - 1)) * c.width;
-    const y = (v) => c.height - 4 - ((v - lo) / (hi - lo)) * (c.height - 8);
-    for (const [color, pick] of [['#f0a040', (s) => s[0]], ['#4da3ff', (s) => s[1]], ['#eeeeee', (s) => s[0] + s[1]]]) {
+    const series = [['#f0a040', (s) => s[0]], ['#4da3ff', (s) => s[1]], ['#eeeeee', (s) => s[0] + s[1]]];
+    for (const [color, pick] of series) {
+      const values = samples.map(pick);
+      let lo = Math.min(...values), hi = Math.max(...values);
+      if (hi - lo < 1e-9 * Math.max(1, Math.abs(hi))) { hi += 0.5; lo -= 0.5; }
+      const y = (v) => c.height - 4 - ((v - lo) / (hi - lo)) * (c.height - 8);
       g.strokeStyle = color;
       g.beginPath();
-      samples.forEach((s, i) => (i ? g.lineTo(x(i), y(pick(s))) : g.moveTo(x(i), y(pick(s)))));
+      values.forEach((v, i) => (i ? g.lineTo(x(i), y(v)) : g.moveTo(x(i), y(v))));
       g.stroke();
     }
   }
