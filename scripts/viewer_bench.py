@@ -5,12 +5,13 @@ and the latency the bridge adds from STATE to screen (BENCHMARKS.md, "Viewer").
                                                                         [--seconds 10] [--method impulse]
 
 A real server runs the scene in REALTIME mode; a raw LCM subscriber stamps
-each STATE's arrival (wall clock, this host), the page stamps the moment it
-drew each step (performance.timeOrigin + now, after the render call), and the
-latency of a drawn step is the difference. Steps the bridge skipped (latest
+each STATE's arrival (wall clock, this host), the page stamps the moment a
+frame arrives and the moment it drew it (performance.timeOrigin + now, after
+the render call); the latencies are the differences. Steps the bridge skipped (latest
 only) are not drawn and not counted.
 """
 import argparse
+import os
 import statistics
 import struct
 import sys
@@ -37,6 +38,28 @@ def stamp_states(url, channel, arrivals, stop):
         lc.handle_timeout(20)
 
 
+async def _bridge_only(url, seconds, log):
+    """A WebSocket client that acks each POSES frame at once: what the bridge
+    alone adds, without a browser's rendering in the way."""
+    import aiohttp
+    async with aiohttp.ClientSession() as session:
+        async with session.ws_connect(url.replace("http", "ws", 1) + "ws", max_msg_size=0) as ws:
+            end = time.monotonic() + seconds
+            while time.monotonic() < end:
+                msg = await ws.receive(timeout=seconds)
+                if msg.type == aiohttp.WSMsgType.BINARY and struct.unpack_from("<d", msg.data)[0] == 1.0:
+                    log.append((struct.unpack_from("<d", msg.data, 8)[0], time.time() * 1000.0))
+                    await ws.send_str('{"cmd": "ack"}')
+
+
+def bridge_only(url, seconds):
+    """[(step, epoch ms received)] over `seconds`."""
+    import asyncio
+    log = []
+    asyncio.run(_bridge_only(url, seconds, log))
+    return log
+
+
 def measure(driver, seconds):
     """(render fps, pose frames drawn per second) over `seconds`."""
     r0, f0 = driver.execute_script("return [contactsimViewer.renders(), contactsimViewer.framesDrawn()]")
@@ -52,6 +75,7 @@ def main():
     p.add_argument("--scene", default=str(REPO / "config" / "scenes" / "sphere_pile.pbtxt"))
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--method", default="impulse")
+    p.add_argument("--query", default="", help="appended to the page URL, e.g. ?aa=0 (no multisampling)")
     p.add_argument("--build-dir", default=None)
     a = p.parse_args()
     with ServerProcess(a.build_dir, scene_text=Path(a.scene).read_text(), tag="VWB") as srv:
@@ -63,7 +87,7 @@ def main():
         with ViewerProcess(["--lcm-url", srv.url, "--prefix", srv.prefix]) as viewer:
             driver = start_browser()
             try:
-                driver.get(viewer.url)
+                driver.get(viewer.url + a.query)
                 wait_for(driver, "window.contactsimViewer && contactsimViewer.framesDrawn() > 0", timeout=60)
                 c.set_mode("realtime")
                 c.resume()
@@ -73,15 +97,29 @@ def main():
                 bodies = len(driver.execute_script("return contactsimViewer.bodies()"))
             finally:
                 driver.quit()
+            bridge_log = bridge_only(viewer.url, a.seconds)
         status = c.status()
         stop.set()
-    lat = sorted(t - arrivals[int(s)] for s, t in log if int(s) in arrivals)
-    lat = lat[len(lat) // 10:]   # skip the warm-up tenth
+    drawn_log = [(arrivals[int(s)], got, shown) for s, got, shown in log if int(s) in arrivals]
+    drawn_log = drawn_log[len(drawn_log) // 10:]   # the warm-up tenth, in drawing order, is left out
+    if not drawn_log:
+        sys.exit("no STATE was drawn while measuring")
+    to_page = sorted(got - t for t, got, _ in drawn_log)
+    bridge = [got - arrivals[int(s)] for s, got in bridge_log if int(s) in arrivals]
+    bridge = sorted(bridge[len(bridge) // 10:])
+    lat = sorted(shown - t for t, _, shown in drawn_log)
     print("scene %s: %d bodies drawn, method %s, server rtf %.2f (%.0f steps/s)" % (
         Path(a.scene).name, bodies, a.method, status.real_time_factor, status.step_rate))
-    print("headless chromium (SwiftShader): %.1f frames/s rendered, %.1f STATE frames/s drawn" % (fps, drawn))
-    print("STATE -> screen: median %.1f ms, p95 %.1f ms over %d drawn STATEs" % (
-        statistics.median(lat), lat[int(0.95 * (len(lat) - 1))], len(lat)))
+    print("headless chromium (SwiftShader%s): %.1f frames/s rendered, %.1f STATE frames/s drawn" % (
+        ", " + a.query if a.query else "", fps, drawn))
+    print("load average during the run: %.1f on %d cores" % (os.getloadavg()[0], os.cpu_count()))
+    p95 = lambda v: v[round(0.95 * (len(v) - 1))]  # noqa: E731
+    print("STATE -> WebSocket client acking at once (the bridge alone): median %.1f ms, p95 %.1f ms, "
+          "%.0f frames/s" % (statistics.median(bridge), p95(bridge), len(bridge_log) / a.seconds))
+    print("STATE -> page (bridge, WebSocket, the page's busy main thread): median %.1f ms, p95 %.1f ms" % (
+        statistics.median(to_page), p95(to_page)))
+    print("STATE -> screen (drawn): median %.1f ms, p95 %.1f ms over %d drawn STATEs" % (
+        statistics.median(lat), p95(lat), len(lat)))
 
 
 if __name__ == "__main__":

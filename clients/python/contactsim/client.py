@@ -302,6 +302,14 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         """The latest world state (State), or None before the first STATE."""
         return self._latest_state_obj()
 
+    def state_payload(self):
+        """(payload, count): the latest STATE as received (signature checked,
+        trailer removed; None before the first) and how many STATEs arrived so
+        far. Nothing is decoded: for readers that decode it their own way (the
+        viewer reads 1,000 bodies with numpy) or only when the count moved."""
+        with self._lock:
+            return self._state_bytes, self._state_seq
+
     def contacts(self):
         """The latest contacts (Contacts, a list); empty before the first CONTACTS."""
         with self._lock:

@@ -9,7 +9,7 @@ import asyncio
 import json
 import time
 
-from .frames import contacts_from_msg, poses_from_catalog, poses_from_state
+from .frames import contacts_from_msg, poses_from_catalog, poses_from_records, read_state
 
 POLL_S = 0.002          # how often the live pusher looks for a new STATE or STATUS
 CONTACTS_MIN_S = 1 / 15  # decoding thousands of contacts is dear; 15 Hz is plenty to see them
@@ -39,7 +39,7 @@ class Connection:
         """Sends STATUS when it changes, the catalog when it changes and the
         latest STATE (with the latest CONTACTS) whenever the page is ready."""
         client = self.source.client
-        last_state = last_status = last_contacts = None
+        last_count = last_status = last_contacts = None
         contacts_at = 0.0
         while not self.ws.closed:
             await asyncio.sleep(POLL_S)
@@ -49,14 +49,16 @@ class Connection:
                 await self.send_json(status_message(status))
             if not self.ready:
                 continue
-            state = client.state()
-            if state is None:
+            payload, count = client.state_payload()
+            if payload is None:
                 await self._first_from_snapshot()
                 continue
-            if state is last_state:
+            parsed = read_state(payload) if count != last_count else None
+            last_count = count
+            if parsed is None:
                 continue
-            last_state = state
-            self.source.note_state(state)
+            head, bodies = parsed
+            self.source.note_state(int(head["step"]), bodies["id"])
             await asyncio.to_thread(self.source.refresh_catalog)
             await self.send_catalog()
             now = time.monotonic()
@@ -66,7 +68,7 @@ class Connection:
                     last_contacts, contacts_at = contacts, now
                     await self.send_bytes(contacts_from_msg(contacts))
             self.ready = False
-            await self.send_bytes(poses_from_state(state.raw))
+            await self.send_bytes(poses_from_records(head, bodies))
 
     async def _first_from_snapshot(self):
         """A paused server publishes no STATE until something changes: show

@@ -10,6 +10,16 @@ Doubles keep the positions exact: the page shows what STATE says.
 """
 import numpy as np
 
+from .. import state_t
+
+# state_t on the wire (lcmtypes/state_t.lcm): fingerprint, time, step,
+# state_hash, input_digest, kinetic and potential energy, num_bodies, then
+# each body_state_t (nested: no fingerprint) as id and 13 doubles, big-endian
+_STATE_HEAD = np.dtype([("fp", "V8"), ("time", ">f8"), ("step", ">i8"), ("hash", ">i8"), ("digest", ">i8"),
+                        ("kinetic", ">f8"), ("potential", ">f8"), ("n", ">i4")])
+_BODY = np.dtype([("id", ">i8"), ("x", ">f8", 3), ("q", ">f8", 4), ("v", ">f8", 3), ("w", ">f8", 3)])
+_STATE_FP = state_t._get_packed_fingerprint()
+
 POSES, CONTACTS = 1.0, 2.0
 POSE_WIDTH = 8       # id, position (3), orientation w x y z (4)
 CONTACT_WIDTH = 6    # point (3), normal (3)
@@ -24,13 +34,22 @@ def poses_frame(step, time, kinetic, potential, ids, positions, orientations):
     return head.astype("<f8").tobytes() + rows.astype("<f8").tobytes()
 
 
-def poses_from_state(state_msg):
-    """A POSES frame from a decoded state_t (contactsim.State.raw)."""
-    bodies = state_msg.bodies
-    flat = np.fromiter((v for b in bodies for v in (b.id, *b.position, *b.orientation)),
-                       dtype=np.float64, count=len(bodies) * POSE_WIDTH).reshape(-1, POSE_WIDTH)
-    return poses_frame(state_msg.step, state_msg.time, state_msg.kinetic_energy, state_msg.potential_energy,
-                       flat[:, 0], flat[:, 1:4], flat[:, 4:8])
+def read_state(payload):
+    """(head, bodies) numpy records of a STATE payload, without one Python
+    object per body; None when it is not exactly one state_t of this layout."""
+    if len(payload) < _STATE_HEAD.itemsize or payload[:8] != _STATE_FP:
+        return None
+    head = np.frombuffer(payload, _STATE_HEAD, count=1)[0]
+    n = int(head["n"])
+    if n < 0 or len(payload) != _STATE_HEAD.itemsize + n * _BODY.itemsize:
+        return None
+    return head, np.frombuffer(payload, _BODY, count=n, offset=_STATE_HEAD.itemsize)
+
+
+def poses_from_records(head, bodies):
+    """A POSES frame from read_state's records."""
+    return poses_frame(head["step"], head["time"], head["kinetic"], head["potential"], bodies["id"], bodies["x"],
+                       bodies["q"])
 
 
 def contacts_frame(step, points, normals):

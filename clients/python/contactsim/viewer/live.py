@@ -2,7 +2,8 @@
 
 STATE, CONTACTS and STATUS come from the client's latest-message cache, so
 the bridge decodes only the STATEs it sends (the latest when the page is
-ready for one, docs/viewer.md). Shapes, masses and joints are not in STATE:
+ready for one, docs/viewer.md), and reads their bodies with numpy
+(frames.read_state). Shapes, masses and joints are not in STATE:
 the bridge asks the server for a snapshot file (SNAPSHOT with a path, which
 changes nothing in the world) whenever the set of body ids changes, the
 clock goes back, or a reply tells of a joint added or removed.
@@ -11,6 +12,8 @@ import os
 import tempfile
 import threading
 import warnings
+
+import numpy as np
 
 from .catalog import read_catalog
 from .commands import run_command
@@ -52,12 +55,11 @@ class LiveSource:
         if reply.code == 0 and reply.client_id != self.client.client_id and " joint" in reply.message:
             self._dirty.set()
 
-    def note_state(self, state):
-        """Flags a catalog refresh when the bodies or the timeline changed."""
-        ids = tuple(state.bodies)
-        if ids != self._catalog_ids or (self._last_step is not None and state.step < self._last_step):
+    def note_state(self, step, ids):
+        """Flags a catalog refresh when the body ids (an array) or the timeline changed."""
+        if not np.array_equal(ids, self._catalog_ids) or (self._last_step is not None and step < self._last_step):
             self._dirty.set()
-        self._last_step = state.step
+        self._last_step = step
 
     def refresh_catalog(self):
         """Reads a fresh snapshot when flagged (blocking: run off the event
@@ -74,7 +76,7 @@ class LiveSource:
                 warnings.warn("contactsim-viewer: no shapes from a snapshot (%s); drawing markers" % e)
                 return False
             self.catalog = catalog
-            self._catalog_ids = tuple(b["id"] for b in catalog["bodies"])
+            self._catalog_ids = np.array([b["id"] for b in catalog["bodies"]], dtype=np.int64)
             self.catalog_version += 1
             return True
         finally:

@@ -55,7 +55,7 @@ export class Bodies {
     for (const { g, still, ids: members } of groups.values()) {
       const color = still ? STATIC_COLOR : COLORS[g.key.split(':')[0]];
       // white material: the per-instance colours (shade) carry the kind's colour
-      const mesh = new THREE.InstancedMesh(g.make(), new THREE.MeshStandardMaterial({ roughness: 0.6 }),
+      const mesh = new THREE.InstancedMesh(g.make(members.length), new THREE.MeshLambertMaterial(),
                                            members.length);
       mesh.frustumCulled = false;   // instances move; the geometry's bounds say nothing of them
       mesh.userData.ids = members;

@@ -69,7 +69,7 @@ function animate(now) {
   state.renders += 1;
   if (frame) {
     state.drawn += 1; state.step = frame.step;
-    state.frameLog.push([frame.step, performance.timeOrigin + performance.now()]);
+    state.frameLog.push([frame.step, frame.received, performance.timeOrigin + performance.now()]);
     if (state.frameLog.length > 100000) state.frameLog.splice(0, 50000);
     if (state.timeline) state.timeline.drawn(); else socket.send({ cmd: 'ack' });
   }
@@ -94,7 +94,7 @@ window.contactsimViewer = {
   mode: () => (state.hello ? state.hello.mode : null),
   status: () => state.status,
   contactCount: () => contacts.count,
-  frameLog: () => state.frameLog,            // [step, epoch ms when drawn]
+  frameLog: () => state.frameLog,            // [step, epoch ms received, epoch ms drawn]
   replies: () => state.replies,
   seek: (i) => state.timeline && state.timeline.seek(i),
   timelineSteps: () => (state.timeline ? state.timeline.steps : []),

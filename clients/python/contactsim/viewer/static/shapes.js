@@ -6,12 +6,17 @@ import * as THREE from 'three';
 
 const MARKER_RADIUS = 0.05;  // m, bodies whose shape is unknown (no snapshot, or a replay without one)
 
-// {key, scale, make()} of a catalog shape; the key groups bodies into one InstancedMesh
+// Triangles per sphere, by how many spheres there are: a software renderer
+// (headless chromium, a laptop without a GPU) draws 1,000 coarse spheres
+// several times faster than 1,000 fine ones, and at that count each is small on screen.
+const sphereDetail = (count) => (count > 300 ? [10, 6] : [20, 14]);
+
+// {key, scale, make(count)} of a catalog shape; the key groups bodies into one InstancedMesh
 export function shapeGroup(shape) {
   switch (shape && shape.kind) {
     case 'sphere':
       return { key: 'sphere', scale: [shape.radius, shape.radius, shape.radius],
-               make: () => new THREE.SphereGeometry(1, 20, 14) };
+               make: (count) => new THREE.SphereGeometry(1, ...sphereDetail(count)) };
     case 'box': {
       const h = shape.half_extents;
       return { key: 'box', scale: [2 * h[0], 2 * h[1], 2 * h[2]], make: () => new THREE.BoxGeometry(1, 1, 1) };
@@ -52,7 +57,7 @@ function hull(shape) {
 export function planeObject(shape, size) {
   const group = new THREE.Group();
   const square = new THREE.Mesh(new THREE.PlaneGeometry(size, size),
-    new THREE.MeshStandardMaterial({ color: 0x3a3f47, side: THREE.DoubleSide, roughness: 1 }));
+    new THREE.MeshLambertMaterial({ color: 0x3a3f47, side: THREE.DoubleSide }));
   const grid = new THREE.GridHelper(size, Math.round(size), 0x555b66, 0x444a52);
   grid.rotateX(Math.PI / 2);   // GridHelper lies in x-z; the square in x-y
   grid.position.z = 0.001;

@@ -26,7 +26,8 @@ export function connect(handlers) {
 }
 
 function decodePoses(a) {
-  return { step: a[1], time: a[2], kinetic: a[3], potential: a[4], n: a[5], rows: a.subarray(6) };
+  return { step: a[1], time: a[2], kinetic: a[3], potential: a[4], n: a[5], rows: a.subarray(6),
+           received: performance.timeOrigin + performance.now() };   // epoch ms, for the latency benchmark
 }
 
 function decodeContacts(a) {

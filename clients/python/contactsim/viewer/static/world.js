@@ -11,9 +11,11 @@ export class World {
     this.camera = new THREE.PerspectiveCamera(50, 1, 0.01, 2000);
     this.camera.up.set(0, 0, 1);
     this.camera.position.set(6, -8, 5);
-    // preserveDrawingBuffer: screenshots read what was drawn
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-    this.renderer.setPixelRatio(window.devicePixelRatio);
+    // preserveDrawingBuffer: screenshots read what was drawn; ?aa=0 turns
+    // multisampling off, which a software renderer pays for on every pixel
+    const antialias = new URLSearchParams(location.search).get('aa') !== '0';
+    this.renderer = new THREE.WebGLRenderer({ antialias, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     container.appendChild(this.renderer.domElement);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 1.6));
