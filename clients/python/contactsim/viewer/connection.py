@@ -7,12 +7,10 @@ last one, and then the latest STATE only, so a slow page never falls behind.
 """
 import asyncio
 import json
-import time
 
-from .frames import contacts_from_msg, poses_from_catalog, poses_from_records, read_state
+from .frames import contacts_from_payload, poses_from_catalog, poses_from_records, read_state
 
 POLL_S = 0.002          # how often the live pusher looks for a new STATE or STATUS
-CONTACTS_MIN_S = 1 / 15  # decoding thousands of contacts is dear; 15 Hz is plenty to see them
 
 
 class Connection:
@@ -40,7 +38,6 @@ class Connection:
         latest STATE (with the latest CONTACTS) whenever the page is ready."""
         client = self.source.client
         last_count = last_status = last_contacts = None
-        contacts_at = 0.0
         while not self.ws.closed:
             await asyncio.sleep(POLL_S)
             status = client.status()
@@ -61,12 +58,12 @@ class Connection:
             self.source.note_state(int(head["step"]), bodies["id"])
             await asyncio.to_thread(self.source.refresh_catalog)
             await self.send_catalog()
-            now = time.monotonic()
-            if now - contacts_at >= CONTACTS_MIN_S:
-                contacts = client.contacts().raw
-                if contacts is not None and contacts is not last_contacts:
-                    last_contacts, contacts_at = contacts, now
-                    await self.send_bytes(contacts_from_msg(contacts))
+            contacts, contacts_count = client.contacts_payload()
+            if contacts is not None and contacts_count != last_contacts:
+                last_contacts = contacts_count
+                frame = contacts_from_payload(contacts)
+                if frame is not None:
+                    await self.send_bytes(frame)
             self.ready = False
             await self.send_bytes(poses_from_records(head, bodies))
 

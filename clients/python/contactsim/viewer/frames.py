@@ -10,7 +10,7 @@ Doubles keep the positions exact: the page shows what STATE says.
 """
 import numpy as np
 
-from .. import state_t
+from .. import contacts_t, state_t
 
 # state_t on the wire (lcmtypes/state_t.lcm): fingerprint, time, step,
 # state_hash, input_digest, kinetic and potential energy, num_bodies, then
@@ -19,6 +19,11 @@ _STATE_HEAD = np.dtype([("fp", "V8"), ("time", ">f8"), ("step", ">i8"), ("hash",
                         ("kinetic", ">f8"), ("potential", ">f8"), ("n", ">i4")])
 _BODY = np.dtype([("id", ">i8"), ("x", ">f8", 3), ("q", ">f8", 4), ("v", ">f8", 3), ("w", ">f8", 3)])
 _STATE_FP = state_t._get_packed_fingerprint()
+# contacts_t: fingerprint, time, step, method (int32 length with its NUL, bytes),
+# value_kind (int8), num_contacts, then each contact_t
+_CONTACT = np.dtype([("a", ">i8"), ("b", ">i8"), ("point", ">f8", 3), ("normal", ">f8", 3), ("depth", ">f8"),
+                     ("value", ">f8"), ("tangent", ">f8", 3)])
+_CONTACTS_FP = contacts_t._get_packed_fingerprint()
 
 POSES, CONTACTS = 1.0, 2.0
 POSE_WIDTH = 8       # id, position (3), orientation w x y z (4)
@@ -60,10 +65,21 @@ def contacts_frame(step, points, normals):
     return head.astype("<f8").tobytes() + rows.astype("<f8").tobytes()
 
 
-def contacts_from_msg(msg):
-    """A CONTACTS frame from a decoded contacts_t."""
-    cs = msg.contacts
-    return contacts_frame(msg.step, [c.point for c in cs], [c.normal for c in cs])
+def contacts_from_payload(payload):
+    """A CONTACTS frame from a CONTACTS payload (Client.contacts_payload), or
+    None when it is not exactly one contacts_t of this layout."""
+    if len(payload) < 28 or payload[:8] != _CONTACTS_FP:
+        return None
+    step = int(np.frombuffer(payload, ">i8", count=1, offset=16)[0])
+    skip = int(np.frombuffer(payload, ">i4", count=1, offset=24)[0])   # method's length, with its NUL
+    at = 28 + skip + 1                                                  # past the method and value_kind
+    if skip < 1 or len(payload) < at + 4:
+        return None
+    n = int(np.frombuffer(payload, ">i4", count=1, offset=at)[0])
+    if n < 0 or len(payload) != at + 4 + n * _CONTACT.itemsize:
+        return None
+    rows = np.frombuffer(payload, _CONTACT, count=n, offset=at + 4)
+    return contacts_frame(step, rows["point"], rows["normal"])
 
 
 def poses_from_catalog(catalog):
