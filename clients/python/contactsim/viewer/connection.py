@@ -18,6 +18,7 @@ class Connection:
         self.ws, self.source = ws, source
         self.ready = True          # the page drew the last POSES frame
         self.catalog_sent = None
+        self.snapshot_shown = False  # the poses of a snapshot, before any STATE
         self.tasks = set()
 
     async def send_json(self, obj):
@@ -70,10 +71,11 @@ class Connection:
     async def _first_from_snapshot(self):
         """A paused server publishes no STATE until something changes: show
         the poses of the catalog's snapshot meanwhile, once."""
-        if self.catalog_sent is not None and self.catalog_sent > 0:
+        if self.snapshot_shown:
             return
         await asyncio.to_thread(self.source.refresh_catalog)
         if self.source.catalog_version > 0:
+            self.snapshot_shown = True
             await self.send_catalog()
             self.ready = False
             await self.send_bytes(poses_from_catalog(self.source.catalog))

@@ -11,6 +11,7 @@ clock goes back, or a reply tells of a joint added or removed.
 import os
 import tempfile
 import threading
+import time
 import warnings
 
 import numpy as np
@@ -20,6 +21,7 @@ from .commands import run_command
 
 # the contact methods the server registers (docs/architecture.md); STATUS adds the active one
 METHODS = ("impulse", "penalty", "xpbd", "lcp", "barrier")
+RETRY_S = 2.0   # s between snapshot attempts after one failed
 
 
 class LiveSource:
@@ -36,6 +38,7 @@ class LiveSource:
         self._dirty = threading.Event()
         self._dirty.set()
         self._refresh_lock = threading.Lock()
+        self._retry_at = 0.0
         self._remove_reply_cb = client.on_reply(self._on_reply)
 
     def close(self):
@@ -64,7 +67,8 @@ class LiveSource:
     def refresh_catalog(self):
         """Reads a fresh snapshot when flagged (blocking: run off the event
         loop); True when the catalog changed."""
-        if not self._dirty.is_set() or not self._refresh_lock.acquire(blocking=False):
+        if (not self._dirty.is_set() or time.monotonic() < self._retry_at
+                or not self._refresh_lock.acquire(blocking=False)):
             return False
         try:
             self._dirty.clear()
@@ -74,6 +78,8 @@ class LiveSource:
                 catalog = read_catalog(path)
             except Exception as e:  # noqa: BLE001 - a remote server cannot write our file: draw markers
                 warnings.warn("contactsim-viewer: no shapes from a snapshot (%s); drawing markers" % e)
+                self._retry_at = time.monotonic() + RETRY_S   # a busy server may answer later
+                self._dirty.set()
                 return False
             self.catalog = catalog
             self._catalog_ids = np.array([b["id"] for b in catalog["bodies"]], dtype=np.int64)
