@@ -13,6 +13,8 @@ export class Timeline {
     slider.max = Math.max(0, this.steps.length - 1);
     slider.addEventListener('input', () => this.seek(Number(slider.value)));
     $('btn-play').addEventListener('click', () => this.toggle());
+    // a new speed counts from now, not from when play was pressed
+    $('speed').addEventListener('change', () => { this.clock = { wall: performance.now(), sim: this.times[this.index] }; });
     $('replay-controls').hidden = false;
     $('live-controls').hidden = true;
     this.seek(0);
