@@ -76,6 +76,8 @@ def main():
     p.add_argument("--seconds", type=float, default=10.0)
     p.add_argument("--method", default="impulse")
     p.add_argument("--query", default="", help="appended to the page URL, e.g. ?aa=0 (no multisampling)")
+    p.add_argument("--window", type=int, nargs=2, default=(1280, 800), metavar=("W", "H"),
+                   help="browser window size, px")
     p.add_argument("--build-dir", default=None)
     a = p.parse_args()
     with ServerProcess(a.build_dir, scene_text=Path(a.scene).read_text(), tag="VWB") as srv:
@@ -85,7 +87,7 @@ def main():
         threading.Thread(target=stamp_states, args=(srv.url, srv.prefix + "_STATE", arrivals, stop),
                          daemon=True).start()
         with ViewerProcess(["--lcm-url", srv.url, "--prefix", srv.prefix]) as viewer:
-            driver = start_browser()
+            driver = start_browser(*a.window)
             try:
                 driver.get(viewer.url + a.query)
                 wait_for(driver, "window.contactsimViewer && contactsimViewer.framesDrawn() > 0", timeout=60)
@@ -95,6 +97,7 @@ def main():
                 fps, drawn = measure(driver, a.seconds)
                 log = driver.execute_script("return contactsimViewer.frameLog()")
                 bodies = len(driver.execute_script("return contactsimViewer.bodies()"))
+                update_ms = driver.execute_script("return contactsimViewer.updateMs()")
             finally:
                 driver.quit()
             bridge_log = bridge_only(viewer.url, a.seconds)
@@ -110,8 +113,10 @@ def main():
     lat = sorted(shown - t for t, _, shown in drawn_log)
     print("scene %s: %d bodies drawn, method %s, server rtf %.2f (%.0f steps/s)" % (
         Path(a.scene).name, bodies, a.method, status.real_time_factor, status.step_rate))
-    print("headless chromium (SwiftShader%s): %.1f frames/s rendered, %.1f STATE frames/s drawn" % (
-        ", " + a.query if a.query else "", fps, drawn))
+    print("headless chromium (SwiftShader, %dx%d%s): %.1f frames/s rendered, %.1f STATE frames/s drawn" % (
+        a.window[0], a.window[1], ", " + a.query if a.query else "", fps, drawn))
+    print("page: %.1f ms median to apply a frame to the scene graph (instance matrices, contacts)" % (
+        statistics.median(update_ms[1:] or update_ms)))
     print("load average during the run: %.1f on %d cores" % (os.getloadavg()[0], os.cpu_count()))
     p95 = lambda v: v[round(0.95 * (len(v) - 1))]  # noqa: E731
     print("STATE -> WebSocket client acking at once (the bridge alone): median %.1f ms, p95 %.1f ms, "

@@ -15,7 +15,7 @@ const contacts = new Contacts(world.scene);
 const joints = new Joints(world.scene);
 const panel = new Panel();
 const state = { hello: null, status: null, pending: null, drawn: 0, step: null, selected: null,
-                framed: false, renders: 0, frameLog: [], timeline: null, replies: [] };
+                framed: false, renders: 0, updateMs: [], frameLog: [], timeline: null, replies: [] };
 
 const socket = connect({
   hello(msg) {
@@ -60,7 +60,12 @@ function animate(now) {
   requestAnimationFrame(animate);
   const frame = state.pending;
   state.pending = null;
-  if (frame) draw(frame);
+  if (frame) {
+    const t0 = performance.now();
+    draw(frame);
+    state.updateMs.push(performance.now() - t0);
+    if (state.updateMs.length > 1000) state.updateMs.shift();
+  }
   if (state.timeline) state.timeline.tick(now);
   joints.update(bodies);
   const sel = state.selected !== null && $('follow').checked ? bodies.pose(state.selected) : null;
@@ -94,6 +99,7 @@ window.contactsimViewer = {
   mode: () => (state.hello ? state.hello.mode : null),
   status: () => state.status,
   contactCount: () => contacts.count,
+  updateMs: () => state.updateMs,            // ms to apply each drawn frame to the scene graph (not to render it)
   frameLog: () => state.frameLog,            // [step, epoch ms received, epoch ms drawn]
   replies: () => state.replies,
   seek: (i) => state.timeline && state.timeline.seek(i),

@@ -11,10 +11,9 @@ export class World {
     this.camera = new THREE.PerspectiveCamera(50, 1, 0.01, 2000);
     this.camera.up.set(0, 0, 1);
     this.camera.position.set(6, -8, 5);
-    // preserveDrawingBuffer: screenshots read what was drawn; ?aa=0 turns
-    // multisampling off, which a software renderer pays for on every pixel
+    // ?aa=0 turns multisampling off, which a software renderer pays for on every pixel
     const antialias = new URLSearchParams(location.search).get('aa') !== '0';
-    this.renderer = new THREE.WebGLRenderer({ antialias, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     container.appendChild(this.renderer.domElement);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
