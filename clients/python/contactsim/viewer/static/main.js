@@ -25,7 +25,13 @@ const socket = connect({
     showMethod(msg.methods.slice(), null);
     setOptions('scene-select', msg.scenes, (p) => p.split('/').pop());
   },
-  catalog(msg) { bodies.setCatalog(msg.bodies); joints.setCatalog(msg.joints); state.framed = false; },
+  catalog(msg) {
+    // ids restart with a new scene: a selection survives only if its body is the same one
+    const before = state.selected !== null ? bodies.catalog.get(state.selected) : null;
+    bodies.setCatalog(msg.bodies); joints.setCatalog(msg.joints); state.framed = false;
+    const after = state.selected !== null ? bodies.catalog.get(state.selected) : null;
+    if (!before || !after || before.name !== after.name) state.selected = null;
+  },
   status(msg) { state.status = msg; panel.status(msg); showMethod(state.hello.methods.slice(), msg.method); },
   poses(frame) { state.pending = frame; },   // drawn at the next animation frame
   contacts(frame) { contacts.apply(frame); panel.contacts(frame.n); },
@@ -45,6 +51,7 @@ function describe(b) {
 
 // draws the newest frame, then tells the bridge it may send the next
 function draw(frame) {
+  if (state.step !== null && frame.step < state.step) panel.energy = [];   // a reset, load or rewind
   bodies.apply(frame);
   panel.poses(frame);
   if (!state.timeline && Number.isFinite(frame.kinetic)) panel.pushEnergy(frame.kinetic, frame.potential);
