@@ -87,6 +87,9 @@ class Connection:
             self.ready = True
         elif cmd == "seek":
             i = max(0, min(int(msg["index"]), len(self.source.log.step) - 1))
+            status = self.source.status(i)
+            if status is not None:
+                await self.send_json(status)
             await self.send_bytes(self.source.contacts(i))
             await self.send_bytes(self.source.poses(i))
         elif cmd == "body":

@@ -38,6 +38,18 @@ class ReplaySource:
         return poses_frame(log.step[i], log.time[i], log.kinetic_energy[i], log.potential_energy[i],
                            log.body_ids[present], pos[present], rot[present])
 
+    def status(self, i):
+        """The panel's fields of the last STATUS at or before STATE i's step, or None."""
+        ss = self.log.status
+        m = int(np.searchsorted(ss.step, self.log.step[i], side="right")) - 1
+        if m < 0:
+            return None
+        return {"type": "status", "paused": None, "mode": ss.mode[m], "method": ss.method[m], "method_params": "",
+                "time": float(ss.time[m]), "step": int(ss.step[m]), "dt": float(ss.dt[m]),
+                "step_rate": float(ss.step_rate[m]), "real_time_factor": float(ss.real_time_factor[m]),
+                "num_bodies": int(ss.num_bodies[m]), "num_contacts": int(ss.num_contacts[m]),
+                "max_penetration": float(ss.max_penetration[m]), "last_error": "", "version": ""}
+
     def contacts(self, i):
         """The CONTACTS frame of the last CONTACTS at or before STATE i's step."""
         c = self.log.contacts

@@ -32,7 +32,10 @@ const socket = connect({
     const after = state.selected !== null ? bodies.catalog.get(state.selected) : null;
     if (!before || !after || before.name !== after.name) state.selected = null;
   },
-  status(msg) { state.status = msg; panel.status(msg); showMethod(state.hello.methods.slice(), msg.method); },
+  status(msg) {
+    state.status = msg; panel.status(msg);
+    if (state.hello.mode === 'live') showMethod(state.hello.methods.slice(), msg.method);
+  },
   poses(frame) { state.pending = frame; },   // drawn at the next animation frame
   contacts(frame) { contacts.apply(frame); panel.contacts(frame.n); },
   reply(msg) { state.replies.push(msg); panel.message(`${msg.cmd}: ${msg.message}`, msg.ok); },

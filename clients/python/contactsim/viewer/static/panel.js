@@ -14,7 +14,8 @@ export class Panel {
     $('ro-method').textContent = s.method;
     $('ro-params').textContent = s.method_params || '(defaults)';
     $('ro-bodies').textContent = s.num_bodies;
-    $('ro-paused').textContent = `${s.paused ? 'paused' : 'running'}, ${s.mode}`;
+    const run = s.paused === null ? 'recorded' : (s.paused ? 'paused' : 'running');   // null: a replay's STATUS
+    $('ro-paused').textContent = `${run}, ${s.mode}`;
     if (s.last_error) this.message(`server: ${s.last_error}`, false);
   }
 
