@@ -3,6 +3,7 @@ against a real server (docs/viewer.md). Skipped when chromium, chromedriver
 or selenium is missing (make deps installs them)."""
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,6 +27,9 @@ def browser():
         pytest.skip("chromium or chromedriver is not installed (make deps: apt chromium chromium-driver)")
     pytest.importorskip("selenium", reason="selenium is not installed (make deps)")
     from contactsim.viewer.headless import start_browser
+    from contactsim.viewer.server import THREE_DIR
+    assert (Path(THREE_DIR) / "build" / "three.module.js").is_file(), \
+        "three.js is not installed in %s: run `make deps` (npm ci)" % THREE_DIR
     driver = start_browser()
     yield driver
     driver.quit()
