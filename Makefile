@@ -33,7 +33,7 @@ VIEWER_PORT ?= 8765
 VIEWER = CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/contactsim-viewer --port $(VIEWER_PORT)
 
 run: build
-	@$(VIEWER) & trap "kill $$! 2>/dev/null" EXIT; $(BUILD)/bin/contactsim-server --config $(CONFIG)
+	@$(VIEWER) & trap "kill $$! 2>/dev/null" EXIT INT TERM; $(BUILD)/bin/contactsim-server --config $(CONFIG)
 
 # The viewer alone, for a server started elsewhere (it needs only the generated LCM types).
 viewer: deps $(BUILD)/CMakeCache.txt
