@@ -75,13 +75,13 @@ function animate(now) {
     draw(frame);
     state.updateMs.push(performance.now() - t0);
     if (state.updateMs.length > 1000) state.updateMs.shift();
+    world.dirty = true;
   }
   if (state.timeline) state.timeline.tick(now);
-  joints.update(bodies);
+  if (frame || contacts.changed) { joints.update(bodies); contacts.changed = false; world.dirty = true; }
   const sel = state.selected !== null && $('follow').checked ? bodies.pose(state.selected) : null;
-  if (sel) world.follow(sel.p);
-  world.render();
-  state.renders += 1;
+  if (sel && frame) world.follow(sel.p);
+  if (world.render()) state.renders += 1;
   if (frame) {
     state.drawn += 1; state.step = frame.step;
     state.frameLog.push([frame.step, frame.received, performance.timeOrigin + performance.now()]);
@@ -98,13 +98,14 @@ world.renderer.domElement.addEventListener('click', (ev) => {
   if (state.hello && state.hello.mode === 'live') socket.send({ cmd: 'body', id });
   else $('selection').textContent = describe({ id, ...(bodies.catalog.get(id) || {}) });
 });
-$('show-contacts').addEventListener('change', (ev) => contacts.setVisible(ev.target.checked));
+$('show-contacts').addEventListener('change', (ev) => { contacts.setVisible(ev.target.checked); world.dirty = true; });
 $('btn-fit').addEventListener('click', () => { const b = bodies.bounds(); world.fit(b.centre, b.radius); });
+$('follow').addEventListener('change', () => { world.dirty = true; });
 
 window.contactsimViewer = {
   bodies: () => bodies.positions(),          // id -> [x, y, z] from the instance matrices
   framesDrawn: () => state.drawn,           // POSES frames drawn
-  renders: () => state.renders,              // animation frames rendered
+  renders: () => state.renders,              // renders (the page draws only when something changed)
   step: () => state.step,
   mode: () => (state.hello ? state.hello.mode : null),
   status: () => state.status,

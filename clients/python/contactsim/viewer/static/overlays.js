@@ -32,12 +32,14 @@ export class Contacts {
     this.normals = growable('lines', 0xffe14d, { depthTest: false });
     this.normalLength = 0.1;   // m; main.js sizes it to the scene
     this.count = 0;
+    this.changed = false;   // a new frame to draw even when no poses came with it
     scene.add(this.points, this.normals);
   }
 
   apply(frame) {
     const r = frame.rows, n = frame.n, L = this.normalLength;
     this.count = n;
+    this.changed = true;
     fill(this.points, n, (a) => { for (let i = 0; i < n; i++) a.set(r.subarray(i * CONTACT_WIDTH, i * CONTACT_WIDTH + 3), 3 * i); });
     fill(this.normals, 2 * n, (a) => {
       for (let i = 0; i < n; i++) {

@@ -17,6 +17,10 @@ export class World {
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     container.appendChild(this.renderer.domElement);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    // draw only when something changed: an idle page costs no CPU (a software
+    // renderer on a shared machine spends whole cores on redrawing the same picture)
+    this.dirty = true;
+    this.controls.addEventListener('change', () => { this.dirty = true; });
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 1.6));
     const sun = new THREE.DirectionalLight(0xffffff, 1.8);
     sun.position.set(5, -3, 10);
@@ -31,6 +35,7 @@ export class World {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.dirty = true;
   }
 
   // looks at a sphere (centre, radius) from the current direction
@@ -41,6 +46,7 @@ export class World {
     this.camera.near = radius / 100;
     this.camera.far = radius * 200;
     this.camera.updateProjectionMatrix();
+    this.dirty = true;
   }
 
   // moves camera and target with a followed body, keeping the view's offset
@@ -48,6 +54,7 @@ export class World {
     const offset = this.camera.position.clone().sub(this.controls.target);
     this.controls.target.copy(p);
     this.camera.position.copy(p).add(offset);
+    this.dirty = true;
   }
 
   // the ray under a mouse event, in normalised device coordinates
@@ -59,8 +66,12 @@ export class World {
     return this.raycaster;
   }
 
+  // renders when something changed since the last render; true when it did
   render() {
+    if (!this.dirty) return false;
+    this.dirty = false;
     this.controls.update();
     this.renderer.render(this.scene, this.camera);
+    return true;
   }
 }
