@@ -2,6 +2,7 @@
 with numpy equal LCM's generated decoders, and a real server's snapshot
 file gives every shape, mass and joint (docs/viewer.md)."""
 import numpy as np
+import pytest
 
 import contactsim
 from contactsim.viewer.catalog import read_catalog
@@ -76,3 +77,29 @@ def test_catalog_from_server_snapshot(client, tmp_path):
     assert by_id[ball]["x"] == [0, 0, 1]
     (joint,) = cat["joints"]
     assert (joint["kind"], joint["body_a"], joint["body_b"], joint["anchor_b"]) == ("distance", ball, 0, [0, 0, 2])
+
+
+# Verifies that the bridge refuses a WebSocket opened by a page of another
+# origin (any web site in the user's browser) and accepts its own page's.
+def test_websocket_refuses_other_origins():
+    import asyncio
+
+    import aiohttp
+    from aiohttp.test_utils import TestClient, TestServer
+
+    from contactsim.viewer.server import make_app
+
+    class Source:
+        mode, catalog, catalog_version = "replay", {"bodies": [], "joints": []}, 1
+
+        def hello(self):
+            return {"type": "hello", "mode": "replay"}
+
+    async def run():
+        async with TestClient(TestServer(make_app(Source()))) as tc:
+            with pytest.raises(aiohttp.WSServerHandshakeError):
+                await tc.ws_connect("/ws", headers={"Origin": "http://evil.example"})
+            own = "http://%s:%d" % (tc.host, tc.port)
+            async with tc.ws_connect("/ws", headers={"Origin": own}) as ws:
+                assert (await ws.receive_json())["type"] == "hello"
+    asyncio.run(run())

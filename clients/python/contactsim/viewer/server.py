@@ -4,6 +4,7 @@ import asyncio
 import json
 import logging
 import os
+from urllib.parse import urlsplit
 
 from aiohttp import WSMsgType, web
 
@@ -21,7 +22,17 @@ async def _index(request):
                             headers={"Cache-Control": "no-store"})
 
 
+def _same_origin(request):
+    """True unless a browser says the page that opens the socket came from
+    elsewhere: WebSockets are exempt from the same-origin policy, so any web
+    site open in the user's browser could otherwise command the server."""
+    origin = request.headers.get("Origin")
+    return origin is None or urlsplit(origin).netloc == request.host
+
+
 async def _websocket(request):
+    if not _same_origin(request):
+        raise web.HTTPForbidden(text="contactsim-viewer: WebSocket from another origin refused")
     ws = web.WebSocketResponse(max_msg_size=1 << 20)
     await ws.prepare(request)
     source = request.app["source"]
