@@ -30,7 +30,7 @@ def main():
         with ViewerProcess(["--lcm-url", srv.url, "--prefix", srv.prefix]) as viewer:
             driver = start_browser(1280, 900)
             try:
-                driver.get(viewer.url)
+                driver.get(viewer.url + "?aa=1")   # multisampled, as on a GPU
                 wait_for(driver, "window.contactsimViewer && contactsimViewer.framesDrawn() > 0", timeout=60)
                 for _ in range(a.steps // 20):   # in bursts, so that the energy plot has a history
                     srv.client.step(20)

@@ -3,6 +3,20 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
+// A software renderer (SwiftShader in headless chromium, llvmpipe) pays for
+// multisampling on every pixel: 2.5 times the frame time on a 1,000-body
+// scene (BENCHMARKS.md). Off there, on elsewhere; ?aa=1 or ?aa=0 decides.
+function wantAntialias() {
+  const asked = new URLSearchParams(location.search).get('aa');
+  if (asked !== null) return asked !== '0';
+  const gl = document.createElement('canvas').getContext('webgl2');
+  const info = gl && gl.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
+  const lose = gl && gl.getExtension('WEBGL_lose_context');
+  if (lose) lose.loseContext();
+  return !/swiftshader|llvmpipe|software/i.test(name);
+}
+
 export class World {
   constructor(container) {
     this.container = container;
@@ -11,9 +25,7 @@ export class World {
     this.camera = new THREE.PerspectiveCamera(50, 1, 0.01, 2000);
     this.camera.up.set(0, 0, 1);
     this.camera.position.set(6, -8, 5);
-    // ?aa=0 turns multisampling off, which a software renderer pays for on every pixel
-    const antialias = new URLSearchParams(location.search).get('aa') !== '0';
-    this.renderer = new THREE.WebGLRenderer({ antialias });
+    this.renderer = new THREE.WebGLRenderer({ antialias: wantAntialias() });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     container.appendChild(this.renderer.domElement);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
