@@ -15,6 +15,8 @@ STATIC_DIR = os.path.join(HERE, "static")
 THREE_DIR = os.path.join(HERE, "vendor", "node_modules", "three")
 
 log = logging.getLogger("contactsim.viewer")
+SOURCE = web.AppKey("source", object)     # the live or replay source
+SOCKETS = web.AppKey("sockets", set)      # open WebSockets, closed at shutdown
 
 
 async def _index(request):
@@ -35,9 +37,9 @@ async def _websocket(request):
         raise web.HTTPForbidden(text="contactsim-viewer: WebSocket from another origin refused")
     ws = web.WebSocketResponse(max_msg_size=1 << 20)
     await ws.prepare(request)
-    source = request.app["source"]
+    source = request.app[SOURCE]
     conn = Connection(ws, source)
-    request.app["sockets"].add(ws)
+    request.app[SOCKETS].add(ws)
     await conn.send_json(source.hello())
     await conn.send_catalog()
     pusher = asyncio.create_task(conn.push_live()) if source.mode == "live" else None
@@ -50,7 +52,7 @@ async def _websocket(request):
             except (ValueError, KeyError, TypeError) as e:
                 await conn.send_json({"type": "error", "message": "bad message: %s" % e})
     finally:
-        request.app["sockets"].discard(ws)
+        request.app[SOCKETS].discard(ws)
         if pusher is not None:
             pusher.cancel()
     return ws
@@ -58,7 +60,7 @@ async def _websocket(request):
 
 async def _close_sockets(app):
     # an open page would otherwise hold the shutdown until its timeout
-    for ws in list(app["sockets"]):
+    for ws in list(app[SOCKETS]):
         await ws.close(code=1001, message=b"viewer stopping")
 
 
@@ -67,8 +69,8 @@ def make_app(source):
     if not os.path.isfile(os.path.join(THREE_DIR, "build", "three.module.js")):
         log.warning("three.js is not installed in %s: run `make deps`", THREE_DIR)
     app = web.Application()
-    app["source"] = source
-    app["sockets"] = set()
+    app[SOURCE] = source
+    app[SOCKETS] = set()
     app.on_shutdown.append(_close_sockets)
     app.router.add_get("/", _index)
     app.router.add_get("/ws", _websocket)
