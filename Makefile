@@ -17,7 +17,7 @@ export CCACHE_NOHASHDIR := 1
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
+.PHONY: all deps build run viewer test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
 
 all: build
 
@@ -32,8 +32,17 @@ $(BUILD)/CMakeCache.txt:
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)
 
+# The viewer runs beside the server and prints its URL (docs/viewer.md).
+VIEWER_PORT ?= 8765
+VIEWER = CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/contactsim-viewer --port $(VIEWER_PORT)
+
 run: build
-	$(BUILD)/bin/contactsim-server --config $(CONFIG)
+	@$(VIEWER) & trap "kill $$! 2>/dev/null" EXIT INT TERM; $(BUILD)/bin/contactsim-server --config $(CONFIG)
+
+# The viewer alone, for a server started elsewhere (it needs only the generated LCM types).
+viewer: deps $(BUILD)/CMakeCache.txt
+	@cmake --build $(BUILD) --target contactsim_lcmtypes_gen >/dev/null
+	$(VIEWER)
 
 test: build
 	@$(MAKE) --no-print-directory test-cpp test-py

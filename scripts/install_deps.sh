@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs every dependency of contactsim on Debian bookworm, idempotently:
 # the Debian packages the C++ build needs and a Python virtual environment
-# (.venv) with the lcm bindings, numpy, matplotlib, tqdm, pytest and the contactsim client
-# installed editable. Works as root and through sudo.
+# (.venv) with the lcm bindings, numpy, matplotlib, tqdm, pytest, aiohttp, selenium and the
+# contactsim client installed editable, and three.js for the viewer (npm ci). Works as root and
+# through sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,7 +21,10 @@ APT_PACKAGES=(
   libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
   libbullet-dev libode-dev libmujoco-dev     # peer runners of `make bench` only (bench/peers), never in the service
   python3 python3-venv python3-dev           # Python client
+  chromium chromium-driver                   # the viewer's browser tests (headless, tests/python/test_viewer.py)
 )
+# npm installs the viewer's three.js; Debian's nodejs and npm unless a node is already there
+command -v npm >/dev/null 2>&1 || APT_PACKAGES+=(nodejs npm)
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
 
@@ -50,12 +54,18 @@ if [ ! -x .venv/bin/python ]; then
   echo "deps: creating .venv"
   "$PY" -m venv .venv
 fi
-if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest" 2>/dev/null \
-   || ! .venv/bin/pip show -q contactsim >/dev/null 2>&1; then
+if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest, aiohttp, selenium" 2>/dev/null \
+   || ! .venv/bin/pip show -q contactsim >/dev/null 2>&1 || [ ! -x .venv/bin/contactsim-viewer ]; then
   echo "deps: installing Python packages into .venv"
   .venv/bin/pip install -q --upgrade pip
   .venv/bin/pip install -q -r clients/python/requirements.txt
   .venv/bin/pip install -q -e clients/python
+fi
+# three.js, pinned by package-lock.json, served by the viewer itself (no CDN)
+VENDOR=clients/python/contactsim/viewer/vendor
+if [ ! -f "$VENDOR/node_modules/three/build/three.module.js" ]; then
+  echo "deps: installing three.js for the viewer (npm ci)"
+  (cd "$VENDOR" && npm ci --no-audit --no-fund --loglevel=error)
 fi
 touch .venv/.deps-stamp
 echo "deps: ok"

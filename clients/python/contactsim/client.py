@@ -35,6 +35,7 @@ DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
 MODES = {"realtime": scene_cmd_t.REALTIME, "free_run": scene_cmd_t.FREE_RUN,
          "lockstep": scene_cmd_t.LOCKSTEP}
 _STATE_FP = state_t._get_packed_fingerprint()
+_CONTACTS_FP = contacts_t._get_packed_fingerprint()
 
 
 def default_url():
@@ -105,7 +106,9 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         self._state_obj = None
         self._state_step = None
         self._state_seq = 0           # number of STATEs received
+        self._contacts_bytes = None   # latest CONTACTS payload, decoded lazily like STATE
         self._contacts_msg = None
+        self._contacts_seq = 0
         self._status = None
         self._status_seq = 0
         self._callbacks = {"state": [], "contacts": [], "status": [], "reply": []}
@@ -249,13 +252,32 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._cond.notify_all()
 
     def _on_contacts_msg(self, channel, data):
-        msg = self._decode(channel, data, contacts_t)
-        if msg is None:
+        # thousands of contacts take tens of ms to decode: only when asked for
+        data = self._unwrap(channel, data)
+        if data is None or data[:8] != _CONTACTS_FP:
             return
         with self._lock:
-            self._contacts_msg = msg
+            self._contacts_bytes = data
+            self._contacts_msg = None
+            self._contacts_seq += 1
         if self._callbacks["contacts"]:
-            self._call("contacts", Contacts(msg))
+            msg = self._latest_contacts_msg()
+            if msg is not None:
+                self._call("contacts", Contacts(msg))
+
+    def _latest_contacts_msg(self):
+        with self._lock:
+            if self._contacts_msg is not None or self._contacts_bytes is None:
+                return self._contacts_msg
+            data = self._contacts_bytes
+        try:
+            msg = contacts_t.decode(data)
+        except Exception:  # noqa: BLE001 - a corrupt CONTACTS is skipped
+            return None
+        with self._lock:
+            if self._contacts_bytes is data:
+                self._contacts_msg = msg
+        return msg
 
     def _on_status_msg(self, channel, data):
         msg = self._decode(channel, data, status_t)
@@ -302,11 +324,22 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         """The latest world state (State), or None before the first STATE."""
         return self._latest_state_obj()
 
+    def state_payload(self):
+        """(payload, count): the latest STATE as received (signature checked,
+        trailer removed; None before the first) and how many STATEs arrived so
+        far. Nothing is decoded: for readers that decode it their own way (the
+        viewer reads 1,000 bodies with numpy) or only when the count moved."""
+        with self._lock:
+            return self._state_bytes, self._state_seq
+
     def contacts(self):
         """The latest contacts (Contacts, a list); empty before the first CONTACTS."""
+        return Contacts(self._latest_contacts_msg())
+
+    def contacts_payload(self):
+        """(payload, count) of the latest CONTACTS, undecoded, as state_payload()."""
         with self._lock:
-            msg = self._contacts_msg
-        return Contacts(msg)
+            return self._contacts_bytes, self._contacts_seq
 
     def status(self):
         """The latest STATUS (Status), or None before the first one."""

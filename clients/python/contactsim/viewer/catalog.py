@@ -1,0 +1,59 @@
+"""What STATE does not carry: each body's shape, name and mass, and the
+joints, read from a snapshot file of the server (service/proto/snapshot.proto)
+into plain dicts the page can draw (docs/viewer.md, "catalog")."""
+from .protowire import parse
+
+SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane"}
+MOTIONS = {0: "dynamic", 1: "static", 2: "kinematic"}
+JOINT_KINDS = {0: "distance", 1: "ball", 2: "hinge", 3: "fixed"}
+
+_FACE = {1: ("normal", "double", True), 3: ("vertices", "int", True)}
+_HULL = {1: ("vertices", "double", True), 2: ("faces", _FACE, True)}
+_SHAPE = {1: ("type", "int", False), 2: ("radius", "double", False), 3: ("half_extents", "double", True),
+          4: ("half_length", "double", False), 5: ("plane_normal", "double", True),
+          6: ("plane_offset", "double", False), 7: ("hull", _HULL, False)}
+_BODY = {1: ("id", "int", False), 2: ("name", "string", False), 3: ("shape", _SHAPE, False),
+         6: ("motion", "int", False), 7: ("mass", "double", False), 11: ("x", "double", True),
+         12: ("q", "double", True)}
+_JOINT = {1: ("id", "int", False), 2: ("kind", "int", False), 3: ("body_a", "int", False),
+          4: ("body_b", "int", False), 5: ("anchor_a", "double", True), 6: ("anchor_b", "double", True)}
+_SNAPSHOT = {2: ("step", "int", False), 3: ("time", "double", False), 7: ("bodies", _BODY, True), 9: ("contact_method", "string", False),
+             14: ("joints", _JOINT, True)}
+
+
+def _shape(s):
+    kind = SHAPE_KINDS.get(s.get("type", 0), "unknown")
+    out = {"kind": kind}
+    if kind in ("sphere", "capsule"):
+        out["radius"] = s.get("radius", 0.0)
+    if kind == "capsule":
+        out["half_length"] = s.get("half_length", 0.0)
+    if kind == "box":
+        out["half_extents"] = s.get("half_extents", [0.0, 0.0, 0.0])
+    if kind == "plane":
+        out["normal"] = s.get("plane_normal", [0.0, 0.0, 1.0])
+        out["offset"] = s.get("plane_offset", 0.0)
+    if kind == "convex":
+        hull = s.get("hull", {})
+        out["vertices"] = hull.get("vertices", [])
+        out["faces"] = [f.get("vertices", []) for f in hull.get("faces", [])]
+    return out
+
+
+def catalog_from_snapshot(data):
+    """{"step", "time", "bodies": [{id, name, motion, mass, shape, x, q}], "joints":
+    [{id, kind, body_a, body_b, anchor_a, anchor_b}]} from a snapshot's bytes.
+    Anchors are in the bodies' frames (anchor_b in the world's for body_b 0)."""
+    snap = parse(data, _SNAPSHOT)
+    bodies = [{"id": b.get("id", 0), "name": b.get("name", ""), "motion": MOTIONS.get(b.get("motion", 0), "?"),
+               "mass": b.get("mass", 0.0), "shape": _shape(b.get("shape", {})),
+               "x": b.get("x", [0.0] * 3), "q": b.get("q", [1.0, 0.0, 0.0, 0.0])} for b in snap.get("bodies", [])]
+    joints = [{"id": j.get("id", 0), "kind": JOINT_KINDS.get(j.get("kind", 0), "?"), "body_a": j.get("body_a", 0),
+               "body_b": j.get("body_b", 0), "anchor_a": j.get("anchor_a", [0.0] * 3),
+               "anchor_b": j.get("anchor_b", [0.0] * 3)} for j in snap.get("joints", [])]
+    return {"step": snap.get("step", 0), "time": snap.get("time", 0.0), "bodies": bodies, "joints": joints}
+
+
+def read_catalog(path):
+    with open(path, "rb") as f:
+        return catalog_from_snapshot(f.read())

@@ -1,0 +1,94 @@
+"""A minimal reader of the protobuf wire format (proto2 binary encoding).
+
+The viewer needs a few fields of the server's snapshot file (shapes, masses,
+joints; service/proto/snapshot.proto). Reading the wire format directly keeps
+the client free of protoc and of a protobuf runtime whose version would have
+to match the generated code.
+"""
+import struct
+
+VARINT, FIXED64, LENGTH, FIXED32 = 0, 1, 2, 5
+
+
+def _varint(data, pos):
+    result = shift = 0
+    while True:
+        if pos >= len(data):
+            raise ValueError("truncated varint")
+        b = data[pos]
+        pos += 1
+        result |= (b & 0x7F) << shift
+        if not b & 0x80:
+            return result, pos
+        shift += 7
+
+
+def fields(data):
+    """Yields (field number, wire type, value) of one message: an int for
+    varints, 8 or 4 raw bytes for fixed fields, bytes for length-delimited ones."""
+    data = memoryview(data).tobytes() if not isinstance(data, bytes) else data
+    pos = 0
+    while pos < len(data):
+        key, pos = _varint(data, pos)
+        number, wire = key >> 3, key & 7
+        if wire == VARINT:
+            value, pos = _varint(data, pos)
+        elif wire == FIXED64:
+            value, pos = data[pos:pos + 8], pos + 8
+        elif wire == FIXED32:
+            value, pos = data[pos:pos + 4], pos + 4
+        elif wire == LENGTH:
+            size, pos = _varint(data, pos)
+            value, pos = data[pos:pos + size], pos + size
+        else:
+            raise ValueError("unsupported wire type %d" % wire)
+        yield number, wire, value
+
+
+def signed(value):
+    """An int64 field's varint as a Python int (two's complement)."""
+    return value - (1 << 64) if value >= 1 << 63 else value
+
+
+def doubles(wire, value):
+    """The doubles of a repeated double field's occurrence (packed or not)."""
+    if wire == FIXED64:
+        return list(struct.unpack("<d", value))
+    return list(struct.unpack("<%dd" % (len(value) // 8), value))
+
+
+def ints(wire, value):
+    """The ints of a repeated int32 field's occurrence (packed or not)."""
+    if wire == VARINT:
+        return [signed(value)]
+    out, pos = [], 0
+    while pos < len(value):
+        v, pos = _varint(value, pos)
+        out.append(signed(v))
+    return out
+
+
+def parse(data, schema):
+    """A dict of one message's fields: ``schema`` maps field number ->
+    (name, kind, repeated) with kind "double", "int", "string", "bool" or a
+    nested schema dict. Repeated scalars are flat lists (packed or not)."""
+    out = {}
+    for number, wire, value in fields(data):
+        if number not in schema:
+            continue
+        name, kind, repeated = schema[number]
+        if kind == "double":
+            items = doubles(wire, value)
+        elif kind == "int":
+            items = ints(wire, value)
+        elif kind == "bool":
+            items = [bool(value)]
+        elif kind == "string":
+            items = [value.decode("utf-8", "replace")]
+        else:
+            items = [parse(value, kind)]
+        if repeated:
+            out.setdefault(name, []).extend(items)
+        else:
+            out[name] = items[-1]
+    return out

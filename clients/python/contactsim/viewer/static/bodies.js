@@ -1,0 +1,132 @@
+// Every body at its pose: one InstancedMesh per shape group (shapes.js),
+// rebuilt when the catalog or the set of body ids changes, updated in place
+// from each POSES frame.
+import * as THREE from 'three';
+import { POSE_WIDTH } from './socket.js';
+import { planeObject, shapeGroup } from './shapes.js';
+
+const COLORS = { sphere: 0xd9a441, box: 0x5b8fd9, capsule: 0x6fbf73, convex: 0xb07cd9, marker: 0xaaaaaa };
+const STATIC_COLOR = 0x7a7f88;
+
+// neighbours of one kind differ a little in lightness, so that a stack reads as bodies
+function shade(color, id) {
+  const c = new THREE.Color(color);
+  return c.offsetHSL(0, 0, (((id * 2654435761) >>> 0) % 17 - 8) / 100);
+}
+
+export class Bodies {
+  constructor(scene) {
+    this.root = new THREE.Group();
+    scene.add(this.root);
+    this.catalog = new Map();   // id -> catalog body
+    this.slots = new Map();     // id -> {mesh, index, scale} (planes: {plane: true})
+    this.meshes = [];
+    this.rowOf = new Map();     // id -> row of the latest POSES frame
+    this.frame = null;
+    this._m = new THREE.Matrix4(); this._p = new THREE.Vector3(); this._q = new THREE.Quaternion();
+    this._s = new THREE.Vector3();
+  }
+
+  setCatalog(bodies) {
+    this.catalog = new Map(bodies.map((b) => [b.id, b]));
+    this.slots.clear();   // rebuilt at the next frame
+  }
+
+  // lays out the ids of a frame into instanced groups (only when they change)
+  _layout(ids) {
+    for (const m of this.meshes) { this.root.remove(m); if (m.geometry) m.geometry.dispose(); }
+    this.meshes = [];
+    this.slots.clear();
+    const groups = new Map();
+    for (const id of ids) {
+      const body = this.catalog.get(id);
+      if (body && body.shape.kind === 'plane') {
+        const obj = planeObject(body.shape, 60);
+        this.root.add(obj); this.meshes.push(obj);
+        this.slots.set(id, { plane: true });
+        continue;
+      }
+      const g = shapeGroup(body && body.shape);
+      const still = body && body.motion !== 'dynamic';
+      const key = g.key + (still ? ':static' : '');
+      if (!groups.has(key)) groups.set(key, { g, still, ids: [] });
+      groups.get(key).ids.push(id);
+    }
+    for (const { g, still, ids: members } of groups.values()) {
+      const color = still ? STATIC_COLOR : COLORS[g.key.split(':')[0]];
+      // white material: the per-instance colours (shade) carry the kind's colour
+      const mesh = new THREE.InstancedMesh(g.make(members.length), new THREE.MeshLambertMaterial(),
+                                           members.length);
+      mesh.frustumCulled = false;   // instances move; the geometry's bounds say nothing of them
+      mesh.userData.ids = members;
+      members.forEach((id, index) => {
+        this.slots.set(id, { mesh, index, scale: g.scale });
+        mesh.setColorAt(index, shade(color, id));
+      });
+      this.root.add(mesh); this.meshes.push(mesh);
+    }
+  }
+
+  apply(frame) {
+    const r = frame.rows, n = frame.n;
+    let relayout = n !== this.slots.size;
+    for (let i = 0; i < n && !relayout; i++) relayout = !this.slots.has(r[i * POSE_WIDTH]);
+    if (relayout) this._layout(Array.from({ length: n }, (_, i) => r[i * POSE_WIDTH]));
+    this.rowOf.clear();
+    for (let i = 0; i < n; i++) {
+      const o = i * POSE_WIDTH, id = r[o];
+      this.rowOf.set(id, i);
+      const slot = this.slots.get(id);
+      if (slot.plane) continue;
+      this._p.set(r[o + 1], r[o + 2], r[o + 3]);
+      this._q.set(r[o + 5], r[o + 6], r[o + 7], r[o + 4]);   // ours (w, x, y, z); three's (x, y, z, w)
+      this._s.set(...slot.scale);
+      slot.mesh.setMatrixAt(slot.index, this._m.compose(this._p, this._q, this._s));
+    }
+    for (const m of this.meshes) {
+      if (m.isInstancedMesh) { m.instanceMatrix.needsUpdate = true; m.boundingSphere = null; }
+    }
+    this.frame = frame;
+    return relayout;
+  }
+
+  // position (Vector3) and orientation (Quaternion) of a body in the latest frame, or null
+  pose(id) {
+    const i = this.rowOf.get(id);
+    if (i === undefined) return null;
+    const r = this.frame.rows, o = i * POSE_WIDTH;
+    return { p: new THREE.Vector3(r[o + 1], r[o + 2], r[o + 3]),
+             q: new THREE.Quaternion(r[o + 5], r[o + 6], r[o + 7], r[o + 4]) };
+  }
+
+  // id -> [x, y, z] read back from the instance matrices of the scene graph (tests use this)
+  positions() {
+    const out = {};
+    for (const [id, slot] of this.slots) {
+      if (slot.plane) continue;
+      slot.mesh.getMatrixAt(slot.index, this._m);
+      this._p.setFromMatrixPosition(this._m);
+      out[id] = [this._p.x, this._p.y, this._p.z];
+    }
+    return out;
+  }
+
+  // the body id under a ray, or null
+  pick(raycaster) {
+    const hits = raycaster.intersectObjects(this.meshes.filter((m) => m.isInstancedMesh), false);
+    for (const h of hits) if (h.instanceId !== undefined) return h.object.userData.ids[h.instanceId];
+    return null;
+  }
+
+  // centre and radius of the dynamic bodies' positions (for framing the camera)
+  bounds() {
+    const box = new THREE.Box3();
+    for (const [id, slot] of this.slots) {
+      const pose = slot.plane ? null : this.pose(id);
+      if (pose) box.expandByPoint(pose.p);
+    }
+    if (box.isEmpty()) return { centre: new THREE.Vector3(), radius: 2 };
+    const s = box.getBoundingSphere(new THREE.Sphere());
+    return { centre: s.center, radius: Math.max(s.radius, 0.5) };
+  }
+}
