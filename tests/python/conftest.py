@@ -13,6 +13,7 @@
 """
 import itertools
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -253,3 +254,10 @@ def fake_server():
 def fake_client(fake_server):
     with contactsim.Client(url=fake_server.url, prefix=fake_server.prefix, timeout=2.0) as c:
         yield c
+
+
+def method_names(client):
+    """Every registered contact method, from the server's own error message."""
+    with pytest.raises(contactsim.CommandError) as e:
+        client.set_contact_method("no-such-method")
+    return re.search(r"known: ([^)]*)", str(e.value)).group(1).replace(",", " ").split()

@@ -6,12 +6,7 @@ import pytest
 
 import contactsim
 
-
-def method_names(client):
-    """Every registered contact method, from the server's own error message."""
-    with pytest.raises(contactsim.CommandError) as e:
-        client.set_contact_method("no-such-method")
-    return re.search(r"known: ([^)]*)", str(e.value)).group(1).replace(",", " ").split()
+from conftest import method_names
 
 
 def build(client):

@@ -1,0 +1,63 @@
+"""A run recorded from one build replays identically on every other build
+(docs/snapshots.md, "Determinism across builds"): a server of the build
+under test is recorded with lcm-logger while the determinism scene (a stack,
+a slide, a bounce, a pendulum and a hinge) runs through every registered
+contact method, and ``contactsim-server --replay`` of that log must agree
+at every STATE on this build and on each other build of this clone that
+exists: in CI the sanitizer suite (clang, -O1, ASan and UBSan) replays the
+log it records on the g++ RelWithDebInfo build as well as on its own."""
+import subprocess
+
+import pytest
+
+from conftest import BUILD, CONFIG, REPO, SERVER_BIN, method_names
+from lcm_recorder import LcmRecorder
+from test_replay import complete
+
+SCENE = REPO / "config" / "scenes" / "determinism.pbtxt"
+STEPS_PER_METHOD = 40
+RECORD_TRIES = 3  # a log that lost a message on UDP is recorded again
+
+
+def servers_of_every_build():
+    """The server under test first, then the other builds' servers."""
+    found = [SERVER_BIN]
+    for folder in ("build", "build-asan"):
+        other = (REPO / folder).resolve()
+        binary = other / "bin" / "contactsim-server"
+        if other != BUILD and binary.exists():
+            found.append(binary)
+    return found
+
+
+def run_through_every_method(client):
+    methods = method_names(client)
+    runs = [(m, {}) for m in methods]
+    if "lcp" in methods:
+        runs = [r for r in runs if r[0] != "lcp"] + [("lcp", {"solver": "pgs"}), ("lcp", {"solver": "lemke"})]
+    for name, params in runs:
+        client.set_contact_method(name, **params)
+        client.step(STEPS_PER_METHOD)
+    return len(runs)
+
+
+def test_a_run_through_every_method_replays_identically_on_every_build(launch, tmp_path):
+    if not SERVER_BIN.exists():
+        pytest.skip("%s is not built" % SERVER_BIN)
+    for attempt in range(RECORD_TRIES):
+        server = launch(scene=SCENE)
+        log = tmp_path / ("run%d.lcmlog" % attempt)
+        with LcmRecorder(server.url, server.prefix + "_.*", log):
+            runs = run_through_every_method(server.client)
+        if complete(log, server.prefix):
+            break
+    else:
+        pytest.fail("every recording lost a command's reply on UDP")
+    for binary in servers_of_every_build():
+        out = subprocess.run([str(binary), "--config", str(CONFIG), "--scene", str(SCENE),
+                              "--prefix", server.prefix, "--replay", str(log)],
+                             capture_output=True, text=True, timeout=600)
+        assert out.returncode == 0, "%s: %s%s" % (binary, out.stdout, out.stderr[-2000:])
+        assert out.stdout.startswith("identical: "), out.stdout
+        # compared up to the last method's last step, not only the first ones
+        assert "to %d)" % (runs * STEPS_PER_METHOD) in out.stdout, out.stdout
