@@ -40,7 +40,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"xpbd", {}, 0x67737c8bc6935e6cull},
       {"lcp", {{"solver", "pgs"}}, 0x3afbeb13b7ac60c4ull},
       {"lcp", {{"solver", "lemke"}}, 0x882c0f05faf3dd84ull},
-      {"barrier", {}, 0xf310fe672c76914eull},
+      {"barrier", {}, 0x39a313d8ab9fedfaull},
   };
   return pinned;
 }
