@@ -54,7 +54,8 @@ Limits LimitsOf(const std::string& label) {
   // limits"); the no-slip check (spin = v / r) still holds to 0.2%
   if (label == "barrier") l.roll = 0.15;
   // xpbd: a 10 kg cube with mu 0.8 sliding along a face normal stops 2.9%
-  // short, at 30, 45 and 60 degrees +0.05% (docs/physics.md, xpbd)
+  // short, at 30, 45 and 60 degrees +0.05% (docs/physics.md, "Coulomb
+  // friction in every method")
   if (label == "xpbd") l.slide = l.isotropy = 0.035;
   return l;
 }
