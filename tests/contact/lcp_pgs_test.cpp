@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <Eigen/Eigenvalues>
 #include <random>
@@ -122,25 +123,42 @@ std::vector<ConstraintRow> PointOnGround(double mu) {
   return rows;
 }
 
-// Verifies the friction pyramid in both solvers against Coulomb's law on a
-// point mass landing at vz = -1 m/s: sliding at vx = 2 m/s with mu = 0.3 it
-// keeps 2 - mu 1 = 1.7 m/s (the normal impulse is m 1 N s), and at
-// vx = 0.2 m/s (below mu) it sticks; vy = 0.1 m/s sticks too (box friction,
-// each tangent by itself).
-TEST(Pgs, FrictionPyramidMatchesCoulombAndLemke) {
+// One contact point of a unit-mass body on the world with its friction rows
+// along t1 and n x t1.
+std::vector<ConstraintRow> PointOnGround(double mu, const Vec3& t1) {
+  std::vector<ConstraintRow> rows = PointOnGround(mu);
+  rows[1].lin_b = t1;
+  rows[2].lin_b = Vec3::UnitZ().cross(t1);
+  return rows;
+}
+
+// Verifies Coulomb's law in both solvers on a point mass landing at
+// vz = -1 m/s (normal impulse m 1 N s) with mu = 0.3: sliding at
+// (2, 0.1) m/s it loses mu 1 = 0.3 m/s along its slip, and at (0.2, 0.1)
+// m/s (|v| < mu) it sticks. PGS projects onto the disk, so its answer does
+// not depend on the tangents (the contact frame's x, y here, 45 degrees
+// off); Lemke's pyramid is exact with t1 along the slip, as the lcp method
+// builds its rows (lcp_contact_rows.h).
+TEST(Pgs, FrictionMatchesCoulombInBothSolvers) {
   const double mu = 0.3;
   for (double vx : {2.0, 0.2}) {
-    for (const char* solver : {"pgs", "lemke"}) {
+    const Vec3 slip(vx, 0.1, 0.0);
+    const Vec3 expected = slip.norm() > mu ? Vec3(slip * (1.0 - mu / slip.norm())) : Vec3::Zero();
+    for (const char* solver : {"pgs", "pgs_diagonal", "lemke"}) {
       std::vector<SolverBody> bodies(1);
       bodies[0].inv_mass = 1.0;
       bodies[0].inv_inertia = Mat3::Identity();
       bodies[0].v = Vec3(vx, 0.1, -1.0);
-      std::vector<ConstraintRow> rows = PointOnGround(mu);
+      const std::string name = solver;
+      std::vector<ConstraintRow> rows =
+          name == "pgs" ? PointOnGround(mu)
+                        : PointOnGround(mu, name == "lemke" ? Vec3(slip.normalized()) : Vec3(1, 1, 0).normalized());
       SolveReport report;
-      if (std::string(solver) == "pgs") {
+      if (name != "lemke") {
         PgsSolver pgs;
         PgsOptions options;
         options.iterations = 100;
+        options.tolerance = 1e-12;
         report = pgs.Solve(rows, bodies, options);
       } else {
         ASSERT_TRUE(SolveRowsLemke(rows, bodies, {}, &report).ok());
@@ -148,10 +166,35 @@ TEST(Pgs, FrictionPyramidMatchesCoulombAndLemke) {
       ASSERT_TRUE(report.converged) << solver;
       EXPECT_NEAR(rows[0].lambda, 1.0, 1e-9) << solver;
       EXPECT_NEAR(bodies[0].v.z(), 0.0, 1e-9) << solver;
-      EXPECT_NEAR(bodies[0].v.x(), vx > mu ? vx - mu : 0.0, 1e-9) << solver << " vx " << vx;
-      EXPECT_NEAR(bodies[0].v.y(), 0.0, 1e-9) << solver;
+      EXPECT_NEAR(bodies[0].v.x(), expected.x(), 1e-9) << solver << " vx " << vx;
+      EXPECT_NEAR(bodies[0].v.y(), expected.y(), 1e-9) << solver << " vx " << vx;
       EXPECT_LT(report.complementarity, 1e-9) << solver;
     }
+  }
+}
+
+// Verifies that PGS's friction is isotropic: a point mass sliding at 2 m/s
+// in any direction of the contact frame's tangent plane loses exactly
+// mu lambda_n = 0.3 m/s along its slip (the box of two 1D laws took up
+// to sqrt(2) mu lambda_n, diagonally).
+TEST(Pgs, FrictionIsTheSameInEveryDirection) {
+  const double mu = 0.3, speed = 2.0;
+  for (int deg = 0; deg < 360; deg += 15) {
+    const double a = deg * 3.14159265358979323846 / 180.0;
+    std::vector<SolverBody> bodies(1);
+    bodies[0].inv_mass = 1.0;
+    bodies[0].inv_inertia = Mat3::Identity();
+    bodies[0].v = Vec3(speed * std::cos(a), speed * std::sin(a), -1.0);
+    std::vector<ConstraintRow> rows = PointOnGround(mu);
+    PgsSolver pgs;
+    PgsOptions options;
+    options.iterations = 100;
+    options.tolerance = 1e-12;
+    pgs.Solve(rows, bodies, options);
+    const Vec3 v = bodies[0].v;
+    EXPECT_NEAR(v.head<2>().norm(), speed - mu, 1e-9) << deg << " deg";
+    EXPECT_NEAR(v.x() * std::sin(a) - v.y() * std::cos(a), 0.0, 1e-9) << deg << " deg";  // along the slip
+    EXPECT_GT(v.x() * std::cos(a) + v.y() * std::sin(a), 0.0) << deg << " deg";
   }
 }
 

@@ -38,9 +38,9 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0x19f84e2b61daaef5ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x26bd4c98c83532bfull},
       {"xpbd", {}, 0x67737c8bc6935e6cull},
-      {"lcp", {{"solver", "pgs"}}, 0xc308cb9078677086ull},
-      {"lcp", {{"solver", "lemke"}}, 0x590d23c5e606b36full},
-      {"barrier", {}, 0xf310fe672c76914eull},
+      {"lcp", {{"solver", "pgs"}}, 0x3afbeb13b7ac60c4ull},
+      {"lcp", {{"solver", "lemke"}}, 0x882c0f05faf3dd84ull},
+      {"barrier", {}, 0x39a313d8ab9fedfaull},
   };
   return pinned;
 }

@@ -191,8 +191,18 @@ void BarrierSolver::Lag(const std::vector<Entry>& entries) {
     Friction f;
     f.a = e.a;
     f.b = e.b;
+    // the friction acts where the surfaces touch: a sphere's or capsule's
+    // closest point is on its core (point, segment), and friction there
+    // would resist the centre's motion instead of the surface's, so a
+    // rolling ball or capsule would be held as if sliding; the surface
+    // point is the core point moved by the radius along the normal
+    // (body frame: A^-1 n, A the affine matrix)
+    const Body& A = bodies_[e.a];
+    const Body& B = bodies_[e.b];
     f.Xa = e.dist.Xa;
     f.Xb = e.dist.Xb;
+    if (A.geometry.radius > 0.0) f.Xa += A.geometry.radius * (AffineMatrix(A.q).inverse() * e.dist.n);
+    if (B.geometry.radius > 0.0) f.Xb -= B.geometry.radius * (AffineMatrix(B.q).inverse() * e.dist.n);
     f.T = TangentBasis(e.dist.n);
     f.mu_lambda = mu * kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, params_.d_hat));
     if (f.mu_lambda <= 0.0) continue;

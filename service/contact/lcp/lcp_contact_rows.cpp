@@ -53,6 +53,23 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
   }
 }
 
+namespace {
+
+// The friction directions of a contact (see the header): the contact
+// frame's, or t1 along the predicted slip u*.
+void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free, Vec3* t1, Vec3* t2) {
+  *t1 = basis.t1;
+  *t2 = basis.t2;
+  const Vec3 u = basis.RelativeVelocity(free);
+  const Vec3 slip = u - basis.n.dot(u) * basis.n;
+  const double speed = slip.norm();
+  if (!(speed > kSlipFloor)) return;
+  *t1 = slip / speed;
+  *t2 = basis.n.cross(*t1);
+}
+
+}  // namespace
+
 void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
                        const std::vector<Impact>& impacts, const ContactRowOptions& options,
                        std::vector<ConstraintRow>* rows) {
@@ -78,6 +95,23 @@ void AppendContactRows(const ContactSet& contacts, const World& world, const std
       friction.normal_row = normal_index;
       friction.mu = basis.friction;
       rows->push_back(friction);
+    }
+  }
+}
+
+void AlignFrictionRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& free,
+                       std::vector<ConstraintRow>* rows) {
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const ContactRow basis = MakeContactBasis(contacts[k], world);
+    Vec3 t[2];
+    SlipDirections(basis, free, &t[0], &t[1]);
+    for (int j = 0; j < 2; ++j) {
+      ConstraintRow& row = (*rows)[3 * k + 1 + j];
+      const ConstraintRow turned = DirectionRow(row.a, row.b, basis.ra, basis.rb, t[j]);
+      row.lin_a = turned.lin_a;
+      row.ang_a = turned.ang_a;
+      row.lin_b = turned.lin_b;
+      row.ang_b = turned.ang_b;
     }
   }
 }

@@ -1,7 +1,8 @@
 // Contacts as constraint rows for the velocity-level LCP (Stewart and
 // Trinkle 1996; Anitescu and Potra 1997): per contact one normal row and
-// two friction rows along the tangents t1, t2 of contact_row.h (a basis that
-// depends only on n, so that it is the same from step to step).
+// two friction rows along tangents t1, t2: those of contact_row.h (a basis
+// that depends only on n, so that it is the same from step to step);
+// AlignFrictionRows turns them to the contact's predicted slip (below).
 //
 // Normal row, J v = n . (v_B(p) - v_A(p)) = vn, lambda in [0, inf):
 //   * colliding (vn- < -restitution_threshold, vn- the approach speed at the
@@ -16,7 +17,22 @@
 //     (Baumgarte stabilisation: it turns penetration into separating
 //     velocity, which adds kinetic energy; drift = split, the default, moves
 //     positions instead, see lcp_method.h).
-// Friction rows, rhs = 0, |lambda_t| <= mu lambda_n (normal_row, mu).
+// Friction rows, rhs = 0, |lambda_t| <= mu lambda_n (normal_row, mu): PGS
+// projects the pair onto the disk (pgs.h), so its basis does not matter.
+// Lemke's rows bound each tangent alone, a four-sided pyramid
+// (lemke_rows.h), which gives Coulomb's mu lambda_n only along t1 and t2
+// and up to sqrt(2) mu lambda_n between them. For Lemke the rows are
+// turned (AlignFrictionRows): t1 is the direction of the tangential relative velocity u* of the
+// velocities after this step's forces, before contact (v* = v + h M^-1 f),
+// t2 = n x t1, as Bullet's solver aligns its first friction direction with
+// the lateral velocity (btSequentialImpulseConstraintSolver): the impulse
+// that stops or slows the slip lies along t1, where the pyramid's bound is
+// exactly mu lambda_n. That is exact for a contact whose slip keeps its
+// direction through the solve (a body sliding, or held on a slope, by
+// itself: u* is the direction the friction impulse opposes); where other
+// contacts turn the slip within the step, the friction can exceed
+// mu lambda_n by at most the pyramid's factor sqrt(2) (docs/physics.md).
+// Below kSlipFloor the contact frame's basis is kept.
 // Material rules are those of contact_row.h (e = max, mu = geometric mean).
 //
 // Why the impact time: contacts are found at the step's start, after the
@@ -57,6 +73,9 @@ struct ContactRowOptions {
   double baumgarte_erp = 0.0;           // 1/step; 0 without Baumgarte
 };
 
+// m/s: a predicted slip slower than this keeps the contact frame's tangents
+constexpr double kSlipFloor = 1e-9;
+
 // The exact state after a colliding contact's impact (see above); exact =
 // false when the step-start rule applies instead.
 struct Impact {
@@ -84,6 +103,12 @@ ConstraintRow DirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const V
 // Jacobians use the world's current poses; `impacts` from PredictImpacts.
 void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
                        const std::vector<Impact>& impacts, const ContactRowOptions& options,
+                       std::vector<ConstraintRow>* rows);
+
+// Turns the friction rows of the contacts (rows 3k + 1, 3k + 2, as
+// AppendContactRows wrote them) so that t1 lies along each contact's
+// predicted slip at the velocities `free` (after this step's forces).
+void AlignFrictionRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& free,
                        std::vector<ConstraintRow>* rows);
 
 }  // namespace contactsim

@@ -54,14 +54,21 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   }
 }
 
-void LcpMethod::Solve(std::vector<SolverBody>& bodies) {
+void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   const bool use_lemke =
       params_.solver == "lemke" && static_cast<int>(rows_.size()) <= params_.max_lemke_rows;
   if (use_lemke) {
     LemkeOptions options;
     options.max_pivots = params_.max_pivots;
-    const Status st = SolveRowsLemke(rows_, bodies, options, &report_);
-    if (st.ok() && report_.converged) return;
+    // Lemke's pyramid is exact along t1: turn t1 to the predicted slip
+    // (lcp_contact_rows.h); a fallback solves the rows as built, as pgs does
+    lemke_rows_ = rows_;
+    AlignFrictionRows(contacts_, world, free_, &lemke_rows_);
+    const Status st = SolveRowsLemke(lemke_rows_, bodies, options, &report_);
+    if (st.ok() && report_.converged) {
+      rows_.swap(lemke_rows_);
+      return;
+    }
   }
   if (params_.solver == "lemke") ++lemke_fallbacks_;
   // PGS (also as Lemke's fallback) starts from last step's impulses; joint
@@ -115,7 +122,7 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
   rows_.insert(rows_.end(), joint_rows_.begin(), joint_rows_.end());
 
   report_ = SolveReport();
-  if (!rows_.empty()) Solve(bodies_);
+  if (!rows_.empty()) Solve(world, bodies_);
   StoreSolverBodies(bodies_, world);
   warm_start_.Store(contacts_, rows_);
   warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);

@@ -74,13 +74,13 @@ class LcpMethod : public ContactMethod {
 
  private:
   void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts);
-  void Solve(std::vector<SolverBody>& bodies);
+  void Solve(const World& world, std::vector<SolverBody>& bodies);
 
   LcpParams params_;
   ContactSet contacts_;
   std::vector<SolverBody> before_, free_, bodies_;
   std::vector<Impact> impacts_;
-  std::vector<ConstraintRow> rows_, split_rows_, joint_rows_;
+  std::vector<ConstraintRow> rows_, split_rows_, joint_rows_, lemke_rows_;
   std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;
   WarmStartCache warm_start_;

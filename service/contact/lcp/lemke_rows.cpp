@@ -101,7 +101,7 @@ Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>&
     rows[k].lambda = lambda[k];
     rows[k].Apply(lambda[k], bodies);
   }
-  report->complementarity = ComplementarityError(rows, bodies);
+  report->complementarity = ComplementarityError(rows, bodies, FrictionSet::kPyramid);
   return Status::Ok();
 }
 

@@ -16,8 +16,12 @@
 //     0 <= b+  _|_  u_k + g >= 0,    0 <= b-  _|_  -u_k + g >= 0,
 //     0 <= g   _|_  mu lambda_n - b+ - b- >= 0,   u_k = G_k lambda + c_k.
 // Each tangent row is its own 1D Coulomb law, so the friction set is the
-// box |lambda_t1|, |lambda_t2| <= mu lambda_n, the same four-sided pyramid
-// that PGS projects on. Anitescu and Potra show that Lemke's method
+// box |lambda_t1|, |lambda_t2| <= mu lambda_n, a four-sided pyramid inside
+// which the Coulomb disk is inscribed: exact along t1 and t2, up to
+// sqrt(2) mu lambda_n between them. The lcp method therefore builds Lemke's
+// friction rows with t1 along each contact's predicted slip
+// (lcp_contact_rows.h), where the bound is exact; PGS projects onto the
+// disk itself (pgs.h). Anitescu and Potra show that Lemke's method
 // processes these LCPs (their matrix is copositive-plus after the
 // substitution), so ray termination means a modelling error, reported.
 // Other bounds (finite boxes) are not expressed here: InvalidArgument.

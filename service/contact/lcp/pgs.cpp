@@ -3,20 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/contact/lcp/friction_disk.h"
 #include "service/contact/lcp/row_complementarity.h"
 
 namespace contactsim {
 
-SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
-                             const PgsOptions& options) {
-  SolveReport report;
-  const int world_slot = static_cast<int>(bodies.size());
-  const int sink_slot = world_slot + 1;
-  vel_.resize(bodies.size() + 2);
-  for (size_t i = 0; i < bodies.size(); ++i) vel_[i] = {bodies[i].v, bodies[i].w};
-  vel_[world_slot] = {Vec3::Zero(), Vec3::Zero()};
-  vel_[sink_slot] = {Vec3::Zero(), Vec3::Zero()};
-
+void PgsSolver::Prepare(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                        int world_slot, int sink_slot) {
   schedule_.Order(rows, bodies, &order_);
   position_.resize(rows.size());
   for (size_t k = 0; k < order_.size(); ++k) position_[order_[k]] = static_cast<int>(k);
@@ -48,9 +41,42 @@ SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<Solve
     r.hi = c.hi;
     r.mu = c.mu;
     r.normal_row = c.normal_row >= 0 ? position_[c.normal_row] : -1;
+    r.second = IsFrictionPairLead(rows, order_[k]) ? position_[order_[k] + 1] : -1;
+    r.in_pair = IsFrictionPairSecond(rows, order_[k]);
     r.source = order_[k];
     r.lambda = c.lambda;
   }
+}
+
+double PgsSolver::SolvePair(Row& r1, Row& r2) {
+  // both rows act on the same two bodies (one contact)
+  const Velocity A = vel_[r1.a];
+  const Velocity B = vel_[r1.b];
+  const double jv1 = r1.ja_lin.dot(A.v) + r1.ja_ang.dot(A.w) + r1.jb_lin.dot(B.v) + r1.jb_ang.dot(B.w);
+  const double jv2 = r2.ja_lin.dot(A.v) + r2.ja_ang.dot(A.w) + r2.jb_lin.dot(B.v) + r2.jb_ang.dot(B.w);
+  const double trace = r1.diag + r2.diag;
+  const double eta = trace > 0.0 ? 2.0 / trace : 0.0;
+  double l1 = r1.lambda + eta * (r1.rhs - jv1);
+  double l2 = r2.lambda + eta * (r2.rhs - jv2);
+  ProjectOntoDisk(std::max(0.0, r1.mu * rows_[r1.normal_row].lambda), &l1, &l2);
+  const double d1 = l1 - r1.lambda, d2 = l2 - r2.lambda;
+  r1.lambda = l1;
+  r2.lambda = l2;
+  vel_[r1.write_a] = {A.v + r1.ma_lin * d1 + r2.ma_lin * d2, A.w + r1.ma_ang * d1 + r2.ma_ang * d2};
+  vel_[r1.write_b] = {B.v + r1.mb_lin * d1 + r2.mb_lin * d2, B.w + r1.mb_ang * d1 + r2.mb_ang * d2};
+  return std::max(std::abs(d1) * r1.diag, std::abs(d2) * r2.diag);
+}
+
+SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
+                             const PgsOptions& options) {
+  SolveReport report;
+  const int world_slot = static_cast<int>(bodies.size());
+  const int sink_slot = world_slot + 1;
+  vel_.resize(bodies.size() + 2);
+  for (size_t i = 0; i < bodies.size(); ++i) vel_[i] = {bodies[i].v, bodies[i].w};
+  vel_[world_slot] = {Vec3::Zero(), Vec3::Zero()};
+  vel_[sink_slot] = {Vec3::Zero(), Vec3::Zero()};
+  Prepare(rows, bodies, world_slot, sink_slot);
 
   // warm start
   for (const Row& r : rows_) {
@@ -60,6 +86,11 @@ SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<Solve
   for (int it = 0; it < options.iterations; ++it) {
     double worst = 0.0;
     for (Row& r : rows_) {
+      if (r.in_pair) continue;  // updated with its pair's first row
+      if (r.second >= 0) {
+        worst = std::max(worst, SolvePair(r, rows_[r.second]));
+        continue;
+      }
       double lo = r.lo, hi = r.hi;
       if (r.normal_row >= 0) {
         hi = r.mu * rows_[r.normal_row].lambda;

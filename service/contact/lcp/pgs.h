@@ -8,11 +8,26 @@
 // visits each row k once and sets
 //   lambda_k <- clamp(lambda_k + (rhs_k - J_k v) / A_kk, lo_k, hi_k),
 //   v        <- v + M^-1 J_k^T (change of lambda_k),
-// which is Gauss-Seidel on A with projection onto the bounds. Friction
-// rows take their bounds +-mu lambda_n from their normal row's current
-// impulse (the boxed, "pyramid" friction of ODE's quickstep). Rows come in
+// which is Gauss-Seidel on A with projection onto the bounds. Rows come in
 // with lambda as the warm start (last step's impulses), which is applied
 // first.
+//
+// Friction: a contact's two friction rows (a friction pair,
+// friction_disk.h) are one block, updated together at the first row's
+// place in the sweep (the rows between them touch other bodies, so this is
+// the same sweep) and projected onto the Coulomb disk
+//   lambda_t <- P_disk(lambda_t + eta (rhs_t - J_t v)),  eta = 2 / tr(A_tt),
+//   |lambda_t| <= mu lambda_n (lambda_n: the normal row's current impulse),
+// the block step of Tasora and Anitescu ("A matrix-free cone
+// complementarity approach for solving large-scale, nonsmooth, rigid body
+// dynamics", CMAME 2011, eq. 31, with the 2x2 tangential block). One scalar
+// step for both rows makes a sliding fixed point lambda_t = -mu lambda_n
+// u / |u| opposite the slip u (maximal dissipation); a step per row (or the
+// 2x2 inverse) would tilt it by the block's anisotropy, and clamping each
+// row to +-mu lambda_n (ODE's boxed pyramid) lets diagonal sliding feel up
+// to sqrt(2) mu lambda_n. 2 / tr is the optimal fixed gradient step for the
+// block, 2 / (its two eigenvalues' sum). A friction row without a partner
+// keeps the scalar clamp to +-mu lambda_n.
 //
 // Reported per solve:
 //   residual        m/s, the largest change of a row velocity J_k v made by
@@ -60,6 +75,8 @@ class PgsSolver {
     double diag, inv_diag;
     double rhs, lo, hi, mu, lambda;
     int normal_row;               // in rows_ order
+    int second;                   // first row of a friction pair: the second's index in rows_, else -1
+    bool in_pair;                 // second row of a friction pair (updated with the first)
     int source;                   // index in the caller's rows
   };
   struct Velocity {
@@ -71,6 +88,12 @@ class PgsSolver {
     vel_[r.write_a] = {A.v + r.ma_lin * d, A.w + r.ma_ang * d};
     vel_[r.write_b] = {B.v + r.mb_lin * d, B.w + r.mb_ang * d};
   }
+
+  // Copies the caller's rows into rows_ in sweep order (see above).
+  void Prepare(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int world_slot,
+               int sink_slot);
+  // One projected update of a friction pair; returns its row-velocity change.
+  double SolvePair(Row& r1, Row& r2);
 
   RowSchedule schedule_;
   std::vector<int> order_, position_;  // sweep order; position_[row] = index in rows_

@@ -3,12 +3,23 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/contact/lcp/friction_disk.h"
+
 namespace contactsim {
 
-double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies) {
+double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                            FrictionSet set) {
   double err = 0.0;
-  for (const ConstraintRow& r : rows) {
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ConstraintRow& r = rows[k];
     const double w = r.Velocity(bodies) - r.rhs;
+    if (set == FrictionSet::kDisk && IsFrictionPairSecond(rows, k)) continue;  // measured with its lead
+    if (set == FrictionSet::kDisk && IsFrictionPairLead(rows, k)) {
+      const ConstraintRow& s = rows[k + 1];
+      const double w2 = s.Velocity(bodies) - s.rhs;
+      err = std::max(err, DiskComplementarity(r.mu * rows[r.normal_row].lambda, r.lambda, s.lambda, w, w2));
+      continue;
+    }
     double lo = r.lo, hi = r.hi;
     if (r.normal_row >= 0) {
       hi = r.mu * rows[r.normal_row].lambda;

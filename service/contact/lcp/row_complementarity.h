@@ -1,10 +1,13 @@
 // How far constraint rows are from complementarity at the bodies' current
-// velocities: max_k of (lambda_k - lo_k) max(w_k, 0) + (hi_k - lambda_k)
-// max(-w_k, 0) with w_k = J_k v - rhs_k, an infinite bound replaced by
-// |lambda_k|, friction bounds +-mu lambda_n from the row's normal row (J;
-// zero exactly at a solution, |lambda w| for a contact row). A row whose
-// velocity violates its bound at lambda = 0 shows in the solver's residual
-// instead.
+// velocities (J; zero exactly at a solution), with w_k = J_k v - rhs_k:
+//   * a scalar row: (lambda_k - lo_k) max(w_k, 0) + (hi_k - lambda_k)
+//     max(-w_k, 0), an infinite bound replaced by |lambda_k|, |lambda w|
+//     for a contact row;
+//   * a friction pair (friction_disk.h) under FrictionSet::kDisk: the
+//     disk's gap mu lambda_n |u| + lambda_t . u (DiskComplementarity);
+//     under kPyramid each friction row alone, with bounds +-mu lambda_n.
+// The maximum over the rows. A row whose velocity violates its bound at
+// lambda = 0 shows in the solver's residual instead.
 #pragma once
 
 #include <vector>
@@ -13,6 +16,11 @@
 
 namespace contactsim {
 
-double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies);
+// The set the tangential impulses of a friction pair are bounded by: PGS
+// projects onto the disk, Lemke's rows express the pyramid (lemke_rows.h).
+enum class FrictionSet { kDisk, kPyramid };
+
+double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                            FrictionSet set = FrictionSet::kDisk);
 
 }  // namespace contactsim

@@ -5,6 +5,31 @@
 #include "service/physics/byte_stream.h"
 
 namespace contactsim {
+namespace {
+
+// The friction impulse of rows t1, t2 (directions lin_b) in the contact
+// frame's tangents t1f, t2f (PerpendicularBasis of the normal) and back:
+// Lemke's rows turn with the slip (lcp_contact_rows.h), the cache keeps the
+// frame that depends only on n. Rows already in that frame pass unchanged.
+void ToFrame(const Vec3& n, const ConstraintRow& r1, const ConstraintRow& r2, double* l1, double* l2) {
+  Vec3 t1f, t2f;
+  PerpendicularBasis(n, &t1f, &t2f);
+  if (r1.lin_b == t1f && r2.lin_b == t2f) return;
+  const Vec3 f = *l1 * r1.lin_b + *l2 * r2.lin_b;
+  *l1 = f.dot(t1f);
+  *l2 = f.dot(t2f);
+}
+
+void FromFrame(const Vec3& n, const ConstraintRow& r1, const ConstraintRow& r2, double* l1, double* l2) {
+  Vec3 t1f, t2f;
+  PerpendicularBasis(n, &t1f, &t2f);
+  if (r1.lin_b == t1f && r2.lin_b == t2f) return;
+  const Vec3 f = *l1 * t1f + *l2 * t2f;
+  *l1 = f.dot(r1.lin_b);
+  *l2 = f.dot(r2.lin_b);
+}
+
+}  // namespace
 
 void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const {
   for (size_t k = 0; k < contacts.size(); ++k) {
@@ -13,6 +38,9 @@ void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>
     const auto it = std::lower_bound(impulses_.begin(), impulses_.end(), probe);
     const bool found = it != impulses_.end() && it->key == probe.key;
     for (int j = 0; j < 3; ++j) (*rows)[3 * k + j].lambda = found ? it->lambda[j] : 0.0;
+    ConstraintRow& r1 = (*rows)[3 * k + 1];
+    ConstraintRow& r2 = (*rows)[3 * k + 2];
+    if (found) FromFrame(c.normal, r1, r2, &r1.lambda, &r2.lambda);
   }
 }
 
@@ -21,8 +49,9 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
     if (rows[3 * k].lambda <= 0.0) continue;
-    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id},
-                         {rows[3 * k].lambda, rows[3 * k + 1].lambda, rows[3 * k + 2].lambda}, k});
+    double l1 = rows[3 * k + 1].lambda, l2 = rows[3 * k + 2].lambda;
+    ToFrame(c.normal, rows[3 * k + 1], rows[3 * k + 2], &l1, &l2);
+    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, {rows[3 * k].lambda, l1, l2}, k});
   }
   std::sort(impulses_.begin(), impulses_.end());
 }

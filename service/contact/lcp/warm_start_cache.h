@@ -3,7 +3,9 @@
 // B, feature id), in a vector sorted by key and searched by bisection
 // (deterministic, and no allocation once its capacity is reached); contact
 // pairs come in a canonical body order (docs/conventions.md), so A and B do
-// not swap between steps. Three rows per contact: normal, t1, t2.
+// not swap between steps. Three rows per contact: normal, t1, t2; the
+// friction impulse is kept in the tangents of the contact frame
+// (PerpendicularBasis of the normal), whatever the rows' tangents.
 // Joint rows are kept too, per (joint id, row within the joint's block):
 // the equality rows of a joint come in a fixed order (joint_rows.h), so a
 // hanging chain starts each step from last step's tensions. A hinge limit
