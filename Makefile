@@ -50,6 +50,12 @@ wheel: deps
 	.venv/bin/pip wheel -q --no-deps --no-build-isolation -w $(BUILD)/dist clients/python
 	@ls $(BUILD)/dist/contactsim-*.whl
 
+# lcm-spy with the jar of the message classes, so every channel decodes
+# (LCM_URL=... for another URL than the default).
+spy: deps $(BUILD)/CMakeCache.txt
+	@cmake --build $(BUILD) --target contactsim_lcmtypes_jar >/dev/null
+	bash scripts/spy.sh $(BUILD) $(if $(LCM_URL),--lcm-url=$(LCM_URL),)
+
 test: build
 	@$(MAKE) --no-print-directory test-cpp test-py
 
