@@ -17,7 +17,7 @@ export CCACHE_NOHASHDIR := 1
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run viewer test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
+.PHONY: all deps build run viewer wheel spy package test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
 
 all: build
 
@@ -43,6 +43,23 @@ run: build
 viewer: deps $(BUILD)/CMakeCache.txt
 	@cmake --build $(BUILD) --target contactsim_lcmtypes_gen >/dev/null
 	$(VIEWER)
+
+# The Python client as a wheel with its generated LCM types, in $(BUILD)/dist
+# (docs/packaging.md); offline, from the .venv's setuptools, wheel and lcm-gen.
+wheel: deps
+	.venv/bin/pip wheel -q --no-deps --no-build-isolation -w $(BUILD)/dist clients/python
+	@ls $(BUILD)/dist/contactsim-*.whl
+
+# lcm-spy with the jar of the message classes, so every channel decodes
+# (LCM_URL=... for another URL than the default).
+spy: deps $(BUILD)/CMakeCache.txt
+	@cmake --build $(BUILD) --target contactsim_lcmtypes_jar >/dev/null
+	bash scripts/spy.sh $(BUILD) $(if $(LCM_URL),--lcm-url=$(LCM_URL),)
+
+# contactsim_<version>_amd64.deb in $(BUILD): programs, C++ client, config,
+# systemd unit (docs/packaging.md)
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 test: build
 	@$(MAKE) --no-print-directory test-cpp test-py

@@ -30,5 +30,5 @@ add_custom_command(
 add_custom_target(contactsim_lcmtypes_gen ALL DEPENDS ${LCM_OUTPUTS} ${LCM_WIRE_CHECK})
 add_library(contactsim_lcmtypes INTERFACE)
 add_dependencies(contactsim_lcmtypes contactsim_lcmtypes_gen)
-target_include_directories(contactsim_lcmtypes INTERFACE ${LCMTYPES_CPP_DIR})
+target_include_directories(contactsim_lcmtypes INTERFACE $<BUILD_INTERFACE:${LCMTYPES_CPP_DIR}>)
 target_link_libraries(contactsim_lcmtypes INTERFACE PkgConfig::LCM)

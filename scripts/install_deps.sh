@@ -22,6 +22,7 @@ APT_PACKAGES=(
   libbullet-dev libode-dev libmujoco-dev     # peer runners of `make bench` only (bench/peers), never in the service
   python3 python3-venv python3-dev           # Python client
   chromium chromium-driver                   # the viewer's browser tests (headless, tests/python/test_viewer.py)
+  liblcm-java default-jdk-headless           # the message jar for lcm-spy (make spy, docs/packaging.md)
 )
 # npm installs the viewer's three.js; Debian's nodejs and npm unless a node is already there
 command -v npm >/dev/null 2>&1 || APT_PACKAGES+=(nodejs npm)
@@ -54,7 +55,7 @@ if [ ! -x .venv/bin/python ]; then
   echo "deps: creating .venv"
   "$PY" -m venv .venv
 fi
-if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest, aiohttp, selenium" 2>/dev/null \
+if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest, aiohttp, selenium, wheel" 2>/dev/null \
    || ! .venv/bin/pip show -q contactsim >/dev/null 2>&1 || [ ! -x .venv/bin/contactsim-viewer ]; then
   echo "deps: installing Python packages into .venv"
   .venv/bin/pip install -q --upgrade pip

@@ -25,6 +25,7 @@
 #include <CLI/CLI.hpp>
 
 #include "contactsim/client.h"
+#include "contactsim/mode_names.h"
 
 namespace {
 
@@ -66,14 +67,6 @@ Eigen::Vector3d ToVector(const std::array<double, 3>& v) {
   return {v[0], v[1], v[2]};
 }
 
-const char* ModeName(int8_t mode) {
-  switch (mode) {
-    case contactsim::status_t::REALTIME: return "realtime";
-    case contactsim::status_t::FREE_RUN: return "free_run";
-    default: return "unknown";
-  }
-}
-
 void PrintStatus(const contactsim::status_t& s) {
   std::printf(
       "version: %s\nmode: %s\npaused: %s\nmethod: %s\nmethod_params: %s\n"
@@ -81,7 +74,7 @@ void PrintStatus(const contactsim::status_t& s) {
       "real_time_factor: %.3f (target %.3f)\nbodies: %d\ncontacts: %d\n"
       "max_penetration: %.3g m\nsolver_iterations: %d\n"
       "commands: %lld accepted, %lld rejected\nlast_error: %s\n",
-      s.version.c_str(), ModeName(s.mode), s.paused ? "yes" : "no",
+      s.version.c_str(), contactsim::NameOfMode(s.mode), s.paused ? "yes" : "no",
       s.method.c_str(), s.method_params.c_str(), s.time,
       static_cast<long long>(s.step), s.dt, s.step_rate, s.real_time_factor,
       s.target_real_time_factor, s.num_bodies, s.num_contacts,

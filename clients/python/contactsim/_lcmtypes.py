@@ -6,7 +6,11 @@ refer to each other as ``contactsim.<type>`` and expect that name to be the
 body_state_t``). This package is also called ``contactsim``, so it appends the
 generated folder to its ``__path__`` and binds every class under its name.
 
-The folder is ``$CONTACTSIM_BUILD_DIR/lcmtypes/python/contactsim`` when that
+An installed wheel carries its own copy in ``contactsim/_generated`` (made
+by lcm-gen when the wheel is built, clients/python/setup.py) and always uses
+it: the classes then match the client they were built with. In the
+repository (an editable install or PYTHONPATH) there is no such folder, and
+the folder is ``$CONTACTSIM_BUILD_DIR/lcmtypes/python/contactsim`` when that
 variable is set, else ``<repo>/build/lcmtypes/python/contactsim`` relative to
 this file.
 """
@@ -29,8 +33,15 @@ TYPE_NAMES = (
 )
 
 
+def packaged_dir():
+    """The wheel's copy of the generated modules (absent in the repository)."""
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "_generated")
+
+
 def generated_dir():
     """Folder holding the generated contactsim/*.py modules."""
+    if os.path.isdir(packaged_dir()):
+        return packaged_dir()
     build = os.environ.get("CONTACTSIM_BUILD_DIR")
     if build:
         return os.path.join(os.path.abspath(build), "lcmtypes", "python", "contactsim")

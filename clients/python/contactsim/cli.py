@@ -2,7 +2,10 @@
 
     contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] [--auth-key-file FILE] COMMAND ...
       status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET
-      remove ID | method NAME [key=value ...] | pause | resume | step [N] | reset
+      remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
+      method NAME [key=value ...] | pause | resume | step [N] | reset
+
+The subcommands are contactsim-ctl's (the C++ CLI), so either serves a script.
 
 Exit status: 0 OK, 1 error reply, 2 no reply (timeout) or an unusable auth key file.
 """
@@ -11,6 +14,7 @@ import sys
 
 from .client import Client
 from .errors import AuthKeyError, CommandError, TimeoutError
+from .joints import KINDS
 
 
 def _parser():
@@ -42,6 +46,7 @@ def _parser():
     a.add_argument("--restitution", type=float)
     a.add_argument("--friction", type=float)
     sub.add_parser("remove").add_argument("id", type=int)
+    _joint_parser(sub)
     m = sub.add_parser("method", help="switch the contact method")
     m.add_argument("name")
     m.add_argument("params", nargs="*", metavar="key=value")
@@ -52,6 +57,29 @@ def _parser():
     st.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                     help="draw a progress bar (default: when stderr is a terminal)")
     return p
+
+
+def _joint_parser(sub):
+    """joint add KIND BODY_A [BODY_B] --anchor X Y Z [...] | joint remove ID, as contactsim-ctl."""
+    j = sub.add_parser("joint", help="add or remove a joint").add_subparsers(dest="joint_cmd", required=True)
+    a = j.add_parser("add", help="add a joint; prints its id")
+    a.add_argument("kind", type=str.lower, choices=sorted(KINDS))
+    a.add_argument("body_a", type=int)
+    a.add_argument("body_b", type=int, nargs="?", default=0, help="body id, or 0 for the world")
+    a.add_argument("--anchor", "-a", type=float, nargs=3, required=True, metavar=("X", "Y", "Z"),
+                   help="m, world: the joint point (distance: the point on body_b)")
+    a.add_argument("--axis", type=float, nargs=3, metavar=("X", "Y", "Z"), help="world, hinge only")
+    a.add_argument("--length", "-l", type=float, help="m, distance only (default: current)")
+    a.add_argument("--limits", type=float, nargs=2, metavar=("LOWER", "UPPER"), help="rad, hinge only")
+    j.add_parser("remove", help="remove a joint").add_argument("id", type=int)
+
+
+def _run_joint(c, a):
+    if a.joint_cmd == "add":
+        print(c.add_joint(a.kind, a.body_a, a.body_b or None, anchor=a.anchor, axis=a.axis,
+                          length=a.length, limits=a.limits))
+        return None
+    return c.remove_joint(a.id)
 
 
 def _run(c, a):
@@ -69,7 +97,11 @@ def _run(c, a):
                    else c.add_box((a.hx, a.hy, a.hz), **kw))
         print(bid)
         return
-    if a.cmd == "remove":
+    if a.cmd == "joint":
+        r = _run_joint(c, a)
+        if r is None:
+            return
+    elif a.cmd == "remove":
         r = c.remove_body(a.id)
     elif a.cmd == "method":
         params = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in a.params)

@@ -29,11 +29,10 @@ from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
 from .joints import JointCommands
-from .state import Contacts, State, Status, reply_from_msg
+from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
-MODES = {"realtime": scene_cmd_t.REALTIME, "free_run": scene_cmd_t.FREE_RUN,
-         "lockstep": scene_cmd_t.LOCKSTEP}
+MODES = {name: mode for mode, name in MODE_NAMES.items()}  # SET_MODE uses status_t's values
 _STATE_FP = state_t._get_packed_fingerprint()
 _CONTACTS_FP = contacts_t._get_packed_fingerprint()
 

@@ -14,8 +14,7 @@ import lcm
 import numpy as np
 
 from . import contacts_t, state_t, status_t
-
-MODE_NAMES = {1: "realtime", 2: "free_run", 3: "lockstep"}
+from .state import MODE_NAMES
 
 
 def _detect_prefix(path):

@@ -3,7 +3,13 @@ from collections import namedtuple
 
 import numpy as np
 
-MODE_NAMES = {1: "realtime", 2: "free_run", 3: "lockstep"}
+from . import status_t
+
+# The run modes by their wire value, the Python client's one table of them
+# (client.MODES and logread read it). The names are the server's
+# (kRunModeNames, service/server/command.h); tests/python/test_mode_names.py
+# holds the three tables of the project to one another.
+MODE_NAMES = {status_t.REALTIME: "realtime", status_t.FREE_RUN: "free_run", status_t.LOCKSTEP: "lockstep"}
 VALUE_KINDS = {1: "impulse", 2: "force"}
 
 
