@@ -26,6 +26,8 @@ Status ImpulseMethod::SetParams(const ParamMap& params) {
   r.Choice("toi", {"regula_falsi", "bisection", "off"}, &p.toi);
   r.Int("max_substeps", 1, 64, &p.max_substeps);
   r.Bool("warm_start", &p.warm_start);
+  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
+  r.Int("direct_max_rows", 0, 10000, &p.direct_max_rows);
   Status status = r.Finish();
   if (status.ok()) params_ = p;
   return status;
@@ -40,7 +42,9 @@ ParamMap ImpulseMethod::Params() const {
           {"position_correction", FormatValue(params_.position_correction)},
           {"toi", params_.toi},
           {"max_substeps", std::to_string(params_.max_substeps)},
-          {"warm_start", params_.warm_start ? "true" : "false"}};
+          {"warm_start", params_.warm_start ? "true" : "false"},
+          {"direct_mass_ratio", FormatValue(params_.direct_mass_ratio)},
+          {"direct_max_rows", std::to_string(params_.direct_max_rows)}};
 }
 
 std::string ImpulseMethod::SaveState() const {
@@ -104,6 +108,7 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
     }
     if (worst < 1e-9) break;
   }
+  SolveMassRatios(rows_, &target);
   DisplaceBodies(solver_, world);
 }
 
@@ -170,6 +175,30 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
     if (!any) break;
   }
   return pass;
+}
+
+void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target) {
+  SubspaceOptions options;
+  options.mass_ratio = params_.direct_mass_ratio;
+  options.max_rows = params_.direct_max_rows;
+  if (options.mass_ratio <= 0.0 || rows.empty()) return;
+  // rows along n with the accumulated normal impulses the bodies carry
+  normal_rows_.resize(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ContactRow& c = rows[k];
+    ConstraintRow& r = normal_rows_[k];
+    r.a = c.a;
+    r.b = c.b;
+    r.lin_a = -c.n;
+    r.ang_a = -c.ra.cross(c.n);
+    r.lin_b = c.n;
+    r.ang_b = c.rb.cross(c.n);
+    r.lo = 0.0;
+    r.rhs = target ? (*target)[k] : 0.0;
+    r.lambda = c.lambda_n;
+  }
+  subspace_.Solve(normal_rows_, solver_, options);
+  for (size_t k = 0; k < rows.size(); ++k) rows[k].lambda_n = normal_rows_[k].lambda;
 }
 
 int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
@@ -272,6 +301,7 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
       break;
     }
   }
+  SolveMassRatios(rows, nullptr);
   warm_.clear();
   for (size_t k = 0; k < rows.size(); ++k) {
     const Contact& c = contacts[k];
