@@ -182,23 +182,39 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
   options.mass_ratio = params_.direct_mass_ratio;
   options.max_rows = params_.direct_max_rows;
   if (options.mass_ratio <= 0.0 || rows.empty()) return;
-  // rows along n with the accumulated normal impulses the bodies carry
-  normal_rows_.resize(rows.size());
+  // per contact a row along n with the accumulated impulse the bodies carry,
+  // and in the contact phase (no targets) the two friction rows
+  const int per = target ? 1 : 3;
+  normal_rows_.assign(per * rows.size(), ConstraintRow());
   for (size_t k = 0; k < rows.size(); ++k) {
     const ContactRow& c = rows[k];
-    ConstraintRow& r = normal_rows_[k];
-    r.a = c.a;
-    r.b = c.b;
-    r.lin_a = -c.n;
-    r.ang_a = -c.ra.cross(c.n);
-    r.lin_b = c.n;
-    r.ang_b = c.rb.cross(c.n);
-    r.lo = 0.0;
-    r.rhs = target ? (*target)[k] : 0.0;
-    r.lambda = c.lambda_n;
+    const Vec3 dirs[3] = {c.n, c.t1, c.t2};
+    const double lambdas[3] = {c.lambda_n, c.lambda_t1, c.lambda_t2};
+    for (int d = 0; d < per; ++d) {
+      ConstraintRow& r = normal_rows_[per * k + d];
+      r.a = c.a;
+      r.b = c.b;
+      r.lin_a = -dirs[d];
+      r.ang_a = -c.ra.cross(dirs[d]);
+      r.lin_b = dirs[d];
+      r.ang_b = c.rb.cross(dirs[d]);
+      r.lambda = lambdas[d];
+      if (d == 0) {
+        r.lo = 0.0;
+        r.rhs = target ? (*target)[k] : 0.0;
+      } else {
+        r.normal_row = static_cast<int>(per * k);
+        r.mu = c.friction;
+      }
+    }
   }
   subspace_.Solve(normal_rows_, solver_, options);
-  for (size_t k = 0; k < rows.size(); ++k) rows[k].lambda_n = normal_rows_[k].lambda;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    rows[k].lambda_n = normal_rows_[per * k].lambda;
+    if (per == 1) continue;
+    rows[k].lambda_t1 = normal_rows_[per * k + 1].lambda;
+    rows[k].lambda_t2 = normal_rows_[per * k + 2].lambda;
+  }
 }
 
 int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {

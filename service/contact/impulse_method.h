@@ -81,7 +81,8 @@ class ImpulseMethod : public ContactMethod {
   int CollisionPhase(std::vector<ContactRow>& rows);
   int ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
   // The direct solve of the normal rows (target velocity `target[k]`, or 0
-  // without targets) in components with a large mass ratio, after the sweeps.
+  // and the friction rows without targets) in components with a large mass
+  // ratio, after the sweeps.
   void SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target);
   // First time in (0, h] at which a pair that was apart touches, or h.
   double FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs, double h,
@@ -94,7 +95,7 @@ class ImpulseMethod : public ContactMethod {
   };
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
-  std::vector<ConstraintRow> normal_rows_;  // the normal rows for the direct solve
+  std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
   SubspaceSolver subspace_;
   // Contact-phase force (N, world: normal and tangent parts) of each contact
   // point of the last sub-step, by (body A, body B, feature id). Forces, not

@@ -64,7 +64,6 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
   std::vector<int> count(n, 0);
   for (size_t k = 0; k < rows.size(); ++k) {
     const ConstraintRow& r = rows[k];
-    if (r.normal_row >= 0) continue;  // friction: held
     const int body = Dynamic(r.a, bodies) ? r.a : Dynamic(r.b, bodies) ? r.b : -1;
     if (body < 0) continue;
     const int root = sets.Root(body);
@@ -94,10 +93,14 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     for (int j = i; j < m; ++j) A(i, j) = A(j, i) = Coupling(rows[members[i]], rows[members[j]], bodies);
   }
   // free: solved for; held: kept at a bound (starting from the sweeps' guess)
+  member_of_.assign(rows.size(), -1);
+  for (int i = 0; i < m; ++i) member_of_[members[i]] = i;
   std::vector<char> held(m);
   for (int i = 0; i < m; ++i) {
     const ConstraintRow& r = rows[members[i]];
-    held[i] = A(i, i) <= 0.0 || r.lambda <= r.lo || r.lambda >= r.hi;
+    double lo = r.lo, hi = r.hi;
+    if (r.normal_row >= 0) hi = r.mu * rows[r.normal_row].lambda, lo = -hi;
+    held[i] = A(i, i) <= 0.0 || r.lambda <= lo || r.lambda >= hi;
   }
   std::vector<int> free_rows;
   int pass = 0;
@@ -119,13 +122,24 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
         for (int j = 0; j < f; ++j) S(i, j) = scale(i) * A(free_rows[i], free_rows[j]) * scale(j);
       }
       const Eigen::VectorXd dl = scale.cwiseProduct(Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(S).solve(b));
-      // rows the solution would push past a bound are held there, and the rest solved again
+      // rows the solution would push past a bound are held there, and the
+      // rest solved again; a sticking friction row's bound is mu times its
+      // normal row's new impulse (a row leaving it slides: held at the bound)
+      position_.assign(m, -1);
+      for (int i = 0; i < f; ++i) position_[free_rows[i]] = i;
       bool clamped = false;
       for (int i = 0; i < f; ++i) {
         ConstraintRow& r = rows[members[free_rows[i]]];
         const double next = r.lambda + dl(i);
-        if (next < r.lo || next > r.hi) {
-          SetImpulse(r, next < r.lo ? r.lo : r.hi, bodies);
+        double lo = r.lo, hi = r.hi;
+        if (r.normal_row >= 0) {
+          const int normal = member_of_[r.normal_row];
+          const int at = normal >= 0 ? position_[normal] : -1;
+          hi = r.mu * std::max(0.0, rows[r.normal_row].lambda + (at >= 0 ? dl(at) : 0.0));
+          lo = -hi;
+        }
+        if (next < lo || next > hi) {
+          SetImpulse(r, next < lo ? lo : hi, bodies);
           held[free_rows[i]] = true;
           clamped = true;
         }
@@ -136,8 +150,8 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     // held rows the solution leaves approaching (at lo) or pulling (at hi) are freed
     bool joined = false;
     for (int i = 0; i < m; ++i) {
-      if (!held[i] || A(i, i) <= 0.0) continue;
       const ConstraintRow& r = rows[members[i]];
+      if (!held[i] || A(i, i) <= 0.0 || r.normal_row >= 0) continue;  // sliding friction stays held
       const double gap = r.rhs - r.Velocity(bodies);  // > 0: wants more impulse
       if ((r.lambda <= r.lo && gap > kJoinTolerance) || (r.lambda >= r.hi && gap < -kJoinTolerance)) {
         held[i] = false;
