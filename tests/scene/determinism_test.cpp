@@ -39,7 +39,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {{"model", "hunt_crossley"}}, 0x26bd4c98c83532bfull},
       {"xpbd", {}, 0x67737c8bc6935e6cull},
       {"lcp", {{"solver", "pgs"}}, 0xc308cb9078677086ull},
-      {"lcp", {{"solver", "lemke"}}, 0x590d23c5e606b36full},
+      {"lcp", {{"solver", "lemke"}}, 0x544ad78157a9d938ull},
       {"barrier", {}, 0xf310fe672c76914eull},
   };
   return pinned;
