@@ -181,7 +181,7 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
   SubspaceOptions options;
   options.mass_ratio = params_.direct_mass_ratio;
   options.max_rows = params_.direct_max_rows;
-  if (options.mass_ratio <= 0.0 || rows.empty()) return;
+  if (rows.empty() || !SubspaceSolver::MassRatioReached(solver_, options.mass_ratio)) return;
   // per contact a row along n with the accumulated impulse the bodies carry,
   // and in the contact phase (no targets) the two friction rows
   const int per = target ? 1 : 3;

@@ -42,10 +42,21 @@ void SetImpulse(ConstraintRow& row, double value, std::vector<SolverBody>& bodie
 
 }  // namespace
 
+bool SubspaceSolver::MassRatioReached(const std::vector<SolverBody>& bodies, double ratio) {
+  if (ratio <= 0.0) return false;
+  double lightest = 0.0, heaviest = std::numeric_limits<double>::infinity();  // inverse masses
+  for (const SolverBody& b : bodies) {
+    if (b.inv_mass <= 0.0) continue;
+    lightest = std::max(lightest, b.inv_mass);
+    heaviest = std::min(heaviest, b.inv_mass);
+  }
+  return lightest >= ratio * heaviest;
+}
+
 SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
                                      const SubspaceOptions& options) {
   SubspaceReport report;
-  if (options.mass_ratio <= 0.0 || rows.empty()) return report;
+  if (rows.empty() || !MassRatioReached(bodies, options.mass_ratio)) return report;
   // components of dynamic bodies joined by rows, and their mass range
   const int n = static_cast<int>(bodies.size());
   UnionFind sets(n);

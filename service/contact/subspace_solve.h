@@ -60,6 +60,10 @@ class SubspaceSolver {
   // slide. Changes go to bodies via ConstraintRow::Apply (v, w, dP, dL).
   SubspaceReport Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
                        const SubspaceOptions& options);
+  // Whether any two dynamic bodies differ in mass by `ratio` or more: when
+  // not, no component can, and callers skip building rows (one pass over
+  // the bodies; it kept the pyramid's step time unchanged).
+  static bool MassRatioReached(const std::vector<SolverBody>& bodies, double ratio);
 
  private:
   // Solves the component whose rows are `members` (indices in rows).
