@@ -29,9 +29,9 @@
 //
 // Only components (dynamic bodies joined by rows) whose heaviest body is at
 // least `mass_ratio` times their lightest are solved, and only up to
-// `max_rows` rows: equal-mass scenes, where the sweeps converge, pay only
-// the component search (one pass over the rows) and keep their results
-// bit for bit.
+// `max_rows` rows: equal-mass scenes, where the sweeps converge, pay one
+// pass over the bodies (MassRatioReached) and keep their results bit for
+// bit.
 #pragma once
 
 #include <vector>
