@@ -26,6 +26,8 @@ Status ImpulseMethod::SetParams(const ParamMap& params) {
   r.Choice("toi", {"regula_falsi", "bisection", "off"}, &p.toi);
   r.Int("max_substeps", 1, 64, &p.max_substeps);
   r.Bool("warm_start", &p.warm_start);
+  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
+  r.Int("direct_max_rows", 0, 10000, &p.direct_max_rows);
   Status status = r.Finish();
   if (status.ok()) params_ = p;
   return status;
@@ -40,7 +42,9 @@ ParamMap ImpulseMethod::Params() const {
           {"position_correction", FormatValue(params_.position_correction)},
           {"toi", params_.toi},
           {"max_substeps", std::to_string(params_.max_substeps)},
-          {"warm_start", params_.warm_start ? "true" : "false"}};
+          {"warm_start", params_.warm_start ? "true" : "false"},
+          {"direct_mass_ratio", FormatValue(params_.direct_mass_ratio)},
+          {"direct_max_rows", std::to_string(params_.direct_max_rows)}};
 }
 
 std::string ImpulseMethod::SaveState() const {
@@ -104,6 +108,7 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
     }
     if (worst < 1e-9) break;
   }
+  SolveMassRatios(rows_, &target);
   DisplaceBodies(solver_, world);
 }
 
@@ -170,6 +175,46 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
     if (!any) break;
   }
   return pass;
+}
+
+void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target) {
+  SubspaceOptions options;
+  options.mass_ratio = params_.direct_mass_ratio;
+  options.max_rows = params_.direct_max_rows;
+  if (rows.empty() || !SubspaceSolver::MassRatioReached(solver_, options.mass_ratio)) return;
+  // per contact a row along n with the accumulated impulse the bodies carry,
+  // and in the contact phase (no targets) the two friction rows
+  const int per = target ? 1 : 3;
+  normal_rows_.assign(per * rows.size(), ConstraintRow());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ContactRow& c = rows[k];
+    const Vec3 dirs[3] = {c.n, c.t1, c.t2};
+    const double lambdas[3] = {c.lambda_n, c.lambda_t1, c.lambda_t2};
+    for (int d = 0; d < per; ++d) {
+      ConstraintRow& r = normal_rows_[per * k + d];
+      r.a = c.a;
+      r.b = c.b;
+      r.lin_a = -dirs[d];
+      r.ang_a = -c.ra.cross(dirs[d]);
+      r.lin_b = dirs[d];
+      r.ang_b = c.rb.cross(dirs[d]);
+      r.lambda = lambdas[d];
+      if (d == 0) {
+        r.lo = 0.0;
+        r.rhs = target ? (*target)[k] : 0.0;
+      } else {
+        r.normal_row = static_cast<int>(per * k);
+        r.mu = c.friction;
+      }
+    }
+  }
+  subspace_.Solve(normal_rows_, solver_, options);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    rows[k].lambda_n = normal_rows_[per * k].lambda;
+    if (per == 1) continue;
+    rows[k].lambda_t1 = normal_rows_[per * k + 1].lambda;
+    rows[k].lambda_t2 = normal_rows_[per * k + 2].lambda;
+  }
 }
 
 int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
@@ -272,6 +317,7 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
       break;
     }
   }
+  SolveMassRatios(rows, nullptr);
   warm_.clear();
   for (size_t k = 0; k < rows.size(); ++k) {
     const Contact& c = contacts[k];

@@ -17,6 +17,9 @@
 //     warm-started from the previous step's contact forces matched by body
 //     pair and feature id (without it a stack of boxes never converges in
 //     the iteration cap and its friction creeps sideways);
+//     in components whose mass ratio is direct_mass_ratio or more the
+//     normal rows are then solved directly (subspace_solve.h: Gauss-Seidel
+//     converges at about 1 - m_light / m_heavy per sweep there);
 //  4b. joints: the equality-constraint velocity solve (contact/joints/
 //     joint_solver.h) after the forces and contact impulses;
 //  5. positions: bodies without contact impulses fly ballistically,
@@ -40,6 +43,7 @@
 #include "service/contact/contact_method.h"
 #include "service/contact/contact_row.h"
 #include "service/contact/solver_body.h"
+#include "service/contact/subspace_solve.h"
 
 namespace contactsim {
 
@@ -53,6 +57,10 @@ struct ImpulseParams {
   std::string toi = "regula_falsi";     // regula_falsi | bisection | off
   int max_substeps = 4;                 // time-of-impact sub-steps per step at most
   bool warm_start = true;               // start the contact phase from last step's forces
+  // components whose heaviest body is this many times their lightest get a
+  // direct solve of their normal rows after the sweeps (subspace_solve.h); 0 = off
+  double direct_mass_ratio = 10.0;
+  int direct_max_rows = 300;            // larger components keep the sweeps' answer
 };
 
 class ImpulseMethod : public ContactMethod {
@@ -72,6 +80,10 @@ class ImpulseMethod : public ContactMethod {
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
   int ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
+  // The direct solve of the normal rows (target velocity `target[k]`, or 0
+  // and the friction rows without targets) in components with a large mass
+  // ratio, after the sweeps.
+  void SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target);
   // First time in (0, h] at which a pair that was apart touches, or h.
   double FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs, double h,
                         int* iterations) const;
@@ -83,6 +95,8 @@ class ImpulseMethod : public ContactMethod {
   };
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
+  SubspaceSolver subspace_;
   // Contact-phase force (N, world: normal and tangent parts) of each contact
   // point of the last sub-step, by (body A, body B, feature id). Forces, not
   // impulses, so that sub-steps of another length reuse them.

@@ -1,6 +1,7 @@
 // SimServer's body and joint commands (BODY_CMD, JOINT_CMD): the checks
 // that need the world (does the body exist, is it dynamic, is there room)
 // and the change itself. Simulation thread. A failed check changes nothing.
+#include "service/contact/method_support.h"
 #include "service/physics/validation.h"
 #include "service/server/sim_server.h"
 
@@ -47,6 +48,11 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
       if (static_cast<int>(world_.joints().size()) >= options_.max_joints) {
         return Outcome::Failed(Status::ResourceExhausted("the world holds max_joints = " +
                                                          std::to_string(options_.max_joints) + " joints already"));
+      }
+      if (!MethodSupportsJoints(method_->Name())) {
+        return Outcome::Failed(Status::FailedPrecondition(std::string("contact method ") + method_->Name() +
+                                                          " does not simulate joints: choose impulse, penalty, "
+                                                          "xpbd or lcp before adding one"));
       }
       JointId id = 0;
       if (!(st = world_.AddJoint(cmd.joint, &id)).ok()) return Outcome::Failed(st);

@@ -3,6 +3,7 @@
 // step and run mode. Simulation thread.
 #include <spdlog/spdlog.h>
 
+#include "service/contact/method_support.h"
 #include "service/server/sim_server.h"
 
 namespace contactsim {
@@ -22,6 +23,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       // built into a fresh world first, so that a failure leaves the old one
       World world;
       Status st = BuildWorld(*cmd.scene, &world);
+      if (st.ok()) st = CheckMethodSupports((cmd.method ? cmd.method : method_)->Name(), world);
       if (!st.ok()) return Outcome::Failed(st);
       CancelStepCommands("scene loaded");
       world_ = std::move(world);
@@ -42,6 +44,8 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       return Outcome::Done("time step set", true);
     case K::kSetMethod: {
       // a switch keeps every body's state and drops only the old method's caches
+      const Status st = CheckMethodSupports(cmd.method->Name(), world_);
+      if (!st.ok()) return Outcome::Failed(st);
       method_ = cmd.method;
       std::string text = std::string("contact method ") + method_->Name();
       for (const auto& [k, v] : method_->Params()) text += " " + k + "=" + v;

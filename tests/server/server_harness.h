@@ -6,6 +6,7 @@
 
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
+#include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 
@@ -72,6 +73,11 @@ class ServerHarness {
     m.request_id = ++request_id;
     const auto bytes = Encode(m);
     server.OnMessage(server.Channel("SCENE_CMD"), bytes.data(), static_cast<int>(bytes.size()));
+  }
+  void Post(joint_cmd_t& m) {
+    m.request_id = ++request_id;
+    const auto bytes = Encode(m);
+    server.OnMessage(server.Channel("JOINT_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   }
   void Post(input_t& m) {
     m.request_id = ++request_id;

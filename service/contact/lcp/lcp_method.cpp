@@ -9,6 +9,16 @@
 #include "service/physics/integrator.h"
 
 namespace contactsim {
+namespace {
+
+SubspaceOptions SubspaceOptionsOf(const LcpParams& p) {
+  SubspaceOptions options;
+  options.mass_ratio = p.direct_mass_ratio;
+  options.max_rows = p.direct_max_rows;
+  return options;
+}
+
+}  // namespace
 
 Status LcpMethod::SetParams(const ParamMap& params) { return ParseLcpParams(Name(), params, params_, &params_); }
 
@@ -46,6 +56,7 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   options.iterations = params_.iterations;
   options.tolerance = 1e-9;  // m
   split_pgs_.Solve(split_rows_, bodies_, options);
+  subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_));
   auto& bodies = world.bodies();
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies[i].IsDynamic()) continue;
@@ -83,6 +94,7 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   options.iterations = params_.iterations;
   options.tolerance = params_.tolerance;
   report_ = pgs_.Solve(rows_, bodies, options);
+  subspace_.Solve(rows_, bodies, SubspaceOptionsOf(params_));
 }
 
 StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {

@@ -25,7 +25,9 @@
 //     rod tension and the contact force from the same solve;
 //  5. solve for the impulses: solver = pgs (pgs.h: joint rows are unclamped
 //     rows of the same sweeps; contact rows warm-started from last step's
-//     impulses by feature id, joint rows by joint id) or lemke
+//     impulses by feature id, joint rows by joint id; then, in components
+//     with a mass ratio of direct_mass_ratio or more, a direct solve of the
+//     normal and joint rows, subspace_solve.h) or lemke
 //     (lemke_rows.h, the exact mixed LCP, joint rows its free variables; if
 //     it fails or has more than max_lemke_rows rows the step falls back to
 //     PGS, warm-started as solver = pgs is, and lemke_fallbacks() counts it);
@@ -52,6 +54,7 @@
 #include "service/contact/lcp/lcp_params.h"
 #include "service/contact/lcp/pgs.h"
 #include "service/contact/lcp/warm_start_cache.h"
+#include "service/contact/subspace_solve.h"
 
 namespace contactsim {
 
@@ -83,6 +86,7 @@ class LcpMethod : public ContactMethod {
   std::vector<ConstraintRow> rows_, split_rows_, joint_rows_, lemke_rows_;
   std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;
+  SubspaceSolver subspace_;
   WarmStartCache warm_start_;
   SolveReport report_;
   int lemke_fallbacks_ = 0;

@@ -17,6 +17,8 @@ Status ParseLcpParams(const char* method, const ParamMap& params, const LcpParam
   r.Double("slop", 0.0, 0.1, &p.slop);
   r.Choice("drift", {"split", "baumgarte"}, &p.drift);
   r.Double("erp", 0.0, 1.0, &p.erp);
+  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
+  r.Int("direct_max_rows", 0, 10000, &p.direct_max_rows);
   Status status = r.Finish();
   if (status.ok()) *out = p;
   return status;
@@ -32,7 +34,9 @@ ParamMap LcpParamsToMap(const LcpParams& p) {
           {"restitution_threshold", FormatValue(p.restitution_threshold)},
           {"slop", FormatValue(p.slop)},
           {"drift", p.drift},
-          {"erp", FormatValue(p.erp)}};
+          {"erp", FormatValue(p.erp)},
+          {"direct_mass_ratio", FormatValue(p.direct_mass_ratio)},
+          {"direct_max_rows", std::to_string(p.direct_max_rows)}};
 }
 
 }  // namespace contactsim

@@ -19,6 +19,10 @@ struct LcpParams {
   double slop = 1e-3;                    // m: penetration left alone; speculative contact margin
   std::string drift = "split";           // split | baumgarte: how penetration is removed
   double erp = 0.2;                      // 1/step: fraction of (depth - slop) removed per step
+  // pgs: components whose heaviest body is this many times their lightest
+  // get a direct solve of their normal and joint rows (subspace_solve.h); 0 = off
+  double direct_mass_ratio = 10.0;
+  int direct_max_rows = 300;             // pgs: larger components keep the sweeps' answer
 };
 
 // Validates params against the ranges below and writes *out only when every

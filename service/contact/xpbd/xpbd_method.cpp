@@ -6,6 +6,7 @@
 
 #include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
+#include "service/contact/joints/joint_solver.h"
 #include "service/contact/param_reader.h"
 #include "service/physics/integrator.h"
 
@@ -20,6 +21,7 @@ Status XpbdMethod::SetParams(const ParamMap& params) {
   r.Double("restitution_threshold", 0.0, 100.0, &p.restitution_threshold);
   r.Double("margin", 0.0, 1.0, &p.margin);
   r.Double("joint_compliance", 0.0, 1.0, &p.joint_compliance);
+  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
   Status status = r.Finish();
   if (status.ok()) params_ = p;
   return status;
@@ -31,7 +33,8 @@ ParamMap XpbdMethod::Params() const {
           {"compliance", FormatValue(params_.compliance)},
           {"restitution_threshold", FormatValue(params_.restitution_threshold)},
           {"margin", FormatValue(params_.margin)},
-          {"joint_compliance", FormatValue(params_.joint_compliance)}};
+          {"joint_compliance", FormatValue(params_.joint_compliance)},
+          {"direct_mass_ratio", FormatValue(params_.direct_mass_ratio)}};
 }
 
 void XpbdMethod::DetectAhead(const World& world, CollisionDetector& detector, double dt) {
@@ -126,6 +129,8 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   DetectAhead(world, detector, dt);
   CandidatePairs();
 
+  const bool project_joints =
+      params_.joint_compliance == 0.0 && JointMassRatioAtLeast(world, params_.direct_mass_ratio);
   auto& bodies = world.bodies();
   start_.resize(bodies.size());
   predicted_.resize(bodies.size());
@@ -142,6 +147,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
       SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
       SolveXpbdContactPositions(world, start_, h, alpha_tilde, &contacts_);
     }
+    if (project_joints) ProjectJointPositions(world);
     stats.iterations += params_.iterations;
     // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
     for (size_t i = 0; i < bodies.size(); ++i) {

@@ -14,7 +14,11 @@
 //     narrowphase per sub-step);
 //  2. solve positions, `iterations` times: joints (xpbd_joints.h, with
 //     joint_compliance), then contacts (non-penetration, static friction;
-//     xpbd_contact.h) with compliance alpha (alpha~ = alpha / h^2);
+//     xpbd_contact.h) with compliance alpha (alpha~ = alpha / h^2); rigid
+//     joints between bodies of mass ratio direct_mass_ratio or more are
+//     then projected onto C = 0 by Newton's method (ProjectJointPositions,
+//     joints/joint_solver.h), which the sweeps approach only at a rate of
+//     about 1 - m_light / m_heavy;
 //  3. velocities from the poses: bodies moved by the solve get
 //     P += m dx / h and L += I dw with dw = 2 vec(dq) / h, dq the rotation the
 //     solve added (a body the solve left alone keeps its momenta exactly);
@@ -45,6 +49,10 @@ struct XpbdParams {
   double restitution_threshold = 0.0; // m/s; restitution applies above max(this, 2 |g| h)
   double margin = 0.01;               // m, detection distance beyond each pair's closing motion
   double joint_compliance = 0.0;      // m/N (and rad/(N m)), inverse joint stiffness (0: rigid)
+  // rigid joints of bodies this many times heavier than others they are
+  // joined to are projected exactly after each sub-step's sweeps
+  // (JointMassRatioAtLeast, xpbd_joints.h); 0 = off
+  double direct_mass_ratio = 10.0;
 };
 
 class XpbdMethod : public ContactMethod {

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "service/contact/method_support.h"
+
 namespace contactsim::bench {
 namespace {
 
@@ -34,6 +36,7 @@ Status CreateContactsimEngine(const BenchOptions& options, const SceneSpec& scen
   if (scene.contact_method == options.method) params = scene.method_params;
   for (const auto& [key, value] : options.params) params[key] = value;
   if (!(st = method->SetParams(params)).ok()) return st;
+  if (!(st = CheckMethodSupports(options.method, world)).ok()) return st;
   auto engine = std::make_unique<ContactsimEngine>(std::move(method), world);
   if (!(st = engine->SetBroadphase(options.broadphase)).ok()) return st;
   *out = std::move(engine);

@@ -1,0 +1,177 @@
+#include "service/contact/subspace_solve.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "service/contact/union_find.h"
+
+namespace contactsim {
+namespace {
+
+// m/s: a held row rejoins the free set when the solution makes it approach
+// (or pull) faster than this; well above the solve's round-off
+constexpr double kJoinTolerance = 1e-9;
+
+bool Dynamic(int i, const std::vector<SolverBody>& s) { return i >= 0 && s[i].inv_mass > 0.0; }
+
+// J_p M^-1 J_q^T: the entry of A = J M^-1 J^T coupling rows p and q through
+// the bodies they share.
+double Coupling(const ConstraintRow& p, const ConstraintRow& q, const std::vector<SolverBody>& s) {
+  auto part = [&s](int body, const Vec3& lin_p, const Vec3& ang_p, const Vec3& lin_q, const Vec3& ang_q) {
+    return s[body].inv_mass * lin_p.dot(lin_q) + ang_p.dot(s[body].inv_inertia * ang_q);
+  };
+  double sum = 0.0;
+  if (Dynamic(p.a, s)) {
+    if (p.a == q.a) sum += part(p.a, p.lin_a, p.ang_a, q.lin_a, q.ang_a);
+    if (p.a == q.b) sum += part(p.a, p.lin_a, p.ang_a, q.lin_b, q.ang_b);
+  }
+  if (Dynamic(p.b, s)) {
+    if (p.b == q.a) sum += part(p.b, p.lin_b, p.ang_b, q.lin_a, q.ang_a);
+    if (p.b == q.b) sum += part(p.b, p.lin_b, p.ang_b, q.lin_b, q.ang_b);
+  }
+  return sum;
+}
+
+// Sets a row's impulse to `value` and gives the bodies the difference.
+void SetImpulse(ConstraintRow& row, double value, std::vector<SolverBody>& bodies) {
+  row.Apply(value - row.lambda, bodies);
+  row.lambda = value;
+}
+
+}  // namespace
+
+bool SubspaceSolver::MassRatioReached(const std::vector<SolverBody>& bodies, double ratio) {
+  if (ratio <= 0.0) return false;
+  double lightest = 0.0, heaviest = std::numeric_limits<double>::infinity();  // inverse masses
+  for (const SolverBody& b : bodies) {
+    if (b.inv_mass <= 0.0) continue;
+    lightest = std::max(lightest, b.inv_mass);
+    heaviest = std::min(heaviest, b.inv_mass);
+  }
+  return lightest >= ratio * heaviest;
+}
+
+SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
+                                     const SubspaceOptions& options) {
+  SubspaceReport report;
+  if (rows.empty() || !MassRatioReached(bodies, options.mass_ratio)) return report;
+  // components of dynamic bodies joined by rows, and their mass range
+  const int n = static_cast<int>(bodies.size());
+  UnionFind sets(n);
+  for (const ConstraintRow& r : rows) {
+    if (Dynamic(r.a, bodies) && Dynamic(r.b, bodies)) sets.Join(r.a, r.b);
+  }
+  std::vector<double> lightest(n, 0.0), heaviest(n, std::numeric_limits<double>::infinity());  // inverse masses
+  for (int i = 0; i < n; ++i) {
+    if (!Dynamic(i, bodies)) continue;
+    const int root = sets.Root(i);
+    lightest[root] = std::max(lightest[root], bodies[i].inv_mass);
+    heaviest[root] = std::min(heaviest[root], bodies[i].inv_mass);
+  }
+  // the rows of each component that needs the solve, in row order
+  root_of_row_.assign(rows.size(), -1);
+  std::vector<int> count(n, 0);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ConstraintRow& r = rows[k];
+    const int body = Dynamic(r.a, bodies) ? r.a : Dynamic(r.b, bodies) ? r.b : -1;
+    if (body < 0) continue;
+    const int root = sets.Root(body);
+    if (lightest[root] < options.mass_ratio * heaviest[root]) continue;
+    root_of_row_[k] = root;
+    ++count[root];
+  }
+  std::vector<int> members;
+  for (int root = 0; root < n; ++root) {
+    if (count[root] == 0 || count[root] > options.max_rows) continue;
+    members.clear();
+    for (size_t k = 0; k < rows.size(); ++k) {
+      if (root_of_row_[k] == root) members.push_back(static_cast<int>(k));
+    }
+    report.passes += SolveComponent(members, rows, bodies, options.passes);
+    ++report.components;
+    report.rows += static_cast<int>(members.size());
+  }
+  return report;
+}
+
+int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<ConstraintRow>& rows,
+                                   std::vector<SolverBody>& bodies, int passes) {
+  const int m = static_cast<int>(members.size());
+  Eigen::MatrixXd A(m, m);
+  for (int i = 0; i < m; ++i) {
+    for (int j = i; j < m; ++j) A(i, j) = A(j, i) = Coupling(rows[members[i]], rows[members[j]], bodies);
+  }
+  // free: solved for; held: kept at a bound (starting from the sweeps' guess)
+  member_of_.assign(rows.size(), -1);
+  for (int i = 0; i < m; ++i) member_of_[members[i]] = i;
+  std::vector<char> held(m);
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& r = rows[members[i]];
+    double lo = r.lo, hi = r.hi;
+    if (r.normal_row >= 0) hi = r.mu * rows[r.normal_row].lambda, lo = -hi;
+    held[i] = A(i, i) <= 0.0 || r.lambda <= lo || r.lambda >= hi;
+  }
+  std::vector<int> free_rows;
+  int pass = 0;
+  while (pass < passes) {
+    ++pass;
+    free_rows.clear();
+    for (int i = 0; i < m; ++i) {
+      if (!held[i]) free_rows.push_back(i);
+    }
+    const int f = static_cast<int>(free_rows.size());
+    if (f > 0) {
+      // Jacobi-scaled A_SS y = D (rhs - J v), dlambda = D y, D = diag(A_SS)^-1/2
+      Eigen::MatrixXd S(f, f);
+      Eigen::VectorXd b(f), scale(f);
+      for (int i = 0; i < f; ++i) scale(i) = 1.0 / std::sqrt(A(free_rows[i], free_rows[i]));
+      for (int i = 0; i < f; ++i) {
+        const ConstraintRow& r = rows[members[free_rows[i]]];
+        b(i) = scale(i) * (r.rhs - r.Velocity(bodies));
+        for (int j = 0; j < f; ++j) S(i, j) = scale(i) * A(free_rows[i], free_rows[j]) * scale(j);
+      }
+      const Eigen::VectorXd dl = scale.cwiseProduct(Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(S).solve(b));
+      // rows the solution would push past a bound are held there, and the
+      // rest solved again; a sticking friction row's bound is mu times its
+      // normal row's new impulse (a row leaving it slides: held at the bound)
+      position_.assign(m, -1);
+      for (int i = 0; i < f; ++i) position_[free_rows[i]] = i;
+      bool clamped = false;
+      for (int i = 0; i < f; ++i) {
+        ConstraintRow& r = rows[members[free_rows[i]]];
+        const double next = r.lambda + dl(i);
+        double lo = r.lo, hi = r.hi;
+        if (r.normal_row >= 0) {
+          const int normal = member_of_[r.normal_row];
+          const int at = normal >= 0 ? position_[normal] : -1;
+          hi = r.mu * std::max(0.0, rows[r.normal_row].lambda + (at >= 0 ? dl(at) : 0.0));
+          lo = -hi;
+        }
+        if (next < lo || next > hi) {
+          SetImpulse(r, next < lo ? lo : hi, bodies);
+          held[free_rows[i]] = true;
+          clamped = true;
+        }
+      }
+      if (clamped) continue;
+      for (int i = 0; i < f; ++i) SetImpulse(rows[members[free_rows[i]]], rows[members[free_rows[i]]].lambda + dl(i), bodies);
+    }
+    // held rows the solution leaves approaching (at lo) or pulling (at hi) are freed
+    bool joined = false;
+    for (int i = 0; i < m; ++i) {
+      const ConstraintRow& r = rows[members[i]];
+      if (!held[i] || A(i, i) <= 0.0 || r.normal_row >= 0) continue;  // sliding friction stays held
+      const double gap = r.rhs - r.Velocity(bodies);  // > 0: wants more impulse
+      if ((r.lambda <= r.lo && gap > kJoinTolerance) || (r.lambda >= r.hi && gap < -kJoinTolerance)) {
+        held[i] = false;
+        joined = true;
+      }
+    }
+    if (!joined) break;
+  }
+  return pass;
+}
+
+}  // namespace contactsim
