@@ -39,7 +39,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {{"model", "hunt_crossley"}}, 0x26bd4c98c83532bfull},
       {"xpbd", {}, 0x67737c8bc6935e6cull},
       {"lcp", {{"solver", "pgs"}}, 0x3afbeb13b7ac60c4ull},
-      {"lcp", {{"solver", "lemke"}}, 0x882c0f05faf3dd84ull},
+      {"lcp", {{"solver", "lemke"}}, 0x2748304f6a060145ull},
       {"barrier", {}, 0x39a313d8ab9fedfaull},
   };
   return pinned;
