@@ -38,6 +38,7 @@ class Worker:
         self.jobs_run += 1
         where = {"worker": self.name, "host": socket.gethostname()}
         try:
+            self._close_env()   # a job needs the server back from lockstep
             server = self._ensure_server()
             row = run_job(server.client, job, server.workdir)
             return dict(row, **where, error="", retryable=False)
@@ -52,10 +53,14 @@ class Worker:
     # gym environments on the fleet (contactsim/gym/vector.py)
     def env_make(self, task, frame_skip=1):
         from ..gym.env import ContactsimEnv
-        if self.env is not None:
-            self.env.close()
+        self._close_env()
         self.env = ContactsimEnv(self._ensure_server().client, task, frame_skip=frame_skip)
         return True
+
+    def _close_env(self):
+        if self.env is not None:
+            self.env.close()
+            self.env = None
 
     def env_reset(self, seed=None):
         return self.env.reset(seed=seed)
@@ -64,9 +69,7 @@ class Worker:
         return self.env.step(action)
 
     def shutdown(self):
-        if self.env is not None:
-            self.env.close()
-            self.env = None
+        self._close_env()
         if self.server is not None:
             self.server.stop()
             self.server = None

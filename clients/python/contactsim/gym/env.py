@@ -80,5 +80,6 @@ class ContactsimEnv(gymnasium.Env):
         try:
             self.client.pause()
             self.client.release_controller()
+            self.client.set_mode("free_run")   # the server may run jobs again
         except Exception:  # noqa: BLE001 - the server may be gone already
             pass
