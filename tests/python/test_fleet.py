@@ -22,8 +22,8 @@ from contactsim.fleet import Fleet, Job, run_sequential  # noqa: E402
 from contactsim.gym import ContactsimEnv, FleetVectorEnv, HoverTask  # noqa: E402
 
 SCENES = REPO / "config" / "scenes"
-# a job long enough to be killed in the middle of (~1 s on the Release build)
-LONG_STEPS = 3000
+# a job long enough to be killed in the middle of (~2 s on the Release build)
+LONG_STEPS = 6000
 
 
 @pytest.fixture(scope="module")

@@ -130,7 +130,9 @@ class _Dispatch:
         with tqdm(total=len(self.jobs), unit="job", desc="fleet", disable=not progress) as bar:
             while self.pending or self.running:
                 self._submit()
-                done, _ = self.ray.wait(list(self.running), num_returns=1)
+                done, rest = self.ray.wait(list(self.running), num_returns=1)
+                if rest:   # on a large fleet several finish at once: one pass for them all
+                    done += self.ray.wait(rest, num_returns=len(rest), timeout=0)[0]
                 for ref in done:
                     i, w = self.running.pop(ref)
                     self.idle.append(w)      # a dead actor is being restarted by Ray
