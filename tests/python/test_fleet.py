@@ -55,6 +55,14 @@ def test_sweep_on_two_workers_matches_a_sequential_run_hash_for_hash(fleet):
     assert len(set(df["state_hash"])) > 1   # the methods do differ
 
 
+# Verifies that a job the server refuses returns its error in its row, without a retry, beside a good one.
+def test_failing_job_returns_its_error_in_its_row(fleet):
+    df = fleet.map([Job(scene=SCENES / "bounce.pbtxt", method="no_such_method", steps=10),
+                    Job(scene=SCENES / "bounce.pbtxt", steps=10)])
+    assert 'unknown contact method "no_such_method"' in df["error"].iloc[0]
+    assert df["attempts"].iloc[0] == 1 and df["error"].iloc[1] == ""
+
+
 def _cpu_seconds(pid):
     fields = open("/proc/%d/stat" % pid).read().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
@@ -100,6 +108,28 @@ def test_fork_compare_gives_one_row_per_method_from_the_same_snapshot(fleet, lau
     client.set_contact_method("impulse")
     client.step(90)
     assert "%016x" % (client.state().state_hash & 0xFFFFFFFFFFFFFFFF) == df["state_hash"].iloc[0]
+
+
+# Verifies that `contactsim-py compare` prints and writes one row per method.
+def test_cli_compare_writes_one_row_per_method(fleet, launch, tmp_path, capsys, monkeypatch):
+    import pandas as pd
+    import contactsim.fleet
+    from contactsim.cli import main
+
+    class Borrowed:   # the module's fleet: a second one would wait for CPUs this Ray does not have
+        def __init__(self, **kwargs):
+            self.workers, self.map = fleet.workers, fleet.map
+
+        def close(self):
+            pass
+    monkeypatch.setattr(contactsim.fleet, "Fleet", Borrowed)
+    server = launch(scene=SCENES / "bounce.pbtxt")
+    csv = tmp_path / "cmp.csv"
+    assert main(["--lcm-url", server.url, "--prefix", server.prefix, "compare", "impulse", "penalty:kp=100000",
+                 "--steps", "30", "--workers", "2", "--csv", str(csv)]) == 0
+    table = pd.read_csv(csv)
+    assert list(table["method"]) == ["impulse", "penalty"] and table["error"].isna().all()
+    assert "penalty kp=100000" in capsys.readouterr().out
 
 
 # Verifies that the lockstep environment resets to the same start and steps with the declared shapes.

@@ -52,6 +52,11 @@ class Fleet:
                 ray.init(num_cpus=workers or os.cpu_count(), include_dashboard=False, log_to_driver=False,
                          runtime_env={"env_vars": _local_env()})
         n = workers or max(1, int(ray.cluster_resources().get("CPU", 1)))
+        free = ray.available_resources().get("CPU", 0)
+        if not address and free < n:
+            # each worker takes a CPU: the actors would wait for ever
+            raise RuntimeError("this process's Ray has %g free CPUs and %d workers need one each "
+                               "(another Fleet holds them? pass that fleet instead)" % (free, n))
         # restarted without end: a dead actor comes back with a new server
         actor = ray.remote(num_cpus=1, max_restarts=-1, max_task_retries=0)(Worker)
         self.workers = [actor.remote("w%d" % i) for i in range(n)]

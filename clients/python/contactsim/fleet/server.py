@@ -45,9 +45,13 @@ def _write_config(folder):
     return path
 
 
-def _die_with_parent():
-    # a worker killed by SIGKILL (or by Ray) must not leave its server running
-    ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGINT)  # PR_SET_PDEATHSIG
+def _child_setup():
+    # Ray's worker threads block SIGINT, and a child inherits the mask: the
+    # server would never see the SIGINT that stops it cleanly
+    signal.pthread_sigmask(signal.SIG_SETMASK, [])
+    # a worker killed by SIGKILL (or by Ray) must not leave its server running;
+    # its world is of no use to anyone then, so no clean shutdown is owed
+    ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
 
 
 class OwnedServer:
@@ -69,7 +73,7 @@ class OwnedServer:
         self.client = Client(url=self.url, prefix=self.prefix, timeout=timeout)
         self._log = open(Path(self.workdir) / "server.log", "wb")
         self.proc = subprocess.Popen(self.cmd, stdout=self._log, stderr=subprocess.STDOUT,
-                                     stdin=subprocess.DEVNULL, preexec_fn=_die_with_parent)
+                                     stdin=subprocess.DEVNULL, preexec_fn=_child_setup)
         try:
             self.client.wait_for_server(timeout=START_TIMEOUT)
         except TimeoutError:
