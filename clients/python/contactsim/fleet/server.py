@@ -7,7 +7,6 @@ runs free_run and paused, with STATE and CONTACTS every step so that a job
 sees every step's state and penetration (config_overrides below).
 """
 import ctypes
-import os
 import signal
 import socket
 import subprocess
