@@ -4,12 +4,15 @@
       status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET
       remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
       method NAME [key=value ...] | pause | resume | step [N] | reset
+      compare METHOD[:key=value,...] ... [--steps N] [--workers W] [--address A] [--plot FILE] [--csv FILE]
 
-The subcommands are contactsim-ctl's (the C++ CLI), so either serves a script.
+The subcommands are contactsim-ctl's (the C++ CLI), so either serves a script;
+compare (a fleet of servers, docs/fleet.md) is the Python client's alone.
 
 Exit status: 0 OK, 1 error reply, 2 no reply (timeout) or an unusable auth key file.
 """
 import argparse
+import os
 import sys
 
 from .client import Client
@@ -56,6 +59,14 @@ def _parser():
     st.add_argument("n", type=int, nargs="?", default=1)
     st.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                     help="draw a progress bar (default: when stderr is a terminal)")
+    cmp = sub.add_parser("compare", help="fork the world and run it under each method on a fleet (docs/fleet.md)")
+    cmp.add_argument("methods", nargs="+", metavar="METHOD[:key=value,...]")
+    cmp.add_argument("--steps", type=int, default=240)
+    cmp.add_argument("--workers", type=int, default=None, help="local Ray workers (default: one per method, at "
+                                                                "most one per CPU)")
+    cmp.add_argument("--address", default=None, help="a Ray cluster's address instead of a local Ray")
+    cmp.add_argument("--plot", default=None, metavar="FILE", help="draw each method's departure into FILE")
+    cmp.add_argument("--csv", default=None, metavar="FILE", help="write the table as CSV")
     return p
 
 
@@ -82,6 +93,20 @@ def _run_joint(c, a):
     return c.remove_joint(a.id)
 
 
+def _compare(c, a):
+    from .fleet import Fleet
+    fleet = Fleet(workers=a.workers or min(len(a.methods), os.cpu_count() or 1), address=a.address)
+    try:
+        df = c.fork_compare(a.methods, a.steps, fleet=fleet, plot=a.plot, progress=sys.stderr.isatty())
+    finally:
+        fleet.close()
+    table = df.drop(columns=[k for k in ("trajectory", "traceback") if k in df.columns])
+    if a.csv:
+        table.to_csv(a.csv, index=False)
+    print(table[["tag", "max_penetration", "energy_drift", "ms_per_step", "mean_contacts", "departure",
+                 "state_hash", "error"]].to_string(index=False))
+
+
 def _run(c, a):
     if a.cmd == "status":
         for k, v in c.wait_for_server(timeout=max(a.timeout, 1.5)).as_dict().items():
@@ -96,6 +121,9 @@ def _run(c, a):
             bid = (c.add_sphere(a.radius, **kw) if a.shape == "sphere"
                    else c.add_box((a.hx, a.hy, a.hz), **kw))
         print(bid)
+        return
+    if a.cmd == "compare":
+        _compare(c, a)
         return
     if a.cmd == "joint":
         r = _run_joint(c, a)
