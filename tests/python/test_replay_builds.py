@@ -4,8 +4,8 @@ under test is recorded with lcm-logger while the determinism scene (a stack,
 a slide, a bounce, a pendulum and a hinge) runs through every registered
 contact method, and ``contactsim-server --replay`` of that log must agree
 at every STATE on this build and on each other build of this clone that
-exists: in CI the sanitizer suite (clang, -O1, ASan and UBSan) replays the
-log it records on the g++ RelWithDebInfo build as well as on its own."""
+exists: in CI the sanitizer suite (Debug -O1, ASan and UBSan) replays the
+log it records on the RelWithDebInfo build as well as on its own."""
 import subprocess
 
 import pytest
