@@ -12,6 +12,7 @@
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/method_sim.h"
+#include "tests/contact/slope.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
@@ -27,28 +28,20 @@ using testing::AddValidBody;
 
 using Sim = testing::MethodSim;
 
-// A static plane through the origin tilted by `angle` about y, and a cube of
-// half size `half` resting on it, its bottom face on the slope. Returns the
-// cube's id; `downhill` is the unit vector down the slope.
+// A cube of half size 0.1 m resting on a slope tilted by `angle` about y
+// (testing::AddSlope), its bottom face on the slope. Returns the cube's id;
+// `downhill` is the unit vector down the slope.
 BodyId AddBoxOnIncline(World& world, double angle, double mu, Vec3* downhill) {
-  const Quat tilt(Eigen::AngleAxisd(angle, Vec3::UnitY()));
-  BodySettings plane;
-  plane.shape = ShapeType::kPlane;
-  plane.plane_normal = tilt * Vec3::UnitZ();
-  plane.restitution = 0.0;
-  plane.friction = mu;
-  AddValidBody(world, plane);
-
+  const Quat tilt = testing::AddSlope(world, angle, mu, downhill);
+  const Vec3 normal = tilt * Vec3::UnitZ();
   const double half = 0.1;
   BodySettings box;
   box.shape = ShapeType::kBox;
   box.half_extents = Vec3::Constant(half);
-  box.position = half * plane.plane_normal;
+  box.position = half * normal;
   box.orientation = Eigen::Vector4d(tilt.w(), tilt.x(), tilt.y(), tilt.z());
   box.restitution = 0.0;
   box.friction = mu;
-  // tilting +x about y lowers it: x' = (cos a, 0, -sin a) points downhill
-  *downhill = tilt * Vec3::UnitX();
   return AddValidBody(world, box);
 }
 

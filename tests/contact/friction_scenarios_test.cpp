@@ -19,6 +19,7 @@
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/method_sim.h"
+#include "tests/contact/slope.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
@@ -27,6 +28,7 @@ namespace {
 constexpr double kG = 9.81;  // m/s^2
 constexpr double kPi = 3.14159265358979323846;
 
+using testing::AddSlope;
 using testing::AddValidBody;
 using Sim = testing::MethodSim;
 
@@ -72,21 +74,6 @@ std::vector<MethodConfig> EveryMethod() {
     }
   }
   return configs;
-}
-
-// A static plane through the origin tilted by `angle` about y; `downhill`
-// is the unit vector down the slope in the plane (tilting +x about y
-// lowers it).
-Quat AddSlope(World& world, double angle, double mu, Vec3* downhill) {
-  const Quat tilt(Eigen::AngleAxisd(angle, Vec3::UnitY()));
-  BodySettings plane;
-  plane.shape = ShapeType::kPlane;
-  plane.plane_normal = tilt * Vec3::UnitZ();
-  plane.restitution = 0.0;
-  plane.friction = mu;
-  AddValidBody(world, plane);
-  *downhill = tilt * Vec3::UnitX();
-  return tilt;
 }
 
 Eigen::Vector4d Wxyz(const Quat& q) { return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()); }
