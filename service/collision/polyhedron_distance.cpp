@@ -102,12 +102,19 @@ SurfaceQuery PolyhedronSignedDistance(const PosedPolyhedron& poly, const Vec3& p
     if (nearest_sq < best_sq) {
       best_sq = nearest_sq;
       out.point = nearest;
+      out.normal = inside ? n : Vec3::Zero();  // an edge's or vertex's normal follows below
       out.feature = static_cast<int>(f);
     }
   }
   out.distance = std::sqrt(best_sq);
-  out.normal = out.distance > kTinyDistance ? Vec3((p_W - out.point) / out.distance)
-                                            : poly.normals[best_face];
+  // nearest point on an edge or vertex: the normal points from it to p,
+  // normalised from the difference itself (dividing by the distance found
+  // from the squared norm leaves it off unit by the difference's round-off,
+  // eps |p| / d, for p near the surface)
+  if (out.normal.isZero()) {
+    const Vec3 v = p_W - out.point;
+    out.normal = out.distance > kTinyDistance ? Vec3(v / v.norm()) : poly.normals[best_face];
+  }
   return out;
 }
 

@@ -34,7 +34,11 @@ RigidBody RandomBody(ShapeType type, BodyId id, std::mt19937_64& rng) {
     case ShapeType::kConvex: shape = Shape::Convex(rock); break;
     default: shape = Shape::Plane(Vec3::UnitZ(), 0.1); break;
   }
-  return MakeBody(id, shape, RandomVector(rng, 0.4), RandomRotation(rng));
+  // one draw per statement: argument order is unspecified in C++, and each
+  // compiler would test other poses
+  const Vec3 x = RandomVector(rng, 0.4);
+  const Quat q = RandomRotation(rng);
+  return MakeBody(id, shape, x, q);
 }
 
 const ShapeType kTypes[] = {ShapeType::kSphere, ShapeType::kBox, ShapeType::kCapsule, ShapeType::kConvex,

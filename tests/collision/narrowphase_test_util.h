@@ -59,13 +59,13 @@ inline RigidBody Convex(BodyId id, std::shared_ptr<const ConvexHull> hull, const
 
 inline Quat RandomRotation(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  Quat q(n(rng), n(rng), n(rng), n(rng));
+  Quat q{n(rng), n(rng), n(rng), n(rng)};
   return q.normalized();
 }
 
 inline Vec3 RandomVector(std::mt19937_64& rng, double half_width) {
   std::uniform_real_distribution<double> u(-half_width, half_width);
-  return Vec3(u(rng), u(rng), u(rng));
+  return Vec3{u(rng), u(rng), u(rng)};
 }
 
 inline double MaxDepth(const ContactSet& contacts) {

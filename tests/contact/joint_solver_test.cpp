@@ -26,7 +26,7 @@ using testing::kG;
 
 Vec3 RandomVec(std::mt19937& rng, double scale) {
   std::uniform_real_distribution<double> u(-scale, scale);
-  return Vec3(u(rng), u(rng), u(rng));
+  return Vec3{u(rng), u(rng), u(rng)};
 }
 
 // A random tree of n boxes with random sizes, poses and velocities: body i
@@ -40,7 +40,7 @@ void BuildRandomTree(World& world, int n, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<BodyId> ids;
   for (int i = 0; i < n; ++i) {
-    const Vec3 half(0.05 + 0.3 * u(rng), 0.05 + 0.3 * u(rng), 0.05 + 0.3 * u(rng));
+    const Vec3 half{0.05 + 0.3 * u(rng), 0.05 + 0.3 * u(rng), 0.05 + 0.3 * u(rng)};
     ids.push_back(AddBox(world, half, RandomVec(rng, 3.0), 0.0, 0.5));
     RigidBody& b = *world.Find(ids.back());
     b.q = QuatFromRotationVector(RandomVec(rng, 3.0));

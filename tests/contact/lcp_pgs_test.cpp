@@ -24,16 +24,16 @@ std::vector<SolverBody> RandomBodies(std::mt19937& rng, int n) {
   std::vector<SolverBody> bodies(n);
   for (SolverBody& b : bodies) {
     b.inv_mass = 1.0 / u(rng);
-    b.inv_inertia = Vec3(1.0 / u(rng), 1.0 / u(rng), 1.0 / u(rng)).asDiagonal();
-    b.v = Vec3(normal(rng), normal(rng), normal(rng));
-    b.w = Vec3(normal(rng), normal(rng), normal(rng));
+    b.inv_inertia = Vec3{1.0 / u(rng), 1.0 / u(rng), 1.0 / u(rng)}.asDiagonal();
+    b.v = Vec3{normal(rng), normal(rng), normal(rng)};
+    b.w = Vec3{normal(rng), normal(rng), normal(rng)};
   }
   return bodies;
 }
 
 Vec3 RandomVec(std::mt19937& rng) {
   std::normal_distribution<double> normal;
-  return Vec3(normal(rng), normal(rng), normal(rng));
+  return Vec3{normal(rng), normal(rng), normal(rng)};
 }
 
 // Verifies that PGS converges to Lemke's solution of the same LCP on

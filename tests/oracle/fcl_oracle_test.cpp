@@ -297,12 +297,12 @@ void ExpectAgreement(const Tally& t) {
 
 Eigen::Vector4d RandomOrientation(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  return Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng));
+  return Eigen::Vector4d{u(rng), u(rng), u(rng), u(rng)};
 }
 
 Vec3 RandomPosition(std::mt19937_64& rng, double spread) {
   std::uniform_real_distribution<double> u(-spread, spread);
-  return Vec3(u(rng), u(rng), u(rng));
+  return Vec3{u(rng), u(rng), u(rng)};
 }
 
 BodySettings Box(const Vec3& h) {
@@ -359,7 +359,7 @@ TEST(FclOracle, ConvexConvexAgreesWithFcl) {
     std::uniform_real_distribution<double> u(-0.3, 0.3);
     s->shape = ShapeType::kConvex;
     s->points.resize(count(rng));
-    for (Vec3& p : s->points) p = Vec3(u(rng), u(rng), u(rng));
+    for (Vec3& p : s->points) p = Vec3{u(rng), u(rng), u(rng)};
     s->orientation = RandomOrientation(rng);
   };
   const Tally t = Compare(

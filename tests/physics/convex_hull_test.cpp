@@ -67,7 +67,7 @@ TEST(ConvexHullTest, BoxCornersWithInteriorPointsGiveTheBox) {
   std::vector<Vec3> pts = BoxCorners(h);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.4, 0.4);
-  for (int i = 0; i < 50; ++i) pts.push_back(Vec3(u(rng), u(rng), u(rng)));
+  for (int i = 0; i < 50; ++i) pts.push_back(Vec3{u(rng), u(rng), u(rng)});
   std::shared_ptr<const ConvexHull> hull;
   Vec3 centroid;
   ASSERT_TRUE(BuildConvexHull(pts, &hull, &centroid).ok());
@@ -176,7 +176,7 @@ TEST(ConvexHullTest, BoxSurfaceSamplesGiveTheBoxAtAnyScale) {
     for (double offset : {0.0, 1e3}) {
       std::vector<Vec3> pts = BoxCorners(Vec3::Constant(scale), Vec3::Constant(offset));
       for (int i = 0; i < 2000; ++i) {
-        Vec3 p(u(rng), u(rng), u(rng));
+        Vec3 p{u(rng), u(rng), u(rng)};
         p[i % 3] = (i / 3) % 2 ? 1.0 : -1.0;  // onto a face
         pts.push_back(Vec3::Constant(offset) + scale * p);
       }
@@ -199,7 +199,7 @@ TEST(ConvexHullTest, RandomCloudsContainEveryPoint) {
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (int n : {4, 5, 10, 100, 1000, 5000}) {
     std::vector<Vec3> pts;
-    for (int i = 0; i < n; ++i) pts.push_back(Vec3(gauss(rng), gauss(rng), gauss(rng)));
+    for (int i = 0; i < n; ++i) pts.push_back(Vec3{gauss(rng), gauss(rng), gauss(rng)});
     std::shared_ptr<const ConvexHull> hull;
     Vec3 centroid;
     ASSERT_TRUE(BuildConvexHull(pts, &hull, &centroid).ok()) << n;
@@ -217,7 +217,7 @@ TEST(ConvexHullTest, SphereAndGridCloudsAreClosed) {
   std::mt19937 rng(3);
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::vector<Vec3> sphere;
-  for (int i = 0; i < 500; ++i) sphere.push_back(Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized());
+  for (int i = 0; i < 500; ++i) sphere.push_back(Vec3{gauss(rng), gauss(rng), gauss(rng)}.normalized());
   std::shared_ptr<const ConvexHull> hull;
   ASSERT_TRUE(BuildConvexHull(sphere, &hull).ok());
   EXPECT_EQ(hull->vertices.size(), 500u);
