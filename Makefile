@@ -70,38 +70,36 @@ test-cpp:
 test-py:
 	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
 
-# Both suites again on a g++ Debug build (-O1) with AddressSanitizer and
-# UndefinedBehaviorSanitizer (the Python tests drive the instrumented server
-# and tools), then the libFuzzer targets (fuzz-ci). The 210-box pyramids
-# under lcp and barrier (10 s and 5 s of simulation) take over 5 minutes
-# under the sanitizers and are left to `make test`. CI runs this after
-# `make test`.
+# Both suites again on a clang Debug build (-O1) with AddressSanitizer,
+# UndefinedBehaviorSanitizer and libFuzzer's coverage instrumentation (the
+# Python tests drive the instrumented server and tools), then the libFuzzer
+# targets of the same build (fuzz-ci): one sanitizer build instead of two.
+# Its scene tests also check that clang ends every method on the hashes g++
+# pinned (docs/snapshots.md, "Determinism across builds"). The 210-box
+# pyramids under lcp and barrier (10 s and 5 s of simulation) take over 5
+# minutes under the sanitizers and are left to `make test`. CI runs this
+# after `make test`.
 ASAN_BUILD = build-asan
-test-asan:
-	@$(MAKE) --no-print-directory build BUILD=$(ASAN_BUILD) BUILD_TYPE=Debug SANITIZE=ON
+FUZZ_BUILD = $(ASAN_BUILD)
+test-asan: fuzz-build
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid|BarrierScenes.BoxPyramid'
 	@$(MAKE) --no-print-directory test-py BUILD=$(ASAN_BUILD)
 	@$(MAKE) --no-print-directory fuzz-ci
 
-# The libFuzzer targets need clang: their own build folder (clang, ASan,
-# UBSan), in which only they, the libraries they link and the scene tests
-# are built. The scene tests run there too: clang must end every method on
-# the hashes g++ pinned (docs/snapshots.md, "Determinism across builds").
-FUZZ_BUILD = build-fuzz
-FUZZ_TARGETS = fuzz_decode_body_cmd fuzz_decode_scene_cmd fuzz_decode_joint_cmd fuzz_decode_input \
-               fuzz_server_apply contactsim-fuzz-seeds scene_tests
+# The sanitizer build (clang, ASan, UBSan, libFuzzer coverage) with the fuzz
+# targets. A folder configured otherwise (g++, or without FUZZ) is
+# reconfigured from scratch.
 fuzz-build: deps
-	@[ -f $(FUZZ_BUILD)/CMakeCache.txt ] || $(MAKE) --no-print-directory $(FUZZ_BUILD)/CMakeCache.txt BUILD=$(FUZZ_BUILD) \
-	  BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON
-	cmake --build $(FUZZ_BUILD) -j$(JOBS) --target $(FUZZ_TARGETS)
+	@grep -qs 'CONTACTSIM_FUZZ:BOOL=ON' $(FUZZ_BUILD)/CMakeCache.txt || { rm -rf $(FUZZ_BUILD); \
+	  $(MAKE) --no-print-directory $(FUZZ_BUILD)/CMakeCache.txt BUILD=$(FUZZ_BUILD) BUILD_TYPE=Debug SANITIZE=ON FUZZ=ON; }
+	cmake --build $(FUZZ_BUILD) -j$(JOBS)
 
 # each target stops at FUZZ_RUNS executions or FUZZ_CI_SECONDS, whichever
 # comes first (the apply target runs ~30 inputs a second under the sanitizers)
 fuzz-ci: fuzz-build
-	$(FUZZ_BUILD)/bin/scene_tests --gtest_filter='*DeterminismTest*'
 	scripts/fuzz.sh $(FUZZ_BUILD) -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_CI_SECONDS)
 
-# The fuzz targets for FUZZ_SECONDS each (the corpus in build-fuzz/fuzz grows
+# The fuzz targets for FUZZ_SECONDS each (the corpus in build-asan/fuzz grows
 # across runs; a crash input is left there as crash-*).
 fuzz: fuzz-build
 	scripts/fuzz.sh $(FUZZ_BUILD) -max_total_time=$(FUZZ_SECONDS)
