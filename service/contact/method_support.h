@@ -2,8 +2,9 @@
 // (method_contract.h, declared in the registry's table), so that a world
 // a method cannot step is refused with a status instead of being stepped
 // wrongly: the barrier method (IPC on affine bodies, barrier/) has no joint
-// constraints and no restitution (its implicit step is inelastic), and
-// stepping a jointed or bouncy world with it would drop them silently. The
+// constraints, no restitution (its implicit step is inelastic) and moves
+// kinematic bodies outside its solve, and stepping such a world with it
+// would drop them silently (docs/physics.md, "Method contract"). The
 // server asks before it adds a joint or a body, sets a material, switches
 // the method, loads a scene or starts.
 #pragma once

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "service/contact/contact_method_registry.h"
@@ -65,10 +66,11 @@ BodyId PlatformWithCube(World& world, const Vec3& v) {
 }
 
 // Verifies the contract's kinematic bodies: a platform rising at 0.2 m/s
-// lifts a cube resting on it for 1 s (it neither sinks in nor is left
-// behind), and the platform keeps its prescribed motion.
-TEST_P(MethodContractScenarioTest, KinematicPlatformLiftsACube) {
-  ASSERT_TRUE(contract().kinematic_bodies);
+// for 1 s keeps its prescribed path, and a method that declares kinematic
+// bodies lifts the cube resting on it (neither sinking in nor left
+// behind); one that does not (barrier) loses the cube, so the server
+// refuses kinematic bodies for it.
+TEST_P(MethodContractScenarioTest, KinematicPlatformLiftsACubeExactlyWhenDeclared) {
   MethodSim sim(GetParam());
   const double vz = 0.2;  // m/s
   const BodyId cube = PlatformWithCube(sim.world, Vec3(0, 0, vz));
@@ -77,14 +79,20 @@ TEST_P(MethodContractScenarioTest, KinematicPlatformLiftsACube) {
   const double top = sim.world.bodies()[0].x.z() + kSlabHalf;
   EXPECT_NEAR(top, kSlabHalf + vz * sim.world.time, 1e-9) << "the platform left its prescribed path";
   const RigidBody& b = *sim.world.Find(cube);
-  EXPECT_NEAR(b.x.z() - kHalf, top, kRestTolerance) << GetParam();
-  EXPECT_NEAR(b.LinearVelocity().z(), vz, 0.02) << GetParam();
+  std::printf("%-8s cube %.4g m above the platform's top\n", GetParam().c_str(), b.x.z() - kHalf - top);
+  if (contract().kinematic_bodies) {
+    EXPECT_NEAR(b.x.z() - kHalf, top, kRestTolerance) << GetParam();
+    EXPECT_NEAR(b.LinearVelocity().z(), vz, 0.02) << GetParam();
+  } else {
+    EXPECT_GT(std::abs(b.x.z() - kHalf - top), kRestTolerance) << GetParam();
+  }
 }
 
 // Verifies that a platform sliding at 0.3 m/s carries a cube by friction
 // (mu 0.5: the cube reaches the platform's speed within 0.07 s) and the
 // cube stays on top.
 TEST_P(MethodContractScenarioTest, KinematicPlatformCarriesACubeByFriction) {
+  if (!contract().kinematic_bodies) GTEST_SKIP() << GetParam() << " declares no kinematic bodies";
   MethodSim sim(GetParam());
   const double vx = 0.3;  // m/s
   const BodyId cube = PlatformWithCube(sim.world, Vec3(vx, 0, 0));
@@ -99,8 +107,8 @@ TEST_P(MethodContractScenarioTest, KinematicPlatformCarriesACubeByFriction) {
 
 // The highest point the sphere's bottom reaches after its first contact
 // with the ground, dropped from 0.9 m with restitution e on both.
-double ReboundApex(const std::string& method, double e) {
-  MethodSim sim(method);
+double ReboundApex(const std::string& method, const ParamMap& params, double e) {
+  MethodSim sim(method, params);
   const double radius = 0.1, drop = 0.9;  // m
   testing::AddGround(sim.world, e, 0.5);
   const BodyId ball = testing::AddSphere(sim.world, radius, Vec3(0, 0, radius + drop), e);
@@ -120,9 +128,17 @@ double ReboundApex(const std::string& method, double e) {
 // ball to the analytic e^2 h (within 10%: the methods' thresholds and
 // detection margins); one that does not (barrier) keeps less than a tenth of
 // it, so a bouncy world would be stepped wrongly, and the server refuses it.
+// Penalty runs with a resolved bounce, the settings of
+// penalty_method_test.cpp (kp 1e5 N/m, 4 sub-steps, theta = 0.5): at its
+// defaults the linearly implicit Euler step (theta = 1, sqrt(kp / m) h = 2)
+// damps this bounce to 0.150 m, two thirds of e^2 h (docs/physics.md,
+// "Method contract").
 TEST_P(MethodContractScenarioTest, RestitutionIsSimulatedExactlyWhenDeclared) {
   const double e = 0.5, expected = e * e * 0.9;  // m
-  const double apex = ReboundApex(GetParam(), e);
+  const ParamMap params = GetParam() == "penalty"
+                              ? ParamMap{{"theta", "0.5"}, {"kp", "1e5"}, {"substeps", "4"}}
+                              : ParamMap{};
+  const double apex = ReboundApex(GetParam(), params, e);
   std::printf("%-8s rebound apex %.4f m (e^2 h = %.4f m)\n", GetParam().c_str(), apex, expected);
   if (contract().restitution) {
     EXPECT_NEAR(apex, expected, 0.1 * expected) << GetParam();

@@ -121,7 +121,7 @@ def test_status_carries_the_contract_of_the_active_method(client):
     assert st.contract() == {"joints": True, "restitution": True, "kinematic": True, "friction": "coulomb disk"}
     use(client, "barrier")
     c = client.wait_for_status(lambda s: s.method == "barrier", timeout=3.0).contract()
-    assert (c["joints"], c["restitution"], c["kinematic"]) == (False, False, True)
+    assert (c["joints"], c["restitution"], c["kinematic"]) == (False, False, False)
     assert c["friction"].startswith("regularized")
 
 

@@ -1,8 +1,8 @@
 // Tests of the contact methods' contracts through the server logic and a
 // recording transport (service/contact/method_contract.h, method_support.h):
 // STATUS says what the active method simulates, and a command that would
-// make the method drop part of the world (a joint or a restitution under
-// barrier) is refused with FAILED_PRECONDITION saying why, leaving the
+// make the method drop part of the world (a joint, a restitution or a
+// kinematic body under barrier) is refused with FAILED_PRECONDITION saying why, leaving the
 // world as it was.
 #include <gtest/gtest.h>
 
@@ -81,6 +81,30 @@ TEST_F(SimServerContractTest, BarrierRefusesBodiesWithRestitution) {
   EXPECT_EQ(server_.world().Find(ball)->material.friction, 0.9);
 }
 
+// Verifies that barrier refuses kinematic bodies (it moves them before its
+// solve, so their motion pushes nothing): one added under it, and a switch
+// to it while the world holds one.
+TEST_F(SimServerContractTest, BarrierRefusesKinematicBodies) {
+  body_cmd_t platform = Inelastic(Sphere(0.5, Vec3(0, 0, 0)));
+  platform.kinematic = true;
+  platform.linear_velocity[2] = 0.2;
+  ASSERT_EQ(Send(platform).code, reply_t::OK);
+  reply_t r = SetMethod("barrier");
+  EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
+  EXPECT_EQ(r.message, "contact method barrier does not simulate kinematic bodies: body 1 is kinematic; make it "
+                       "dynamic or fixed, or choose impulse, penalty, xpbd or lcp");
+  body_cmd_t remove{};
+  remove.client_id = "test";
+  remove.op = body_cmd_t::REMOVE;
+  remove.body_id = 1;
+  ASSERT_EQ(Send(remove).code, reply_t::OK);
+  ASSERT_EQ(SetMethod("barrier").code, reply_t::OK);
+  r = Send(platform);
+  EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
+  EXPECT_NE(r.message.find("the new sphere is kinematic"), std::string::npos) << r.message;
+  EXPECT_TRUE(server_.world().bodies().empty());
+}
+
 // Verifies that barrier refuses joints both ways: a joint added under it,
 // and a switch to it while the world holds one.
 TEST_F(SimServerContractTest, BarrierRefusesJoints) {
@@ -152,8 +176,9 @@ TEST_P(SimServerContractStatusTest, StatusCarriesTheActiveMethodsContract) {
   const MethodContract& c = FindContactMethod(GetParam())->contract;
   EXPECT_EQ(status.back().method, GetParam());
   EXPECT_EQ(status.back().method_contract, DescribeContract(c));
-  const std::string expected_start = std::string("joints=") + (c.joints ? "yes" : "no") +
-                                     "; restitution=" + (c.restitution ? "yes" : "no") + "; kinematic=yes; friction=";
+  auto yes = [](bool b) { return b ? "yes" : "no"; };
+  const std::string expected_start = std::string("joints=") + yes(c.joints) + "; restitution=" + yes(c.restitution) +
+                                     "; kinematic=" + yes(c.kinematic_bodies) + "; friction=";
   EXPECT_EQ(status.back().method_contract.rfind(expected_start, 0), 0u) << status.back().method_contract;
 }
 
