@@ -15,6 +15,8 @@
 namespace contactsim {
 namespace {
 
+using testing::RecordingTransport;
+
 class SimServerContractTest : public testing::SimServerTest {
  protected:
   reply_t SetMethod(const std::string& name) {
