@@ -26,8 +26,6 @@ std::string MethodsWith(bool MethodContract::*what) {
 
 }  // namespace
 
-bool MethodSupportsJoints(const std::string& method) { return ContractOf(method).joints; }
-
 Status CheckMethodSupports(const std::string& method, const World& world) {
   const MethodContract contract = ContractOf(method);
   if (!world.joints().empty() && !contract.joints) {

@@ -18,9 +18,6 @@
 
 namespace contactsim {
 
-// True when the method named `method` simulates joints.
-bool MethodSupportsJoints(const std::string& method);
-
 // Ok when the method can step `world`; else FailedPrecondition naming the
 // method, what it cannot simulate and where the world holds it
 // ("... does not simulate joints ...", "... does not simulate restitution ...").
