@@ -9,7 +9,6 @@
 // the method, loads a scene or starts.
 #pragma once
 
-#include <optional>
 #include <string>
 
 #include "service/physics/rigid_body.h"
