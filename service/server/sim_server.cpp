@@ -235,7 +235,9 @@ void SimServer::PublishStatus(Clock::time_point now) {
   s.paused = paused_ && step_budget_ == 0;
   s.method = method_->Name();
   for (const auto& [k, v] : method_->Params()) s.method_params += (s.method_params.empty() ? "" : " ") + k + "=" + v;
-  if (const ContactMethodEntry* e = FindContactMethod(method_->Name())) s.method_contract = DescribeContract(e->contract);
+  if (const ContactMethodEntry* e = FindContactMethod(method_->Name())) {
+    s.method_contract = DescribeContract(e->contract);
+  }
   s.time = world_.time;
   s.step = world_.step;
   s.dt = world_.dt;

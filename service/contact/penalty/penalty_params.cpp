@@ -20,14 +20,16 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
   using P = PenaltyParams;
   static const ParamTable<P> table = {
       DoubleParam("kp", &P::kp, 1.0, kMaxStiffness, "N/m", "pair stiffness (N/m^n for hunt_crossley)"),
-      DoubleParam("kd", &P::kd, 0.0, kMaxDamping, "N s/m", "pair damping, used when restitution = off (giving kd alone sets off)"),
+      DoubleParam("kd", &P::kd, 0.0, kMaxDamping, "N s/m",
+                  "pair damping, used when restitution = off (giving kd alone sets off)"),
       ChoiceOrNumberParam("restitution", &P::restitution, {"material", "off"}, 0.0, 1.0,
                           "damping source: material derives kd (or the Hunt-Crossley alpha) from the pair's "
                           "max(e_a, e_b), a number from that value, off uses kd / hc_damping"),
       ChoiceParam("model", &P::model, {"linear", "hunt_crossley"}, "normal force law"),
       DoubleParam("hc_exponent", &P::hc_exponent, 1.0, 3.0, "", "n of kp d^n (1.5: Hertz contact of spheres)"),
       DoubleParam("hc_damping", &P::hc_damping, 0.0, 100.0, "s/m", "Hunt-Crossley alpha when restitution = off"),
-      ChoiceParam("integrator", &P::integrator, {"explicit", "implicit"}, "explicit, or linearly implicit (penalty_implicit.h)"),
+      ChoiceParam("integrator", &P::integrator, {"explicit", "implicit"},
+                  "explicit, or linearly implicit (penalty_implicit.h)"),
       DoubleParam("theta", &P::theta, 0.5, 1.0, "", "implicit: 1 = linearly implicit Euler, 0.5 = trapezoidal"),
       IntParam("substeps", &P::substeps, 1, 1000, "", "steps of dt / substeps per world step"),
       IntParam("iterations", &P::iterations, 1, 1000, "", "implicit: active-set passes at most"),
