@@ -11,6 +11,7 @@
 
 #include "service/collision/collision_detector.h"
 #include "service/collision/contact.h"
+#include "service/contact/param_doc.h"
 #include "service/physics/status.h"
 #include "service/physics/world.h"
 
@@ -40,6 +41,9 @@ class ContactMethod {
   // the message names the parameter and the value.
   virtual Status SetParams(const ParamMap& params) = 0;
   virtual ParamMap Params() const = 0;
+  // Every parameter SetParams takes, in declaration order, with its default
+  // (param_table.h: the same table parses them and writes Params()).
+  virtual std::vector<ParamDoc> ParamDocs() const = 0;
   // Advances the world by world.dt and leaves the step's contacts in
   // `contacts` with their values.
   virtual StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) = 0;

@@ -1,11 +1,11 @@
-#include <Eigen/Core>
-#include <memory>
+#include "service/contact/contact_method_registry.h"
 
-#include "service/contact/contact_method.h"
+#include <Eigen/Core>
+
 #include "service/contact/barrier/barrier_method.h"
-#include "service/contact/impulse_method.h"
+#include "service/contact/impulse/impulse_method.h"
 #include "service/contact/lcp/lcp_method.h"
-#include "service/contact/penalty_method.h"
+#include "service/contact/penalty/penalty_method.h"
 #include "service/contact/xpbd/xpbd_method.h"
 
 namespace contactsim {
@@ -25,30 +25,50 @@ void PinEigenBlockSizes() {
   (void)pinned;
 }
 
+template <class M>
+std::unique_ptr<ContactMethod> Make() {
+  return std::make_unique<M>();
+}
+
 }  // namespace
 
-std::vector<std::string> ContactMethodNames() { return {"impulse", "penalty", "xpbd", "lcp", "barrier"}; }
+// The contracts (docs/physics.md, "Method contract"): what each method's
+// header says it simulates; tests/contact/method_contract_test.cpp checks
+// every "yes" by a scenario and tests/server/ every "no" by a refusal.
+const std::vector<ContactMethodEntry>& ContactMethodTable() {
+  //                           joints restitution kinematic friction
+  static const std::vector<ContactMethodEntry> table = {
+      {"impulse", Make<ImpulseMethod>, {true, true, true, "coulomb disk"}},
+      {"penalty", Make<PenaltyMethod>,
+       {true, true, true, "regularized: tangential spring with a coulomb disk limit"}},
+      {"xpbd", Make<XpbdMethod>, {true, true, true, "coulomb disk (positional static, velocity-level dynamic)"}},
+      {"lcp", Make<LcpMethod>, {true, true, true, "coulomb disk (solver=pgs) or coulomb pyramid (solver=lemke)"}},
+      // barrier: the implicit step is inelastic (no restitution), and a
+      // kinematic body is moved to its end pose before the solve
+      // (barrier_solver.cpp, Setup), so its motion reaches neither the CCD
+      // nor the friction: a rising platform passes through what rests on it
+      {"barrier", Make<BarrierMethod>, {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)"}},
+  };
+  return table;
+}
+
+const ContactMethodEntry* FindContactMethod(const std::string& name) {
+  for (const ContactMethodEntry& e : ContactMethodTable()) {
+    if (name == e.name) return &e;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> ContactMethodNames() {
+  std::vector<std::string> names;
+  for (const ContactMethodEntry& e : ContactMethodTable()) names.push_back(e.name);
+  return names;
+}
 
 Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMethod>* out) {
   PinEigenBlockSizes();  // before any method's first step
-  if (name == "impulse") {
-    *out = std::make_unique<ImpulseMethod>();
-    return Status::Ok();
-  }
-  if (name == "penalty") {
-    *out = std::make_unique<PenaltyMethod>();
-    return Status::Ok();
-  }
-  if (name == "xpbd") {
-    *out = std::make_unique<XpbdMethod>();
-    return Status::Ok();
-  }
-  if (name == "lcp") {
-    *out = std::make_unique<LcpMethod>();
-    return Status::Ok();
-  }
-  if (name == "barrier") {
-    *out = std::make_unique<BarrierMethod>();
+  if (const ContactMethodEntry* e = FindContactMethod(name)) {
+    *out = e->create();
     return Status::Ok();
   }
   std::string known;

@@ -1,14 +1,64 @@
 #include "service/contact/method_support.h"
 
-namespace contactsim {
+#include "service/contact/contact_method_registry.h"
+#include "service/physics/validation.h"
 
-bool MethodSupportsJoints(const std::string& method) { return method != "barrier"; }
+namespace contactsim {
+namespace {
+
+MethodContract ContractOf(const std::string& method) {
+  const ContactMethodEntry* e = FindContactMethod(method);
+  return e ? e->contract : MethodContract{};
+}
+
+// "impulse, penalty, xpbd or lcp": the methods whose contract has `what`.
+std::string MethodsWith(bool MethodContract::*what) {
+  std::vector<std::string> names;
+  for (const ContactMethodEntry& e : ContactMethodTable()) {
+    if (e.contract.*what) names.push_back(e.name);
+  }
+  std::string text;
+  for (size_t i = 0; i < names.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return text;
+}
+
+}  // namespace
 
 Status CheckMethodSupports(const std::string& method, const World& world) {
-  if (!world.joints().empty() && !MethodSupportsJoints(method)) {
+  const MethodContract contract = ContractOf(method);
+  if (!world.joints().empty() && !contract.joints) {
     return Status::FailedPrecondition("contact method " + method + " does not simulate joints; the world holds " +
-                                      std::to_string(world.joints().size()) +
-                                      " joint(s): remove them or choose impulse, penalty, xpbd or lcp");
+                                      std::to_string(world.joints().size()) + " joint(s): remove them or choose " +
+                                      MethodsWith(&MethodContract::joints));
+  }
+  for (const RigidBody& b : world.bodies()) {
+    const std::string what = "body " + std::to_string(b.id) + (b.name.empty() ? "" : " \"" + b.name + "\"");
+    const Status st = CheckMethodAcceptsBody(method, b, what);
+    if (!st.ok()) return st;
+  }
+  return Status::Ok();
+}
+
+Status CheckMethodAcceptsJoint(const std::string& method) {
+  if (ContractOf(method).joints) return Status::Ok();
+  return Status::FailedPrecondition("contact method " + method + " does not simulate joints: choose " +
+                                    MethodsWith(&MethodContract::joints) + " before adding one");
+}
+
+Status CheckMethodAcceptsBody(const std::string& method, const RigidBody& body, const std::string& what) {
+  const MethodContract contract = ContractOf(method);
+  if (body.material.restitution > 0.0 && !contract.restitution) {
+    return Status::FailedPrecondition("contact method " + method + " does not simulate restitution: " + what +
+                                      " has restitution " + FormatValue(body.material.restitution) +
+                                      "; give it restitution 0 or choose " +
+                                      MethodsWith(&MethodContract::restitution));
+  }
+  if (body.motion == MotionType::kKinematic && !contract.kinematic_bodies) {
+    return Status::FailedPrecondition("contact method " + method + " does not simulate kinematic bodies: " + what +
+                                      " is kinematic; make it dynamic or fixed, or choose " +
+                                      MethodsWith(&MethodContract::kinematic_bodies));
   }
   return Status::Ok();
 }

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 
 namespace contactsim {
@@ -57,7 +58,7 @@ void ParamReader::Bool(const char* name, bool* value) {
   else Fail(method_ + " parameter " + name + " must be true or false, got \"" + *text + "\"");
 }
 
-void ParamReader::Choice(const char* name, std::initializer_list<const char*> choices, std::string* value) {
+void ParamReader::Choice(const char* name, const std::vector<const char*>& choices, std::string* value) {
   const std::string* text = Find(name);
   if (text == nullptr) return;
   std::string list;
@@ -69,6 +70,31 @@ void ParamReader::Choice(const char* name, std::initializer_list<const char*> ch
     list += list.empty() ? c : std::string(", ") + c;
   }
   Fail(method_ + " parameter " + name + " must be one of " + list + ", got \"" + *text + "\"");
+}
+
+void ParamReader::ChoiceOrNumber(const char* name, const std::vector<const char*>& choices, double lo, double hi,
+                                 std::string* value) {
+  const std::string* text = Find(name);
+  if (text == nullptr) return;
+  std::string words;
+  for (const char* c : choices) {
+    if (*text == c) {
+      *value = *text;
+      return;
+    }
+    words += words.empty() ? c : std::string(", ") + c;
+  }
+  char* end = nullptr;
+  std::strtod(text->c_str(), &end);
+  if (text->empty() || *end != '\0') {
+    Fail(method_ + " parameter " + name + " must be " + words + " or a number in [" + FormatValue(lo) + ", " +
+         FormatValue(hi) + "], got \"" + *text + "\"");
+    return;
+  }
+  // Double writes only a number in [lo, hi], with its own errors
+  double number = -std::numeric_limits<double>::infinity();
+  Double(name, lo, hi, &number);
+  if (number >= lo) *value = FormatValue(number);
 }
 
 Status ParamReader::Finish() const {

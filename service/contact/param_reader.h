@@ -4,9 +4,9 @@
 // commit on Finish().ok()).
 #pragma once
 
-#include <initializer_list>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "service/contact/contact_method.h"
 #include "service/physics/validation.h"
@@ -21,7 +21,10 @@ class ParamReader {
   void Double(const char* name, double lo, double hi, double* value);
   void Int(const char* name, int lo, int hi, int* value);
   void Bool(const char* name, bool* value);
-  void Choice(const char* name, std::initializer_list<const char*> choices, std::string* value);
+  void Choice(const char* name, const std::vector<const char*>& choices, std::string* value);
+  // One of `choices`, or a number in [lo, hi] written back by FormatValue.
+  void ChoiceOrNumber(const char* name, const std::vector<const char*>& choices, double lo, double hi,
+                      std::string* value);
 
   // The first error, or an error for a parameter no reader asked for.
   Status Finish() const;

@@ -30,6 +30,9 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
                                                          std::to_string(options_.max_bodies) + " bodies already"));
       }
       const char* shape = ShapeTypeName(cmd.new_body.shape.type);
+      if (!(st = CheckMethodAcceptsBody(method_->Name(), cmd.new_body, std::string("the new ") + shape)).ok()) {
+        return Outcome::Failed(st);
+      }
       const BodyId id = world_.AddBody(std::move(cmd.new_body));
       detector_.Reset();
       Outcome o = Outcome::Done(std::string("added ") + shape + " " + std::to_string(id), true);
@@ -49,11 +52,7 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
         return Outcome::Failed(Status::ResourceExhausted("the world holds max_joints = " +
                                                          std::to_string(options_.max_joints) + " joints already"));
       }
-      if (!MethodSupportsJoints(method_->Name())) {
-        return Outcome::Failed(Status::FailedPrecondition(std::string("contact method ") + method_->Name() +
-                                                          " does not simulate joints: choose impulse, penalty, "
-                                                          "xpbd or lcp before adding one"));
-      }
+      if (!(st = CheckMethodAcceptsJoint(method_->Name())).ok()) return Outcome::Failed(st);
       JointId id = 0;
       if (!(st = world_.AddJoint(cmd.joint, &id)).ok()) return Outcome::Failed(st);
       Outcome o = Outcome::Done(std::string("added ") + JointKindName(cmd.joint.kind) + " joint " + std::to_string(id), true);
@@ -92,10 +91,14 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
       if (cmd.mass) b->SetMass(*cmd.mass);
       else b->SetMassFromDensity(*cmd.density);
       return Outcome::Done("mass of " + body + " is " + FormatValue(b->mass) + " kg", true);
-    case K::kSetMaterial:
+    case K::kSetMaterial: {
+      RigidBody changed = *b;  // checked before anything changes
+      if (cmd.restitution) changed.material.restitution = *cmd.restitution;
+      if (!(st = CheckMethodAcceptsBody(method_->Name(), changed, body)).ok()) return Outcome::Failed(st);
       if (cmd.restitution) b->material.restitution = *cmd.restitution;
       if (cmd.friction) b->material.friction = *cmd.friction;
       return Outcome::Done("material of " + body + " set", true);
+    }
     default:
       return Outcome::Failed(Status::Internal("not a body command"));
   }

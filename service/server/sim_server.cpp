@@ -9,6 +9,8 @@
 #include <thread>
 #include <unistd.h>
 
+#include "service/contact/contact_method_registry.h"
+#include "service/contact/method_support.h"
 #include "service/physics/validation.h"
 #include "service/server/messages.h"
 
@@ -37,6 +39,8 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   if (scene != nullptr) {
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }
+  // a configured method that cannot honour the configured scene (method_support.h)
+  if (!(st = CheckMethodSupports(method->Name(), world_)).ok()) return st;
   method_ = std::move(method);
   if (!(st = Recover()).ok()) return st;
   UpdateRates();
@@ -231,6 +235,9 @@ void SimServer::PublishStatus(Clock::time_point now) {
   s.paused = paused_ && step_budget_ == 0;
   s.method = method_->Name();
   for (const auto& [k, v] : method_->Params()) s.method_params += (s.method_params.empty() ? "" : " ") + k + "=" + v;
+  if (const ContactMethodEntry* e = FindContactMethod(method_->Name())) {
+    s.method_contract = DescribeContract(e->contract);
+  }
   s.time = world_.time;
   s.step = world_.step;
   s.dt = world_.dt;

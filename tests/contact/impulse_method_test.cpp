@@ -1,5 +1,5 @@
 // Tests of the impulse method against analytic results.
-#include "service/contact/impulse_method.h"
+#include "service/contact/impulse/impulse_method.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Tests of the penalty force laws and the restitution-to-damping relation.
-#include "service/contact/penalty_force.h"
+#include "service/contact/penalty/penalty_force.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Tests of the friction anchors' bookkeeping and the Coulomb limit.
-#include "service/contact/penalty_friction.h"
+#include "service/contact/penalty/penalty_friction.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Tests of the penalty method against analytic results, its friction, its
 // two integrators and a live switch with the impulse method.
-#include "service/contact/penalty_method.h"
+#include "service/contact/penalty/penalty_method.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "service/contact/impulse_method.h"
+#include "service/contact/impulse/impulse_method.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/test_bodies.h"
 

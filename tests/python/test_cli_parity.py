@@ -77,6 +77,9 @@ def test_python_cli_joints_and_lockstep_status(server):
     assert status.mode == "lockstep"
     r = cli(server, "status")
     assert re.search(r"^mode\s+lockstep$", r.stdout, re.M), r.stdout + r.stderr
+    # the active method's contract (docs/physics.md, "Method contract")
+    assert re.search(r"^method_contract\s+joints=yes; restitution=yes; kinematic=yes; friction=coulomb disk$",
+                     r.stdout, re.M), r.stdout
 
 
 def test_ctl_names_the_lockstep_mode(server):
@@ -87,3 +90,4 @@ def test_ctl_names_the_lockstep_mode(server):
     r = subprocess.run([str(CTL), "--lcm-url", server.url, "--prefix", server.prefix, "status"],
                        capture_output=True, text=True, timeout=30)
     assert r.returncode == 0 and "mode: lockstep" in r.stdout, r.stdout + r.stderr
+    assert "\nmethod_contract: joints=yes; restitution=yes; kinematic=yes; friction=coulomb disk\n" in r.stdout, r.stdout

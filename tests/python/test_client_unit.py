@@ -173,6 +173,18 @@ def test_status_and_wait_for_server(fake_server, fake_client):
     assert fake_client.status().as_dict()["version"] == "fake"
 
 
+def test_status_parses_the_method_contract(fake_server, fake_client):
+    # Verifies that Status.contract() turns STATUS's method_contract text
+    # into booleans and the friction words, and is empty when there is none.
+    fake_server.publish_status(method="barrier", method_contract=(
+        "joints=no; restitution=no; kinematic=yes; friction=regularized: smoothed coulomb disk, lagged (eps_v)"))
+    st = fake_client.wait_for_status(lambda s: s.method == "barrier", timeout=2)
+    assert st.contract() == {"joints": False, "restitution": False, "kinematic": True,
+                             "friction": "regularized: smoothed coulomb disk, lagged (eps_v)"}
+    fake_server.publish_status(method="old")
+    assert fake_client.wait_for_status(lambda s: s.method == "old", timeout=2).contract() == {}
+
+
 def test_commands_inside_callbacks_are_refused(fake_server, fake_client):
     errors = []
 

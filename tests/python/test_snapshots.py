@@ -9,11 +9,15 @@ import contactsim
 from conftest import method_names
 
 
-def build(client):
-    client.add_plane((0, 0, 1), 0.0, friction=0.6)
-    box = client.add_box((0.1, 0.1, 0.1), position=(0, 0, 0.1), velocity=(0.6, 0, 0))
-    client.add_box((0.1, 0.1, 0.1), position=(0.7, 0, 0.1))
-    client.add_sphere(0.1, position=(0.7, 0, 0.5), restitution=0.4)
+def build(client, elastic=True):
+    """Bodies with the server's default restitution and a bouncy sphere, or
+    all with restitution 0 for a method that simulates none (barrier;
+    docs/physics.md, "Method contract")."""
+    e = {} if elastic else {"restitution": 0.0}
+    client.add_plane((0, 0, 1), 0.0, friction=0.6, **e)
+    box = client.add_box((0.1, 0.1, 0.1), position=(0, 0, 0.1), velocity=(0.6, 0, 0), **e)
+    client.add_box((0.1, 0.1, 0.1), position=(0.7, 0, 0.1), **e)
+    client.add_sphere(0.1, position=(0.7, 0, 0.5), restitution=0.4 if elastic else 0.0)
     return box
 
 
@@ -30,7 +34,8 @@ def test_restore_and_rewind_repeat_every_step_for_every_method(client):
     for name in method_names(client):
         client.reset()
         client.set_contact_method(name)
-        box = build(client)
+        contract = client.wait_for_status(lambda s: s.method == name, timeout=5.0).contract()
+        box = build(client, elastic=contract["restitution"])
         client.step(20)
         client.snapshot("k")
         original = hashes(client, 30, box)

@@ -111,3 +111,41 @@ def test_sliding_box_stops_at_the_coulomb_distance(client, name):
     expected = v0 * v0 / (2 * mu * G)
     assert b.position[0] == pytest.approx(expected, rel=0.03)
     assert np.linalg.norm(b.linear_velocity) < 1e-3
+
+
+def test_status_carries_the_contract_of_the_active_method(client):
+    # Verifies that STATUS says what the active method simulates
+    # (docs/physics.md, "Method contract") and follows a switch.
+    use(client, "impulse")
+    st = client.wait_for_status(lambda s: s.method == "impulse", timeout=3.0)
+    assert st.contract() == {"joints": True, "restitution": True, "kinematic": True, "friction": "coulomb disk"}
+    use(client, "barrier")
+    c = client.wait_for_status(lambda s: s.method == "barrier", timeout=3.0).contract()
+    assert (c["joints"], c["restitution"], c["kinematic"]) == (False, False, False)
+    assert c["friction"].startswith("regularized")
+
+
+def test_barrier_refuses_restitution_and_says_why(client):
+    # Verifies the refusals of the barrier method's contract through the real
+    # server: a switch while a body bounces, a bouncy body added under it and
+    # a restitution set under it are each refused with FAILED_PRECONDITION
+    # naming the body and the value, and leave the method and the body as
+    # they were.
+    import contactsim
+    use(client, "impulse")
+    plane = client.add_plane((0, 0, 1), 0.0, restitution=0.0)
+    ball = client.add_sphere(0.1, position=(0, 0, 1), restitution=0.5)
+    with pytest.raises(contactsim.CommandError) as e:
+        client.set_contact_method("barrier")
+    assert e.value.code_name == "FAILED_PRECONDITION"
+    assert "barrier does not simulate restitution: body %d has restitution 0.5" % ball in e.value.message
+    assert client.wait_for_status(lambda s: s.step >= 0, timeout=3.0).method == "impulse"
+    client.set_material(ball, restitution=0.0)
+    use(client, "barrier")
+    with pytest.raises(contactsim.CommandError) as e:
+        client.add_sphere(0.1, position=(1, 0, 1), restitution=0.3)
+    assert e.value.code_name == "FAILED_PRECONDITION" and "restitution 0.3" in e.value.message
+    with pytest.raises(contactsim.CommandError) as e:
+        client.set_material(plane, restitution=0.2)
+    assert e.value.code_name == "FAILED_PRECONDITION" and "body %d has restitution 0.2" % plane in e.value.message
+    assert sorted(client.state().bodies) == [plane, ball]

@@ -84,7 +84,8 @@ def test_live_page_draws_state(server, browser):
 
 
 # Verifies that the page's pause button pauses the server and its method
-# select switches the contact method, both as STATUS reports them.
+# select switches the contact method, both as STATUS reports them, that the
+# panel shows the method's contract and that a refused switch says why.
 def test_page_commands_reach_server(server, browser):
     from selenium.webdriver.common.by import By
     from selenium.webdriver.support.ui import Select
@@ -103,6 +104,18 @@ def test_page_commands_reach_server(server, browser):
         assert c.wait_for_status(lambda s: s.method == "penalty", timeout=5).method == "penalty"
         replies = wait_for(browser, "%s.replies().length >= 2 && %s.replies()" % (VIEWER, VIEWER))
         assert [(r["cmd"], r["ok"]) for r in replies] == [("pause", True), ("method", True)]
+        # the panel shows what the method simulates (docs/physics.md, "Method
+        # contract"), and a switch to one that cannot honour the world (barrier:
+        # the sphere has the default restitution 0.5) comes back refused with why
+        contract = "document.getElementById('ro-contract').textContent"
+        shown = wait_for(browser, "%s.includes('regularized: tangential spring') && %s" % (contract, contract))
+        assert shown.startswith("joints=yes; restitution=yes; kinematic=yes; friction=")
+        Select(browser.find_element(By.ID, "method-select")).select_by_value("barrier")
+        browser.find_element(By.ID, "btn-method").click()
+        replies = wait_for(browser, "%s.replies().length >= 3 && %s.replies()" % (VIEWER, VIEWER))
+        assert (replies[2]["cmd"], replies[2]["ok"]) == ("method", False)
+        assert "barrier does not simulate restitution" in replies[2]["message"], replies[2]["message"]
+        assert c.wait_for_status(lambda s: s.step >= 0, timeout=5).method == "penalty"
 
 
 # Verifies that a recorded log replays without a server: scrubbing the

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "service/contact/contact_method.h"
-#include "service/contact/method_support.h"
+#include "service/contact/contact_method_registry.h"
 #include "tests/server/server_harness.h"
 
 namespace contactsim {
@@ -103,8 +103,10 @@ class LiveRun {
   // every registered contact method in turn, lcp with each of its solvers,
   // `steps` steps each: a run that switches methods mid-run
   // (docs/snapshots.md, "Determinism across builds"). The barrier method
-  // simulates no joints and refuses a world with some, so the scene's two
-  // joints are removed before the switch to it (the bob and the door fall).
+  // simulates no joints and no restitution and refuses a world with either
+  // (method_contract.h), so the scene's two joints are removed and every
+  // body's restitution set to 0 before the switch to it (the bob and the
+  // door fall).
   void RecordEveryMethod(int steps) {
     Collect();
     scene_cmd_t load = live_.Scene(scene_cmd_t::LOAD_SCENE);
@@ -113,7 +115,9 @@ class LiveRun {
     for (const std::string& name : ContactMethodNames()) {
       const std::vector<std::string> solvers =
           name == "lcp" ? std::vector<std::string>{"pgs", "lemke"} : std::vector<std::string>{""};
-      if (!MethodSupportsJoints(name)) RemoveJoints();
+      const MethodContract& contract = FindContactMethod(name)->contract;
+      if (!contract.joints) RemoveJoints();
+      if (!contract.restitution) RemoveRestitution();
       for (const std::string& solver : solvers) {
         scene_cmd_t m = live_.Scene(scene_cmd_t::SET_METHOD);
         m.method = name;
@@ -125,6 +129,17 @@ class LiveRun {
         Send(m, "SCENE_CMD");
         Step(steps);
       }
+    }
+  }
+  // Sets every body's restitution to 0 by SET_MATERIAL.
+  void RemoveRestitution() {
+    std::vector<BodyId> ids;
+    for (const RigidBody& b : live_.server.world().bodies()) ids.push_back(b.id);
+    for (BodyId id : ids) {
+      body_cmd_t m = live_.Body(body_cmd_t::SET_MATERIAL, id);
+      m.has_restitution = true;
+      m.restitution = 0.0;
+      Send(m, "BODY_CMD");
     }
   }
   // Removes every joint of the live world by JOINT_CMD.

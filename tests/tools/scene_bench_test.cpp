@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -80,17 +81,38 @@ TEST(SceneBench, BounceJsonHasEveryFieldAndTheAnalyticApex) {
   EXPECT_DOUBLE_EQ(Number(o.out, "min_distance"), -Number(o.out, "max_penetration")) << o.out;
 }
 
+// The bounce scene with restitution 0, in the test's temporary folder: the
+// barrier method simulates no restitution and refuses the bouncy one
+// (service/contact/method_contract.h).
+std::string InelasticBounce() {
+  const std::string path = ::testing::TempDir() + "/bounce_inelastic.pbtxt";
+  std::ofstream out(path);
+  out << "gravity { z: -9.81 }\ndt: 0.004166666666666667\nsteps: 480\n"
+         "default_material { restitution: 0 friction: 0.5 }\n"
+         "bodies { name: \"ground\" plane { normal { z: 1 } offset: 0 } }\n"
+         "bodies { name: \"ball\" sphere { radius: 0.1 } position { z: 1.0 } density: 1000 }\n";
+  return path;
+}
+
 // Verifies that the method's own report reaches the JSON: the barrier
 // method's Newton iterations and stiffness, and its smallest distance, which
 // for a sphere over a plane is the exact distance the metrics measure too.
 TEST(SceneBench, BarrierBounceJsonHasTheMethodsReport) {
-  const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method barrier --repeat 1 --json");
+  const Output o = RunBench("--scene " + InelasticBounce() + " --method barrier --repeat 1 --json");
   ASSERT_EQ(o.exit_code, 0) << o.out;
   EXPECT_GE(Number(o.out, "iterations_mean"), 1.0) << o.out;
   EXPECT_GE(Number(o.out, "iterations_max"), Number(o.out, "iterations_mean")) << o.out;
   EXPECT_GT(Number(o.out, "stiffness_max"), 0.0) << o.out;
   EXPECT_GT(Number(o.out, "residual_min"), 0.0) << o.out;
   EXPECT_NEAR(Number(o.out, "residual_min"), Number(o.out, "min_distance"), 1e-12) << o.out;
+}
+
+// Verifies that a method is refused a scene it cannot honour, with the
+// reason: barrier on the bouncy scene (restitution 0.5) exits 1.
+TEST(SceneBench, BarrierRefusesTheBouncyScene) {
+  const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method barrier --repeat 1 --json");
+  EXPECT_EQ(o.exit_code, 1) << o.out;
+  EXPECT_NE(o.out.find("does not simulate restitution"), std::string::npos) << o.out;
 }
 
 // Verifies that an unknown method exits 1 with a JSON status naming it and

@@ -69,13 +69,13 @@ Eigen::Vector3d ToVector(const std::array<double, 3>& v) {
 
 void PrintStatus(const contactsim::status_t& s) {
   std::printf(
-      "version: %s\nmode: %s\npaused: %s\nmethod: %s\nmethod_params: %s\n"
+      "version: %s\nmode: %s\npaused: %s\nmethod: %s\nmethod_params: %s\nmethod_contract: %s\n"
       "time: %.6f s\nstep: %lld\ndt: %.6g s\nstep_rate: %.1f steps/s\n"
       "real_time_factor: %.3f (target %.3f)\nbodies: %d\ncontacts: %d\n"
       "max_penetration: %.3g m\nsolver_iterations: %d\n"
       "commands: %lld accepted, %lld rejected\nlast_error: %s\n",
       s.version.c_str(), contactsim::NameOfMode(s.mode), s.paused ? "yes" : "no",
-      s.method.c_str(), s.method_params.c_str(), s.time,
+      s.method.c_str(), s.method_params.c_str(), s.method_contract.c_str(), s.time,
       static_cast<long long>(s.step), s.dt, s.step_rate, s.real_time_factor,
       s.target_real_time_factor, s.num_bodies, s.num_contacts,
       s.max_penetration, s.solver_iterations,

@@ -121,6 +121,16 @@ class Status:
     def as_dict(self):
         return {f: getattr(self, f) for f in self.FIELDS}
 
+    def contract(self):
+        """What the active contact method simulates (docs/physics.md, "Method
+        contract"), from ``method_contract``: {"joints": bool, "restitution":
+        bool, "kinematic": bool, "friction": "coulomb disk", ...}."""
+        out = {}
+        for part in self.method_contract.split("; ") if self.method_contract else ():
+            key, _, value = part.partition("=")
+            out[key] = {"yes": True, "no": False}.get(value, value)
+        return out
+
     def __getitem__(self, key):
         if key not in self.FIELDS:
             raise KeyError(key)

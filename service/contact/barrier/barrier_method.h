@@ -19,7 +19,8 @@ class BarrierMethod : public ContactMethod {
   const char* Name() const override { return "barrier"; }
   ContactValueKind ValueKind() const override { return ContactValueKind::kForce; }
   Status SetParams(const ParamMap& params) override;
-  ParamMap Params() const override;
+  ParamMap Params() const override { return BarrierParamTable().ToMap(params_); }
+  std::vector<ParamDoc> ParamDocs() const override { return BarrierParamTable().Docs(); }
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   // The affine state and lagged friction (barrier_state.h) are the caches.
   void ResetCaches() override { solver_.mutable_state().Clear(); }

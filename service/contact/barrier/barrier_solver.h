@@ -69,6 +69,7 @@
 #include "service/collision/contact.h"
 #include "service/contact/barrier/additive_ccd.h"
 #include "service/contact/barrier/affine_body.h"
+#include "service/contact/barrier/barrier_params.h"
 #include "service/contact/barrier/barrier_state.h"
 #include "service/contact/barrier/contact_primitives.h"
 #include "service/contact/barrier/edge_mollifier.h"
@@ -76,24 +77,6 @@
 #include "service/physics/world.h"
 
 namespace contactsim {
-
-struct BarrierParams {
-  double d_hat = 1e-3;          // m, activation distance of the barrier
-  double kappa_ortho = 1e10;    // Pa, orthogonality stiffness (times the body's volume)
-  // m/s, friction's static-to-dynamic slip speed: below it the smoothed
-  // friction of IPC sec. 5 is a stiff viscous force, so a contact that
-  // static friction holds with a fraction r < 1 of mu lambda still slips at
-  // eps_v (1 - sqrt(1 - r)) < eps_v (f1(y) = r, barrier_potential.h): the
-  // creep bound. 1e-4 m/s, the Newton tolerance: IPC's 1e-3 m/s let a box
-  // held on a 30 degree slope with mu 0.7 creep 1.1 mm in 2 s; smaller
-  // values than the tolerance are below what Newton resolves and cost
-  // convergence (a 32-sphere pile: 0, 53 and 120 of 240 steps at the
-  // iteration cap with 1e-3, 1e-4 and 1e-5 m/s)
-  double eps_v = 1e-4;
-  double tolerance = 1e-4;      // m/s, Newton stops when every vertex moves slower
-  int max_iterations = 50;      // Newton iterations per step at most
-  double ccd_fraction = 0.1;    // a line-search step keeps each distance above this fraction
-};
 
 struct BarrierStepResult {
   int iterations = 0;

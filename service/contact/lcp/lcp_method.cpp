@@ -20,7 +20,9 @@ SubspaceOptions SubspaceOptionsOf(const LcpParams& p) {
 
 }  // namespace
 
-Status LcpMethod::SetParams(const ParamMap& params) { return ParseLcpParams(Name(), params, params_, &params_); }
+Status LcpMethod::SetParams(const ParamMap& params) {
+  return LcpParamTable().Parse(Name(), params, params_, &params_);
+}
 
 Status LcpMethod::LoadState(const std::string& bytes) {
   if (warm_start_.Restore(bytes)) return Status::Ok();

@@ -63,7 +63,8 @@ class LcpMethod : public ContactMethod {
   const char* Name() const override { return "lcp"; }
   ContactValueKind ValueKind() const override { return ContactValueKind::kImpulse; }
   Status SetParams(const ParamMap& params) override;
-  ParamMap Params() const override { return LcpParamsToMap(params_); }
+  ParamMap Params() const override { return LcpParamTable().ToMap(params_); }
+  std::vector<ParamDoc> ParamDocs() const override { return LcpParamTable().Docs(); }
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { warm_start_.Clear(); }
   // the warm-start impulses, bit for bit, for snapshots

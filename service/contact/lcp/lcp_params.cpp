@@ -1,42 +1,30 @@
 #include "service/contact/lcp/lcp_params.h"
 
-#include "service/contact/param_reader.h"
-
 namespace contactsim {
 
-Status ParseLcpParams(const char* method, const ParamMap& params, const LcpParams& current, LcpParams* out) {
-  LcpParams p = current;
-  ParamReader r(method, params);
-  r.Choice("solver", {"pgs", "lemke"}, &p.solver);
-  r.Int("iterations", 1, 100000, &p.iterations);
-  r.Double("tolerance", 0.0, 1.0, &p.tolerance);
-  r.Bool("warm_start", &p.warm_start);
-  r.Int("max_pivots", 0, 10000000, &p.max_pivots);
-  r.Int("max_lemke_rows", 0, 10000, &p.max_lemke_rows);
-  r.Double("restitution_threshold", 0.0, 10.0, &p.restitution_threshold);
-  r.Double("slop", 0.0, 0.1, &p.slop);
-  r.Choice("drift", {"split", "baumgarte"}, &p.drift);
-  r.Double("erp", 0.0, 1.0, &p.erp);
-  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
-  r.Int("direct_max_rows", 0, 10000, &p.direct_max_rows);
-  Status status = r.Finish();
-  if (status.ok()) *out = p;
-  return status;
-}
-
-ParamMap LcpParamsToMap(const LcpParams& p) {
-  return {{"solver", p.solver},
-          {"iterations", std::to_string(p.iterations)},
-          {"tolerance", FormatValue(p.tolerance)},
-          {"warm_start", p.warm_start ? "true" : "false"},
-          {"max_pivots", std::to_string(p.max_pivots)},
-          {"max_lemke_rows", std::to_string(p.max_lemke_rows)},
-          {"restitution_threshold", FormatValue(p.restitution_threshold)},
-          {"slop", FormatValue(p.slop)},
-          {"drift", p.drift},
-          {"erp", FormatValue(p.erp)},
-          {"direct_mass_ratio", FormatValue(p.direct_mass_ratio)},
-          {"direct_max_rows", std::to_string(p.direct_max_rows)}};
+const ParamTable<LcpParams>& LcpParamTable() {
+  using P = LcpParams;
+  static const ParamTable<P> table = {
+      ChoiceParam("solver", &P::solver, {"pgs", "lemke"}, "projected Gauss-Seidel or Lemke's pivoting method"),
+      IntParam("iterations", &P::iterations, 1, 100000, "", "pgs: sweeps per step at most"),
+      DoubleParam("tolerance", &P::tolerance, 0.0, 1.0, "m/s",
+                  "pgs stops when no row velocity changes more in a sweep"),
+      BoolParam("warm_start", &P::warm_start, "pgs: start from last step's impulses (matched by feature id)"),
+      DoubleParam("restitution_threshold", &P::restitution_threshold, 0.0, 10.0, "m/s",
+                  "approach speed above which Newton restitution applies"),
+      DoubleParam("slop", &P::slop, 0.0, 0.1, "m", "penetration left alone; speculative contact margin"),
+      ChoiceParam("drift", &P::drift, {"split", "baumgarte"}, "how penetration is removed"),
+      DoubleParam("erp", &P::erp, 0.0, 1.0, "", "fraction of (depth - slop) removed per step"),
+      IntParam("max_pivots", &P::max_pivots, 0, 10000000, "",
+               "lemke: pivot cap, 0 = 50 (n + 1) for n LCP variables"),
+      IntParam("max_lemke_rows", &P::max_lemke_rows, 0, 10000, "",
+               "lemke: larger problems are solved by pgs (counted as fallbacks)"),
+      DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
+                  "pgs: components whose heaviest body is this many times their lightest get a direct solve "
+                  "of their normal and joint rows (subspace_solve.h); 0 = off"),
+      IntParam("direct_max_rows", &P::direct_max_rows, 0, 10000, "", "pgs: larger components keep the sweeps' answer"),
+  };
+  return table;
 }
 
 }  // namespace contactsim

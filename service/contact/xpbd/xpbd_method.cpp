@@ -7,34 +7,12 @@
 #include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
 #include "service/contact/joints/joint_solver.h"
-#include "service/contact/param_reader.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
 
 Status XpbdMethod::SetParams(const ParamMap& params) {
-  XpbdParams p = params_;
-  ParamReader r(Name(), params);
-  r.Int("substeps", 1, 1000, &p.substeps);
-  r.Int("iterations", 1, 1000, &p.iterations);
-  r.Double("compliance", 0.0, 1.0, &p.compliance);
-  r.Double("restitution_threshold", 0.0, 100.0, &p.restitution_threshold);
-  r.Double("margin", 0.0, 1.0, &p.margin);
-  r.Double("joint_compliance", 0.0, 1.0, &p.joint_compliance);
-  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
-  Status status = r.Finish();
-  if (status.ok()) params_ = p;
-  return status;
-}
-
-ParamMap XpbdMethod::Params() const {
-  return {{"substeps", std::to_string(params_.substeps)},
-          {"iterations", std::to_string(params_.iterations)},
-          {"compliance", FormatValue(params_.compliance)},
-          {"restitution_threshold", FormatValue(params_.restitution_threshold)},
-          {"margin", FormatValue(params_.margin)},
-          {"joint_compliance", FormatValue(params_.joint_compliance)},
-          {"direct_mass_ratio", FormatValue(params_.direct_mass_ratio)}};
+  return XpbdParamTable().Parse(Name(), params, params_, &params_);
 }
 
 void XpbdMethod::DetectAhead(const World& world, CollisionDetector& detector, double dt) {

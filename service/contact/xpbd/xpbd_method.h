@@ -39,28 +39,17 @@
 #include "service/contact/contact_method.h"
 #include "service/contact/xpbd/xpbd_contact.h"
 #include "service/contact/xpbd/xpbd_joints.h"
+#include "service/contact/xpbd/xpbd_params.h"
 
 namespace contactsim {
-
-struct XpbdParams {
-  int substeps = 20;                  // sub-steps per step
-  int iterations = 1;                 // position iterations per sub-step
-  double compliance = 0.0;            // m/N, inverse contact stiffness (0: rigid)
-  double restitution_threshold = 0.0; // m/s; restitution applies above max(this, 2 |g| h)
-  double margin = 0.01;               // m, detection distance beyond each pair's closing motion
-  double joint_compliance = 0.0;      // m/N (and rad/(N m)), inverse joint stiffness (0: rigid)
-  // rigid joints of bodies this many times heavier than others they are
-  // joined to are projected exactly after each sub-step's sweeps
-  // (JointMassRatioAtLeast, xpbd_joints.h); 0 = off
-  double direct_mass_ratio = 10.0;
-};
 
 class XpbdMethod : public ContactMethod {
  public:
   const char* Name() const override { return "xpbd"; }
   ContactValueKind ValueKind() const override { return ContactValueKind::kForce; }
   Status SetParams(const ParamMap& params) override;
-  ParamMap Params() const override;
+  ParamMap Params() const override { return XpbdParamTable().ToMap(params_); }
+  std::vector<ParamDoc> ParamDocs() const override { return XpbdParamTable().Docs(); }
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   const XpbdParams& params() const { return params_; }
 

@@ -23,7 +23,7 @@
 #include <cstdio>
 #include <string>
 
-#include "service/contact/penalty_method.h"
+#include "service/contact/penalty/penalty_method.h"
 #include "service/physics/body_settings.h"
 
 namespace contactsim {

@@ -115,7 +115,7 @@ class Connection:
 
 def status_message(status):
     """STATUS as JSON for the page's panel (the fields it shows)."""
-    keys = ("paused", "method", "method_params", "time", "step", "dt", "step_rate", "real_time_factor",
+    keys = ("paused", "method", "method_params", "method_contract", "time", "step", "dt", "step_rate", "real_time_factor",
             "num_bodies", "num_contacts", "max_penetration", "last_error", "version")
     out = {k: getattr(status, k) for k in keys}
     out.update(type="status", mode=status.mode)

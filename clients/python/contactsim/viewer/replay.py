@@ -45,6 +45,7 @@ class ReplaySource:
         if m < 0:
             return None
         return {"type": "status", "paused": None, "mode": ss.mode[m], "method": ss.method[m], "method_params": "",
+                "method_contract": "",
                 "time": float(ss.time[m]), "step": int(ss.step[m]), "dt": float(ss.dt[m]),
                 "step_rate": float(ss.step_rate[m]), "real_time_factor": float(ss.real_time_factor[m]),
                 "num_bodies": int(ss.num_bodies[m]), "num_contacts": int(ss.num_contacts[m]),

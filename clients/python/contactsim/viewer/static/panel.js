@@ -13,6 +13,7 @@ export class Panel {
     $('ro-rtf').textContent = fmt(s.real_time_factor, 2);
     $('ro-method').textContent = s.method;
     $('ro-params').textContent = s.method_params || '(defaults)';
+    $('ro-contract').textContent = s.method_contract || '-';   // docs/physics.md, "Method contract"
     $('ro-bodies').textContent = s.num_bodies;
     const run = s.paused === null ? 'recorded' : (s.paused ? 'paused' : 'running');   // null: a replay's STATUS
     $('ro-paused').textContent = `${run}, ${s.mode}`;

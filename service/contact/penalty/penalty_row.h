@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "service/collision/contact.h"
-#include "service/contact/penalty_force.h"
-#include "service/contact/penalty_friction.h"
+#include "service/contact/penalty/penalty_force.h"
+#include "service/contact/penalty/penalty_friction.h"
 #include "service/physics/world.h"
 
 namespace contactsim {

@@ -1,4 +1,4 @@
-#include "service/contact/impulse_method.h"
+#include "service/contact/impulse/impulse_method.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,43 +8,13 @@
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
 #include "service/contact/joints/joint_solver.h"
-#include "service/contact/param_reader.h"
 #include "service/physics/byte_stream.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
 
 Status ImpulseMethod::SetParams(const ParamMap& params) {
-  ImpulseParams p = params_;
-  ParamReader r(Name(), params);
-  r.Int("iterations", 1, 10000, &p.iterations);
-  r.Int("collision_passes", 1, 10000, &p.collision_passes);
-  r.Double("velocity_tolerance", 0.0, 1.0, &p.velocity_tolerance);
-  r.Double("collision_threshold", 0.0, 10.0, &p.collision_threshold);
-  r.Double("slop", 0.0, 0.1, &p.slop);
-  r.Double("position_correction", 0.0, 1.0, &p.position_correction);
-  r.Choice("toi", {"regula_falsi", "bisection", "off"}, &p.toi);
-  r.Int("max_substeps", 1, 64, &p.max_substeps);
-  r.Bool("warm_start", &p.warm_start);
-  r.Double("direct_mass_ratio", 0.0, 1e12, &p.direct_mass_ratio);
-  r.Int("direct_max_rows", 0, 10000, &p.direct_max_rows);
-  Status status = r.Finish();
-  if (status.ok()) params_ = p;
-  return status;
-}
-
-ParamMap ImpulseMethod::Params() const {
-  return {{"iterations", std::to_string(params_.iterations)},
-          {"collision_passes", std::to_string(params_.collision_passes)},
-          {"velocity_tolerance", FormatValue(params_.velocity_tolerance)},
-          {"collision_threshold", FormatValue(params_.collision_threshold)},
-          {"slop", FormatValue(params_.slop)},
-          {"position_correction", FormatValue(params_.position_correction)},
-          {"toi", params_.toi},
-          {"max_substeps", std::to_string(params_.max_substeps)},
-          {"warm_start", params_.warm_start ? "true" : "false"},
-          {"direct_mass_ratio", FormatValue(params_.direct_mass_ratio)},
-          {"direct_max_rows", std::to_string(params_.direct_max_rows)}};
+  return ImpulseParamTable().Parse(Name(), params, params_, &params_);
 }
 
 std::string ImpulseMethod::SaveState() const {

@@ -1,4 +1,4 @@
-#include "service/contact/penalty_friction.h"
+#include "service/contact/penalty/penalty_friction.h"
 
 #include <algorithm>
 

@@ -40,7 +40,7 @@
 
 #include <vector>
 
-#include "service/contact/penalty_row.h"
+#include "service/contact/penalty/penalty_row.h"
 
 namespace contactsim {
 

@@ -1,4 +1,4 @@
-#include "service/contact/penalty_row.h"
+#include "service/contact/penalty/penalty_row.h"
 
 #include <algorithm>
 #include <cmath>

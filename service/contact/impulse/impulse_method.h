@@ -42,33 +42,19 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/contact_row.h"
+#include "service/contact/impulse/impulse_params.h"
 #include "service/contact/solver_body.h"
 #include "service/contact/subspace_solve.h"
 
 namespace contactsim {
-
-struct ImpulseParams {
-  int iterations = 30;                  // contact-phase sweeps at most
-  int collision_passes = 20;            // collision-phase sweeps at most
-  double velocity_tolerance = 1e-5;     // m/s: sweeping stops when no impulse changes v_rel more
-  double collision_threshold = 0.01;    // m/s: approach speed above which restitution applies
-  double slop = 1e-3;                   // m: penetration left alone; speculative contact margin
-  double position_correction = 0.2;     // 1/step: fraction of (depth - slop) removed per step
-  std::string toi = "regula_falsi";     // regula_falsi | bisection | off
-  int max_substeps = 4;                 // time-of-impact sub-steps per step at most
-  bool warm_start = true;               // start the contact phase from last step's forces
-  // components whose heaviest body is this many times their lightest get a
-  // direct solve of their normal rows after the sweeps (subspace_solve.h); 0 = off
-  double direct_mass_ratio = 10.0;
-  int direct_max_rows = 300;            // larger components keep the sweeps' answer
-};
 
 class ImpulseMethod : public ContactMethod {
  public:
   const char* Name() const override { return "impulse"; }
   ContactValueKind ValueKind() const override { return ContactValueKind::kImpulse; }
   Status SetParams(const ParamMap& params) override;
-  ParamMap Params() const override;
+  ParamMap Params() const override { return ImpulseParamTable().ToMap(params_); }
+  std::vector<ParamDoc> ParamDocs() const override { return ImpulseParamTable().Docs(); }
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { warm_.clear(); }
   // the warm-start forces, bit for bit, for snapshots

@@ -19,7 +19,7 @@
 // kp and kd are the stiffness and damping of the pair whatever its manifold.
 #pragma once
 
-#include "service/contact/penalty_params.h"
+#include "service/contact/penalty/penalty_params.h"
 
 namespace contactsim {
 

@@ -42,9 +42,9 @@
 #include <vector>
 
 #include "service/contact/contact_method.h"
-#include "service/contact/penalty_friction.h"
-#include "service/contact/penalty_params.h"
-#include "service/contact/penalty_row.h"
+#include "service/contact/penalty/penalty_friction.h"
+#include "service/contact/penalty/penalty_params.h"
+#include "service/contact/penalty/penalty_row.h"
 
 namespace contactsim {
 
@@ -54,6 +54,7 @@ class PenaltyMethod : public ContactMethod {
   ContactValueKind ValueKind() const override { return ContactValueKind::kForce; }
   Status SetParams(const ParamMap& params) override;
   ParamMap Params() const override;
+  std::vector<ParamDoc> ParamDocs() const override;
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { anchors_.Clear(); }
   // the friction anchors (FrictionAnchors::Save)

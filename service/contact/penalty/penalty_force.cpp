@@ -1,4 +1,4 @@
-#include "service/contact/penalty_force.h"
+#include "service/contact/penalty/penalty_force.h"
 
 #include <algorithm>
 #include <cmath>

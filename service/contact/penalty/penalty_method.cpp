@@ -1,9 +1,9 @@
-#include "service/contact/penalty_method.h"
+#include "service/contact/penalty/penalty_method.h"
 
 #include <algorithm>
 
 #include "service/contact/joints/joint_solver.h"
-#include "service/contact/penalty_implicit.h"
+#include "service/contact/penalty/penalty_implicit.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
@@ -12,7 +12,9 @@ Status PenaltyMethod::SetParams(const ParamMap& params) {
   return ParsePenaltyParams(Name(), params, params_, &params_);
 }
 
-ParamMap PenaltyMethod::Params() const { return PenaltyParamsToMap(params_); }
+ParamMap PenaltyMethod::Params() const { return PenaltyParamTable().ToMap(params_); }
+
+std::vector<ParamDoc> PenaltyMethod::ParamDocs() const { return PenaltyParamTable().Docs(); }
 
 std::string PenaltyMethod::SaveState() const {
   ByteWriter out;

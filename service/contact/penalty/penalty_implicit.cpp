@@ -1,4 +1,4 @@
-#include "service/contact/penalty_implicit.h"
+#include "service/contact/penalty/penalty_implicit.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>

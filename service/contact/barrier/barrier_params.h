@@ -1,0 +1,30 @@
+// Parameters of the barrier method (barrier_method.h, barrier_solver.h):
+// the struct holds the defaults; each one's range, unit and meaning are
+// declared once, in BarrierParamTable() (barrier_params.cpp; param_table.h).
+#pragma once
+
+#include "service/contact/param_table.h"
+
+namespace contactsim {
+
+struct BarrierParams {
+  double d_hat = 1e-3;          // m
+  double kappa_ortho = 1e10;    // Pa
+  // m/s. Below it the smoothed
+  // friction of IPC sec. 5 is a stiff viscous force, so a contact that
+  // static friction holds with a fraction r < 1 of mu lambda still slips at
+  // eps_v (1 - sqrt(1 - r)) < eps_v (f1(y) = r, barrier_potential.h): the
+  // creep bound. 1e-4 m/s, the Newton tolerance: IPC's 1e-3 m/s let a box
+  // held on a 30 degree slope with mu 0.7 creep 1.1 mm in 2 s; smaller
+  // values than the tolerance are below what Newton resolves and cost
+  // convergence (a 32-sphere pile: 0, 53 and 120 of 240 steps at the
+  // iteration cap with 1e-3, 1e-4 and 1e-5 m/s)
+  double eps_v = 1e-4;
+  double tolerance = 1e-4;      // m/s
+  int max_iterations = 50;
+  double ccd_fraction = 0.1;
+};
+
+const ParamTable<BarrierParams>& BarrierParamTable();
+
+}  // namespace contactsim

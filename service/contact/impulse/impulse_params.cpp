@@ -1,0 +1,29 @@
+#include "service/contact/impulse/impulse_params.h"
+
+namespace contactsim {
+
+const ParamTable<ImpulseParams>& ImpulseParamTable() {
+  using P = ImpulseParams;
+  static const ParamTable<P> table = {
+      IntParam("iterations", &P::iterations, 1, 10000, "", "contact-phase sweeps at most"),
+      IntParam("collision_passes", &P::collision_passes, 1, 10000, "", "collision-phase sweeps at most"),
+      DoubleParam("velocity_tolerance", &P::velocity_tolerance, 0.0, 1.0, "m/s",
+                  "sweeping stops when no impulse changes a relative velocity more"),
+      DoubleParam("collision_threshold", &P::collision_threshold, 0.0, 10.0, "m/s",
+                  "approach speed above which restitution applies"),
+      DoubleParam("slop", &P::slop, 0.0, 0.1, "m", "penetration left alone; speculative contact margin"),
+      DoubleParam("position_correction", &P::position_correction, 0.0, 1.0, "",
+                  "fraction of (depth - slop) removed per step by the split impulse"),
+      ChoiceParam("toi", &P::toi, {"regula_falsi", "bisection", "off"}, "root finder of the collision time"),
+      IntParam("max_substeps", &P::max_substeps, 1, 64, "", "time-of-impact sub-steps per step at most"),
+      BoolParam("warm_start", &P::warm_start, "start the contact phase from last step's forces"),
+      DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
+                  "components whose heaviest body is this many times their lightest get a direct solve of "
+                  "their normal rows after the sweeps (subspace_solve.h); 0 = off"),
+      IntParam("direct_max_rows", &P::direct_max_rows, 0, 10000, "",
+               "larger components keep the sweeps' answer"),
+  };
+  return table;
+}
+
+}  // namespace contactsim

@@ -1,0 +1,27 @@
+// What a contact method promises to simulate (docs/physics.md, "Method
+// contract"): joints, restitution, kinematic bodies, and its friction model.
+// Each method's contract is declared once, in its row of the registry
+// (contact_method_registry.h); the server refuses a world the active method
+// cannot honour (method_support.h) and publishes the contract in STATUS.
+#pragma once
+
+#include <string>
+
+namespace contactsim {
+
+struct MethodContract {
+  bool joints = false;            // equality constraints (service/physics/joint.h)
+  bool restitution = false;       // material restitution e > 0 makes bounces
+  bool kinematic_bodies = false;  // bodies moved by their set velocity push the others
+  // The friction law, in words: "coulomb disk" (|lambda_t| <= mu lambda_n),
+  // "coulomb pyramid" (each tangent alone), "regularized" (a spring or a
+  // smoothing of the stick-slip switch), with what decides between them.
+  const char* friction = "";
+};
+
+// "joints=yes; restitution=no; kinematic=yes; friction=...", the text
+// STATUS carries (lcmtypes/status_t.lcm, method_contract); friction comes
+// last because its words hold spaces.
+std::string DescribeContract(const MethodContract& contract);
+
+}  // namespace contactsim

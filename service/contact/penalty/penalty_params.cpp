@@ -1,0 +1,58 @@
+#include "service/contact/penalty/penalty_params.h"
+
+#include <cstdlib>
+
+namespace contactsim {
+namespace {
+
+// Stiffness up to 1e15 N/m so that the stable-kp search of the implicit
+// integrator is not cut off by the range (BENCHMARKS.md).
+constexpr double kMaxStiffness = 1.0e15;  // N/m
+constexpr double kMaxDamping = 1.0e9;     // N s/m
+
+}  // namespace
+
+double PenaltyParams::RestitutionValue() const {
+  return restitution == "material" || restitution == "off" ? -1.0 : std::strtod(restitution.c_str(), nullptr);
+}
+
+const ParamTable<PenaltyParams>& PenaltyParamTable() {
+  using P = PenaltyParams;
+  static const ParamTable<P> table = {
+      DoubleParam("kp", &P::kp, 1.0, kMaxStiffness, "N/m", "pair stiffness (N/m^n for hunt_crossley)"),
+      DoubleParam("kd", &P::kd, 0.0, kMaxDamping, "N s/m",
+                  "pair damping, used when restitution = off (giving kd alone sets off)"),
+      ChoiceOrNumberParam("restitution", &P::restitution, {"material", "off"}, 0.0, 1.0,
+                          "damping source: material derives kd (or the Hunt-Crossley alpha) from the pair's "
+                          "max(e_a, e_b), a number from that value, off uses kd / hc_damping"),
+      ChoiceParam("model", &P::model, {"linear", "hunt_crossley"}, "normal force law"),
+      DoubleParam("hc_exponent", &P::hc_exponent, 1.0, 3.0, "", "n of kp d^n (1.5: Hertz contact of spheres)"),
+      DoubleParam("hc_damping", &P::hc_damping, 0.0, 100.0, "s/m", "Hunt-Crossley alpha when restitution = off"),
+      ChoiceParam("integrator", &P::integrator, {"explicit", "implicit"},
+                  "explicit, or linearly implicit (penalty_implicit.h)"),
+      DoubleParam("theta", &P::theta, 0.5, 1.0, "", "implicit: 1 = linearly implicit Euler, 0.5 = trapezoidal"),
+      IntParam("substeps", &P::substeps, 1, 1000, "", "steps of dt / substeps per world step"),
+      IntParam("iterations", &P::iterations, 1, 1000, "", "implicit: active-set passes at most"),
+      DoubleParam("friction_stiffness", &P::friction_stiffness, 1.0, kMaxStiffness, "N/m",
+                  "tangential spring kt of a pair"),
+      DoubleParam("friction_damping_ratio", &P::friction_damping_ratio, 0.0, 100.0, "",
+                  "zeta_t of the tangential spring, 1 = critical"),
+      DoubleParam("margin", &P::margin, 0.0, 0.1, "m", "contacts up to this gap are detected (implicit: predicted)"),
+  };
+  return table;
+}
+
+Status ParsePenaltyParams(const char* method, const ParamMap& params, const PenaltyParams& current,
+                          PenaltyParams* out) {
+  PenaltyParams p;
+  const Status status = PenaltyParamTable().Parse(method, params, current, &p);
+  if (!status.ok()) return status;
+  // kd alone means "use kd"; with restitution also given (as Params()
+  // lists them) restitution decides, so Params() round-trips
+  const bool gives_damping = params.count("kd") > 0 || params.count("hc_damping") > 0;
+  if (gives_damping && params.count("restitution") == 0) p.restitution = "off";
+  *out = p;
+  return Status::Ok();
+}
+
+}  // namespace contactsim

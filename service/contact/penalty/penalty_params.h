@@ -1,0 +1,42 @@
+// Parameters of the penalty method (penalty_method.h): the struct holds the
+// defaults; each one's range, unit and meaning are declared once, in
+// PenaltyParamTable() (penalty_params.cpp; param_table.h).
+// ParsePenaltyParams validates a whole ParamMap before changing anything,
+// so a bad value leaves the old parameters in place.
+#pragma once
+
+#include <string>
+
+#include "service/contact/param_table.h"
+
+namespace contactsim {
+
+struct PenaltyParams {
+  std::string model = "linear";
+  double kp = 1.0e6;                    // N/m (N/m^n for hunt_crossley)
+  double kd = 1.0e3;                    // N s/m
+  std::string restitution = "material";
+  double hc_exponent = 1.5;
+  double hc_damping = 0.2;              // s/m
+  double friction_stiffness = 1.0e6;    // N/m
+  double friction_damping_ratio = 1.0;
+  std::string integrator = "implicit";
+  double theta = 1.0;
+  int substeps = 1;
+  int iterations = 20;
+  double margin = 0.005;                // m
+
+  // the restitution as a number, or -1 for "material" / "off"
+  double RestitutionValue() const;
+};
+
+const ParamTable<PenaltyParams>& PenaltyParamTable();
+
+// Reads `params` over a copy of `current`; on success stores the result in
+// *out. Errors name the parameter and the value. Giving kd (or hc_damping)
+// without restitution switches restitution to "off"; when both are given,
+// restitution decides (so that Params() fed back gives the same method).
+Status ParsePenaltyParams(const char* method, const ParamMap& params, const PenaltyParams& current,
+                          PenaltyParams* out);
+
+}  // namespace contactsim

@@ -1,0 +1,23 @@
+#include "service/contact/xpbd/xpbd_params.h"
+
+namespace contactsim {
+
+const ParamTable<XpbdParams>& XpbdParamTable() {
+  using P = XpbdParams;
+  static const ParamTable<P> table = {
+      IntParam("substeps", &P::substeps, 1, 1000, "", "sub-steps per step"),
+      IntParam("iterations", &P::iterations, 1, 1000, "", "position iterations per sub-step"),
+      DoubleParam("compliance", &P::compliance, 0.0, 1.0, "m/N", "inverse contact stiffness (0: rigid)"),
+      DoubleParam("joint_compliance", &P::joint_compliance, 0.0, 1.0, "m/N",
+                  "inverse joint stiffness, rad/(N m) for angles (0: rigid)"),
+      DoubleParam("restitution_threshold", &P::restitution_threshold, 0.0, 100.0, "m/s",
+                  "restitution applies above max(this, 2 |g| h)"),
+      DoubleParam("margin", &P::margin, 0.0, 1.0, "m", "detection distance beyond each pair's closing motion"),
+      DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
+                  "rigid joints of bodies this many times heavier than others they are joined to are projected "
+                  "exactly after each sub-step's sweeps (xpbd_joints.h); 0 = off"),
+  };
+  return table;
+}
+
+}  // namespace contactsim
