@@ -90,7 +90,9 @@ TEST_P(MechanicsFrictionTest, SlidingBoxStopsAfterCoulombDistance) {
   const double d = sim.world.Find(id)->x.x() - x0, expected = v0 * v0 / (2 * mu * kG);
   std::printf("%-10s slide m %5.1f kg: %.4f m (v0^2 / 2 mu g %.4f, %+.2f%%)\n", config().label.c_str(), mass(), d,
               expected, 100 * (d - expected) / expected);
-  EXPECT_MECHANICS(config().label, MassId("slide", mass()), d / expected, 1.0, tol().slide);
+  testing::MechanicsChecks checks(config().label);
+  checks.Expect(MassId("slide", mass()), d / expected, 1.0, tol().slide);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 // Verifies static friction: a 0.2 m cube on a 30 degree slope with
@@ -105,7 +107,9 @@ TEST_P(MechanicsFrictionTest, BoxHoldsOnSlopeWhenTanThetaBelowMu) {
   while (sim.world.time < 2.5) sim.Step();
   const double moved = (sim.world.Find(id)->x - x0).norm();
   std::printf("%-10s incline hold m %5.1f kg: moved %.3g m in 2 s\n", config().label.c_str(), mass(), moved);
-  EXPECT_MECHANICS(config().label, MassId("incline hold", mass()), moved, 0.0, tol().incline_hold);
+  testing::MechanicsChecks checks(config().label);
+  checks.Expect(MassId("incline hold", mass()), moved, 0.0, tol().incline_hold);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 // Verifies dynamic friction on a slope: with mu = 0.3 on 30 degrees the
@@ -128,7 +132,9 @@ TEST_P(MechanicsFrictionTest, BoxSlidesDownSlopeWithCoulombAcceleration) {
               config().label.c_str(), mass(), s, expected, 100 * (s - expected) / expected,
               b.AngularVelocity().norm());
   EXPECT_LT(b.AngularVelocity().norm(), 1e-2) << config().label;  // slides, does not tumble
-  EXPECT_MECHANICS(config().label, MassId("incline slide", mass()), s / expected, 1.0, tol().incline_slide);
+  testing::MechanicsChecks checks(config().label);
+  checks.Expect(MassId("incline slide", mass()), s / expected, 1.0, tol().incline_slide);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 // Verifies rolling without slipping: a sphere of radius 0.1 m on a 15
@@ -155,8 +161,10 @@ TEST_P(MechanicsFrictionTest, SphereRollsDownSlopeWithoutSlipping) {
   const double spin = b.AngularVelocity().norm() * r / b.LinearVelocity().norm();
   std::printf("%-10s roll m %5.1f kg: %.4f m in 1 s (5/7 g sin t^2/2 %.4f, %+.2f%%), omega r / v %.4f\n",
               config().label.c_str(), mass(), s, expected, 100 * (s - expected) / expected, spin);
-  EXPECT_MECHANICS(config().label, MassId("roll", mass()), s / expected, 1.0, tol().roll);
-  EXPECT_MECHANICS(config().label, MassId("roll spin", mass()), spin, 1.0, tol().roll);
+  testing::MechanicsChecks checks(config().label);
+  checks.Expect(MassId("roll", mass()), s / expected, 1.0, tol().roll);
+  checks.Expect(MassId("roll spin", mass()), spin, 1.0, tol().roll);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsFrictionTest,
@@ -194,11 +202,14 @@ TEST_P(MechanicsTippingTest, BoxStandsBelowAndTipsAboveItsTippingAngle) {
               offset_deg, critical * 180 / kPi, tilt);
   char id_text[64];
   std::snprintf(id_text, sizeof id_text, "tip a/b=%.3g %+g deg", a / b, offset_deg);
+  testing::MechanicsChecks checks(config.label);
   if (offset_deg < 0) {
-    EXPECT_MECHANICS(config.label, id_text, tilt, 0.0, testing::TolerancesOf(config.label).tip_stand);
+    checks.Expect(id_text, tilt, 0.0, testing::TolerancesOf(config.label).tip_stand);
   } else {
-    EXPECT_GT(tilt, kPi / 4) << config.label << " " << id_text << ": did not tip";
+    // tipped: fell past 45 degrees (it may go on tumbling, so at least)
+    checks.Expect(id_text, std::min(tilt, kPi / 2), kPi / 2, kPi / 4);
   }
+  SKIP_KNOWN_MISSES(checks);
 }
 
 std::string TipName(const ::testing::TestParamInfo<TipParam>& info) {

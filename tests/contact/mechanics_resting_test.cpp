@@ -75,8 +75,10 @@ TEST_P(MechanicsRestingForceTest, ReportedNormalForceEqualsWeight) {
   char id_text[64];
   std::snprintf(id_text, sizeof id_text, "resting force m=%g", mass);
   const double tol = testing::TolerancesOf(config.label).resting_force;
-  EXPECT_MECHANICS(config.label, std::string(id_text) + " mean", mean, 1.0, tol);
-  EXPECT_MECHANICS(config.label, std::string(id_text) + " worst step", worst, 0.0, tol);
+  testing::MechanicsChecks checks(config.label);
+  checks.Expect(std::string(id_text) + " mean", mean, 1.0, tol);
+  checks.Expect(std::string(id_text) + " worst step", worst, 0.0, tol);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsRestingForceTest,
@@ -115,8 +117,10 @@ TEST_P(MechanicsAlignedStackTest, StandsTenSecondsWithoutDrift) {
   std::printf("%-10s stack of %2d, %.0f s: top height off by %.3g m at the end, sideways drift %.3g m at most\n",
               config.label.c_str(), n, seconds, height, drift);
   const std::string id = "stack n=" + std::to_string(n);
-  EXPECT_MECHANICS(config.label, id + " height", height, 0.0, tol.stack_height);
-  EXPECT_MECHANICS(config.label, id + " drift", drift, 0.0, tol.stack_drift);
+  testing::MechanicsChecks checks(config.label);
+  checks.Expect(id + " height", height, 0.0, tol.stack_height);
+  checks.Expect(id + " drift", drift, 0.0, tol.stack_drift);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsAlignedStackTest,

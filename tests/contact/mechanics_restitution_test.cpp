@@ -83,8 +83,9 @@ TEST_P(MechanicsBounceTest, FirstApexIsRestitutionSquaredTimesDropHeight) {
   const double ratio = FirstApex(config, mass, e, r, h) / h;
   std::printf("%-10s bounce m %5.1f kg e %.1f: apex / h %.4f (e^2 %.4f)\n", config.label.c_str(), mass, e, ratio,
               e * e);
-  EXPECT_MECHANICS(config.label, Fmt("bounce m=%g e=%g", mass, e), ratio, e * e,
-                   testing::TolerancesOf(config.label).bounce);
+  testing::MechanicsChecks checks(config.label);
+  checks.Expect(Fmt("bounce m=%g e=%g", mass, e), ratio, e * e, testing::TolerancesOf(config.label).bounce);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 std::string BounceName(const ::testing::TestParamInfo<BounceParam>& info) {
@@ -129,9 +130,9 @@ TEST_P(MechanicsCradleTest, StrikePassesTheMomentumToTheLastSphere) {
               config.label.c_str(), n, last, others, (p - p0) / p0);
   EXPECT_NEAR(p, p0, 1e-9 * p0) << config.label;  // equal and opposite impulses
   const double tol = testing::TolerancesOf(config.label).cradle;
-  const std::string id = "cradle n=" + std::to_string(n);
-  EXPECT_MECHANICS(config.label, id + " last", last, 1.0, tol);
-  EXPECT_MECHANICS(config.label, id + " others", others, 0.0, tol);
+  testing::MechanicsChecks checks(config.label);
+  checks.Expect("cradle n=" + std::to_string(n), std::max(std::abs(last - 1.0), others), 0.0, tol);
+  SKIP_KNOWN_MISSES(checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsCradleTest,
