@@ -114,7 +114,7 @@ TEST_P(MechanicsAlignedStackTest, StandsTenSecondsWithoutDrift) {
     for (BodyId id : cubes) drift = std::max(drift, sim.world.Find(id)->x.head<2>().norm());
   }
   const double height = std::abs(sim.world.Find(cubes.back())->x.z() - top0);
-  std::printf("%-10s stack of %2d, %.0f s: top height off by %.3g m at the end, sideways drift %.3g m at most\n",
+  std::printf("%-10s stack of %2d, %.1f s: top height off by %.3g m at the end, sideways drift %.3g m at most\n",
               config.label.c_str(), n, seconds, height, drift);
   const std::string id = "stack n=" + std::to_string(n);
   testing::MechanicsChecks checks(config.label);
