@@ -94,10 +94,11 @@ using StackParam = std::tuple<MethodConfig, int>;  // method, cubes
 class MechanicsAlignedStackTest : public ::testing::TestWithParam<StackParam> {};
 
 // Verifies that a stack of n exactly aligned 0.2 m cubes (8 kg each, mu 0.5,
-// e = 0) placed touching stands for 10 s: the top cube's height changes by
-// less than the table's bound and no cube moves sideways by more than its
-// bound at any step.
-TEST_P(MechanicsAlignedStackTest, StandsTenSecondsWithoutDrift) {
+// e = 0) placed touching stands for 10 s (the table's horizon, shorter for a
+// method too slow for it): the top cube's height at the end differs from its
+// start by less than the table's bound, and no cube moves sideways by more
+// than its bound at any step.
+TEST_P(MechanicsAlignedStackTest, StandsWithoutDriftingOrSinking) {
   const auto& [config, n] = GetParam();
   const testing::ScenarioTolerances& tol = testing::TolerancesOf(config.label);
   const double half = 0.1, seconds = n == 8 ? tol.stack8_seconds : tol.stack20_seconds;
@@ -124,7 +125,8 @@ TEST_P(MechanicsAlignedStackTest, StandsTenSecondsWithoutDrift) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsAlignedStackTest,
-                         ::testing::Combine(::testing::ValuesIn(testing::EveryMethodConfig()), ::testing::Values(8, 20)),
+                         ::testing::Combine(::testing::ValuesIn(testing::EveryMethodConfig()),
+                                            ::testing::Values(8, 20)),
                          [](const ::testing::TestParamInfo<StackParam>& info) {
                            return std::get<0>(info.param).label + "_" + std::to_string(std::get<1>(info.param));
                          });
