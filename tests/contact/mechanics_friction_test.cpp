@@ -37,12 +37,6 @@ using Sim = testing::MethodSim;
 
 Eigen::Vector4d Wxyz(const Quat& q) { return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()); }
 
-std::string MassId(const char* scenario, double mass) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s m=%g", scenario, mass);
-  return buf;
-}
-
 // A box of half extents `half` and `mass` standing on a slope tilted by
 // `angle` (testing::AddSlope), its bottom face on the slope. Returns its id.
 BodyId AddBoxOnSlope(World& world, double angle, double mu, const Vec3& half, double mass, Vec3* downhill) {
@@ -91,7 +85,7 @@ TEST_P(MechanicsFrictionTest, SlidingBoxStopsAfterCoulombDistance) {
   std::printf("%-10s slide m %5.1f kg: %.4f m (v0^2 / 2 mu g %.4f, %+.2f%%)\n", config().label.c_str(), mass(), d,
               expected, 100 * (d - expected) / expected);
   testing::MechanicsChecks checks(config().label);
-  checks.Expect(MassId("slide", mass()), d / expected, 1.0, tol().slide);
+  checks.Expect(testing::CaseId("slide m=%g", mass()), d / expected, 1.0, tol().slide);
   SKIP_KNOWN_MISSES(checks);
 }
 
@@ -108,7 +102,7 @@ TEST_P(MechanicsFrictionTest, BoxHoldsOnSlopeWhenTanThetaBelowMu) {
   const double moved = (sim.world.Find(id)->x - x0).norm();
   std::printf("%-10s incline hold m %5.1f kg: moved %.3g m in 2 s\n", config().label.c_str(), mass(), moved);
   testing::MechanicsChecks checks(config().label);
-  checks.Expect(MassId("incline hold", mass()), moved, 0.0, tol().incline_hold);
+  checks.Expect(testing::CaseId("incline hold m=%g", mass()), moved, 0.0, tol().incline_hold);
   SKIP_KNOWN_MISSES(checks);
 }
 
@@ -133,7 +127,7 @@ TEST_P(MechanicsFrictionTest, BoxSlidesDownSlopeWithCoulombAcceleration) {
               b.AngularVelocity().norm());
   EXPECT_LT(b.AngularVelocity().norm(), 1e-2) << config().label;  // slides, does not tumble
   testing::MechanicsChecks checks(config().label);
-  checks.Expect(MassId("incline slide", mass()), s / expected, 1.0, tol().incline_slide);
+  checks.Expect(testing::CaseId("incline slide m=%g", mass()), s / expected, 1.0, tol().incline_slide);
   SKIP_KNOWN_MISSES(checks);
 }
 
@@ -162,8 +156,8 @@ TEST_P(MechanicsFrictionTest, SphereRollsDownSlopeWithoutSlipping) {
   std::printf("%-10s roll m %5.1f kg: %.4f m in 1 s (5/7 g sin t^2/2 %.4f, %+.2f%%), omega r / v %.4f\n",
               config().label.c_str(), mass(), s, expected, 100 * (s - expected) / expected, spin);
   testing::MechanicsChecks checks(config().label);
-  checks.Expect(MassId("roll", mass()), s / expected, 1.0, tol().roll);
-  checks.Expect(MassId("roll spin", mass()), spin, 1.0, tol().roll);
+  checks.Expect(testing::CaseId("roll m=%g", mass()), s / expected, 1.0, tol().roll);
+  checks.Expect(testing::CaseId("roll spin m=%g", mass()), spin, 1.0, tol().roll);
   SKIP_KNOWN_MISSES(checks);
 }
 
@@ -200,8 +194,7 @@ TEST_P(MechanicsTippingTest, BoxStandsBelowAndTipsAboveItsTippingAngle) {
   }
   std::printf("%-10s tip a/b %.3f at %+.0f deg from %.2f deg: largest tilt %.3g rad\n", config.label.c_str(), a / b,
               offset_deg, critical * 180 / kPi, tilt);
-  char id_text[64];
-  std::snprintf(id_text, sizeof id_text, "tip a/b=%.3g %+g deg", a / b, offset_deg);
+  const std::string id_text = testing::CaseId("tip a/b=%.3g %+g deg", a / b, offset_deg);
   testing::MechanicsChecks checks(config.label);
   if (offset_deg < 0) {
     checks.Expect(id_text, tilt, 0.0, testing::TolerancesOf(config.label).tip_stand);

@@ -72,12 +72,11 @@ TEST_P(MechanicsRestingForceTest, ReportedNormalForceEqualsWeight) {
   const double mean = sum / steps / weight;
   std::printf("%-10s resting force m %5.1f kg: mean %.6f m g, worst step %.3g off\n", config.label.c_str(), mass, mean,
               worst);
-  char id_text[64];
-  std::snprintf(id_text, sizeof id_text, "resting force m=%g", mass);
+  const std::string id_text = testing::CaseId("resting force m=%g", mass);
   const double tol = testing::TolerancesOf(config.label).resting_force;
   testing::MechanicsChecks checks(config.label);
-  checks.Expect(std::string(id_text) + " mean", mean, 1.0, tol);
-  checks.Expect(std::string(id_text) + " worst step", worst, 0.0, tol);
+  checks.Expect(id_text + " mean", mean, 1.0, tol);
+  checks.Expect(id_text + " worst step", worst, 0.0, tol);
   SKIP_KNOWN_MISSES(checks);
 }
 

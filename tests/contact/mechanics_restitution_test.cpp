@@ -27,12 +27,6 @@ constexpr double kG = 9.81;  // m/s^2
 using testing::MethodConfig;
 using Sim = testing::MethodSim;
 
-std::string Fmt(const char* format, double a, double b) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, a, b);
-  return buf;
-}
-
 using BounceParam = std::tuple<MethodConfig, double, double>;  // method, mass (kg), e
 
 class MechanicsBounceTest : public ::testing::TestWithParam<BounceParam> {};
@@ -84,7 +78,7 @@ TEST_P(MechanicsBounceTest, FirstApexIsRestitutionSquaredTimesDropHeight) {
   std::printf("%-10s bounce m %5.1f kg e %.1f: apex / h %.4f (e^2 %.4f)\n", config.label.c_str(), mass, e, ratio,
               e * e);
   testing::MechanicsChecks checks(config.label);
-  checks.Expect(Fmt("bounce m=%g e=%g", mass, e), ratio, e * e, testing::TolerancesOf(config.label).bounce);
+  checks.Expect(testing::CaseId("bounce m=%g e=%g", mass, e), ratio, e * e, testing::TolerancesOf(config.label).bounce);
   SKIP_KNOWN_MISSES(checks);
 }
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -115,6 +116,14 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"xpbd", "stack n=20 drift", "0.34 mm sideways in 10 s"},
     {"xpbd", "tip a/b=0.333 +4 deg", "stands at 22.4 deg (tilt 9e-7 rad); tips by 24.4 deg"},
 };
+
+// The name of a case as kKnownMisses lists it: the scenario and its
+// parameters, printf style ("bounce m=%g e=%g").
+inline std::string CaseId(const char* format, double a, double b = 0.0) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, format, a, b);
+  return buf;
+}
 
 inline const ScenarioTolerances& TolerancesOf(const std::string& label) {
   for (const ScenarioTolerances& t : kScenarioTolerances) {
