@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
@@ -59,6 +60,24 @@ inline JointId AddHinge(World& world, BodyId a, BodyId b, const Vec3& anchor, co
   s.axis = axis;
   s.limits = limits;
   return AddJoint(world, s);
+}
+
+// Period (s) from the times at which x crosses zero upwards or downwards,
+// linearly interpolated between steps: twice the mean spacing of the
+// crossings between the first and the last.
+inline double MeasurePeriod(MethodSim& sim, BodyId bob, double duration) {
+  std::vector<double> crossings;
+  double last_x = sim.world.Find(bob)->x.x();
+  double last_t = sim.world.time;
+  while (sim.world.time < duration) {
+    sim.Step();
+    const double x = sim.world.Find(bob)->x.x();
+    if ((last_x < 0.0) != (x < 0.0)) crossings.push_back(last_t + (sim.world.time - last_t) * last_x / (last_x - x));
+    last_x = x;
+    last_t = sim.world.time;
+  }
+  if (crossings.size() < 2) return 0.0;
+  return 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1);
 }
 
 // Kinetic plus gravitational potential energy of every dynamic body (J).

@@ -1,6 +1,6 @@
 // Tests of the xpbd method (extended position based dynamics) against
-// analytic results (the stack and the incline are in
-// contact_scenarios_test.cpp): a resting box carries its weight, a
+// analytic results (the stacks and the incline are in the mechanics suite,
+// tests/contact/mechanics_*_test.cpp): a resting box carries its weight, a
 // sliding box stops at the Coulomb distance, a dropped sphere rebounds to
 // e^2 h, compliance gives the spring's sag, and parameters are validated.
 #include "service/contact/xpbd/xpbd_method.h"

@@ -1,0 +1,183 @@
+// The one table of tolerances for the mechanics scenarios that every
+// registered contact method runs (tests/contact/mechanics_*_test.cpp and the
+// box landing of contact_scenarios_test.cpp), mirrored in docs/physics.md,
+// "Every method against mechanics". An entry is the bound the method meets
+// on every case of the scenario, chosen above what it measured (the docs
+// give the measurements); where a method misses the analytic answer by
+// more, the case is listed in kKnownMisses with its measurement and cause
+// instead of widening the bound, and the suite skips it saying "known miss".
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+namespace contactsim {
+namespace testing {
+
+struct ScenarioTolerances {
+  const char* label;       // MethodConfig::label (tests/contact/method_configs.h)
+  double bounce;           // |apex / h - e^2|, first rebound of a dropped sphere or a box landing flat
+  double slide;            // relative error of the stopping distance v0^2 / (2 mu g)
+  double incline_hold;     // m moved in 2 s on a slope with tan(theta) < mu
+  double incline_slide;    // relative error of a t^2 / 2, a = g (sin - mu cos)
+  double roll;             // relative error of a = 5/7 g sin(theta), and of omega r / v = 1
+  double tip_stand;        // rad, largest tilt of a box 4 degrees below its tipping angle
+  double stack_height;     // m, change of the top cube's height over the horizon
+  double stack_drift;      // m, largest sideways displacement of a cube over the horizon
+  double stack8_seconds;   // s, the 8-stack's horizon: 10, shorter where a run passes ~60 s
+  double stack20_seconds;  // s, the 20-stack's horizon, likewise
+  double pendulum;         // relative error of the physical pendulum's period
+  double cradle;           // |v_last / v0 - 1| and |v_other| / v0 after the strike
+  double rotation;         // relative drift of |L| and of the kinetic energy, 10 s torque free
+  double resting_force;    // relative error of the reported normal force against m g (mean and every step)
+};
+
+// The common aims: bounce 0.01 h, slide, incline and roll 1.5%, 1%, 1%
+// (semi-implicit Euler's bias v0 h / 2 shortens the slide by 0.82%,
+// docs/physics.md); stacks 0.1 mm sideways and 0.5 mm in height; the period
+// 0.1%; the cradle 1%. Tighter where a method measured far below the aim
+// (bounce to 1e-4 h, conservation and forces to round-off), wider only
+// where the method's model sets the error and no analytic answer is missed
+// by more: penalty's tilt below tipping (1.6e-4 rad) is its compliance;
+// barrier's tilt (0.011 rad) and its reported resting force (0.094% short
+// at every mass) come with its smooth barrier and were not traced further. lcp_lemke's stacks run shorter: 10 s of the
+// 8-stack took 71 s, 0.2 s of the 20-stack 54 s (about 1 s a step; RelWithDebInfo,
+// one core shared), so 3 s and 0.1 s; its drift is reached within them.
+// clang-format off
+inline constexpr ScenarioTolerances kScenarioTolerances[] = {
+  // label       bounce slide  hold  inc.sl roll  tip   st.h  st.drift st8  st20 pend   cradle rot   force
+  {"impulse",   1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
+  {"penalty",   0.01,  0.015, 1e-6, 0.01,  0.01, 1e-3, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
+  {"xpbd",      2e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
+  {"lcp_pgs",   1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
+  {"lcp_lemke", 1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    3,   0.1, 1e-3,  0.01,  1e-9, 1e-9},
+  {"barrier",   2e-3,  0.015, 1e-6, 0.01,  0.01, 0.02, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 2e-3},
+};
+// clang-format on
+
+// A case a method is known to miss, with its measurement and cause as in
+// docs/physics.md. `case_id` is the name the test gives the check.
+struct KnownMiss {
+  const char* label;
+  const char* case_id;
+  const char* why;
+};
+
+inline constexpr KnownMiss kKnownMisses[] = {
+    // penalty: restitution from a damped spring whose stiffness does not
+    // scale with the mass, so the rebound depends on the mass and e = 0 bounces
+    {"penalty", "bounce m=0.1 e=0", "apex/h 0.354: the spring's damping does not scale with the mass"},
+    {"penalty", "bounce m=0.1 e=0.5", "apex/h 0.438 vs 0.25"},
+    {"penalty", "bounce m=0.1 e=0.9", "apex/h 0.465 vs 0.81"},
+    {"penalty", "bounce m=1 e=0", "apex/h 0.196"},
+    {"penalty", "bounce m=1 e=0.5", "apex/h 0.340 vs 0.25"},
+    {"penalty", "bounce m=1 e=0.9", "apex/h 0.358 vs 0.81"},
+    {"penalty", "bounce m=10 e=0", "apex/h 0.039"},
+    {"penalty", "bounce m=10 e=0.5", "apex/h 0.089 vs 0.25"},
+    {"penalty", "bounce m=10 e=0.9", "apex/h 0.152 vs 0.81"},
+    {"penalty", "landing flat apex", "a box at e = 0.5 rebounds to 0.013 h vs 0.25 h"},
+    {"penalty", "cradle n=3", "the spheres leave together (last 0.34 v0, others 0.33 v0): springs act at once"},
+    {"penalty", "cradle n=5", "last 0.20 v0, others 0.20 v0"},
+    {"penalty", "stack n=8 height", "sinks 2.83 mm: its compliance, sum of k m g / kp over the layers (kp 1e6 N/m)"},
+    {"penalty", "stack n=20 height", "sinks 16.5 mm: its compliance, sum of k m g / kp"},
+    // barrier: IPC has no restitution; implicit Euler damps rotation
+    {"barrier", "bounce m=0.1 e=0.5", "apex/h 0.0003: IPC has no restitution (implicit Euler dissipates the impact)"},
+    {"barrier", "bounce m=0.1 e=0.9", "apex/h 0.0003"},
+    {"barrier", "bounce m=1 e=0.5", "apex/h 0.0003"},
+    {"barrier", "bounce m=1 e=0.9", "apex/h 0.0003"},
+    {"barrier", "bounce m=10 e=0.5", "apex/h 0.0003"},
+    {"barrier", "bounce m=10 e=0.9", "apex/h 0.0003"},
+    {"barrier", "landing flat apex", "rebounds to 0.0007 h vs 0.25 h: no restitution"},
+    {"barrier", "cradle n=3", "last 0.36 v0, others 0.33 v0: no restitution"},
+    {"barrier", "cradle n=5", "last 0.24 v0, others 0.22 v0"},
+    {"barrier", "roll m=0.1", "-19.4%: implicit Euler damps rotation, more for the 0.1 kg sphere"},
+    {"barrier", "roll m=1", "-3.3%: implicit Euler damps rotation"},
+    {"barrier", "roll m=10", "-3.2%: implicit Euler damps rotation"},
+    {"barrier", "rotation", "|L| -11%, energy -23% in 10 s: implicit Euler on the affine coordinates"},
+    {"barrier", "stack n=8 height", "5.3 mm higher: each pair rests about d_hat / 2 apart, placed flush it hops"},
+    {"barrier", "stack n=20 height", "7.6 mm higher: barrier gaps"},
+    // impulse: rotates with the explicit exp(w h) update after its contact
+    // phase, not the midpoint rule of service/physics
+    {"impulse", "rotation", "energy drift 1.5% in 10 s (|L| exact): explicit q <- exp(w h) q in impulse_method.cpp"},
+    {"impulse", "stack n=8 drift", "7.3 mm sideways in 10 s, top 4.4 mm lower"},
+    {"impulse", "stack n=8 height", "4.4 mm lower after 10 s"},
+    {"impulse", "stack n=20 drift", "falls (2.9 m sideways)"},
+    {"impulse", "stack n=20 height", "falls (top 3.8 m lower)"},
+    {"lcp_pgs", "stack n=8 drift", "19 mm sideways in 10 s"},
+    {"lcp_pgs", "stack n=8 height", "2.6 mm lower after 10 s"},
+    {"lcp_pgs", "stack n=20 drift", "falls (3.7 m sideways)"},
+    {"lcp_pgs", "stack n=20 height", "falls (top 3.8 m lower)"},
+    {"lcp_lemke", "stack n=8 drift", "0.29 mm sideways, reached within 2 s and kept to 5 s"},
+    {"lcp_lemke", "stack n=20 drift", "0.52 mm sideways in 0.1 s"},
+    {"xpbd", "stack n=20 drift", "0.34 mm sideways in 10 s"},
+    {"xpbd", "tip a/b=0.333 +4 deg", "stands at 22.4 deg (tilt 9e-7 rad); tips by 24.4 deg"},
+};
+
+// The name of a case as kKnownMisses lists it: the scenario and its
+// parameters, printf style ("bounce m=%g e=%g").
+inline std::string CaseId(const char* format, double a, double b = 0.0) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, format, a, b);
+  return buf;
+}
+
+inline const ScenarioTolerances& TolerancesOf(const std::string& label) {
+  for (const ScenarioTolerances& t : kScenarioTolerances) {
+    if (label == t.label) return t;
+  }
+  ADD_FAILURE() << "no tolerances for method " << label << " in scenario_tolerances.h";
+  static const ScenarioTolerances kNone{};
+  return kNone;
+}
+
+inline const KnownMiss* FindKnownMiss(const std::string& label, const std::string& case_id) {
+  for (const KnownMiss& m : kKnownMisses) {
+    if (label == m.label && case_id == m.case_id) return &m;
+  }
+  return nullptr;
+}
+
+// The checks of one test of one method. Every check runs: an unlisted case
+// outside its tolerance fails; a listed one is collected as a known miss
+// (SKIP_KNOWN_MISSES then skips the test naming each, so the suite stays
+// green and the miss visible); a listed case within tolerance fails, so a
+// fixed miss leaves the list.
+class MechanicsChecks {
+ public:
+  explicit MechanicsChecks(std::string label) : label_(std::move(label)) {}
+
+  void Expect(const std::string& case_id, double measured, double expected, double tol) {
+    const bool within = std::abs(measured - expected) <= tol;
+    const KnownMiss* miss = FindKnownMiss(label_, case_id);
+    if (miss == nullptr) {
+      EXPECT_TRUE(within) << label_ << " " << case_id << ": measured " << measured << ", analytic " << expected
+                          << ", tolerance " << tol;
+    } else if (within) {
+      ADD_FAILURE() << label_ << " " << case_id << " is in kKnownMisses but is within tolerance now (measured "
+                    << measured << ", analytic " << expected << "): remove it there and in docs/physics.md";
+    } else {
+      misses_ << (misses_.tellp() > 0 ? "; " : "known miss: ") << label_ << " " << case_id << " measured "
+              << measured << " vs " << expected << " (tolerance " << tol << "): " << miss->why;
+    }
+  }
+
+  std::string misses() const { return misses_.str(); }
+
+ private:
+  std::string label_;
+  std::ostringstream misses_;
+};
+
+}  // namespace testing
+}  // namespace contactsim
+
+// Skips the test when its checks found known misses (after every check ran).
+#define SKIP_KNOWN_MISSES(checks)                                \
+  do {                                                           \
+    const std::string misses_text_ = (checks).misses();          \
+    if (!misses_text_.empty()) GTEST_SKIP() << misses_text_;     \
+  } while (0)
