@@ -1,10 +1,10 @@
 #include "service/contact/subspace_solve.h"
 
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "service/contact/min_norm_solve.h"
 #include "service/contact/union_find.h"
 
 namespace contactsim {
@@ -96,13 +96,44 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
   return report;
 }
 
+void SubspaceSolver::BuildCoupling(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
+                                   const std::vector<SolverBody>& bodies) {
+  // A's entries are nonzero only for rows that share a dynamic body: list
+  // each body's rows, then couple each row with the rows on its bodies once
+  const int m = static_cast<int>(members.size());
+  body_rows_.resize(bodies.size());
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& r = rows[members[i]];
+    if (Dynamic(r.a, bodies)) body_rows_[r.a].clear();
+    if (Dynamic(r.b, bodies)) body_rows_[r.b].clear();
+  }
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& r = rows[members[i]];
+    if (Dynamic(r.a, bodies)) body_rows_[r.a].push_back(i);
+    if (Dynamic(r.b, bodies) && r.b != r.a) body_rows_[r.b].push_back(i);
+  }
+  triplets_.clear();
+  seen_.assign(m, -1);
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& r = rows[members[i]];
+    for (int body : {r.a, r.b}) {
+      if (!Dynamic(body, bodies)) continue;
+      for (int j : body_rows_[body]) {
+        if (seen_[j] == i) continue;
+        seen_[j] = i;
+        triplets_.emplace_back(i, j, Coupling(r, rows[members[j]], bodies));
+      }
+    }
+  }
+  A_.resize(m, m);
+  A_.setFromTriplets(triplets_.begin(), triplets_.end());
+  diag_ = A_.diagonal();
+}
+
 int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<ConstraintRow>& rows,
                                    std::vector<SolverBody>& bodies, int passes) {
   const int m = static_cast<int>(members.size());
-  Eigen::MatrixXd A(m, m);
-  for (int i = 0; i < m; ++i) {
-    for (int j = i; j < m; ++j) A(i, j) = A(j, i) = Coupling(rows[members[i]], rows[members[j]], bodies);
-  }
+  BuildCoupling(members, rows, bodies);
   // free: solved for; held: kept at a bound (starting from the sweeps' guess)
   member_of_.assign(rows.size(), -1);
   for (int i = 0; i < m; ++i) member_of_[members[i]] = i;
@@ -111,33 +142,44 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     const ConstraintRow& r = rows[members[i]];
     double lo = r.lo, hi = r.hi;
     if (r.normal_row >= 0) hi = r.mu * rows[r.normal_row].lambda, lo = -hi;
-    held[i] = A(i, i) <= 0.0 || r.lambda <= lo || r.lambda >= hi;
+    held[i] = diag_(i) <= 0.0 || r.lambda <= lo || r.lambda >= hi;
   }
   std::vector<int> free_rows;
   int pass = 0;
   while (pass < passes) {
     ++pass;
     free_rows.clear();
+    position_.assign(m, -1);
     for (int i = 0; i < m; ++i) {
-      if (!held[i]) free_rows.push_back(i);
+      if (held[i]) continue;
+      position_[i] = static_cast<int>(free_rows.size());
+      free_rows.push_back(i);
     }
     const int f = static_cast<int>(free_rows.size());
     if (f > 0) {
       // Jacobi-scaled A_SS y = D (rhs - J v), dlambda = D y, D = diag(A_SS)^-1/2
-      Eigen::MatrixXd S(f, f);
       Eigen::VectorXd b(f), scale(f);
-      for (int i = 0; i < f; ++i) scale(i) = 1.0 / std::sqrt(A(free_rows[i], free_rows[i]));
       for (int i = 0; i < f; ++i) {
         const ConstraintRow& r = rows[members[free_rows[i]]];
+        scale(i) = 1.0 / std::sqrt(diag_(free_rows[i]));
         b(i) = scale(i) * (r.rhs - r.Velocity(bodies));
-        for (int j = 0; j < f; ++j) S(i, j) = scale(i) * A(free_rows[i], free_rows[j]) * scale(j);
       }
-      const Eigen::VectorXd dl = scale.cwiseProduct(Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(S).solve(b));
+      triplets_.clear();
+      for (int col = 0; col < m; ++col) {
+        if (position_[col] < 0) continue;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
+          const int row = static_cast<int>(it.row());
+          if (position_[row] < 0) continue;
+          const int pr = position_[row], pc = position_[col];
+          triplets_.emplace_back(pr, pc, scale(pr) * it.value() * scale(pc));
+        }
+      }
+      Eigen::SparseMatrix<double> S(f, f);
+      S.setFromTriplets(triplets_.begin(), triplets_.end());
+      const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(S, b));
       // rows the solution would push past a bound are held there, and the
       // rest solved again; a sticking friction row's bound is mu times its
       // normal row's new impulse (a row leaving it slides: held at the bound)
-      position_.assign(m, -1);
-      for (int i = 0; i < f; ++i) position_[free_rows[i]] = i;
       bool clamped = false;
       for (int i = 0; i < f; ++i) {
         ConstraintRow& r = rows[members[free_rows[i]]];
@@ -162,7 +204,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     bool joined = false;
     for (int i = 0; i < m; ++i) {
       const ConstraintRow& r = rows[members[i]];
-      if (!held[i] || A(i, i) <= 0.0 || r.normal_row >= 0) continue;  // sliding friction stays held
+      if (!held[i] || diag_(i) <= 0.0 || r.normal_row >= 0) continue;  // sliding friction stays held
       const double gap = r.rhs - r.Velocity(bodies);  // > 0: wants more impulse
       if ((r.lambda <= r.lo && gap > kJoinTolerance) || (r.lambda >= r.hi && gap < -kJoinTolerance)) {
         held[i] = false;

@@ -22,8 +22,9 @@
 // row that the solution makes approach (J v < rhs) joins S again (a
 // principal pivoting pass, Judice and Pires 1994), `passes` times at most.
 //
-// A is scaled to unit diagonal (Jacobi) and solved by a complete orthogonal
-// decomposition, the minimum-norm solution: a face's four coplanar contact
+// A is sparse (rows couple through the bodies they share), scaled to unit
+// diagonal (Jacobi) and solved for the minimum-norm solution
+// (min_norm_solve.h): a face's four coplanar contact
 // points make A singular (rank 3 per face), and the minimum-norm answer
 // spreads the load evenly as the xpbd method's pair solve does.
 //
@@ -34,6 +35,8 @@
 // bit.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "service/contact/constraint_row.h"
@@ -70,9 +73,19 @@ class SubspaceSolver {
   int SolveComponent(const std::vector<int>& members, std::vector<ConstraintRow>& rows,
                      std::vector<SolverBody>& bodies, int passes);
 
+  // A = J M^-1 J^T over the members (sparse: rows couple through shared
+  // bodies) into A_ and its diagonal into diag_.
+  void BuildCoupling(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
+                     const std::vector<SolverBody>& bodies);
+
   std::vector<int> root_of_row_;
   std::vector<int> member_of_;  // per row: its index in the component's members, or -1
   std::vector<int> position_;   // per member: its index among the free rows, or -1
+  std::vector<std::vector<int>> body_rows_;  // per body: the members on it
+  std::vector<int> seen_;                    // per member: the last row coupled with it
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::SparseMatrix<double> A_;
+  Eigen::VectorXd diag_;
 };
 
 }  // namespace contactsim
