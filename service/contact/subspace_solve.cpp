@@ -82,13 +82,18 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
     root_of_row_[k] = root;
     ++count[root];
   }
+  // each component's rows in row order, bucketed in one pass (a falling
+  // crowd has as many components as bodies)
+  std::vector<int> start(n + 1, 0);
+  for (int root = 0; root < n; ++root) start[root + 1] = start[root] + count[root];
+  std::vector<int> by_component(start[n]), cursor(start.begin(), start.end() - 1);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (root_of_row_[k] >= 0) by_component[cursor[root_of_row_[k]]++] = static_cast<int>(k);
+  }
   std::vector<int> members;
   for (int root = 0; root < n; ++root) {
     if (count[root] == 0 || count[root] > options.max_rows) continue;
-    members.clear();
-    for (size_t k = 0; k < rows.size(); ++k) {
-      if (root_of_row_[k] == root) members.push_back(static_cast<int>(k));
-    }
+    members.assign(by_component.begin() + start[root], by_component.begin() + start[root + 1]);
     report.passes += SolveComponent(members, rows, bodies, options.passes);
     ++report.components;
     report.rows += static_cast<int>(members.size());
