@@ -5,7 +5,7 @@
 //    physical pendulum's period T = 2 pi sqrt(I_pivot / (m g L)),
 //    I_pivot = m (L^2 + 2/5 r^2), times 1 + theta0^2 / 16 for the amplitude;
 //    on a distance joint (a point pendulum) I_pivot = m L^2.
-//    A method whose contract is no joints (MethodSupportsJoints) must refuse
+//    A method whose contract has no joints (method_contract.h) must refuse
 //    the world with FAILED_PRECONDITION instead of stepping it.
 //  * An asymmetric box spinning in zero gravity keeps |L| and its kinetic
 //    energy (Euler's equations conserve both).
@@ -19,7 +19,6 @@
 #include <tuple>
 #include <vector>
 
-#include "service/contact/method_support.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/joint_test_util.h"
 #include "tests/contact/method_configs.h"
@@ -58,15 +57,7 @@ TEST_P(MechanicsPendulumTest, PeriodIsThePhysicalPendulums) {
   } else {
     testing::AddJoint(sim.world, kind, bob, kWorldBody, pivot);
   }
-  const Status support = CheckMethodSupports(config.method, sim.world);
-  if (!MethodSupportsJoints(config.method)) {
-    // its contract: refused, never stepped without the joint
-    EXPECT_EQ(support.code(), StatusCode::kFailedPrecondition) << config.label;
-    EXPECT_NE(support.message().find("joints"), std::string::npos) << support.message();
-    std::printf("%-10s pendulum refused: %s\n", config.label.c_str(), support.message().c_str());
-    return;
-  }
-  ASSERT_TRUE(support.ok()) << support.message();
+  if (testing::RefusedByContract(config, sim.world, testing::ContractOf(config).joints, "joints")) return;
   const double period = 2 * kPi * std::sqrt((l * l + spin_inertia) / (kG * l)) * (1 + theta0 * theta0 / 16);
   const double measured = testing::MeasurePeriod(sim, bob, 6.25 * period);
   std::printf("%-10s pendulum (%s): period %.5f s, analytic %.5f s (%+.3f%%)\n", config.label.c_str(),

@@ -6,11 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "service/contact/contact_method.h"
+#include "service/contact/contact_method_registry.h"
+#include "service/contact/method_support.h"
 
 namespace contactsim {
 namespace testing {
@@ -37,6 +40,26 @@ inline std::vector<MethodConfig> EveryMethodConfig() {
     }
   }
   return configs;
+}
+
+// The method's contract, from its registry row.
+inline const MethodContract& ContractOf(const MethodConfig& config) {
+  return FindContactMethod(config.method)->contract;
+}
+
+// True when the method refuses `world` (method_support.h), which it must do
+// exactly when its contract lacks what the world holds (`promised` false):
+// the refusal is FAILED_PRECONDITION naming `what` ("joints",
+// "restitution"), and the scenario ends there, verified, instead of
+// stepping a world the method would get wrong.
+inline bool RefusedByContract(const MethodConfig& config, const World& world, bool promised, const char* what) {
+  const Status support = CheckMethodSupports(config.method, world);
+  EXPECT_EQ(support.ok(), promised) << config.label << ": " << support.message();
+  if (support.ok()) return false;
+  EXPECT_EQ(support.code(), StatusCode::kFailedPrecondition) << config.label;
+  EXPECT_NE(support.message().find(what), std::string::npos) << support.message();
+  std::printf("%-10s refused: %s\n", config.label.c_str(), support.message().c_str());
+  return true;
 }
 
 // The label as a gtest parameter name.

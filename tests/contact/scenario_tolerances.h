@@ -84,16 +84,7 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"penalty", "cradle n=5", "last 0.20 v0, others 0.20 v0"},
     {"penalty", "stack n=8 height", "sinks 2.83 mm: its compliance, sum of k m g / kp over the layers (kp 1e6 N/m)"},
     {"penalty", "stack n=20 height", "sinks 16.5 mm: its compliance, sum of k m g / kp"},
-    // barrier: IPC has no restitution; implicit Euler damps rotation
-    {"barrier", "bounce m=0.1 e=0.5", "apex/h 0.0003: IPC has no restitution (implicit Euler dissipates the impact)"},
-    {"barrier", "bounce m=0.1 e=0.9", "apex/h 0.0003"},
-    {"barrier", "bounce m=1 e=0.5", "apex/h 0.0003"},
-    {"barrier", "bounce m=1 e=0.9", "apex/h 0.0003"},
-    {"barrier", "bounce m=10 e=0.5", "apex/h 0.0003"},
-    {"barrier", "bounce m=10 e=0.9", "apex/h 0.0003"},
-    {"barrier", "landing flat apex", "rebounds to 0.0007 h vs 0.25 h: no restitution"},
-    {"barrier", "cradle n=3", "last 0.36 v0, others 0.33 v0: no restitution"},
-    {"barrier", "cradle n=5", "last 0.24 v0, others 0.22 v0"},
+    // barrier: its contract refuses restitution (method_contract.h); implicit Euler damps rotation
     {"barrier", "roll m=0.1", "-19.4%: implicit Euler damps rotation, more for the 0.1 kg sphere"},
     {"barrier", "roll m=1", "-3.3%: implicit Euler damps rotation"},
     {"barrier", "roll m=10", "-3.2%: implicit Euler damps rotation"},
