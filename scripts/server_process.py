@@ -13,7 +13,6 @@ writes a copy of config/server.pbtxt with those fields set. On exit it sends SIG
 status (``returncode``), SIGKILL after 10 s.
 """
 import os
-import signal
 import subprocess
 import sys
 import tempfile
@@ -24,6 +23,7 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "clients" / "python"))
 
 import contactsim  # noqa: E402
+from contactsim.process import interrupt  # noqa: E402
 
 CONFIG = REPO / "config" / "server.pbtxt"
 START_TIMEOUT = 30.0
@@ -119,14 +119,8 @@ class ServerProcess:
         (-9 when it had to be killed)."""
         if self.client is not None:
             self.client.close()
-        if self.proc is not None and self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(EXIT_TIMEOUT)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
         if self.proc is not None:
+            interrupt(self.proc, EXIT_TIMEOUT)
             self.returncode = self.proc.returncode
             self._log.close()
         return self.returncode

@@ -14,7 +14,6 @@
 import itertools
 import os
 import re
-import signal
 import subprocess
 import sys
 import threading
@@ -36,6 +35,7 @@ EMPTY_SCENE = "gravity { z: -9.81 }\n"
 
 import lcm  # noqa: E402
 import contactsim  # noqa: E402
+from contactsim.process import interrupt  # noqa: E402
 
 START_TIMEOUT = 15.0   # two cores shared with builds and other test runs
 REPLY_TIMEOUT = 5.0
@@ -100,15 +100,7 @@ class Server:
         if getattr(self, "killed", False):
             return self.proc.returncode
         self.client.close()
-        killed = False
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(EXIT_TIMEOUT)
-            except subprocess.TimeoutExpired:
-                killed = True
-                self.proc.kill()
-                self.proc.wait()
+        killed = interrupt(self.proc, EXIT_TIMEOUT)
         self._log.close()
         rc = self.proc.returncode
         if check:

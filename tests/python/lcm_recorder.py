@@ -10,15 +10,15 @@ logger gives no "ready" signal, and a message sent before it subscribed would
 be lost silently). On exit another probe is awaited in the file, so that
 everything published before it is written, and the logger gets SIGINT.
 """
-import os
 import shutil
-import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import lcm
+
+from contactsim.process import interrupt
 
 READY_TIMEOUT = 15.0   # two shared cores: starting a process can take seconds
 EXIT_TIMEOUT = 10.0
@@ -70,11 +70,6 @@ class LcmRecorder:
         # once the test has its last reply) is in the file when the probe is
         if self.proc is not None and self.proc.poll() is None:
             self._probe(b"end")
-        if self.proc is not None and self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(EXIT_TIMEOUT)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        if self.proc is not None:
+            interrupt(self.proc, EXIT_TIMEOUT)
         return False

@@ -17,6 +17,7 @@ from pathlib import Path
 from ..client import Client
 from ._paths import repo_root, server_binary
 from ..errors import TimeoutError
+from ..process import interrupt
 
 START_TIMEOUT = 30.0   # a sanitizer build on a busy 2-core machine starts slowly
 EXIT_TIMEOUT = 10.0
@@ -96,12 +97,6 @@ class OwnedServer:
     def stop(self):
         """SIGINT, then SIGKILL after EXIT_TIMEOUT; returns the exit code."""
         self.client.close()
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(EXIT_TIMEOUT)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        interrupt(self.proc, EXIT_TIMEOUT)
         self._log.close()
         return self.proc.returncode
