@@ -18,6 +18,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 # install with prefix /usr into DESTDIR, so that the config script sees the
 # real prefix and writes /etc/contactsim into the package, not onto this machine
 set(CPACK_SET_DESTDIR ON)
+set(CPACK_INSTALL_PREFIX /usr)  # the prefix CPACK_SET_DESTDIR installs with
 set(CPACK_STRIP_FILES ON)  # RelWithDebInfo programs are ~10x larger with their debug info
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)  # the libraries' Debian packages, from the binaries

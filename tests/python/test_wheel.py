@@ -154,7 +154,7 @@ def test_wheel_from_sdist_builds_offline_and_decodes(tmp_path):
         m.bodies, m.num_bodies = [b], 1
         s = contactsim.State(contactsim.state_t.decode(m.encode()))
         print(_lcmtypes.generated_dir())
-        print(s.step, s.state_hash, list(s.bodies[7].position))
+        print(s.step, s.state_hash, s.bodies[7].position.tolist())
         """)], env=env, cwd=str(tmp_path))
     generated, decoded = r.stdout.strip().splitlines()[-2:]
     assert generated.startswith(str(tmp_path / "venv"))
