@@ -10,7 +10,8 @@ fail() { echo "package-check: FAIL: $*" >&2; exit 1; }
 step() { echo "package-check: $*"; }
 
 start_server() {  # the installed server, as the service user, as the unit starts it
-  runuser -u contactsim -- /usr/bin/contactsim-server --config /etc/contactsim/server.pbtxt \
+  # setpriv execs the server (runuser would stay its parent and keep SIGINT from it)
+  setpriv --reuid=contactsim --regid=contactsim --init-groups /usr/bin/contactsim-server --config /etc/contactsim/server.pbtxt \
     --journal /var/lib/contactsim/journal --no-live-line --lcm-url "$URL" --prefix "$PREFIX" \
     --mode free_run --paused >/tmp/server.log 2>&1 &
   SERVER=$!
