@@ -4,6 +4,8 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS       ?= 2
 CONFIG     ?= config/server.pbtxt
 SANITIZE   ?= OFF
+# the project's version, as CMakeLists.txt declares it
+VERSION    := $(shell grep -m1 -o 'contactsim VERSION [0-9.]*' CMakeLists.txt | cut -d' ' -f3)
 FUZZ       ?= OFF
 FUZZ_RUNS  ?= 20000
 FUZZ_CI_SECONDS ?= 30
@@ -17,7 +19,7 @@ export CCACHE_NOHASHDIR := 1
 # clang for the fuzz build (libFuzzer); the default compiler otherwise
 CMAKE_CXX  = $(if $(filter ON,$(FUZZ)),-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang,)
 
-.PHONY: all deps build run viewer wheel spy package test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
+.PHONY: all deps build run viewer wheel sdist spy package package-check docker docker-check test test-cpp test-py test-asan fuzz fuzz-build fuzz-ci bench bench-micro bench-lockstep soak flood clean
 
 all: build
 
@@ -56,10 +58,34 @@ spy: deps $(BUILD)/CMakeCache.txt
 	@cmake --build $(BUILD) --target contactsim_lcmtypes_jar >/dev/null
 	bash scripts/spy.sh $(BUILD) $(if $(LCM_URL),--lcm-url=$(LCM_URL),)
 
+# The client's sdist in $(BUILD)/dist, with the .lcm files in it, so that a
+# wheel builds from it alone (docs/packaging.md, "Python sdist").
+sdist: deps
+	cd clients/python && ../../.venv/bin/python -c "import setuptools.build_meta as b; b.build_sdist('$(abspath $(BUILD))/dist')"
+	@ls $(BUILD)/dist/contactsim-*.tar.gz
+
 # contactsim_<version>_amd64.deb in $(BUILD): programs, C++ client, config,
 # systemd unit (docs/packaging.md)
 package: build
 	cd $(BUILD) && cpack -G DEB
+
+# The .deb installed, upgraded, removed and purged for real in a throwaway
+# Debian root (a container); needs root and a Docker engine, so not in
+# `make test`, which checks the package without them (tests/python/test_deb.py).
+package-check: package
+	bash scripts/package_check.sh $(BUILD)/contactsim_$(VERSION)_amd64.deb
+
+# The server image, built from the package (docker/Dockerfile; docs/packaging.md,
+# "Docker"): a debootstrap base once, then the build and runtime stages.
+# Minutes, so not in `make test`; `make docker-check` drives the built image.
+DOCKER_IMAGE ?= contactsim:$(VERSION)
+docker:
+	bash scripts/docker_base.sh
+	docker build -f docker/Dockerfile -t $(DOCKER_IMAGE) .
+	@docker image inspect -f '{{.Size}}' $(DOCKER_IMAGE) | awk '{printf "$(DOCKER_IMAGE): %.0f MB\n", $$1/1e6}'
+
+docker-check: deps
+	.venv/bin/python scripts/docker_check.py --image $(DOCKER_IMAGE)
 
 test: build
 	@$(MAKE) --no-print-directory test-cpp test-py

@@ -27,14 +27,20 @@ install(FILES ${CMAKE_BINARY_DIR}/contactsimConfig.cmake ${CMAKE_BINARY_DIR}/con
         DESTINATION ${CONTACTSIM_CMAKE_DIR} COMPONENT client)
 install(FILES ${CMAKE_BINARY_DIR}/contactsim.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT client)
 
-# the programs, the default config and scenes, and the service's unit
+# the programs, the default config and scenes, and the service's unit;
+# target contactsim_install_targets builds what installs (and cpack) need
+# and nothing else (no tests): docker/Dockerfile's build stage
+add_custom_target(contactsim_install_targets)
+add_dependencies(contactsim_install_targets contactsim_client contactsim_signature contactsim_lcmtypes)
 foreach(program contactsim-server contactsim-ctl contactsim-bench contactsim-bench-lockstep)
   if(TARGET ${program})  # a build may leave one out (service/CMakeLists.txt)
     install(TARGETS ${program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+    add_dependencies(contactsim_install_targets ${program})
   endif()
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${CMAKE_INSTALL_DATADIR}/contactsim COMPONENT runtime)
 if(TARGET contactsim_lcmtypes_jar)
   install(FILES ${LCMTYPES_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java COMPONENT runtime)
+  add_dependencies(contactsim_install_targets contactsim_lcmtypes_jar)
 endif()
 include(${PROJECT_SOURCE_DIR}/cmake/package_deb.cmake)

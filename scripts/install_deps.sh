@@ -7,22 +7,17 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-APT_PACKAGES=(
-  build-essential cmake pkg-config ccache
+# What the .deb's build needs (LCM, Eigen, protobuf, spdlog, GoogleTest,
+# Google Benchmark, CLI11, libsodium, the JDK for the lcm-spy jar, ...) is
+# listed once, in packaging/build-depends, which docker/Dockerfile reads too.
+mapfile -t APT_PACKAGES < <(grep -v '^#' packaging/build-depends | grep .)
+APT_PACKAGES+=(
+  ccache
   clang libclang-rt-14-dev                   # the sanitizer and libFuzzer build (make test-asan, make fuzz)
-  liblcm-dev liblcm-bin libglib2.0-dev      # LCM (lcm-gen, lcm-logger); lcm.pc needs glib
-  libeigen3-dev                              # math
-  libprotobuf-dev protobuf-compiler          # config, scene and snapshot files
-  libspdlog-dev libfmt-dev                   # server logs
-  libgtest-dev libgmock-dev                  # unit tests
-  libbenchmark-dev                           # contactsim-bench micro benchmarks
-  libcli11-dev                               # command-line parsing
-  libsodium-dev                              # HMAC-SHA256 of signed messages (docs/protocol.md, Authentication)
   libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
   libbullet-dev libode-dev libmujoco-dev     # peer runners of `make bench` only (bench/peers), never in the service
-  python3 python3-venv python3-dev           # Python client
+  python3-venv python3-dev                   # Python client
   chromium chromium-driver                   # the viewer's browser tests (headless, tests/python/test_viewer.py)
-  liblcm-java default-jdk-headless           # the message jar for lcm-spy (make spy, docs/packaging.md)
 )
 # npm installs the viewer's three.js; Debian's nodejs and npm unless a node is already there
 command -v npm >/dev/null 2>&1 || APT_PACKAGES+=(nodejs npm)

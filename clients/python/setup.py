@@ -8,8 +8,10 @@ reading them from the build folder, as the repository's own tests do.
 
 lcm-gen is taken from ``$LCM_GEN``, else the ``lcm`` wheel (a build
 requirement, which ships lcm-gen), else the one on PATH (Debian's
-liblcm-bin). The .lcm files are ``$CONTACTSIM_LCMTYPES_DIR``, else the
-repository's ``lcmtypes/`` two folders up.
+liblcm-bin). The .lcm files are ``$CONTACTSIM_LCMTYPES_DIR``, else an
+sdist's own ``lcmtypes/`` (the sdist command copies them in, since a
+MANIFEST.in cannot reach above this folder), else the repository's
+``lcmtypes/`` two folders up (docs/packaging.md, "Python sdist").
 """
 import glob
 import os
@@ -20,16 +22,22 @@ import tempfile
 
 from setuptools import setup
 from setuptools.command.build_py import build_py
+from setuptools.command.sdist import sdist
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def lcmtypes_dir():
-    folder = os.environ.get("CONTACTSIM_LCMTYPES_DIR") or os.path.join(HERE, "..", "..", "lcmtypes")
-    if not glob.glob(os.path.join(folder, "*.lcm")):
-        raise RuntimeError("contactsim: no .lcm files in %s; build the wheel from the repository "
-                           "(pip wheel clients/python) or set CONTACTSIM_LCMTYPES_DIR" % folder)
-    return os.path.abspath(folder)
+    if os.environ.get("CONTACTSIM_LCMTYPES_DIR"):
+        candidates = [os.environ["CONTACTSIM_LCMTYPES_DIR"]]
+    else:
+        candidates = [os.path.join(HERE, "lcmtypes"), os.path.join(HERE, "..", "..", "lcmtypes")]
+    for folder in candidates:
+        if glob.glob(os.path.join(folder, "*.lcm")):
+            return os.path.abspath(folder)
+    raise RuntimeError("contactsim: no .lcm files in %s; build the wheel from the repository "
+                       "(pip wheel clients/python), from an sdist, or set CONTACTSIM_LCMTYPES_DIR"
+                       % " or ".join(candidates))
 
 
 def lcm_gen_command():
@@ -70,4 +78,15 @@ class BuildPyWithLcmTypes(build_py):
         print("contactsim: %d generated LCM modules in %s" % (len(modules), target))
 
 
-setup(cmdclass={"build_py": BuildPyWithLcmTypes})
+class SdistWithLcmTypes(sdist):
+    """sdist, plus the .lcm files in lcmtypes/, so a wheel builds from it anywhere."""
+
+    def make_release_tree(self, base_dir, files):
+        super().make_release_tree(base_dir, files)
+        target = os.path.join(base_dir, "lcmtypes")
+        os.makedirs(target, exist_ok=True)
+        for f in sorted(glob.glob(os.path.join(lcmtypes_dir(), "*.lcm"))):
+            shutil.copy(f, target)
+
+
+setup(cmdclass={"build_py": BuildPyWithLcmTypes, "sdist": SdistWithLcmTypes})

@@ -6,12 +6,16 @@ real server from there: ``import contactsim`` with the wheel's own generated
 LCM types, ``contactsim-py`` and the lockstep ``Controller``. The new
 environment reaches the dependencies (lcm, numpy, ...) through a .pth file
 pointing at this interpreter's site-packages, so nothing is downloaded.
+
+Also: an sdist carries the .lcm files, so that a wheel built from it alone,
+offline and far from the repository, has its generated types.
 """
 import os
 import shutil
 import subprocess
 import sys
 import sysconfig
+import tarfile
 import textwrap
 from pathlib import Path
 
@@ -35,6 +39,17 @@ def _clean_env():
     return env
 
 
+def _venv_with_test_deps(root):
+    """A new venv whose only extra packages are this interpreter's, through a .pth file."""
+    _run([sys.executable, "-m", "venv", str(root)], timeout=BUILD_TIMEOUT)
+    py = root / "bin" / "python"
+    site = _run([str(py), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"]).stdout.strip()
+    # the dependencies, not the repository's editable contactsim: a plain path
+    # line, so the .pth files there (the editable finder among them) do not run
+    Path(site, "contactsim-test-deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    return py
+
+
 @pytest.fixture(scope="module")
 def venv(tmp_path_factory):
     """A venv outside the repository with the wheel installed; its bin folder."""
@@ -50,12 +65,7 @@ def venv(tmp_path_factory):
     assert len(wheels) == 1, wheels
 
     venv = tmp / "venv"
-    _run([sys.executable, "-m", "venv", str(venv)], timeout=BUILD_TIMEOUT)
-    py = venv / "bin" / "python"
-    site = _run([str(py), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"]).stdout.strip()
-    # the dependencies, not the repository's editable contactsim: a plain path
-    # line, so the .pth files there (the editable finder among them) do not run
-    Path(site, "contactsim-test-deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    py = _venv_with_test_deps(venv)
     _run([str(py), "-m", "pip", "install", "-q", "--no-deps", "--no-index", "--ignore-installed",
           str(wheels[0])], env=_clean_env(), cwd=str(tmp), timeout=BUILD_TIMEOUT)
     return venv / "bin"
@@ -103,3 +113,49 @@ def test_installed_cli_and_controller_drive_a_real_server(venv, tmp_path, launch
     assert float(r.stdout.strip()) == pytest.approx(-9.81 * 3 / 240, rel=1e-6)
     status = _run([str(venv / "contactsim-py"), *ends, "status"], env=env, cwd=str(tmp_path)).stdout
     assert "lockstep" in status
+
+
+def test_wheel_from_sdist_builds_offline_and_decodes(tmp_path):
+    """Verifies that the sdist carries lcmtypes/*.lcm and that pip builds a
+    wheel from the sdist alone (no index, no CONTACTSIM_LCMTYPES_DIR, no
+    repository above it) whose installed package decodes a message with its
+    own generated classes."""
+    src = tmp_path / "src"
+    shutil.copytree(REPO / "clients" / "python", src,
+                    ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__", "node_modules",
+                                                  "_generated"))
+    # the copy is out of the repository: only the env tells the sdist where the .lcm files are
+    env = dict(_clean_env(), CONTACTSIM_LCMTYPES_DIR=str(REPO / "lcmtypes"))
+    sdist = _run([sys.executable, "-c", "import setuptools.build_meta as b; print(b.build_sdist('../sdist'))"],
+                 env=env, cwd=str(src), timeout=BUILD_TIMEOUT).stdout.strip().splitlines()[-1]
+    sdist = tmp_path / "sdist" / sdist
+    with tarfile.open(sdist) as tar:
+        carried = sorted(Path(n).name for n in tar.getnames() if n.endswith(".lcm"))
+    assert carried == sorted(p.name for p in (REPO / "lcmtypes").glob("*.lcm"))
+
+    shutil.rmtree(src)  # nothing but the sdist is left to build from
+    env = _clean_env()
+    env.pop("CONTACTSIM_LCMTYPES_DIR", None)
+    _run([sys.executable, "-m", "pip", "wheel", "-q", "--no-index", "--no-deps", "--no-build-isolation",
+          "-w", str(tmp_path / "dist"), str(sdist)], env=env, cwd=str(tmp_path), timeout=BUILD_TIMEOUT)
+    wheels = list((tmp_path / "dist").glob("contactsim-*.whl"))
+    assert len(wheels) == 1, wheels
+
+    py = _venv_with_test_deps(tmp_path / "venv")
+    _run([str(py), "-m", "pip", "install", "-q", "--no-deps", "--no-index", "--ignore-installed",
+          str(wheels[0])], env=env, cwd=str(tmp_path), timeout=BUILD_TIMEOUT)
+    r = _run([str(py), "-c", textwrap.dedent("""
+        import contactsim
+        from contactsim import _lcmtypes
+        m = contactsim.state_t()
+        m.time, m.step, m.state_hash = 0.25, 60, 1234
+        b = contactsim.body_state_t()
+        b.id, b.position, b.orientation = 7, [1.0, 2.0, 3.0], [1.0, 0.0, 0.0, 0.0]
+        m.bodies, m.num_bodies = [b], 1
+        s = contactsim.State(contactsim.state_t.decode(m.encode()))
+        print(_lcmtypes.generated_dir())
+        print(s.step, s.state_hash, s.bodies[7].position.tolist())
+        """)], env=env, cwd=str(tmp_path))
+    generated, decoded = r.stdout.strip().splitlines()[-2:]
+    assert generated.startswith(str(tmp_path / "venv"))
+    assert decoded == "60 1234 [1.0, 2.0, 3.0]"
