@@ -135,6 +135,22 @@ void SubspaceSolver::BuildCoupling(const std::vector<int>& members, const std::v
   diag_ = A_.diagonal();
 }
 
+// A friction row held at its bound keeps the bound of the pass that
+// clamped it, mu times its normal's impulse then; a later pass may lower
+// that impulse (a tentative answer along a nearly singular direction can
+// ask for a huge normal impulse and have it clamped away next pass), so
+// held friction is brought back inside mu times its normal's impulse now.
+void SubspaceSolver::ClampHeldFriction(const std::vector<int>& members, const std::vector<char>& held,
+                                       std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies) {
+  for (size_t i = 0; i < members.size(); ++i) {
+    ConstraintRow& r = rows[members[i]];
+    if (!held[i] || r.normal_row < 0) continue;
+    const double bound = r.mu * std::max(0.0, rows[r.normal_row].lambda);
+    const double clamped = std::clamp(r.lambda, -bound, bound);
+    if (clamped != r.lambda) SetImpulse(r, clamped, bodies);
+  }
+}
+
 int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<ConstraintRow>& rows,
                                    std::vector<SolverBody>& bodies, int passes) {
   const int m = static_cast<int>(members.size());
@@ -153,6 +169,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
   int pass = 0;
   while (pass < passes) {
     ++pass;
+    ClampHeldFriction(members, held, rows, bodies);
     free_rows.clear();
     position_.assign(m, -1);
     for (int i = 0; i < m; ++i) {
@@ -218,6 +235,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     }
     if (!joined) break;
   }
+  ClampHeldFriction(members, held, rows, bodies);
   return pass;
 }
 

@@ -78,6 +78,10 @@ class SubspaceSolver {
   void BuildCoupling(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
                      const std::vector<SolverBody>& bodies);
 
+  // Brings held friction rows inside mu times their normal's impulse.
+  void ClampHeldFriction(const std::vector<int>& members, const std::vector<char>& held,
+                         std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies);
+
   std::vector<int> root_of_row_;
   std::vector<int> member_of_;  // per row: its index in the component's members, or -1
   std::vector<int> position_;   // per member: its index among the free rows, or -1
