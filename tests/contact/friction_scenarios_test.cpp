@@ -12,12 +12,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <ostream>
 #include <string>
 #include <vector>
 
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
+#include "tests/contact/method_configs.h"
 #include "tests/contact/method_sim.h"
 #include "tests/contact/slope.h"
 #include "tests/contact/test_bodies.h"
@@ -32,14 +32,7 @@ using testing::AddSlope;
 using testing::AddValidBody;
 using Sim = testing::MethodSim;
 
-// One configuration of a method: its name and parameters.
-struct MethodConfig {
-  std::string method;
-  ParamMap params;
-  std::string label;
-};
-
-void PrintTo(const MethodConfig& c, std::ostream* os) { *os << c.label; }
+using testing::MethodConfig;
 
 // Known deviations of a method that these scenes measure but that are not
 // friction's: each states what it is and where it is documented.
@@ -60,20 +53,6 @@ Limits LimitsOf(const std::string& label) {
   // friction in every method")
   if (label == "xpbd") l.slide = l.isotropy = 0.035;
   return l;
-}
-
-// Every registered method with its defaults, lcp with each solver.
-std::vector<MethodConfig> EveryMethod() {
-  std::vector<MethodConfig> configs;
-  for (const std::string& name : ContactMethodNames()) {
-    if (name == "lcp") {
-      configs.push_back({name, {{"solver", "pgs"}}, "lcp_pgs"});
-      configs.push_back({name, {{"solver", "lemke"}}, "lcp_lemke"});
-    } else {
-      configs.push_back({name, {}, name});
-    }
-  }
-  return configs;
 }
 
 Eigen::Vector4d Wxyz(const Quat& q) { return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()); }
@@ -239,7 +218,7 @@ TEST_P(FrictionTest, BoxOnSlopeHoldsWithBoundedCreep) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryMethod, FrictionTest, ::testing::ValuesIn(EveryMethod()),
+INSTANTIATE_TEST_SUITE_P(EveryMethod, FrictionTest, ::testing::ValuesIn(testing::EveryMethodConfig()),
                          [](const ::testing::TestParamInfo<MethodConfig>& info) { return info.param.label; });
 
 }  // namespace
