@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <utility>
 
@@ -163,19 +164,24 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
     return result;
   }
   std::unique_lock<std::mutex> lock(mutex_);
-  // Registered before publishing: the reply may arrive before publish returns.
+  // Registered before publishing: the reply, or the first progress report
+  // (sent as soon as the server accepts a STEP), may arrive before publish
+  // returns.
   pending_[request_id] = std::nullopt;
+  heard_[request_id] = Clock::now();
   lock.unlock();
   if (!Transmit(channel, data, size)) {
     lock.lock();
     pending_.erase(request_id);
+    heard_.erase(request_id);
     result.code = ReplyCode::kTransport;
     result.message = "LCM publish on " + channel + " failed";
     return result;
   }
   lock.lock();
-  // as long as the server reports progress on it (HandleProgress)
-  heard_[request_id] = Clock::now();
+  // as long as the server reports progress on it (HandleProgress), counted
+  // from the end of the publish
+  heard_[request_id] = std::max(heard_[request_id], Clock::now());
   while (!pending_[request_id].has_value()) {
     const Clock::time_point silent_until = heard_[request_id] + options_.reply_timeout;
     if (Clock::now() >= silent_until) break;
@@ -187,7 +193,8 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
   heard_.erase(request_id);
   progress_callbacks_.erase(request_id);
   // a progress callback still running may use what its caller owns
-  changed_.wait(lock, [&] { return progress_in_flight_ == 0; });  if (!replied) {
+  changed_.wait(lock, [&] { return progress_in_flight_ == 0; });
+  if (!replied) {
     result.code = ReplyCode::kTimeout;
     result.message = "no reply to request " + std::to_string(request_id) +
                      " on " + Channel("REPLY") + " and no progress for " +
