@@ -58,17 +58,23 @@ void ParamReader::Bool(const char* name, bool* value) {
   else Fail(method_ + " parameter " + name + " must be true or false, got \"" + *text + "\"");
 }
 
+bool ParamReader::MatchChoice(const std::string& text, const std::vector<const char*>& choices, std::string* value,
+                              std::string* list) {
+  for (const char* c : choices) {
+    if (text == c) {
+      *value = text;
+      return true;
+    }
+    *list += list->empty() ? c : std::string(", ") + c;
+  }
+  return false;
+}
+
 void ParamReader::Choice(const char* name, const std::vector<const char*>& choices, std::string* value) {
   const std::string* text = Find(name);
   if (text == nullptr) return;
   std::string list;
-  for (const char* c : choices) {
-    if (*text == c) {
-      *value = *text;
-      return;
-    }
-    list += list.empty() ? c : std::string(", ") + c;
-  }
+  if (MatchChoice(*text, choices, value, &list)) return;
   Fail(method_ + " parameter " + name + " must be one of " + list + ", got \"" + *text + "\"");
 }
 
@@ -77,13 +83,7 @@ void ParamReader::ChoiceOrNumber(const char* name, const std::vector<const char*
   const std::string* text = Find(name);
   if (text == nullptr) return;
   std::string words;
-  for (const char* c : choices) {
-    if (*text == c) {
-      *value = *text;
-      return;
-    }
-    words += words.empty() ? c : std::string(", ") + c;
-  }
+  if (MatchChoice(*text, choices, value, &words)) return;
   char* end = nullptr;
   std::strtod(text->c_str(), &end);
   if (text->empty() || *end != '\0') {

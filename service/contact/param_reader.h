@@ -31,6 +31,10 @@ class ParamReader {
 
  private:
   const std::string* Find(const char* name);
+  // Writes `text` to *value when it is one of `choices`; else lists them,
+  // comma separated, in *list for the error.
+  static bool MatchChoice(const std::string& text, const std::vector<const char*>& choices, std::string* value,
+                          std::string* list);
   void Fail(const std::string& message);
 
   std::string method_;
