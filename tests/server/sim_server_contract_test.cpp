@@ -49,7 +49,7 @@ TEST_F(SimServerContractTest, SwitchToBarrierIsRefusedWhileABodyBounces) {
   reply_t r = SetMethod("barrier");
   EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
   EXPECT_EQ(r.message, "contact method barrier does not simulate restitution: body 1 has restitution 0.5; "
-                       "give it restitution 0 or choose impulse, penalty, xpbd or lcp");
+                       "give it restitution 0 or choose impulse, penalty, xpbd, lcp or soft");
   EXPECT_STREQ(server_.method().Name(), "impulse");
   EXPECT_EQ(HashWorldState(server_.world()), before);
   ASSERT_EQ(Send(Material(ball, 0.0)).code, reply_t::OK);
@@ -94,7 +94,7 @@ TEST_F(SimServerContractTest, BarrierRefusesKinematicBodies) {
   reply_t r = SetMethod("barrier");
   EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
   EXPECT_EQ(r.message, "contact method barrier does not simulate kinematic bodies: body 1 is kinematic; make it "
-                       "dynamic or fixed, or choose impulse, penalty, xpbd or lcp");
+                       "dynamic or fixed, or choose impulse, penalty, xpbd, lcp or soft");
   body_cmd_t remove{};
   remove.client_id = "test";
   remove.op = body_cmd_t::REMOVE;

@@ -53,7 +53,7 @@
 #include "service/contact/lcp/lcp_contact_rows.h"
 #include "service/contact/lcp/lcp_params.h"
 #include "service/contact/lcp/pgs.h"
-#include "service/contact/lcp/warm_start_cache.h"
+#include "service/contact/warm_start_cache.h"
 #include "service/contact/subspace_solve.h"
 
 namespace contactsim {

@@ -1,11 +1,10 @@
 #include "service/contact/xpbd/xpbd_method.h"
 
 #include <algorithm>
-#include <set>
 #include <tuple>
 
-#include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
+#include "service/contact/detect_ahead.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/physics/integrator.h"
 
@@ -13,32 +12,6 @@ namespace contactsim {
 
 Status XpbdMethod::SetParams(const ParamMap& params) {
   return XpbdParamTable().Parse(Name(), params, params_, &params_);
-}
-
-void XpbdMethod::DetectAhead(const World& world, CollisionDetector& detector, double dt) {
-  detector.Detect(world, params_.margin, dt, &detected_);
-  // pairs that can close by more than the margin within the step are
-  // collided again with their own reach, so a fast body is seen before it
-  // arrives (and cannot pass through a thin one between two detections)
-  const auto& bodies = world.bodies();
-  std::set<BodyPair> fast;
-  std::vector<double> reach;
-  for (const BodyPair& p : detector.pairs()) {
-    const double r = ClosingSpeedBound(bodies[p.first], bodies[p.second], dt) * dt;
-    if (r <= params_.margin) continue;
-    fast.insert(p);
-    reach.push_back(r);
-  }
-  if (fast.empty()) return;
-  ContactSet kept;
-  for (const Contact& c : detected_) {
-    if (!fast.count({std::min(c.a, c.b), std::max(c.a, c.b)})) kept.push_back(c);
-  }
-  size_t k = 0;
-  for (const BodyPair& p : fast) {
-    Collide(bodies[p.first], p.first, bodies[p.second], p.second, params_.margin + reach[k++], &kept);
-  }
-  detected_.swap(kept);
 }
 
 void XpbdMethod::CandidatePairs() {
@@ -104,7 +77,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   world.AccumulateForces();
-  DetectAhead(world, detector, dt);
+  DetectAhead(world, detector, params_.margin, dt, &detected_);
   CandidatePairs();
 
   const bool project_joints =

@@ -54,9 +54,6 @@ class XpbdMethod : public ContactMethod {
   const XpbdParams& params() const { return params_; }
 
  private:
-  // Contacts with depth > -(margin + closing distance over dt) per pair.
-  void DetectAhead(const World& world, CollisionDetector& detector, double dt);
-
   // The body pairs of detected_ (sorted, unique): the sub-steps' narrowphase.
   void CandidatePairs();
   // contacts_ (and substep_contacts_) at the current poses of the candidates.

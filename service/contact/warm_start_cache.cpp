@@ -1,4 +1,4 @@
-#include "service/contact/lcp/warm_start_cache.h"
+#include "service/contact/warm_start_cache.h"
 
 #include <algorithm>
 
@@ -52,6 +52,22 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
     double l1 = rows[3 * k + 1].lambda, l2 = rows[3 * k + 2].lambda;
     ToFrame(c.normal, rows[3 * k + 1], rows[3 * k + 2], &l1, &l2);
     impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, {rows[3 * k].lambda, l1, l2}, k});
+  }
+  std::sort(impulses_.begin(), impulses_.end());
+}
+
+const std::array<double, 3>* WarmStartCache::Find(const Contact& c) const {
+  const Entry probe{Key{c.id_a, c.id_b, c.feature_id}, {}, 0};
+  const auto it = std::lower_bound(impulses_.begin(), impulses_.end(), probe);
+  return it != impulses_.end() && it->key == probe.key ? &it->lambda : nullptr;
+}
+
+void WarmStartCache::StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses) {
+  impulses_.clear();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    if (impulses[k][0] <= 0.0) continue;
+    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, impulses[k], k});
   }
   std::sort(impulses_.begin(), impulses_.end());
 }

@@ -1,5 +1,6 @@
 // Last step's contact impulses, kept per contact feature so that the next
-// solve starts from them (warm starting, Catto 2005). Key: (id of A, id of
+// solve starts from them (warm starting, Catto 2005); shared by the lcp and
+// soft methods. Key: (id of A, id of
 // B, feature id), in a vector sorted by key and searched by bisection
 // (deterministic, and no allocation once its capacity is reached); contact
 // pairs come in a canonical body order (docs/conventions.md), so A and B do
@@ -32,6 +33,12 @@ class WarmStartCache {
   void Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const;
   // Replaces the cache by the rows' impulses.
   void Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows);
+  // The same for solvers that keep their impulses in the contact frame
+  // (normal, t1, t2 of PerpendicularBasis): Find gives contact c's cached
+  // impulses or nullptr; StoreFrame keeps impulses[k] for contacts[k] when
+  // its normal impulse is positive.
+  const std::array<double, 3>* Find(const Contact& c) const;
+  void StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses);
   // The same for joint rows: blocks index rows from `first_row` on; a row
   // with no cached impulse (a new joint) keeps the lambda it came with.
   void LoadJoints(const std::vector<JointBlock>& blocks, size_t first_row, std::vector<ConstraintRow>* rows) const;

@@ -1,0 +1,54 @@
+// The bodies as the soft step sees them during one step (soft_method.h):
+// velocities v and w, the inverse mass and world inverse inertia, and how
+// far each body moved and turned since the step began, so that a contact's
+// separation can be brought up to date from its anchors without running
+// the narrowphase again (Catto, Solver2D "Soft Step", 2024: "relative
+// anchors").
+//
+// Only bodies with a contact move sub-step by sub-step (`substepped`); the
+// others fly the whole step ballistically (AdvanceBallistic), exactly as
+// under every other method.
+#pragma once
+
+#include <vector>
+
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+struct SoftBody {
+  Vec3 v = Vec3::Zero();             // m/s
+  Vec3 w = Vec3::Zero();             // rad/s, world
+  double inv_mass = 0.0;             // 1/kg, 0 for static and kinematic bodies
+  Mat3 inv_inertia = Mat3::Zero();   // world, at the current orientation
+  Vec3 x0 = Vec3::Zero();            // position at the step's start
+  Quat q0 = Quat::Identity();        // orientation at the step's start
+  Vec3 dp = Vec3::Zero();            // x - x0
+  Mat3 dR = Mat3::Identity();        // R(q) R(q0)^T, the turn since the step's start
+  bool substepped = false;
+
+  // velocity of the material point at lever arm r (world)
+  Vec3 PointVelocity(const Vec3& r) const { return v + w.cross(r); }
+  void ApplyImpulse(const Vec3& J, const Vec3& r) {
+    v += inv_mass * J;
+    w += inv_inertia * r.cross(J);
+  }
+};
+
+// One SoftBody per world body; `substepped[i]` marks the bodies that touch
+// something this step.
+void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std::vector<SoftBody>* bodies);
+
+// v += h F / m and w += h I^-1 tau for the substepped dynamic bodies.
+void IntegrateSoftVelocities(const World& world, double h, std::vector<SoftBody>& bodies);
+
+// Moves the substepped bodies of the world by h at their velocities and
+// brings dp, dR and the world inverse inertia up to date. A dynamic body's
+// angular momentum I w is kept across the turn (torque-free motion; the
+// gyroscopic term), so w follows the new inertia.
+void IntegrateSoftPositions(double h, World& world, std::vector<SoftBody>& bodies);
+
+// Writes P = m v and L = I w of the substepped dynamic bodies back.
+void StoreSoftBodies(const std::vector<SoftBody>& bodies, World& world);
+
+}  // namespace contactsim

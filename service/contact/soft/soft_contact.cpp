@@ -1,0 +1,152 @@
+#include "service/contact/soft/soft_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "service/contact/contact_row.h"
+
+namespace contactsim {
+namespace {
+
+// 1 / K, K = 1/m_A + 1/m_B + (r_A x d) . I_A^-1 (r_A x d) + ... (contact_row.h)
+double MassOf(double k) { return k > 0.0 ? 1.0 / k : 0.0; }
+
+// The relative normal speed at which the pair meets: for a pair apart by
+// s_0 > 0 at the step's start, closing under constant accelerations a_n
+// (the bodies' forces; gravity), v_impact^2 = v_n0^2 - 2 a_n s_0, as in free
+// flight, so a ball dropped from h bounces to e^2 h whatever part of the step
+// it lands in; a pair already touching meets at v_n0.
+double ImpactSpeed(const SoftPoint& p, const World& world, double vn0, double s0) {
+  if (s0 <= 0.0) return vn0;
+  const RigidBody& A = world.bodies()[p.a];
+  const RigidBody& B = world.bodies()[p.b];
+  const double acc_a = A.IsDynamic() ? p.n.dot(A.force) * A.inv_mass : 0.0;
+  const double acc_b = B.IsDynamic() ? p.n.dot(B.force) * B.inv_mass : 0.0;
+  const double squared = vn0 * vn0 - 2.0 * (acc_b - acc_a) * s0;
+  return -std::sqrt(std::max(squared, 0.0));
+}
+
+}  // namespace
+
+void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies, double h,
+                       std::vector<SoftPoint>* points) {
+  (void)h;
+  points->resize(contacts.size());
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    const RigidBody& A = world.bodies()[c.a];
+    const RigidBody& B = world.bodies()[c.b];
+    const SoftBody& sa = bodies[c.a];
+    const SoftBody& sb = bodies[c.b];
+    SoftPoint p;
+    p.a = c.a;
+    p.b = c.b;
+    p.ra = c.point - A.x;
+    p.rb = c.point - B.x;
+    p.n = c.normal;
+    PerpendicularBasis(c.normal, &p.t1, &p.t2);
+    p.ra_n = p.ra.cross(p.n), p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
+    p.rb_n = p.rb.cross(p.n), p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
+    p.ia_n = sa.inv_inertia * p.ra_n, p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
+    p.ib_n = sb.inv_inertia * p.rb_n, p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
+    const double k_lin = sa.inv_mass + sb.inv_mass;
+    p.mass_n = MassOf(k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n));
+    p.mass_t1 = MassOf(k_lin + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1));
+    p.mass_t2 = MassOf(k_lin + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2));
+    p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
+    p.friction = CombineFriction(A.material, B.material);
+    p.restitution = CombineRestitution(A.material, B.material);
+    const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
+    p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
+    (*points)[k] = p;
+  }
+}
+
+void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,
+                         std::vector<SoftPoint>& points) {
+  const auto& bodies = world.bodies();
+  const Softness movable = MakeSoftness(hertz, damping_ratio, h);
+  const Softness fixed = MakeSoftness(2.0 * hertz, damping_ratio, h);
+  for (SoftPoint& p : points) {
+    p.soft = bodies[p.a].IsDynamic() && bodies[p.b].IsDynamic() ? movable : fixed;
+  }
+}
+
+void WarmStartSoftPoints(const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
+  for (const SoftPoint& p : points) {
+    SoftBody& A = bodies[p.a];
+    SoftBody& B = bodies[p.b];
+    SoftPoint::Push(p.lambda_n, p.n, p.ia_n, p.ib_n, A, B);
+    SoftPoint::Push(p.lambda_t1, p.t1, p.ia_t1, p.ib_t1, A, B);
+    SoftPoint::Push(p.lambda_t2, p.t2, p.ia_t2, p.ib_t2, A, B);
+  }
+}
+
+SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, const SoftBody& A, const SoftBody& B) {
+  const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
+  const double s = p.n.dot(d) + p.adjusted_separation;
+  SoftRowTarget t;
+  if (s > 0.0) {
+    t.bias = s * pass.inv_h;  // speculative: may close the gap, not pass it
+  } else if (pass.use_bias) {
+    const Softness& soft = p.soft;
+    t.bias = std::max(soft.bias_rate * s, -pass.max_push_velocity);
+    t.mass_scale = soft.mass_scale;
+    t.impulse_scale = soft.impulse_scale;
+  }
+  return t;
+}
+
+void ApplySoftNormal(double total, SoftPoint& p, SoftBody& A, SoftBody& B) {
+  const double applied = total - p.lambda_n;
+  p.lambda_n = total;
+  p.max_push = std::max(p.max_push, applied);
+  SoftPoint::Push(applied, p.n, p.ia_n, p.ib_n, A, B);
+}
+
+void SolveSoftNormal(const SoftPass& pass, SoftPoint& p, SoftBody& A, SoftBody& B) {
+  const SoftRowTarget t = SoftNormalTarget(pass, p, A, B);
+  const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B);
+  const double increment = -p.mass_n * t.mass_scale * (vn + t.bias) - t.impulse_scale * p.lambda_n;
+  ApplySoftNormal(std::max(p.lambda_n + increment, 0.0), p, A, B);
+}
+
+void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B) {
+  double l1 = p.lambda_t1 - p.mass_t1 * p.VelocityAlong(p.t1, p.ra_t1, p.rb_t1, A, B);
+  double l2 = p.lambda_t2 - p.mass_t2 * p.VelocityAlong(p.t2, p.ra_t2, p.rb_t2, A, B);
+  const double limit = p.friction * p.lambda_n;
+  const double norm = std::sqrt(l1 * l1 + l2 * l2);
+  if (norm > limit) {
+    const double scale = norm > 0.0 ? limit / norm : 0.0;
+    l1 *= scale;
+    l2 *= scale;
+  }
+  SoftPoint::Push(l1 - p.lambda_t1, p.t1, p.ia_t1, p.ib_t1, A, B);
+  SoftPoint::Push(l2 - p.lambda_t2, p.t2, p.ia_t2, p.ib_t2, A, B);
+  p.lambda_t1 = l1;
+  p.lambda_t2 = l2;
+}
+
+void ApplySoftRestitution(double threshold, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
+  for (SoftPoint& p : points) {
+    if (p.restitution == 0.0 || p.impact_speed > -threshold || p.max_push <= 0.0) continue;
+    SoftBody& A = bodies[p.a];
+    SoftBody& B = bodies[p.b];
+    const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B);
+    const double increment = -p.mass_n * (vn + p.restitution * p.impact_speed);
+    const double total = std::max(p.lambda_n + increment, 0.0);
+    const double applied = total - p.lambda_n;
+    p.lambda_n = total;
+    p.total_n += applied;
+    SoftPoint::Push(applied, p.n, p.ia_n, p.ib_n, A, B);
+  }
+}
+
+void AccumulateSoftTotals(std::vector<SoftPoint>& points) {
+  for (SoftPoint& p : points) {
+    p.total_n += p.lambda_n;
+    p.total_t += p.lambda_t1 * p.t1 + p.lambda_t2 * p.t2;
+  }
+}
+
+}  // namespace contactsim

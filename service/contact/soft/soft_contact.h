@@ -1,0 +1,106 @@
+// Contact points of the soft step (soft_method.h) and the passes over them.
+//
+// Each point keeps its anchors r_A, r_B (contact point minus centre of mass,
+// world, at the step's start), its normal and contact-frame tangents
+// (PerpendicularBasis, so warm starts carry over), and the effective masses
+// 1 / K along n, t1, t2 (contact_row.h). Its separation during the step is
+// brought up to date from the bodies' motion since the step began:
+//   s = n . ((dp_B + dR_B r_B) - (dp_A + dR_A r_A)) + s_0 - n . (r_B - r_A),
+// exact for translation and first order in the turn, so the narrowphase runs
+// once per step (Catto, Solver2D "Soft Step", 2024).
+//
+// The normal row, with v_n the relative normal velocity at the anchors:
+//   s > 0 (apart):  speculative, v_n >= -s / h: a body may close the gap
+//                   within the sub-step but not pass it (rigid);
+//   s <= 0, bias:   a soft spring (softness.h), pushing out at most
+//                   max_push_velocity;
+//   s <= 0, relax:  rigid, v_n >= 0, no push (removes the spring's velocity,
+//                   so pushing out adds no energy).
+// Accumulated impulses are clamped at 0 (Catto 2005). Friction is Coulomb's
+// disk: both tangent impulses from the same relative velocity, their sum
+// projected onto |lambda_t| <= mu lambda_n. Restitution comes after the
+// sub-steps (Box2D v3): a point that pushed during the step and approached
+// faster than the threshold gets v_n = -e v_impact.
+#pragma once
+
+#include <vector>
+
+#include "service/collision/contact.h"
+#include "service/contact/soft/soft_bodies.h"
+#include "service/contact/soft/softness.h"
+
+namespace contactsim {
+
+struct SoftPoint {
+  int a = -1, b = -1;
+  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, anchors at the step's start
+  Vec3 n = Vec3::UnitZ(), t1 = Vec3::UnitX(), t2 = Vec3::UnitY();  // unit, world; n from A to B
+  // the rows' angular Jacobians r x d and responses I^-1 (r x d) for
+  // d = n, t1, t2, at the step's start (the solve keeps them for the step)
+  Vec3 ra_n, ra_t1, ra_t2, rb_n, rb_t1, rb_t2;
+  Vec3 ia_n, ia_t1, ia_t2, ib_n, ib_t1, ib_t2;
+  double adjusted_separation = 0.0;  // m: s_0 - n . (r_B - r_A)
+  double mass_n = 0.0, mass_t1 = 0.0, mass_t2 = 0.0;  // kg
+  double friction = 0.0, restitution = 0.0;
+  double impact_speed = 0.0;   // m/s, relative normal velocity at impact (< 0 approaching)
+  double lambda_n = 0.0, lambda_t1 = 0.0, lambda_t2 = 0.0;  // N s per sub-step, accumulated
+  double max_push = 0.0;       // N s, largest normal increment of the step
+  double total_n = 0.0;        // N s over the step
+  Vec3 total_t = Vec3::Zero(); // N s over the step, world
+  Softness soft;               // of this point's spring (SetSoftPointSprings)
+
+  // relative velocity of B against A at the anchors along n, t1, t2
+  double VelocityAlong(const Vec3& d, const Vec3& ja, const Vec3& jb, const SoftBody& A, const SoftBody& B) const {
+    return d.dot(B.v - A.v) + jb.dot(B.w) - ja.dot(A.w);
+  }
+  // +impulse * d on B at r_B, -impulse * d on A at r_A
+  static void Push(double impulse, const Vec3& d, const Vec3& ia, const Vec3& ib, SoftBody& A, SoftBody& B) {
+    A.v -= (A.inv_mass * impulse) * d;
+    A.w -= impulse * ia;
+    B.v += (B.inv_mass * impulse) * d;
+    B.w += impulse * ib;
+  }
+};
+
+// The points of `contacts` at the bodies' state at the step's start; `h`
+// is the whole step (the impact speed looks ahead over it).
+void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies, double h,
+                       std::vector<SoftPoint>* points);
+
+// Each point's spring for sub-steps of h: `hertz` between two movable
+// bodies, twice it against a static or kinematic one, which carries no
+// share of the motion (Box2D v3's static softness).
+void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,
+                         std::vector<SoftPoint>& points);
+
+// Applies each point's accumulated impulses (warm start of a sub-step).
+void WarmStartSoftPoints(const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+
+struct SoftPass {
+  double inv_h = 0.0;               // 1 / sub-step
+  bool use_bias = true;             // false: the relax pass
+  double max_push_velocity = 3.0;   // m/s
+};
+
+// What a normal row aims at this pass: J v >= -bias, with the softness's
+// mass and impulse scales (1 and 0 for a rigid row).
+struct SoftRowTarget {
+  double bias = 0.0;  // m/s
+  double mass_scale = 1.0;
+  double impulse_scale = 0.0;
+};
+SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, const SoftBody& A, const SoftBody& B);
+
+// One point's rows: the normal on its own, the friction disk; and setting
+// the accumulated normal impulse to `total` (>= 0).
+void SolveSoftNormal(const SoftPass& pass, SoftPoint& p, SoftBody& A, SoftBody& B);
+void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B);
+void ApplySoftNormal(double total, SoftPoint& p, SoftBody& A, SoftBody& B);
+
+// The restitution pass after the sub-steps.
+void ApplySoftRestitution(double threshold, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+
+// Adds each point's accumulated impulses to its step totals (end of a sub-step).
+void AccumulateSoftTotals(std::vector<SoftPoint>& points);
+
+}  // namespace contactsim

@@ -1,0 +1,109 @@
+#include "service/contact/soft/soft_method.h"
+
+#include <algorithm>
+
+#include "service/contact/detect_ahead.h"
+#include "service/physics/integrator.h"
+
+namespace contactsim {
+namespace {
+
+// Gauss-Seidel passes of the restitution rows: one pass gives a box landing
+// flat all its bounce at the first corner swept (it leaves spinning); the
+// passes share it between the corners that struck
+constexpr int kRestitutionPasses = 8;
+
+}  // namespace
+
+Status SoftMethod::SetParams(const ParamMap& params) {
+  return SoftParamTable().Parse(Name(), params, params_, &params_);
+}
+
+Status SoftMethod::LoadState(const std::string& bytes) {
+  if (warm_start_.Restore(bytes)) return Status::Ok();
+  return Status::InvalidArgument("soft method state: malformed warm-start impulses (" + std::to_string(bytes.size()) +
+                                 " bytes)");
+}
+
+void SoftMethod::Prepare(World& world) {
+  auto& bodies = world.bodies();
+  in_contact_.assign(bodies.size(), 0);
+  for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
+  LoadSoftBodies(world, in_contact_, &bodies_);
+  PrepareSoftPoints(contacts_, world, bodies_, world.dt, &points_);
+  BuildSoftManifolds(points_, &manifolds_);
+  if (!params_.warm_start) return;
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    if (const std::array<double, 3>* cached = warm_start_.Find(contacts_[k])) {
+      points_[k].lambda_n = (*cached)[0];
+      points_[k].lambda_t1 = (*cached)[1];
+      points_[k].lambda_t2 = (*cached)[2];
+    }
+  }
+}
+
+void SoftMethod::RunSubsteps(World& world) {
+  const double h = world.dt / params_.substeps;
+  // the spring must be resolved by the sub-step: at most a quarter of its rate
+  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
+  SetSoftPointSprings(hertz, params_.damping_ratio, h, world, points_);
+  SoftPass solve;
+  solve.inv_h = 1.0 / h;
+  solve.max_push_velocity = params_.max_push_velocity;
+  SoftPass relax = solve;
+  relax.use_bias = false;
+  for (int sub = 0; sub < params_.substeps; ++sub) {
+    IntegrateSoftVelocities(world, h, bodies_);
+    WarmStartSoftPoints(points_, bodies_);
+    SolveSoftManifolds(solve, manifolds_, points_, bodies_);
+    IntegrateSoftPositions(h, world, bodies_);
+    for (int it = 0; it < params_.relax_iterations; ++it) SolveSoftManifolds(relax, manifolds_, points_, bodies_);
+    AccumulateSoftTotals(points_);
+  }
+  for (int it = 0; it < kRestitutionPasses; ++it) ApplySoftRestitution(params_.restitution_threshold, points_, bodies_);
+}
+
+StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  world.AccumulateForces();
+  DetectAhead(world, detector, params_.margin, world.dt, &contacts_);
+  Prepare(world);
+  auto& bodies = world.bodies();
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
+  }
+  RunSubsteps(world);
+  StoreSoftBodies(bodies_, world);
+
+  impulses_.resize(points_.size());
+  for (size_t k = 0; k < points_.size(); ++k) {
+    impulses_[k] = {points_[k].lambda_n, points_[k].lambda_t1, points_[k].lambda_t2};
+  }
+  warm_start_.StoreFrame(contacts_, impulses_);
+  StepStats stats = Report(contacts_out);
+  world.FinishStep();
+  return stats;
+}
+
+StepStats SoftMethod::Report(ContactSet* contacts_out) const {
+  StepStats stats;
+  contacts_out->clear();
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const SoftPoint& p = points_[k];
+    const SoftBody& A = bodies_[p.a];
+    const SoftBody& B = bodies_[p.b];
+    Contact c = contacts_[k];
+    // the depth at the step's end, from the anchors (soft_contact.h)
+    const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
+    c.depth = -(p.n.dot(d) + p.adjusted_separation);
+    c.normal_value = p.total_n;
+    c.tangent_value = p.total_t;
+    stats.max_penetration = std::max(stats.max_penetration, c.depth);
+    contacts_out->push_back(c);
+  }
+  stats.contacts = static_cast<int>(contacts_out->size());
+  stats.iterations = params_.substeps * (1 + params_.relax_iterations);
+  stats.substeps = params_.substeps;
+  return stats;
+}
+
+}  // namespace contactsim

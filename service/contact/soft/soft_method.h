@@ -1,0 +1,77 @@
+// The soft-step method: sequential impulses on soft contact constraints in
+// sub-steps with relaxation and restitution after the solve, the solver of
+// Box2D v3 and Box3D (Catto, Solver2D "Soft Step", 2024).
+//
+// One step of dt:
+//  1. detect once, speculatively (detect_ahead.h): each pair's contacts
+//     within `margin` plus how far it can close in dt;
+//  2. bodies without a contact fly the whole step ballistically
+//     (AdvanceBallistic, exact under constant force); the others take
+//     `substeps` sub-steps of h = dt / substeps, each
+//       a. v += h F / m, w += h I^-1 tau;
+//       b. warm start: apply the accumulated impulses;
+//       c. solve: every contact point once, normal then Coulomb-disk friction,
+//          a penetrating point as a soft spring of contact_hertz and
+//          damping_ratio (softness.h: the stiffness scales with the effective
+//          mass, so mass ratios do not make it softer or stiffer) that pushes
+//          out no faster than max_push_velocity; a separated point
+//          speculatively (it may close its gap within h but not pass it);
+//       d. positions from the velocities; each point's separation follows
+//          from its anchors (soft_contact.h), with no narrowphase;
+//       e. relax: `relax_iterations` passes with rigid, unbiased rows, which
+//          take back the velocity the spring gave, so pushing out adds no
+//          kinetic energy;
+//  3. restitution: points that pushed and met faster than
+//     restitution_threshold get v_n = -e v_impact (soft_contact.h);
+//  4. the impulses are kept per contact feature for the next step's warm
+//     start (warm_start_cache.h).
+// Small sub-steps with one iteration each converge better than many
+// iterations of one step (Macklin et al. 2019, "Small steps in physics
+// simulation"), so stacks stand at four passes a step.
+//
+// Contacts report the impulse of the whole step (ValueKind kImpulse): the sum
+// of each sub-step's accumulated impulse and the restitution impulse.
+// Joints are not simulated (the contract refuses them).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "service/contact/contact_method.h"
+#include "service/contact/soft/soft_bodies.h"
+#include "service/contact/soft/soft_contact.h"
+#include "service/contact/soft/soft_manifold.h"
+#include "service/contact/soft/soft_params.h"
+#include "service/contact/warm_start_cache.h"
+
+namespace contactsim {
+
+class SoftMethod : public ContactMethod {
+ public:
+  const char* Name() const override { return "soft"; }
+  ContactValueKind ValueKind() const override { return ContactValueKind::kImpulse; }
+  Status SetParams(const ParamMap& params) override;
+  ParamMap Params() const override { return SoftParamTable().ToMap(params_); }
+  std::vector<ParamDoc> ParamDocs() const override { return SoftParamTable().Docs(); }
+  StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
+  void ResetCaches() override { warm_start_.Clear(); }
+  std::string SaveState() const override { return warm_start_.Save(); }
+  Status LoadState(const std::string& bytes) override;
+  const SoftParams& params() const { return params_; }
+
+ private:
+  void Prepare(World& world);
+  void RunSubsteps(World& world);
+  StepStats Report(ContactSet* contacts) const;
+
+  SoftParams params_;
+  ContactSet contacts_;
+  std::vector<char> in_contact_;
+  std::vector<SoftBody> bodies_;
+  std::vector<SoftPoint> points_;
+  std::vector<SoftManifold> manifolds_;
+  std::vector<std::array<double, 3>> impulses_;
+  WarmStartCache warm_start_;
+};
+
+}  // namespace contactsim

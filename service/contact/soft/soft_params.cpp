@@ -1,0 +1,25 @@
+#include "service/contact/soft/soft_params.h"
+
+namespace contactsim {
+
+const ParamTable<SoftParams>& SoftParamTable() {
+  using P = SoftParams;
+  static const ParamTable<P> table = {
+      IntParam("substeps", &P::substeps, 1, 64, "", "sub-steps per step, each with one solve and relax pass"),
+      IntParam("relax_iterations", &P::relax_iterations, 0, 64, "",
+               "passes without the soft push-out after each sub-step's positions move"),
+      DoubleParam("contact_hertz", &P::contact_hertz, 0.1, 1e4, "Hz",
+                  "contact spring frequency, capped at a quarter of the sub-step rate (twice it against static "
+                  "bodies)"),
+      DoubleParam("damping_ratio", &P::damping_ratio, 0.0, 1e3, "", "contact spring damping ratio"),
+      DoubleParam("max_push_velocity", &P::max_push_velocity, 0.0, 100.0, "m/s",
+                  "fastest the soft spring pushes overlapping bodies apart"),
+      DoubleParam("restitution_threshold", &P::restitution_threshold, 0.0, 100.0, "m/s",
+                  "approach speed above which restitution applies"),
+      DoubleParam("margin", &P::margin, 0.0, 1.0, "m", "speculative distance beyond each pair's closing motion"),
+      BoolParam("warm_start", &P::warm_start, "start each step from the last step's impulses"),
+  };
+  return table;
+}
+
+}  // namespace contactsim

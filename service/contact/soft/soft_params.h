@@ -1,0 +1,23 @@
+// Parameters of the soft-step method (soft_method.h): the struct holds the
+// defaults; each one's range, unit and meaning are declared once, in
+// SoftParamTable() (soft_params.cpp; param_table.h).
+#pragma once
+
+#include "service/contact/param_table.h"
+
+namespace contactsim {
+
+struct SoftParams {
+  int substeps = 4;                     // Box2D v3 and Box3D's default
+  int relax_iterations = 1;             // per sub-step, after the positions move
+  double contact_hertz = 120.0;          // Hz, capped at a quarter of the sub-step rate
+  double damping_ratio = 10.0;          // contact springs are heavily over-damped
+  double max_push_velocity = 3.0;       // m/s, fastest a soft contact pushes bodies apart
+  double restitution_threshold = 1.0;   // m/s
+  double margin = 0.01;                 // m, speculative distance beyond each pair's closing motion
+  bool warm_start = true;
+};
+
+const ParamTable<SoftParams>& SoftParamTable();
+
+}  // namespace contactsim
