@@ -41,7 +41,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"lcp", {{"solver", "pgs"}}, 0x3afbeb13b7ac60c4ull},
       {"lcp", {{"solver", "lemke"}}, 0x2748304f6a060145ull},
       {"barrier", {}, 0x39a313d8ab9fedfaull},
-      {"soft", {}, 0x8487d4d87e29487aull},
+      {"soft", {}, 0x8513ab289ff3a046ull},
   };
   return pinned;
 }

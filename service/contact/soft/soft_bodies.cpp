@@ -14,6 +14,9 @@ void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std
     s.inv_inertia = b.IsDynamic() ? b.InvInertiaWorld() : Mat3::Zero();
     s.x0 = b.x;
     s.q0 = b.q;
+    s.R0t = b.q.toRotationMatrix().transpose();
+    const Mat3& I = b.inertia_body;
+    s.isotropic = I.isDiagonal() && I(0, 0) == I(1, 1) && I(1, 1) == I(2, 2);
     s.dp.setZero();
     s.dR.setIdentity();
     s.substepped = substepped[i] != 0 && b.motion != MotionType::kStatic;
@@ -36,15 +39,19 @@ void IntegrateSoftPositions(double h, World& world, std::vector<SoftBody>& bodie
     SoftBody& s = bodies[i];
     if (!s.substepped) continue;
     RigidBody& b = dst[i];
+    const bool hold_momentum = s.inv_mass != 0.0 && !s.isotropic;
     // L = I_old w, held across the turn; then w = I_new^-1 L
-    const Mat3 R_old = b.q.toRotationMatrix();
-    const Vec3 L = R_old * (b.inertia_body * (R_old.transpose() * s.w));
+    Vec3 L = Vec3::Zero();
+    if (hold_momentum) {
+      const Mat3 R_old = b.q.toRotationMatrix();
+      L = R_old * (b.inertia_body * (R_old.transpose() * s.w));
+    }
     b.x += h * s.v;
     b.q = (QuatFromRotationVector(h * s.w) * b.q).normalized();
     const Mat3 R = b.q.toRotationMatrix();
     s.dp = b.x - s.x0;
-    s.dR = R * s.q0.toRotationMatrix().transpose();
-    if (s.inv_mass == 0.0) continue;
+    s.dR = R * s.R0t;
+    if (!hold_momentum) continue;
     s.inv_inertia = R * b.inv_inertia_body * R.transpose();
     s.w = s.inv_inertia * L;
   }

@@ -23,6 +23,8 @@ struct SoftBody {
   Mat3 inv_inertia = Mat3::Zero();   // world, at the current orientation
   Vec3 x0 = Vec3::Zero();            // position at the step's start
   Quat q0 = Quat::Identity();        // orientation at the step's start
+  Mat3 R0t = Mat3::Identity();       // R(q0)^T
+  bool isotropic = false;            // I = c 1: turning changes neither I nor w
   Vec3 dp = Vec3::Zero();            // x - x0
   Mat3 dR = Mat3::Identity();        // R(q) R(q0)^T, the turn since the step's start
   bool substepped = false;

@@ -82,19 +82,21 @@ void WarmStartSoftPoints(const std::vector<SoftPoint>& points, std::vector<SoftB
   }
 }
 
-SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, const SoftBody& A, const SoftBody& B) {
-  const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
-  const double s = p.n.dot(d) + p.adjusted_separation;
+SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, double s) {
   SoftRowTarget t;
   if (s > 0.0) {
     t.bias = s * pass.inv_h;  // speculative: may close the gap, not pass it
   } else if (pass.use_bias) {
-    const Softness& soft = p.soft;
-    t.bias = std::max(soft.bias_rate * s, -pass.max_push_velocity);
-    t.mass_scale = soft.mass_scale;
-    t.impulse_scale = soft.impulse_scale;
+    t.bias = std::max(p.soft.bias_rate * s, -pass.max_push_velocity);
+    t.mass_scale = p.soft.mass_scale;
+    t.impulse_scale = p.soft.impulse_scale;
   }
   return t;
+}
+
+double SoftSeparation(const SoftPoint& p, const SoftBody& A, const SoftBody& B) {
+  const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
+  return p.n.dot(d) + p.adjusted_separation;
 }
 
 void ApplySoftNormal(double total, SoftPoint& p, SoftBody& A, SoftBody& B) {
@@ -105,26 +107,32 @@ void ApplySoftNormal(double total, SoftPoint& p, SoftBody& A, SoftBody& B) {
 }
 
 void SolveSoftNormal(const SoftPass& pass, SoftPoint& p, SoftBody& A, SoftBody& B) {
-  const SoftRowTarget t = SoftNormalTarget(pass, p, A, B);
+  const SoftRowTarget t = SoftNormalTarget(pass, p, SoftSeparation(p, A, B));
   const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B);
   const double increment = -p.mass_n * t.mass_scale * (vn + t.bias) - t.impulse_scale * p.lambda_n;
   ApplySoftNormal(std::max(p.lambda_n + increment, 0.0), p, A, B);
 }
 
 void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B) {
-  double l1 = p.lambda_t1 - p.mass_t1 * p.VelocityAlong(p.t1, p.ra_t1, p.rb_t1, A, B);
-  double l2 = p.lambda_t2 - p.mass_t2 * p.VelocityAlong(p.t2, p.ra_t2, p.rb_t2, A, B);
+  // both tangents from one relative velocity, one update of each body
+  const Vec3 dv = B.v - A.v;
+  double l1 = p.lambda_t1 - p.mass_t1 * (p.t1.dot(dv) + p.rb_t1.dot(B.w) - p.ra_t1.dot(A.w));
+  double l2 = p.lambda_t2 - p.mass_t2 * (p.t2.dot(dv) + p.rb_t2.dot(B.w) - p.ra_t2.dot(A.w));
   const double limit = p.friction * p.lambda_n;
-  const double norm = std::sqrt(l1 * l1 + l2 * l2);
-  if (norm > limit) {
-    const double scale = norm > 0.0 ? limit / norm : 0.0;
+  const double squared = l1 * l1 + l2 * l2;
+  if (squared > limit * limit) {
+    const double scale = squared > 0.0 ? limit / std::sqrt(squared) : 0.0;
     l1 *= scale;
     l2 *= scale;
   }
-  SoftPoint::Push(l1 - p.lambda_t1, p.t1, p.ia_t1, p.ib_t1, A, B);
-  SoftPoint::Push(l2 - p.lambda_t2, p.t2, p.ia_t2, p.ib_t2, A, B);
+  const double d1 = l1 - p.lambda_t1, d2 = l2 - p.lambda_t2;
   p.lambda_t1 = l1;
   p.lambda_t2 = l2;
+  const Vec3 J = d1 * p.t1 + d2 * p.t2;
+  A.v -= A.inv_mass * J;
+  A.w -= d1 * p.ia_t1 + d2 * p.ia_t2;
+  B.v += B.inv_mass * J;
+  B.w += d1 * p.ib_t1 + d2 * p.ib_t2;
 }
 
 void ApplySoftRestitution(double threshold, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {

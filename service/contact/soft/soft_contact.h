@@ -89,7 +89,10 @@ struct SoftRowTarget {
   double mass_scale = 1.0;
   double impulse_scale = 0.0;
 };
-SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, const SoftBody& A, const SoftBody& B);
+// at separation s (m)
+SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, double s);
+// The point's separation now, from its anchors and the bodies' motion.
+double SoftSeparation(const SoftPoint& p, const SoftBody& A, const SoftBody& B);
 
 // One point's rows: the normal on its own, the friction disk; and setting
 // the accumulated normal impulse to `total` (>= 0).

@@ -1,6 +1,7 @@
 #include "service/contact/soft/soft_manifold.h"
 
-#include <Eigen/LU>
+#include <Eigen/Cholesky>
+#include <algorithm>
 
 namespace contactsim {
 namespace {
@@ -28,10 +29,13 @@ bool InvertBlock(const std::vector<SoftPoint>& points, SoftManifold* m) {
       if (i != j) k(i, j) += k_lin;
     }
   }
-  const Eigen::FullPivLU<Eigen::Matrix4d> lu(k);
-  // rank-deficient (four points on a line, a point repeated): no block
-  if (lu.rank() < kMaxBlock || lu.rcond() < 1e-10) return false;
-  m->inv_k = lu.inverse();
+  // K is symmetric positive semi-definite; a singular or badly conditioned
+  // one (four points on a line, a point repeated) gets no block
+  const Eigen::LLT<Eigen::Matrix4d> llt(k);
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::Vector4d d = llt.matrixLLT().diagonal();
+  if (d.minCoeff() <= 1e-5 * d.maxCoeff()) return false;
+  m->inv_k = llt.solve(Eigen::Matrix4d::Identity());
   return true;
 }
 
@@ -39,24 +43,46 @@ void SolveBlockNormals(const SoftPass& pass, const SoftManifold& m, std::vector<
                        std::vector<SoftBody>& bodies) {
   SoftBody& A = bodies[points[m.first].a];
   SoftBody& B = bodies[points[m.first].b];
+  // the separations of points sharing n: n . dR r = (dR^T n) . r, so each
+  // body's turn is applied to n once per block
+  const Vec3& n = points[m.first].n;
+  const double shift = n.dot(B.dp - A.dp);
+  const Vec3 na = A.dR.transpose() * n, nb = B.dR.transpose() * n;
+  const Vec3 dv = B.v - A.v;
   Eigen::Vector4d target = Eigen::Vector4d::Zero();
   SoftRowTarget rows[kMaxBlock];
   for (int i = 0; i < m.count; ++i) {
     const SoftPoint& p = points[m.first + i];
-    rows[i] = SoftNormalTarget(pass, p, A, B);
-    target[i] = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B) + rows[i].bias;
+    const double s = shift + nb.dot(p.rb) - na.dot(p.ra) + p.adjusted_separation;
+    rows[i] = SoftNormalTarget(pass, p, s);
+    target[i] = n.dot(dv) + p.rb_n.dot(B.w) - p.ra_n.dot(A.w) + rows[i].bias;
   }
-  const Eigen::Vector4d dv = m.inv_k * target;
+  const Eigen::Vector4d step = m.inv_k * target;
   double totals[kMaxBlock];
   for (int i = 0; i < m.count; ++i) {
     const SoftPoint& p = points[m.first + i];
-    totals[i] = p.lambda_n - rows[i].mass_scale * dv[i] - rows[i].impulse_scale * p.lambda_n;
+    totals[i] = p.lambda_n - rows[i].mass_scale * step[i] - rows[i].impulse_scale * p.lambda_n;
     if (totals[i] < 0.0) {
       for (int j = 0; j < m.count; ++j) SolveSoftNormal(pass, points[m.first + j], A, B);
       return;
     }
   }
-  for (int i = 0; i < m.count; ++i) ApplySoftNormal(totals[i], points[m.first + i], A, B);
+  // one update of each body for the whole block (the points share n)
+  double sum = 0.0;
+  Vec3 wa = Vec3::Zero(), wb = Vec3::Zero();
+  for (int i = 0; i < m.count; ++i) {
+    SoftPoint& p = points[m.first + i];
+    const double applied = totals[i] - p.lambda_n;
+    p.lambda_n = totals[i];
+    p.max_push = std::max(p.max_push, applied);
+    sum += applied;
+    wa += applied * p.ia_n;
+    wb += applied * p.ib_n;
+  }
+  A.v -= (A.inv_mass * sum) * n;
+  A.w -= wa;
+  B.v += (B.inv_mass * sum) * n;
+  B.w += wb;
 }
 
 }  // namespace
