@@ -49,8 +49,7 @@ const std::vector<ContactMethodEntry>& ContactMethodTable() {
       // (barrier_solver.cpp, Setup), so its motion reaches neither the CCD
       // nor the friction: a rising platform passes through what rests on it
       {"barrier", Make<BarrierMethod>, {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)"}},
-      // soft: joints are not in its sub-step loop yet (soft_method.h)
-      {"soft", Make<SoftMethod>, {false, true, true, "coulomb disk"}},
+      {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk"}},
   };
   return table;
 }

@@ -115,7 +115,7 @@ TEST_F(SimServerContractTest, BarrierRefusesJoints) {
   reply_t r = SetMethod("barrier");
   EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
   EXPECT_EQ(r.message, "contact method barrier does not simulate joints; the world holds 1 joint(s): remove them "
-                       "or choose impulse, penalty, xpbd or lcp");
+                       "or choose impulse, penalty, xpbd, lcp or soft");
   joint_cmd_t remove{};
   remove.client_id = "test";
   remove.op = joint_cmd_t::REMOVE;
@@ -125,7 +125,7 @@ TEST_F(SimServerContractTest, BarrierRefusesJoints) {
   r = Send(Joint(joint_cmd_t::DISTANCE, bob, 0, Vec3(0, 0, 2)));
   EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
   EXPECT_EQ(r.message,
-            "contact method barrier does not simulate joints: choose impulse, penalty, xpbd or lcp before adding one");
+            "contact method barrier does not simulate joints: choose impulse, penalty, xpbd, lcp or soft before adding one");
   EXPECT_TRUE(server_.world().joints().empty());
 }
 

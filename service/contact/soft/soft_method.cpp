@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/contact/detect_ahead.h"
+#include "service/contact/joints/joint_solver.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
@@ -29,6 +30,7 @@ void SoftMethod::Prepare(World& world) {
   auto& bodies = world.bodies();
   in_contact_.assign(bodies.size(), 0);
   for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
+  SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, &bodies_);
   PrepareSoftPoints(contacts_, world, bodies_, world.dt, &points_);
   BuildSoftManifolds(points_, &manifolds_);
@@ -56,8 +58,10 @@ void SoftMethod::RunSubsteps(World& world) {
     IntegrateSoftVelocities(world, h, bodies_);
     WarmStartSoftPoints(points_, bodies_);
     SolveSoftManifolds(solve, manifolds_, points_, bodies_);
+    joints_.SolveVelocities(world, h, bodies_);
     IntegrateSoftPositions(h, world, bodies_);
     for (int it = 0; it < params_.relax_iterations; ++it) SolveSoftManifolds(relax, manifolds_, points_, bodies_);
+    joints_.SolveVelocities(world, h, bodies_);
     AccumulateSoftTotals(points_);
   }
   for (int it = 0; it < kRestitutionPasses; ++it) ApplySoftRestitution(params_.restitution_threshold, points_, bodies_);
@@ -73,6 +77,7 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   }
   RunSubsteps(world);
   StoreSoftBodies(bodies_, world);
+  if (!world.joints().empty()) ProjectJointPositions(world);
 
   impulses_.resize(points_.size());
   for (size_t k = 0; k < points_.size(); ++k) {

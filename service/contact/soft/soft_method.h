@@ -31,7 +31,9 @@
 //
 // Contacts report the impulse of the whole step (ValueKind kImpulse): the sum
 // of each sub-step's accumulated impulse and the restitution impulse.
-// Joints are not simulated (the contract refuses them).
+// Joints: the exact velocity solve of joint_solver.h after each contact
+// pass, the positions projected onto the joints after the step
+// (soft_joints.h); a body held only by a joint moves sub-step by sub-step.
 #pragma once
 
 #include <array>
@@ -40,6 +42,7 @@
 #include "service/contact/contact_method.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/soft_contact.h"
+#include "service/contact/soft/soft_joints.h"
 #include "service/contact/soft/soft_manifold.h"
 #include "service/contact/soft/soft_params.h"
 #include "service/contact/warm_start_cache.h"
@@ -70,6 +73,7 @@ class SoftMethod : public ContactMethod {
   std::vector<SoftBody> bodies_;
   std::vector<SoftPoint> points_;
   std::vector<SoftManifold> manifolds_;
+  SoftJoints joints_;
   std::vector<std::array<double, 3>> impulses_;
   WarmStartCache warm_start_;
 };

@@ -1,0 +1,32 @@
+// Joints in the soft step (soft_method.h): after each contact pass of a
+// sub-step, the joints' exact velocity solve of contact/joints/joint_solver.h
+// (a tree solve, linear in the links, so a heavy body on a light chain is
+// held at once rather than over the iterations a sweep would need); after
+// the step, the joints' drift is projected away (post-stabilisation, as
+// under impulse). Contacts and joints thus alternate as two blocks of a
+// Gauss-Seidel iteration, twice a sub-step.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/soft/soft_bodies.h"
+#include "service/contact/solver_body.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+class SoftJoints {
+ public:
+  // Marks the dynamic bodies of every joint: they move sub-step by
+  // sub-step even without a contact.
+  static void MarkJointed(const World& world, std::vector<char>* substepped);
+
+  // The velocity solve of the world's joints over a sub-step h on the
+  // bodies' v and w (the world holds the sub-step's poses).
+  void SolveVelocities(const World& world, double h, std::vector<SoftBody>& bodies);
+
+ private:
+  std::vector<SolverBody> solver_;
+};
+
+}  // namespace contactsim
