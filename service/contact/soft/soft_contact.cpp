@@ -34,17 +34,19 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
   points->resize(contacts.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
-    const RigidBody& A = world.bodies()[c.a];
-    const RigidBody& B = world.bodies()[c.b];
     const SoftBody& sa = bodies[c.a];
     const SoftBody& sb = bodies[c.b];
+    const ContactRow basis = MakeContactBasis(c, world);
     SoftPoint p;
     p.a = c.a;
     p.b = c.b;
-    p.ra = c.point - A.x;
-    p.rb = c.point - B.x;
-    p.n = c.normal;
-    PerpendicularBasis(c.normal, &p.t1, &p.t2);
+    p.ra = basis.ra;
+    p.rb = basis.rb;
+    p.n = basis.n;
+    p.t1 = basis.t1;
+    p.t2 = basis.t2;
+    p.friction = basis.friction;
+    p.restitution = basis.restitution;
     p.ra_n = p.ra.cross(p.n), p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
     p.rb_n = p.rb.cross(p.n), p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
     p.ia_n = sa.inv_inertia * p.ra_n, p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
@@ -54,8 +56,6 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
     p.mass_t1 = MassOf(k_lin + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1));
     p.mass_t2 = MassOf(k_lin + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2));
     p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
-    p.friction = CombineFriction(A.material, B.material);
-    p.restitution = CombineRestitution(A.material, B.material);
     const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
     p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
     (*points)[k] = p;
