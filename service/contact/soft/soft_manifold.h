@@ -1,15 +1,18 @@
-// The contact points of one body pair with one normal (a face on a face
-// gives four) solved as a block: the normal rows of a manifold are coupled
-// through the bodies' rotations, so one Gauss-Seidel sweep over them leaves
-// the first point swept with more than its share, which turns the bodies (a
-// box landing flat leaves spinning, an aligned stack walks sideways). The
-// block solves them together (Catto's block solver for two points, Box2D;
-// here up to four):
+// The contact points of one body pair with one normal solved as a block:
+// the normal rows of a manifold are coupled through the bodies' rotations,
+// so one Gauss-Seidel sweep over them gives the first point swept more than
+// its share. The block solves them together (Catto's block solver for two
+// points, Box2D):
 //   K = J M^-1 J^T of the manifold's normal rows (fixed for the step, as the
 //       anchors are), dv = K^-1 (v_n + bias),
 //   lambda_i += -mass_scale_i dv_i - impulse_scale_i lambda_i,
 // accepted when every lambda_i stays >= 0; otherwise (a point lifting off)
-// the points are swept one by one as before. Friction stays per point.
+// the points are swept one by one. Friction stays per point.
+// Only a well-conditioned K gets a block: two points (an edge, a lying
+// capsule) or three. Four points of a face act on three velocities (v_n and
+// two tilts), so their K is singular and they are swept one by one; a
+// regularised four-point block was measured and not kept (docs/physics.md,
+// "soft").
 #pragma once
 
 #include <Eigen/Core>
