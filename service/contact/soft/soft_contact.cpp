@@ -153,7 +153,8 @@ void ApplySoftRestitution(double threshold, std::vector<SoftPoint>& points, std:
 void AccumulateSoftTotals(std::vector<SoftPoint>& points) {
   for (SoftPoint& p : points) {
     p.total_n += p.lambda_n;
-    p.total_t += p.lambda_t1 * p.t1 + p.lambda_t2 * p.t2;
+    p.total_t1 += p.lambda_t1;
+    p.total_t2 += p.lambda_t2;
   }
 }
 

@@ -46,7 +46,7 @@ struct SoftPoint {
   double lambda_n = 0.0, lambda_t1 = 0.0, lambda_t2 = 0.0;  // N s per sub-step, accumulated
   double max_push = 0.0;       // N s, largest normal increment of the step
   double total_n = 0.0;        // N s over the step
-  Vec3 total_t = Vec3::Zero(); // N s over the step, world
+  double total_t1 = 0.0, total_t2 = 0.0;  // N s over the step along t1, t2
   Softness soft;               // of this point's spring (SetSoftPointSprings)
 
   // relative velocity of B against A at the anchors along n, t1, t2

@@ -101,7 +101,7 @@ StepStats SoftMethod::Report(ContactSet* contacts_out) const {
     const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
     c.depth = -(p.n.dot(d) + p.adjusted_separation);
     c.normal_value = p.total_n;
-    c.tangent_value = p.total_t;
+    c.tangent_value = p.total_t1 * p.t1 + p.total_t2 * p.t2;
     stats.max_penetration = std::max(stats.max_penetration, c.depth);
     contacts_out->push_back(c);
   }
