@@ -57,9 +57,24 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
 }
 
 const std::array<double, 3>* WarmStartCache::Find(const Contact& c) const {
-  const Entry probe{Key{c.id_a, c.id_b, c.feature_id}, {}, 0};
-  const auto it = std::lower_bound(impulses_.begin(), impulses_.end(), probe);
-  return it != impulses_.end() && it->key == probe.key ? &it->lambda : nullptr;
+  // contacts come pair by pair: find where the pair's entries start once
+  // (bisection), then scan its few entries (sorted by feature, then order,
+  // so the first match is the one the bisection would find)
+  const bool same_pair = cursor_ < impulses_.size() && std::get<0>(impulses_[cursor_].key) == c.id_a &&
+                         std::get<1>(impulses_[cursor_].key) == c.id_b &&
+                         (cursor_ == 0 || std::get<0>(impulses_[cursor_ - 1].key) != c.id_a ||
+                          std::get<1>(impulses_[cursor_ - 1].key) != c.id_b);
+  if (!same_pair) {
+    const Entry probe{Key{c.id_a, c.id_b, 0}, {}, 0};
+    cursor_ = static_cast<size_t>(std::lower_bound(impulses_.begin(), impulses_.end(), probe) - impulses_.begin());
+  }
+  const Key key{c.id_a, c.id_b, c.feature_id};
+  for (size_t k = cursor_; k < impulses_.size(); ++k) {
+    const Key& at = impulses_[k].key;
+    if (std::get<0>(at) != c.id_a || std::get<1>(at) != c.id_b || std::get<2>(at) > c.feature_id) break;
+    if (at == key) return &impulses_[k].lambda;
+  }
+  return nullptr;
 }
 
 void WarmStartCache::StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses) {

@@ -64,6 +64,7 @@ class WarmStartCache {
     bool operator<(const Entry& o) const { return std::tie(key, order) < std::tie(o.key, o.order); }
   };
   std::vector<Entry> impulses_;
+  mutable size_t cursor_ = 0;  // where the pair Find looked up last starts (a search hint only)
   // (joint id, row within the block) -> lambda, sorted by key
   using JointKey = std::pair<JointId, int32_t>;
   std::vector<std::pair<JointKey, double>> joint_impulses_;
