@@ -64,7 +64,10 @@ class PenaltyMethod : public ContactMethod {
   const FrictionAnchors& anchors() const { return anchors_; }
 
  private:
-  void ExplicitSubstep(World& world, double h);
+  // one detection, then the explicit sub-steps (penalty_explicit.h)
+  void ExplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats);
+  // `substeps` detections, each with the linearly implicit step (penalty_implicit.h)
+  void ImplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats);
   void ImplicitSubstep(World& world, double h, StepStats* stats);
   // advances the anchors of the force-carrying points by the slip
   void KeepAnchors(const World& world, const ContactSet& contacts, double h);

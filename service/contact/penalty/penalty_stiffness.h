@@ -1,0 +1,79 @@
+// How stiff the penalty method's springs are, and how short its explicit
+// sub-steps must be for them.
+//
+// Stiffness from a contact time (contact_time = T > 0, linear law): a pair's
+// normal spring is k = m_s (pi / T)^2, so that a body of mass m_s on a fixed
+// plane rebounds after half a period, T, whatever its mass, and the damping
+// kd = 2 zeta(e) sqrt(k m_eff) (penalty_force.h) gives restitution e at
+// every mass (MuJoCo's solref time constant sets its soft constraints the
+// same way, from the effective mass: Todorov, "Convex and analytically-
+// invertible dynamics with contacts and constraints", ICRA 2014). m_s is the
+// heaviest dynamic body of the pair's contact island (bodies joined through
+// dynamic-dynamic contacts), not the pair's own mass: a 0.02 kg box under a
+// 20 kg box would otherwise sink m g T^2 / (0.02 kg pi^2) = 0.3 m into the
+// ground at T = 4 ms. An island of equal bodies rests m g / k = g T^2 / pi^2
+// deep per layer and body it carries (16 um at T = 4 ms). The tangential
+// spring is as stiff as the normal one.
+//
+// The explicit step's sub-step (penalty_explicit.h): symplectic Euler on
+// u' = M^-1 (f - K x) is stable while omega_max h < 2, omega_max^2 the
+// largest eigenvalue of M^-1 K. With rows i of stiffness k_i and per-body
+// inverse masses along them, K_ib = 1/m_b + (r x d) . I_b^-1 (r x d),
+// Gershgorin's theorem with |J_i M^-1 J_j^T| <= sqrt(K_ib K_jb) for rows
+// sharing body b bounds it by
+//   omega_max^2 <= max_i sum_{b of i} sqrt(K_ib) sum_{j on b} sqrt(K_jb) k_j
+// (Golub and Van Loan, "Matrix Computations", 7.2.1), evaluated on the
+// rows built at the step's start.
+#pragma once
+
+#include <vector>
+
+#include "service/collision/contact.h"
+#include "service/contact/penalty/penalty_params.h"
+#include "service/contact/penalty/penalty_row.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+// For each body index, the mass (kg) of the heaviest dynamic body of its
+// contact island (0 for static and kinematic bodies).
+std::vector<double> IslandHeaviestMass(const World& world, const ContactSet& contacts);
+
+// The pair stiffness (N/m) of a contact time: m_s (pi / T)^2.
+double StiffnessFromContactTime(double heaviest_mass, double contact_time);
+
+// sqrt(K_ib): the square root of body `index`'s share of the inverse
+// effective mass of a point at lever arm r along unit d (0 unless dynamic).
+double SqrtBodyInverseMass(const RigidBody& body, const Vec3& r, const Vec3& d);
+
+// The highest contact frequencies (rad/s) of the engaged rows: `point` the
+// largest sqrt(kp / m_eff) of a pair's normal spring against its effective
+// mass, the frequency its damping and restitution are set for (what a
+// bounce must resolve), `bound` the Gershgorin bound
+// of M^-1 K over every normal and tangential spring together (what the
+// step's stability needs; several times `point` for a body held by many).
+//
+// `estimate` is omega_max itself, from power iteration on M^-1 J^T K J
+// (normal and both tangent directions of every row), the Rayleigh quotient
+// after kPowerIterations products, never above `bound`: the quotient
+// approaches the largest eigenvalue from below, and the stability margin
+// (penalty_explicit.h) covers the remainder. The start vector is fixed, so
+// the estimate is deterministic.
+constexpr int kPowerIterations = 30;
+struct ContactOmega {
+  double point = 0.0;
+  double bound = 0.0;
+  double estimate = 0.0;
+};
+ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows);
+
+// Gap (m) within which contacts are detected for an explicit step of dt:
+// margin plus the largest distance two bodies can close in dt, twice the
+// largest speed of a body's points (|v| + |w| r, r its bounding radius) plus
+// gravity's |g| dt, so that no contact begins inside the step unseen.
+double SpeculativeMargin(const World& world, double margin, double dt);
+
+// |v| + |w| r of a body (m/s), r its bounding radius; 0 for static bodies.
+double FastestPointSpeed(const RigidBody& body);
+
+}  // namespace contactsim
