@@ -49,7 +49,7 @@ struct RowFrame {
 class ExplicitStepper {
  public:
   ExplicitStepper(World& world, std::vector<PenaltyRow>& rows, const PenaltyParams& params, double h)
-      : world_(world), rows_(rows), params_(params), h_(h) {
+      : world_(world), rows_(rows), params_(params), h_(h), linear_(params.model == "linear") {
     const auto& bodies = world.bodies();
     const size_t n = bodies.size();
     x0_.resize(n), R0t_.resize(n), force_.resize(n), torque_.resize(n), rotation_.resize(n);
@@ -57,6 +57,9 @@ class ExplicitStepper {
     for (size_t i = 0; i < n; ++i) {
       x0_[i] = bodies[i].x;
       R0t_[i] = bodies[i].Rotation().transpose();
+      rotation_[i].setIdentity();
+      v_[i].setZero();
+      w_[i].setZero();
       force_[i] = bodies[i].force;
       torque_[i] = bodies[i].torque;
     }
@@ -122,9 +125,13 @@ class ExplicitStepper {
   void Measure(ExplicitStats* stats) {
     const auto& bodies = world_.bodies();
     for (size_t i = 0; i < bodies.size(); ++i) {
-      rotation_[i] = bodies[i].Rotation() * R0t_[i];
-      v_[i] = bodies[i].LinearVelocity();
-      w_[i] = bodies[i].AngularVelocity();
+      const RigidBody& b = bodies[i];
+      if (b.motion == MotionType::kStatic) continue;  // identity and rest, as set up
+      const Mat3 R = b.Rotation();
+      rotation_[i].noalias() = R * R0t_[i];
+      v_[i] = b.LinearVelocity();
+      // w = R I_b^-1 R^T L, without forming I^-1 in the world frame
+      w_[i] = b.IsDynamic() ? Vec3(R * (b.inv_inertia_body * (R.transpose() * b.L))) : b.AngularVelocity();
     }
     std::fill(pairs_.begin(), pairs_.end(), 0.0);
     for (size_t k = 0; k < rows_.size(); ++k) {
@@ -143,7 +150,13 @@ class ExplicitStepper {
       stats->max_penetration = std::max(stats->max_penetration, row.depth);
       row.vn0 = row.n.dot(f.v);
       row.vt0 = f.v - row.n * row.vn0;
-      row.law = EvaluateNormalLaw(params_, row.depth, row.vn0, row.nc, row.damping, row.kp);
+      if (linear_) {  // EvaluateNormalLaw's linear law, without its string compare per point
+        row.law.k = row.kp / row.nc;
+        row.law.c = row.damping / row.nc;
+        row.law.lambda0 = row.law.k * row.depth - row.law.c * row.vn0;
+      } else {
+        row.law = EvaluateNormalLaw(params_, row.depth, row.vn0, row.nc, row.damping, row.kp);
+      }
       if (bodies[row.a].IsDynamic()) pairs_[row.a] += 1.0 / row.nc;
       if (bodies[row.b].IsDynamic()) pairs_[row.b] += 1.0 / row.nc;
     }
@@ -203,6 +216,7 @@ class ExplicitStepper {
   std::vector<PenaltyRow>& rows_;
   const PenaltyParams& params_;
   double h_;
+  bool linear_;
   std::vector<Vec3> x0_, force_, torque_, v_, w_;
   std::vector<Mat3> R0t_, rotation_;
   std::vector<double> pairs_;  // per dynamic body: touching pairs now, sum of 1 / nc over its touching points

@@ -130,6 +130,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     row.kp = pair.kp;
     row.damping = damping;
     row.m_share = pair.m_eff / row.nc;
+    row.rebounds = pair.restitution != 0.0;
     row.law = EvaluateNormalLaw(params, c.depth, row.vn0, row.nc, damping, pair.kp);
     if (linear && c.depth > 0.0 && !was_penetrating && options.h > 0.0) {
       // the dashpot cannot have removed more than the approach momentum

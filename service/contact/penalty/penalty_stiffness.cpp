@@ -44,7 +44,7 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 // The largest eigenvalue of M^-1 J^T K J (rad^2/s^2) by power iteration in
 // the metric of M, where it is symmetric: u <- M^-1 J^T K J u, lambda the
 // Rayleigh quotient u^T J^T K J u / u^T M u.
-double PowerIteration(const World& world, const std::vector<PenaltyRow>& rows) {
+double PowerIteration(const World& world, const std::vector<PenaltyRow>& rows, const std::vector<bool>& counted) {
   const auto& bodies = world.bodies();
   const size_t n = bodies.size();
   std::vector<Mat3> inv_inertia(n), inertia(n);
@@ -68,8 +68,9 @@ double PowerIteration(const World& world, const std::vector<PenaltyRow>& rows) {
   for (int it = 0; it < kPowerIterations; ++it) {
     for (auto& v : f) v.setZero();
     double energy = 0.0;  // u^T J^T K J u
-    for (const PenaltyRow& row : rows) {
-      if (!row.engaged) continue;
+    for (size_t k = 0; k < rows.size(); ++k) {
+      const PenaltyRow& row = rows[k];
+      if (!counted[k]) continue;
       const Vec3 du = point_velocity(row.b, row.rb) - point_velocity(row.a, row.ra);
       const double kt = row.mu > 0.0 ? row.kt : 0.0;
       const double dn = row.n.dot(du);
@@ -101,6 +102,8 @@ double PowerIteration(const World& world, const std::vector<PenaltyRow>& rows) {
 
 ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows) {
   const auto& bodies = world.bodies();
+  std::vector<bool> counted(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) counted[i] = rows[i].engaged;
   // per row and direction (normal, slip): sqrt(K) of each body
   struct Part {
     double sa_n, sb_n, sa_t, sb_t;
@@ -109,7 +112,7 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
   std::vector<double> sum(bodies.size(), 0.0);  // sum_{j on b} sqrt(K_jb) k_j
   for (size_t i = 0; i < rows.size(); ++i) {
     const PenaltyRow& row = rows[i];
-    if (!row.engaged) continue;
+    if (!counted[i]) continue;
     const double slip = row.vt0.norm();
     const Vec3 t = slip > 1e-12 ? Vec3(row.vt0 / slip) : row.t1;
     Part& p = parts[i];
@@ -124,13 +127,16 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
   double point = 0.0, bound = 0.0;  // rad^2/s^2
   for (size_t i = 0; i < rows.size(); ++i) {
     const PenaltyRow& row = rows[i];
-    if (!row.engaged) continue;
+    if (!counted[i]) continue;
     const Part& p = parts[i];
-    if (row.m_share > 0.0) point = std::max(point, row.law.k / row.m_share);
+    if (row.m_share > 0.0) {
+      const double slack = row.rebounds ? 1.0 : kSettleSlack * kSettleSlack;
+      point = std::max(point, row.law.k / (row.m_share * slack));
+    }
     bound = std::max(bound, p.sa_n * sum[row.a] + p.sb_n * sum[row.b]);
     if (row.mu > 0.0) bound = std::max(bound, p.sa_t * sum[row.a] + p.sb_t * sum[row.b]);
   }
-  const double estimate = std::min(bound, PowerIteration(world, rows));
+  const double estimate = std::min(bound, PowerIteration(world, rows, counted));
   return {std::sqrt(point), std::sqrt(bound), std::sqrt(estimate)};
 }
 

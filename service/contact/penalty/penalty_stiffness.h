@@ -49,7 +49,8 @@ double SqrtBodyInverseMass(const RigidBody& body, const Vec3& r, const Vec3& d);
 // The highest contact frequencies (rad/s) of the engaged rows: `point` the
 // largest sqrt(kp / m_eff) of a pair's normal spring against its effective
 // mass, the frequency its damping and restitution are set for (what a
-// bounce must resolve), `bound` the Gershgorin bound
+// bounce must resolve; pairs of restitution 0, whose dashpot is
+// overdamped, have no bounce to resolve), `bound` the Gershgorin bound
 // of M^-1 K over every normal and tangential spring together (what the
 // step's stability needs; several times `point` for a body held by many).
 //
@@ -59,12 +60,16 @@ double SqrtBodyInverseMass(const RigidBody& body, const Vec3& r, const Vec3& d);
 // approaches the largest eigenvalue from below, and the stability margin
 // (penalty_explicit.h) covers the remainder. The start vector is fixed, so
 // the estimate is deterministic.
-constexpr int kPowerIterations = 30;
+constexpr int kPowerIterations = 20;
+constexpr double kSettleSlack = 1.5;
 struct ContactOmega {
   double point = 0.0;
   double bound = 0.0;
   double estimate = 0.0;
 };
+// Every engaged row counts, touching or not: leaving out the gaps that the
+// approach speed alone would not close within dt made box_rain diverge
+// (570 J after 2.5 s), its boxes pushed into them by others.
 ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows);
 
 // Gap (m) within which contacts are detected for an explicit step of dt:
