@@ -26,7 +26,7 @@ struct PenaltyParams {
   std::string integrator = "explicit";
   double theta = 1.0;
   int substeps = 1;
-  double max_omega_h = 0.15;            // explicit: the fastest contact mode's omega h per sub-step at most
+  double max_omega_h = 0.15;            // explicit: a rebounding pair's sqrt(kp / m_eff) h per sub-step at most
   int iterations = 20;
   double margin = 0.005;                // m
 
