@@ -54,9 +54,11 @@ class ExplicitStepper {
     const size_t n = bodies.size();
     x0_.resize(n), R0t_.resize(n), force_.resize(n), torque_.resize(n), rotation_.resize(n);
     v_.resize(n), w_.resize(n), pushed_.assign(n, false), pairs_.assign(n, 0.0);
+    reach_.assign(n, 0.0), radius_.assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
       x0_[i] = bodies[i].x;
       R0t_[i] = bodies[i].Rotation().transpose();
+      if (bodies[i].motion != MotionType::kStatic) radius_[i] = BoundingRadius(bodies[i]);
       rotation_[i].setIdentity();
       v_[i].setZero();
       w_[i].setZero();
@@ -133,11 +135,27 @@ class ExplicitStepper {
       // w = R I_b^-1 R^T L, without forming I^-1 in the world frame
       w_[i] = b.IsDynamic() ? Vec3(R * (b.inv_inertia_body * (R.transpose() * b.L))) : b.AngularVelocity();
     }
+    // the last sub-step moved each body with these velocities (ballistic
+    // ones with v - F h / (2 m))
+    if (measured_) {
+      for (size_t i = 0; i < bodies.size(); ++i) {
+        if (bodies[i].motion == MotionType::kStatic) continue;
+        const double ballistic = 0.5 * h_ * bodies[i].inv_mass * force_[i].norm();
+        reach_[i] += h_ * (v_[i].norm() + ballistic + w_[i].norm() * radius_[i]);
+      }
+    }
+    measured_ = true;
     std::fill(pairs_.begin(), pairs_.end(), 0.0);
     for (size_t k = 0; k < rows_.size(); ++k) {
       PenaltyRow& row = rows_[k];
       RowFrame& f = frames_[k];
       if (!row.engaged) continue;
+      // no point of either body has moved farther than its reach: a gap
+      // wider than both is still open (most speculative rows of a pile)
+      if (f.depth0 + reach_[row.a] + reach_[row.b] < 0.0) {
+        f.touching = false;
+        continue;
+      }
       const Vec3 ra = rotation_[row.a] * f.ra0, rb = rotation_[row.b] * f.rb0;
       const Vec3 dp = (bodies[row.b].x - x0_[row.b] + rb - f.rb0) - (bodies[row.a].x - x0_[row.a] + ra - f.ra0);
       f.ra = ra + f.ua;
@@ -222,6 +240,9 @@ class ExplicitStepper {
   std::vector<double> pairs_;  // per dynamic body: touching pairs now, sum of 1 / nc over its touching points
   std::vector<RowFrame> frames_;
   std::vector<bool> pushed_;  // per body: a contact force acted in this sub-step
+  std::vector<double> reach_;   // m, per body: how far any of its points may have moved since the step's start
+  std::vector<double> radius_;  // m, per body: BoundingRadius
+  bool measured_ = false;       // Measure ran before (reach_ counts from the second call)
 };
 
 }  // namespace

@@ -31,12 +31,6 @@ double StiffnessFromContactTime(double heaviest_mass, double contact_time) {
   return heaviest_mass * omega * omega;
 }
 
-double SqrtBodyInverseMass(const RigidBody& body, const Vec3& r, const Vec3& d) {
-  if (!body.IsDynamic()) return 0.0;
-  const Vec3 rd = r.cross(d);
-  return std::sqrt(body.inv_mass + rd.dot(body.InvInertiaWorld() * rd));
-}
-
 namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
@@ -101,50 +95,26 @@ double PowerIteration(const World& world, const std::vector<PenaltyRow>& rows, c
 }  // namespace
 
 ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows) {
-  const auto& bodies = world.bodies();
   std::vector<bool> counted(rows.size());
-  for (size_t i = 0; i < rows.size(); ++i) counted[i] = rows[i].engaged;
-  // per row and direction (normal, slip): sqrt(K) of each body
-  struct Part {
-    double sa_n, sb_n, sa_t, sb_t;
-  };
-  std::vector<Part> parts(rows.size());
-  std::vector<double> sum(bodies.size(), 0.0);  // sum_{j on b} sqrt(K_jb) k_j
+  double point = 0.0;  // rad^2/s^2
   for (size_t i = 0; i < rows.size(); ++i) {
     const PenaltyRow& row = rows[i];
-    if (!counted[i]) continue;
-    const double slip = row.vt0.norm();
-    const Vec3 t = slip > 1e-12 ? Vec3(row.vt0 / slip) : row.t1;
-    Part& p = parts[i];
-    p.sa_n = SqrtBodyInverseMass(bodies[row.a], row.ra, row.n);
-    p.sb_n = SqrtBodyInverseMass(bodies[row.b], row.rb, row.n);
-    p.sa_t = SqrtBodyInverseMass(bodies[row.a], row.ra, t);
-    p.sb_t = SqrtBodyInverseMass(bodies[row.b], row.rb, t);
-    const double kt = row.mu > 0.0 ? row.kt : 0.0;
-    sum[row.a] += p.sa_n * row.law.k + p.sa_t * kt;
-    sum[row.b] += p.sb_n * row.law.k + p.sb_t * kt;
+    counted[i] = row.engaged;
+    if (!row.engaged || row.m_share <= 0.0) continue;
+    const double slack = row.rebounds ? 1.0 : kSettleSlack * kSettleSlack;
+    point = std::max(point, row.law.k / (row.m_share * slack));
   }
-  double point = 0.0, bound = 0.0;  // rad^2/s^2
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const PenaltyRow& row = rows[i];
-    if (!counted[i]) continue;
-    const Part& p = parts[i];
-    if (row.m_share > 0.0) {
-      const double slack = row.rebounds ? 1.0 : kSettleSlack * kSettleSlack;
-      point = std::max(point, row.law.k / (row.m_share * slack));
-    }
-    bound = std::max(bound, p.sa_n * sum[row.a] + p.sb_n * sum[row.b]);
-    if (row.mu > 0.0) bound = std::max(bound, p.sa_t * sum[row.a] + p.sb_t * sum[row.b]);
-  }
-  const double estimate = std::min(bound, PowerIteration(world, rows, counted));
-  return {std::sqrt(point), std::sqrt(bound), std::sqrt(estimate)};
+  return {std::sqrt(point), std::sqrt(PowerIteration(world, rows, counted))};
+}
+
+double BoundingRadius(const RigidBody& body) {
+  const Aabb box = ComputeAabb(body, 0.0, 0.0);
+  return 0.5 * (box.max - box.min).norm();
 }
 
 double FastestPointSpeed(const RigidBody& body) {
   if (body.motion == MotionType::kStatic) return 0.0;
-  const Aabb box = ComputeAabb(body, 0.0, 0.0);
-  const double radius = 0.5 * (box.max - box.min).norm();
-  return body.LinearVelocity().norm() + body.AngularVelocity().norm() * radius;
+  return body.LinearVelocity().norm() + body.AngularVelocity().norm() * BoundingRadius(body);
 }
 
 double SpeculativeMargin(const World& world, double margin, double dt) {

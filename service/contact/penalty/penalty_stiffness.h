@@ -17,13 +17,12 @@
 //
 // The explicit step's sub-step (penalty_explicit.h): symplectic Euler on
 // u' = M^-1 (f - K x) is stable while omega_max h < 2, omega_max^2 the
-// largest eigenvalue of M^-1 K. With rows i of stiffness k_i and per-body
-// inverse masses along them, K_ib = 1/m_b + (r x d) . I_b^-1 (r x d),
-// Gershgorin's theorem with |J_i M^-1 J_j^T| <= sqrt(K_ib K_jb) for rows
-// sharing body b bounds it by
-//   omega_max^2 <= max_i sum_{b of i} sqrt(K_ib) sum_{j on b} sqrt(K_jb) k_j
-// (Golub and Van Loan, "Matrix Computations", 7.2.1), evaluated on the
-// rows built at the step's start.
+// largest eigenvalue of M^-1 K = M^-1 J^T diag(k) J over every normal and
+// tangential spring. Power iteration in the metric of M (where the matrix
+// is symmetric) gives it from below in a few products of O(rows) each
+// (Golub and Van Loan, "Matrix Computations", 8.2.1); a Gershgorin bound
+// over the points, |J_i M^-1 J_j^T| <= sqrt(K_ib K_jb), was twice as
+// large on the standard scenes and doubled the sub-steps.
 #pragma once
 
 #include <vector>
@@ -42,24 +41,19 @@ std::vector<double> IslandHeaviestMass(const World& world, const ContactSet& con
 // The pair stiffness (N/m) of a contact time: m_s (pi / T)^2.
 double StiffnessFromContactTime(double heaviest_mass, double contact_time);
 
-// sqrt(K_ib): the square root of body `index`'s share of the inverse
-// effective mass of a point at lever arm r along unit d (0 unless dynamic).
-double SqrtBodyInverseMass(const RigidBody& body, const Vec3& r, const Vec3& d);
-
 // The highest contact frequencies (rad/s) of the engaged rows: `point` the
 // largest sqrt(kp / m_eff) of a pair's normal spring against its effective
 // mass, the frequency its damping and restitution are set for (what a
 // bounce must resolve; pairs of restitution 0 count at 1 / kSettleSlack of
-// it, having no bounce to resolve), `bound` the Gershgorin bound
-// of M^-1 K over every normal and tangential spring together (what the
-// step's stability needs; several times `point` for a body held by many).
-//
-// `estimate` is omega_max itself, from power iteration on M^-1 J^T K J
-// (normal and both tangent directions of every row), the Rayleigh quotient
-// after kPowerIterations products, never above `bound`: the quotient
-// approaches the largest eigenvalue from below, and the stability margin
-// (penalty_explicit.h) covers the remainder. The start vector is fixed, so
-// the estimate is deterministic.
+// it, having no bounce to resolve); `estimate` omega_max of every normal
+// and tangential spring together (what the step's stability needs; several
+// times `point` for a body held by many), the Rayleigh quotient after
+// kPowerIterations products from a fixed start vector, so deterministic.
+// It approaches omega_max from below; the stability margin
+// (penalty_explicit.h) covers the remainder. Every engaged row counts,
+// touching or not: leaving out the gaps that the approach speed alone
+// would not close within dt made box_rain diverge (570 J after 2.5 s), its
+// boxes pushed into them by others.
 constexpr int kPowerIterations = 20;
 // A pair of restitution 0 needs its spring resolved less finely than a
 // rebounding one, sqrt(kp / m_eff) h <= kSettleSlack max_omega_h: a 0.2 m
@@ -68,12 +62,8 @@ constexpr int kPowerIterations = 20;
 constexpr double kSettleSlack = 1.5;
 struct ContactOmega {
   double point = 0.0;
-  double bound = 0.0;
   double estimate = 0.0;
 };
-// Every engaged row counts, touching or not: leaving out the gaps that the
-// approach speed alone would not close within dt made box_rain diverge
-// (570 J after 2.5 s), its boxes pushed into them by others.
 ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows);
 
 // Gap (m) within which contacts are detected for an explicit step of dt:
@@ -81,6 +71,10 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
 // largest speed of a body's points (|v| + |w| r, r its bounding radius) plus
 // gravity's |g| dt, so that no contact begins inside the step unseen.
 double SpeculativeMargin(const World& world, double margin, double dt);
+
+// Half the diagonal of the body's bounding box (m): no point of it is farther
+// from its centre of mass.
+double BoundingRadius(const RigidBody& body);
 
 // |v| + |w| r of a body (m/s), r its bounding radius; 0 for static bodies.
 double FastestPointSpeed(const RigidBody& body);
