@@ -53,7 +53,7 @@ class ExplicitStepper {
     const auto& bodies = world.bodies();
     const size_t n = bodies.size();
     x0_.resize(n), R0t_.resize(n), force_.resize(n), torque_.resize(n), rotation_.resize(n);
-    v_.resize(n), w_.resize(n), pushed_.assign(n, false), pairs_.assign(n, 0.0);
+    v_.resize(n), w_.resize(n), pushed_.assign(n, false), pairs_.assign(n, 0.0), last_pairs_.assign(n, 0.0);
     reach_.assign(n, 0.0), radius_.assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
       x0_[i] = bodies[i].x;
@@ -76,12 +76,14 @@ class ExplicitStepper {
       f.rb = row.rb;
       f.ra0 = row.ra - f.ua;
       f.rb0 = row.rb - f.ub;
+      if (!row.engaged || row.depth <= 0.0) continue;
+      if (bodies[row.a].IsDynamic()) pairs_[row.a] += 1.0 / row.nc;
+      if (bodies[row.b].IsDynamic()) pairs_[row.b] += 1.0 / row.nc;
     }
   }
 
   void Substep(ExplicitStats* stats) {
-    Measure(stats);
-    ApplyForces();
+    Pass(stats, true);
     IntegrateMomenta(world_, h_);
     SolveJointVelocities(world_, h_);  // on the new momenta, before the positions use them
     MovePositions();
@@ -91,7 +93,7 @@ class ExplicitStepper {
   // the last sub-step's slip into the anchors, the end depths into the rows,
   // and the external wrench back into the bodies
   void Finish(ExplicitStats* stats) {
-    Measure(stats);
+    Pass(stats, false);
     auto& bodies = world_.bodies();
     for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force_[i], bodies[i].torque = torque_[i];
   }
@@ -123,8 +125,28 @@ class ExplicitStepper {
     }
   }
 
-  // stage 1: poses, depths and velocities now; anchors advance by the slip
-  void Measure(ExplicitStats* stats) {
+  // One pass over the rows: stage 1 for each, and with `apply` stages 2-4
+  // right after it, so that a row is read once per sub-step. The damping's
+  // pair counts are the last pass's (lagged by a sub-step; the first pass
+  // counts the points touching at the step's start).
+  void Pass(ExplicitStats* stats, bool apply) {
+    PrepareBodies();
+    auto& bodies = world_.bodies();
+    if (apply) {
+      for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force_[i], bodies[i].torque = torque_[i];
+      std::fill(pushed_.begin(), pushed_.end(), false);
+    }
+    last_pairs_.swap(pairs_);
+    std::fill(pairs_.begin(), pairs_.end(), 0.0);
+    for (size_t k = 0; k < rows_.size(); ++k) {
+      if (!rows_[k].engaged) continue;
+      MeasureRow(k, stats);
+      if (apply) ApplyRow(k);
+    }
+  }
+
+  // each body's turn since the step's start, velocities now, and reach
+  void PrepareBodies() {
     const auto& bodies = world_.bodies();
     for (size_t i = 0; i < bodies.size(); ++i) {
       const RigidBody& b = bodies[i];
@@ -145,88 +167,85 @@ class ExplicitStepper {
       }
     }
     measured_ = true;
-    std::fill(pairs_.begin(), pairs_.end(), 0.0);
-    for (size_t k = 0; k < rows_.size(); ++k) {
-      PenaltyRow& row = rows_[k];
-      RowFrame& f = frames_[k];
-      if (!row.engaged) continue;
-      // no point of either body has moved farther than its reach: a gap
-      // wider than both is still open (most speculative rows of a pile)
-      if (f.depth0 + reach_[row.a] + reach_[row.b] < 0.0) {
-        f.touching = false;
-        continue;
-      }
-      const Vec3 ra = rotation_[row.a] * f.ra0, rb = rotation_[row.b] * f.rb0;
-      const Vec3 dp = (bodies[row.b].x - x0_[row.b] + rb - f.rb0) - (bodies[row.a].x - x0_[row.a] + ra - f.ra0);
-      f.ra = ra + f.ua;
-      f.rb = rb + f.ub;
-      row.depth = f.depth0 - row.n.dot(dp);
-      f.v = v_[row.b] + w_[row.b].cross(f.rb) - v_[row.a] - w_[row.a].cross(f.ra);
-      if (f.carried) row.anchor.stretch += h_ * (f.v - row.n * row.n.dot(f.v));
-      f.touching = row.depth > 0.0;
-      if (!f.touching) continue;
-      stats->max_penetration = std::max(stats->max_penetration, row.depth);
-      row.vn0 = row.n.dot(f.v);
-      row.vt0 = f.v - row.n * row.vn0;
-      if (linear_) {  // EvaluateNormalLaw's linear law, without its string compare per point
-        row.law.k = row.kp / row.nc;
-        row.law.c = row.damping / row.nc;
-        row.law.lambda0 = row.law.k * row.depth - row.law.c * row.vn0;
-      } else {
-        row.law = EvaluateNormalLaw(params_, row.depth, row.vn0, row.nc, row.damping, row.kp);
-      }
-      if (bodies[row.a].IsDynamic()) pairs_[row.a] += 1.0 / row.nc;
-      if (bodies[row.b].IsDynamic()) pairs_[row.b] += 1.0 / row.nc;
+  }
+
+  // stage 1: the row's depth and velocity now; its anchor advances by the
+  // last sub-step's slip
+  void MeasureRow(size_t k, ExplicitStats* stats) {
+    const auto& bodies = world_.bodies();
+    PenaltyRow& row = rows_[k];
+    RowFrame& f = frames_[k];
+    // no point of either body has moved farther than its reach: a gap
+    // wider than both is still open (most speculative rows of a pile)
+    if (f.depth0 + reach_[row.a] + reach_[row.b] < 0.0) {
+      f.touching = false;
+      return;
     }
+    const Vec3 ra = rotation_[row.a] * f.ra0, rb = rotation_[row.b] * f.rb0;
+    const Vec3 dp = (bodies[row.b].x - x0_[row.b] + rb - f.rb0) - (bodies[row.a].x - x0_[row.a] + ra - f.ra0);
+    f.ra = ra + f.ua;
+    f.rb = rb + f.ub;
+    row.depth = f.depth0 - row.n.dot(dp);
+    f.v = v_[row.b] + w_[row.b].cross(f.rb) - v_[row.a] - w_[row.a].cross(f.ra);
+    if (f.carried) row.anchor.stretch += h_ * (f.v - row.n * row.n.dot(f.v));
+    f.touching = row.depth > 0.0;
+    if (!f.touching) return;
+    stats->max_penetration = std::max(stats->max_penetration, row.depth);
+    row.vn0 = row.n.dot(f.v);
+    row.vt0 = f.v - row.n * row.vn0;
+    if (linear_) {  // EvaluateNormalLaw's linear law, without its string compare per point
+      row.law.k = row.kp / row.nc;
+      row.law.c = row.damping / row.nc;
+      row.law.lambda0 = row.law.k * row.depth - row.law.c * row.vn0;
+    } else {
+      row.law = EvaluateNormalLaw(params_, row.depth, row.vn0, row.nc, row.damping, row.kp);
+    }
+    if (bodies[row.a].IsDynamic()) pairs_[row.a] += 1.0 / row.nc;
+    if (bodies[row.b].IsDynamic()) pairs_[row.b] += 1.0 / row.nc;
   }
 
   // stages 2-4: normal force with its onset, friction, into the bodies
-  void ApplyForces() {
+  void ApplyRow(size_t k) {
     auto& bodies = world_.bodies();
-    for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force_[i], bodies[i].torque = torque_[i];
-    std::fill(pushed_.begin(), pushed_.end(), false);
-    for (size_t k = 0; k < rows_.size(); ++k) {
-      PenaltyRow& row = rows_[k];
-      RowFrame& f = frames_[k];
-      if (!row.engaged) continue;
-      f.carried = false;
-      if (!f.touching) {
-        // a point that lets go loses its anchor (penalty_friction.h)
-        row.lambda = 0.0, row.ft.setZero(), row.sliding = false;
-        row.anchor.stretch.setZero();
-        row.anchor.penetrating = false;
-        continue;
-      }
-      const double shared = std::max(1.0, std::max(pairs_[row.a], pairs_[row.b]));
-      const double cn = row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
-      double lambda = row.law.lambda0 + (row.law.c - cn) * row.vn0;
-      if (!row.anchor.penetrating) {
-        const double approach = std::max(0.0, -row.vn0);
-        const double room = std::max(0.0, row.m_share * approach - cn * approach * h_);
-        lambda += std::min(row.law.c * std::min(row.depth, approach * h_), room) / h_;
-      }
-      row.anchor.penetrating = true;
-      row.lambda = std::max(0.0, lambda);
-      row.ft.setZero();
-      row.sliding = false;
-      if (row.mu > 0.0) {
-        const double ct = row.ct / (1.0 + h_ * shared * row.ct * row.inv_mass_t);
-        const Vec3 trial = -row.kt * row.anchor.stretch - ct * row.vt0;
-        row.ft = CoulombLimit(trial, row.mu * row.lambda, &row.sliding);
-        if (row.sliding) row.anchor.stretch = -row.ft / row.kt;
-        f.carried = row.lambda > 0.0 && !row.sliding;
-      }
-      if (row.lambda <= 0.0) continue;
-      pushed_[row.a] = pushed_[row.b] = true;
-      const Vec3 force = row.lambda * row.n + row.ft;  // on B; -force on A
-      if (bodies[row.b].IsDynamic()) {
-        bodies[row.b].force += force;
-        bodies[row.b].torque += f.rb.cross(force);
-      }
-      if (bodies[row.a].IsDynamic()) {
-        bodies[row.a].force -= force;
-        bodies[row.a].torque -= f.ra.cross(force);
-      }
+    PenaltyRow& row = rows_[k];
+    RowFrame& f = frames_[k];
+    f.carried = false;
+    if (!f.touching) {
+      // a point that lets go loses its anchor (penalty_friction.h)
+      row.lambda = 0.0, row.ft.setZero(), row.sliding = false;
+      row.anchor.stretch.setZero();
+      row.anchor.penetrating = false;
+      return;
+    }
+    const double shared = std::max(1.0, std::max(last_pairs_[row.a], last_pairs_[row.b]));
+    const double cn = row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
+    double lambda = row.law.lambda0 + (row.law.c - cn) * row.vn0;
+    if (!row.anchor.penetrating) {
+      const double approach = std::max(0.0, -row.vn0);
+      const double room = std::max(0.0, row.m_share * approach - cn * approach * h_);
+      lambda += std::min(row.law.c * std::min(row.depth, approach * h_), room) / h_;
+    }
+    row.anchor.penetrating = true;
+    row.lambda = std::max(0.0, lambda);
+    row.ft.setZero();
+    row.sliding = false;
+    if (row.mu > 0.0) {
+      const double ct = row.ct / (1.0 + h_ * shared * row.ct * row.inv_mass_t);
+      const Vec3 trial = -row.kt * row.anchor.stretch - ct * row.vt0;
+      row.ft = CoulombLimit(trial, row.mu * row.lambda, &row.sliding);
+      if (row.sliding) row.anchor.stretch = -row.ft / row.kt;
+      f.carried = row.lambda > 0.0 && !row.sliding;
+    }
+    if (row.lambda <= 0.0) return;
+    pushed_[row.a] = pushed_[row.b] = true;
+    const Vec3 force = row.lambda * row.n + row.ft;  // on B; -force on A
+    if (bodies[row.b].IsDynamic()) {
+      bodies[row.b].force += force;
+      bodies[row.b].torque += f.rb.cross(force);
+    }
+    if (bodies[row.a].IsDynamic()) {
+      bodies[row.a].force -= force;
+      bodies[row.a].torque -= f.ra.cross(force);
     }
   }
 
@@ -237,7 +256,9 @@ class ExplicitStepper {
   bool linear_;
   std::vector<Vec3> x0_, force_, torque_, v_, w_;
   std::vector<Mat3> R0t_, rotation_;
-  std::vector<double> pairs_;  // per dynamic body: touching pairs now, sum of 1 / nc over its touching points
+  // per dynamic body: touching pairs, sum of 1 / nc over its touching
+  // points, of this pass and of the last
+  std::vector<double> pairs_, last_pairs_;
   std::vector<RowFrame> frames_;
   std::vector<bool> pushed_;  // per body: a contact force acted in this sub-step
   std::vector<double> reach_;   // m, per body: how far any of its points may have moved since the step's start

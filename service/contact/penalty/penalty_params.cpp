@@ -39,8 +39,8 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
                "steps of dt / substeps per world step (explicit: at least; more are added for max_omega_h)"),
       DoubleParam("max_omega_h", &P::max_omega_h, 0.01, 2.0, "",
                   "explicit: sub-steps are added until every rebounding pair's spring has sqrt(kp / m_eff) h below "
-                  "this (1.5 times this for restitution 0) and the stiffest mode omega h below 1, up to 1000 "
-                  "(penalty_explicit.h)"),
+                  "this (restitution 0: sqrt(kp / m_s) h below 1.5 times this) and the stiffest mode omega h "
+                  "below 1, up to 1000 (penalty_explicit.h)"),
       IntParam("iterations", &P::iterations, 1, 1000, "", "implicit: active-set passes at most"),
       DoubleParam("friction_stiffness", &P::friction_stiffness, 1.0, kMaxStiffness, "N/m",
                   "tangential spring kt of a pair when contact_time = 0 (else kt = the normal stiffness)"),

@@ -35,6 +35,7 @@ struct PairInfo {
   double m_eff = 0.0;          // kg, 1 / (1/m_a + 1/m_b)
   double restitution = -1.0;   // combined, or -1 when kd / alpha are given
   double kp = 0.0;             // N/m (N/m^n hunt_crossley)
+  double m_spring = 0.0;       // kg, the mass kp was set for
   double kt = 0.0;             // N/m, tangential spring
   double kd = 0.0;             // N s/m, linear law
   double ct = 0.0;             // N s/m, tangential dashpot
@@ -88,8 +89,10 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     }
     pair.kp = params.kp;
     pair.kt = params.friction_stiffness;
+    pair.m_spring = pair.m_eff;
     if (timed) {
-      pair.kp = StiffnessFromContactTime(std::max(heaviest[key.first], heaviest[key.second]), params.contact_time);
+      pair.m_spring = std::max(heaviest[key.first], heaviest[key.second]);
+      pair.kp = StiffnessFromContactTime(pair.m_spring, params.contact_time);
       pair.kt = pair.kp;
     }
     if (linear) {
@@ -131,6 +134,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     row.damping = damping;
     row.m_share = pair.m_eff / row.nc;
     row.rebounds = pair.restitution != 0.0;
+    row.m_spring = pair.m_spring / row.nc;
     row.law = EvaluateNormalLaw(params, c.depth, row.vn0, row.nc, damping, pair.kp);
     if (linear && c.depth > 0.0 && !was_penetrating && options.h > 0.0) {
       // the dashpot cannot have removed more than the approach momentum

@@ -36,6 +36,7 @@ struct PenaltyRow {
   double kp = 0.0;             // N/m (N/m^n hunt_crossley): the pair's stiffness (penalty_stiffness.h)
   double damping = 0.0;        // the pair's kd (N s/m) or Hunt-Crossley alpha (s/m)
   double m_share = 0.0;        // kg: the pair's m_eff / nc, the most momentum an onset impulse may take per m/s
+  double m_spring = 0.0;       // kg: the mass the pair's stiffness was set for, / nc (m_s of a contact time, else m_eff)
   bool rebounds = true;        // the pair's restitution is not 0 (or unknown: restitution = off)
   double kt = 0.0, ct = 0.0;   // N/m, N s/m: tangential spring and damper of this point
   double mu = 0.0;             // combined Coulomb coefficient

@@ -101,8 +101,11 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
     const PenaltyRow& row = rows[i];
     counted[i] = row.engaged;
     if (!row.engaged || row.m_share <= 0.0) continue;
-    const double slack = row.rebounds ? 1.0 : kSettleSlack * kSettleSlack;
-    point = std::max(point, row.law.k / (row.m_share * slack));
+    if (row.rebounds) {
+      point = std::max(point, row.law.k / row.m_share);
+    } else {
+      point = std::max(point, row.law.k / (row.m_spring * kSettleSlack * kSettleSlack));
+    }
   }
   return {std::sqrt(point), std::sqrt(PowerIteration(world, rows, counted))};
 }
