@@ -41,6 +41,45 @@ struct PairInfo {
   double ct = 0.0;             // N s/m, tangential dashpot
 };
 
+// Each pair's m_eff, restitution, stiffness (fixed, or from the contact
+// time: penalty_stiffness.h) and the damping that gives the restitution.
+void SetPairStiffnessAndDamping(const World& world, const ContactSet& contacts, const PenaltyParams& params,
+                                std::map<std::pair<int, int>, PairInfo>* pairs) {
+  const auto& bodies = world.bodies();
+  const bool linear = params.model == "linear";
+  const bool timed = linear && params.contact_time > 0.0;
+  std::vector<double> heaviest;
+  if (timed) heaviest = IslandHeaviestMass(world, contacts);
+  std::map<double, double> zeta_of;  // restitution -> zeta: one bisection per value, not per pair
+  for (auto& [key, pair] : *pairs) {
+    const double inv = bodies[key.first].inv_mass + bodies[key.second].inv_mass;
+    pair.m_eff = inv > 0.0 ? 1.0 / inv : 0.0;
+    if (params.restitution == "material") {
+      pair.restitution = CombineRestitution(bodies[key.first].material, bodies[key.second].material);
+    } else if (params.restitution != "off") {
+      pair.restitution = params.RestitutionValue();
+    }
+    pair.kp = params.kp;
+    pair.kt = params.friction_stiffness;
+    pair.m_spring = pair.m_eff;
+    if (timed) {
+      pair.m_spring = std::max(heaviest[key.first], heaviest[key.second]);
+      pair.kp = StiffnessFromContactTime(pair.m_spring, params.contact_time);
+      pair.kt = pair.kp;
+    }
+    if (linear) {
+      if (pair.restitution >= 0.0) {
+        const auto [it, added] = zeta_of.try_emplace(pair.restitution, 0.0);
+        if (added) it->second = ZetaFromRestitution(pair.restitution);
+        pair.kd = 2.0 * it->second * std::sqrt(pair.kp * pair.m_eff);  // DampingFromRestitution
+      } else {
+        pair.kd = params.kd;
+      }
+    }
+    pair.ct = 2.0 * params.friction_damping_ratio * std::sqrt(pair.kt * pair.m_eff);
+  }
+}
+
 }  // namespace
 
 void BuildPenaltyRows(const World& world, const ContactSet& contacts, const PenaltyParams& params,
@@ -74,38 +113,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     ++pairs[{std::min(c.a, c.b), std::max(c.a, c.b)}].points;
   }
 
-  // stiffness from the contact time needs the islands (penalty_stiffness.h)
-  const bool timed = linear && params.contact_time > 0.0;
-  std::vector<double> heaviest;
-  if (timed) heaviest = IslandHeaviestMass(world, contacts);
-  std::map<double, double> zeta_of;  // restitution -> zeta: one bisection per value, not per pair
-  for (auto& [key, pair] : pairs) {
-    const double inv = bodies[key.first].inv_mass + bodies[key.second].inv_mass;
-    pair.m_eff = inv > 0.0 ? 1.0 / inv : 0.0;
-    if (params.restitution == "material") {
-      pair.restitution = CombineRestitution(bodies[key.first].material, bodies[key.second].material);
-    } else if (params.restitution != "off") {
-      pair.restitution = params.RestitutionValue();
-    }
-    pair.kp = params.kp;
-    pair.kt = params.friction_stiffness;
-    pair.m_spring = pair.m_eff;
-    if (timed) {
-      pair.m_spring = std::max(heaviest[key.first], heaviest[key.second]);
-      pair.kp = StiffnessFromContactTime(pair.m_spring, params.contact_time);
-      pair.kt = pair.kp;
-    }
-    if (linear) {
-      if (pair.restitution >= 0.0) {
-        const auto [it, added] = zeta_of.try_emplace(pair.restitution, 0.0);
-        if (added) it->second = ZetaFromRestitution(pair.restitution);
-        pair.kd = 2.0 * it->second * std::sqrt(pair.kp * pair.m_eff);  // DampingFromRestitution
-      } else {
-        pair.kd = params.kd;
-      }
-    }
-    pair.ct = 2.0 * params.friction_damping_ratio * std::sqrt(pair.kt * pair.m_eff);
-  }
+  SetPairStiffnessAndDamping(world, contacts, params, &pairs);
 
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
