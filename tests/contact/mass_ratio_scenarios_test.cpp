@@ -39,8 +39,9 @@ constexpr double kLightMass = 0.02;  // kg, the lower box of the measured stack
 constexpr double kSeconds = 2.0;     // s of simulation per case
 // Bounds every case meets, the equal-mass ones with a wide margin. The
 // velocity-level methods rest inside their 1 mm slop (1.0-1.1 mm deep); the
-// penalty method sinks by m g / kp (0.2 mm for 20 kg); xpbd and barrier stay
-// at or outside the surface.
+// penalty method rests at load / kp, kp from its contact time and the
+// island's heaviest body (0.064 mm at 1:1000); xpbd and barrier stay at or
+// outside the surface.
 constexpr double kMaxPenetration = 1.5e-3;  // m, deepest overlap at any step
 constexpr double kMaxSink = 1.0e-3;         // m, upper body's fall after it settled
 constexpr double kMaxJointError = 1.0e-4;   // m, largest anchor separation at any step

@@ -7,15 +7,15 @@
 
 namespace contactsim {
 
-NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, double nc, double damping) {
+NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, double nc, double damping, double kp) {
   NormalLaw law;
   if (p.model == "linear") {
-    law.k = p.kp / nc;
+    law.k = kp / nc;
     if (depth > 0.0) {
       law.c = damping / nc;
-      law.lambda0 = (p.kp * depth - damping * vn) / nc;
+      law.lambda0 = (kp * depth - damping * vn) / nc;
     } else {
-      law.lambda0 = p.kp * depth / nc;
+      law.lambda0 = kp * depth / nc;
     }
     return law;
   }
@@ -24,9 +24,9 @@ NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, dou
   // separating so fast that the damping would pull: no force, no slope
   if (factor <= 0.0) return law;
   const double dn = portable::Pow(depth, p.hc_exponent);
-  law.lambda0 = p.kp * dn * factor / nc;
-  law.k = p.hc_exponent * p.kp * portable::Pow(depth, p.hc_exponent - 1.0) * factor / nc;
-  law.c = 1.5 * damping * p.kp * dn / nc;
+  law.lambda0 = kp * dn * factor / nc;
+  law.k = p.hc_exponent * kp * portable::Pow(depth, p.hc_exponent - 1.0) * factor / nc;
+  law.c = 1.5 * damping * kp * dn / nc;
   return law;
 }
 

@@ -36,7 +36,11 @@ struct NormalLaw {
 // the spring alone, lambda0 = kp d / nc < 0, so that it engages only if the
 // step closes the gap; there is no damping before the surfaces touch.
 // Hunt-Crossley gives nothing for d <= 0 (its slope is zero there for n > 1).
-NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, double nc, double damping);
+// `kp` is the pair's stiffness (penalty_stiffness.h; p.kp in the overload).
+NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, double nc, double damping, double kp);
+inline NormalLaw EvaluateNormalLaw(const PenaltyParams& p, double depth, double vn, double nc, double damping) {
+  return EvaluateNormalLaw(p, depth, vn, nc, damping, p.kp);
+}
 
 // Coefficient of restitution of the linear spring-dashpot that cannot pull
 // (the contact ends when kp d - kd vn reaches zero, before d = 0), as a
@@ -47,10 +51,12 @@ double NoTensionRestitution(double zeta);
 
 // The inverse of NoTensionRestitution by bisection, zeta in [0, kMaxZeta].
 // A dashpot that cannot pull always lets go with some speed (e -> 0 only as
-// zeta -> infinity), and an explicit step with zeta omega h > 1 diverges, so
-// zeta stops at critical damping: restitutions below
-// NoTensionRestitution(1) = e^-2 ~ 0.135 give zeta = 1. Give kd for more.
-constexpr double kMaxZeta = 1.0;
+// zeta -> infinity): NoTensionRestitution(1) = e^-2 ~ 0.135,
+// NoTensionRestitution(10) = 0.0024, so restitutions below that give
+// zeta = 10 (a rebound of 6e-6 of the drop height). The explicit step
+// integrates each dashpot implicitly (penalty_explicit.h), so an overdamped
+// dashpot stays stable.
+constexpr double kMaxZeta = 10.0;
 double ZetaFromRestitution(double e);
 
 // kd (N s/m) for restitution e of a pair of stiffness kp and effective mass

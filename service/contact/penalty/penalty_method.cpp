@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/penalty/penalty_explicit.h"
+#include "service/contact/penalty/penalty_stiffness.h"
 #include "service/contact/penalty/penalty_implicit.h"
 #include "service/physics/integrator.h"
 
@@ -37,33 +39,17 @@ Status PenaltyMethod::LoadState(const std::string& bytes) {
   return Status::Ok();
 }
 
-void PenaltyMethod::ExplicitSubstep(World& world, double h) {
-  auto& bodies = world.bodies();
-  for (PenaltyRow& row : rows_) {
-    if (!row.engaged) continue;
-    // each dashpot integrated implicitly against its point's effective
-    // mass: c / (1 + h c K) (see the header)
-    const double cn = row.law.c / (1.0 + h * row.law.c * row.inv_mass_n);
-    const double ct = row.ct / (1.0 + h * row.ct * row.inv_mass_t);
-    row.lambda = std::max(0.0, row.law.lambda0 + (row.law.c - cn) * row.vn0);
-    // the anchor slides when the trial force leaves the Coulomb disk, so
-    // that the spring alone carries the limited force
-    const Vec3 trial = -row.kt * row.anchor.stretch - ct * row.vt0;
-    row.ft = CoulombLimit(trial, row.mu * row.lambda, &row.sliding);
-    if (row.sliding) row.anchor.stretch = -row.ft / row.kt;
-    const Vec3 f = row.lambda * row.n + row.ft;  // on B; -f on A
-    if (bodies[row.b].IsDynamic()) {
-      bodies[row.b].force += f;
-      bodies[row.b].torque += row.rb.cross(f);
-    }
-    if (bodies[row.a].IsDynamic()) {
-      bodies[row.a].force -= f;
-      bodies[row.a].torque -= row.ra.cross(f);
-    }
-  }
-  IntegrateMomenta(world, h);
-  SolveJointVelocities(world, h);
-  IntegratePositions(world, h);
+void PenaltyMethod::ExplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats) {
+  const double dt = world.dt;
+  detector.Detect(world, SpeculativeMargin(world, params_.margin, dt), dt, &contacts_);
+  RowOptions options;
+  options.speculative = true;
+  BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
+  const int substeps = ExplicitSubsteps(world, rows_, params_, dt);
+  const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps);
+  stats->substeps = s.substeps;
+  stats->max_penetration = s.max_penetration;
+  KeepAnchors(world, contacts_, dt);
 }
 
 void PenaltyMethod::ImplicitSubstep(World& world, double h, StepStats* stats) {
@@ -89,20 +75,21 @@ void PenaltyMethod::ImplicitSubstep(World& world, double h, StepStats* stats) {
 }
 
 void PenaltyMethod::KeepAnchors(const World& world, const ContactSet& contacts, double h) {
+  const bool implicit = params_.integrator == "implicit";
   for (const PenaltyRow& row : rows_) {
     if (!row.engaged || row.lambda <= 0.0) continue;
     AnchorState next = row.anchor;
-    const bool implicit = params_.integrator == "implicit";
     if (row.mu <= 0.0) {
       next.stretch.setZero();  // no friction: nothing to anchor
-    } else if (implicit && row.sliding) {
+    } else if (!implicit) {
+      // the explicit step advanced the stretch by each sub-step's slip
+    } else if (row.sliding) {
       // the anchor slid so that the spring alone carries mu lambda
       next.stretch = -row.ft / row.kt;
     } else {
       // the slip over the step, at the velocity the positions moved with
-      // (explicit: the end velocity; a slide already reset the anchor)
       Vec3 v = RelativeVelocity(world, row);
-      if (implicit) v = (1.0 - params_.theta) * (row.vt0 + row.n * row.vn0) + params_.theta * v;
+      v = (1.0 - params_.theta) * (row.vt0 + row.n * row.vn0) + params_.theta * v;
       next.stretch += h * (v - row.n * row.n.dot(v));
     }
     anchors_.Keep(contacts[row.contact], next);
@@ -113,44 +100,48 @@ void PenaltyMethod::KeepAnchors(const World& world, const ContactSet& contacts, 
 StepStats PenaltyMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
-  const bool implicit = params_.integrator == "implicit";
-  const double h = world.dt / params_.substeps;
   world.AccumulateForces();
-  auto& bodies = world.bodies();
-  std::vector<Vec3> force(bodies.size()), torque(bodies.size());
-  for (size_t i = 0; i < bodies.size(); ++i) force[i] = bodies[i].force, torque[i] = bodies[i].torque;
-
-  RowOptions options;
-  options.h = h;
-  options.implicit = implicit;
-  options.theta = params_.theta;
-  for (int sub = 0; sub < params_.substeps; ++sub) {
-    for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force[i], bodies[i].torque = torque[i];
-    detector.Detect(world, params_.margin, h, &contacts_);
-    BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
-    for (const Contact& c : contacts_) stats.max_penetration = std::max(stats.max_penetration, c.depth);
-    if (implicit) {
-      ImplicitSubstep(world, h, &stats);
-    } else {
-      ExplicitSubstep(world, h);
-    }
-    KeepAnchors(world, contacts_, h);
-    ProjectJointPositions(world);
+  if (params_.integrator == "implicit") {
+    ImplicitWorldStep(world, detector, &stats);
+  } else {
+    ExplicitWorldStep(world, detector, &stats);
   }
-  // the external wrench stays the accumulated one, as for other methods
-  for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force[i], bodies[i].torque = torque[i];
   for (const PenaltyRow& row : rows_) {
+    if (!row.engaged) continue;
     const Contact& c = contacts_[row.contact];
-    if (c.depth <= 0.0 && row.lambda <= 0.0) continue;
+    if (row.depth <= 0.0 && row.lambda <= 0.0) continue;
     Contact out = c;
+    out.depth = row.depth;
     out.normal_value = row.lambda;
     out.tangent_value = row.ft;
     contacts_out->push_back(out);
   }
   world.FinishStep();
-  stats.substeps = params_.substeps;
   stats.contacts = static_cast<int>(contacts_out->size());
   return stats;
+}
+
+void PenaltyMethod::ImplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats) {
+  const double h = world.dt / params_.substeps;
+  auto& bodies = world.bodies();
+  std::vector<Vec3> force(bodies.size()), torque(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) force[i] = bodies[i].force, torque[i] = bodies[i].torque;
+  RowOptions options;
+  options.h = h;
+  options.implicit = true;
+  options.theta = params_.theta;
+  for (int sub = 0; sub < params_.substeps; ++sub) {
+    for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force[i], bodies[i].torque = torque[i];
+    detector.Detect(world, params_.margin, h, &contacts_);
+    BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
+    for (const Contact& c : contacts_) stats->max_penetration = std::max(stats->max_penetration, c.depth);
+    ImplicitSubstep(world, h, stats);
+    KeepAnchors(world, contacts_, h);
+    ProjectJointPositions(world);
+  }
+  // the external wrench stays the accumulated one, as for other methods
+  for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force[i], bodies[i].torque = torque[i];
+  stats->substeps = params_.substeps;
 }
 
 }  // namespace contactsim

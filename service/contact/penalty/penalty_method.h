@@ -10,33 +10,34 @@
 // spring from an anchor with a Coulomb limit (Yamane and Nakamura 2006,
 // penalty_friction.h).
 //
-// One step of dt, in `substeps` sub-steps of h = dt / substeps, each:
-//  1. detect contacts with depth > -margin, build one row per point
-//     (penalty_row.h);
-//  2. explicit: the forces at the sub-step's start are added to each body's
-//     force and torque, then IntegrateMomenta and IntegratePositions
-//     (semi-implicit Euler, stable while sqrt(kp / m) h < 2). Each dashpot
-//     (normal c, tangential ct) acts as c / (1 + h c K), K the point's
-//     inverse effective mass along it: the force a lone dashpot integrated
-//     implicitly would give, so it never reverses the point's velocity in
-//     one step. Why: a rocking box sees the normal and the tangential
-//     dashpots of its corners against its small moment of inertia, and
-//     with plain dashpots (critically damped for the translation) its
-//     rocking diverged at kp = 1e5 N/m, kt = 1e4 N/m for a 0.2 m box. For
-//     h c K << 1 (resolved bounces) the factor is 1;
-//     implicit: the linearly implicit momentum step (penalty_implicit.h),
-//     then positions with the theta-weighted velocity
-//     x += h ((1 - theta) v0 + theta v1) (same rotation update);
-//  3. the anchors advance by the slip: s += h v_t; anchors of points that
-//     carried no force are dropped.
+// Stiffness: with contact_time T > 0 (the default, linear law) a pair's
+// kp = m_s pi^2 / T^2, m_s the heaviest body of its contact island, and
+// kt = kp (penalty_stiffness.h); with T = 0 the fixed kp and
+// friction_stiffness.
+//
+// One step of dt:
+//  explicit (default; penalty_explicit.h): one detection with a speculative
+//     margin (what the step can close), one row per point, then as many
+//     sub-steps of symplectic Euler as resolve a rebounding pair's spring
+//     (max_omega_h) and keep the stiffest mode stable (power iteration),
+//     each point's depth carried with its bodies' motion; bodies that no
+//     contact pushes fly ballistically;
+//  implicit: in `substeps` sub-steps of h = dt / substeps, each a detection
+//     with depth > -margin, rows (penalty_row.h), the linearly implicit
+//     momentum step (penalty_implicit.h), then positions with the
+//     theta-weighted velocity x += h ((1 - theta) v0 + theta v1).
+//  Friction anchors advance by the slip, s += h v_t; anchors of points that
+//  carried no force are dropped.
 //  Joints: the equality-constraint velocity solve (contact/joints/
-//  joint_solver.h) on the momenta after step 2's momentum update, before the
+//  joint_solver.h) on the momenta after each momentum update, before the
 //  positions move; after the positions, their drift is projected away.
 // Contact::normal_value and tangent_value are forces (N): the normal force
-// on B and the friction force on B (world) of the last sub-step.
+// on B and the friction force on B (world) of the last sub-step; depth is
+// the point's depth at the step's end.
 // StepStats: iterations = active-set passes of the implicit solve (0 when
 // explicit), residual = its largest complementarity violation left (N),
-// substeps = sub-steps taken, max_penetration = deepest point seen.
+// substeps = sub-steps taken, max_penetration = deepest point seen (at any
+// sub-step when explicit).
 #pragma once
 
 #include <vector>
@@ -64,7 +65,10 @@ class PenaltyMethod : public ContactMethod {
   const FrictionAnchors& anchors() const { return anchors_; }
 
  private:
-  void ExplicitSubstep(World& world, double h);
+  // one detection, then the explicit sub-steps (penalty_explicit.h)
+  void ExplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats);
+  // `substeps` detections, each with the linearly implicit step (penalty_implicit.h)
+  void ImplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats);
   void ImplicitSubstep(World& world, double h, StepStats* stats);
   // advances the anchors of the force-carrying points by the slip
   void KeepAnchors(const World& world, const ContactSet& contacts, double h);

@@ -19,7 +19,11 @@ double PenaltyParams::RestitutionValue() const {
 const ParamTable<PenaltyParams>& PenaltyParamTable() {
   using P = PenaltyParams;
   static const ParamTable<P> table = {
-      DoubleParam("kp", &P::kp, 1.0, kMaxStiffness, "N/m", "pair stiffness (N/m^n for hunt_crossley)"),
+      DoubleParam("kp", &P::kp, 1.0, kMaxStiffness, "N/m",
+                  "pair stiffness (N/m^n for hunt_crossley) when contact_time = 0 (giving kp alone sets 0)"),
+      DoubleParam("contact_time", &P::contact_time, 0.0, 1.0, "s",
+                  "linear law: a pair's stiffness gives its spring this half period against the heaviest body of "
+                  "its island, m pi^2 / contact_time^2 (penalty_stiffness.h); 0 = the fixed kp and friction_stiffness"),
       DoubleParam("kd", &P::kd, 0.0, kMaxDamping, "N s/m",
                   "pair damping, used when restitution = off (giving kd alone sets off)"),
       ChoiceOrNumberParam("restitution", &P::restitution, {"material", "off"}, 0.0, 1.0,
@@ -29,15 +33,20 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
       DoubleParam("hc_exponent", &P::hc_exponent, 1.0, 3.0, "", "n of kp d^n (1.5: Hertz contact of spheres)"),
       DoubleParam("hc_damping", &P::hc_damping, 0.0, 100.0, "s/m", "Hunt-Crossley alpha when restitution = off"),
       ChoiceParam("integrator", &P::integrator, {"explicit", "implicit"},
-                  "explicit, or linearly implicit (penalty_implicit.h)"),
+                  "explicit sub-steps (penalty_explicit.h), or linearly implicit (penalty_implicit.h)"),
       DoubleParam("theta", &P::theta, 0.5, 1.0, "", "implicit: 1 = linearly implicit Euler, 0.5 = trapezoidal"),
-      IntParam("substeps", &P::substeps, 1, 1000, "", "steps of dt / substeps per world step"),
+      IntParam("substeps", &P::substeps, 1, 1000, "",
+               "steps of dt / substeps per world step (explicit: at least; more are added for max_omega_h)"),
+      DoubleParam("max_omega_h", &P::max_omega_h, 0.01, 2.0, "",
+                  "explicit: sub-steps are added until every rebounding pair's spring has sqrt(kp / m_eff) h below "
+                  "this (restitution 0: sqrt(kp / m_s) h below 1.5 times this) and the stiffest mode omega h "
+                  "below 1, up to 1000 (penalty_explicit.h)"),
       IntParam("iterations", &P::iterations, 1, 1000, "", "implicit: active-set passes at most"),
       DoubleParam("friction_stiffness", &P::friction_stiffness, 1.0, kMaxStiffness, "N/m",
-                  "tangential spring kt of a pair"),
+                  "tangential spring kt of a pair when contact_time = 0 (else kt = the normal stiffness)"),
       DoubleParam("friction_damping_ratio", &P::friction_damping_ratio, 0.0, 100.0, "",
                   "zeta_t of the tangential spring, 1 = critical"),
-      DoubleParam("margin", &P::margin, 0.0, 0.1, "m", "contacts up to this gap are detected (implicit: predicted)"),
+      DoubleParam("margin", &P::margin, 0.0, 0.1, "m", "contacts up to this gap are detected (implicit: predicted; explicit: plus what the step can close)"),
   };
   return table;
 }
@@ -51,6 +60,9 @@ Status ParsePenaltyParams(const char* method, const ParamMap& params, const Pena
   // lists them) restitution decides, so Params() round-trips
   const bool gives_damping = params.count("kd") > 0 || params.count("hc_damping") > 0;
   if (gives_damping && params.count("restitution") == 0) p.restitution = "off";
+  // likewise kp alone means "use kp"
+  const bool gives_stiffness = params.count("kp") > 0 || params.count("friction_stiffness") > 0;
+  if (gives_stiffness && params.count("contact_time") == 0) p.contact_time = 0.0;
   *out = p;
   return Status::Ok();
 }

@@ -13,16 +13,20 @@ namespace contactsim {
 
 struct PenaltyParams {
   std::string model = "linear";
-  double kp = 1.0e6;                    // N/m (N/m^n for hunt_crossley)
+  double kp = 1.0e6;                    // N/m (N/m^n for hunt_crossley), used when contact_time = 0
+  // s: half period of a contact's spring against the heaviest body of its
+  // island (penalty_stiffness.h); 0 = the fixed kp
+  double contact_time = 0.004;
   double kd = 1.0e3;                    // N s/m
   std::string restitution = "material";
   double hc_exponent = 1.5;
   double hc_damping = 0.2;              // s/m
   double friction_stiffness = 1.0e6;    // N/m
   double friction_damping_ratio = 1.0;
-  std::string integrator = "implicit";
+  std::string integrator = "explicit";
   double theta = 1.0;
   int substeps = 1;
+  double max_omega_h = 0.15;            // explicit: a rebounding pair's sqrt(kp / m_eff) h per sub-step at most
   int iterations = 20;
   double margin = 0.005;                // m
 
@@ -34,8 +38,10 @@ const ParamTable<PenaltyParams>& PenaltyParamTable();
 
 // Reads `params` over a copy of `current`; on success stores the result in
 // *out. Errors name the parameter and the value. Giving kd (or hc_damping)
-// without restitution switches restitution to "off"; when both are given,
-// restitution decides (so that Params() fed back gives the same method).
+// without restitution switches restitution to "off", and giving kp (or
+// friction_stiffness) without contact_time sets contact_time to 0 (the fixed
+// stiffness); when both are given, restitution and contact_time decide (so
+// that Params() fed back gives the same method).
 Status ParsePenaltyParams(const char* method, const ParamMap& params, const PenaltyParams& current,
                           PenaltyParams* out);
 

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "service/contact/contact_row.h"
+#include "service/contact/penalty/penalty_stiffness.h"
 
 namespace contactsim {
 
@@ -33,9 +34,51 @@ struct PairInfo {
   int points = 0;
   double m_eff = 0.0;          // kg, 1 / (1/m_a + 1/m_b)
   double restitution = -1.0;   // combined, or -1 when kd / alpha are given
+  double kp = 0.0;             // N/m (N/m^n hunt_crossley)
+  double m_spring = 0.0;       // kg, the mass kp was set for
+  double kt = 0.0;             // N/m, tangential spring
   double kd = 0.0;             // N s/m, linear law
   double ct = 0.0;             // N s/m, tangential dashpot
 };
+
+// Each pair's m_eff, restitution, stiffness (fixed, or from the contact
+// time: penalty_stiffness.h) and the damping that gives the restitution.
+void SetPairStiffnessAndDamping(const World& world, const ContactSet& contacts, const PenaltyParams& params,
+                                std::map<std::pair<int, int>, PairInfo>* pairs) {
+  const auto& bodies = world.bodies();
+  const bool linear = params.model == "linear";
+  const bool timed = linear && params.contact_time > 0.0;
+  std::vector<double> heaviest;
+  if (timed) heaviest = IslandHeaviestMass(world, contacts);
+  std::map<double, double> zeta_of;  // restitution -> zeta: one bisection per value, not per pair
+  for (auto& [key, pair] : *pairs) {
+    const double inv = bodies[key.first].inv_mass + bodies[key.second].inv_mass;
+    pair.m_eff = inv > 0.0 ? 1.0 / inv : 0.0;
+    if (params.restitution == "material") {
+      pair.restitution = CombineRestitution(bodies[key.first].material, bodies[key.second].material);
+    } else if (params.restitution != "off") {
+      pair.restitution = params.RestitutionValue();
+    }
+    pair.kp = params.kp;
+    pair.kt = params.friction_stiffness;
+    pair.m_spring = pair.m_eff;
+    if (timed) {
+      pair.m_spring = std::max(heaviest[key.first], heaviest[key.second]);
+      pair.kp = StiffnessFromContactTime(pair.m_spring, params.contact_time);
+      pair.kt = pair.kp;
+    }
+    if (linear) {
+      if (pair.restitution >= 0.0) {
+        const auto [it, added] = zeta_of.try_emplace(pair.restitution, 0.0);
+        if (added) it->second = ZetaFromRestitution(pair.restitution);
+        pair.kd = 2.0 * it->second * std::sqrt(pair.kp * pair.m_eff);  // DampingFromRestitution
+      } else {
+        pair.kd = params.kd;
+      }
+    }
+    pair.ct = 2.0 * params.friction_damping_ratio * std::sqrt(pair.kt * pair.m_eff);
+  }
+}
 
 }  // namespace
 
@@ -66,24 +109,11 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     row.vt0 = v - row.n * row.vn0;
     // the implicit step's active set decides which gaps the step closes,
     // so every detected point of the linear law is a candidate there
-    row.engaged = c.depth > 0.0 || (options.implicit && linear);
+    row.engaged = c.depth > 0.0 || (options.implicit && linear) || options.speculative;
     ++pairs[{std::min(c.a, c.b), std::max(c.a, c.b)}].points;
   }
 
-  for (auto& [key, pair] : pairs) {
-    const double inv = bodies[key.first].inv_mass + bodies[key.second].inv_mass;
-    pair.m_eff = inv > 0.0 ? 1.0 / inv : 0.0;
-    if (params.restitution == "material") {
-      pair.restitution = CombineRestitution(bodies[key.first].material, bodies[key.second].material);
-    } else if (params.restitution != "off") {
-      pair.restitution = params.RestitutionValue();
-    }
-    // once per pair: the restitution's zeta is a bisection
-    if (linear) {
-      pair.kd = pair.restitution >= 0.0 ? DampingFromRestitution(pair.restitution, params.kp, pair.m_eff) : params.kd;
-    }
-    pair.ct = 2.0 * params.friction_damping_ratio * std::sqrt(params.friction_stiffness * pair.m_eff);
-  }
+  SetPairStiffnessAndDamping(world, contacts, params, &pairs);
 
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
@@ -108,7 +138,12 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
       damping = pair.restitution >= 0.0 ? HuntCrossleyAlpha(pair.restitution, row.anchor.impact_speed)
                                         : params.hc_damping;
     }
-    row.law = EvaluateNormalLaw(params, c.depth, row.vn0, row.nc, damping);
+    row.kp = pair.kp;
+    row.damping = damping;
+    row.m_share = pair.m_eff / row.nc;
+    row.rebounds = pair.restitution != 0.0;
+    row.m_spring = pair.m_spring / row.nc;
+    row.law = EvaluateNormalLaw(params, c.depth, row.vn0, row.nc, damping, pair.kp);
     if (linear && c.depth > 0.0 && !was_penetrating && options.h > 0.0) {
       // the dashpot cannot have removed more than the approach momentum
       const double approach = std::max(0.0, -row.vn0);
@@ -119,7 +154,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     row.inv_mass_n = InverseEffectiveMass(world, row, row.n);
     const double slip = row.vt0.norm();
     row.inv_mass_t = InverseEffectiveMass(world, row, slip > 1e-12 ? Vec3(row.vt0 / slip) : row.t1);
-    row.kt = params.friction_stiffness / row.nc;
+    row.kt = pair.kt / row.nc;
     row.ct = pair.ct / row.nc;
   }
 }

@@ -33,6 +33,11 @@ struct PenaltyRow {
   bool engaged = false;        // takes part in this step (penetrating, or a candidate of the implicit active set)
   double nc = 1.0;             // contact points of the pair
   NormalLaw law;               // includes the onset correction in lambda0
+  double kp = 0.0;             // N/m (N/m^n hunt_crossley): the pair's stiffness (penalty_stiffness.h)
+  double damping = 0.0;        // the pair's kd (N s/m) or Hunt-Crossley alpha (s/m)
+  double m_share = 0.0;        // kg: the pair's m_eff / nc, the most momentum an onset impulse may take per m/s
+  double m_spring = 0.0;       // kg: the mass the pair's stiffness was set for, / nc (m_s of a contact time, else m_eff)
+  bool rebounds = true;        // the pair's restitution is not 0 (or unknown: restitution = off)
   double kt = 0.0, ct = 0.0;   // N/m, N s/m: tangential spring and damper of this point
   double mu = 0.0;             // combined Coulomb coefficient
   double inv_mass_n = 0.0;     // 1/kg: the point's inverse effective mass along n
@@ -50,8 +55,9 @@ struct PenaltyRow {
 };
 
 struct RowOptions {
-  double h = 0.0;              // s, (sub-)step length
+  double h = 0.0;              // s, (sub-)step length; 0 = no onset correction here (the explicit step adds its own)
   bool implicit = false;
+  bool speculative = false;    // every detected point takes part (the explicit step tracks its depth)
   double theta = 1.0;
 };
 
