@@ -39,6 +39,7 @@ void CollisionDetector::Detect(const World& world, double margin, double sweep_d
   narrowphase_.CollidePairs(world.bodies(), pairs_, margin, *runner_, contacts);
   stats_.candidate_pairs = static_cast<int>(pairs_.size());
   stats_.contacts = static_cast<int>(contacts->size());
+  ++stats_.detections;
 }
 
 void CollisionDetector::ComputeBoxes(const World& world, double margin, double sweep_dt) {

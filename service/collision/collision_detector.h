@@ -4,6 +4,7 @@
 // bit for bit, for any number of them; the broadphase is serial.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,8 +18,9 @@
 namespace contactsim {
 
 struct CollisionStats {
-  int candidate_pairs = 0;  // from the broadphase
-  int contacts = 0;
+  int candidate_pairs = 0;  // from the broadphase, last Detect
+  int contacts = 0;         // last Detect
+  int64_t detections = 0;   // Detect calls since construction
 };
 
 class CollisionDetector {
