@@ -51,6 +51,10 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   app.add_option("--broadphase", options.broadphase, "sap or naive (contactsim only)")
       ->check(CLI::IsMember({"sap", "naive"}))
       ->default_str("sap");
+  // checked below with the engine's own message, which names the value
+  app.add_option("--threads", options.threads, "threads of the collision detector, 1 to " +
+                                                    std::to_string(kMaxThreads) + " (contactsim only)")
+      ->default_str(std::to_string(options.threads) + ", the machine's hardware threads");
   app.add_option("--repeat", options.repeat, "repeats; ms_per_step is their median")
       ->check(CLI::PositiveNumber)
       ->default_str("3");
@@ -70,6 +74,10 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   }
   if (options.scene.empty() || options.method.empty()) {
     std::cerr << "--scene and --method are required (methods: " << known << "); see --help\n";
+    return 1;
+  }
+  if (const Status threads = CheckThreadCount(options.threads); !threads.ok()) {
+    std::cerr << "--threads: " << threads.message() << "\n";
     return 1;
   }
   for (const std::string& p : params) {
@@ -100,6 +108,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
     result.status = "error: " + st.message();
   }
   result.engine = info.engine;
+  result.threads = info.engine == "contactsim" ? options.threads : 1;  // the peers step on one thread
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {
