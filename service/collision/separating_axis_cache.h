@@ -71,7 +71,8 @@ class SeparatingAxisCache {
   // Stores or erases as `update` says and adds its hits and misses.
   void Apply(const AxisCacheUpdate& update);
 
-  // Calls of StillSeparates that returned true (hits) and false (misses).
+  // Lookups whose axis still separated (hits) and did not (misses), counted
+  // by StillSeparates and Apply.
   int64_t hits() const { return hits_; }
   int64_t misses() const { return misses_; }
   size_t size() const { return axes_.size(); }
