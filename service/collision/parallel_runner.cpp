@@ -1,11 +1,13 @@
 // oneTBB behind ParallelRunner (parallel_runner.h): a task_arena limited to
-// the world's `threads`, a parallel_for over blocked ranges inside it.
+// the world's `threads`, and in it a task group of helpers that share the
+// range with the caller in chunks.
 #include "service/collision/parallel_runner.h"
 
-#include <oneapi/tbb/blocked_range.h>
-#include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
+#include <oneapi/tbb/task_group.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -43,22 +45,34 @@ ParallelRunner::~ParallelRunner() = default;
 
 void ParallelRunner::For(int n, int grain, const RangeFn& body) {
   if (n <= 0) return;
-  if (arena_ == nullptr || n <= grain) {
+  const int chunk = grain > 0 ? grain : 1;
+  if (arena_ == nullptr || n <= chunk) {
     body(0, n, 0);
     return;
   }
+  // self-scheduling: every thread takes the next `chunk` indices from one
+  // counter until none are left. A helper the OS has descheduled (the
+  // machine is shared) then holds back at most one chunk, where a split
+  // range would leave the caller waiting for the helper's whole half.
+  std::atomic<int> next{0};
+  const auto drain = [&] {
+    // the arena's slot: unique among its running threads, < threads_
+    const int worker = oneapi::tbb::this_task_arena::current_thread_index();
+    if (worker < 0 || worker >= threads_) {
+      std::fprintf(stderr, "ParallelRunner: worker slot %d outside [0, %d)\n", worker, threads_);
+      std::abort();
+    }
+    for (int begin = next.fetch_add(chunk); begin < n; begin = next.fetch_add(chunk)) {
+      body(begin, std::min(begin + chunk, n), worker);
+    }
+  };
+  const int helpers = std::min(threads_ - 1, (n - 1) / chunk);
   arena_->arena.execute([&] {
-    oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<int>(0, n, grain > 0 ? grain : 1),
-                              [&](const oneapi::tbb::blocked_range<int>& r) {
-                                // the arena's slot: unique among its running threads, < threads_
-                                const int worker = oneapi::tbb::this_task_arena::current_thread_index();
-                                if (worker < 0 || worker >= threads_) {
-                                  std::fprintf(stderr, "ParallelRunner: worker slot %d outside [0, %d)\n", worker,
-                                               threads_);
-                                  std::abort();
-                                }
-                                body(r.begin(), r.end(), worker);
-                              });
+    oneapi::tbb::task_group group;
+    for (int h = 0; h < helpers; ++h) group.run(drain);
+    drain();
+    // a helper not started yet runs here and finds nothing left
+    group.wait();
   });
 }
 

@@ -41,10 +41,10 @@ class ParallelRunner {
   int threads() const { return threads_; }
 
   // body(begin, end, worker) over disjoint ranges covering [0, n), each of
-  // at least `grain` indices where n allows; `worker` is in [0, threads())
-  // and no two calls running at the same time share it (so it may index
-  // per-worker scratch). Runs body(0, n, 0) on the caller when threads() is
-  // 1 or n <= grain. Returns when every index is done.
+  // `grain` indices but the last; `worker` is in [0, threads()) and no two
+  // calls running at the same time share it (so it may index per-worker
+  // scratch). The caller works too. Runs body(0, n, 0) on the caller when
+  // threads() is 1 or n <= grain. Returns when every index is done.
   using RangeFn = std::function<void(int begin, int end, int worker)>;
   void For(int n, int grain, const RangeFn& body);
 
