@@ -32,6 +32,21 @@ class ProgressBar {
   int last_ = -10;
 };
 
+// The flags CLI11 cannot check alone: --threads with the engine's message,
+// which names the value, and --param key=value into options->params.
+// Returns "" when they are fine, else the line to print.
+std::string CheckFlags(const std::vector<std::string>& params, BenchOptions* options) {
+  if (const Status threads = CheckThreadCount(options->threads); !threads.ok()) {
+    return "--threads: " + threads.message();
+  }
+  for (const std::string& p : params) {
+    const size_t eq = p.find('=');
+    if (eq == std::string::npos || eq == 0) return "--param must be key=value, got \"" + p + "\"";
+    options->params[p.substr(0, eq)] = p.substr(eq + 1);
+  }
+  return "";
+}
+
 }  // namespace
 
 int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
@@ -76,17 +91,9 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
     std::cerr << "--scene and --method are required (methods: " << known << "); see --help\n";
     return 1;
   }
-  if (const Status threads = CheckThreadCount(options.threads); !threads.ok()) {
-    std::cerr << "--threads: " << threads.message() << "\n";
+  if (const std::string error = CheckFlags(params, &options); !error.empty()) {
+    std::cerr << error << "\n";
     return 1;
-  }
-  for (const std::string& p : params) {
-    const size_t eq = p.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      std::cerr << "--param must be key=value, got \"" << p << "\"\n";
-      return 1;
-    }
-    options.params[p.substr(0, eq)] = p.substr(eq + 1);
   }
 
   SceneSpec scene;
