@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
-  spdlog::info("contactsim-server {} ready: {} bodies, method {}, {} mode{}, channels {}_*, LCM {}",
-               CONTACTSIM_VERSION, server.world().bodies().size(), server.method().Name(),
+  spdlog::info("contactsim-server {} ready: {} bodies, method {}, {} threads, {} mode{}, channels {}_*, LCM {}",
+               CONTACTSIM_VERSION, server.world().bodies().size(), server.method().Name(), setup.options.threads,
                NameOf(setup.options.mode),
                setup.options.start_paused ? " (paused)" : "", setup.options.prefix, url);
 

@@ -21,6 +21,7 @@
 namespace contactsim {
 
 class SeparatingAxisCache;
+struct AxisCacheUpdate;
 
 // Posed polyhedra and clip polygons of the polyhedron pairs, reused between
 // pairs (and steps) so that a step allocates nothing once warmed up.
@@ -29,10 +30,14 @@ struct PolyhedronScratch {
   ClipBuffers clip;
 };
 
+// The cache is only read during a pair; its change goes to `cache_update`
+// (both or neither given), so that pairs may run on several threads
+// (separating_axis_cache.h). The scratch belongs to one thread.
 struct CollideContext {
-  double margin = 0.0;                  // m: report pairs with separation < margin
-  SeparatingAxisCache* cache = nullptr; // optional, used by the polyhedron pairs
-  PolyhedronScratch* scratch = nullptr; // optional, used by the polyhedron pairs
+  double margin = 0.0;                         // m: report pairs with separation < margin
+  const SeparatingAxisCache* cache = nullptr;  // optional, used by the polyhedron pairs
+  AxisCacheUpdate* cache_update = nullptr;     // this pair's change to `cache`
+  PolyhedronScratch* scratch = nullptr;        // optional, used by the polyhedron pairs
 };
 
 using PairCollider = void (*)(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,

@@ -41,9 +41,14 @@ void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const Collid
 void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
                       ContactSet* out) {
   // equal ids (callers without a world) cannot be told apart in the cache
-  SeparatingAxisCache* cache = a.id != b.id ? ctx.cache : nullptr;
+  const SeparatingAxisCache* cache = a.id != b.id && ctx.cache_update != nullptr ? ctx.cache : nullptr;
+  AxisCacheUpdate* update = ctx.cache_update;
   // a hit is decided on the bodies' own frames, before anything is posed
-  if (cache != nullptr && cache->StillSeparates(a, b, ctx.margin)) return;
+  if (cache != nullptr) {
+    const bool hit = cache->Separates(a, b, ctx.margin);
+    ++(hit ? update->hits : update->misses);
+    if (hit) return;
+  }
   const bool boxes = a.shape.type == ShapeType::kBox && b.shape.type == ShapeType::kBox;
   PolyhedronScratch local;
   PolyhedronScratch& scratch = ctx.scratch != nullptr ? *ctx.scratch : local;
@@ -57,10 +62,10 @@ void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideConte
     sat = FindSeparatingAxis(pa, pb, ctx.margin);
   }
   if (sat.separation > ctx.margin) {
-    if (cache != nullptr) cache->Store(a.id, b.id, sat.axis);
+    if (cache != nullptr) update->Store(a.id, b.id, sat.axis);
     return;
   }
-  if (cache != nullptr) cache->Erase(a.id, b.id);
+  if (cache != nullptr) update->Erase(a.id, b.id);
   if (boxes && (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb))) return;
   PolyhedronManifold(pa, pb, sat, ctx.margin, out, &scratch.clip);
 }

@@ -1,6 +1,10 @@
 // The collision pipeline of one step: bounding boxes, broadphase, narrowphase.
+// The bounding boxes and the narrowphase run on the detector's own threads
+// (parallel_runner.h; docs/architecture.md, "Threads") with the same result,
+// bit for bit, for any number of them; the broadphase is serial.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -8,20 +12,27 @@
 #include "service/collision/broadphase.h"
 #include "service/collision/contact.h"
 #include "service/collision/narrowphase.h"
+#include "service/collision/parallel_runner.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
 
 struct CollisionStats {
-  int candidate_pairs = 0;  // from the broadphase
-  int contacts = 0;
+  int candidate_pairs = 0;  // from the broadphase, last Detect
+  int contacts = 0;         // last Detect
+  int64_t detections = 0;   // Detect calls since construction
 };
 
 class CollisionDetector {
  public:
-  CollisionDetector();  // sweep and prune
+  CollisionDetector();  // sweep and prune, one thread
   Status SetBroadphase(const std::string& name);
   const char* broadphase_name() const { return broadphase_->Name(); }
+  // Threads for the per-body and per-pair loops (the `threads` setting):
+  // InvalidArgument naming the value unless CheckThreadCount accepts it,
+  // and then nothing changes. 1 is the serial code path.
+  Status SetThreads(int threads);
+  int threads() const { return runner_->threads(); }
 
   // Contacts of the world at its current poses with depth > -margin (m).
   // Boxes are swept by v * sweep_dt so that pairs about to meet are found.
@@ -42,9 +53,11 @@ class CollisionDetector {
 
  private:
   std::unique_ptr<Broadphase> broadphase_;
+  std::unique_ptr<ParallelRunner> runner_;
   Narrowphase narrowphase_;
   std::vector<Aabb> boxes_;
   std::vector<bool> movable_;
+  void ComputeBoxes(const World& world, double margin, double sweep_dt);
   void DropJointedPairs(const World& world);
 
   std::vector<BodyPair> pairs_;

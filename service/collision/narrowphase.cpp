@@ -10,11 +10,17 @@
 
 #include "service/collision/collide_pairs.h"
 #include "service/collision/polyhedron_sat.h"
+#include "service/collision/separating_axis_cache.h"
 
 namespace contactsim {
 namespace {
 
 constexpr int kShapeTypes = static_cast<int>(ShapeType::kCount);
+
+// Pairs per parallel task, at least: a pair costs from ~0.1 us (a cache hit)
+// to a few us (a clipped manifold) and a oneTBB task about 1 us, so fewer
+// would spend more on scheduling than on pairs.
+constexpr int kPairGrain = 16;
 
 // rows: shape of body a; columns: shape of body b
 const std::array<std::array<PairCollider, kShapeTypes>, kShapeTypes> kCollisionTable = {{
@@ -126,11 +132,46 @@ double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin,
 
 int Narrowphase::Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
                          ContactSet* out) {
+  AxisCacheUpdate update;
   CollideContext ctx;
   ctx.margin = margin;
   ctx.cache = &cache_;
+  ctx.cache_update = &update;
   ctx.scratch = &scratch_;
-  return Dispatch(a, ia, b, ib, ctx, out);
+  const int added = Dispatch(a, ia, b, ib, ctx, out);
+  cache_.Apply(update);
+  return added;
+}
+
+void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::vector<BodyPair>& pairs,
+                               double margin, ParallelRunner& runner, ContactSet* out) {
+  const int n = static_cast<int>(pairs.size());
+  if (runner.threads() == 1 || n <= kPairGrain) {  // the serial path, unchanged
+    for (const BodyPair& p : pairs) Collide(bodies[p.first], p.first, bodies[p.second], p.second, margin, out);
+    return;
+  }
+  // slots and scratch only grow, so a warmed-up step allocates nothing
+  if (slots_.size() < pairs.size()) slots_.resize(pairs.size());
+  if (worker_scratch_.size() < static_cast<size_t>(runner.threads())) worker_scratch_.resize(runner.threads());
+  runner.For(n, kPairGrain, [&](int begin, int end, int worker) {
+    for (int i = begin; i < end; ++i) {
+      PairSlot& slot = slots_[i];
+      slot.contacts.clear();
+      slot.update = AxisCacheUpdate();
+      CollideContext ctx;
+      ctx.margin = margin;
+      ctx.cache = &cache_;  // read only until every pair is done
+      ctx.cache_update = &slot.update;
+      ctx.scratch = &worker_scratch_[worker];
+      const BodyPair& p = pairs[i];
+      Dispatch(bodies[p.first], p.first, bodies[p.second], p.second, ctx, &slot.contacts);
+    }
+  });
+  // pair order, as the serial loop appends and updates
+  for (int i = 0; i < n; ++i) {
+    out->insert(out->end(), slots_[i].contacts.begin(), slots_[i].contacts.end());
+    cache_.Apply(slots_[i].update);
+  }
 }
 
 }  // namespace contactsim

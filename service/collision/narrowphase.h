@@ -9,8 +9,12 @@
 // points and feature ids with flipped normals.
 #pragma once
 
+#include <vector>
+
+#include "service/collision/broadphase.h"
 #include "service/collision/collide_pairs.h"
 #include "service/collision/contact.h"
+#include "service/collision/parallel_runner.h"
 #include "service/collision/separating_axis_cache.h"
 #include "service/physics/rigid_body.h"
 
@@ -41,13 +45,27 @@ double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin,
 class Narrowphase {
  public:
   int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out);
+  // Collides every pair (indices into `bodies`) and appends the contacts to
+  // `out` in pair order: the same contacts, cache and counters, bit for bit,
+  // as Collide on each pair in turn, which is what one thread runs. With
+  // more, each pair fills its own slot, reading the cache and writing its
+  // change aside (separating_axis_cache.h); the slots are then concatenated
+  // and the changes applied in pair order.
+  void CollidePairs(const std::vector<RigidBody>& bodies, const std::vector<BodyPair>& pairs, double margin,
+                    ParallelRunner& runner, ContactSet* out);
   // Forgets the cached axes and zeroes the counters (scene reset or load).
   void Reset() { cache_.Clear(); }
   const SeparatingAxisCache& cache() const { return cache_; }
 
  private:
+  struct PairSlot {
+    ContactSet contacts;
+    AxisCacheUpdate update;
+  };
   SeparatingAxisCache cache_;
   PolyhedronScratch scratch_;
+  std::vector<PolyhedronScratch> worker_scratch_;  // one per runner thread
+  std::vector<PairSlot> slots_;                    // one per pair, kept between steps
 };
 
 }  // namespace contactsim

@@ -106,17 +106,18 @@ bool BodyFrameSeparation(const BodyFrame& a, const BodyFrame& b, const Separatin
 
 }  // namespace
 
-bool SeparatingAxisCache::StillSeparates(const RigidBody& a, const RigidBody& b, double margin) {
+bool SeparatingAxisCache::Separates(const RigidBody& a, const RigidBody& b, double margin) const {
   const SeparatingAxis* axis = Find(a.id, b.id);
   BodyFrame fa, fb;
   double separation;
-  if (axis != nullptr && MakeBodyFrame(a, &fa) && MakeBodyFrame(b, &fb) &&
-      BodyFrameSeparation(fa, fb, *axis, &separation) && separation > margin) {
-    ++hits_;
-    return true;
-  }
-  ++misses_;
-  return false;
+  return axis != nullptr && MakeBodyFrame(a, &fa) && MakeBodyFrame(b, &fb) &&
+         BodyFrameSeparation(fa, fb, *axis, &separation) && separation > margin;
+}
+
+bool SeparatingAxisCache::StillSeparates(const RigidBody& a, const RigidBody& b, double margin) {
+  const bool hit = Separates(a, b, margin);
+  ++(hit ? hits_ : misses_);
+  return hit;
 }
 
 const SeparatingAxis* SeparatingAxisCache::Find(BodyId a, BodyId b) const {
@@ -127,6 +128,13 @@ const SeparatingAxis* SeparatingAxisCache::Find(BodyId a, BodyId b) const {
 void SeparatingAxisCache::Store(BodyId a, BodyId b, const SeparatingAxis& axis) { axes_[{a, b}] = axis; }
 
 void SeparatingAxisCache::Erase(BodyId a, BodyId b) { axes_.erase({a, b}); }
+
+void SeparatingAxisCache::Apply(const AxisCacheUpdate& update) {
+  if (update.kind == AxisCacheUpdate::Kind::kStore) Store(update.a, update.b, update.axis);
+  if (update.kind == AxisCacheUpdate::Kind::kErase) Erase(update.a, update.b);
+  hits_ += update.hits;
+  misses_ += update.misses;
+}
 
 void SeparatingAxisCache::Clear() {
   axes_.clear();

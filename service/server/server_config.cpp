@@ -2,6 +2,7 @@
 
 #include <contactsim/signature.h>
 
+#include "service/collision/parallel_runner.h"
 #include "service/physics/validation.h"
 #include "service/scene/proto_text.h"
 #include "service/server/command_decoder.h"
@@ -72,6 +73,9 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
     return Status::InvalidArgument(at("broadphase") + "broadphase must be sap or naive, got \"" +
                                    config->broadphase() + "\"");
   }
+  if (config->has_threads() && !(st = CheckThreadCount(config->threads())).ok()) {
+    return Status::InvalidArgument(at("threads") + st.message());
+  }
   FsyncPolicy policy;
   if (!(st = ParseFsyncPolicy(config->journal_fsync(), &policy)).ok()) {
     return Status::InvalidArgument(at("journal_fsync") + st.message());
@@ -106,6 +110,7 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
   s.options.contacts_rate_hz = config.contacts_rate_hz();
   s.options.status_rate_hz = config.status_rate_hz();
   s.options.broadphase = config.broadphase();
+  s.options.threads = config.has_threads() ? config.threads() : DefaultThreadCount();  // checked by LoadServerConfig
   s.options.max_bodies = config.max_bodies();
   s.options.max_joints = config.max_joints();
   s.options.decode_limits = {config.max_convex_points(), config.max_body_cmd_bytes(), config.max_scene_cmd_bytes(),

@@ -36,6 +36,7 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
 Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> method) {
   Status st = detector_.SetBroadphase(options_.broadphase);
   if (!st.ok()) return st;
+  if (!(st = detector_.SetThreads(options_.threads)).ok()) return st;
   if (scene != nullptr) {
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }

@@ -41,6 +41,7 @@ struct ServerOptions {
   double contacts_rate_hz = 30.0;       // of simulated time; 0 = every step
   double status_rate_hz = 1.0;          // of wall-clock time
   std::string broadphase = "sap";
+  int threads = DefaultThreadCount();   // of the collision detector; 1 = serial (parallel_runner.h)
   int max_bodies = 100000;              // ADD beyond this is refused
   int max_joints = 100000;              // joint ADD beyond this is refused
   DecodeLimits decode_limits;           // points of a convex, bytes per channel

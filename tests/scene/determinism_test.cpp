@@ -19,6 +19,7 @@
 
 #include "service/contact/contact_method.h"
 #include "service/scene/scene_spec.h"
+#include "tests/scene/scene_run_util.h"
 
 namespace contactsim {
 namespace {
@@ -46,33 +47,11 @@ const std::vector<Pinned>& PinnedRuns() {
   return pinned;
 }
 
-std::string Describe(const std::string& method, const ParamMap& params) {
-  std::string s = method;
-  for (const auto& [k, v] : params) s += " " + k + "=" + v;
-  return s;
-}
+using testing_util::Describe;
 
-// The world hash at the end of the scene under one configuration.
+// The world hash at the end of the determinism scene under one configuration.
 uint64_t RunScene(const std::string& method_name, const ParamMap& params) {
-  SceneSpec spec;
-  World world;
-  Status st = LoadSceneFile(std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/determinism.pbtxt", &spec);
-  EXPECT_TRUE(st.ok()) << st.message();
-  st = BuildWorld(spec, &world);
-  EXPECT_TRUE(st.ok()) << st.message();
-  std::unique_ptr<ContactMethod> method;
-  st = CreateContactMethod(method_name, &method);
-  EXPECT_TRUE(st.ok()) << st.message();
-  if (!st.ok()) return 0;
-  st = method->SetParams(params);
-  EXPECT_TRUE(st.ok()) << st.message();
-  CollisionDetector detector;
-  ContactSet contacts;
-  EXPECT_GT(spec.steps, 0);
-  for (int i = 0; i < spec.steps; ++i) method->Step(world, detector, &contacts);
-  EXPECT_EQ(world.step, spec.steps);
-  EXPECT_TRUE(std::isfinite(KineticEnergy(world)));
-  return HashWorldState(world);
+  return testing_util::RunSceneHash({"determinism.pbtxt", method_name, params});
 }
 
 class DeterminismTest : public ::testing::TestWithParam<std::string> {};

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include "service/collision/parallel_runner.h"
+
 namespace contactsim {
 namespace {
 
@@ -55,6 +57,36 @@ TEST(ServerConfig, MissingSceneIsReported) {
   const Status st = MakeServerSetup(config, path, "", &setup);
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.message().find("nowhere.pbtxt: cannot open file"), std::string::npos) << st.message();
+}
+
+// Verifies that `threads` defaults to the machine's hardware threads and
+// that a given count reaches the server's options.
+TEST(ServerConfig, ThreadsDefaultToTheMachineAndAreTaken) {
+  for (const auto& [text, expected] : {std::pair<std::string, int>{"", DefaultThreadCount()}, {"threads: 1\n", 1},
+                                       {"threads: 3\n", 3}}) {
+    const std::string path = WriteTemp("threads.pbtxt", text);
+    proto::ServerConfig config;
+    const Status loaded = LoadServerConfig(path, &config);
+    ASSERT_TRUE(loaded.ok()) << loaded.message();
+    ServerSetup setup;
+    const Status st = MakeServerSetup(config, path, "", &setup);
+    ASSERT_TRUE(st.ok()) << st.message();
+    EXPECT_EQ(setup.options.threads, expected) << text;
+  }
+}
+
+// Verifies that zero, negative and absurd thread counts are refused with
+// the file, the line, the field and the value.
+TEST(ServerConfig, BadThreadCountsAreRefusedNamingTheValue) {
+  for (const std::string value : {"0", "-2", "100000"}) {
+    const std::string path = WriteTemp("bad_threads.pbtxt", "channel_prefix: \"X\"\nthreads: " + value + "\n");
+    proto::ServerConfig config;
+    const Status st = LoadServerConfig(path, &config);
+    ASSERT_FALSE(st.ok()) << value;
+    EXPECT_EQ(st.code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(st.message().find(path + ":2: threads must be between 1 and 256, got " + value), std::string::npos)
+        << st.message();
+  }
 }
 
 }  // namespace

@@ -21,8 +21,10 @@ struct Output {
   std::string out;
 };
 
-Output RunBench(const std::string& args) {
-  const std::string cmd = std::string(CONTACTSIM_BIN_DIR) + "/contactsim-bench " + args + " 2>/dev/null";
+// stderr is dropped unless `with_stderr`, which appends it to out.
+Output RunBench(const std::string& args, bool with_stderr = false) {
+  const std::string cmd =
+      std::string(CONTACTSIM_BIN_DIR) + "/contactsim-bench " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
   Output o;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return o;
@@ -147,6 +149,19 @@ TEST(SceneBench, MetricsReportNanAndExplosion) {
   EXPECT_EQ(metrics.Check(world).rfind("exploded: \"ball\"", 0), 0u) << metrics.Check(world);
   world.bodies()[0].P.x() = std::nan("");
   EXPECT_EQ(metrics.Check(world).rfind("nan: \"ball\"", 0), 0u) << metrics.Check(world);
+}
+
+// Verifies that --threads reaches the report and that zero, negative and
+// absurd counts are refused with a message naming the value.
+TEST(SceneBench, ThreadsAreReportedAndBadCountsRefused) {
+  const Output o = RunBench("--scene " + Scene("bounce.pbtxt") + " --method impulse --steps 10 --repeat 1 --threads 2 --json");
+  ASSERT_EQ(o.exit_code, 0) << o.out;
+  EXPECT_EQ(Number(o.out, "threads"), 2) << o.out;
+  for (const std::string value : {"0", "-1", "100000"}) {
+    const Output bad = RunBench("--scene " + Scene("bounce.pbtxt") + " --method impulse --threads " + value, true);
+    EXPECT_EQ(bad.exit_code, 1) << value;
+    EXPECT_NE(bad.out.find("--threads: threads must be between 1 and 256, got " + value), std::string::npos) << bad.out;
+  }
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ std::string Text(const std::optional<double>& v, const char* unit) {
 std::string ToJson(const BenchResult& r) {
   std::ostringstream o;
   o << "{\"engine\": " << Quote(r.engine) << ", \"scene\": " << Quote(r.scene) << ", \"method\": " << Quote(r.method)
-    << ", \"params\": {";
+    << ", \"threads\": " << r.threads << ", \"params\": {";
   bool first = true;
   for (const auto& [key, value] : r.params) {
     o << (first ? "" : ", ") << Quote(key) << ": " << Quote(value);
@@ -74,6 +74,7 @@ void PrintTable(const BenchResult& r, std::ostream& out) {
   row("scene", r.scene + " (" + std::to_string(r.bodies) + " bodies, dt " + Number(r.dt) + " s)");
   row("method", r.method);
   row("params", params.empty() ? "-" : params);
+  row("threads", std::to_string(r.threads));
   row("steps", std::to_string(r.steps_done) + " of " + std::to_string(r.steps));
   row("ms per step", Number(r.ms_per_step) + " (median of " + std::to_string(r.ms_per_step_repeats.size()) +
                          "; min " + Number(r.ms_per_step_min) + ", max " + Number(r.ms_per_step_max) + ")");

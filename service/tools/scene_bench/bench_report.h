@@ -1,6 +1,6 @@
 // A run's result as one JSON object (--json) or as a readable table.
 //
-// JSON fields: scene, method, params, bodies, steps, dt,
+// JSON fields: scene, method, threads, params, bodies, steps, dt,
 // ms_per_step (median of the repeats), ms_per_step_min, ms_per_step_max,
 // max_penetration, final_kinetic_energy, top_displacement and
 // rebound_height (null when the scene has no body "top" / "ball", or the

@@ -12,6 +12,7 @@ class ContactsimEngine : public SceneEngine {
   ContactsimEngine(std::unique_ptr<ContactMethod> method, World world)
       : method_(std::move(method)), world_(std::move(world)) {}
   Status SetBroadphase(const std::string& name) { return detector_.SetBroadphase(name); }
+  Status SetThreads(int threads) { return detector_.SetThreads(threads); }
   void Step() override { stats_ = method_->Step(world_, detector_, &contacts_); }
   std::optional<StepStats> LastStats() const override { return stats_; }
   const World& Sync() override { return world_; }
@@ -39,6 +40,7 @@ Status CreateContactsimEngine(const BenchOptions& options, const SceneSpec& scen
   if (!(st = CheckMethodSupports(options.method, world)).ok()) return st;
   auto engine = std::make_unique<ContactsimEngine>(std::move(method), world);
   if (!(st = engine->SetBroadphase(options.broadphase)).ok()) return st;
+  if (!(st = engine->SetThreads(options.threads)).ok()) return st;
   *out = std::move(engine);
   return Status::Ok();
 }

@@ -20,6 +20,7 @@ struct BenchResult {
   std::string scene;              // the scene file's base name, without .pbtxt
   std::string method;
   ParamMap params;
+  int threads = 1;                // of contactsim's collision detector (--threads)
   int bodies = 0;
   int steps = 0;                  // asked for
   int steps_done = 0;             // of the first repeat (less than `steps` after a failure)

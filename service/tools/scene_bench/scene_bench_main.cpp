@@ -32,6 +32,21 @@ class ProgressBar {
   int last_ = -10;
 };
 
+// The flags CLI11 cannot check alone: --threads with the engine's message,
+// which names the value, and --param key=value into options->params.
+// Returns "" when they are fine, else the line to print.
+std::string CheckFlags(const std::vector<std::string>& params, BenchOptions* options) {
+  if (const Status threads = CheckThreadCount(options->threads); !threads.ok()) {
+    return "--threads: " + threads.message();
+  }
+  for (const std::string& p : params) {
+    const size_t eq = p.find('=');
+    if (eq == std::string::npos || eq == 0) return "--param must be key=value, got \"" + p + "\"";
+    options->params[p.substr(0, eq)] = p.substr(eq + 1);
+  }
+  return "";
+}
+
 }  // namespace
 
 int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
@@ -51,6 +66,10 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   app.add_option("--broadphase", options.broadphase, "sap or naive (contactsim only)")
       ->check(CLI::IsMember({"sap", "naive"}))
       ->default_str("sap");
+  // checked below with the engine's own message, which names the value
+  app.add_option("--threads", options.threads, "threads of the collision detector, 1 to " +
+                                                    std::to_string(kMaxThreads) + " (contactsim only)")
+      ->default_str(std::to_string(options.threads) + ", the machine's hardware threads");
   app.add_option("--repeat", options.repeat, "repeats; ms_per_step is their median")
       ->check(CLI::PositiveNumber)
       ->default_str("3");
@@ -72,13 +91,9 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
     std::cerr << "--scene and --method are required (methods: " << known << "); see --help\n";
     return 1;
   }
-  for (const std::string& p : params) {
-    const size_t eq = p.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      std::cerr << "--param must be key=value, got \"" << p << "\"\n";
-      return 1;
-    }
-    options.params[p.substr(0, eq)] = p.substr(eq + 1);
+  if (const std::string error = CheckFlags(params, &options); !error.empty()) {
+    std::cerr << error << "\n";
+    return 1;
   }
 
   SceneSpec scene;
@@ -100,6 +115,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
     result.status = "error: " + st.message();
   }
   result.engine = info.engine;
+  result.threads = info.engine == "contactsim" ? options.threads : 1;  // the peers step on one thread
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "service/collision/parallel_runner.h"
 #include "service/contact/contact_method.h"
 #include "service/physics/status.h"
 #include "service/physics/world.h"
@@ -23,6 +24,7 @@ struct BenchOptions {
   ParamMap params;               // --param key=value
   int steps = 0;                 // 0: the scene's `steps`
   std::string broadphase = "sap";
+  int threads = DefaultThreadCount();  // of the collision detector (contactsim only)
   int repeat = 3;
   bool json = false;
   double max_seconds = 0.0;      // s of stepping per repeat before giving up; 0: no limit
