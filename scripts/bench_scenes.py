@@ -66,6 +66,8 @@ def run_one(bin_dir, binary, scene, method, params, args):
            "--method", method, "--repeat", str(args.repeat), "--max-seconds", str(args.max_seconds), "--json"]
     for p in params:
         cmd += ["--param", p]
+    if binary == "contactsim-bench":
+        cmd += ["--threads", str(args.threads)]  # the peers step on one thread
     if args.steps:
         cmd += ["--steps", str(args.steps)]
     # each repeat may step max_seconds; allow for building, measuring and a last slow step
@@ -263,6 +265,7 @@ def main():
     ap.add_argument("--scenes", nargs="+", default=SCENES, choices=SCENES)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--max-seconds", type=float, default=60.0, help="stepping time per repeat before giving up")
+    ap.add_argument("--threads", type=int, default=1, help="contactsim's threads (the peers use one)")
     ap.add_argument("--steps", type=int, default=0, help="override the scenes' steps (for a quick look)")
     ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
     ap.add_argument("--json-out", default=None, help="also write every run's JSON here (default BUILD/bench_scenes.json)")

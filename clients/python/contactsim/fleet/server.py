@@ -22,8 +22,10 @@ from ..process import interrupt
 START_TIMEOUT = 30.0   # a sanitizer build on a busy 2-core machine starts slowly
 EXIT_TIMEOUT = 10.0
 # every step published: jobs collect penetration and trajectories per step
+# threads: each Ray worker owns one server and Ray gives each worker a core,
+# so a server using every core would oversubscribe them
 CONFIG_OVERRIDES = {"state_rate_hz": "0", "contacts_rate_hz": "0", "status_rate_hz": "1",
-                    "log_level": '"warn"'}
+                    "log_level": '"warn"', "threads": "1"}
 
 
 def private_url():
