@@ -22,8 +22,9 @@ from contactsim.fleet import Fleet, Job, run_sequential  # noqa: E402
 from contactsim.gym import ContactsimEnv, FleetVectorEnv, HoverTask  # noqa: E402
 
 SCENES = REPO / "config" / "scenes"
-# a job long enough to be killed in the middle of (~2 s on the Release build)
-LONG_STEPS = 6000
+# a job long enough to be killed in the middle of (~4 s on the Release build,
+# of which the server uses more than the 0.1 s of CPU the test waits for)
+LONG_STEPS = 30000
 
 
 @pytest.fixture(scope="module")
