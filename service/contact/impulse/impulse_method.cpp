@@ -339,6 +339,12 @@ double ImpulseMethod::FindImpactTime(const World& start, const std::vector<std::
 }
 
 StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  const int count = JointSubstepCount(world, params_.joint_substep_ratio, params_.joint_substeps);
+  return StepInSubsteps(world, count, ValueKind(),
+                        [&](ContactSet* out) { return StepOnce(world, detector, out); }, contacts_out);
+}
+
+StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
   const double margin = params_.slop;
@@ -409,7 +415,6 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
     contacts_out->clear();
   }
   ProjectJointPositions(world);
-  world.FinishStep();
   stats.contacts = static_cast<int>(contacts_out->size());
   for (const Contact& c : *contacts_out) stats.max_penetration = std::max(stats.max_penetration, c.depth);
   return stats;

@@ -55,6 +55,8 @@ class ImpulseMethod : public ContactMethod {
   Status SetParams(const ParamMap& params) override;
   ParamMap Params() const override { return ImpulseParamTable().ToMap(params_); }
   std::vector<ParamDoc> ParamDocs() const override { return ImpulseParamTable().Docs(); }
+  // In joint_substeps sub-steps when the world's joints join very unequal
+  // masses (joint_substeps.h), else one StepOnce.
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { warm_.clear(); }
   // the warm-start forces, bit for bit, for snapshots
@@ -63,6 +65,8 @@ class ImpulseMethod : public ContactMethod {
   const ImpulseParams& params() const { return params_; }
 
  private:
+  // One step over world.dt, without World::FinishStep.
+  StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
   int ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);

@@ -22,6 +22,8 @@ const ParamTable<ImpulseParams>& ImpulseParamTable() {
                   "their normal rows after the sweeps (subspace_solve.h); 0 = off"),
       IntParam("direct_max_rows", &P::direct_max_rows, 0, 10000, "",
                "larger components keep the sweeps' answer"),
+      JointSubstepRatioParam(&P::joint_substep_ratio),
+      JointSubstepsParam(&P::joint_substeps),
   };
   return table;
 }

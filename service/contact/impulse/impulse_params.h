@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "service/contact/joint_substeps.h"
 #include "service/contact/param_table.h"
 
 namespace contactsim {
@@ -21,6 +22,8 @@ struct ImpulseParams {
   bool warm_start = true;
   double direct_mass_ratio = 10.0;
   int direct_max_rows = 300;
+  double joint_substep_ratio = 100.0;
+  int joint_substeps = 4;
 };
 
 const ParamTable<ImpulseParams>& ImpulseParamTable();

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/contact/contact_row.h"
+#include "service/contact/joint_substeps.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
 #include "service/contact/lcp/lemke_rows.h"
@@ -100,6 +101,12 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
 }
 
 StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  const int count = JointSubstepCount(world, params_.joint_substep_ratio, params_.joint_substeps);
+  return StepInSubsteps(world, count, ValueKind(),
+                        [&](ContactSet* out) { return StepOnce(world, detector, out); }, contacts_out);
+}
+
+StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   const double h = world.dt;
   world.AccumulateForces();
@@ -162,7 +169,6 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
     contacts_out->push_back(c);
     stats.max_penetration = std::max(stats.max_penetration, c.depth);
   }
-  world.FinishStep();
   stats.contacts = static_cast<int>(contacts_out->size());
   stats.iterations = report_.iterations;
   stats.residual = report_.residual;

@@ -65,6 +65,8 @@ class LcpMethod : public ContactMethod {
   Status SetParams(const ParamMap& params) override;
   ParamMap Params() const override { return LcpParamTable().ToMap(params_); }
   std::vector<ParamDoc> ParamDocs() const override { return LcpParamTable().Docs(); }
+  // In joint_substeps sub-steps when the world's joints join very unequal
+  // masses (joint_substeps.h), else one StepOnce.
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { warm_start_.Clear(); }
   // the warm-start impulses, bit for bit, for snapshots
@@ -77,6 +79,8 @@ class LcpMethod : public ContactMethod {
   const WarmStartCache& warm_start() const { return warm_start_; }
 
  private:
+  // One step over world.dt, without World::FinishStep.
+  StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts);
   void Solve(const World& world, std::vector<SolverBody>& bodies);
 

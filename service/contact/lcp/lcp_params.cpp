@@ -23,6 +23,8 @@ const ParamTable<LcpParams>& LcpParamTable() {
                   "pgs: components whose heaviest body is this many times their lightest get a direct solve "
                   "of their normal and joint rows (subspace_solve.h); 0 = off"),
       IntParam("direct_max_rows", &P::direct_max_rows, 0, 10000, "", "pgs: larger components keep the sweeps' answer"),
+      JointSubstepRatioParam(&P::joint_substep_ratio),
+      JointSubstepsParam(&P::joint_substeps),
   };
   return table;
 }

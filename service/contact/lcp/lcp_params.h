@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "service/contact/joint_substeps.h"
 #include "service/contact/param_table.h"
 
 namespace contactsim {
@@ -22,6 +23,8 @@ struct LcpParams {
   double erp = 0.2;
   double direct_mass_ratio = 10.0;
   int direct_max_rows = 300;
+  double joint_substep_ratio = 100.0;
+  int joint_substeps = 4;
 };
 
 const ParamTable<LcpParams>& LcpParamTable();

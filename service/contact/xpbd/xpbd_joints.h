@@ -46,11 +46,4 @@ using XpbdJointLambda = std::array<double, 3>;
 // the caller at the start of each sub-step).
 void SolveXpbdJoints(World& world, double alpha_tilde, std::vector<XpbdJointLambda>* lambdas);
 
-// True when some set of dynamic bodies joined by joints holds a body at
-// least `ratio` times heavier than another (ratio <= 0: never). One sweep
-// then leaves a heavy body hanging from light links far from the joints
-// (Gauss-Seidel converges at about 1 - m_light / m_heavy per sweep), so
-// the method projects such worlds' joints exactly after the sweeps.
-bool JointMassRatioAtLeast(const World& world, double ratio);
-
 }  // namespace contactsim

@@ -5,6 +5,7 @@
 
 #include "service/collision/narrowphase.h"
 #include "service/contact/detect_ahead.h"
+#include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/physics/integrator.h"
 
