@@ -29,12 +29,6 @@ struct SoftBody {
   Mat3 dR = Mat3::Identity();        // R(q) R(q0)^T, the turn since the step's start
   bool substepped = false;
 
-  // velocity of the material point at lever arm r (world)
-  Vec3 PointVelocity(const Vec3& r) const { return v + w.cross(r); }
-  void ApplyImpulse(const Vec3& J, const Vec3& r) {
-    v += inv_mass * J;
-    w += inv_inertia * r.cross(J);
-  }
 };
 
 // One SoftBody per world body; `substepped[i]` marks the bodies that touch

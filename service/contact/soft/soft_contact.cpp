@@ -28,9 +28,8 @@ double ImpactSpeed(const SoftPoint& p, const World& world, double vn0, double s0
 
 }  // namespace
 
-void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies, double h,
+void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<SoftPoint>* points) {
-  (void)h;
   points->resize(contacts.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];

@@ -62,9 +62,8 @@ struct SoftPoint {
   }
 };
 
-// The points of `contacts` at the bodies' state at the step's start; `h`
-// is the whole step (the impact speed looks ahead over it).
-void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies, double h,
+// The points of `contacts` at the bodies' state at the step's start.
+void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<SoftPoint>* points);
 
 // Each point's spring for sub-steps of h: `hertz` between two movable

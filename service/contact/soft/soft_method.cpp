@@ -32,7 +32,7 @@ void SoftMethod::Prepare(World& world) {
   for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
   SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, &bodies_);
-  PrepareSoftPoints(contacts_, world, bodies_, world.dt, &points_);
+  PrepareSoftPoints(contacts_, world, bodies_, &points_);
   BuildSoftManifolds(points_, &manifolds_);
   if (!params_.warm_start) return;
   for (size_t k = 0; k < contacts_.size(); ++k) {
