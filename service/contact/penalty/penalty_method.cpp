@@ -98,6 +98,12 @@ void PenaltyMethod::KeepAnchors(const World& world, const ContactSet& contacts, 
 }
 
 StepStats PenaltyMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  const int count = JointSubstepCount(world, params_.joint_substep_ratio, params_.joint_substeps);
+  return StepInSubsteps(world, count, ValueKind(),
+                        [&](ContactSet* out) { return StepOnce(world, detector, out); }, contacts_out);
+}
+
+StepStats PenaltyMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
   world.AccumulateForces();
@@ -116,7 +122,6 @@ StepStats PenaltyMethod::Step(World& world, CollisionDetector& detector, Contact
     out.tangent_value = row.ft;
     contacts_out->push_back(out);
   }
-  world.FinishStep();
   stats.contacts = static_cast<int>(contacts_out->size());
   return stats;
 }

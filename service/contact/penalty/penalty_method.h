@@ -56,6 +56,8 @@ class PenaltyMethod : public ContactMethod {
   Status SetParams(const ParamMap& params) override;
   ParamMap Params() const override;
   std::vector<ParamDoc> ParamDocs() const override;
+  // In joint_substeps sub-steps when the world's joints join very unequal
+  // masses (joint_substeps.h), else one StepOnce.
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   void ResetCaches() override { anchors_.Clear(); }
   // the friction anchors (FrictionAnchors::Save)
@@ -65,6 +67,8 @@ class PenaltyMethod : public ContactMethod {
   const FrictionAnchors& anchors() const { return anchors_; }
 
  private:
+  // One step over world.dt, without World::FinishStep.
+  StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   // one detection, then the explicit sub-steps (penalty_explicit.h)
   void ExplicitWorldStep(World& world, CollisionDetector& detector, StepStats* stats);
   // `substeps` detections, each with the linearly implicit step (penalty_implicit.h)

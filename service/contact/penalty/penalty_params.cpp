@@ -47,6 +47,8 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
       DoubleParam("friction_damping_ratio", &P::friction_damping_ratio, 0.0, 100.0, "",
                   "zeta_t of the tangential spring, 1 = critical"),
       DoubleParam("margin", &P::margin, 0.0, 0.1, "m", "contacts up to this gap are detected (implicit: predicted; explicit: plus what the step can close)"),
+      JointSubstepRatioParam(&P::joint_substep_ratio),
+      JointSubstepsParam(&P::joint_substeps),
   };
   return table;
 }

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "service/contact/joint_substeps.h"
 #include "service/contact/param_table.h"
 
 namespace contactsim {
@@ -29,6 +30,8 @@ struct PenaltyParams {
   double max_omega_h = 0.15;            // explicit: a rebounding pair's sqrt(kp / m_eff) h per sub-step at most
   int iterations = 20;
   double margin = 0.005;                // m
+  double joint_substep_ratio = 100.0;
+  int joint_substeps = 4;
 
   // the restitution as a number, or -1 for "material" / "off"
   double RestitutionValue() const;
