@@ -31,6 +31,10 @@ struct ConstraintRow {
   int normal_row = -1;
   double mu = 0.0;
   double lambda = 0.0;                 // accumulated impulse (warm start in, result out)
+  // Compliance of a soft row (s/kg): it aims at J qdot + cfm lambda = rhs,
+  // a spring whose give grows with the impulse it carries (softness.h). The
+  // soft step's rows set it; every other solver's rows are rigid (0).
+  double cfm = 0.0;
 
   double Velocity(const std::vector<SolverBody>& s) const {
     double jv = 0.0;

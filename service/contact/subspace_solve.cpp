@@ -126,7 +126,7 @@ void SubspaceSolver::BuildCoupling(const std::vector<int>& members, const std::v
       for (int j : body_rows_[body]) {
         if (seen_[j] == i) continue;
         seen_[j] = i;
-        triplets_.emplace_back(i, j, Coupling(r, rows[members[j]], bodies));
+        triplets_.emplace_back(i, j, Coupling(r, rows[members[j]], bodies) + (i == j ? r.cfm : 0.0));
       }
     }
   }
@@ -184,7 +184,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
       for (int i = 0; i < f; ++i) {
         const ConstraintRow& r = rows[members[free_rows[i]]];
         scale(i) = 1.0 / std::sqrt(diag_(free_rows[i]));
-        b(i) = scale(i) * (r.rhs - r.Velocity(bodies));
+        b(i) = scale(i) * (r.rhs - r.Velocity(bodies) - r.cfm * r.lambda);
       }
       triplets_.clear();
       for (int col = 0; col < m; ++col) {
@@ -227,7 +227,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     for (int i = 0; i < m; ++i) {
       const ConstraintRow& r = rows[members[i]];
       if (!held[i] || diag_(i) <= 0.0 || r.normal_row >= 0) continue;  // sliding friction stays held
-      const double gap = r.rhs - r.Velocity(bodies);  // > 0: wants more impulse
+      const double gap = r.rhs - r.Velocity(bodies) - r.cfm * r.lambda;  // > 0: wants more impulse
       if ((r.lambda <= r.lo && gap > kJoinTolerance) || (r.lambda >= r.hi && gap < -kJoinTolerance)) {
         held[i] = false;
         joined = true;

@@ -14,7 +14,8 @@
 // which rows push (the active set) and the friction impulses; given those,
 // the rows that push, and the friction rows that stick, solve a linear
 // system exactly:
-//   A_SS dlambda_S = rhs_S - J_S v,   S = the free rows,
+//   (A_SS + C_S) dlambda_S = rhs_S - J_S v - C_S lambda_S,   S = the free rows,
+// C the diagonal of the rows' compliances (ConstraintRow::cfm; 0 for rigid rows),
 // with the rows at a bound (sliding friction among them) held. Sticking
 // friction is in S because its rows converge as slowly: without it a 20 kg
 // box on a 0.02 kg one crept 44 mm sideways in 2 s. A row whose impulse

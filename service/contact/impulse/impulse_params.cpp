@@ -1,5 +1,7 @@
 #include "service/contact/impulse/impulse_params.h"
 
+#include "service/contact/direct_solve_params.h"
+
 namespace contactsim {
 
 const ParamTable<ImpulseParams>& ImpulseParamTable() {
@@ -17,11 +19,8 @@ const ParamTable<ImpulseParams>& ImpulseParamTable() {
       ChoiceParam("toi", &P::toi, {"regula_falsi", "bisection", "off"}, "root finder of the collision time"),
       IntParam("max_substeps", &P::max_substeps, 1, 64, "", "time-of-impact sub-steps per step at most"),
       BoolParam("warm_start", &P::warm_start, "start the contact phase from last step's forces"),
-      DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
-                  "components whose heaviest body is this many times their lightest get a direct solve of "
-                  "their normal rows after the sweeps (subspace_solve.h); 0 = off"),
-      IntParam("direct_max_rows", &P::direct_max_rows, 0, 10000, "",
-               "larger components keep the sweeps' answer"),
+      DirectMassRatioParam(&P::direct_mass_ratio),
+      DirectMaxRowsParam(&P::direct_max_rows),
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),
   };

@@ -1,5 +1,7 @@
 #include "service/contact/lcp/lcp_params.h"
 
+#include "service/contact/direct_solve_params.h"
+
 namespace contactsim {
 
 const ParamTable<LcpParams>& LcpParamTable() {
@@ -19,10 +21,8 @@ const ParamTable<LcpParams>& LcpParamTable() {
                "lemke: pivot cap, 0 = 50 (n + 1) for n LCP variables"),
       IntParam("max_lemke_rows", &P::max_lemke_rows, 0, 10000, "",
                "lemke: larger problems are solved by pgs (counted as fallbacks)"),
-      DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
-                  "pgs: components whose heaviest body is this many times their lightest get a direct solve "
-                  "of their normal and joint rows (subspace_solve.h); 0 = off"),
-      IntParam("direct_max_rows", &P::direct_max_rows, 0, 10000, "", "pgs: larger components keep the sweeps' answer"),
+      DirectMassRatioParam(&P::direct_mass_ratio, true),
+      DirectMaxRowsParam(&P::direct_max_rows, true),
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),
   };

@@ -49,6 +49,10 @@ void SoftMethod::RunSubsteps(World& world) {
   // the spring must be resolved by the sub-step: at most a quarter of its rate
   const double hertz = std::min(params_.contact_hertz, 0.25 / h);
   SetSoftPointSprings(hertz, params_.damping_ratio, h, world, points_);
+  SubspaceOptions direct;
+  direct.mass_ratio = params_.direct_mass_ratio;
+  direct.max_rows = params_.direct_max_rows;
+  ratio_solve_.Prepare(direct, bodies_, points_);
   SoftPass solve;
   solve.inv_h = 1.0 / h;
   solve.max_push_velocity = params_.max_push_velocity;
@@ -58,9 +62,11 @@ void SoftMethod::RunSubsteps(World& world) {
     IntegrateSoftVelocities(world, h, bodies_);
     WarmStartSoftPoints(points_, bodies_);
     SolveSoftManifolds(solve, manifolds_, points_, bodies_);
+    ratio_solve_.Solve(solve, points_, bodies_);
     joints_.SolveVelocities(world, h, bodies_);
     IntegrateSoftPositions(h, world, bodies_);
     for (int it = 0; it < params_.relax_iterations; ++it) SolveSoftManifolds(relax, manifolds_, points_, bodies_);
+    if (params_.relax_iterations > 0) ratio_solve_.Solve(relax, points_, bodies_);
     joints_.SolveVelocities(world, h, bodies_);
     AccumulateSoftTotals(points_);
   }

@@ -21,6 +21,10 @@
 //       e. relax: `relax_iterations` passes with rigid, unbiased rows, which
 //          take back the velocity the spring gave, so pushing out adds no
 //          kinetic energy;
+//     where a heavy body rests on a light one (direct_mass_ratio), the
+//     springs take their stiffness from the heavy body and each solve and
+//     relax pass ends with a direct solve of those contacts
+//     (soft_ratio_solve.h);
 //  3. restitution: points that pushed and met faster than
 //     restitution_threshold get v_n = -e v_impact (soft_contact.h);
 //  4. the impulses are kept per contact feature for the next step's warm
@@ -45,6 +49,7 @@
 #include "service/contact/soft/soft_joints.h"
 #include "service/contact/soft/soft_manifold.h"
 #include "service/contact/soft/soft_params.h"
+#include "service/contact/soft/soft_ratio_solve.h"
 #include "service/contact/warm_start_cache.h"
 
 namespace contactsim {
@@ -74,6 +79,7 @@ class SoftMethod : public ContactMethod {
   std::vector<SoftPoint> points_;
   std::vector<SoftManifold> manifolds_;
   SoftJoints joints_;
+  SoftRatioSolve ratio_solve_;
   std::vector<std::array<double, 3>> impulses_;
   WarmStartCache warm_start_;
 };

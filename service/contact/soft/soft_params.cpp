@@ -1,5 +1,7 @@
 #include "service/contact/soft/soft_params.h"
 
+#include "service/contact/direct_solve_params.h"
+
 namespace contactsim {
 
 const ParamTable<SoftParams>& SoftParamTable() {
@@ -18,6 +20,8 @@ const ParamTable<SoftParams>& SoftParamTable() {
                   "approach speed above which restitution applies"),
       DoubleParam("margin", &P::margin, 0.0, 1.0, "m", "speculative distance beyond each pair's closing motion"),
       BoolParam("warm_start", &P::warm_start, "start each step from the last step's impulses"),
+      DirectMassRatioParam(&P::direct_mass_ratio),
+      DirectMaxRowsParam(&P::direct_max_rows),
   };
   return table;
 }

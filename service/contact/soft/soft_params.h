@@ -16,6 +16,8 @@ struct SoftParams {
   double restitution_threshold = 1.0;   // m/s
   double margin = 0.01;                 // m, speculative distance beyond each pair's closing motion
   bool warm_start = true;
+  double direct_mass_ratio = 10.0;      // soft_ratio_solve.h
+  int direct_max_rows = 300;
 };
 
 const ParamTable<SoftParams>& SoftParamTable();

@@ -31,4 +31,17 @@ inline Softness MakeSoftness(double hertz, double damping_ratio, double h) {
   return Softness{omega / a1, a2 * a3, a3};
 }
 
+// The same spring with its stiffness taken from a mass `ratio` = m_eff /
+// m_load times the effective mass, so that a row under m_load's weight
+// compresses as a row of m_load would: the row's compliance,
+// impulse_scale / (mass_scale m_eff) = 1 / (a2 m_eff), becomes
+// ratio / (a2 m_eff); the bias rate, how fast it pushes out, is unchanged.
+// With a2 = mass_scale / impulse_scale:
+//   mass_scale' = a2 / (a2 + ratio),  impulse_scale' = ratio / (a2 + ratio).
+inline Softness LoadedSoftness(const Softness& s, double ratio) {
+  if (s.impulse_scale <= 0.0) return s;
+  const double a2 = s.mass_scale / s.impulse_scale;
+  return Softness{s.bias_rate, a2 / (a2 + ratio), ratio / (a2 + ratio)};
+}
+
 }  // namespace contactsim

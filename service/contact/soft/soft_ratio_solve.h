@@ -1,0 +1,57 @@
+// The soft step's contacts where a heavy body rests on a light one
+// (docs/physics.md, "Mass ratios").
+//
+// Two things go wrong there under the plain soft step (soft_method.h):
+//  - the spring: its stiffness is m_eff omega^2 with m_eff about the light
+//    body's mass, while its load is the heavy body's weight, so a 20 kg box
+//    on a 0.02 kg one pressed the light box's springs 5.2 mm deep (and 59 mm
+//    at 1:1000) where equal masses rest 0.1 mm deep;
+//  - the sweeps: one Gauss-Seidel pass moves the heavy body's share of the
+//    error by about m_light / m_heavy (Erleben, "Velocity-based shock
+//    propagation", 2007), so four passes a step leave it sliding (24 mm in
+//    2 s at 1:100).
+// So in each component of dynamic bodies joined by contacts whose heaviest
+// body is at least `mass_ratio` times its lightest, every point's spring
+// takes its stiffness from the component's heaviest mass m_load
+// (LoadedSoftness: it gives as a row of m_load would, and pushes out at the
+// same rate), and after each solve and relax pass the component's normal
+// rows and sticking friction rows are solved exactly, with the springs'
+// compliances, by the subspace solve (subspace_solve.h; Silcowitz, Niebe and
+// Erleben 2010). Worlds without such a component are untouched bit for bit.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/constraint_row.h"
+#include "service/contact/soft/soft_contact.h"
+#include "service/contact/subspace_solve.h"
+
+namespace contactsim {
+
+class SoftRatioSolve {
+ public:
+  // Finds the components of `points` that reach `options.mass_ratio` and
+  // stiffens their points' springs (after SetSoftPointSprings). `bodies` at
+  // the step's start give the masses and the inverse inertias of the solve.
+  void Prepare(const SubspaceOptions& options, const std::vector<SoftBody>& bodies, std::vector<SoftPoint>& points);
+  bool active() const { return !selected_.empty(); }
+  // After a pass: the selected points' rows solved exactly for the same
+  // targets the pass aimed at (SoftNormalTarget).
+  void Solve(const SoftPass& pass, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+
+ private:
+  void Select(const std::vector<SoftBody>& bodies, const std::vector<SoftPoint>& points, double ratio);
+  void BuildRows(const SoftPass& pass, const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies);
+  void WriteBack(std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) const;
+
+  SubspaceOptions options_;
+  std::vector<int> selected_;       // point indices, ascending
+  std::vector<double> load_mass_;   // per world body root: heaviest mass of its component
+  std::vector<int> slot_of_body_;   // world body index -> solver body, or -1
+  std::vector<int> body_of_slot_;   // solver body -> world body index
+  std::vector<SolverBody> solver_bodies_;
+  std::vector<ConstraintRow> rows_;  // per selected point: normal, t1, t2
+  SubspaceSolver subspace_;
+};
+
+}  // namespace contactsim
