@@ -141,6 +141,80 @@ INSTANTIATE_TEST_SUITE_P(EveryMethod, MassRatioStackTest,
                                             ::testing::Bool(), ::testing::Values(1, 10, 100, 1000)),
                          StackName);
 
+using SupportParam = std::tuple<std::string, int>;  // method, ratio
+
+class MassRatioSupportTest : public ::testing::TestWithParam<SupportParam> {};
+
+// A flat box of the lower stack's shape at height z (its bottom face), of
+// mass m.
+BodySettings FlatBox(double x, double z, double m) {
+  BodySettings s;
+  s.shape = ShapeType::kBox;
+  s.half_extents = Vec3(0.15, 0.15, 0.05);
+  s.position = Vec3(x, 0, z + 0.05);
+  s.restitution = 0.0;
+  s.friction = 0.5;
+  s.mass = m;
+  return s;
+}
+
+// Verifies two more layouts of light supports under heavy loads, with the
+// bounds of StackHolds: a plank `ratio` times heavier than each of the two
+// light boxes it bridges (one component, two supports, eight contact points
+// above and below), and a light box between two heavy ones (a sandwich:
+// the light body's rows carry the top box's weight from above and pass it
+// on below).
+TEST_P(MassRatioSupportTest, LightSupportsHold) {
+  const auto& [method, ratio] = GetParam();
+  const double gap = 1e-4;  // m
+  testing::MechanicsChecks checks(method);
+  for (const bool bridge : {true, false}) {
+    Sim sim(method);
+    AddGround(sim.world, 0.0, 0.5);
+    BodyId top = 0;
+    if (bridge) {
+      AddValidBody(sim.world, FlatBox(-0.35, gap, kLightMass));
+      AddValidBody(sim.world, FlatBox(0.35, gap, kLightMass));
+      BodySettings plank = FlatBox(0.0, 0.1 + 2.0 * gap, kLightMass * ratio);
+      plank.half_extents = Vec3(0.5, 0.15, 0.025);
+      plank.position.z() = 0.1 + 2.0 * gap + 0.025;
+      top = AddValidBody(sim.world, plank);
+    } else {
+      AddValidBody(sim.world, FlatBox(0.0, gap, kLightMass * ratio));
+      AddValidBody(sim.world, FlatBox(0.0, 0.1 + 2.0 * gap, kLightMass));
+      top = AddValidBody(sim.world, FlatBox(0.0, 0.2 + 3.0 * gap, kLightMass * ratio));
+    }
+    double worst_pen = 0.0, settled_z = 0.0, lowest_z = 1e9;
+    const int steps = static_cast<int>(kSeconds / sim.world.dt);
+    for (int i = 0; i < steps; ++i) {
+      sim.Step();
+      worst_pen = std::max(worst_pen, Penetration(sim.world));
+      const double z = sim.world.Find(top)->x.z();
+      if (i + 1 == steps / 8) settled_z = z;
+      if (i + 1 >= steps / 8) lowest_z = std::min(lowest_z, z);
+    }
+    const double sink = settled_z - lowest_z;
+    const double drift = (sim.world.Find(top)->x.head<2>()).norm();
+    const std::string layout = bridge ? "bridge" : "sandwich";
+    std::printf("%-8s %-8s 1:%-4d penetration %.3g mm, sink %.3g mm, drift %.3g mm\n", method.c_str(),
+                layout.c_str(), ratio, 1e3 * worst_pen, 1e3 * sink, 1e3 * drift);
+    const std::string id = layout + " 1:" + std::to_string(ratio);
+    checks.Expect(id + " penetration", worst_pen, 0.5 * kMaxPenetration, 0.5 * kMaxPenetration);
+    checks.Expect(id + " sink", sink, 0.5 * kMaxSink, 0.5 * kMaxSink);
+    checks.Expect(id + " drift", drift, 0.5 * kMaxSink, 0.5 * kMaxSink);
+  }
+  SKIP_KNOWN_MISSES(checks);
+}
+
+std::string SupportName(const ::testing::TestParamInfo<SupportParam>& info) {
+  return std::get<0>(info.param) + "_" + std::to_string(std::get<1>(info.param));
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryMethod, MassRatioSupportTest,
+                         ::testing::Combine(::testing::ValuesIn(ContactMethodNames()),
+                                            ::testing::Values(1, 100, 1000)),
+                         SupportName);
+
 using ChainParam = std::tuple<std::string, bool, int>;  // method, heavy end, ratio
 
 class MassRatioChainTest : public ::testing::TestWithParam<ChainParam> {};

@@ -73,6 +73,15 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"penalty", "stack n=8 height",
      "sinks 0.57 mm: its compliance, sum over the layers of k m g / kp, kp = m pi^2 / contact_time^2 (4 ms)"},
     {"penalty", "stack n=20 height", "sinks 3.34 mm: its compliance, sum of k g contact_time^2 / pi^2"},
+    // a plank bridging two light boxes (mass_ratio_scenarios_test.cpp)
+    {"penalty", "bridge 1:100 drift", "181 mm: the plank slides off its supports"},
+    {"penalty", "bridge 1:1000 penetration", "43 mm"},
+    {"penalty", "bridge 1:1000 drift", "3.0 m: the supports are squeezed out"},
+    {"lcp", "bridge 1:1000 penetration", "232 mm: the plank falls through a support within 0.25 s"},
+    {"lcp", "bridge 1:1000 drift", "3.2 mm"},
+    {"soft", "bridge 1:1000 penetration", "43 mm: the light supports spin up under the direct solve's answer"},
+    {"soft", "bridge 1:1000 sink", "23 mm"},
+    {"soft", "bridge 1:1000 drift", "5.2 mm"},
     // barrier: its contract refuses restitution (method_contract.h); implicit Euler damps rotation
     {"barrier", "roll m=0.1", "-19.4%: implicit Euler damps rotation, more for the 0.1 kg sphere"},
     {"barrier", "roll m=1", "-3.3%: implicit Euler damps rotation"},

@@ -1,7 +1,6 @@
 #include "service/contact/soft/soft_ratio_solve.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "service/contact/union_find.h"
@@ -124,25 +123,17 @@ void SoftRatioSolve::WriteBack(std::vector<SoftPoint>& points, std::vector<SoftB
     bodies[body_of_slot_[s]].v = solver_bodies_[s].v;
     bodies[body_of_slot_[s]].w = solver_bodies_[s].w;
   }
+  // Friction that slides here is held at +-mu lambda_n per tangent (the
+  // subspace solve's bounds) until the next pass sweeps it onto the disk.
+  // Projecting it onto the disk here instead kicked the light body between
+  // two heavy ones by the difference: a 0.02 kg box between two 20 kg boxes
+  // was squeezed out and the top box fell 100 mm.
   for (size_t i = 0; i < selected_.size(); ++i) {
     SoftPoint& p = points[selected_[i]];
-    SoftBody& A = bodies[p.a];
-    SoftBody& B = bodies[p.b];
     p.max_push = std::max(p.max_push, rows_[3 * i].lambda - p.lambda_n);
     p.lambda_n = rows_[3 * i].lambda;
-    // the subspace solve bounds each tangent by mu lambda_n; the soft step's
-    // friction is the disk, so a sliding point is brought back onto it
-    double l1 = rows_[3 * i + 1].lambda, l2 = rows_[3 * i + 2].lambda;
-    const double limit = p.friction * p.lambda_n, squared = l1 * l1 + l2 * l2;
-    if (squared > limit * limit) {
-      const double scale = squared > 0.0 ? limit / std::sqrt(squared) : 0.0;
-      SoftPoint::Push(l1 * scale - l1, p.t1, p.ia_t1, p.ib_t1, A, B);
-      SoftPoint::Push(l2 * scale - l2, p.t2, p.ia_t2, p.ib_t2, A, B);
-      l1 *= scale;
-      l2 *= scale;
-    }
-    p.lambda_t1 = l1;
-    p.lambda_t2 = l2;
+    p.lambda_t1 = rows_[3 * i + 1].lambda;
+    p.lambda_t2 = rows_[3 * i + 2].lambda;
   }
 }
 
