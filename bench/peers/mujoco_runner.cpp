@@ -41,14 +41,16 @@ constexpr double kTimeConstant = 0.02;   // s, MuJoCo's default solref[0]
 // MuJoCo lays out contacts, constraint rows (sparse Jacobians once nv >= 60)
 // and its solver's stack, with Newton's sparse Cholesky factor of the
 // Hessian, in one arena of <size memory> bytes that mj_makeData allocates
-// once (docs of <size memory>); a step that runs out drops contacts or
-// constraints, or leaves Newton for CG, and warns, and the run stops there
-// (Failure()). Only the pages a step touches count toward the process's
-// memory. The factor is what can grow: the 1,000-sphere pile is one island
-// whose factor fills in toward dense (6,030 dofs: 145 MB as a dense lower
-// triangle). 512 KiB a body leaves room for that; the standard scenes used
-// at most 43 MiB in their first 300 steps (sphere_pile under Newton; box_rain
-// 15 MiB, box_pyramid 9 MiB).
+// once (MuJoCo's XML reference, size/memory); a step that runs out drops
+// contacts or constraints, or leaves Newton for CG, and warns, and the run
+// stops there (Failure()). Only the pages a step touches count toward the
+// process's memory. The factor is what can grow: the 1,000-sphere pile is
+// one island whose factor fills in toward dense (6,030 dofs: 145 MB as a
+// dense lower triangle). 512 KiB a body leaves room for that; measured use
+// was at most 51 MiB on the 1,000-body scenes (box_rain under Newton, 15
+// under CG), 9 MiB on box_pyramid and 263 MiB in 30 Newton steps of the
+// 5,050-box pyramid (BENCHMARKS.md, "MuJoCo 4.0.0 from the wheel: bounded
+// runs").
 constexpr double kArenaBytesPerBody = 512.0 * 1024;
 constexpr int kMinArenaMb = 64;
 
