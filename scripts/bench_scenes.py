@@ -5,7 +5,7 @@ the file is left as it is). `make bench` runs it.
 
 Engines: contactsim-bench with every registered contact method
 (--list-methods), and the peer runners that were built (bench/peers:
-Bullet sequential impulse, ODE QuickStep and Dantzig, MuJoCo Newton). Each
+Bullet sequential impulse, ODE QuickStep and Dantzig, MuJoCo Newton and CG). Each
 run is a separate process with --repeat 3 --json; a run that fails (NaN,
 explosion, time limit, crash, memory limit) becomes a row that says so and
 never stops the driver.
@@ -35,7 +35,11 @@ PEERS = [
     ("ode", "contactsim-bench-ode", "quickstep"),
     ("ode", "contactsim-bench-ode", "dantzig"),
     ("mujoco", "contactsim-bench-mujoco", "newton"),
+    # MuJoCo's own advice for scenes whose Newton Hessian fills in (the 1,000-body pile)
+    ("mujoco", "contactsim-bench-mujoco", "cg"),
 ]
+# The runners that step on --threads threads (MuJoCo through its thread pool).
+THREADED = ("contactsim-bench", "contactsim-bench-mujoco")
 # Extra contactsim rows beyond each method's defaults, used when the method is registered.
 VARIANTS = {"lcp": [["solver=pgs"], ["solver=lemke"]]}
 
@@ -66,8 +70,8 @@ def run_one(bin_dir, binary, scene, method, params, args):
            "--method", method, "--repeat", str(args.repeat), "--max-seconds", str(args.max_seconds), "--json"]
     for p in params:
         cmd += ["--param", p]
-    if binary == "contactsim-bench":
-        cmd += ["--threads", str(args.threads)]  # the peers step on one thread
+    if binary in THREADED:
+        cmd += ["--threads", str(args.threads)]  # Bullet and ODE step on one thread
     if args.steps:
         cmd += ["--steps", str(args.steps)]
     # each repeat may step max_seconds; allow for building, measuring and a last slow step
@@ -229,9 +233,10 @@ def render(results, args, started, load_before):
            "Reproduce: `make bench` (or `.venv/bin/python scripts/bench_scenes.py --build-dir build "
            "--repeat %d --max-seconds %g`). Each row is one process: `contactsim-bench` or a peer runner "
            "`contactsim-bench-{bullet,ode,mujoco}` with `--scene config/scenes/NAME.pbtxt --method M "
-           "--repeat %d --json`; ms/step is the median of the repeats (stepping loop only), min-max "
+           "--repeat %d --json` (and `--threads %d` for contactsim and MuJoCo; Bullet and ODE step on one); "
+           "ms/step is the median of the repeats (stepping loop only), min-max "
            "in brackets; a repeat stops after %g s of stepping (status `timeout`)." % (
-               args.repeat, args.max_seconds, args.repeat, args.max_seconds),
+               args.repeat, args.max_seconds, args.repeat, args.threads, args.max_seconds),
            ""]
     for scene in args.scenes:
         rows = [r for r in results if r["scene_name"] == scene]
@@ -265,7 +270,7 @@ def main():
     ap.add_argument("--scenes", nargs="+", default=SCENES, choices=SCENES)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--max-seconds", type=float, default=60.0, help="stepping time per repeat before giving up")
-    ap.add_argument("--threads", type=int, default=1, help="contactsim's threads (the peers use one)")
+    ap.add_argument("--threads", type=int, default=1, help="contactsim's and MuJoCo's threads (Bullet and ODE use one)")
     ap.add_argument("--steps", type=int, default=0, help="override the scenes' steps (for a quick look)")
     ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
     ap.add_argument("--json-out", default=None, help="also write every run's JSON here (default BUILD/bench_scenes.json)")
@@ -287,6 +292,7 @@ def main():
         results, meta = saved["runs"], saved["meta"]
         started = datetime.datetime.fromisoformat(meta["started"])
         load_before, args.repeat, args.max_seconds = meta["load_before"], meta["repeat"], meta["max_seconds"]
+        args.threads = meta.get("threads", 1)  # runs saved before threads were recorded used one
         return finish(results, args, started, load_before)
     plan = [(scene,) + r for scene in args.scenes for r in runs(bin_dir)
             if not args.only or r[0] in args.only or "%s:%s" % (r[0], r[2]) in args.only]
@@ -305,7 +311,7 @@ def main():
     json_out = args.json_out or os.path.join(args.build_dir, "bench_scenes.json")
     with open(json_out, "w") as f:
         json.dump({"meta": {"started": started.isoformat(), "load_before": load_before, "repeat": args.repeat,
-                            "max_seconds": args.max_seconds}, "runs": results}, f, indent=1)
+                            "max_seconds": args.max_seconds, "threads": args.threads}, "runs": results}, f, indent=1)
     print("results: %s" % json_out)
     if args.update_json:
         with open(args.update_json) as f:

@@ -1,29 +1,32 @@
-// contactsim-bench-mujoco: a benchmark scene in MuJoCo (Debian
-// libmujoco-dev), with the same flags, loop and metrics as contactsim-bench
-// (service/tools/scene_bench).
+// contactsim-bench-mujoco: a benchmark scene in MuJoCo (the mujoco-core
+// wheel in .venv, clients/python/requirements.txt), with the same flags,
+// loop and metrics as contactsim-bench (service/tools/scene_bench).
 //
 // Translation: an MJCF model written in memory (option timestep = the
 // scene's dt, gravity; everything else MuJoCo's default: Newton solver,
-// 100 iterations, pyramidal cones, Euler integrator); static bodies and
-// planes are world geoms, dynamic ones free bodies with the same mass and
-// principal inertia. Friction: sliding mu per geom (MuJoCo takes the pair's
-// max; every standard scene has one mu). MuJoCo has no restitution: its
-// contacts are soft, a spring-damper in the reference acceleration set by
-// solref = (timeconst, dampratio). We keep timeconst at its default 0.02 s
-// and map restitution e to the damping ratio of a linear oscillator whose
-// bounce loses that much speed, zeta = -ln e / sqrt(pi^2 + ln^2 e)
-// (e = 0 gives zeta = 1, MuJoCo's default; e = 0.5 gives 0.2155). MuJoCo
-// averages solref over the pair; the bounce scene gives both surfaces the
-// same e. Methods: "newton" (default), "cg", "pgs" (mjOption.solver).
+// 100 iterations, pyramidal cones, Euler integrator, islands on, sleeping
+// off); static bodies and planes are world geoms, dynamic ones free bodies
+// with the same mass and principal inertia. Friction: sliding mu per geom
+// (MuJoCo takes the pair's max; every standard scene has one mu). MuJoCo has
+// no restitution: its contacts are soft, a spring-damper in the reference
+// acceleration set by solref = (timeconst, dampratio). We keep timeconst at
+// its default 0.02 s and map restitution e to the damping ratio of a linear
+// oscillator whose bounce loses that much speed,
+// zeta = -ln e / sqrt(pi^2 + ln^2 e) (e = 0 gives zeta = 1, MuJoCo's
+// default; e = 0.5 gives 0.2155). MuJoCo averages solref over the pair; the
+// bounce scene gives both surfaces the same e. Methods: "newton" (default),
+// "cg", "pgs" (mjOption.solver). --threads N > 1 gives the mjData a thread
+// pool (mju_threadpool), which spreads collision detection and the solve of
+// separate constraint islands over N threads.
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "bench/peers/peer_mirror.h"
@@ -35,27 +38,24 @@ namespace {
 
 constexpr double kPi = 3.141592653589793;
 constexpr double kTimeConstant = 0.02;   // s, MuJoCo's default solref[0]
-constexpr int kContactsPerBody = 20;     // contact buffer per body wanted (a box-box pair gives up to 8)
-constexpr int kRowsPerContact = 4;       // pyramidal cone, condim 3
-// MuJoCo 2.2 puts its solver stack and its constraint arrays, sized
-// densely (efc_AR and its column indices njmax x njmax, 12 bytes an entry;
-// efc_J, efc_JT and theirs njmax x nv, 24 bytes), in one buffer whose size is
-// an int: past 2 GiB mj_makeData fails. The stack gets what the Newton solver
-// needs for its nv x nv Hessian (3 nv^2 mjtNums, at least kMinStack; the
-// default heuristic, 5 njmax^2, overflows the int) and the contact buffer
-// the rest of kArenaBytes. A scene that needs more contacts stops with
-// "contact buffer full".
-constexpr double kArenaBytes = 2.0e9;
-constexpr double kMinStack = 2e7;  // mjtNums
+// MuJoCo lays out contacts, constraint rows (sparse Jacobians once nv >= 60)
+// and its solver's stack, with Newton's sparse Cholesky factor of the
+// Hessian, in one arena of <size memory> bytes that mj_makeData allocates
+// once (MuJoCo's XML reference, size/memory); a step that runs out drops
+// contacts or constraints, or leaves Newton for CG, and warns, and the run
+// stops there (Failure()). Only the pages a step touches count toward the
+// process's memory. The factor is what can grow: the 1,000-sphere pile is
+// one island whose factor fills in toward dense (6,030 dofs: 145 MB as a
+// dense lower triangle). 512 KiB a body leaves room for that; measured use
+// was at most 51 MiB on the 1,000-body scenes (box_rain under Newton, 15
+// under CG), 9 MiB on box_pyramid and 263 MiB in 30 Newton steps of the
+// 5,050-box pyramid (BENCHMARKS.md, "MuJoCo 4.0.0 from the wheel: bounded
+// runs").
+constexpr double kArenaBytesPerBody = 512.0 * 1024;
+constexpr int kMinArenaMb = 64;
 
-double StackSize(int nv) { return std::max(kMinStack, 3.0 * nv * nv); }
-
-// Largest nconmax with 12 njmax^2 + 24 njmax nv <= kArenaBytes - 8 nstack, njmax = 4 nconmax.
-int ContactBuffer(int bodies, int nv) {
-  const double bytes = kArenaBytes - 8.0 * StackSize(nv);
-  const double b = 2.0 * nv, c = -bytes / 12.0;
-  const double njmax = (-b + std::sqrt(b * b - 4.0 * c)) / 2.0;
-  return std::min(kContactsPerBody * bodies + 100, static_cast<int>(njmax / kRowsPerContact));
+int DefaultArenaMb(int bodies) {
+  return std::max(kMinArenaMb, static_cast<int>(std::ceil(kArenaBytesPerBody * bodies / (1 << 20))));
 }
 
 double DampingRatio(double restitution) {
@@ -101,15 +101,11 @@ std::string GeomText(const RigidBody& b) {
   return o.str();
 }
 
-std::string ModelXml(const World& world) {
+std::string ModelXml(const World& world, int arena_mb) {
   std::ostringstream o;
   o.precision(17);
-  int dynamic = 0;
-  for (const RigidBody& b : world.bodies()) dynamic += b.IsDynamic();
-  const int nconmax = ContactBuffer(static_cast<int>(world.bodies().size()), 6 * dynamic);
-  const long nstack = static_cast<long>(StackSize(6 * dynamic));
   o << "<mujoco model=\"contactsim-bench\">\n<option timestep=\"" << world.dt << "\" gravity=\"" << Vec(world.gravity)
-    << "\"/>\n<size nconmax=\"" << nconmax << "\" njmax=\"" << kRowsPerContact * nconmax << "\" nstack=\"" << nstack << "\"/>\n<worldbody>\n";
+    << "\"/>\n<size memory=\"" << arena_mb << "M\"/>\n<worldbody>\n";
   for (const RigidBody& b : world.bodies()) {
     if (!b.IsDynamic()) {
       o << GeomText(b) << "\n";
@@ -124,8 +120,10 @@ std::string ModelXml(const World& world) {
 
 class MujocoEngine : public SceneEngine {
  public:
-  MujocoEngine(const World& world, mjModel* model, const std::string& method)
-      : mirror_(world), model_(model), data_(mj_makeData(model)), method_(method) {
+  MujocoEngine(const World& world, mjModel* model, const std::string& method, int threads)
+      : mirror_(world), model_(model), data_(mj_makeData(model)), method_(method), threads_(threads) {
+    // the stepping thread takes tasks too (mju_numThread = workers + 1): N threads are N - 1 workers
+    if (threads > 1) mju_threadpool(data_, threads - 1);
     for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) {
       if (world.bodies()[i].IsDynamic()) index_.push_back(i);
     }
@@ -140,7 +138,7 @@ class MujocoEngine : public SceneEngine {
     }
   }
   ~MujocoEngine() override {
-    mj_deleteData(data_);
+    mj_deleteData(data_);  // also stops and frees the thread pool
     mj_deleteModel(model_);
   }
 
@@ -159,15 +157,17 @@ class MujocoEngine : public SceneEngine {
 
   ParamMap Params() const override {
     return {{"solver", method_},
-            {"nconmax", std::to_string(model_->nconmax)},
+            {"memory_mb", std::to_string(model_->narena >> 20)},
             {"iterations", std::to_string(model_->opt.iterations)},
             {"cone", model_->opt.cone == mjCONE_PYRAMIDAL ? "pyramidal" : "elliptic"},
+            {"threads", std::to_string(threads_)},
             {"version", mj_versionString()}};
   }
 
   std::string Failure() const override {
-    if (data_->warning[mjWARN_CONTACTFULL].number > 0) return "mujoco: contact buffer full";
-    if (data_->warning[mjWARN_CNSTRFULL].number > 0) return "mujoco: constraint buffer full";
+    const std::string full = "mujoco: arena full (give more: --param memory_mb=N): ";
+    if (data_->warning[mjWARN_CONTACTFULL].number > 0) return full + "contacts dropped";
+    if (data_->warning[mjWARN_CNSTRFULL].number > 0) return full + "constraints dropped or Newton's factor left out";
     if (data_->warning[mjWARN_BADQACC].number > 0) return "nan: mujoco reset the state after a bad qacc";
     return "";
   }
@@ -177,13 +177,18 @@ class MujocoEngine : public SceneEngine {
   mjModel* model_;
   mjData* data_;
   std::string method_;
+  int threads_;
   std::vector<int> index_;  // mirror index of each free body, in model order
 };
 
-// MuJoCo's default error handler waits for Enter; a benchmark must not.
-void ExitOnMujocoError(const char* message) {
-  std::fprintf(stderr, "mujoco error: %s\n", message);
-  std::exit(1);
+// MuJoCo's default handler logs to MUJOCO_LOG.TXT in the working folder as
+// well; a benchmark prints errors and warnings on stderr only, and an error
+// (always fatal: the handler must not return) ends the process.
+void LogToStderr(const mjLogMessage* message) {
+  if (message->level < mjLOG_WARNING) return;
+  const bool error = message->level == mjLOG_ERROR;
+  std::fprintf(stderr, "mujoco %s: %s\n", error ? "error" : "warning", message->subject);
+  if (error) std::exit(1);
 }
 
 Status CreateMujocoEngine(const BenchOptions& options, const SceneSpec&, const World& world,
@@ -199,25 +204,26 @@ Status CreateMujocoEngine(const BenchOptions& options, const SceneSpec&, const W
     return Status::NotFound("unknown MuJoCo method \"" + options.method + "\" (known: newton, cg, pgs)");
   }
   int iterations = -1;
+  int arena_mb = DefaultArenaMb(static_cast<int>(world.bodies().size()));
   ParamReader reader(options.method.c_str(), options.params);
   reader.Int("iterations", 1, 100000, &iterations);
+  reader.Int("memory_mb", 1, 1 << 20, &arena_mb);
   Status st = reader.Finish();
   if (st.ok()) st = CheckPeerShapes(world, "MuJoCo");
   if (!st.ok()) return st;
 
-  mju_user_error = ExitOnMujocoError;
-  const std::string xml = ModelXml(world);
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  mj_makeEmptyFileVFS(vfs.get(), "scene.xml", static_cast<int>(xml.size()));
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), "scene.xml")], xml.data(), xml.size());
+  mju_setLogHandler(LogToStderr);
+  const std::string xml = ModelXml(world, arena_mb);
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  mj_addBufferVFS(&vfs, "scene.xml", xml.data(), static_cast<int>(xml.size()));
   char error[1000] = "";
-  mjModel* model = mj_loadXML("scene.xml", vfs.get(), error, sizeof error);
-  mj_deleteVFS(vfs.get());
+  mjModel* model = mj_loadXML("scene.xml", &vfs, error, sizeof error);
+  mj_deleteVFS(&vfs);
   if (!model) return Status::InvalidArgument(std::string("MuJoCo rejected the generated model: ") + error);
   model->opt.solver = solver;
   if (iterations > 0) model->opt.iterations = iterations;
-  *out = std::make_unique<MujocoEngine>(world, model, options.method);
+  *out = std::make_unique<MujocoEngine>(world, model, options.method, options.threads);
   return Status::Ok();
 }
 
@@ -227,9 +233,11 @@ Status CreateMujocoEngine(const BenchOptions& options, const SceneSpec&, const W
 int main(int argc, char** argv) {
   contactsim::bench::RunnerInfo info;
   info.engine = "mujoco";
-  info.description = std::string("contactsim-bench-mujoco: runs a contactsim scene file in MuJoCo ") + mj_versionString();
+  info.description =
+      std::string("contactsim-bench-mujoco: runs a contactsim scene file in MuJoCo ") + mj_versionString();
   info.default_method = "newton";
   info.methods = {"newton", "cg", "pgs"};
+  info.threaded = true;
   info.factory = contactsim::bench::CreateMujocoEngine;
   return contactsim::bench::SceneBenchMain(argc, argv, info);
 }

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
         "contactsim-bench: runs a scene with a contact method and prints ms per step, penetration, "
         "energy, displacement, rebound and memory";
     info.methods = contactsim::ContactMethodNames();
+    info.threaded = true;
     info.factory = contactsim::bench::CreateContactsimEngine;
     return contactsim::bench::SceneBenchMain(argc, argv, info);
   }

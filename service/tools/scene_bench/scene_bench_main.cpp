@@ -67,8 +67,9 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
       ->check(CLI::IsMember({"sap", "naive"}))
       ->default_str("sap");
   // checked below with the engine's own message, which names the value
-  app.add_option("--threads", options.threads, "threads of the collision detector, 1 to " +
-                                                    std::to_string(kMaxThreads) + " (contactsim only)")
+  app.add_option("--threads", options.threads,
+                 "threads of the collision detector (MuJoCo: of its thread pool), 1 to " +
+                     std::to_string(kMaxThreads) + " (contactsim and MuJoCo only; Bullet and ODE use one)")
       ->default_str(std::to_string(options.threads) + ", the machine's hardware threads");
   app.add_option("--repeat", options.repeat, "repeats; ms_per_step is their median")
       ->check(CLI::PositiveNumber)
@@ -115,7 +116,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
     result.status = "error: " + st.message();
   }
   result.engine = info.engine;
-  result.threads = info.engine == "contactsim" ? options.threads : 1;  // the peers step on one thread
+  result.threads = info.threaded ? options.threads : 1;  // Bullet and ODE step on one thread
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {

@@ -20,6 +20,7 @@ struct RunnerInfo {
   std::string description;           // first line of --help
   std::string default_method;        // empty: --method is required
   std::vector<std::string> methods;  // for --list-methods and the help
+  bool threaded = false;             // steps on --threads threads (else on one, whatever --threads says)
   EngineFactory factory;
 };
 

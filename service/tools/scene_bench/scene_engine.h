@@ -24,7 +24,7 @@ struct BenchOptions {
   ParamMap params;               // --param key=value
   int steps = 0;                 // 0: the scene's `steps`
   std::string broadphase = "sap";
-  int threads = DefaultThreadCount();  // of the collision detector (contactsim only)
+  int threads = DefaultThreadCount();  // of the collision detector (contactsim), of the thread pool (MuJoCo)
   int repeat = 3;
   bool json = false;
   double max_seconds = 0.0;      // s of stepping per repeat before giving up; 0: no limit
