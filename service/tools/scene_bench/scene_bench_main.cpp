@@ -70,6 +70,8 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   app.add_option("--threads", options.threads, "threads of the collision detector, 1 to " +
                                                     std::to_string(kMaxThreads) + " (contactsim only)")
       ->default_str(std::to_string(options.threads) + ", the machine's hardware threads");
+  app.add_flag("--sleep", options.sleep, "settled islands sleep, as in the server (contactsim only; default off, "
+                                        "so that the solver is timed)");
   app.add_option("--repeat", options.repeat, "repeats; ms_per_step is their median")
       ->check(CLI::PositiveNumber)
       ->default_str("3");
@@ -116,6 +118,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   }
   result.engine = info.engine;
   result.threads = info.engine == "contactsim" ? options.threads : 1;  // the peers step on one thread
+  result.sleep = info.engine == "contactsim" && options.sleep;
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {
