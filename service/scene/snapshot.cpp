@@ -268,6 +268,11 @@ Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<C
     if (!(st = GetAll(pw.force(), "wrench force", &wrenches[i].force)).ok()) return st;
     if (!(st = GetAll(pw.torque(), "wrench torque", &wrenches[i].torque)).ok()) return st;
   }
+  for (const RigidBody& b : bodies) {
+    if (b.asleep() && !w.sleep.enabled) {
+      return Status::InvalidArgument("snapshot: body " + std::to_string(b.id) + " sleeps but sleep is off");
+    }
+  }
   if (!(st = w.Assign(std::move(bodies), std::move(wrenches), snap.next_id())).ok()) {
     return Status::InvalidArgument("snapshot: " + st.message());
   }

@@ -5,6 +5,7 @@
 // method's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -190,6 +191,32 @@ TEST_P(IslandSleepTest, SwingingPendulumNeverSleeps) {
   }
   std::printf("[%s] longest rest of the swinging bob: %.4f s\n", GetParam().label.c_str(), most_rest);
   EXPECT_LT(most_rest, 0.1);
+}
+
+// Verifies that a pendulum hanging at rest falls asleep with its joint held
+// back (a joint between a static sleeper and the world has no mass to
+// invert), and that an impulse wakes it into a swing whose arm still holds
+// its length to 1 mm: the joint is back.
+TEST_P(IslandSleepTest, HangingPendulumSleepsAndSwingsOnItsJointWhenWoken) {
+  SleepSim sim(GetParam());
+  const Vec3 pivot(0, 0, 2);
+  const BodyId bob = AddSphere(sim.world, 0.05, pivot - Vec3(0, 0, 1), 0.0);
+  testing::AddJoint(sim.world, JointKind::kDistance, bob, kWorldBody, pivot);
+  if (!testing::ContractOf(GetParam()).joints) GTEST_SKIP() << GetParam().label << " does not simulate joints";
+  ASSERT_TRUE(sim.StepUntilAsleep(kSettleLimit)) << GetParam().label;
+  for (int i = 0; i < 24; ++i) sim.Step();
+  EXPECT_EQ(sim.world.joints().size(), 1u);  // given back after every step
+  RigidBody* b = sim.world.Find(bob);
+  b->ApplyImpulse(Vec3(b->mass * 2.0, 0, 0), b->x);  // 2 m/s: swings up about 0.2 m
+  WakeTouching(sim.world, bob);
+  double drift = 0.0, highest = 0.0;
+  for (int i = 0; i < 240; ++i) {
+    sim.Step();
+    drift = std::max(drift, std::abs((sim.world.Find(bob)->x - pivot).norm() - 1.0));
+    highest = std::max(highest, sim.world.Find(bob)->x.z() - (pivot.z() - 1.0));
+  }
+  EXPECT_LT(drift, 1e-3) << GetParam().label;
+  EXPECT_NEAR(highest, 2.0 * 2.0 / (2 * testing::kG), 0.02) << GetParam().label;
 }
 
 // Verifies that with sleep off IslandSleep::Step is the method's own step:

@@ -17,14 +17,19 @@ using testing::ServerHarness;
 
 constexpr double kHalf = 0.1;  // m, the box
 
-// A plane (id 1) and a box resting on it (id 2), stepped 2 s: asleep.
-void RestingBox(ServerHarness& h) {
+// A plane (id 1) and a box resting on it (id 2), stepped 2 s.
+void BoxOnPlaneFor2s(ServerHarness& h) {
   body_cmd_t plane = h.Body(body_cmd_t::ADD);
   plane.shape = body_cmd_t::PLANE;
   plane.plane_normal[2] = 1.0;
   ASSERT_EQ(h.Send(plane).code, reply_t::OK);
   ASSERT_EQ(h.Send(h.Box(kHalf, Vec3(0, 0, kHalf + 0.01))).code, reply_t::OK);
   h.Step(480);
+}
+
+// The same, asleep by then.
+void RestingBox(ServerHarness& h) {
+  BoxOnPlaneFor2s(h);
   ASSERT_TRUE(h.server.world().Find(2)->asleep());
 }
 
@@ -48,12 +53,7 @@ TEST(SimServerSleepTest, SleepOffKeepsEveryBodyAwake) {
   ServerOptions o;
   o.sleep = false;
   ServerHarness h(o);
-  body_cmd_t plane = h.Body(body_cmd_t::ADD);
-  plane.shape = body_cmd_t::PLANE;
-  plane.plane_normal[2] = 1.0;
-  ASSERT_EQ(h.Send(plane).code, reply_t::OK);
-  ASSERT_EQ(h.Send(h.Box(kHalf, Vec3(0, 0, kHalf + 0.01))).code, reply_t::OK);
-  h.Step(480);
+  BoxOnPlaneFor2s(h);
   EXPECT_EQ(h.server.world().SleepingCount(), 0);
   EXPECT_EQ(h.server.world().Find(2)->rest_time, 0.0);
 }
