@@ -14,6 +14,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       CancelStepCommands("reset");
       world_.Clear();
       detector_.Reset();
+      sleep_.Reset();
       method_->ResetCaches();
       contacts_.clear();
       UpdateRates();
@@ -29,6 +30,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       world.sleep = world_.sleep;  // the run's setting, not the scene's
       world_ = std::move(world);
       detector_.Reset();
+      sleep_.Reset();
       if (cmd.method) method_ = cmd.method;
       method_->ResetCaches();
       contacts_.clear();

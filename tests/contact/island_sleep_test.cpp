@@ -97,10 +97,11 @@ double HitSleepingStack(SleepSim& sim, const Vec3& from_top, const Vec3& v) {
     for (const RigidBody& b : sim.world.bodies()) was_asleep.push_back(b.asleep());
     sim.Step();
     EXPECT_EQ(sim.sleep.stats().woken_late, 0) << "step " << i;
-    // a body asleep before and after the step was static during it
+    // a body asleep before and after the step was static during it (once
+    // the ball sleeps too, its contacts are the kept ones: island_sleep.h)
     for (const Contact& c : sim.contacts) {
       const int other = c.id_a == ball ? c.b : c.id_b == ball ? c.a : -1;
-      if (other >= 0) {
+      if (other >= 0 && !sim.world.Find(ball)->asleep()) {
         EXPECT_FALSE(was_asleep[other] && sim.world.bodies()[other].asleep()) << "step " << i << ": the ball met a sleeper";
       }
     }

@@ -75,6 +75,22 @@ TEST(ServerConfig, ThreadsDefaultToTheMachineAndAreTaken) {
   }
 }
 
+// Verifies that `sleep` defaults to on (as in Box2D, Bullet and Jolt) and
+// that `sleep: false` reaches the server's options.
+TEST(ServerConfig, SleepDefaultsToOnAndIsTaken) {
+  for (const auto& [text, expected] : {std::pair<std::string, bool>{"", true}, {"sleep: false\n", false},
+                                       {"sleep: true\n", true}}) {
+    const std::string path = WriteTemp("sleep.pbtxt", text);
+    proto::ServerConfig config;
+    const Status loaded = LoadServerConfig(path, &config);
+    ASSERT_TRUE(loaded.ok()) << loaded.message();
+    ServerSetup setup;
+    const Status st = MakeServerSetup(config, path, "", &setup);
+    ASSERT_TRUE(st.ok()) << st.message();
+    EXPECT_EQ(setup.options.sleep, expected) << text;
+  }
+}
+
 // Verifies that zero, negative and absurd thread counts are refused with
 // the file, the line, the field and the value.
 TEST(ServerConfig, BadThreadCountsAreRefusedNamingTheValue) {

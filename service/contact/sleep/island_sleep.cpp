@@ -41,6 +41,7 @@ StepStats IslandSleep::Step(World& world, ContactMethod& method, CollisionDetect
   const StepStats stats = method.Step(world, detector, contacts);
   Thaw(world);
   Settle(world, *contacts);
+  KeepSleepingContacts(world, contacts);
   stats_.sleeping = world.SleepingCount();
   return stats;
 }
@@ -168,6 +169,31 @@ void IslandSleep::Settle(World& world, const ContactSet& contacts) {
     b.P.setZero();
     b.L.setZero();
     ++stats_.fell_asleep;
+  }
+}
+
+// 6. list the contacts of the sleeping bodies as they slept
+void IslandSleep::KeepSleepingContacts(const World& world, ContactSet* contacts) {
+  // a contact is kept while every dynamic body of it sleeps
+  auto sleeps = [&world](const Contact& c) {
+    for (BodyId id : {c.id_a, c.id_b}) {
+      const RigidBody* b = world.Find(id);
+      if (b == nullptr || (b->IsDynamic() && !b->asleep())) return false;
+    }
+    return true;
+  };
+  const size_t n = contacts->size();
+  size_t kept = 0;
+  for (Contact& c : kept_) {
+    if (!sleeps(c)) continue;
+    c.a = world.IndexOf(c.id_a);  // removals renumber the bodies
+    c.b = world.IndexOf(c.id_b);
+    kept_[kept++] = c;
+  }
+  kept_.resize(kept);
+  contacts->insert(contacts->end(), kept_.begin(), kept_.end());
+  for (size_t i = 0; i < n; ++i) {
+    if (sleeps((*contacts)[i])) kept_.push_back((*contacts)[i]);
   }
 }
 

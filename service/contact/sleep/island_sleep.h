@@ -21,7 +21,11 @@
 //     bodies have all rested for sleep.time_to_sleep falls asleep: P = L = 0,
 //     each body labelled with the island's first body id. A contact the
 //     method found between an awake and a sleeping body (a method margin
-//     wider than kWakeMargin) wakes that island for the next step.
+//     wider than kWakeMargin) wakes that island for the next step;
+//  6. keep: the contacts of the bodies that fell asleep are kept, as the
+//     method left them, and appended to each step's contacts while those
+//     bodies sleep, so that a sleeping box still shows the contacts that
+//     carry its weight (as Box2D keeps a sleeping island's contacts).
 // With world.sleep.enabled false, Step is exactly method.Step.
 #pragma once
 
@@ -56,12 +60,16 @@ class IslandSleep {
   // One step of `method` (contact_method.h) with sleeping islands.
   StepStats Step(World& world, ContactMethod& method, CollisionDetector& detector, ContactSet* contacts);
   const SleepStats& stats() const { return stats_; }
+  // Forgets the kept contacts: call when the world is replaced (reset,
+  // scene load, snapshot restore), whose ids may name other bodies.
+  void Reset() { kept_.clear(); }
 
  private:
   void WakeTouched(World& world);
   void Freeze(World& world);
   void Thaw(World& world);
   void Settle(World& world, const ContactSet& contacts);
+  void KeepSleepingContacts(const World& world, ContactSet* contacts);
 
   struct Frozen {
     int index;
@@ -76,6 +84,7 @@ class IslandSleep {
   std::vector<Frozen> frozen_;
   std::vector<Joint> held_joints_;  // every joint, while those of sleeping bodies sit out
   bool holding_joints_ = false;
+  ContactSet kept_;  // of sleeping bodies, as the step before they slept left them
   SleepStats stats_;
 };
 
