@@ -174,26 +174,24 @@ void IslandSleep::Settle(World& world, const ContactSet& contacts) {
 
 // 6. list the contacts of the sleeping bodies as they slept
 void IslandSleep::KeepSleepingContacts(const World& world, ContactSet* contacts) {
+  const auto& bodies = world.bodies();
+  const int n = static_cast<int>(bodies.size());
+  // a kept index still names its body unless bodies were removed since
+  auto index_of = [&](int i, BodyId id) { return i >= 0 && i < n && bodies[i].id == id ? i : world.IndexOf(id); };
   // a contact is kept while every dynamic body of it sleeps
-  auto sleeps = [&world](const Contact& c) {
-    for (BodyId id : {c.id_a, c.id_b}) {
-      const RigidBody* b = world.Find(id);
-      if (b == nullptr || (b->IsDynamic() && !b->asleep())) return false;
-    }
-    return true;
-  };
-  const size_t n = contacts->size();
+  auto sleeps = [&](int i) { return i >= 0 && (!bodies[i].IsDynamic() || bodies[i].asleep()); };
+  const size_t fresh = contacts->size();
   size_t kept = 0;
   for (Contact& c : kept_) {
-    if (!sleeps(c)) continue;
-    c.a = world.IndexOf(c.id_a);  // removals renumber the bodies
-    c.b = world.IndexOf(c.id_b);
-    kept_[kept++] = c;
+    c.a = index_of(c.a, c.id_a);
+    c.b = index_of(c.b, c.id_b);
+    if (sleeps(c.a) && sleeps(c.b)) kept_[kept++] = c;
   }
   kept_.resize(kept);
   contacts->insert(contacts->end(), kept_.begin(), kept_.end());
-  for (size_t i = 0; i < n; ++i) {
-    if (sleeps((*contacts)[i])) kept_.push_back((*contacts)[i]);
+  for (size_t i = 0; i < fresh; ++i) {
+    const Contact& c = (*contacts)[i];
+    if (sleeps(c.a) && sleeps(c.b)) kept_.push_back(c);
   }
 }
 
