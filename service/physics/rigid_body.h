@@ -52,6 +52,14 @@ struct RigidBody {
   Vec3 kinematic_v = Vec3::Zero();
   Vec3 kinematic_w = Vec3::Zero();
 
+  // Sleeping (docs/physics.md, "Sleeping"; dynamic bodies only): how long
+  // the body has stayed below the sleep speeds, and the island it sleeps
+  // with, named by the island's lowest body id (0 while awake). A sleeping
+  // body keeps its pose, has P = L = 0 and is not stepped.
+  double rest_time = 0.0;                     // s
+  BodyId sleep_island = 0;
+  bool asleep() const { return sleep_island != 0; }
+
   bool IsDynamic() const { return motion == MotionType::kDynamic; }
   Mat3 Rotation() const { return q.toRotationMatrix(); }
   // I^-1 = R I_body^-1 R^T (world frame)

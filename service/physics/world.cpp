@@ -18,6 +18,7 @@ BodyId World::AddBody(RigidBody body) {
 Status World::RemoveBody(BodyId id) {
   const int i = IndexOf(id);
   if (i < 0) return Status::NotFound("unknown body id " + std::to_string(id));
+  WakeBody(id);  // its island loses a body (a support, a joint)
   bodies_.erase(bodies_.begin() + i);
   wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
                                  [id](const TimedWrench& w) { return w.body == id; }),
@@ -75,6 +76,8 @@ Status World::AddJoint(const JointSettings& settings, JointId* id) {
   Joint joint;
   st = CreateJoint(settings, *a, b, &joint);
   if (!st.ok()) return st;
+  WakeBody(settings.body_a);
+  if (b != nullptr) WakeBody(settings.body_b);
   joint.id = next_joint_id++;
   joints_.push_back(joint);  // ids grow, so the vector stays sorted
   *id = joint.id;
@@ -84,6 +87,8 @@ Status World::AddJoint(const JointSettings& settings, JointId* id) {
 Status World::RemoveJoint(JointId id) {
   const auto it = std::find_if(joints_.begin(), joints_.end(), [id](const Joint& j) { return j.id == id; });
   if (it == joints_.end()) return Status::NotFound("unknown joint id " + std::to_string(id));
+  WakeBody(it->body_a);
+  if (it->body_b != kWorldBody) WakeBody(it->body_b);
   joints_.erase(it);
   return Status::Ok();
 }
@@ -106,6 +111,40 @@ const RigidBody* World::Find(BodyId id) const {
 int World::IndexOf(BodyId id) const {
   const auto it = index_.find(id);
   return it == index_.end() ? -1 : it->second;
+}
+
+void World::AddWrench(const TimedWrench& wrench) {
+  WakeBody(wrench.body);
+  wrenches_.push_back(wrench);
+}
+
+void World::WakeBody(BodyId id) {
+  RigidBody* b = Find(id);
+  if (b == nullptr) return;
+  if (b->asleep()) WakeIsland(b->sleep_island);
+  b->rest_time = 0.0;
+}
+
+void World::WakeIsland(BodyId island) {
+  if (island == 0) return;
+  for (RigidBody& b : bodies_) {
+    if (b.sleep_island != island) continue;
+    b.sleep_island = 0;
+    b.rest_time = 0.0;
+  }
+}
+
+void World::WakeAll() {
+  for (RigidBody& b : bodies_) {
+    b.sleep_island = 0;
+    b.rest_time = 0.0;
+  }
+}
+
+int World::SleepingCount() const {
+  int n = 0;
+  for (const RigidBody& b : bodies_) n += b.asleep() ? 1 : 0;
+  return n;
 }
 
 void World::AccumulateForces() {
@@ -164,6 +203,10 @@ uint64_t HashWorldState(const World& world) {
     f.Vector(b.q.vec());
     f.Vector(b.P);
     f.Vector(b.L);
+    if (world.sleep.enabled) {
+      f.Double(b.rest_time);
+      f.Bytes(&b.sleep_island, sizeof b.sleep_island);
+    }
   }
   for (const Joint& j : world.joints()) {
     const int kind = static_cast<int>(j.kind);

@@ -9,6 +9,7 @@
 
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
+#include "service/physics/sleep_settings.h"
 #include "service/physics/status.h"
 
 namespace contactsim {
@@ -45,7 +46,8 @@ class World {
   const Joint* FindJoint(JointId id) const;
   const std::vector<Joint>& joints() const { return joints_; }
 
-  void AddWrench(const TimedWrench& wrench) { wrenches_.push_back(wrench); }
+  // Adds a wrench and wakes the body's island (a force is never lost to sleep).
+  void AddWrench(const TimedWrench& wrench);
   const std::vector<TimedWrench>& wrenches() const { return wrenches_; }
   // Replaces the content with saved bodies (ids ascending, each < next_id)
   // and wrenches, as a snapshot holds them; on error nothing changes.
@@ -59,7 +61,19 @@ class World {
   void FinishStep();
 
   // Empties the world and restarts the clock; gravity and dt to defaults.
+  // The sleep settings stay: they are the run's, not the content's.
   void Clear();
+
+  // Sleeping (docs/physics.md, "Sleeping"). Waking clears the island label
+  // and the rest timer of every body of the island (they keep the pose and
+  // the zero momenta they slept with); waking an awake body restarts its
+  // rest timer, so a changed body stays awake for at least
+  // sleep.time_to_sleep. Adding or removing a body's joint, removing the
+  // body and adding a wrench on it wake it here.
+  void WakeBody(BodyId id);
+  void WakeIsland(BodyId island);
+  void WakeAll();
+  int SleepingCount() const;
 
   Vec3 gravity = DefaultGravity();
   double dt = kDefaultDt;
@@ -67,6 +81,7 @@ class World {
   int64_t step = 0;      // steps taken
   BodyId next_id = 1;
   JointId next_joint_id = 1;
+  SleepSettings sleep;
 
  private:
   void Reindex();
@@ -79,7 +94,9 @@ class World {
 // 64-bit FNV-1a hash over every body's id and state bits (x, q, P, L), every
 // joint (id, kind, bodies, anchors, axes, rest pose, length, limits) and the
 // clock: equal hashes mean bit-identical worlds. A world without joints
-// hashes as it did before joints existed.
+// hashes as it did before joints existed; with sleep enabled each body's
+// rest timer and island label follow its state bits (with sleep off they
+// are never set, and the hash is what it was before sleeping existed).
 uint64_t HashWorldState(const World& world);
 
 // Total kinetic energy of the dynamic bodies (J): sum of |P|^2 / 2m + L.w / 2.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "service/physics/convex_hull.h"
 #include "service/scene/proto_text.h"
@@ -78,6 +79,19 @@ Status LoadHull(const proto::SnapshotHull& in, const std::string& where, std::sh
   return Status::Ok();
 }
 
+Status LoadSleep(const proto::SnapshotSleep& in, SleepSettings* out) {
+  const SleepSettings s{in.enabled(), in.linear_speed(), in.angular_speed(), in.time_to_sleep()};
+  for (const auto& [name, value] : {std::pair<const char*, double>{"linear_speed", s.linear_speed},
+                                    {"angular_speed", s.angular_speed}, {"time_to_sleep", s.time_to_sleep}}) {
+    if (!(value >= 0.0 && value < 1e300)) {
+      return Status::InvalidArgument(std::string("snapshot: sleep ") + name + " must be finite and >= 0, got " +
+                                     std::to_string(value));
+    }
+  }
+  *out = s;
+  return Status::Ok();
+}
+
 void SaveBody(const RigidBody& b, proto::SnapshotBody* out) {
   out->set_id(b.id);
   out->set_name(b.name);
@@ -104,6 +118,8 @@ void SaveBody(const RigidBody& b, proto::SnapshotBody* out) {
   PutAll(b.torque, out->mutable_torque());
   PutAll(b.kinematic_v, out->mutable_kinematic_v());
   PutAll(b.kinematic_w, out->mutable_kinematic_w());
+  out->set_rest_time(b.rest_time);
+  out->set_sleep_island(b.sleep_island);
 }
 
 Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
@@ -143,6 +159,12 @@ Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
   if (!(st = GetAll(in.kinematic_v(), where + " kinematic_v", &b->kinematic_v)).ok()) return st;
   if (!(st = GetAll(in.kinematic_w(), where + " kinematic_w", &b->kinematic_w)).ok()) return st;
   b->q = Quat(q[0], q[1], q[2], q[3]);  // as stored: no normalisation, bit for bit
+  b->rest_time = in.rest_time();
+  b->sleep_island = in.sleep_island();
+  if (b->sleep_island < 0 || (b->sleep_island != 0 && !b->IsDynamic())) {
+    return Status::InvalidArgument("snapshot: " + where + " sleep_island must be 0, or > 0 on a dynamic body, got " +
+                                   std::to_string(b->sleep_island));
+  }
   return Status::Ok();
 }
 
@@ -196,6 +218,11 @@ void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapsh
   out->set_dt(world.dt);
   PutAll(world.gravity, out->mutable_gravity());
   out->set_next_id(world.next_id);
+  proto::SnapshotSleep* sleep = out->mutable_sleep();
+  sleep->set_enabled(world.sleep.enabled);
+  sleep->set_linear_speed(world.sleep.linear_speed);
+  sleep->set_angular_speed(world.sleep.angular_speed);
+  sleep->set_time_to_sleep(world.sleep.time_to_sleep);
   for (const RigidBody& b : world.bodies()) SaveBody(b, out->add_bodies());
   for (const TimedWrench& w : world.wrenches()) {
     proto::SnapshotWrench* pw = out->add_wrenches();
@@ -225,7 +252,9 @@ Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<C
   w.time = snap.time();
   w.dt = snap.dt();
   w.next_id = snap.next_id();
-  Status st = GetAll(snap.gravity(), "gravity", &w.gravity);
+  Status st;
+  if (snap.has_sleep() && !(st = LoadSleep(snap.sleep(), &w.sleep)).ok()) return st;
+  st = GetAll(snap.gravity(), "gravity", &w.gravity);
   if (!st.ok()) return st;
   std::vector<RigidBody> bodies(snap.bodies_size());
   for (int i = 0; i < snap.bodies_size(); ++i) {
@@ -238,6 +267,11 @@ Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<C
     wrenches[i].remaining = pw.remaining();
     if (!(st = GetAll(pw.force(), "wrench force", &wrenches[i].force)).ok()) return st;
     if (!(st = GetAll(pw.torque(), "wrench torque", &wrenches[i].torque)).ok()) return st;
+  }
+  for (const RigidBody& b : bodies) {
+    if (b.asleep() && !w.sleep.enabled) {
+      return Status::InvalidArgument("snapshot: body " + std::to_string(b.id) + " sleeps but sleep is off");
+    }
   }
   if (!(st = w.Assign(std::move(bodies), std::move(wrenches), snap.next_id())).ok()) {
     return Status::InvalidArgument("snapshot: " + st.message());

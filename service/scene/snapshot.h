@@ -2,7 +2,8 @@
 // (service/proto/snapshot.proto). A snapshot holds every state bit of every
 // body (x, q, P, L, the last accumulated force and torque, kinematic
 // velocities, mass and inertia as stored, the convex hull as built), the
-// clock, gravity, dt, the timed wrenches, the next id, and the contact
+// clock, gravity, dt, the timed wrenches, the next id, the sleep settings
+// and each body's rest timer and sleeping island, and the contact
 // method's name, parameters and caches (ContactMethod::SaveState), so a run
 // restored from it continues bit for bit as the original did.
 #pragma once

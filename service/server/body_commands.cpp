@@ -2,6 +2,7 @@
 // that need the world (does the body exist, is it dynamic, is there room)
 // and the change itself. Simulation thread. A failed check changes nothing.
 #include "service/contact/method_support.h"
+#include "service/contact/sleep/island_sleep.h"
 #include "service/physics/validation.h"
 #include "service/server/sim_server.h"
 
@@ -34,6 +35,7 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
         return Outcome::Failed(st);
       }
       const BodyId id = world_.AddBody(std::move(cmd.new_body));
+      WakeTouching(world_, id);  // a body added into a sleeping pile, or under it
       detector_.Reset();
       Outcome o = Outcome::Done(std::string("added ") + shape + " " + std::to_string(id), true);
       o.ids = {id};
@@ -41,6 +43,7 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
     }
     case K::kRemoveBody: {
       const size_t joints = world_.joints().size();
+      WakeTouching(world_, cmd.body_id);  // what rested on it, or against it
       if (!(st = world_.RemoveBody(cmd.body_id)).ok()) return Outcome::Failed(st);
       detector_.Reset();
       std::string text = "removed " + body;
@@ -69,8 +72,20 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
   const bool need_dynamic = cmd.kind == K::kApplyForce || cmd.kind == K::kApplyImpulse || cmd.kind == K::kSetMass;
   RigidBody* b = FindBody(cmd.body_id, need_dynamic, &st);
   if (b == nullptr) return Outcome::Failed(st);
+  Outcome out = ApplyToBody(cmd, b);
+  // every change of a body wakes it and what touches it (island_sleep.h):
+  // no command is lost to sleep
+  if (out.status.ok()) WakeTouching(world_, cmd.body_id);
+  return out;
+}
+
+Outcome SimServer::ApplyToBody(Command& cmd, RigidBody* b) {
+  using K = Command::Kind;
+  const std::string body = "body " + std::to_string(cmd.body_id);
+  Status st;
   switch (cmd.kind) {
     case K::kSetPose: {
+      WakeTouching(world_, cmd.body_id);  // what rested on it where it was
       const Vec3 v = b->LinearVelocity(), w = b->AngularVelocity();
       b->x = cmd.position;
       b->q = cmd.orientation;

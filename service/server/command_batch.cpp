@@ -102,6 +102,7 @@ void SimServer::UndoBatch(const Status& why) {
     world_ = std::move(undo_->world);
     method_ = std::move(undo_->method);
     detector_.Reset();
+    sleep_.Reset();
     contacts_.clear();
     UpdateRates();
     const Status cut = journal_.RollBack(undo_->mark);

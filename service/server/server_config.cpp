@@ -111,6 +111,7 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
   s.options.status_rate_hz = config.status_rate_hz();
   s.options.broadphase = config.broadphase();
   s.options.threads = config.has_threads() ? config.threads() : DefaultThreadCount();  // checked by LoadServerConfig
+  s.options.sleep = config.sleep();
   s.options.max_bodies = config.max_bodies();
   s.options.max_joints = config.max_joints();
   s.options.decode_limits = {config.max_convex_points(), config.max_body_cmd_bytes(), config.max_scene_cmd_bytes(),

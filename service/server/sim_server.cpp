@@ -40,6 +40,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   if (scene != nullptr) {
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }
+  world_.sleep.enabled = options_.sleep;  // a recovered snapshot brings its own
   // a configured method that cannot honour the configured scene (method_support.h)
   if (!(st = CheckMethodSupports(method->Name(), world_)).ok()) return st;
   method_ = std::move(method);
@@ -171,7 +172,7 @@ void SimServer::CancelStepCommands(const std::string& why) {
 }
 
 void SimServer::SimulateStep() {
-  last_stats_ = method_->Step(world_, detector_, &contacts_);
+  last_stats_ = sleep_.Step(world_, *method_, detector_, &contacts_);
   if (rewinding_) ReportRewindProgress();
 }
 
@@ -246,6 +247,7 @@ void SimServer::PublishStatus(Clock::time_point now) {
   s.real_time_factor = measured_rtf_;
   s.target_real_time_factor = real_time_factor_;
   s.num_bodies = static_cast<int32_t>(world_.bodies().size());
+  s.num_sleeping = static_cast<int32_t>(world_.SleepingCount());
   s.num_contacts = static_cast<int32_t>(contacts_.size());
   s.max_penetration = last_stats_.max_penetration;
   s.solver_iterations = last_stats_.iterations;

@@ -20,6 +20,7 @@
 
 #include "service/collision/collision_detector.h"
 #include "service/contact/contact_method.h"
+#include "service/contact/sleep/island_sleep.h"
 #include "service/physics/world.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/command.h"
@@ -42,6 +43,9 @@ struct ServerOptions {
   double status_rate_hz = 1.0;          // of wall-clock time
   std::string broadphase = "sap";
   int threads = DefaultThreadCount();   // of the collision detector; 1 = serial (parallel_runner.h)
+  // Settled islands sleep (service/contact/sleep/island_sleep.h); on, as in
+  // Box2D, Bullet and Jolt: a served world at rest costs almost nothing.
+  bool sleep = true;
   int max_bodies = 100000;              // ADD beyond this is refused
   int max_joints = 100000;              // joint ADD beyond this is refused
   DecodeLimits decode_limits;           // points of a convex, bytes per channel
@@ -148,6 +152,7 @@ class SimServer {
                  const std::vector<int64_t>& ids = {});
   Outcome Apply(Command& cmd);
   Outcome ApplyBodyCommand(Command& cmd);   // bodies and joints (body_commands.cpp)
+  Outcome ApplyToBody(Command& cmd, RigidBody* b);  // a command on one existing body
   Outcome ApplyWorldCommand(Command& cmd);  // scene, method, running (world_commands.cpp)
   RigidBody* FindBody(BodyId id, bool need_dynamic, Status* status);
   void StepWorld();
@@ -184,6 +189,7 @@ class SimServer {
   World world_;
   CollisionDetector detector_;
   std::shared_ptr<ContactMethod> method_;
+  IslandSleep sleep_;
   ContactSet contacts_;
   StepStats last_stats_;
   bool paused_ = false;

@@ -84,6 +84,7 @@ Status SimServer::Recover() {
     world_ = std::move(world);
     method_ = std::move(method);
     detector_.Reset();
+    sleep_.Reset();
     const int64_t from_step = world_.step;
     replaying_ = true;
     for (const JournalRecord& r : journal_.recovered_records()) {
@@ -113,6 +114,7 @@ Status SimServer::Rewind(int64_t step, const Command* cmd) {
   world_ = std::move(world);
   method_ = std::move(method);
   detector_.Reset();
+  sleep_.Reset();
   replaying_ = true;
   if (cmd != nullptr) {
     const auto now = std::chrono::steady_clock::now();
@@ -129,6 +131,7 @@ Status SimServer::Rewind(int64_t step, const Command* cmd) {
     world_ = std::move(saved_world);
     method_ = std::move(saved_method);
     detector_.Reset();
+    sleep_.Reset();
     return st;
   }
   snapshots_.TruncateAfter(step);
@@ -177,6 +180,7 @@ Outcome SimServer::ApplySnapshotCommand(Command& cmd) {
   world_ = std::move(world);
   method_ = std::move(method);
   detector_.Reset();
+  sleep_.Reset();
   contacts_.clear();
   UpdateRates();
   StartTimeline();

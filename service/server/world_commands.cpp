@@ -14,6 +14,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       CancelStepCommands("reset");
       world_.Clear();
       detector_.Reset();
+      sleep_.Reset();
       method_->ResetCaches();
       contacts_.clear();
       UpdateRates();
@@ -26,8 +27,10 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       if (st.ok()) st = CheckMethodSupports((cmd.method ? cmd.method : method_)->Name(), world);
       if (!st.ok()) return Outcome::Failed(st);
       CancelStepCommands("scene loaded");
+      world.sleep = world_.sleep;  // the run's setting, not the scene's
       world_ = std::move(world);
       detector_.Reset();
+      sleep_.Reset();
       if (cmd.method) method_ = cmd.method;
       method_->ResetCaches();
       contacts_.clear();
@@ -37,6 +40,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
     }
     case K::kSetGravity:
       world_.gravity = cmd.gravity;
+      world_.WakeAll();  // what rested under the old gravity may not under the new
       return Outcome::Done("gravity set", true);
     case K::kSetTimestep:
       world_.dt = cmd.dt;
@@ -50,7 +54,12 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       std::string text = std::string("contact method ") + method_->Name();
       for (const auto& [k, v] : method_->Params()) text += " " + k + "=" + v;
       spdlog::info("{}", text);
-      return Outcome::Done(text, false);
+      // a body at rest under one method need not be under another (penalty
+      // rests in a slight overlap that impulse pushes apart): the new method
+      // settles the whole world again before anything sleeps
+      const bool woke = world_.SleepingCount() > 0;
+      world_.WakeAll();
+      return Outcome::Done(text, woke);
     }
     case K::kPause:
       paused_ = true;

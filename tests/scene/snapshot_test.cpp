@@ -6,6 +6,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
+#include "service/contact/sleep/island_sleep.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/test_bodies.h"
 
@@ -113,6 +116,74 @@ TEST(SnapshotTest, RestoredRunMatchesTheOriginalBitForBitForEveryMethod) {
     }
     EXPECT_EQ(Bytes(restored, *restored_method), original_end);
   }
+}
+
+// Hash of a world stepped with sleeping islands after each of `n` steps,
+// and the fewest bodies asleep after any of them.
+std::vector<uint64_t> RunSleeping(World& w, ContactMethod& method, int n, int* fewest_asleep) {
+  CollisionDetector detector;
+  ContactSet contacts;
+  IslandSleep sleep;
+  std::vector<uint64_t> hashes;
+  *fewest_asleep = static_cast<int>(w.bodies().size());
+  for (int i = 0; i < n; ++i) {
+    sleep.Step(w, method, detector, &contacts);
+    hashes.push_back(HashWorldState(w));
+    *fewest_asleep = std::min(*fewest_asleep, w.SleepingCount());
+  }
+  return hashes;
+}
+
+// Verifies, for every registered contact method, that a snapshot taken
+// while a stack sleeps restores its sleep state (rest timers, island
+// labels, settings) and that the restored run matches the original bit for
+// bit, through a ball that falls onto the stack and wakes it, and that two
+// runs of the same world give the same hashes.
+TEST(SnapshotTest, RestoredRunReproducesSleepingBitForBitForEveryMethod) {
+  constexpr int kAfter = 480;
+  for (const std::string& name : ContactMethodNames()) {
+    SCOPED_TRACE(name);
+    World world;
+    world.sleep.enabled = true;
+    AddGround(world, 0.0, 0.6);
+    AddBox(world, 0.1, Vec3(0, 0, 0.101), 0.0, 0.6);
+    AddBox(world, 0.1, Vec3(0, 0, 0.302), 0.0, 0.6);
+    AddSphere(world, 0.05, Vec3(0.05, 0, 12.0), 0.0, 0.6);  // lands after about 1.5 s
+    auto method = Method(name);
+    CollisionDetector detector;
+    ContactSet contacts;
+    IslandSleep sleep;
+    while (world.SleepingCount() < 2 && world.time < 1.4) sleep.Step(world, *method, detector, &contacts);
+    ASSERT_EQ(world.SleepingCount(), 2) << "the stack did not sleep by t = " << world.time;
+    proto::Snapshot saved;
+    SaveSnapshot(world, *method, &saved);
+    int fewest = 0;
+    const std::vector<uint64_t> original = RunSleeping(world, *method, kAfter, &fewest);
+    EXPECT_EQ(fewest, 0) << "the ball never woke the stack";
+
+    World restored;
+    std::shared_ptr<ContactMethod> restored_method;
+    const Status st = LoadSnapshot(saved, &restored, &restored_method);
+    ASSERT_TRUE(st.ok()) << st.message();
+    EXPECT_TRUE(restored.sleep.enabled);
+    EXPECT_EQ(restored.SleepingCount(), 2);
+    const std::vector<uint64_t> again = RunSleeping(restored, *restored_method, kAfter, &fewest);
+    for (size_t i = 0; i < original.size(); ++i) {
+      ASSERT_EQ(again[i], original[i]) << "first divergence " << i + 1 << " steps after the snapshot";
+    }
+    EXPECT_EQ(Bytes(restored, *restored_method), Bytes(world, *method));
+  }
+}
+
+// Verifies that the sleep fields enter the state hash only with sleep on,
+// so that every hash pinned before sleeping existed still holds.
+TEST(SnapshotTest, SleepFieldsAreHashedOnlyWithSleepOn) {
+  World world = MixedWorld();
+  const uint64_t before = HashWorldState(world);
+  world.bodies()[1].rest_time = 0.25;
+  EXPECT_EQ(HashWorldState(world), before);
+  world.sleep.enabled = true;
+  EXPECT_NE(HashWorldState(world), before);
 }
 
 // Verifies that the caches a method saves (penalty friction anchors,

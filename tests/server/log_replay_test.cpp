@@ -34,7 +34,7 @@ using Tape = std::vector<std::pair<std::string, std::vector<uint8_t>>>;
 // server published while applying it.
 class LiveRun {
  public:
-  LiveRun() : live_(ServerOptions{}) {}
+  explicit LiveRun(ServerOptions options = {}) : live_(options) {}
 
   template <typename Msg>
   void Send(Msg m, const char* channel) {
@@ -180,8 +180,8 @@ class LiveRun {
 };
 
 // Replays a tape into a fresh server (same options as the live one).
-ReplayReport Replay(const Tape& tape) {
-  ServerHarness fresh(ServerOptions{});
+ReplayReport Replay(const Tape& tape, ServerOptions options = {}) {
+  ServerHarness fresh(options);
   LogReplayer replayer(&fresh.server);
   for (const auto& [channel, bytes] : tape) {
     if (!replayer.OnEvent(channel, bytes.data(), static_cast<int>(bytes.size()))) break;
@@ -228,17 +228,26 @@ TEST(LogReplayTest, ReplayOfAnUntouchedRunIsIdentical) {
 // pinned hash, the same in every build (docs/snapshots.md, "Determinism
 // across builds"), so a log from one build replays on another; a change
 // to any method's physics changes it (the failure prints the new one).
+// With sleep off the hash is the one pinned before sleeping existed; with
+// sleep on (the server's default) the rest timers join the hash, so it has
+// its own pin.
 TEST(LogReplayTest, ReplayOfARunThroughEveryMethodIsIdentical) {
-  LiveRun run;
-  run.RecordEveryMethod(20);
-  ASSERT_TRUE(run.AllAccepted());
-  EXPECT_EQ(run.final_hash(), 0xddd102efc4531d15ull) << "got 0x" << std::hex << run.final_hash();
-  const ReplayReport r = Replay(run.tape());
-  EXPECT_FALSE(r.diverged) << r.Summary();
-  EXPECT_EQ(r.states_compared, CountStates(run.tape()));
-  EXPECT_EQ(r.last_step, run.final_step());
-  EXPECT_EQ(r.last_step, 20 * static_cast<int64_t>(ContactMethodNames().size() + 1));
-  EXPECT_NE(r.Summary().find("identical"), std::string::npos) << r.Summary();
+  for (const bool sleep : {false, true}) {
+    SCOPED_TRACE(sleep ? "sleep on" : "sleep off");
+    ServerOptions options;
+    options.sleep = sleep;
+    LiveRun run(options);
+    run.RecordEveryMethod(20);
+    ASSERT_TRUE(run.AllAccepted());
+    const uint64_t pinned = sleep ? 0xc5c9793f60c1d199ull : 0xddd102efc4531d15ull;
+    EXPECT_EQ(run.final_hash(), pinned) << "got 0x" << std::hex << run.final_hash();
+    const ReplayReport r = Replay(run.tape(), options);
+    EXPECT_FALSE(r.diverged) << r.Summary();
+    EXPECT_EQ(r.states_compared, CountStates(run.tape()));
+    EXPECT_EQ(r.last_step, run.final_step());
+    EXPECT_EQ(r.last_step, 20 * static_cast<int64_t>(ContactMethodNames().size() + 1));
+    EXPECT_NE(r.Summary().find("identical"), std::string::npos) << r.Summary();
+  }
 }
 
 // Verifies that a tampered command (a larger impulse) is reported at the

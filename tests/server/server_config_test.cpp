@@ -59,19 +59,33 @@ TEST(ServerConfig, MissingSceneIsReported) {
   EXPECT_NE(st.message().find("nowhere.pbtxt: cannot open file"), std::string::npos) << st.message();
 }
 
+// The server options a config of `text` gives (a failure fails the test).
+ServerOptions OptionsOf(const std::string& text) {
+  const std::string path = WriteTemp("options.pbtxt", text);
+  proto::ServerConfig config;
+  const Status loaded = LoadServerConfig(path, &config);
+  EXPECT_TRUE(loaded.ok()) << loaded.message();
+  ServerSetup setup;
+  const Status st = MakeServerSetup(config, path, "", &setup);
+  EXPECT_TRUE(st.ok()) << st.message();
+  return setup.options;
+}
+
 // Verifies that `threads` defaults to the machine's hardware threads and
 // that a given count reaches the server's options.
 TEST(ServerConfig, ThreadsDefaultToTheMachineAndAreTaken) {
   for (const auto& [text, expected] : {std::pair<std::string, int>{"", DefaultThreadCount()}, {"threads: 1\n", 1},
                                        {"threads: 3\n", 3}}) {
-    const std::string path = WriteTemp("threads.pbtxt", text);
-    proto::ServerConfig config;
-    const Status loaded = LoadServerConfig(path, &config);
-    ASSERT_TRUE(loaded.ok()) << loaded.message();
-    ServerSetup setup;
-    const Status st = MakeServerSetup(config, path, "", &setup);
-    ASSERT_TRUE(st.ok()) << st.message();
-    EXPECT_EQ(setup.options.threads, expected) << text;
+    EXPECT_EQ(OptionsOf(text).threads, expected) << text;
+  }
+}
+
+// Verifies that `sleep` defaults to on (as in Box2D, Bullet and Jolt) and
+// that `sleep: false` reaches the server's options.
+TEST(ServerConfig, SleepDefaultsToOnAndIsTaken) {
+  for (const auto& [text, expected] : {std::pair<std::string, bool>{"", true}, {"sleep: false\n", false},
+                                       {"sleep: true\n", true}}) {
+    EXPECT_EQ(OptionsOf(text).sleep, expected) << text;
   }
 }
 

@@ -164,5 +164,20 @@ TEST(SceneBench, ThreadsAreReportedAndBadCountsRefused) {
   }
 }
 
+// Verifies that sleeping is off unless --sleep is given (benchmarks time
+// the solver), and that with --sleep a ball resting after its bounces
+// sleeps by the end of 10 s and the report says so.
+TEST(SceneBench, SleepIsOffUnlessAskedAndReported) {
+  const std::string run = "--scene " + Scene("bounce.pbtxt") + " --method impulse --steps 2400 --repeat 1 --json";
+  const Output off = RunBench(run);
+  ASSERT_EQ(off.exit_code, 0) << off.out;
+  EXPECT_NE(off.out.find("\"sleep\": false"), std::string::npos) << off.out;
+  EXPECT_EQ(Number(off.out, "sleeping"), 0) << off.out;
+  const Output on = RunBench(run + " --sleep");
+  ASSERT_EQ(on.exit_code, 0) << on.out;
+  EXPECT_NE(on.out.find("\"sleep\": true"), std::string::npos) << on.out;
+  EXPECT_EQ(Number(on.out, "sleeping"), 1) << on.out;
+}
+
 }  // namespace
 }  // namespace contactsim::bench

@@ -75,8 +75,9 @@ def read_log(path, prefix=None, progress=False):
       message), ``body_a``, ``body_b``, ``point`` (K, 3), ``normal`` (K, 3),
       ``depth``, ``normal_value``;
     * ``status``: per STATUS message ``time``, ``step``, ``dt``,
-      ``step_rate``, ``real_time_factor``, ``num_bodies``, ``num_contacts``,
-      ``max_penetration``, and lists ``mode`` and ``method``;
+      ``step_rate``, ``real_time_factor``, ``num_bodies``, ``num_sleeping``
+      (docs/physics.md, "Sleeping"), ``num_contacts``, ``max_penetration``,
+      and lists ``mode`` and ``method``;
     * ``channels``: dict channel -> number of events (every channel).
     """
     path = os.fspath(path)
@@ -90,7 +91,7 @@ def read_log(path, prefix=None, progress=False):
     ct = {k: [] for k in ("time", "step", "count", "max_depth", "normal_sum", "value_kind", "dt")}
     points = {k: [] for k in ("frame", "body_a", "body_b", "point", "normal", "depth", "normal_value")}
     ss = {k: [] for k in ("time", "step", "dt", "step_rate", "real_time_factor", "num_bodies",
-                          "num_contacts", "max_penetration", "mode", "method")}
+                          "num_sleeping", "num_contacts", "max_penetration", "mode", "method")}
     channels = {}
     dt = None       # the latest dt known (STATUS), for impulse -> force
     t0 = None
@@ -142,8 +143,8 @@ def read_log(path, prefix=None, progress=False):
             elif kind == "status":
                 m = status_t.decode(event.data)
                 dt = m.dt
-                for k in ("time", "step", "dt", "step_rate", "real_time_factor", "num_bodies", "num_contacts",
-                          "max_penetration", "method"):
+                for k in ("time", "step", "dt", "step_rate", "real_time_factor", "num_bodies", "num_sleeping",
+                          "num_contacts", "max_penetration", "method"):
                     ss[k].append(getattr(m, k))
                 ss["mode"].append(MODE_NAMES.get(m.mode, str(m.mode)))
     finally:
@@ -166,6 +167,7 @@ def read_log(path, prefix=None, progress=False):
     status = SimpleNamespace(**{k: f64(ss[k]) for k in ("time", "dt", "step_rate", "real_time_factor",
                                                          "max_penetration")},
                              step=i64(ss["step"]), num_bodies=i64(ss["num_bodies"]),
+                             num_sleeping=i64(ss["num_sleeping"]),
                              num_contacts=i64(ss["num_contacts"]), mode=ss["mode"], method=ss["method"])
     return SimpleNamespace(
         path=path, prefix=prefix, channels=channels,

@@ -44,7 +44,8 @@ std::string Text(const std::optional<double>& v, const char* unit) {
 std::string ToJson(const BenchResult& r) {
   std::ostringstream o;
   o << "{\"engine\": " << Quote(r.engine) << ", \"scene\": " << Quote(r.scene) << ", \"method\": " << Quote(r.method)
-    << ", \"threads\": " << r.threads << ", \"params\": {";
+    << ", \"threads\": " << r.threads << ", \"sleep\": " << (r.sleep ? "true" : "false")
+    << ", \"sleeping\": " << r.sleeping << ", \"params\": {";
   bool first = true;
   for (const auto& [key, value] : r.params) {
     o << (first ? "" : ", ") << Quote(key) << ": " << Quote(value);
@@ -75,6 +76,7 @@ void PrintTable(const BenchResult& r, std::ostream& out) {
   row("method", r.method);
   row("params", params.empty() ? "-" : params);
   row("threads", std::to_string(r.threads));
+  row("sleep", r.sleep ? "on (" + std::to_string(r.sleeping) + " bodies asleep at the end)" : "off");
   row("steps", std::to_string(r.steps_done) + " of " + std::to_string(r.steps));
   row("ms per step", Number(r.ms_per_step) + " (median of " + std::to_string(r.ms_per_step_repeats.size()) +
                          "; min " + Number(r.ms_per_step_min) + ", max " + Number(r.ms_per_step_max) + ")");

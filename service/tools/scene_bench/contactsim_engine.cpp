@@ -3,17 +3,21 @@
 #include <utility>
 
 #include "service/contact/method_support.h"
+#include "service/contact/sleep/island_sleep.h"
 
 namespace contactsim::bench {
 namespace {
 
 class ContactsimEngine : public SceneEngine {
  public:
-  ContactsimEngine(std::unique_ptr<ContactMethod> method, World world)
-      : method_(std::move(method)), world_(std::move(world)) {}
+  ContactsimEngine(std::unique_ptr<ContactMethod> method, World world, bool sleep)
+      : method_(std::move(method)), world_(std::move(world)) {
+    world_.sleep.enabled = sleep;
+  }
   Status SetBroadphase(const std::string& name) { return detector_.SetBroadphase(name); }
   Status SetThreads(int threads) { return detector_.SetThreads(threads); }
-  void Step() override { stats_ = method_->Step(world_, detector_, &contacts_); }
+  void Step() override { stats_ = sleep_.Step(world_, *method_, detector_, &contacts_); }
+  int Sleeping() const override { return sleep_.stats().sleeping; }
   std::optional<StepStats> LastStats() const override { return stats_; }
   const World& Sync() override { return world_; }
   ParamMap Params() const override { return method_->Params(); }
@@ -22,6 +26,7 @@ class ContactsimEngine : public SceneEngine {
   std::unique_ptr<ContactMethod> method_;
   World world_;
   CollisionDetector detector_;
+  IslandSleep sleep_;
   ContactSet contacts_;
   StepStats stats_;
 };
@@ -38,7 +43,7 @@ Status CreateContactsimEngine(const BenchOptions& options, const SceneSpec& scen
   for (const auto& [key, value] : options.params) params[key] = value;
   if (!(st = method->SetParams(params)).ok()) return st;
   if (!(st = CheckMethodSupports(options.method, world)).ok()) return st;
-  auto engine = std::make_unique<ContactsimEngine>(std::move(method), world);
+  auto engine = std::make_unique<ContactsimEngine>(std::move(method), world, options.sleep);
   if (!(st = engine->SetBroadphase(options.broadphase)).ok()) return st;
   if (!(st = engine->SetThreads(options.threads)).ok()) return st;
   *out = std::move(engine);

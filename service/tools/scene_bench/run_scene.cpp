@@ -91,6 +91,7 @@ BenchResult RunScene(const BenchOptions& options, const SceneSpec& scene, const 
       r.final_kinetic_energy = metrics.final_kinetic_energy();
       r.top_displacement = metrics.top_displacement();
       r.rebound_height = metrics.rebound_height();
+      r.sleeping = engine->Sleeping();
     }
     if (!failure.empty()) {
       r.status = failure + " (at step " + std::to_string(done) + ")";

@@ -21,6 +21,8 @@ struct BenchResult {
   std::string method;
   ParamMap params;
   int threads = 1;                // of contactsim's collision detector (--threads)
+  bool sleep = false;             // settled islands slept (--sleep)
+  int sleeping = 0;               // bodies asleep at the end of the first repeat
   int bodies = 0;
   int steps = 0;                  // asked for
   int steps_done = 0;             // of the first repeat (less than `steps` after a failure)

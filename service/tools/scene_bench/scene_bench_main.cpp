@@ -71,6 +71,8 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
                  "threads of the collision detector (MuJoCo: of its thread pool), 1 to " +
                      std::to_string(kMaxThreads) + " (contactsim and MuJoCo only; Bullet and ODE use one)")
       ->default_str(std::to_string(options.threads) + ", the machine's hardware threads");
+  app.add_flag("--sleep", options.sleep, "settled islands sleep, as in the server (contactsim only; default off, "
+                                        "so that the solver is timed)");
   app.add_option("--repeat", options.repeat, "repeats; ms_per_step is their median")
       ->check(CLI::PositiveNumber)
       ->default_str("3");
@@ -117,6 +119,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   }
   result.engine = info.engine;
   result.threads = info.threaded ? options.threads : 1;  // Bullet and ODE step on one thread
+  result.sleep = info.engine == "contactsim" && options.sleep;
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {

@@ -1,7 +1,7 @@
 // The command line shared by contactsim-bench's scene mode and the peer
 // runners (bench/peers), so that all of them take the same flags:
 //   TOOL --scene config/scenes/NAME.pbtxt --method NAME [--param key=value ...]
-//        [--steps N] [--broadphase sap|naive] [--threads N] [--repeat 3] [--max-seconds S] [--json]
+//        [--steps N] [--broadphase sap|naive] [--threads N] [--sleep] [--repeat 3] [--max-seconds S] [--json]
 //        [--list-methods]
 // Exit status: 0 when the run completed ("status": "ok"), 1 otherwise (bad
 // arguments, a scene or parameter error, NaN, explosion, time limit); with

@@ -25,6 +25,7 @@ struct BenchOptions {
   int steps = 0;                 // 0: the scene's `steps`
   std::string broadphase = "sap";
   int threads = DefaultThreadCount();  // of the collision detector (contactsim), of the thread pool (MuJoCo)
+  bool sleep = false;            // settled islands sleep (--sleep; contactsim only): off, to time the solver
   int repeat = 3;
   bool json = false;
   double max_seconds = 0.0;      // s of stepping per repeat before giving up; 0: no limit
@@ -46,6 +47,8 @@ class SceneEngine {
   // The contact method's own report of the last step (iterations, residual,
   // stiffness: contact_method.h); none for the peers.
   virtual std::optional<StepStats> LastStats() const { return std::nullopt; }
+  // Bodies asleep after the last step (contactsim with --sleep); 0 otherwise.
+  virtual int Sleeping() const { return 0; }
 };
 
 // Builds a fresh engine for the scene (called once per repeat). `world` is
