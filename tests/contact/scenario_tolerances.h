@@ -73,11 +73,7 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"penalty", "stack n=8 height",
      "sinks 0.57 mm: its compliance, sum over the layers of k m g / kp, kp = m pi^2 / contact_time^2 (4 ms)"},
     {"penalty", "stack n=20 height", "sinks 3.34 mm: its compliance, sum of k g contact_time^2 / pi^2"},
-    // barrier: its contract refuses restitution (method_contract.h); implicit Euler damps rotation
-    {"barrier", "roll m=0.1", "-19.4%: implicit Euler damps rotation, more for the 0.1 kg sphere"},
-    {"barrier", "roll m=1", "-3.3%: implicit Euler damps rotation"},
-    {"barrier", "roll m=10", "-3.2%: implicit Euler damps rotation"},
-    {"barrier", "rotation", "|L| -11%, energy -23% in 10 s: implicit Euler on the affine coordinates"},
+    // barrier: its contract refuses restitution (method_contract.h)
     {"barrier", "stack n=8 height", "5.3 mm higher: each pair rests about d_hat / 2 apart, placed flush it hops"},
     {"barrier", "stack n=20 height", "7.6 mm higher: barrier gaps"},
     // impulse: rotates with the explicit exp(w h) update after its contact

@@ -134,6 +134,28 @@ class BarrierSolver {
   // The largest safe alpha along `step` by additive CCD over `line`.
   double LineSearchStart(const std::vector<Vec12>& step, const std::vector<Entry>& line) const;
   double Energy(const std::vector<Entry>& entries) const;
+  // Moves the bodies along `step` by the line search (CCD bound, then
+  // halving until the energy decreases; `line` the pairs along it), then
+  // refreshes `entries` at the new q and doubles kappa while the closest
+  // pair keeps closing below the floor. False (q unchanged) when no alpha
+  // decreased the energy.
+  bool Advance(const std::vector<Vec12>& step, std::vector<Entry>* line, std::vector<Entry>* entries,
+               double* last_min);
+  // Turns each body from A_n towards its predicted rotation by Advance
+  // (affine_prediction.h), before the Newton iterations: q_pred's rotation
+  // is on the rotation manifold, while from A_n each Newton step leaves it
+  // along its tangent and the stiff orthogonality potential slows the
+  // return (a free box spinning at 1.7 rad/s took 7 iterations a step and
+  // its rotation still lagged by 3e-7, |L| drifting 4% in 10 s; started
+  // there, the step ends at q_pred). Only bodies whose turn moves a vertex
+  // faster than the tolerance. The translation starts at p_n: its energy is
+  // quadratic, and a body that static friction holds stays where it is when
+  // the first Newton step is below the tolerance; started at p_pred, or
+  // turned by the 3e-5 m/s a held box rocks at, Newton resolves the
+  // smoothed friction's creep (up to 0.06 mm/s on a 30 degree slope with
+  // mu 0.7, barrier_params.h) and the box slides 0.05-0.12 mm in 2 s.
+  void StartFromPredictedRotation(std::vector<Vec12>* step, std::vector<Entry>* line, std::vector<Entry>* entries,
+                                  double* last_min);
   // Lagged friction of the pairs in `entries` at the bodies' q.
   void Lag(const std::vector<Entry>& entries);
   // The previous step's lagged friction, for bodies still present.
@@ -148,6 +170,7 @@ class BarrierSolver {
   BarrierParams params_;
   double h_ = 0.0;
   double kappa_ = 0.0;
+  double kappa_max_ = 0.0;
   std::vector<Body> bodies_;
   // shifts of the pairs that started too close, by (a, b, kind, ia, ib, swapped)
   std::map<std::tuple<int, int, int, int, int, bool>, double> shift_;
