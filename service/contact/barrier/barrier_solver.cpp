@@ -229,7 +229,7 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
     if (b.dof < 0) continue;
     AffineBodyState& s = kept[rigid[b.index].id];
     s.q = b.q;
-    s.qdot = (b.q - b.q0) / h_;   // implicit Euler's velocity
+    s.qdot = (b.q - b.q0) / h_;   // (its rotational rows predict nothing: affine_prediction.h)
     s.Stamp(rigid[b.index]);
   }
   state_.bodies = std::move(kept);
@@ -273,16 +273,15 @@ bool BarrierSolver::Advance(const std::vector<Vec12>& step, std::vector<Entry>* 
   return true;
 }
 
-void BarrierSolver::StartFromPredictedRotation(std::vector<Vec12>* step, std::vector<Entry>* line,
-                                               std::vector<Entry>* entries, double* last_min) {
+void BarrierSolver::StartTurningBodiesAtPrediction(std::vector<Vec12>* step, std::vector<Entry>* line,
+                                                   std::vector<Entry>* entries, double* last_min) {
   bool turning = false;
   for (const Body& b : bodies_) {
     if (b.dof < 0) continue;
     Vec12& s = (*step)[b.dof];
-    s.setZero();
-    s.tail<9>() = b.q_pred.tail<9>() - b.q.tail<9>();
+    s = b.q_pred - b.q;
     // (slower than the tolerance, Newton would not take it either)
-    if (MotionBound(s, b.radius) < params_.tolerance * h_) {
+    if (s.tail<9>().norm() * b.radius < params_.tolerance * h_) {
       s.setZero();
     } else {
       turning = true;
@@ -352,8 +351,8 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   double last_min = std::numeric_limits<double>::infinity();
   std::vector<Vec12> step(dofs_);
   std::vector<Entry> line;
-  // Newton starts from the predicted rotation (affine_prediction.h)
-  StartFromPredictedRotation(&step, &line, &entries, &last_min);
+  // turning bodies start at their prediction (affine_prediction.h)
+  StartTurningBodiesAtPrediction(&step, &line, &entries, &last_min);
   // A step with a restarted body has no lag from a previous step: its
   // first lambda comes from the start of the step, which for bodies placed
   // touching (shifted pairs at 1e-2 d_hat) is many times their weight. As
