@@ -280,8 +280,10 @@ void BarrierSolver::StartTurningBodiesAtPrediction(std::vector<Vec12>* step, std
     if (b.dof < 0) continue;
     Vec12& s = (*step)[b.dof];
     s = b.q_pred - b.q;
-    // (slower than the tolerance, Newton would not take it either)
-    if (s.tail<9>().norm() * b.radius < params_.tolerance * h_) {
+    // (where the tangent step's stretch, r |dA|^2 / 2 at a vertex, is below
+    // what Newton resolves, it starts at q_n as well)
+    const double turn = s.tail<9>().norm();
+    if (0.5 * b.radius * turn * turn < params_.tolerance * h_) {
       s.setZero();
     } else {
       turning = true;

@@ -20,7 +20,7 @@
 // (rigid plus stretch) motion there. q_n and qdot_n are the affine state the
 // last step left (barrier_state.h), not re-derived from the rigid pose.
 //
-// Newton starts from q_n with each body turning faster than the tolerance
+// Newton starts from q_n with each body turning fast enough (below)
 // moved to its q_pred by the line search below (StartTurningBodiesAtPrediction).
 // Each Newton iteration solves H dq = -g with H the sum of M, the projected
 // Hessian of the orthogonality potential, the Gauss-Newton barrier term
@@ -146,17 +146,21 @@ class BarrierSolver {
   // decreased the energy.
   bool Advance(const std::vector<Vec12>& step, std::vector<Entry>* line, std::vector<Entry>* entries,
                double* last_min);
-  // Moves each body that turns faster than the tolerance (its rotation's
-  // step moves a vertex faster) from q_n towards its q_pred by Advance,
-  // before the Newton iterations (affine_prediction.h). q_pred's rotation is
-  // on the rotation manifold, while from A_n each Newton step leaves it along
-  // its tangent and the stiff orthogonality potential slows the return: a
-  // free box spinning at 1.7 rad/s took 7 iterations a step and its rotation
-  // still lagged by 3e-7, |L| drifting 4% in 10 s; started at q_pred, the
-  // step ends there. The whole q_pred, not only its rotation: a rolling
-  // body's contact point keeps still only with both (rotation alone, of 240
-  // steps of a 12-box block of box_rain 44 stopped unconverged at
-  // max_iterations against 23 before; with both 16). A body turning slower
+  // Moves each body that turns fast enough from q_n towards its q_pred by
+  // Advance, before the Newton iterations (affine_prediction.h). q_pred's
+  // rotation is on the rotation manifold, while from A_n each Newton step
+  // leaves it along its tangent and the stiff orthogonality potential slows
+  // the return: a free box spinning at 1.7 rad/s took 7 iterations a step
+  // and its rotation still lagged by 3e-7, |L| drifting 4% in 10 s; started
+  // at q_pred, the step ends there. Fast enough: the tangent step's stretch
+  // at a vertex, r |A_pred - A_n|^2 / 2, is above what Newton resolves,
+  // tolerance h (a vertex speed above sqrt(2 r tolerance / h), 0.07 m/s for
+  // r = 0.1 m at 240 Hz); slower, starting at q_n costs nothing, and the
+  // wobble of box_pyramid's boxes (1e-3 to 1e-2 m/s) started at q_pred took
+  // 43.1 Newton iterations a step against 39.6. The whole q_pred, not only
+  // its rotation: a rolling body's contact point keeps still only with both
+  // (rotation alone, of 240 steps of a 12-box block of box_rain 44 stopped
+  // unconverged at max_iterations against 23 before). A body turning slower
   // stays at q_n: one that static friction holds stays where it is when the
   // first Newton step is below the tolerance, whereas moved to p_pred, or
   // turned by the 3e-5 m/s a held box rocks at, Newton resolves the smoothed
