@@ -43,11 +43,6 @@ struct Limits {
 };
 Limits LimitsOf(const std::string& label) {
   Limits l;
-  // barrier: implicit Euler on affine bodies damps rotation (a free sphere
-  // spinning at 10 rad/s keeps 74% after 1 s, at 20 rad/s 48%), so a
-  // rolling capsule falls 11% behind (docs/physics.md, barrier, "Known
-  // limits"); the no-slip check (spin = v / r) still holds to 0.2%
-  if (label == "barrier") l.roll = 0.15;
   // xpbd: a 10 kg cube with mu 0.8 sliding along a face normal stops 2.9%
   // short, at 30, 45 and 60 degrees +0.05% (docs/physics.md, "Coulomb
   // friction in every method")

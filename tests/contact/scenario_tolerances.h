@@ -82,11 +82,7 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"soft", "bridge 1:1000 penetration", "43 mm: the light supports spin up under the direct solve's answer"},
     {"soft", "bridge 1:1000 sink", "23 mm"},
     {"soft", "bridge 1:1000 drift", "5.2 mm"},
-    // barrier: its contract refuses restitution (method_contract.h); implicit Euler damps rotation
-    {"barrier", "roll m=0.1", "-19.4%: implicit Euler damps rotation, more for the 0.1 kg sphere"},
-    {"barrier", "roll m=1", "-3.3%: implicit Euler damps rotation"},
-    {"barrier", "roll m=10", "-3.2%: implicit Euler damps rotation"},
-    {"barrier", "rotation", "|L| -11%, energy -23% in 10 s: implicit Euler on the affine coordinates"},
+    // barrier: its contract refuses restitution (method_contract.h)
     {"barrier", "stack n=8 height", "5.3 mm higher: each pair rests about d_hat / 2 apart, placed flush it hops"},
     {"barrier", "stack n=20 height", "7.6 mm higher: barrier gaps"},
     // impulse: sequential impulses on an exactly aligned stack

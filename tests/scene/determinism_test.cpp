@@ -41,7 +41,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"xpbd", {}, 0x67737c8bc6935e6cull},
       {"lcp", {{"solver", "pgs"}}, 0x3afbeb13b7ac60c4ull},
       {"lcp", {{"solver", "lemke"}}, 0x2748304f6a060145ull},
-      {"barrier", {}, 0x39a313d8ab9fedfaull},
+      {"barrier", {}, 0x252a7063292c47b2ull},
       {"soft", {}, 0x5c765ac762f587a5ull},
   };
   return pinned;

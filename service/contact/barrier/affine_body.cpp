@@ -64,10 +64,6 @@ void RigidToAffine(const RigidBody& body, Vec12* q, Vec12* qdot) {
   *qdot = AffineFromPose(body.LinearVelocity(), Skew(body.AngularVelocity()) * R);
 }
 
-Vec12 AffineGeneralisedForce(const Vec3& F, const Vec3& tau, const Mat3& R) {
-  return AffineFromPose(F, 0.5 * Skew(tau) * R);
-}
-
 Mat3 NearestRotation(const Mat3& A) {
   Eigen::JacobiSVD<Mat3> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Mat3 U = svd.matrixU();

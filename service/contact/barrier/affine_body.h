@@ -44,11 +44,6 @@ AffineMass AffineMassOf(const RigidBody& body);
 // (A = R, Adot = [w]x R).
 void RigidToAffine(const RigidBody& body, Vec12* q, Vec12* qdot);
 
-// Generalised force of a force F at the centre of mass and a torque tau:
-// (F, rows of G) with G = 1/2 [tau]x R (for A = R the virtual work
-// tr(dA^T G) of dA = [dtheta]x R is tau . dtheta).
-Vec12 AffineGeneralisedForce(const Vec3& F, const Vec3& tau, const Mat3& R);
-
 // The rigid pose nearest to A: R from the polar decomposition A = R S
 // (SVD A = U Sigma V^T, R = U V^T with the sign of det fixed).
 Mat3 NearestRotation(const Mat3& A);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "service/contact/barrier/additive_ccd.h"
+#include "service/contact/barrier/affine_prediction.h"
 #include "service/contact/barrier/barrier_potential.h"
 #include "service/contact/contact_row.h"
 #include "service/physics/integrator.h"
@@ -71,8 +72,8 @@ void BarrierSolver::Setup(World& world, const BarrierParams& params) {
         RigidToAffine(r, &b.q0, &qdot);
         b.restarted = true;
       }
-      const Vec12 f = AffineGeneralisedForce(r.force, r.torque, r.Rotation());
-      b.q_pred = b.q0 + h_ * qdot + h_ * h_ * b.mass.Solve(f);
+      // the rotation by the midpoint rule, not along A's tangent (affine_prediction.h)
+      b.q_pred = PredictAffine(r, b.q0, qdot, h_);
     } else {
       b.q0 = AffineFromPose(r.x, r.Rotation());
       b.q_pred = b.q0;
@@ -228,7 +229,7 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
     if (b.dof < 0) continue;
     AffineBodyState& s = kept[rigid[b.index].id];
     s.q = b.q;
-    s.qdot = (b.q - b.q0) / h_;   // implicit Euler's velocity
+    s.qdot = (b.q - b.q0) / h_;   // (its rotational rows predict nothing: affine_prediction.h)
     s.Stamp(rigid[b.index]);
   }
   state_.bodies = std::move(kept);
@@ -237,6 +238,58 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
   for (const Friction& f : friction_) {
     state_.friction.push_back({rigid[bodies_[f.a].index].id, rigid[bodies_[f.b].index].id, f.Xa, f.Xb, f.T, f.mu_lambda});
   }
+}
+
+bool BarrierSolver::Advance(const std::vector<Vec12>& step, std::vector<Entry>* line, std::vector<Entry>* entries,
+                            double* last_min) {
+  // line search: the CCD bound, then halving until the energy decreases
+  Collect(&step, line);
+  double alpha = LineSearchStart(step, *line);
+  const double e0 = Energy(*line);
+  std::vector<Vec12> start(bodies_.size());
+  for (size_t i = 0; i < bodies_.size(); ++i) start[i] = bodies_[i].q;
+  bool accepted = false;
+  for (int halving = 0; halving < 40; ++halving, alpha *= 0.5) {
+    for (Body& b : bodies_) {
+      if (b.dof >= 0) b.q = start[&b - bodies_.data()] + alpha * step[b.dof];
+    }
+    if (Energy(*line) <= e0) {
+      accepted = true;
+      break;
+    }
+  }
+  if (!accepted) {
+    for (size_t i = 0; i < bodies_.size(); ++i) bodies_[i].q = start[i];
+    return false;
+  }
+
+  // adaptive kappa: double it while the closest pair keeps closing below
+  // the floor (the line's candidates hold every pair within d_hat now)
+  double min_d = std::numeric_limits<double>::infinity();
+  Refresh(*line, entries);
+  for (const Entry& e : *entries) min_d = std::min(min_d, EffectiveDistance(e));
+  if (min_d < kFloor * params_.d_hat && min_d < *last_min) kappa_ = std::min(kappa_max_, 2.0 * kappa_);
+  *last_min = min_d;
+  return true;
+}
+
+void BarrierSolver::StartTurningBodiesAtPrediction(std::vector<Vec12>* step, std::vector<Entry>* line,
+                                                   std::vector<Entry>* entries, double* last_min) {
+  bool turning = false;
+  for (const Body& b : bodies_) {
+    if (b.dof < 0) continue;
+    Vec12& s = (*step)[b.dof];
+    s = b.q_pred - b.q;
+    // (where the tangent step's stretch, r |dA|^2 / 2 at a vertex, is below
+    // what Newton resolves, it starts at q_n as well)
+    const double turn = s.tail<9>().norm();
+    if (0.5 * b.radius * turn * turn < params_.tolerance * h_) {
+      s.setZero();
+    } else {
+      turning = true;
+    }
+  }
+  if (turning) Advance(*step, line, entries, last_min);
 }
 
 BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params, ContactSet* contacts) {
@@ -268,7 +321,7 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   // corners at d_hat / 2 is then in balance, not launched by 4 m g)
   const double kappa_min = 0.25 * (dynamic > 0 ? mass_sum / dynamic : 1.0) * std::max(world.gravity.norm(), 1.0) /
                            std::abs(BarrierFirstDerivative(0.5 * d_hat, d_hat));
-  const double kappa_max = 1e6 * kappa_min;
+  kappa_max_ = 1e6 * kappa_min;
   {
     Eigen::VectorXd gE = Eigen::VectorXd::Zero(12 * dofs_), gB = Eigen::VectorXd::Zero(12 * dofs_);
     for (const Body& b : bodies_) {
@@ -284,7 +337,7 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
       if (bodies_[e.b].dof >= 0) gB.segment<12>(12 * bodies_[e.b].dof) += db * AffineJacobianT(e.dist.Xb, e.dist.n);
     }
     const double gg = gB.squaredNorm();
-    kappa_ = gg > 0.0 ? std::clamp(-gB.dot(gE) / gg, kappa_min, kappa_max) : kappa_min;
+    kappa_ = gg > 0.0 ? std::clamp(-gB.dot(gE) / gg, kappa_min, kappa_max_) : kappa_min;
   }
   // friction lagged from the end of the last step (IPC sec. 5), or from now
   // when a body restarted from its rigid state
@@ -300,6 +353,8 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   double last_min = std::numeric_limits<double>::infinity();
   std::vector<Vec12> step(dofs_);
   std::vector<Entry> line;
+  // turning bodies start at their prediction (affine_prediction.h)
+  StartTurningBodiesAtPrediction(&step, &line, &entries, &last_min);
   // A step with a restarted body has no lag from a previous step: its
   // first lambda comes from the start of the step, which for bodies placed
   // touching (shifted pairs at 1e-2 d_hat) is many times their weight. As
@@ -408,50 +463,23 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
         break;
       }
 
-      // line search: the CCD bound, then halving until the energy decreases
-      Collect(&step, &line);
-      double alpha = LineSearchStart(step, line);
-      const double e0 = Energy(line);
-      std::vector<Vec12> start(bodies_.size());
-      for (size_t i = 0; i < bodies_.size(); ++i) start[i] = bodies_[i].q;
-      bool accepted = false;
-      for (int halving = 0; halving < 40; ++halving, alpha *= 0.5) {
-        for (Body& b : bodies_) {
-          if (b.dof >= 0) b.q = start[&b - bodies_.data()] + alpha * step[b.dof];
-        }
-        if (Energy(line) <= e0) {
-          accepted = true;
-          break;
-        }
-      }
-      if (!accepted) {
-        for (size_t i = 0; i < bodies_.size(); ++i) bodies_[i].q = start[i];
-        break;
-      }
-
-      // adaptive kappa: double it while the closest pair keeps closing below
-      // the floor (the line's candidates hold every pair within d_hat now)
-      double min_d = std::numeric_limits<double>::infinity();
-      Refresh(line, &entries);
-      for (const Entry& e : entries) min_d = std::min(min_d, EffectiveDistance(e));
-      if (min_d < kFloor * d_hat && min_d < last_min) kappa_ = std::min(kappa_max, 2.0 * kappa_);
-      last_min = min_d;
+      if (!Advance(step, &line, &entries, &last_min)) break;
     }
   }
 
-  // write back: position, rotation by polar decomposition, velocities from the step
+  // write back: position, rotation by polar decomposition, velocity from the
+  // step, angular momentum as the midpoint rule carries it to that rotation
+  // (affine_prediction.h; r.q still holds the step's start)
   auto& rigid = world.bodies();
   for (const Body& b : bodies_) {
     if (b.dof < 0) continue;
     RigidBody& r = rigid[b.index];
-    const Mat3 R0 = AffineMatrix(b.q0);
-    const Mat3 R = NearestRotation(AffineMatrix(b.q));
+    const Quat rotation = Quat(NearestRotation(AffineMatrix(b.q))).normalized();
     const Vec3 x = AffinePosition(b.q);
-    const Vec3 v = (x - AffinePosition(b.q0)) / h_;
-    const Vec3 w = RotationVector(Quat(Mat3(R * R0.transpose()))) / h_;
+    r.P = r.mass * (x - AffinePosition(b.q0)) / h_;
+    r.L = EndAngularMomentum(r, r.q, rotation, h_);
     r.x = x;
-    r.q = Quat(R).normalized();
-    r.SetVelocity(v, w);
+    r.q = rotation;
   }
 
   // contacts and the smallest distance at the end (entries are those at q)

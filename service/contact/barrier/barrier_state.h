@@ -2,11 +2,13 @@
 // snapshot must hold for an exact continuation (ContactMethod::SaveState):
 //  * each dynamic body's affine coordinates q and velocity qdot (Lan et al.
 //    2022, Affine Body Dynamics: the state is the 12 affine degrees of
-//    freedom; the World's rigid pose is only their polar decomposition, and
-//    the rigid velocity a projection of qdot). With them the rigid state
-//    written back from them (x, quaternion, P, L): a body whose state was
-//    changed from outside since (a command, another method's steps after a
-//    switch) no longer matches and restarts from its rigid state;
+//    freedom; the World's rigid pose is only their polar decomposition).
+//    With them the rigid state written back from them (x, quaternion, P,
+//    L): the next step predicts the translation from qdot and the rotation
+//    from that quaternion and L (affine_prediction.h), and a body whose
+//    state was changed from outside since (a command, another method's
+//    steps after a switch) no longer matches and restarts from its rigid
+//    state;
 //  * the lagged friction of Li et al. 2020 (IPC sec. 5): per contact pair at
 //    the end of the previous step, the closest points in the two bodies'
 //    frames, the tangent basis and mu lambda with lambda the barrier force
