@@ -80,6 +80,35 @@ BodySettings UpperBody(Top top, double z) {
 // Largest overlap (m) between any two bodies, one of them dynamic.
 double Penetration(const World& world) { return std::max(0.0, -testing::SmallestGap(world)); }
 
+// How a stack rested over kSeconds: the deepest overlap at any step, how
+// far `top` sank after the first eighth of the run, and its sideways drift.
+struct Rest {
+  double penetration = 0.0, sink = 0.0, drift = 0.0;  // m
+};
+Rest RunStack(Sim& sim, BodyId top) {
+  Rest rest;
+  double settled_z = 0.0, lowest_z = 1e9;
+  const int steps = static_cast<int>(kSeconds / sim.world.dt);
+  for (int i = 0; i < steps; ++i) {
+    sim.Step();
+    rest.penetration = std::max(rest.penetration, Penetration(sim.world));
+    const double z = sim.world.Find(top)->x.z();
+    if (i + 1 == steps / 8) settled_z = z;
+    if (i + 1 >= steps / 8) lowest_z = std::min(lowest_z, z);
+  }
+  rest.sink = settled_z - lowest_z;
+  rest.drift = (sim.world.Find(top)->x.head<2>()).norm();
+  return rest;
+}
+
+// The bounds as checks of the suite (scenario_tolerances.h), so that a known
+// miss is listed with its measurement instead of a wider bound.
+void ExpectRests(testing::MechanicsChecks& checks, const std::string& id, const Rest& rest) {
+  checks.Expect(id + " penetration", rest.penetration, 0.5 * kMaxPenetration, 0.5 * kMaxPenetration);
+  checks.Expect(id + " sink", rest.sink, 0.5 * kMaxSink, 0.5 * kMaxSink);
+  checks.Expect(id + " drift", rest.drift, 0.5 * kMaxSink, 0.5 * kMaxSink);
+}
+
 using StackParam = std::tuple<std::string, Top, bool, int>;  // method, top, heavy on top, ratio
 
 class MassRatioStackTest : public ::testing::TestWithParam<StackParam> {};
@@ -105,28 +134,14 @@ TEST_P(MassRatioStackTest, StackHolds) {
   upper.mass = heavy_on_top ? kLightMass * ratio : kLightMass;
   const BodyId up = AddValidBody(sim.world, upper);
 
-  double worst_pen = 0.0, settled_z = 0.0, lowest_z = 1e9;
-  const int steps = static_cast<int>(kSeconds / sim.world.dt);
-  for (int i = 0; i < steps; ++i) {
-    sim.Step();
-    worst_pen = std::max(worst_pen, Penetration(sim.world));
-    const double z = sim.world.Find(up)->x.z();
-    if (i + 1 == steps / 8) settled_z = z;
-    if (i + 1 >= steps / 8) lowest_z = std::min(lowest_z, z);
-  }
-  const double sink = settled_z - lowest_z;
-  const double drift = (sim.world.Find(up)->x.head<2>()).norm();
+  const Rest rest = RunStack(sim, up);
   std::printf("%-8s %-7s %s 1:%-4d penetration %.3g mm, sink %.3g mm, drift %.3g mm\n", method.c_str(),
-              TopName(top), heavy_on_top ? "heavy-on-light" : "light-on-heavy", ratio, 1e3 * worst_pen, 1e3 * sink,
-              1e3 * drift);
-  // bounds as checks of the suite (scenario_tolerances.h), so that a known
-  // miss is listed with its measurement instead of a wider bound
+              TopName(top), heavy_on_top ? "heavy-on-light" : "light-on-heavy", ratio, 1e3 * rest.penetration,
+              1e3 * rest.sink, 1e3 * rest.drift);
   testing::MechanicsChecks checks(method);
   const std::string id = std::string(TopName(top)) + (heavy_on_top ? " heavy-on-light 1:" : " light-on-heavy 1:") +
                          std::to_string(ratio);
-  checks.Expect(id + " penetration", worst_pen, 0.5 * kMaxPenetration, 0.5 * kMaxPenetration);
-  checks.Expect(id + " sink", sink, 0.5 * kMaxSink, 0.5 * kMaxSink);
-  checks.Expect(id + " drift", drift, 0.5 * kMaxSink, 0.5 * kMaxSink);
+  ExpectRests(checks, id, rest);
   SKIP_KNOWN_MISSES(checks);
 }
 
@@ -184,24 +199,11 @@ TEST_P(MassRatioSupportTest, LightSupportsHold) {
       AddValidBody(sim.world, FlatBox(0.0, 0.1 + 2.0 * gap, kLightMass));
       top = AddValidBody(sim.world, FlatBox(0.0, 0.2 + 3.0 * gap, kLightMass * ratio));
     }
-    double worst_pen = 0.0, settled_z = 0.0, lowest_z = 1e9;
-    const int steps = static_cast<int>(kSeconds / sim.world.dt);
-    for (int i = 0; i < steps; ++i) {
-      sim.Step();
-      worst_pen = std::max(worst_pen, Penetration(sim.world));
-      const double z = sim.world.Find(top)->x.z();
-      if (i + 1 == steps / 8) settled_z = z;
-      if (i + 1 >= steps / 8) lowest_z = std::min(lowest_z, z);
-    }
-    const double sink = settled_z - lowest_z;
-    const double drift = (sim.world.Find(top)->x.head<2>()).norm();
+    const Rest rest = RunStack(sim, top);
     const std::string layout = bridge ? "bridge" : "sandwich";
     std::printf("%-8s %-8s 1:%-4d penetration %.3g mm, sink %.3g mm, drift %.3g mm\n", method.c_str(),
-                layout.c_str(), ratio, 1e3 * worst_pen, 1e3 * sink, 1e3 * drift);
-    const std::string id = layout + " 1:" + std::to_string(ratio);
-    checks.Expect(id + " penetration", worst_pen, 0.5 * kMaxPenetration, 0.5 * kMaxPenetration);
-    checks.Expect(id + " sink", sink, 0.5 * kMaxSink, 0.5 * kMaxSink);
-    checks.Expect(id + " drift", drift, 0.5 * kMaxSink, 0.5 * kMaxSink);
+                layout.c_str(), ratio, 1e3 * rest.penetration, 1e3 * rest.sink, 1e3 * rest.drift);
+    ExpectRests(checks, layout + " 1:" + std::to_string(ratio), rest);
   }
   SKIP_KNOWN_MISSES(checks);
 }
