@@ -30,6 +30,7 @@ void SoftRatioSolve::Prepare(const SubspaceOptions& options, const std::vector<S
                              std::vector<SoftPoint>& points) {
   options_ = options;
   Select(bodies, points, options.mass_ratio);
+  if (selected_.empty()) return;
   for (int k : selected_) {
     SoftPoint& p = points[k];
     const int body = bodies[p.a].inv_mass > 0.0 ? p.a : p.b;
