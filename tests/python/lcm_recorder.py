@@ -9,6 +9,11 @@ probe messages are published, with retries, until one is in the file (the
 logger gives no "ready" signal, and a message sent before it subscribed would
 be lost silently). On exit another probe is awaited in the file, so that
 everything published before it is written, and the logger gets SIGINT.
+
+``sync()`` is the same barrier mid-run: a test that publishes in bursts waits
+for the logger to drain each one, since the logger (like any LCM subscriber)
+keeps only 30 undelivered messages and drops the rest when a loaded machine
+deschedules it.
 """
 import shutil
 import subprocess
@@ -38,6 +43,7 @@ class LcmRecorder:
         self.url, self.channels, self.path = url, channels, Path(path)
         self.probe_channel = channels.replace(".*", "") + "RECORDER_PROBE"
         self.proc = None
+        self.syncs = 0
 
     def __enter__(self):
         tool = lcm_tool("lcm-logger")
@@ -53,6 +59,12 @@ class LcmRecorder:
             self.__exit__(None, None, None)
             raise RuntimeError("lcm-logger recorded nothing within %gs: %s" % (READY_TIMEOUT, out))
         return self
+
+    def sync(self):
+        """Returns once everything published before the call is in the file."""
+        self.syncs += 1
+        if not self._probe(b"sync-%d" % self.syncs):
+            raise RuntimeError("lcm-logger did not record a probe within %gs" % READY_TIMEOUT)
 
     def _probe(self, tag):
         """Publishes a probe (again every 0.1 s) until the file holds it."""

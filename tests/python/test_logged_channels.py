@@ -110,14 +110,16 @@ def test_free_fall_energies_and_plots(server, tmp_path):
     c = server.client
     m, h0 = 2.0, 1.0
     path = tmp_path / "fall.lcmlog"
-    with LcmRecorder(server.url, server.prefix + "_.*", path):
+    with LcmRecorder(server.url, server.prefix + "_.*", path) as recorder:
         c.set_gravity((0, 0, -G))
         c.add_plane((0, 0, 1), 0.0, restitution=0.0)
         ball = c.add_sphere(0.1, position=(0, 0, h0), mass=m, restitution=0.0)
-        # in bursts of 2 STATEs: lcm-logger, like any LCM subscriber, keeps
-        # only 30 undelivered messages and may lose a long STEP's burst
+        # in bursts of 2 STATEs, each drained into the file before the next:
+        # lcm-logger keeps only 30 undelivered messages and, descheduled on a
+        # loaded machine, loses what a long STEP publishes meanwhile
         for _ in range(240 // 8):
             c.step(8)
+            recorder.sync()
     log = read_log(path, progress=True)
     col = log.body_index[ball]
     before = (log.step <= 96) & ~np.isnan(log.position[:, col, 2])
