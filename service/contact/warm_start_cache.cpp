@@ -34,10 +34,9 @@ void FromFrame(const Vec3& n, const ConstraintRow& r1, const ConstraintRow& r2, 
 void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const {
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
-    const Entry probe{Key{c.id_a, c.id_b, c.feature_id}, {}, 0};
-    const auto it = std::lower_bound(impulses_.begin(), impulses_.end(), probe);
-    const bool found = it != impulses_.end() && it->key == probe.key;
-    for (int j = 0; j < 3; ++j) (*rows)[3 * k + j].lambda = found ? it->lambda[j] : 0.0;
+    const std::array<double, 3>* cached = Find(c);
+    const bool found = cached != nullptr;
+    for (int j = 0; j < 3; ++j) (*rows)[3 * k + j].lambda = found ? (*cached)[j] : 0.0;
     ConstraintRow& r1 = (*rows)[3 * k + 1];
     ConstraintRow& r2 = (*rows)[3 * k + 2];
     if (found) FromFrame(c.normal, r1, r2, &r1.lambda, &r2.lambda);
@@ -51,30 +50,52 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
     if (rows[3 * k].lambda <= 0.0) continue;
     double l1 = rows[3 * k + 1].lambda, l2 = rows[3 * k + 2].lambda;
     ToFrame(c.normal, rows[3 * k + 1], rows[3 * k + 2], &l1, &l2);
-    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, {rows[3 * k].lambda, l1, l2}, k});
+    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, {rows[3 * k].lambda, l1, l2}, c.point, k});
   }
   std::sort(impulses_.begin(), impulses_.end());
 }
 
-const std::array<double, 3>* WarmStartCache::Find(const Contact& c) const {
+size_t WarmStartCache::PairStart(const Contact& c) const {
   // contacts come pair by pair: find where the pair's entries start once
-  // (bisection), then scan its few entries (sorted by feature, then order,
-  // so the first match is the one the bisection would find)
+  // (bisection) and keep it while the pair's contacts follow
   const bool same_pair = cursor_ < impulses_.size() && std::get<0>(impulses_[cursor_].key) == c.id_a &&
                          std::get<1>(impulses_[cursor_].key) == c.id_b &&
                          (cursor_ == 0 || std::get<0>(impulses_[cursor_ - 1].key) != c.id_a ||
                           std::get<1>(impulses_[cursor_ - 1].key) != c.id_b);
   if (!same_pair) {
-    const Entry probe{Key{c.id_a, c.id_b, 0}, {}, 0};
+    const Entry probe{Key{c.id_a, c.id_b, 0}, {}, Vec3::Zero(), 0};
     cursor_ = static_cast<size_t>(std::lower_bound(impulses_.begin(), impulses_.end(), probe) - impulses_.begin());
   }
+  return cursor_;
+}
+
+const std::array<double, 3>* WarmStartCache::Find(const Contact& c) const {
+  // the pair's few entries, sorted by feature, then order, so the first
+  // match is the one a bisection would find
+  const size_t first = PairStart(c);
   const Key key{c.id_a, c.id_b, c.feature_id};
-  for (size_t k = cursor_; k < impulses_.size(); ++k) {
+  for (size_t k = first; k < impulses_.size(); ++k) {
     const Key& at = impulses_[k].key;
     if (std::get<0>(at) != c.id_a || std::get<1>(at) != c.id_b || std::get<2>(at) > c.feature_id) break;
     if (at == key) return &impulses_[k].lambda;
   }
-  return nullptr;
+  const Entry* near = Near(c, first);
+  return near != nullptr ? &near->lambda : nullptr;
+}
+
+const WarmStartCache::Entry* WarmStartCache::Near(const Contact& c, size_t pair_first) const {
+  const Entry* best = nullptr;
+  double best_d2 = kNearMatchDistance * kNearMatchDistance;
+  for (size_t k = pair_first; k < impulses_.size(); ++k) {
+    const Entry& e = impulses_[k];
+    if (std::get<0>(e.key) != c.id_a || std::get<1>(e.key) != c.id_b) break;
+    const double d2 = (e.point - c.point).squaredNorm();
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = &e;
+    }
+  }
+  return best;
 }
 
 void WarmStartCache::StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses) {
@@ -82,7 +103,7 @@ void WarmStartCache::StoreFrame(const ContactSet& contacts, const std::vector<st
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
     if (impulses[k][0] <= 0.0) continue;
-    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, impulses[k], k});
+    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, impulses[k], c.point, k});
   }
   std::sort(impulses_.begin(), impulses_.end());
 }
@@ -121,6 +142,7 @@ std::string WarmStartCache::Save() const {
     out.Put(std::get<1>(e.key));
     out.Put(std::get<2>(e.key));
     for (double l : e.lambda) out.Put(l);
+    out.PutVec3(e.point);
   }
   if (!joint_impulses_.empty()) {
     out.Put(static_cast<uint64_t>(joint_impulses_.size()));
@@ -142,8 +164,10 @@ bool WarmStartCache::Restore(const std::string& bytes) {
     BodyId a = 0, b = 0;
     uint32_t feature = 0;
     std::array<double, 3> l{};
-    ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&l[0]) && in.Get(&l[1]) && in.Get(&l[2]);
-    loaded.push_back({Key{a, b, feature}, l, static_cast<size_t>(i)});
+    Vec3 point = Vec3::Zero();
+    ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&l[0]) && in.Get(&l[1]) && in.Get(&l[2]) &&
+         in.GetVec3(&point);
+    loaded.push_back({Key{a, b, feature}, l, point, static_cast<size_t>(i)});
   }
   std::vector<std::pair<JointKey, double>> joints;
   uint64_t m = 0;

@@ -1,12 +1,20 @@
 // Last step's contact impulses, kept per contact feature so that the next
-// solve starts from them (warm starting, Catto 2005); shared by the lcp and
-// soft methods. Key: (id of A, id of
+// solve starts from them (warm starting, Catto 2005); shared by the impulse,
+// lcp and soft methods (impulse keeps forces, impulse / h). Key: (id of A, id of
 // B, feature id), in a vector sorted by key and searched by bisection
 // (deterministic, and no allocation once its capacity is reached); contact
 // pairs come in a canonical body order (docs/conventions.md), so A and B do
 // not swap between steps. Three rows per contact: normal, t1, t2; the
 // friction impulse is kept in the tangents of the contact frame
 // (PerpendicularBasis of the normal), whatever the rows' tangents.
+// A contact whose feature id is not in the cache takes the impulses of the
+// pair's cached point nearest to it within kNearMatchDistance, if any: two
+// faces lying exactly flush clip to the same corners by other features from
+// one step to the next (an incident vertex one step, an incident edge cut by
+// a side plane the next), and starting those corners from zero while their
+// neighbours keep their impulses tilts a resting box (docs/physics.md,
+// "Warm starting"). Contact points keep their place from step to step
+// (Jolt's contact cache matches points by position likewise).
 // Joint rows are kept too, per (joint id, row within the joint's block):
 // the equality rows of a joint come in a fixed order (joint_rows.h), so a
 // hanging chain starts each step from last step's tensions. A hinge limit
@@ -29,6 +37,12 @@ namespace contactsim {
 
 class WarmStartCache {
  public:
+  // m: how far a point may lie from a cached one of its pair and still take
+  // its impulses when its feature id changed (a resting contact moves by
+  // much less in a step; distinct points of one manifold lie much farther
+  // apart)
+  static constexpr double kNearMatchDistance = 1e-3;
+
   // Sets the lambda of the three rows of each contact from the cache (0 when absent).
   void Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const;
   // Replaces the cache by the rows' impulses.
@@ -60,9 +74,15 @@ class WarmStartCache {
   struct Entry {
     Key key;
     std::array<double, 3> lambda;
+    Vec3 point;    // m, world, where the contact was
     size_t order;  // contact index: of two contacts with one key (a hash collision) the first wins
     bool operator<(const Entry& o) const { return std::tie(key, order) < std::tie(o.key, o.order); }
   };
+  // the entry of c's pair nearest to c.point within kNearMatchDistance, or
+  // nullptr; `pair_first` is where the pair's entries start
+  const Entry* Near(const Contact& c, size_t pair_first) const;
+  size_t PairStart(const Contact& c) const;
+
   std::vector<Entry> impulses_;
   mutable size_t cursor_ = 0;  // where the pair Find looked up last starts (a search hint only)
   // (joint id, row within the block) -> lambda, sorted by key

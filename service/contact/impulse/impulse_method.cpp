@@ -17,37 +17,12 @@ Status ImpulseMethod::SetParams(const ParamMap& params) {
   return ImpulseParamTable().Parse(Name(), params, params_, &params_);
 }
 
-std::string ImpulseMethod::SaveState() const {
-  ByteWriter out;
-  out.Put(static_cast<uint64_t>(warm_.size()));
-  for (const auto& [key, f] : warm_) {
-    out.Put(std::get<0>(key));
-    out.Put(std::get<1>(key));
-    out.Put(std::get<2>(key));
-    out.Put(f.normal);
-    out.PutVec3(f.tangent);
-  }
-  return out.bytes();
-}
+std::string ImpulseMethod::SaveState() const { return warm_.Save(); }
 
 Status ImpulseMethod::LoadState(const std::string& bytes) {
-  std::map<WarmKey, WarmForce> loaded;
-  ByteReader in(bytes);
-  uint64_t n = 0;
-  bool ok = bytes.empty() || in.Get(&n);
-  for (uint64_t i = 0; ok && i < n; ++i) {
-    BodyId a = 0, b = 0;
-    uint32_t feature = 0;
-    WarmForce f;
-    ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&f.normal) && in.GetVec3(&f.tangent);
-    loaded[{a, b, feature}] = f;
-  }
-  if (!ok || !in.done()) {
-    return Status::InvalidArgument("impulse method state: malformed warm-start forces (" + std::to_string(bytes.size()) +
-                                   " bytes)");
-  }
-  warm_ = std::move(loaded);
-  return Status::Ok();
+  if (warm_.Restore(bytes)) return Status::Ok();
+  return Status::InvalidArgument("impulse method state: malformed warm-start forces (" + std::to_string(bytes.size()) +
+                                 " bytes)");
 }
 
 // Split impulse: pseudo-velocities solved like contact impulses for a
@@ -200,13 +175,16 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
     row.lambda_n = row.lambda_t1 = row.lambda_t2 = 0.0;
     if (!params_.warm_start) continue;
     const Contact& c = contacts[k];
-    const auto it = warm_.find({c.id_a, c.id_b, c.feature_id});
-    if (it == warm_.end()) continue;
+    const std::array<double, 3>* warm = warm_.Find(c);
+    if (warm == nullptr) continue;
     // the stored tangent force projected on this step's tangent basis, kept
     // in the Coulomb disk of the warm normal impulse
-    row.lambda_n = h * it->second.normal;
-    row.lambda_t1 = h * it->second.tangent.dot(row.t1);
-    row.lambda_t2 = h * it->second.tangent.dot(row.t2);
+    Vec3 t1f, t2f;
+    PerpendicularBasis(c.normal, &t1f, &t2f);
+    const Vec3 tangent = (*warm)[1] * t1f + (*warm)[2] * t2f;
+    row.lambda_n = h * (*warm)[0];
+    row.lambda_t1 = h * tangent.dot(row.t1);
+    row.lambda_t2 = h * tangent.dot(row.t2);
     const double norm = std::hypot(row.lambda_t1, row.lambda_t2);
     const double limit = row.friction * row.lambda_n;
     if (norm > limit) {
@@ -288,13 +266,16 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
     }
   }
   SolveMassRatios(rows, nullptr);
-  warm_.clear();
+  warm_forces_.resize(rows.size());
   for (size_t k = 0; k < rows.size(); ++k) {
-    const Contact& c = contacts[k];
     const ContactRow& row = rows[k];
-    if (row.lambda_n > 0.0) {
-      warm_[{c.id_a, c.id_b, c.feature_id}] = {row.lambda_n / h, (row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2) / h};
-    }
+    Vec3 t1f, t2f;
+    PerpendicularBasis(contacts[k].normal, &t1f, &t2f);
+    const Vec3 tangent = (row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2) / h;
+    warm_forces_[k] = {row.lambda_n / h, tangent.dot(t1f), tangent.dot(t2f)};
+  }
+  warm_.StoreFrame(contacts, warm_forces_);  // keeps the points with a normal force
+  for (size_t k = 0; k < rows.size(); ++k) {
     rows[k].lambda_n += collision_n[k];
     const Vec3 t = collision_t[k];
     rows[k].lambda_t1 += t.dot(rows[k].t1);

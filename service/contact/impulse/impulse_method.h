@@ -35,9 +35,8 @@
 // correction adds no kinetic energy.
 #pragma once
 
-#include <map>
+#include <array>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "service/contact/contact_method.h"
@@ -45,6 +44,7 @@
 #include "service/contact/impulse/impulse_params.h"
 #include "service/contact/solver_body.h"
 #include "service/contact/subspace_solve.h"
+#include "service/contact/warm_start_cache.h"
 
 namespace contactsim {
 
@@ -58,7 +58,7 @@ class ImpulseMethod : public ContactMethod {
   // In joint_substeps sub-steps when the world's joints join very unequal
   // masses (joint_substeps.h), else one StepOnce.
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
-  void ResetCaches() override { warm_.clear(); }
+  void ResetCaches() override { warm_.Clear(); }
   // the warm-start forces, bit for bit, for snapshots
   std::string SaveState() const override;
   Status LoadState(const std::string& bytes) override;
@@ -87,15 +87,12 @@ class ImpulseMethod : public ContactMethod {
   std::vector<ContactRow> rows_;
   std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
   SubspaceSolver subspace_;
-  // Contact-phase force (N, world: normal and tangent parts) of each contact
-  // point of the last sub-step, by (body A, body B, feature id). Forces, not
+  // Contact-phase force (N: normal, and tangent along the contact frame's
+  // PerpendicularBasis) of each contact point of the last sub-step, by pair
+  // and feature id or else by place (warm_start_cache.h). Forces, not
   // impulses, so that sub-steps of another length reuse them.
-  using WarmKey = std::tuple<BodyId, BodyId, uint32_t>;
-  struct WarmForce {
-    double normal = 0.0;
-    Vec3 tangent = Vec3::Zero();
-  };
-  std::map<WarmKey, WarmForce> warm_;
+  WarmStartCache warm_;
+  std::vector<std::array<double, 3>> warm_forces_;  // per contact, to store
 };
 
 }  // namespace contactsim

@@ -1,12 +1,37 @@
 #include "service/contact/soft/soft_manifold.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 
 namespace contactsim {
 namespace {
 
 constexpr int kMaxBlock = 4;
+
+// K's pseudo-inverse when it lacks one rank at most (the four points of a
+// face act on three velocities: v_n and two tilts): dv = K^+ (v_n + bias) is
+// the least-norm increment, which adds nothing along K's null space (the
+// corners' pattern + - + -), so a symmetric face gets symmetric impulses
+// however its points are ordered. Fewer ranks (points on a line, a point
+// repeated): no block.
+bool PseudoInvert(const Eigen::Matrix4d& k, int count, Eigen::Matrix4d* inv_k) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(k);
+  const Eigen::Vector4d ev = eig.eigenvalues();
+  const double cut = 1e-8 * ev.cwiseAbs().maxCoeff();
+  Eigen::Vector4d inv = Eigen::Vector4d::Zero();
+  int rank = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (ev[i] > cut) {
+      inv[i] = 1.0 / ev[i];
+      ++rank;
+    }
+  }
+  // the unused rows of a smaller block are identity rows and count too
+  if (rank < 4 - (count == 4 ? 1 : 0)) return false;
+  *inv_k = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+  return true;
+}
 
 // K_ij = n . (1/m_A + 1/m_B) n + (r_Ai x n) . I_A^-1 (r_Aj x n) + (r_Bi x n) . I_B^-1 (r_Bj x n)
 bool InvertBlock(const std::vector<SoftPoint>& points, SoftManifold* m) {
@@ -29,14 +54,17 @@ bool InvertBlock(const std::vector<SoftPoint>& points, SoftManifold* m) {
       if (i != j) k(i, j) += k_lin;
     }
   }
-  // K is symmetric positive semi-definite; a singular or badly conditioned
-  // one (four points on a line, a point repeated) gets no block
+  // K is symmetric positive semi-definite: a well-conditioned one is
+  // inverted, a singular one (a face's four points) pseudo-inverted
   const Eigen::LLT<Eigen::Matrix4d> llt(k);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::Vector4d d = llt.matrixLLT().diagonal();
-  if (d.minCoeff() <= 1e-5 * d.maxCoeff()) return false;
-  m->inv_k = llt.solve(Eigen::Matrix4d::Identity());
-  return true;
+  if (llt.info() == Eigen::Success) {
+    const Eigen::Vector4d d = llt.matrixLLT().diagonal();
+    if (d.minCoeff() > 1e-5 * d.maxCoeff()) {
+      m->inv_k = llt.solve(Eigen::Matrix4d::Identity());
+      return true;
+    }
+  }
+  return PseudoInvert(k, m->count, &m->inv_k);
 }
 
 void SolveBlockNormals(const SoftPass& pass, const SoftManifold& m, std::vector<SoftPoint>& points,

@@ -8,11 +8,11 @@
 //   lambda_i += -mass_scale_i dv_i - impulse_scale_i lambda_i,
 // accepted when every lambda_i stays >= 0; otherwise (a point lifting off)
 // the points are swept one by one. Friction stays per point.
-// Only a well-conditioned K gets a block: two points (an edge, a lying
-// capsule) or three. Four points of a face act on three velocities (v_n and
-// two tilts), so their K is singular and they are swept one by one; a
-// regularised four-point block was measured and not kept (docs/physics.md,
-// "soft").
+// Two points (an edge, a lying capsule) and three get K^-1. Four points of a
+// face act on three velocities (v_n and two tilts), so their K is singular:
+// they get its pseudo-inverse, the least-norm increment, which keeps a
+// symmetric face's impulses symmetric whatever order its points come in
+// (docs/physics.md, "soft").
 #pragma once
 
 #include <Eigen/Core>
@@ -25,7 +25,7 @@ namespace contactsim {
 struct SoftManifold {
   int first = 0;          // points [first, first + count)
   int count = 0;
-  bool block = false;     // two to four points with one normal and an invertible K
+  bool block = false;     // two to four points with one normal and K (pseudo-)inverted
   Eigen::Matrix4d inv_k = Eigen::Matrix4d::Zero();
 };
 
