@@ -42,7 +42,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"lcp", {{"solver", "pgs"}}, 0x5146e0e0f22a08e2ull},
       {"lcp", {{"solver", "lemke"}}, 0x2748304f6a060145ull},
       {"barrier", {}, 0x252a7063292c47b2ull},
-      {"soft", {}, 0x9173e2a844fff213ull},
+      {"soft", {}, 0x08670dcb7413e2b6ull},
   };
   return pinned;
 }

@@ -1,7 +1,6 @@
 #include "service/contact/soft/soft_manifold.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 
 namespace contactsim {
@@ -9,27 +8,48 @@ namespace {
 
 constexpr int kMaxBlock = 4;
 
-// K's pseudo-inverse when it lacks one rank at most (the four points of a
-// face act on three velocities: v_n and two tilts): dv = K^+ (v_n + bias) is
-// the least-norm increment, which adds nothing along K's null space (the
-// corners' pattern + - + -), so a symmetric face gets symmetric impulses
-// however its points are ordered. Fewer ranks (points on a line, a point
-// repeated): no block.
-bool PseudoInvert(const Eigen::Matrix4d& k, int count, Eigen::Matrix4d* inv_k) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(k);
-  const Eigen::Vector4d ev = eig.eigenvalues();
-  const double cut = 1e-8 * ev.cwiseAbs().maxCoeff();
-  Eigen::Vector4d inv = Eigen::Vector4d::Zero();
-  int rank = 0;
+// The unit vector c with K c = 0 for four points of a face, or false when
+// the points leave more than one such direction (three on a line). K c = 0
+// when J^T c = 0: sum c_i = 0 (the rows' linear parts) and
+// sum c_i (r_i x n) = (sum c_i r_i) x n = 0, the affine dependency of the
+// points in the face's plane (r_Bi = r_Ai + x_A - x_B, the same for B). With
+// (u, v) the points' coordinates along the tangents, c is the null vector
+// of the 3 x 4 matrix [1; u; v], by cofactors.
+bool FaceNullVector(const std::vector<SoftPoint>& points, const SoftManifold& m, Eigen::Vector4d* c) {
+  const SoftPoint& p0 = points[m.first];
+  double u[4], v[4];
   for (int i = 0; i < 4; ++i) {
-    if (ev[i] > cut) {
-      inv[i] = 1.0 / ev[i];
-      ++rank;
-    }
+    const Vec3 r = points[m.first + i].ra - p0.ra;
+    u[i] = r.dot(p0.t1);
+    v[i] = r.dot(p0.t2);
   }
-  // the unused rows of a smaller block are identity rows and count too
-  if (rank < 4 - (count == 4 ? 1 : 0)) return false;
-  *inv_k = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+  // c_j = (-1)^j det of [1; u; v] without column j
+  auto minor = [&](int i, int j, int k) { return (u[j] - u[i]) * (v[k] - v[i]) - (u[k] - u[i]) * (v[j] - v[i]); };
+  *c = Eigen::Vector4d(minor(1, 2, 3), -minor(0, 2, 3), minor(0, 1, 3), -minor(0, 1, 2));
+  double extent = 0.0;
+  for (int i = 1; i < 4; ++i) extent = std::max(extent, u[i] * u[i] + v[i] * v[i]);
+  // every minor is zero (up to round-off) when the points lie on a line
+  const double norm = c->norm();
+  if (!(norm > 1e-9 * extent)) return false;
+  *c /= norm;
+  return true;
+}
+
+// K's pseudo-inverse for a face's four points: they act on three velocities
+// (v_n and two tilts), so K is singular along c (FaceNullVector), and
+// K^+ = (K + c c^T)^-1 - c c^T. dv = K^+ (v_n + bias) is the least-norm
+// increment: it adds nothing along c (the corners' pattern + - + - on a
+// square), so a symmetric face gets symmetric impulses however its points
+// are ordered.
+bool PseudoInvertFace(const std::vector<SoftPoint>& points, const SoftManifold& m, const Eigen::Matrix4d& k,
+                      Eigen::Matrix4d* inv_k) {
+  Eigen::Vector4d c;
+  if (m.count != 4 || !FaceNullVector(points, m, &c)) return false;
+  const Eigen::LLT<Eigen::Matrix4d> llt(k + c * c.transpose());
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::Vector4d d = llt.matrixLLT().diagonal();
+  if (d.minCoeff() <= 1e-5 * d.maxCoeff()) return false;
+  *inv_k = llt.solve(Eigen::Matrix4d::Identity()) - c * c.transpose();
   return true;
 }
 
@@ -64,7 +84,7 @@ bool InvertBlock(const std::vector<SoftPoint>& points, SoftManifold* m) {
       return true;
     }
   }
-  return PseudoInvert(k, m->count, &m->inv_k);
+  return PseudoInvertFace(points, *m, k, &m->inv_k);
 }
 
 void SolveBlockNormals(const SoftPass& pass, const SoftManifold& m, std::vector<SoftPoint>& points,
