@@ -162,6 +162,99 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
   }
 }
 
+void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
+  GroupNormalBlocks(rows, &blocks_);
+  for (NormalBlock& m : blocks_) {
+    if (m.count < 2) continue;
+    const ContactRow& r0 = rows[m.first];
+    NormalBlockPoint points[kMaxNormalBlock];
+    bool one_normal = true;
+    for (int i = 0; i < m.count; ++i) {
+      const ContactRow& row = rows[m.first + i];
+      const AngularResponse& r = responses_[m.first + i];
+      one_normal = one_normal && row.n.dot(r0.n) >= 1.0 - 1e-9;
+      points[i] = {row.ra, row.ra.cross(row.n), row.rb.cross(row.n), r.a_n, r.b_n};
+    }
+    const double k_lin = solver_[r0.a].inv_mass + solver_[r0.b].inv_mass;
+    m.block = one_normal && InvertNormalBlock(points, m.count, k_lin, r0.t1, r0.t2, &m.inv_k);
+  }
+}
+
+bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<ContactRow>& rows,
+                                    Eigen::Vector4d* step) const {
+  Eigen::Vector4d vn = Eigen::Vector4d::Zero();
+  for (int i = 0; i < m.count; ++i) vn[i] = rows[m.first + i].NormalVelocity(solver_);
+  *step = m.inv_k * vn;
+  for (int i = 0; i < m.count; ++i) {
+    if (rows[m.first + i].lambda_n - (*step)[i] < 0.0) return false;
+  }
+  return true;
+}
+
+double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
+  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
+  // (the same sums as SolverBody::ApplyImpulse)
+  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb) {
+    SolverBody& A = solver_[row.a];
+    SolverBody& B = solver_[row.b];
+    if (B.inv_mass != 0.0) {
+      B.v += B.inv_mass * J;
+      B.w += dwb;
+      B.dP += J;
+      B.dL += row.rb.cross(J);
+    }
+    if (A.inv_mass != 0.0) {
+      A.v -= A.inv_mass * J;
+      A.w -= dwa;
+      A.dP -= J;
+      A.dL -= row.ra.cross(J);
+    }
+  };
+  auto normal = [&](ContactRow& row, const AngularResponse& r, double dn) {
+    row.lambda_n += dn;
+    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n);
+    return std::abs(dn) * row.k_n;
+  };
+  double worst = 0.0;  // largest change of a relative velocity, m/s
+  for (const NormalBlock& m : blocks_) {
+    // friction first, limited by the normal impulse of the last sweep
+    for (int k = m.first; k < m.first + m.count; ++k) {
+      ContactRow& row = rows[k];
+      const AngularResponse& r = responses_[k];
+      const Vec3 vrel = row.RelativeVelocity(solver_);
+      const double limit = row.friction * row.lambda_n;
+      const double old1 = row.lambda_t1, old2 = row.lambda_t2;
+      double l1 = old1 - row.t1.dot(vrel) * row.mass_t1;
+      double l2 = old2 - row.t2.dot(vrel) * row.mass_t2;
+      // not std::hypot: its overflow guard cost 15% of the step on the pyramid
+      const double norm = std::sqrt(l1 * l1 + l2 * l2);
+      if (norm > limit) {
+        const double scale = norm > 0.0 ? limit / norm : 0.0;
+        l1 *= scale;
+        l2 *= scale;
+      }
+      row.lambda_t1 = l1;
+      row.lambda_t2 = l2;
+      const double d1 = l1 - old1, d2 = l2 - old2;
+      const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
+      apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2);
+      worst = std::max(worst, dJt.norm() * row.k_n);
+    }
+    // then the normal rows: together where the block keeps every impulse >= 0
+    Eigen::Vector4d step;
+    if (m.block && NormalBlockStep(m, rows, &step)) {
+      for (int i = 0; i < m.count; ++i) worst = std::max(worst, normal(rows[m.first + i], responses_[m.first + i], -step[i]));
+      continue;
+    }
+    for (int k = m.first; k < m.first + m.count; ++k) {
+      ContactRow& row = rows[k];
+      const double next = std::max(0.0, row.lambda_n - row.NormalVelocity(solver_) * row.mass_n);
+      worst = std::max(worst, normal(row, responses_[k], next - row.lambda_n));
+    }
+  }
+  return worst;
+}
+
 int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
   // Accumulated impulses start from last step's forces times h (or zero);
   // the collision phase's impulses are kept apart (collision_n) so that
@@ -210,57 +303,10 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
     r.b_t1 = Ib * row.rb.cross(row.t1);
     r.b_t2 = Ib * row.rb.cross(row.t2);
   }
-  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
-  // (the same sums as SolverBody::ApplyImpulse)
-  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb) {
-    SolverBody& A = solver_[row.a];
-    SolverBody& B = solver_[row.b];
-    if (B.inv_mass != 0.0) {
-      B.v += B.inv_mass * J;
-      B.w += dwb;
-      B.dP += J;
-      B.dL += row.rb.cross(J);
-    }
-    if (A.inv_mass != 0.0) {
-      A.v -= A.inv_mass * J;
-      A.w -= dwa;
-      A.dP -= J;
-      A.dL -= row.ra.cross(J);
-    }
-  };
+  BuildNormalBlocks(rows);
   int it = 0;
   for (; it < params_.iterations; ++it) {
-    double worst = 0.0;  // largest change of a relative velocity, m/s
-    for (size_t k = 0; k < rows.size(); ++k) {
-      ContactRow& row = rows[k];
-      const AngularResponse& r = responses_[k];
-      // friction first, limited by the normal impulse of the last sweep
-      const Vec3 vrel = row.RelativeVelocity(solver_);
-      const double limit = row.friction * row.lambda_n;
-      const double old1 = row.lambda_t1, old2 = row.lambda_t2;
-      double l1 = old1 - row.t1.dot(vrel) * row.mass_t1;
-      double l2 = old2 - row.t2.dot(vrel) * row.mass_t2;
-      // not std::hypot: its overflow guard cost 15% of the step on the pyramid
-      const double norm = std::sqrt(l1 * l1 + l2 * l2);
-      if (norm > limit) {
-        const double scale = norm > 0.0 ? limit / norm : 0.0;
-        l1 *= scale;
-        l2 *= scale;
-      }
-      row.lambda_t1 = l1;
-      row.lambda_t2 = l2;
-      const double d1 = l1 - old1, d2 = l2 - old2;
-      const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
-      apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2);
-
-      const double vn = row.NormalVelocity(solver_);
-      const double next = std::max(0.0, row.lambda_n - vn * row.mass_n);
-      const double dn = next - row.lambda_n;
-      row.lambda_n = next;
-      apply(row, dn * row.n, dn * r.a_n, dn * r.b_n);
-      worst = std::max({worst, std::abs(dn) * row.k_n, dJt.norm() * row.k_n});
-    }
-    if (worst < params_.velocity_tolerance) {
+    if (Sweep(rows) < params_.velocity_tolerance) {
       ++it;
       break;
     }

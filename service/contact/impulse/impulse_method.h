@@ -42,6 +42,7 @@
 #include "service/contact/contact_method.h"
 #include "service/contact/contact_row.h"
 #include "service/contact/impulse/impulse_params.h"
+#include "service/contact/normal_block.h"
 #include "service/contact/solver_body.h"
 #include "service/contact/subspace_solve.h"
 #include "service/contact/warm_start_cache.h"
@@ -70,6 +71,17 @@ class ImpulseMethod : public ContactMethod {
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
   int ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
+  struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
+    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
+  };
+  // One Gauss-Seidel sweep of the contact phase over blocks_: each point's
+  // friction, then the block's normal rows (normal_block.h); returns the
+  // largest change of a relative velocity (m/s).
+  double Sweep(std::vector<ContactRow>& rows);
+  void BuildNormalBlocks(const std::vector<ContactRow>& rows);
+  // The block's normal increments -step, rigid (v_n -> 0); false when a
+  // point's impulse would go below 0 (the points are then swept one by one).
+  bool NormalBlockStep(const NormalBlock& m, const std::vector<ContactRow>& rows, Eigen::Vector4d* step) const;
   // The direct solve of the normal rows (target velocity `target[k]`, or 0
   // and the friction rows without targets) in components with a large mass
   // ratio, after the sweeps.
@@ -80,11 +92,9 @@ class ImpulseMethod : public ContactMethod {
 
   ImpulseParams params_;
   std::vector<SolverBody> solver_;
-  struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
-    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
-  };
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four
   std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
   SubspaceSolver subspace_;
   // Contact-phase force (N: normal, and tangent along the contact frame's
