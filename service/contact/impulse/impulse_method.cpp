@@ -243,7 +243,9 @@ double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
     // then the normal rows: together where the block keeps every impulse >= 0
     Eigen::Vector4d step;
     if (m.block && NormalBlockStep(m, rows, &step)) {
-      for (int i = 0; i < m.count; ++i) worst = std::max(worst, normal(rows[m.first + i], responses_[m.first + i], -step[i]));
+      for (int i = 0; i < m.count; ++i) {
+        worst = std::max(worst, normal(rows[m.first + i], responses_[m.first + i], -step[i]));
+      }
       continue;
     }
     for (int k = m.first; k < m.first + m.count; ++k) {
