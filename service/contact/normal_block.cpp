@@ -10,11 +10,11 @@ namespace {
 // parallel to n, the null vector of the 3 x 4 matrix [1; u; v] of the
 // points' tangent coordinates, by cofactors; false when the points lie on a
 // line (every cofactor vanishes).
-bool FaceNullVector(const NormalBlockPoint* points, const Vec3& t1, const Vec3& t2, Eigen::Vector4d* c) {
+bool FaceNullVector(const Vec3* points, const Vec3& t1, const Vec3& t2, Eigen::Vector4d* c) {
   double u[4], v[4];
   double extent = 0.0;
   for (int i = 0; i < 4; ++i) {
-    const Vec3 r = points[i].ra - points[0].ra;
+    const Vec3 r = points[i] - points[0];
     u[i] = r.dot(t1);
     v[i] = r.dot(t2);
     extent = std::max(extent, u[i] * u[i] + v[i] * v[i]);
@@ -39,16 +39,12 @@ bool InvertIfWellConditioned(const Eigen::Matrix4d& k, Eigen::Matrix4d* inv) {
 
 }  // namespace
 
-bool InvertNormalBlock(const NormalBlockPoint* points, int count, double k_lin, const Vec3& t1, const Vec3& t2,
-                       Eigen::Matrix4d* inv_k) {
+bool InvertNormalBlockK(const Eigen::Matrix4d& k_in, int count, const Vec3* plane_points, const Vec3& t1,
+                        const Vec3& t2, Eigen::Matrix4d* inv_k) {
   if (count < 2 || count > kMaxNormalBlock) return false;
   // a smaller block fills K's unused diagonal with 1 (identity rows)
   Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
-  for (int i = 0; i < count; ++i) {
-    for (int j = 0; j < count; ++j) {
-      k(i, j) = k_lin + points[i].ra_n.dot(points[j].ia_n) + points[i].rb_n.dot(points[j].ib_n);
-    }
-  }
+  k.topLeftCorner(count, count) = k_in.topLeftCorner(count, count);
   if (InvertIfWellConditioned(k, inv_k)) {
     for (int i = count; i < kMaxNormalBlock; ++i) {
       inv_k->row(i).setZero();
@@ -57,10 +53,24 @@ bool InvertNormalBlock(const NormalBlockPoint* points, int count, double k_lin, 
     return true;
   }
   Eigen::Vector4d c;
-  if (count != 4 || !FaceNullVector(points, t1, t2, &c)) return false;
+  if (count != 4 || !FaceNullVector(plane_points, t1, t2, &c)) return false;
   if (!InvertIfWellConditioned(k + c * c.transpose(), inv_k)) return false;
   *inv_k -= c * c.transpose();
   return true;
+}
+
+bool InvertNormalBlock(const NormalBlockPoint* points, int count, double k_lin, const Vec3& t1, const Vec3& t2,
+                       Eigen::Matrix4d* inv_k) {
+  if (count < 2 || count > kMaxNormalBlock) return false;
+  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
+  Vec3 plane[kMaxNormalBlock];
+  for (int i = 0; i < count; ++i) {
+    plane[i] = points[i].ra;
+    for (int j = 0; j < count; ++j) {
+      k(i, j) = k_lin + points[i].ra_n.dot(points[j].ia_n) + points[i].rb_n.dot(points[j].ib_n);
+    }
+  }
+  return InvertNormalBlockK(k, count, plane, t1, t2, inv_k);
 }
 
 }  // namespace contactsim

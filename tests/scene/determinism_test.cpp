@@ -39,8 +39,8 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0x1cc4e247fc853944ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x8d56be991615df46ull},
       {"xpbd", {}, 0x67737c8bc6935e6cull},
-      {"lcp", {{"solver", "pgs"}}, 0x5146e0e0f22a08e2ull},
-      {"lcp", {{"solver", "lemke"}}, 0x2748304f6a060145ull},
+      {"lcp", {{"solver", "pgs"}}, 0x4260f8ff293d3aacull},
+      {"lcp", {{"solver", "lemke"}}, 0x21d103167c11af6cull},
       {"barrier", {}, 0x252a7063292c47b2ull},
       {"soft", {}, 0x6400afde22e7bbdcull},
   };

@@ -96,6 +96,15 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   PgsOptions options;
   options.iterations = params_.iterations;
   options.tolerance = params_.tolerance;
+  GroupNormalBlocks(contacts_, &pairs_);
+  normal_blocks_.clear();
+  for (const NormalBlock& pair : pairs_) {
+    PgsNormalBlock blk;
+    blk.count = pair.count;
+    for (int i = 0; i < pair.count; ++i) blk.rows[i] = 3 * (pair.first + i);
+    normal_blocks_.push_back(blk);
+  }
+  options.normal_blocks = &normal_blocks_;
   report_ = pgs_.Solve(rows_, bodies, options);
   subspace_.Solve(rows_, bodies, SubspaceOptionsOf(params_));
 }

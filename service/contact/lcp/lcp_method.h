@@ -91,6 +91,9 @@ class LcpMethod : public ContactMethod {
   std::vector<ConstraintRow> rows_, split_rows_, joint_rows_, lemke_rows_;
   std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;
+  // each contact pair's normal rows (3 k for contact k), solved as blocks by pgs_
+  std::vector<NormalBlock> pairs_;
+  std::vector<PgsNormalBlock> normal_blocks_;
   SubspaceSolver subspace_;
   WarmStartCache warm_start_;
   SolveReport report_;

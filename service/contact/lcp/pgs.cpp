@@ -43,8 +43,43 @@ void PgsSolver::Prepare(const std::vector<ConstraintRow>& rows, const std::vecto
     r.normal_row = c.normal_row >= 0 ? position_[c.normal_row] : -1;
     r.second = IsFrictionPairLead(rows, order_[k]) ? position_[order_[k] + 1] : -1;
     r.in_pair = IsFrictionPairSecond(rows, order_[k]);
+    r.block = -1;
+    r.in_block = false;
     r.source = order_[k];
     r.lambda = c.lambda;
+  }
+}
+
+void PgsSolver::PrepareBlocks(const std::vector<PgsNormalBlock>& blocks) {
+  blocks_.clear();
+  for (const PgsNormalBlock& given : blocks) {
+    if (given.count < 2) continue;
+    Block blk;
+    blk.count = given.count;
+    for (int i = 0; i < given.count; ++i) blk.rows[i] = position_[given.rows[i]];
+    std::sort(blk.rows, blk.rows + blk.count);
+    const Row& r0 = rows_[blk.rows[0]];
+    const Vec3 n = r0.jb_lin.squaredNorm() > 0.0 ? r0.jb_lin : Vec3(-r0.ja_lin);
+    Eigen::Matrix4d k = Eigen::Matrix4d::Zero();
+    Vec3 plane[kMaxNormalBlock];
+    bool one_normal = true;
+    for (int i = 0; i < blk.count; ++i) {
+      const Row& ri = rows_[blk.rows[i]];
+      one_normal = one_normal && ri.a == r0.a && ri.b == r0.b && ri.ja_lin == r0.ja_lin && ri.jb_lin == r0.jb_lin;
+      // r x n on the side that is a body (the world's rows are zero)
+      plane[i] = ri.jb_ang.squaredNorm() > 0.0 || ri.ja_ang.squaredNorm() == 0.0 ? ri.jb_ang : Vec3(-ri.ja_ang);
+      for (int j = 0; j < blk.count; ++j) {
+        const Row& rj = rows_[blk.rows[j]];
+        k(i, j) = ri.ja_lin.dot(rj.ma_lin) + ri.ja_ang.dot(rj.ma_ang) + ri.jb_lin.dot(rj.mb_lin) +
+                  ri.jb_ang.dot(rj.mb_ang);
+      }
+    }
+    Vec3 t1, t2;
+    PerpendicularBasis(n, &t1, &t2);
+    if (!one_normal || !InvertNormalBlockK(k, blk.count, plane, t1, t2, &blk.inv_k)) continue;
+    rows_[blk.rows[0]].block = static_cast<int>(blocks_.size());
+    for (int i = 1; i < blk.count; ++i) rows_[blk.rows[i]].in_block = true;
+    blocks_.push_back(blk);
   }
 }
 
@@ -67,6 +102,56 @@ double PgsSolver::SolvePair(Row& r1, Row& r2) {
   return std::max(std::abs(d1) * r1.diag, std::abs(d2) * r2.diag);
 }
 
+double PgsSolver::SolveRow(Row& r) {
+  double lo = r.lo, hi = r.hi;
+  if (r.normal_row >= 0) {
+    hi = r.mu * rows_[r.normal_row].lambda;
+    lo = -hi;
+  }
+  const Velocity A = vel_[r.a];
+  const Velocity B = vel_[r.b];
+  const double jv = r.ja_lin.dot(A.v) + r.ja_ang.dot(A.w) + r.jb_lin.dot(B.v) + r.jb_ang.dot(B.w);
+  const double next = std::clamp(r.lambda + (r.rhs - jv) * r.inv_diag, lo, hi);
+  const double d = next - r.lambda;
+  r.lambda = next;
+  Apply(r, A, B, d);
+  return std::abs(d) * r.diag;
+}
+
+double PgsSolver::SolveBlock(const Block& blk) {
+  // every row of the block acts on the same two bodies
+  const Row& r0 = rows_[blk.rows[0]];
+  const Velocity A = vel_[r0.a];
+  const Velocity B = vel_[r0.b];
+  Eigen::Vector4d error = Eigen::Vector4d::Zero();
+  for (int i = 0; i < blk.count; ++i) {
+    const Row& r = rows_[blk.rows[i]];
+    error[i] = r.rhs - (r.ja_lin.dot(A.v) + r.ja_ang.dot(A.w) + r.jb_lin.dot(B.v) + r.jb_ang.dot(B.w));
+  }
+  const Eigen::Vector4d step = blk.inv_k * error;
+  bool keep = true;
+  for (int i = 0; i < blk.count; ++i) keep = keep && rows_[blk.rows[i]].lambda + step[i] >= 0.0;
+  double worst = 0.0;
+  if (!keep) {
+    for (int i = 0; i < blk.count; ++i) worst = std::max(worst, SolveRow(rows_[blk.rows[i]]));
+    return worst;
+  }
+  // one write of each body's velocity for the whole block
+  Velocity a = A, b = B;
+  for (int i = 0; i < blk.count; ++i) {
+    Row& r = rows_[blk.rows[i]];
+    r.lambda += step[i];
+    a.v += r.ma_lin * step[i];
+    a.w += r.ma_ang * step[i];
+    b.v += r.mb_lin * step[i];
+    b.w += r.mb_ang * step[i];
+    worst = std::max(worst, std::abs(step[i]) * r.diag);
+  }
+  vel_[r0.write_a] = a;
+  vel_[r0.write_b] = b;
+  return worst;
+}
+
 SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
                              const PgsOptions& options) {
   SolveReport report;
@@ -77,6 +162,8 @@ SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<Solve
   vel_[world_slot] = {Vec3::Zero(), Vec3::Zero()};
   vel_[sink_slot] = {Vec3::Zero(), Vec3::Zero()};
   Prepare(rows, bodies, world_slot, sink_slot);
+  blocks_.clear();
+  if (options.normal_blocks != nullptr) PrepareBlocks(*options.normal_blocks);
 
   // warm start
   for (const Row& r : rows_) {
@@ -86,24 +173,14 @@ SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<Solve
   for (int it = 0; it < options.iterations; ++it) {
     double worst = 0.0;
     for (Row& r : rows_) {
-      if (r.in_pair) continue;  // updated with its pair's first row
+      if (r.in_pair || r.in_block) continue;  // updated with its pair's or block's first row
       if (r.second >= 0) {
         worst = std::max(worst, SolvePair(r, rows_[r.second]));
-        continue;
+      } else if (r.block >= 0) {
+        worst = std::max(worst, SolveBlock(blocks_[r.block]));
+      } else {
+        worst = std::max(worst, SolveRow(r));
       }
-      double lo = r.lo, hi = r.hi;
-      if (r.normal_row >= 0) {
-        hi = r.mu * rows_[r.normal_row].lambda;
-        lo = -hi;
-      }
-      const Velocity A = vel_[r.a];
-      const Velocity B = vel_[r.b];
-      const double jv = r.ja_lin.dot(A.v) + r.ja_ang.dot(A.w) + r.jb_lin.dot(B.v) + r.jb_ang.dot(B.w);
-      const double next = std::clamp(r.lambda + (r.rhs - jv) * r.inv_diag, lo, hi);
-      const double d = next - r.lambda;
-      r.lambda = next;
-      Apply(r, A, B, d);
-      worst = std::max(worst, std::abs(d) * r.diag);
     }
     report.iterations = it + 1;
     report.residual = worst;

@@ -29,6 +29,14 @@
 // block, 2 / (its two eigenvalues' sum). A friction row without a partner
 // keeps the scalar clamp to +-mu lambda_n.
 //
+// Normal blocks: the normal rows of one contact pair with one normal (up to
+// four points, PgsOptions::normal_blocks) are updated together at the
+// place of the first of them in the sweep, lambda += K^+ (rhs - J v), kept
+// when every impulse stays >= 0 and otherwise row by row (normal_block.h):
+// swept one by one, a face's first corner takes more than its share and an
+// aligned stack walks. The pair's rows sit together in the caller's order,
+// so no row between them in the schedule touches either body.
+//
 // Reported per solve:
 //   residual        m/s, the largest change of a row velocity J_k v made by
 //                   the last sweep (|change of lambda_k| A_kk); the solve
@@ -50,14 +58,22 @@
 #include <vector>
 
 #include "service/contact/constraint_row.h"
+#include "service/contact/normal_block.h"
 #include "service/contact/lcp/row_schedule.h"
 #include "service/contact/lcp/solve_report.h"
 
 namespace contactsim {
 
+// The caller's indices of the normal rows of one pair's points.
+struct PgsNormalBlock {
+  int rows[kMaxNormalBlock] = {-1, -1, -1, -1};
+  int count = 0;
+};
+
 struct PgsOptions {
   int iterations = 30;        // sweeps at most
   double tolerance = 1e-6;    // m/s: stop when no row velocity changes more in a sweep
+  const std::vector<PgsNormalBlock>* normal_blocks = nullptr;  // none: every row alone
 };
 
 class PgsSolver {
@@ -77,7 +93,14 @@ class PgsSolver {
     int normal_row;               // in rows_ order
     int second;                   // first row of a friction pair: the second's index in rows_, else -1
     bool in_pair;                 // second row of a friction pair (updated with the first)
+    int block;                    // first row of a normal block: its index in blocks_, else -1
+    bool in_block;                // a later row of a normal block (updated with the first)
     int source;                   // index in the caller's rows
+  };
+  struct Block {
+    int rows[kMaxNormalBlock];    // in rows_ order, the first one first
+    int count;
+    Eigen::Matrix4d inv_k;
   };
   struct Velocity {
     Vec3 v, w;
@@ -92,12 +115,19 @@ class PgsSolver {
   // Copies the caller's rows into rows_ in sweep order (see above).
   void Prepare(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int world_slot,
                int sink_slot);
+  // Marks the rows of each block that K^+ (or K^-1) exists for.
+  void PrepareBlocks(const std::vector<PgsNormalBlock>& blocks);
   // One projected update of a friction pair; returns its row-velocity change.
   double SolvePair(Row& r1, Row& r2);
+  // One update of a row on its own bounds; returns its row-velocity change.
+  double SolveRow(Row& r);
+  // One update of a normal block (row by row when a point would pull).
+  double SolveBlock(const Block& blk);
 
   RowSchedule schedule_;
   std::vector<int> order_, position_;  // sweep order; position_[row] = index in rows_
   std::vector<Row> rows_;
+  std::vector<Block> blocks_;
   std::vector<Velocity> vel_;
 };
 
