@@ -51,7 +51,6 @@ void PgsSolver::Prepare(const std::vector<ConstraintRow>& rows, const std::vecto
 }
 
 void PgsSolver::PrepareBlocks(const std::vector<PgsNormalBlock>& blocks) {
-  blocks_.clear();
   for (const PgsNormalBlock& given : blocks) {
     if (given.count < 2) continue;
     Block blk;
@@ -59,15 +58,17 @@ void PgsSolver::PrepareBlocks(const std::vector<PgsNormalBlock>& blocks) {
     for (int i = 0; i < given.count; ++i) blk.rows[i] = position_[given.rows[i]];
     std::sort(blk.rows, blk.rows + blk.count);
     const Row& r0 = rows_[blk.rows[0]];
-    const Vec3 n = r0.jb_lin.squaredNorm() > 0.0 ? r0.jb_lin : Vec3(-r0.ja_lin);
+    // B's side unless B is the world (whose J is zero): n, and r x n to
+    // place each point in the face's plane, all from one side
+    const bool b_side = r0.jb_lin.squaredNorm() > 0.0;
+    const Vec3 n = b_side ? r0.jb_lin : Vec3(-r0.ja_lin);
     Eigen::Matrix4d k = Eigen::Matrix4d::Zero();
     Vec3 plane[kMaxNormalBlock];
     bool one_normal = true;
     for (int i = 0; i < blk.count; ++i) {
       const Row& ri = rows_[blk.rows[i]];
       one_normal = one_normal && ri.a == r0.a && ri.b == r0.b && ri.ja_lin == r0.ja_lin && ri.jb_lin == r0.jb_lin;
-      // r x n on the side that is a body (the world's rows are zero)
-      plane[i] = ri.jb_ang.squaredNorm() > 0.0 || ri.ja_ang.squaredNorm() == 0.0 ? ri.jb_ang : Vec3(-ri.ja_ang);
+      plane[i] = b_side ? ri.jb_ang : Vec3(-ri.ja_ang);
       for (int j = 0; j < blk.count; ++j) {
         const Row& rj = rows_[blk.rows[j]];
         k(i, j) = ri.ja_lin.dot(rj.ma_lin) + ri.ja_ang.dot(rj.ma_ang) + ri.jb_lin.dot(rj.mb_lin) +
