@@ -85,8 +85,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"impulse", "stack n=20 height", "1.0 mm lower after 10 s: it leans"},
     {"lcp_pgs", "stack n=20 drift", "0.36 mm sideways in 10 s: it leans slowly"},
     {"lcp_pgs", "stack n=20 height", "1.55 mm lower after 10 s: it leans"},
-    {"xpbd", "stack n=20 drift", "0.34 mm sideways in 10 s"},
-    {"xpbd", "tip a/b=0.333 +4 deg", "stands at 22.4 deg (tilt 9e-7 rad); tips by 24.4 deg"},
     // soft (defaults: 4 sub-steps, 120 Hz): a few passes a step
     // (docs/physics.md, "soft")
     {"soft", "stack n=8 height", "1.00 mm lower: the springs of the lower layers carry k m g, sum k g / omega^2"},

@@ -12,10 +12,6 @@
 // lambda accumulates over a sub-step's iterations; lambda / h^2 is the force.
 #pragma once
 
-#include <vector>
-
-#include <Eigen/Dense>
-
 #include "service/physics/rigid_body.h"
 
 namespace contactsim {
@@ -40,39 +36,5 @@ double SolvePositionalConstraint(RigidBody& a, const Vec3& ra, RigidBody& b, con
 // (B turns by +c, A by -c): w_i = n^T I_i^-1 n (eq. 12-14).
 double SolveAngularConstraint(RigidBody& a, RigidBody& b, const Vec3& n, double c, double alpha_tilde,
                               double* lambda);
-
-}  // namespace contactsim
-
-namespace contactsim {
-
-// One row of a block solve on a body pair: a unit direction d (world) at the
-// lever arms ra, rb (world, from each centre of mass). +x d acts on B at rb,
-// -x d on A at ra.
-struct PairRow {
-  Vec3 ra, rb, d;
-};
-
-// A pair block has at most two rows (the friction tangents) for each of a
-// manifold's points (kMaxManifoldPoints = 4); fixed-capacity storage keeps
-// the block solves, a few thousand per sub-step, off the heap.
-constexpr int kMaxPairRows = 8;
-using PairMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPairRows, kMaxPairRows>;
-using PairVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxPairRows, 1>;
-
-// The pair's coupling matrix (Delassus operator) of the rows (at most
-// kMaxPairRows):
-//   K_kl = sum over A, B of (1/m d_k . d_l + (r_k x d_k)^T I^-1 (r_l x d_l)),
-// the change of row k's relative displacement (or velocity) per unit x_l.
-PairMatrix PairCoupling(const RigidBody& a, const RigidBody& b, const std::vector<PairRow>& rows);
-
-// The minimum-norm x of (K + alpha~ I) x = rhs with K = PairCoupling (a
-// face's four corners give a rank-3 K: min-norm spreads the load evenly);
-// with `nonnegative`, rows whose x would be negative are dropped (x = 0) and
-// the rest solved again.
-PairVector SolvePairBlock(const RigidBody& a, const RigidBody& b, const std::vector<PairRow>& rows,
-                          const std::vector<double>& rhs, double alpha_tilde, bool nonnegative);
-
-// Moves the pair by the positional impulses x_k along the rows, all at once.
-void ApplyPairPositional(RigidBody& a, RigidBody& b, const std::vector<PairRow>& rows, const PairVector& x);
 
 }  // namespace contactsim

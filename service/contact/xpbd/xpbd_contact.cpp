@@ -3,226 +3,201 @@
 #include <algorithm>
 #include <cmath>
 
-#include "service/collision/manifold_reduction.h"
 #include "service/contact/contact_row.h"
-#include "service/contact/xpbd/positional_correction.h"
 
 namespace contactsim {
 namespace {
 
-// [begin, end) of each body pair's contacts (the detector appends a pair's
-// manifold contiguously), at most kMaxManifoldPoints to a group so that a
-// group's friction rows fit a pair block (kMaxPairRows).
-std::vector<std::pair<size_t, size_t>> PairGroups(const std::vector<XpbdContact>& contacts) {
-  std::vector<std::pair<size_t, size_t>> groups;
-  for (size_t k = 0; k < contacts.size();) {
-    size_t end = k + 1;
-    while (end < contacts.size() && end - k < kMaxManifoldPoints && contacts[end].a == contacts[k].a &&
-           contacts[end].b == contacts[k].b) {
-      ++end;
-    }
-    groups.push_back({k, end});
-    k = end;
-  }
-  return groups;
+// The rounding of a shape: its surface lies this far out from its core.
+double CoreRadius(const Shape& shape) {
+  return shape.type == ShapeType::kSphere || shape.type == ShapeType::kCapsule ? shape.radius : 0.0;
 }
 
-// A unit vector perpendicular to the unit n, depending on n alone.
-Vec3 Perpendicular(const Vec3& n) {
-  return std::abs(n.x()) < 0.57735 ? n.cross(Vec3::UnitX()).normalized() : n.cross(Vec3::UnitY()).normalized();
+bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, NormalBlock* m) {
+  const XpbdPoint& p0 = points[m->first];
+  NormalBlockPoint block[kMaxNormalBlock];
+  for (int i = 0; i < m->count; ++i) {
+    const XpbdPoint& p = points[m->first + i];
+    if (p.n.dot(p0.n) < 1.0 - 1e-9) return false;
+    block[i] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
+  }
+  const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
+  return k_lin > 0.0 && InvertNormalBlock(block, m->count, k_lin, p0.t1, p0.t2, &m->inv_k);
+}
+
+// Turns q by the small rotation vector theta (first order, renormalised).
+void Turn(Quat& q, const Vec3& theta) {
+  const Quat dq(0.0, theta.x(), theta.y(), theta.z());
+  q.coeffs() += 0.5 * (dq * q).coeffs();
+  q.normalize();
+}
+
+// One point's non-penetration update (Gauss-Seidel).
+void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve, XpbdPoint& p) {
+  const double depth = std::min(-XpbdSeparation(p, world), solve.max_push);
+  if (depth <= 0.0 && p.lambda_n == 0.0) return;
+  const double alpha_tilde = solve.alpha_tilde;
+  const double dl = std::max((depth - alpha_tilde * p.lambda_n) / (p.w_n + alpha_tilde), -p.lambda_n);
+  auto& all = world.bodies();
+  const SoftBody& sa = bodies[p.a];
+  const SoftBody& sb = bodies[p.b];
+  DisplaceXpbdBody(all[p.a], sa, -sa.inv_mass * dl * p.n, -dl * p.ia_n);
+  DisplaceXpbdBody(all[p.b], sb, sb.inv_mass * dl * p.n, dl * p.ib_n);
+  p.lambda_n += dl;
+  p.impulse += dl / solve.h * p.n;  // a positional impulse p moves like the velocity impulse p / h
+}
+
+// A block's non-penetration at once (rigid rows) over its active points,
+// those penetrating or already pushing: the least-norm push of the active
+// set, a point whose push would turn into a pull dropped and the rest solved
+// again (at most four times). A point just touching (s = 0 to round-off)
+// then never pulls a face off its corners, which one corner after another
+// did, tilting aligned stacks. False when no block applies (three points on
+// a line) and the caller sweeps the points.
+bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,
+                       const NormalBlock& m, std::vector<XpbdPoint>& points) {
+  XpbdPoint& p0 = points[m.first];
+  RigidBody& A = world.bodies()[p0.a];
+  RigidBody& B = world.bodies()[p0.b];
+  // n . R a = (R^T n) . a: each body's turn is applied to n once per block
+  const Vec3& n = p0.n;
+  const double shift = n.dot(B.x - A.x);
+  const Vec3 na = A.q.conjugate() * n, nb = B.q.conjugate() * n;
+  double depth[kMaxNormalBlock];
+  int idx[kMaxNormalBlock];
+  int active = 0;
+  for (int i = 0; i < m.count; ++i) {
+    const XpbdPoint& p = points[m.first + i];
+    depth[i] = -(shift + nb.dot(p.anchor_b) - na.dot(p.anchor_a) - p.radius_a - p.radius_b);
+    depth[i] = std::min(depth[i], solve.max_push);
+    if (depth[i] > 0.0 || p.lambda_n > 0.0) idx[active++] = i;
+  }
+  Eigen::Vector4d step = Eigen::Vector4d::Zero();
+  while (active > 0) {
+    Eigen::Matrix4d inv;
+    if (!XpbdSubsetInverse(points, bodies, m, idx, active, &inv)) return false;
+    Eigen::Vector4d d = Eigen::Vector4d::Zero();
+    for (int k = 0; k < active; ++k) d[k] = depth[idx[k]];
+    step = inv * d;
+    int worst = -1;
+    for (int k = 0; k < active; ++k) {
+      const double total = points[m.first + idx[k]].lambda_n + step[k];
+      if (total < 0.0 && (worst < 0 || total < points[m.first + idx[worst]].lambda_n + step[worst])) worst = k;
+    }
+    if (worst < 0) break;
+    for (int k = worst; k + 1 < active; ++k) idx[k] = idx[k + 1];
+    --active;
+  }
+  double sum = 0.0;
+  Vec3 wa = Vec3::Zero(), wb = Vec3::Zero();
+  for (int k = 0; k < active; ++k) {
+    XpbdPoint& p = points[m.first + idx[k]];
+    p.lambda_n += step[k];
+    p.impulse += step[k] / solve.h * n;
+    sum += step[k];
+    wa += step[k] * p.ia_n;
+    wb += step[k] * p.ib_n;
+  }
+  if (active == 0) return true;
+  DisplaceXpbdBody(A, bodies[p0.a], -bodies[p0.a].inv_mass * sum * n, -wa);
+  DisplaceXpbdBody(B, bodies[p0.b], bodies[p0.b].inv_mass * sum * n, wb);
+  return true;
 }
 
 }  // namespace
 
-XpbdContact MakeXpbdContact(const Contact& c, const World& world) {
-  const RigidBody& A = world.bodies()[c.a];
-  const RigidBody& B = world.bodies()[c.b];
-  XpbdContact x;
-  x.a = c.a;
-  x.b = c.b;
-  x.n = c.normal;
-  // the surface points lie depth/2 either side of the midpoint (conventions.md)
-  const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
-  const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
-  x.ra_body = A.q.conjugate() * (pa - A.x);
-  x.rb_body = B.q.conjugate() * (pb - B.x);
-  x.friction = CombineFriction(A.material, B.material);
-  x.restitution = CombineRestitution(A.material, B.material);
-  return x;
-}
-
-double XpbdContactDepth(const XpbdContact& c, const World& world, Vec3* pa_out, Vec3* pb_out) {
-  const RigidBody& A = world.bodies()[c.a];
-  const RigidBody& B = world.bodies()[c.b];
-  const Vec3 pa = A.x + A.q * c.ra_body;
-  const Vec3 pb = B.x + B.q * c.rb_body;
-  if (pa_out) *pa_out = pa;
-  if (pb_out) *pb_out = pb;
-  return (pa - pb).dot(c.n);
-}
-
-void BeginXpbdSubstep(const World& world, std::vector<XpbdContact>* contacts) {
-  for (XpbdContact& c : *contacts) {
-    c.lambda_n = 0.0;
-    c.lambda_t.setZero();
-    Vec3 pa, pb;
-    XpbdContactDepth(c, world, &pa, &pb);
-    const RigidBody& A = world.bodies()[c.a];
-    const RigidBody& B = world.bodies()[c.b];
-    c.vn_before = c.n.dot(B.PointVelocity(pb) - A.PointVelocity(pa));
+bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
+                   const int* idx, int n, Eigen::Matrix4d* inv) {
+  if (n == m.count && m.block) {
+    *inv = m.inv_k;
+    return true;
   }
+  const XpbdPoint& p0 = points[m.first + idx[0]];
+  if (n == 1) {
+    if (!(p0.w_n > 0.0)) return false;
+    inv->setZero();
+    (*inv)(0, 0) = 1.0 / p0.w_n;
+    return true;
+  }
+  NormalBlockPoint block[kMaxNormalBlock];
+  for (int k = 0; k < n; ++k) {
+    const XpbdPoint& p = points[m.first + idx[k]];
+    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
+  }
+  const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
+  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, p0.t1, p0.t2, inv);
 }
 
-void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start, double h, double alpha_tilde,
-                               std::vector<XpbdContact>* contacts) {
-  auto& bodies = world.bodies();
-  std::vector<PairRow> rows, trows;
-  std::vector<size_t> which;
-  std::vector<double> rhs, trhs;
-  for (const auto& [begin, end] : PairGroups(*contacts)) {
-    RigidBody& A = bodies[(*contacts)[begin].a];
-    RigidBody& B = bodies[(*contacts)[begin].b];
-    // non-penetration of every penetrating point of the pair at once
-    rows.clear();
-    which.clear();
-    rhs.clear();
-    for (size_t k = begin; k < end; ++k) {
-      XpbdContact& c = (*contacts)[k];
-      Vec3 pa, pb;
-      const double d = XpbdContactDepth(c, world, &pa, &pb);
-      if (d <= 0.0) continue;
-      rows.push_back({pa - A.x, pb - B.x, c.n});
-      which.push_back(k);
-      rhs.push_back(d - alpha_tilde * c.lambda_n);
-    }
-    if (rows.empty()) continue;
-    const PairVector x = SolvePairBlock(A, B, rows, rhs, alpha_tilde, true);
-    ApplyPairPositional(A, B, rows, x);
-    double lambda_n = 0.0;
-    for (size_t i = 0; i < which.size(); ++i) {
-      XpbdContact& c = (*contacts)[which[i]];
-      c.lambda_n += x(i);
-      c.impulse += x(i) / h * c.n;  // a positional impulse p moves like the velocity impulse p / h
-      lambda_n += c.lambda_n;
-    }
+void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta) {
+  if (s.inv_mass == 0.0) return;
+  body.x += dx;
+  Turn(body.q, theta);
+}
 
-    // static friction: undo the tangential slip of the points over the
-    // sub-step if the pair's friction multipliers stay in mu sum(lambda_n)
-    const double mu = (*contacts)[begin].friction;
-    if (mu <= 0.0 || lambda_n <= 0.0) continue;
-    trows.clear();
-    trhs.clear();
-    for (size_t k : which) {
-      const XpbdContact& c = (*contacts)[k];
-      Vec3 pa, pb;
-      XpbdContactDepth(c, world, &pa, &pb);
-      const Vec3 dp = (pa - (start[c.a].x + start[c.a].q * c.ra_body)) - (pb - (start[c.b].x + start[c.b].q * c.rb_body));
-      const Vec3 t1 = Perpendicular(c.n), t2 = c.n.cross(t1);
-      trows.push_back({pa - A.x, pb - B.x, t1});
-      trows.push_back({pa - A.x, pb - B.x, t2});
-      trhs.push_back(dp.dot(t1) - alpha_tilde * c.lambda_t.dot(t1));
-      trhs.push_back(dp.dot(t2) - alpha_tilde * c.lambda_t.dot(t2));
-    }
-    const PairVector xt = SolvePairBlock(A, B, trows, trhs, alpha_tilde, false);
-    double lambda_t = 0.0;
-    for (size_t i = 0; i < which.size(); ++i) {
-      const XpbdContact& c = (*contacts)[which[i]];
-      lambda_t += (c.lambda_t + xt(2 * i) * trows[2 * i].d + xt(2 * i + 1) * trows[2 * i + 1].d).norm();
-    }
-    if (lambda_t >= mu * lambda_n) continue;  // beyond the cone: the pair slides
-    ApplyPairPositional(A, B, trows, xt);
-    for (size_t i = 0; i < which.size(); ++i) {
-      XpbdContact& c = (*contacts)[which[i]];
-      const Vec3 p = xt(2 * i) * trows[2 * i].d + xt(2 * i + 1) * trows[2 * i + 1].d;
-      c.lambda_t += p;
-      c.impulse += p / h;
-    }
+void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
+                       std::vector<XpbdPoint>* points, std::vector<NormalBlock>* blocks) {
+  const auto& all = world.bodies();
+  points->resize(contacts.size());
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    const RigidBody& A = all[c.a];
+    const RigidBody& B = all[c.b];
+    const SoftBody& sa = bodies[c.a];
+    const SoftBody& sb = bodies[c.b];
+    XpbdPoint p;
+    p.a = c.a;
+    p.b = c.b;
+    p.n = c.normal;
+    PerpendicularBasis(p.n, &p.t1, &p.t2);
+    p.radius_a = CoreRadius(A.shape);
+    p.radius_b = CoreRadius(B.shape);
+    // the surface points lie depth/2 either side of the midpoint (conventions.md)
+    const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
+    const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
+    p.anchor_a = A.q.conjugate() * (pa - p.radius_a * p.n - A.x);
+    p.anchor_b = B.q.conjugate() * (pb + p.radius_b * p.n - B.x);
+    p.material_a = A.q.conjugate() * (pa - A.x);
+    p.material_b = B.q.conjugate() * (pb - B.x);
+    p.ra = c.point - A.x;
+    p.rb = c.point - B.x;
+    p.ra_n = p.ra.cross(p.n);
+    p.rb_n = p.rb.cross(p.n);
+    p.ia_n = sa.inv_inertia * p.ra_n;
+    p.ib_n = sb.inv_inertia * p.rb_n;
+    p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+    p.friction = CombineFriction(A.material, B.material);
+    p.restitution = CombineRestitution(A.material, B.material);
+    (*points)[k] = p;
+  }
+  GroupNormalBlocks(*points, blocks);
+  for (NormalBlock& m : *blocks) m.block = m.count >= 2 && InvertBlock(*points, bodies, &m);
+}
+
+double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3* pb_out) {
+  const RigidBody& A = world.bodies()[p.a];
+  const RigidBody& B = world.bodies()[p.b];
+  const Vec3 ca = A.x + A.q * p.anchor_a;
+  const Vec3 cb = B.x + B.q * p.anchor_b;
+  if (pa_out) *pa_out = ca + p.radius_a * p.n;
+  if (pb_out) *pb_out = cb - p.radius_b * p.n;
+  return p.n.dot(cb - ca) - p.radius_a - p.radius_b;
+}
+
+void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
+  for (XpbdPoint& p : *points) {
+    p.lambda_n = 0.0;
+    p.lambda_t.setZero();
+    const SoftBody& A = bodies[p.a];
+    const SoftBody& B = bodies[p.b];
+    p.vn_before = p.n.dot(B.v - A.v) + p.rb_n.dot(B.w) - p.ra_n.dot(A.w);
   }
 }
 
-namespace {
-
-// A body's velocities and world inverse inertia, computed once for a pair's
-// velocity pass and kept in step with the impulses applied to the body
-// (w = I_W^-1 L, so L += r x J gives w += I_W^-1 (r x J)).
-struct PairBodyMotion {
-  explicit PairBodyMotion(const RigidBody& b)
-      : dynamic(b.IsDynamic()), inv_mass(b.inv_mass), inv_I(b.InvInertiaWorld()), v(b.LinearVelocity()),
-        w(b.AngularVelocity()) {}
-  Vec3 PointVelocity(const Vec3& r) const { return v + w.cross(r); }
-  // w of the body for an impulse along the unit t at lever arm r (eq. 2-3)
-  double InverseMass(const Vec3& r, const Vec3& t) const {
-    if (!dynamic) return 0.0;
-    const Vec3 rt = r.cross(t);
-    return inv_mass + rt.dot(inv_I * rt);
-  }
-  void Apply(RigidBody& body, const Vec3& J, const Vec3& r) {
-    if (!dynamic) return;
-    body.ApplyImpulse(J, body.x + r);
-    v += inv_mass * J;
-    w += inv_I * r.cross(J);
-  }
-  bool dynamic;
-  double inv_mass;
-  Mat3 inv_I;
-  Vec3 v, w;
-};
-
-}  // namespace
-
-void SolveXpbdContactVelocities(World& world, double h, double restitution_threshold,
-                                std::vector<XpbdContact>* contacts) {
-  auto& bodies = world.bodies();
-  std::vector<PairRow> rows;
-  std::vector<size_t> which;
-  std::vector<double> rhs;
-  for (const auto& [begin, end] : PairGroups(*contacts)) {
-    RigidBody& A = bodies[(*contacts)[begin].a];
-    RigidBody& B = bodies[(*contacts)[begin].b];
-    PairBodyMotion ma(A), mb(B);
-    // restitution: the pushing points of the pair leave at max(-e v~_n, 0) together
-    rows.clear();
-    which.clear();
-    rhs.clear();
-    for (size_t k = begin; k < end; ++k) {
-      const XpbdContact& c = (*contacts)[k];
-      if (c.lambda_n <= 0.0) continue;
-      Vec3 pa, pb;
-      XpbdContactDepth(c, world, &pa, &pb);
-      const Vec3 ra = pa - A.x, rb = pb - B.x;
-      const double vn = c.n.dot(mb.PointVelocity(rb) - ma.PointVelocity(ra));
-      const double e = std::abs(c.vn_before) > restitution_threshold ? c.restitution : 0.0;
-      rows.push_back({ra, rb, c.n});
-      which.push_back(k);
-      rhs.push_back(std::max(-e * c.vn_before, 0.0) - vn);
-    }
-    if (rows.empty()) continue;
-    const PairVector x = SolvePairBlock(A, B, rows, rhs, 0.0, false);
-    for (size_t i = 0; i < which.size(); ++i) {
-      const Vec3 J = x(i) * rows[i].d;
-      mb.Apply(B, J, rows[i].rb);
-      ma.Apply(A, -J, rows[i].ra);
-      (*contacts)[which[i]].impulse += J;
-    }
-    // dynamic friction, point by point: the impulse that stops v_t, at most
-    // mu times the point's normal impulse lambda_n / h (the paper's eq. 30
-    // caps dv by h mu f_n instead, which is an impulse, not a velocity)
-    for (size_t i = 0; i < which.size(); ++i) {
-      XpbdContact& c = (*contacts)[which[i]];
-      const Vec3 ra = rows[i].ra, rb = rows[i].rb;
-      const Vec3 v = mb.PointVelocity(rb) - ma.PointVelocity(ra);
-      const Vec3 vt = v - c.n * c.n.dot(v);
-      const double speed = vt.norm();
-      if (speed <= 0.0) continue;
-      const Vec3 t = vt / speed;
-      const double w = ma.InverseMass(ra, t) + mb.InverseMass(rb, t);
-      if (w <= 0.0) continue;
-      const Vec3 J = -t * std::min(c.friction * c.lambda_n / h, speed / w);
-      mb.Apply(B, J, rb);
-      ma.Apply(A, -J, ra);
-      c.impulse += J;
-    }
-  }
+void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,
+                           const NormalBlock& m, std::vector<XpbdPoint>& points) {
+  const bool solved = solve.alpha_tilde == 0.0 && SolveBlockNormals(world, bodies, solve, m, points);
+  if (solved) return;
+  for (int i = 0; i < m.count; ++i) SolvePointNormal(world, bodies, solve, points[m.first + i]);
 }
 
 }  // namespace contactsim

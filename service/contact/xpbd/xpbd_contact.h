@@ -1,80 +1,100 @@
 // Contact constraints of extended position based dynamics (Mueller et al.
 // 2020, "Detailed rigid body simulation with extended position based
-// dynamics", sec. 3.5-3.6).
+// dynamics", sec. 3.5-3.6), found once per step and carried through the
+// sub-steps by their anchors (Macklin et al. 2019, "Small steps in physics
+// simulation"; the relative anchors of Catto's soft step, 2024).
 //
-// A contact is found in every sub-step at the predicted poses (xpbd_method.h)
-// and remembered by its two surface points in the bodies' frames and its
-// world normal n (from A to B, held over the sub-step). In the position
-// solve its depth is re-evaluated at the current poses,
-//   d = (p_a - p_b) . n,  p_i = x_i + R_i r_i,
-// and only penetrating contacts (d > 0) are solved:
-//   * non-penetration: the positional constraints move B by d along n
-//     (positional_correction.h), lambda_n >= 0;
-//   * static friction: the tangential part of the points' relative motion
-//     over the sub-step, dp_t of dp = (p_a - p_a,prev) - (p_b - p_b,prev), is
-//     undone by positional constraints along two tangents if the resulting
-//     sum |lambda_t| stays below mu sum lambda_n (eq. 27), else it slides;
-// and after velocities are derived from the poses, the velocity pass
-// (sec. 3.6) gives each contact that pushed (lambda_n > 0) in the sub-step
-//   * restitution: v_n -> max(-e v~_n, 0) with v~_n the normal velocity
-//     before the position solve and e = 0 when |v~_n| is below the threshold
-//     (the paper's 2 |g| h, so a resting contact does not jitter);
-//   * dynamic friction: the impulse that stops v_t, at most mu lambda_n / h
-//     (eq. 30 with f_n = lambda_n / h^2).
-// v_n = n . (v_b - v_a) at the contact, negative when approaching.
+// A detected contact is remembered by each body's anchor in the body's own
+// frame and its world normal n (from A to B, held for the step). The anchor
+// is the surface point moved inward by the shape's radius (a sphere's is its
+// centre, a capsule's a point of its segment), so a rolling ball keeps
+// touching the ground however far it turns within the step. The separation
+// at the current poses is
+//   s = n . (c_B - c_A) - rho_A - rho_B,   c_i = x_i + R_i a_i,
+// with a_i the anchors and rho_i the radii; s < 0 is a penetration.
 //
-// Where the paper updates contact by contact, the points of one body pair
-// (a face's four corners) are solved together, by the minimum-norm solution
-// of their coupled equations (PairCoupling), and friction's cone is the
-// pair's. One corner at a time lifts and tilts the box, so that the first
-// corner slips by half its depth and leaves the cone: measured on a resting
-// 0.2 m box with 20 sub-steps, a steady drift of 0.14 mm/s and a spin of
-// 7e-4 rad/s, and a five-box stack moving 2 cm in 10 s (now 7 um).
+// In a sub-step's position solve (after the prediction):
+//   * non-penetration: d = -s, dlambda = (d - alpha~ lambda) / (w + alpha~),
+//     lambda >= 0 accumulated over the sub-step (a point that pushed and has
+//     come apart takes its push back); d at most max_push_velocity h, so an
+//     overlap the step's contacts did not foresee (a tumbling box's corner
+//     that turned down within the step) is removed over several sub-steps
+//     rather than flung apart at once. With alpha = 0 the points of a body
+//     pair that share n are solved as one block (normal_block.h: K^-1, or
+//     K^+ for a face's four corners, so a level face gets four equal pushes
+//     whatever order its corners come in); a block whose solution would
+//     pull is swept point by point;
+//   * static friction (eq. 26-27): the patch of the pair's points holds its
+//     tangential offset (xpbd_patch_friction.h).
+// The velocity pass (restitution, dynamic friction) is xpbd_velocity_pass.h.
+// Effective masses and the blocks' K use the lever arms and inverse
+// inertias of the step's start (first order in the step's turn).
 #pragma once
 
 #include <vector>
 
 #include "service/collision/contact.h"
+#include "service/contact/normal_block.h"
+#include "service/contact/soft/soft_bodies.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
 
-struct XpbdContact {
-  int a = -1, b = -1;         // body indices
-  Vec3 ra_body, rb_body;      // m, each body's surface point in its own frame
-  Vec3 n;                     // unit, world, from A to B
-  double friction = 0.0;      // mu (static and dynamic)
-  double restitution = 0.0;   // e
+struct XpbdPoint {
+  int a = -1, b = -1;             // body indices
+  Vec3 anchor_a, anchor_b;        // m, each body's anchor in its own frame
+  double radius_a = 0.0, radius_b = 0.0;  // m, the shapes' rounding
+  Vec3 material_a, material_b;    // m, the surface points in the bodies' frames
+  Vec3 n, t1, t2;                 // unit, world, n from A to B
+  Vec3 ra, rb;                    // m, contact point minus centres, step start
+  Vec3 ra_n, rb_n, ia_n, ib_n;    // r x n and I^-1 (r x n), step start
+  double w_n = 0.0;               // 1/kg, K along n
+  double friction = 0.0, restitution = 0.0;
   // per sub-step
-  double lambda_n = 0.0;      // kg m, accumulated normal multiplier
-  Vec3 lambda_t = Vec3::Zero(); // kg m, accumulated static friction multiplier (world)
-  double vn_before = 0.0;     // m/s, v_n before the position solve
-  Vec3 impulse = Vec3::Zero();  // N s on B (world): lambda / h plus the velocity pass, this sub-step
+  double lambda_n = 0.0;          // kg m, accumulated normal multiplier
+  Vec3 lambda_t = Vec3::Zero();   // kg m, static friction multiplier (world)
+  double vn_before = 0.0;         // m/s, v_n before the position solve
+  // per step
+  Vec3 impulse = Vec3::Zero();    // N s on B (world) over the step
 };
 
-// Poses at the start of a sub-step, for the static friction's displacement.
+// A body's pose after a sub-step's prediction.
 struct XpbdPose {
   Vec3 x;
   Quat q;
 };
 
-// Remembers a detected contact by its surface points in the body frames.
-XpbdContact MakeXpbdContact(const Contact& c, const World& world);
+// The points of `contacts` at the step's start; `blocks` groups each body
+// pair's points and inverts their K where a block solve applies.
+void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
+                       std::vector<XpbdPoint>* points, std::vector<NormalBlock>* blocks);
 
-// Current depth (m, > 0 penetrating) and the world surface points.
-double XpbdContactDepth(const XpbdContact& c, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);
+// The point's separation at the world's current poses (m, < 0 penetrating)
+// and, if asked, the surface points of A and B.
+double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);
 
-// Resets the multipliers and records v~_n (call after the prediction).
-void BeginXpbdSubstep(const World& world, std::vector<XpbdContact>* contacts);
+// Zeroes the sub-step's multipliers and records v~_n (after the prediction).
+void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
 
-// One position iteration over the contacts (non-penetration, then static
-// friction); start holds the sub-step's starting poses, h is its length.
-void SolveXpbdContactPositions(World& world, const std::vector<XpbdPose>& start, double h, double alpha_tilde,
-                               std::vector<XpbdContact>* contacts);
+// What a sub-step's position solve needs.
+struct XpbdSolve {
+  double h = 0.0;            // s, the sub-step
+  double alpha_tilde = 0.0;  // 1/kg, compliance / h^2
+  double max_push = 0.0;     // m, the deepest overlap one sub-step removes
+};
 
-// The velocity pass: dynamic friction and restitution; restitution applies
-// when the approach speed exceeds `restitution_threshold` (m/s).
-void SolveXpbdContactVelocities(World& world, double h, double restitution_threshold,
-                                std::vector<XpbdContact>* contacts);
+// The non-penetration of one block's points (one position iteration).
+void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,
+                           const NormalBlock& block, std::vector<XpbdPoint>& points);
+
+// K^-1 of the block's points idx[0..n) (in block order; K^+ for a face's
+// four), 1 / K for one point, in the top left of *inv; false when no block
+// applies (three points on a line).
+bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                       const NormalBlock& block, const int* idx, int n, Eigen::Matrix4d* inv);
+
+// Moves a dynamic body by dx and turns it by the small rotation vector theta
+// (first order, renormalised); others stay.
+void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta);
 
 }  // namespace contactsim

@@ -1,12 +1,12 @@
 #include "service/contact/xpbd/xpbd_method.h"
 
 #include <algorithm>
-#include <tuple>
 
-#include "service/collision/narrowphase.h"
 #include "service/contact/detect_ahead.h"
 #include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/soft/soft_joints.h"
+#include "service/contact/xpbd/xpbd_velocity_pass.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
@@ -15,55 +15,69 @@ Status XpbdMethod::SetParams(const ParamMap& params) {
   return XpbdParamTable().Parse(Name(), params, params_, &params_);
 }
 
-void XpbdMethod::CandidatePairs() {
-  // the pairs with a contact within margin + their closing distance over
-  // the step: only they can touch before the next detection
-  candidates_.clear();
-  for (const Contact& c : detected_) {
-    if (candidates_.empty() || candidates_.back() != BodyPair{c.a, c.b}) candidates_.push_back({c.a, c.b});
+void XpbdMethod::SweepOrder(const World& world) {
+  // highest first along -g (contact order where there is no gravity)
+  const Vec3 up = world.gravity.isZero(0.0) ? Vec3::Zero() : Vec3(-world.gravity.normalized());
+  std::vector<std::pair<double, size_t>> keyed(blocks_.size());
+  for (size_t k = 0; k < blocks_.size(); ++k) {
+    const XpbdPoint& p = points_[blocks_[k].first];
+    keyed[k] = {-up.dot(world.bodies()[p.a].x + p.ra), k};
   }
-  std::sort(candidates_.begin(), candidates_.end());
-  candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& l, const auto& r) { return l.first < r.first; });
+  order_.resize(keyed.size());
+  for (size_t k = 0; k < keyed.size(); ++k) order_[k] = keyed[k].second;
 }
 
-void XpbdMethod::CollideCandidates(const World& world) {
-  // contacts at the predicted poses of this sub-step (the paper's sec. 3.5:
-  // broadphase once per step, narrowphase every sub-step), so that a
-  // tumbling box is held by the corners it now presents, not those it
-  // presented at the start of the step
-  const auto& bodies = world.bodies();
-  substep_contacts_.clear();
-  for (const BodyPair& p : candidates_) {
-    narrowphase_.Collide(bodies[p.first], p.first, bodies[p.second], p.second, params_.margin, &substep_contacts_);
+void XpbdMethod::Substep(World& world, double h, bool project_joints) {
+  auto& bodies = world.bodies();
+  XpbdSolve solve;
+  solve.h = h;
+  solve.alpha_tilde = params_.compliance / (h * h);
+  solve.max_push = params_.max_push_velocity * h;
+  const double joint_alpha_tilde = params_.joint_compliance / (h * h);
+  const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
+  IntegrateSoftVelocities(world, h, bodies_);
+  IntegrateSoftPositions(h, world, bodies_);
+  for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
+  BeginXpbdSubstep(bodies_, &points_);
+  BeginXpbdPatches(&patches_);
+  joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
+  for (int it = 0; it < params_.iterations; ++it) {
+    SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
+    for (size_t k : order_) {
+      SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], points_);
+      SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
+    }
   }
-  contacts_.clear();
-  for (const Contact& c : substep_contacts_) contacts_.push_back(MakeXpbdContact(c, world));
+  if (project_joints) ProjectJointPositions(world);
+  // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    SoftBody& s = bodies_[i];
+    const RigidBody& b = bodies[i];
+    if (!s.substepped || s.inv_mass == 0.0) continue;
+    if (b.x == predicted_[i].x && b.q.coeffs() == predicted_[i].q.coeffs()) continue;
+    Quat dq = b.q * predicted_[i].q.conjugate();
+    if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
+    s.v += (b.x - predicted_[i].x) / h;
+    s.w += (2.0 / h) * dq.vec();
+  }
+  SolveXpbdContactVelocities(h, threshold, blocks_, bodies_, &points_);
 }
 
-XpbdMethod::ContactKey XpbdMethod::KeyOf(const Contact& c) { return {c.a, c.b, c.feature_id}; }
-
-void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) {
-  // a contact of the last sub-step reports the impulses of every sub-step
-  // in which its features touched (by feature id); a feature pair that
-  // parted more than the margin before the last sub-step is not reported
-  std::sort(impulses_.begin(), impulses_.end(),
-            [](const KeyedImpulse& l, const KeyedImpulse& r) { return l.key < r.key; });
+void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {
+  // a point is reported while it touches or carried load in the step
   const double dt = world.dt;
-  for (size_t k = 0; k < contacts_.size(); ++k) {
-    const XpbdContact& x = contacts_[k];
-    const ContactKey key = KeyOf(substep_contacts_[k]);
-    Vec3 impulse = Vec3::Zero();
-    auto it = std::lower_bound(impulses_.begin(), impulses_.end(), key,
-                               [](const KeyedImpulse& l, const ContactKey& r) { return l.key < r; });
-    for (; it != impulses_.end() && it->key == key; ++it) impulse += it->impulse;
+  for (size_t k = 0; k < points_.size(); ++k) {
+    const XpbdPoint& p = points_[k];
     Vec3 pa, pb;
-    const double depth = XpbdContactDepth(x, world, &pa, &pb);
-    if (depth <= 0.0 && impulse.isZero(0.0)) continue;
-    Contact c = substep_contacts_[k];
+    const double depth = -XpbdSeparation(p, world, &pa, &pb);
+    if (depth <= 0.0 && p.impulse.isZero(0.0)) continue;
+    Contact c = contacts_[k];
     c.depth = depth;
     c.point = 0.5 * (pa + pb);
-    c.normal_value = x.n.dot(impulse) / dt;
-    c.tangent_value = (impulse - x.n * x.n.dot(impulse)) / dt;
+    c.normal_value = p.n.dot(p.impulse) / dt;
+    c.tangent_value = (p.impulse - p.n * p.n.dot(p.impulse)) / dt;
     contacts_out->push_back(c);
     stats->max_penetration = std::max(stats->max_penetration, depth);
   }
@@ -72,53 +86,28 @@ void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, St
 StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
-  const double dt = world.dt;
-  const double h = dt / params_.substeps;
-  const double alpha_tilde = params_.compliance / (h * h);
-  const double joint_alpha_tilde = params_.joint_compliance / (h * h);
-  const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   world.AccumulateForces();
-  DetectAhead(world, detector, params_.margin, dt, &detected_);
-  CandidatePairs();
-
+  DetectAhead(world, detector, params_.margin, world.dt, &contacts_);
+  auto& bodies = world.bodies();
+  substepped_.assign(bodies.size(), 0);
+  for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
+  SoftJoints::MarkJointed(world, &substepped_);
+  LoadSoftBodies(world, substepped_, &bodies_);
+  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &blocks_);
+  PrepareXpbdPatches(blocks_, points_, bodies_, &patches_);
+  SweepOrder(world);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
+  }
   const bool project_joints =
       params_.joint_compliance == 0.0 && JointMassRatioAtLeast(world, params_.direct_mass_ratio);
-  auto& bodies = world.bodies();
-  start_.resize(bodies.size());
   predicted_.resize(bodies.size());
-  impulses_.clear();
-  for (int sub = 0; sub < params_.substeps; ++sub) {
-    for (size_t i = 0; i < bodies.size(); ++i) start_[i] = {bodies[i].x, bodies[i].q};
-    IntegrateMomenta(world, h);
-    IntegratePositions(world, h);
-    for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
-    CollideCandidates(world);
-    BeginXpbdSubstep(world, &contacts_);
-    joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
-    for (int it = 0; it < params_.iterations; ++it) {
-      SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
-      SolveXpbdContactPositions(world, start_, h, alpha_tilde, &contacts_);
-    }
-    if (project_joints) ProjectJointPositions(world);
-    stats.iterations += params_.iterations;
-    // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
-    for (size_t i = 0; i < bodies.size(); ++i) {
-      RigidBody& b = bodies[i];
-      if (!b.IsDynamic()) continue;
-      const Vec3 dx = b.x - predicted_[i].x;
-      Quat dq = b.q * predicted_[i].q.conjugate();
-      if (dx.isZero(0.0) && b.q.coeffs() == predicted_[i].q.coeffs()) continue;
-      if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
-      b.P += b.mass * dx / h;
-      b.L += b.InertiaWorld() * (2.0 / h * dq.vec());
-    }
-    SolveXpbdContactVelocities(world, h, threshold, &contacts_);
-    for (size_t k = 0; k < contacts_.size(); ++k) {
-      if (!contacts_[k].impulse.isZero(0.0)) impulses_.push_back({KeyOf(substep_contacts_[k]), contacts_[k].impulse});
-    }
-  }
+  const double h = world.dt / params_.substeps;
+  for (int sub = 0; sub < params_.substeps; ++sub) Substep(world, h, project_joints);
+  StoreSoftBodies(bodies_, world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();
+  stats.iterations = params_.substeps * params_.iterations;
   stats.substeps = params_.substeps;
   stats.contacts = static_cast<int>(contacts_out->size());
   return stats;

@@ -16,6 +16,8 @@ const ParamTable<XpbdParams>& XpbdParamTable() {
       DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
                   "rigid joints of bodies this many times heavier than others they are joined to are projected "
                   "exactly after each sub-step's sweeps (xpbd_joints.h); 0 = off"),
+      DoubleParam("max_push_velocity", &P::max_push_velocity, 1e-6, 1e3, "m/s",
+                  "an overlap is removed at most this fast (h times it per sub-step)"),
   };
   return table;
 }

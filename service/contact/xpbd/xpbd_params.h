@@ -15,6 +15,7 @@ struct XpbdParams {
   double margin = 0.01;                // m
   double joint_compliance = 0.0;       // m/N (and rad/(N m))
   double direct_mass_ratio = 10.0;
+  double max_push_velocity = 4.0;      // m/s
 };
 
 const ParamTable<XpbdParams>& XpbdParamTable();

@@ -1,0 +1,142 @@
+#include "service/contact/xpbd/xpbd_patch_friction.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+
+namespace contactsim {
+namespace {
+
+// K of the rows t1, t2 (at the patch centre) and the twist about n.
+Eigen::Matrix3d PatchK(const XpbdPatch& patch, const XpbdPoint& p0, const SoftBody& A, const SoftBody& B) {
+  const Vec3 lin[3] = {p0.t1, p0.t2, Vec3::Zero()};
+  const Vec3 ang_a[3] = {patch.ra.cross(p0.t1), patch.ra.cross(p0.t2), p0.n};
+  const Vec3 ang_b[3] = {patch.rb.cross(p0.t1), patch.rb.cross(p0.t2), p0.n};
+  Eigen::Matrix3d k;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      k(i, j) = (A.inv_mass + B.inv_mass) * lin[i].dot(lin[j]) + ang_a[i].dot(A.inv_inertia * ang_a[j]) +
+                ang_b[i].dot(B.inv_inertia * ang_b[j]);
+    }
+  }
+  return k;
+}
+
+bool InvertPatchK(const Eigen::Matrix3d& k, int rows, Eigen::Matrix3d* inv) {
+  inv->setZero();
+  if (rows == 2) {
+    const Eigen::Matrix2d k2 = k.topLeftCorner<2, 2>();
+    if (!(k2.determinant() > 1e-12 * k2.trace() * k2.trace())) return false;
+    inv->topLeftCorner<2, 2>() = k2.inverse();
+    return true;
+  }
+  const Eigen::LLT<Eigen::Matrix3d> llt(k);
+  if (llt.info() != Eigen::Success) return false;
+  const Vec3 d = llt.matrixLLT().diagonal();
+  if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return false;
+  *inv = llt.solve(Eigen::Matrix3d::Identity());
+  return true;
+}
+
+}  // namespace
+
+void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
+                        const std::vector<SoftBody>& bodies, std::vector<XpbdPatch>* patches) {
+  patches->resize(blocks.size());
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    XpbdPatch patch;
+    patch.first = blocks[k].first;
+    patch.count = blocks[k].count;
+    const XpbdPoint& p0 = points[patch.first];
+    for (int i = 0; i < patch.count; ++i) patch.ra += points[patch.first + i].ra / patch.count;
+    patch.rb = patch.ra + (p0.rb - p0.ra);
+    for (int i = 0; i < patch.count; ++i) {
+      const Vec3 d = points[patch.first + i].ra - patch.ra;
+      patch.place[i][0] = d.dot(p0.t1);
+      patch.place[i][1] = d.dot(p0.t2);
+      const double r2 = patch.place[i][0] * patch.place[i][0] + patch.place[i][1] * patch.place[i][1];
+      patch.spread += r2;
+      patch.twist_radius += std::sqrt(r2) / patch.count;
+    }
+    const SoftBody& A = bodies[p0.a];
+    const SoftBody& B = bodies[p0.b];
+    const int rows = patch.twist_radius > 1e-6 ? 3 : 2;
+    if (rows == 2) patch.twist_radius = patch.spread = 0.0;
+    patch.valid = p0.friction > 0.0 && InvertPatchK(PatchK(patch, p0, A, B), rows, &patch.inv_k);
+    (*patches)[k] = patch;
+  }
+}
+
+void BeginXpbdPatches(std::vector<XpbdPatch>* patches) {
+  for (XpbdPatch& patch : *patches) {
+    patch.lambda_t.setZero();
+    patch.lambda_twist = 0.0;
+  }
+}
+
+namespace {
+
+// The patch's offset now, in the tangent frame: the mean of its points'
+// tangential offsets (u1, u2) and their twist about n. The tangents are
+// turned into each body's frame once for the patch, t . R a = (R^T t) . a.
+Vec3 PatchOffset(const World& world, const XpbdPatch& patch, const std::vector<XpbdPoint>& points) {
+  const XpbdPoint& p0 = points[patch.first];
+  const RigidBody& A = world.bodies()[p0.a];
+  const RigidBody& B = world.bodies()[p0.b];
+  const Quat qa = A.q.conjugate(), qb = B.q.conjugate();
+  const Vec3 at1 = qa * p0.t1, at2 = qa * p0.t2, bt1 = qb * p0.t1, bt2 = qb * p0.t2;
+  const Vec3 centres = A.x - B.x;
+  const double c1 = p0.t1.dot(centres), c2 = p0.t2.dot(centres);
+  double u1 = 0.0, u2 = 0.0, twist = 0.0;
+  for (int i = 0; i < patch.count; ++i) {
+    const XpbdPoint& p = points[patch.first + i];
+    const double o1 = c1 + at1.dot(p.material_a) - bt1.dot(p.material_b);
+    const double o2 = c2 + at2.dot(p.material_a) - bt2.dot(p.material_b);
+    u1 += o1;
+    u2 += o2;
+    twist += patch.place[i][0] * o2 - patch.place[i][1] * o1;
+  }
+  return Vec3(u1 / patch.count, u2 / patch.count, patch.spread > 0.0 ? twist / patch.spread : 0.0);
+}
+
+}  // namespace
+
+void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, double h, XpbdPatch& patch,
+                            std::vector<XpbdPoint>& points) {
+  if (!patch.valid) return;
+  const XpbdPoint& p0 = points[patch.first];
+  double pushed = 0.0;
+  for (int i = 0; i < patch.count; ++i) pushed += points[patch.first + i].lambda_n;
+  const Vec3 offset = PatchOffset(world, patch, points);
+  if (pushed <= 0.0) {  // not touching: hold the present offset from now on
+    patch.origin = offset;
+    return;
+  }
+  const Vec3 dl = patch.inv_k * (offset - patch.origin);
+  const double mu = p0.friction;
+  const Vec3 lambda_t = patch.lambda_t + dl[0] * p0.t1 + dl[1] * p0.t2;
+  if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
+    patch.origin = offset;
+    return;
+  }
+  double twist_step = dl[2];
+  if (std::abs(patch.lambda_twist + twist_step) > mu * pushed * patch.twist_radius) {
+    patch.origin[2] = offset[2];  // it spins: hold the translation only
+    twist_step = 0.0;
+  }
+  const Vec3 P = lambda_t - patch.lambda_t;
+  const Vec3& n = p0.n;
+  const SoftBody& sa = bodies[p0.a];
+  const SoftBody& sb = bodies[p0.b];
+  DisplaceXpbdBody(world.bodies()[p0.a], sa, -sa.inv_mass * P, -(sa.inv_inertia * (patch.ra.cross(P) + twist_step * n)));
+  DisplaceXpbdBody(world.bodies()[p0.b], sb, sb.inv_mass * P, sb.inv_inertia * (patch.rb.cross(P) + twist_step * n));
+  patch.lambda_t = lambda_t;
+  patch.lambda_twist += twist_step;
+  // for the report: the patch's impulse shared by the points' pushes
+  for (int i = 0; i < patch.count; ++i) {
+    XpbdPoint& p = points[patch.first + i];
+    p.impulse += (p.lambda_n / pushed / h) * P;
+  }
+}
+
+}  // namespace contactsim

@@ -1,0 +1,58 @@
+// Static friction of xpbd (Mueller et al. 2020, eq. 26-27) on a body pair's
+// contact patch as a whole: the patch's points (a face's corners, an edge's
+// two ends, one point) hold their tangential offsets through one rigid
+// constraint at their centre, two tangent rows and, for two or more points,
+// a twist row about n:
+//   u = mean of the points' slips,  theta = sum n . (d_i x s_i) / sum |d_i|^2,
+// with s_i the tangential offset of point i's surface points (material
+// points, turning with their bodies) since the contact was found and d_i the
+// point's place from the centre. One solve of the 3 x 3 K (fixed for the
+// step) undoes both, so a face's corners share the friction whatever their
+// order: one corner after another, the first took the whole slip and left
+// its cone, and a sliding box on a slope crept; corners sharing a Jacobi
+// update under-corrected and crept too.
+// The slip is measured since the step's start rather than over the
+// sub-step, so what one sub-step leaves is corrected in the next. The cone:
+// |lambda_t| <= mu sum lambda_n and |lambda_twist| <= mu sum lambda_n r, r
+// the points' mean distance from the centre; beyond it the patch slides (the
+// velocity pass brakes it) and holds its new offset from then on.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "service/contact/normal_block.h"
+#include "service/contact/xpbd/xpbd_contact.h"
+
+namespace contactsim {
+
+struct XpbdPatch {
+  int first = 0, count = 0;            // the points [first, first + count)
+  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, the patch centre minus each body's centre, step start
+  double place[kMaxNormalBlock][2] = {};  // m, each point from the centre along t1, t2
+  double spread = 0.0;                 // m^2, sum of the points' squared distances from the centre
+  double twist_radius = 0.0;           // m, their mean distance; 0: no twist row
+  Eigen::Matrix3d inv_k = Eigen::Matrix3d::Zero();  // rows t1, t2, twist
+  bool valid = false;
+  // per step: the offsets static friction holds
+  Vec3 origin = Vec3::Zero();          // (m, m, rad) along t1, t2 and the twist
+  // per sub-step
+  Vec3 lambda_t = Vec3::Zero();        // kg m
+  double lambda_twist = 0.0;           // kg m^2
+};
+
+// One patch per normal block, with its K inverted.
+void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
+                        const std::vector<SoftBody>& bodies, std::vector<XpbdPatch>* patches);
+
+// Zeroes the sub-step's multipliers.
+void BeginXpbdPatches(std::vector<XpbdPatch>* patches);
+
+// The patch's static friction at the world's current poses (after its
+// points' non-penetration); adds the positional impulses / h to the points'
+// step impulses in proportion to their normal multipliers.
+void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, double h, XpbdPatch& patch,
+                            std::vector<XpbdPoint>& points);
+
+}  // namespace contactsim

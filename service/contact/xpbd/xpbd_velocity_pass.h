@@ -1,0 +1,29 @@
+// The velocity pass of the xpbd contacts (Mueller et al. 2020, sec. 3.6),
+// after each sub-step's velocities are taken from its poses, for every point
+// that pushed in the sub-step:
+//   * restitution: v_n -> max(-e v~_n, 0), v~_n the normal velocity before
+//     the position solve, e = 0 when |v~_n| is below the threshold (so a
+//     resting contact does not jitter); a block's pushing points at once
+//     through the inverse of their K (K^+ for a face's four), so a face's
+//     corners share it whatever their order;
+//   * dynamic friction, point by point: the impulse that stops v_t, at most
+//     mu lambda_n / h (eq. 30 with f_n = lambda_n / h^2). Where static
+//     friction held the patch (xpbd_patch_friction.h) this removes what its
+//     linearisation left; skipping those points let a box on a slope creep.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/normal_block.h"
+#include "service/contact/soft/soft_bodies.h"
+#include "service/contact/xpbd/xpbd_contact.h"
+
+namespace contactsim {
+
+// The velocity pass on the bodies' v and w; restitution applies above
+// `restitution_threshold` (m/s).
+void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
+                                std::vector<SoftBody>& bodies,
+                                std::vector<XpbdPoint>* points);
+
+}  // namespace contactsim
