@@ -25,6 +25,11 @@ bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBod
   return k_lin > 0.0 && InvertNormalBlock(block, m->count, k_lin, p0.t1, p0.t2, &m->inv_k);
 }
 
+// Points this close to touching join a block's active set: a resting face's
+// corners sit at s = 0 up to round-off, and with all four active the block's
+// K^+ is the one inverted at the step's start (a subset needs its own).
+constexpr double kTouching = 1e-9;  // m
+
 // Turns q by the small rotation vector theta (first order, renormalised).
 void Turn(Quat& q, const Vec3& theta) {
   const Quat dq(0.0, theta.x(), theta.y(), theta.z());
@@ -47,6 +52,25 @@ void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const X
   p.impulse += dl / solve.h * p.n;  // a positional impulse p moves like the velocity impulse p / h
 }
 
+// K^-1 of a subset of two or three points (or K^+ of four), 1 / K of one.
+bool InvertSubset(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
+                  const int* idx, int n, Eigen::Matrix4d* inv) {
+  const XpbdPoint& p0 = points[m.first + idx[0]];
+  if (n == 1) {
+    if (!(p0.w_n > 0.0)) return false;
+    inv->setZero();
+    (*inv)(0, 0) = 1.0 / p0.w_n;
+    return true;
+  }
+  NormalBlockPoint block[kMaxNormalBlock];
+  for (int k = 0; k < n; ++k) {
+    const XpbdPoint& p = points[m.first + idx[k]];
+    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
+  }
+  const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
+  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, p0.t1, p0.t2, inv);
+}
+
 // A block's non-penetration at once (rigid rows) over its active points,
 // those penetrating or already pushing: the least-norm push of the active
 // set, a point whose push would turn into a pull dropped and the rest solved
@@ -55,7 +79,7 @@ void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const X
 // did, tilting aligned stacks. False when no block applies (three points on
 // a line) and the caller sweeps the points.
 bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,
-                       const NormalBlock& m, std::vector<XpbdPoint>& points) {
+                       const NormalBlock& m, XpbdSubsetCache& cache, std::vector<XpbdPoint>& points) {
   XpbdPoint& p0 = points[m.first];
   RigidBody& A = world.bodies()[p0.a];
   RigidBody& B = world.bodies()[p0.b];
@@ -70,12 +94,12 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
     const XpbdPoint& p = points[m.first + i];
     depth[i] = -(shift + nb.dot(p.anchor_b) - na.dot(p.anchor_a) - p.radius_a - p.radius_b);
     depth[i] = std::min(depth[i], solve.max_push);
-    if (depth[i] > 0.0 || p.lambda_n > 0.0) idx[active++] = i;
+    if (depth[i] > -kTouching || p.lambda_n > 0.0) idx[active++] = i;
   }
   Eigen::Vector4d step = Eigen::Vector4d::Zero();
   while (active > 0) {
     Eigen::Matrix4d inv;
-    if (!XpbdSubsetInverse(points, bodies, m, idx, active, &inv)) return false;
+    if (!XpbdSubsetInverse(points, bodies, m, idx, active, cache, &inv)) return false;
     Eigen::Vector4d d = Eigen::Vector4d::Zero();
     for (int k = 0; k < active; ++k) d[k] = depth[idx[k]];
     step = inv * d;
@@ -107,25 +131,24 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
 }  // namespace
 
 bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
-                   const int* idx, int n, Eigen::Matrix4d* inv) {
+                       const int* idx, int n, XpbdSubsetCache& cache, Eigen::Matrix4d* inv) {
   if (n == m.count && m.block) {
     *inv = m.inv_k;
     return true;
   }
-  const XpbdPoint& p0 = points[m.first + idx[0]];
-  if (n == 1) {
-    if (!(p0.w_n > 0.0)) return false;
-    inv->setZero();
-    (*inv)(0, 0) = 1.0 / p0.w_n;
-    return true;
+  int mask = 0;
+  for (int k = 0; k < n; ++k) mask |= 1 << idx[k];
+  for (int c = 0; c < 2; ++c) {
+    if (cache.mask[c] != mask) continue;
+    *inv = cache.inv[c];
+    return cache.ok[c];
   }
-  NormalBlockPoint block[kMaxNormalBlock];
-  for (int k = 0; k < n; ++k) {
-    const XpbdPoint& p = points[m.first + idx[k]];
-    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
-  }
-  const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, p0.t1, p0.t2, inv);
+  const int slot = cache.next;
+  cache.next ^= 1;
+  cache.mask[slot] = mask;
+  cache.ok[slot] = InvertSubset(points, bodies, m, idx, n, &cache.inv[slot]);
+  *inv = cache.inv[slot];
+  return cache.ok[slot];
 }
 
 void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta) {
@@ -165,6 +188,14 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
     p.ia_n = sa.inv_inertia * p.ra_n;
     p.ib_n = sb.inv_inertia * p.rb_n;
     p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+    p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
+    p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
+    p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
+    p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
+    const double k1 = sa.inv_mass + sb.inv_mass + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1);
+    const double k2 = sa.inv_mass + sb.inv_mass + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2);
+    p.mass_t1 = k1 > 0.0 ? 1.0 / k1 : 0.0;
+    p.mass_t2 = k2 > 0.0 ? 1.0 / k2 : 0.0;
     p.friction = CombineFriction(A.material, B.material);
     p.restitution = CombineRestitution(A.material, B.material);
     (*points)[k] = p;
@@ -176,8 +207,9 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3* pb_out) {
   const RigidBody& A = world.bodies()[p.a];
   const RigidBody& B = world.bodies()[p.b];
-  const Vec3 ca = A.x + A.q * p.anchor_a;
-  const Vec3 cb = B.x + B.q * p.anchor_b;
+  // a sphere's anchor is its centre: no turn to apply
+  const Vec3 ca = p.anchor_a.isZero(0.0) ? A.x : Vec3(A.x + A.q * p.anchor_a);
+  const Vec3 cb = p.anchor_b.isZero(0.0) ? B.x : Vec3(B.x + B.q * p.anchor_b);
   if (pa_out) *pa_out = ca + p.radius_a * p.n;
   if (pb_out) *pb_out = cb - p.radius_b * p.n;
   return p.n.dot(cb - ca) - p.radius_a - p.radius_b;
@@ -194,8 +226,9 @@ void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint
 }
 
 void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,
-                           const NormalBlock& m, std::vector<XpbdPoint>& points) {
-  const bool solved = solve.alpha_tilde == 0.0 && SolveBlockNormals(world, bodies, solve, m, points);
+                           const NormalBlock& m, XpbdSubsetCache& cache, std::vector<XpbdPoint>& points) {
+  const bool solved =
+      m.count > 1 && solve.alpha_tilde == 0.0 && SolveBlockNormals(world, bodies, solve, m, cache, points);
   if (solved) return;
   for (int i = 0; i < m.count; ++i) SolvePointNormal(world, bodies, solve, points[m.first + i]);
 }

@@ -48,7 +48,10 @@ struct XpbdPoint {
   Vec3 n, t1, t2;                 // unit, world, n from A to B
   Vec3 ra, rb;                    // m, contact point minus centres, step start
   Vec3 ra_n, rb_n, ia_n, ib_n;    // r x n and I^-1 (r x n), step start
+  Vec3 ra_t1, ra_t2, rb_t1, rb_t2;  // r x t for the velocity pass's friction
+  Vec3 ia_t1, ia_t2, ib_t1, ib_t2;  // I^-1 (r x t)
   double w_n = 0.0;               // 1/kg, K along n
+  double mass_t1 = 0.0, mass_t2 = 0.0;  // kg, 1 / K along t1, t2
   double friction = 0.0, restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier
@@ -76,6 +79,16 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr
 // Zeroes the sub-step's multipliers and records v~_n (after the prediction).
 void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
 
+// The inverses of a block's subsets met in this step (K is the step's start
+// one, so a subset's inverse holds for the whole step): the last two, by
+// the subset's bit mask.
+struct XpbdSubsetCache {
+  int mask[2] = {-1, -1};
+  bool ok[2] = {false, false};
+  Eigen::Matrix4d inv[2];
+  int next = 0;
+};
+
 // What a sub-step's position solve needs.
 struct XpbdSolve {
   double h = 0.0;            // s, the sub-step
@@ -85,13 +98,14 @@ struct XpbdSolve {
 
 // The non-penetration of one block's points (one position iteration).
 void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,
-                           const NormalBlock& block, std::vector<XpbdPoint>& points);
+                           const NormalBlock& block, XpbdSubsetCache& cache, std::vector<XpbdPoint>& points);
 
 // K^-1 of the block's points idx[0..n) (in block order; K^+ for a face's
 // four), 1 / K for one point, in the top left of *inv; false when no block
 // applies (three points on a line).
 bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                       const NormalBlock& block, const int* idx, int n, Eigen::Matrix4d* inv);
+                       const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache,
+                       Eigen::Matrix4d* inv);
 
 // Moves a dynamic body by dx and turns it by the small rotation vector theta
 // (first order, renormalised); others stay.

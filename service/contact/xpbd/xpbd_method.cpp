@@ -46,7 +46,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   for (int it = 0; it < params_.iterations; ++it) {
     SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
     for (size_t k : order_) {
-      SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], points_);
+      SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
       SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
     }
   }
@@ -62,7 +62,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
     s.v += (b.x - predicted_[i].x) / h;
     s.w += (2.0 / h) * dq.vec();
   }
-  SolveXpbdContactVelocities(h, threshold, blocks_, bodies_, &points_);
+  SolveXpbdContactVelocities(h, threshold, blocks_, subsets_, bodies_, &points_);
 }
 
 void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {
@@ -95,6 +95,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   LoadSoftBodies(world, substepped_, &bodies_);
   PrepareXpbdPoints(contacts_, world, bodies_, &points_, &blocks_);
   PrepareXpbdPatches(blocks_, points_, bodies_, &patches_);
+  subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   SweepOrder(world);
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);

@@ -69,6 +69,7 @@ class XpbdMethod : public ContactMethod {
   std::vector<XpbdPoint> points_;         // parallel to contacts_
   std::vector<NormalBlock> blocks_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
+  std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_
   std::vector<size_t> order_;             // the position solve's order of the blocks
   std::vector<XpbdPose> predicted_;
   std::vector<XpbdJointLambda> joint_lambdas_;

@@ -83,6 +83,10 @@ Vec3 PatchOffset(const World& world, const XpbdPatch& patch, const std::vector<X
   const XpbdPoint& p0 = points[patch.first];
   const RigidBody& A = world.bodies()[p0.a];
   const RigidBody& B = world.bodies()[p0.b];
+  if (patch.count == 1) {  // one point: turning its two points is cheaper than the four tangents
+    const Vec3 d = (A.x + A.q * p0.material_a) - (B.x + B.q * p0.material_b);
+    return Vec3(p0.t1.dot(d), p0.t2.dot(d), 0.0);
+  }
   const Quat qa = A.q.conjugate(), qb = B.q.conjugate();
   const Vec3 at1 = qa * p0.t1, at2 = qa * p0.t2, bt1 = qb * p0.t1, bt2 = qb * p0.t2;
   const Vec3 centres = A.x - B.x;

@@ -31,8 +31,8 @@ double TargetNormalVelocity(const XpbdPoint& p, double threshold) {
 // Restitution of a block's points that pushed, all at once through the
 // inverse of their K (K^+ for a face's four), so the corners of a face
 // share it whatever their order; point by point where no block applies.
-void SolveBlockRestitution(double threshold, const NormalBlock& m, const std::vector<SoftBody>& all, SoftBody& A,
-                           SoftBody& B, std::vector<XpbdPoint>& points) {
+void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCache& cache,
+                           const std::vector<SoftBody>& all, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points) {
   int idx[kMaxNormalBlock];
   int pushed = 0;
   for (int i = 0; i < m.count; ++i) {
@@ -40,7 +40,7 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const std::ve
   }
   if (pushed == 0) return;
   Eigen::Matrix4d inv;
-  if (XpbdSubsetInverse(points, all, m, idx, pushed, &inv)) {
+  if (XpbdSubsetInverse(points, all, m, idx, pushed, cache, &inv)) {
     Eigen::Vector4d change = Eigen::Vector4d::Zero();
     for (int k = 0; k < pushed; ++k) {
       const XpbdPoint& p = points[m.first + idx[k]];
@@ -65,35 +65,39 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const std::ve
 
 // Dynamic friction: the impulse that stops v_t, at most mu lambda_n / h
 // (the paper's eq. 30 caps dv by h mu f_n, which is an impulse, not a
-// velocity; here the cap is on the impulse).
+// velocity; here the cap is on the impulse), along the two tangents with
+// their effective masses and projected onto the disk of that radius.
 void SolvePointDynamicFriction(double h, XpbdPoint& p, SoftBody& A, SoftBody& B) {
   if (p.lambda_n <= 0.0 || p.friction <= 0.0) return;
-  const Vec3 v = (B.v + B.w.cross(p.rb)) - (A.v + A.w.cross(p.ra));
-  const Vec3 vt = v - p.n * p.n.dot(v);
-  const double speed = vt.norm();
-  if (!(speed > 0.0)) return;
-  const Vec3 t = vt / speed;
-  const Vec3 rta = p.ra.cross(t), rtb = p.rb.cross(t);
-  const Vec3 ia = A.inv_inertia * rta, ib = B.inv_inertia * rtb;
-  const double w = A.inv_mass + B.inv_mass + rta.dot(ia) + rtb.dot(ib);
-  if (!(w > 0.0)) return;
-  const double j = std::min(p.friction * p.lambda_n / h, speed / w);
-  A.v += (A.inv_mass * j) * t;
-  A.w += j * ia;
-  B.v -= (B.inv_mass * j) * t;
-  B.w -= j * ib;
-  p.impulse -= j * t;
+  const Vec3 dv = B.v - A.v;
+  const double v1 = p.t1.dot(dv) + p.rb_t1.dot(B.w) - p.ra_t1.dot(A.w);
+  const double v2 = p.t2.dot(dv) + p.rb_t2.dot(B.w) - p.ra_t2.dot(A.w);
+  double j1 = -p.mass_t1 * v1, j2 = -p.mass_t2 * v2;
+  const double limit = p.friction * p.lambda_n / h;
+  const double squared = j1 * j1 + j2 * j2;
+  if (squared > limit * limit) {
+    const double scale = limit / std::sqrt(squared);
+    j1 *= scale;
+    j2 *= scale;
+  }
+  const Vec3 J = j1 * p.t1 + j2 * p.t2;
+  A.v -= A.inv_mass * J;
+  A.w -= j1 * p.ia_t1 + j2 * p.ia_t2;
+  B.v += B.inv_mass * J;
+  B.w += j1 * p.ib_t1 + j2 * p.ib_t2;
+  p.impulse += J;
 }
 
 }  // namespace
 
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
+                                std::vector<XpbdSubsetCache>& caches, std::vector<SoftBody>& bodies,
+                                std::vector<XpbdPoint>* points) {
   for (size_t k = 0; k < blocks.size(); ++k) {
     const NormalBlock& m = blocks[k];
     SoftBody& A = bodies[(*points)[m.first].a];
     SoftBody& B = bodies[(*points)[m.first].b];
-    SolveBlockRestitution(restitution_threshold, m, bodies, A, B, *points);
+    SolveBlockRestitution(restitution_threshold, m, caches[k], bodies, A, B, *points);
     for (int i = 0; i < m.count; ++i) SolvePointDynamicFriction(h, (*points)[m.first + i], A, B);
   }
 }

@@ -21,9 +21,9 @@
 namespace contactsim {
 
 // The velocity pass on the bodies' v and w; restitution applies above
-// `restitution_threshold` (m/s).
+// `restitution_threshold` (m/s); `caches` is parallel to `blocks`.
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                std::vector<SoftBody>& bodies,
+                                std::vector<XpbdSubsetCache>& caches, std::vector<SoftBody>& bodies,
                                 std::vector<XpbdPoint>* points);
 
 }  // namespace contactsim
