@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/contact/detect_ahead.h"
+#include "service/contact/sweep_order.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/physics/integrator.h"
 
@@ -34,6 +35,7 @@ void SoftMethod::Prepare(World& world) {
   LoadSoftBodies(world, in_contact_, &bodies_);
   PrepareSoftPoints(contacts_, world, bodies_, &points_);
   BuildSoftManifolds(points_, &manifolds_);
+  OrderBlocksFromTheTop(world, points_, &manifolds_);
   if (!params_.warm_start) return;
   for (size_t k = 0; k < contacts_.size(); ++k) {
     if (const std::array<double, 3>* cached = warm_start_.Find(contacts_[k])) {

@@ -11,6 +11,7 @@
 //       a. v += h F / m, w += h I^-1 tau;
 //       b. warm start: apply the accumulated impulses;
 //       c. solve: every contact point once, normal then Coulomb-disk friction,
+//          the pairs from the highest down (sweep_order.h),
 //          a penetrating point as a soft spring of contact_hertz and
 //          damping_ratio (softness.h: the stiffness scales with the effective
 //          mass, so mass ratios do not make it softer or stiffer) that pushes

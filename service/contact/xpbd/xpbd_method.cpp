@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/contact/detect_ahead.h"
+#include "service/contact/sweep_order.h"
 #include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/soft/soft_joints.h"
@@ -13,20 +14,6 @@ namespace contactsim {
 
 Status XpbdMethod::SetParams(const ParamMap& params) {
   return XpbdParamTable().Parse(Name(), params, params_, &params_);
-}
-
-void XpbdMethod::SweepOrder(const World& world) {
-  // highest first along -g (contact order where there is no gravity)
-  const Vec3 up = world.gravity.isZero(0.0) ? Vec3::Zero() : Vec3(-world.gravity.normalized());
-  std::vector<std::pair<double, size_t>> keyed(blocks_.size());
-  for (size_t k = 0; k < blocks_.size(); ++k) {
-    const XpbdPoint& p = points_[blocks_[k].first];
-    keyed[k] = {-up.dot(world.bodies()[p.a].x + p.ra), k};
-  }
-  std::stable_sort(keyed.begin(), keyed.end(),
-                   [](const auto& l, const auto& r) { return l.first < r.first; });
-  order_.resize(keyed.size());
-  for (size_t k = 0; k < keyed.size(); ++k) order_[k] = keyed[k].second;
 }
 
 void XpbdMethod::Substep(World& world, double h, bool project_joints) {
@@ -45,7 +32,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
   for (int it = 0; it < params_.iterations; ++it) {
     SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
-    for (size_t k : order_) {
+    for (size_t k = 0; k < blocks_.size(); ++k) {
       SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
       SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
     }
@@ -94,9 +81,9 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, &bodies_);
   PrepareXpbdPoints(contacts_, world, bodies_, &points_, &blocks_);
+  OrderBlocksFromTheTop(world, points_, &blocks_);
   PrepareXpbdPatches(blocks_, points_, bodies_, &patches_);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
-  SweepOrder(world);
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
   }

@@ -16,7 +16,8 @@
 //        (soft_bodies.h: L held across the turn);
 //     b. solve positions, `iterations` times: joints (xpbd_joints.h, with
 //        joint_compliance), then contacts (non-penetration, static
-//        friction; xpbd_contact.h) with compliance alpha (alpha~ = alpha /
+//        friction; xpbd_contact.h), the pairs from the highest down
+//        (sweep_order.h), with compliance alpha (alpha~ = alpha /
 //        h^2); rigid joints between bodies of mass ratio direct_mass_ratio
 //        or more are then projected onto C = 0 by Newton's method
 //        (ProjectJointPositions, joints/joint_solver.h), which the sweeps
@@ -55,8 +56,6 @@ class XpbdMethod : public ContactMethod {
   const XpbdParams& params() const { return params_; }
 
  private:
-  // order_: the blocks from the highest to the lowest along gravity.
-  void SweepOrder(const World& world);
   // Predict, solve positions, derive velocities, velocity pass: one sub-step.
   void Substep(World& world, double h, bool project_joints);
   // The step's contacts with their depth at the step's end and average force.
@@ -70,7 +69,6 @@ class XpbdMethod : public ContactMethod {
   std::vector<NormalBlock> blocks_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
   std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_
-  std::vector<size_t> order_;             // the position solve's order of the blocks
   std::vector<XpbdPose> predicted_;
   std::vector<XpbdJointLambda> joint_lambdas_;
 };

@@ -1,0 +1,35 @@
+// The order in which Gauss-Seidel solvers sweep a step's normal blocks
+// (normal_block.h): from the highest body pair down along gravity. Solving
+// the upper contacts of a stack before the lower ones lets each support see
+// the load of what it carries in the same sweep; swept bottom up (the order
+// of the scenes' bodies), a rocking mode of tall aligned stacks grew from
+// round-off: xpbd's 8-cube stack walked 3.5 mm and ten 1 m cubes fell,
+// soft's 20-cube stack leaned 9.5 mm in 10 s (docs/physics.md, "Sweep
+// order"). Without gravity the detector's order is kept. A stable sort on
+// positions, so the order is the same on every build.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "service/contact/normal_block.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+// `points` (anything with a body index a and a lever arm ra from A's centre
+// to the point) are the blocks' points; a block's height is its first
+// point's.
+template <class Point>
+void OrderBlocksFromTheTop(const World& world, const std::vector<Point>& points, std::vector<NormalBlock>* blocks) {
+  if (world.gravity.isZero(0.0) || blocks->size() < 2) return;
+  const Vec3 up = -world.gravity.normalized();
+  auto height = [&](const NormalBlock& m) {
+    const Point& p = points[m.first];
+    return up.dot(world.bodies()[p.a].x + p.ra);
+  };
+  std::stable_sort(blocks->begin(), blocks->end(),
+                   [&](const NormalBlock& l, const NormalBlock& r) { return height(l) > height(r); });
+}
+
+}  // namespace contactsim
