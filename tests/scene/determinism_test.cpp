@@ -38,7 +38,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0xaca91ecc4d28d48full},
       {"penalty", {}, 0x1cc4e247fc853944ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x8d56be991615df46ull},
-      {"xpbd", {}, 0x53e34275d0614a3cull},
+      {"xpbd", {}, 0x3578b69b1967fb27ull},
       {"lcp", {{"solver", "pgs"}}, 0x4260f8ff293d3aacull},
       {"lcp", {{"solver", "lemke"}}, 0x21d103167c11af6cull},
       {"barrier", {}, 0x252a7063292c47b2ull},

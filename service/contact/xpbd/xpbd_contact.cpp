@@ -188,14 +188,6 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
     p.ia_n = sa.inv_inertia * p.ra_n;
     p.ib_n = sb.inv_inertia * p.rb_n;
     p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
-    p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
-    p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
-    p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
-    p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
-    const double k1 = sa.inv_mass + sb.inv_mass + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1);
-    const double k2 = sa.inv_mass + sb.inv_mass + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2);
-    p.mass_t1 = k1 > 0.0 ? 1.0 / k1 : 0.0;
-    p.mass_t2 = k2 > 0.0 ? 1.0 / k2 : 0.0;
     p.friction = CombineFriction(A.material, B.material);
     p.restitution = CombineRestitution(A.material, B.material);
     (*points)[k] = p;

@@ -48,10 +48,7 @@ struct XpbdPoint {
   Vec3 n, t1, t2;                 // unit, world, n from A to B
   Vec3 ra, rb;                    // m, contact point minus centres, step start
   Vec3 ra_n, rb_n, ia_n, ib_n;    // r x n and I^-1 (r x n), step start
-  Vec3 ra_t1, ra_t2, rb_t1, rb_t2;  // r x t for the velocity pass's friction
-  Vec3 ia_t1, ia_t2, ib_t1, ib_t2;  // I^-1 (r x t)
   double w_n = 0.0;               // 1/kg, K along n
-  double mass_t1 = 0.0, mass_t2 = 0.0;  // kg, 1 / K along t1, t2
   double friction = 0.0, restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier

@@ -49,7 +49,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
     s.v += (b.x - predicted_[i].x) / h;
     s.w += (2.0 / h) * dq.vec();
   }
-  SolveXpbdContactVelocities(h, threshold, blocks_, subsets_, bodies_, &points_);
+  SolveXpbdContactVelocities(h, threshold, blocks_, patches_, subsets_, bodies_, &points_);
 }
 
 void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {

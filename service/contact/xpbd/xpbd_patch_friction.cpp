@@ -143,4 +143,34 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   }
 }
 
+void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points) {
+  if (!patch.valid) return;
+  const XpbdPoint& p0 = points[patch.first];
+  double pushed = 0.0;
+  for (int i = 0; i < patch.count; ++i) pushed += points[patch.first + i].lambda_n;
+  if (pushed <= 0.0) return;
+  const Vec3& n = p0.n;
+  const Vec3 v = (B.v + B.w.cross(patch.rb)) - (A.v + A.w.cross(patch.ra));
+  const Vec3 spin = B.w - A.w;
+  Vec3 dl = -(patch.inv_k * Vec3(p0.t1.dot(v), p0.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0));
+  // Coulomb's disk for the patch's force, its torque within mu N r
+  const double limit = p0.friction * pushed / h;
+  const double along = std::hypot(dl[0], dl[1]);
+  if (along > limit) {
+    dl[0] *= limit / along;
+    dl[1] *= limit / along;
+  }
+  const double twist_limit = limit * patch.twist_radius;
+  dl[2] = std::max(-twist_limit, std::min(dl[2], twist_limit));
+  const Vec3 J = dl[0] * p0.t1 + dl[1] * p0.t2;
+  A.v -= A.inv_mass * J;
+  A.w -= A.inv_inertia * (patch.ra.cross(J) + dl[2] * n);
+  B.v += B.inv_mass * J;
+  B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
+  for (int i = 0; i < patch.count; ++i) {
+    XpbdPoint& p = points[patch.first + i];
+    p.impulse += (p.lambda_n / pushed) * J;
+  }
+}
+
 }  // namespace contactsim

@@ -55,4 +55,12 @@ void BeginXpbdPatches(std::vector<XpbdPatch>* patches);
 void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, double h, XpbdPatch& patch,
                             std::vector<XpbdPoint>& points);
 
+// Dynamic friction of the patch in the velocity pass (eq. 30, on the patch
+// as a whole): the impulse and twist that stop its relative motion at the
+// centre, the impulse held to mu sum lambda_n / h (Coulomb's disk) and the
+// twist to that times the patch's radius. One impulse for the patch keeps
+// a sliding face's corners alike: braked corner by corner, a box sliding
+// down a slope picked up 0.008-0.014 rad/s of spin.
+void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points);
+
 }  // namespace contactsim

@@ -63,42 +63,17 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCac
   }
 }
 
-// Dynamic friction: the impulse that stops v_t, at most mu lambda_n / h
-// (the paper's eq. 30 caps dv by h mu f_n, which is an impulse, not a
-// velocity; here the cap is on the impulse), along the two tangents with
-// their effective masses and projected onto the disk of that radius.
-void SolvePointDynamicFriction(double h, XpbdPoint& p, SoftBody& A, SoftBody& B) {
-  if (p.lambda_n <= 0.0 || p.friction <= 0.0) return;
-  const Vec3 dv = B.v - A.v;
-  const double v1 = p.t1.dot(dv) + p.rb_t1.dot(B.w) - p.ra_t1.dot(A.w);
-  const double v2 = p.t2.dot(dv) + p.rb_t2.dot(B.w) - p.ra_t2.dot(A.w);
-  double j1 = -p.mass_t1 * v1, j2 = -p.mass_t2 * v2;
-  const double limit = p.friction * p.lambda_n / h;
-  const double squared = j1 * j1 + j2 * j2;
-  if (squared > limit * limit) {
-    const double scale = limit / std::sqrt(squared);
-    j1 *= scale;
-    j2 *= scale;
-  }
-  const Vec3 J = j1 * p.t1 + j2 * p.t2;
-  A.v -= A.inv_mass * J;
-  A.w -= j1 * p.ia_t1 + j2 * p.ia_t2;
-  B.v += B.inv_mass * J;
-  B.w += j1 * p.ib_t1 + j2 * p.ib_t2;
-  p.impulse += J;
-}
-
 }  // namespace
 
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                std::vector<XpbdSubsetCache>& caches, std::vector<SoftBody>& bodies,
-                                std::vector<XpbdPoint>* points) {
+                                const std::vector<XpbdPatch>& patches, std::vector<XpbdSubsetCache>& caches,
+                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
   for (size_t k = 0; k < blocks.size(); ++k) {
     const NormalBlock& m = blocks[k];
     SoftBody& A = bodies[(*points)[m.first].a];
     SoftBody& B = bodies[(*points)[m.first].b];
     SolveBlockRestitution(restitution_threshold, m, caches[k], bodies, A, B, *points);
-    for (int i = 0; i < m.count; ++i) SolvePointDynamicFriction(h, (*points)[m.first + i], A, B);
+    BrakeXpbdPatch(h, patches[k], A, B, *points);
   }
 }
 

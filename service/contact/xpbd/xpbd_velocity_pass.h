@@ -6,10 +6,11 @@
 //     resting contact does not jitter); a block's pushing points at once
 //     through the inverse of their K (K^+ for a face's four), so a face's
 //     corners share it whatever their order;
-//   * dynamic friction, point by point: the impulse that stops v_t, at most
-//     mu lambda_n / h (eq. 30 with f_n = lambda_n / h^2). Where static
-//     friction held the patch (xpbd_patch_friction.h) this removes what its
-//     linearisation left; skipping those points let a box on a slope creep.
+//   * dynamic friction per patch (xpbd_patch_friction.h, BrakeXpbdPatch):
+//     the impulse that stops the patch's sliding and twist, at most
+//     mu sum lambda_n / h (eq. 30 with f_n = lambda_n / h^2). Where static
+//     friction held the patch this removes what its linearisation left;
+//     skipping those patches let a box on a slope creep.
 #pragma once
 
 #include <vector>
@@ -17,13 +18,16 @@
 #include "service/contact/normal_block.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/xpbd/xpbd_contact.h"
+#include "service/contact/xpbd/xpbd_patch_friction.h"
 
 namespace contactsim {
 
 // The velocity pass on the bodies' v and w; restitution applies above
-// `restitution_threshold` (m/s); `caches` is parallel to `blocks`.
+// `restitution_threshold` (m/s); `patches` and `caches` are parallel to
+// `blocks`.
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                std::vector<XpbdSubsetCache>& caches, std::vector<SoftBody>& bodies,
+                                const std::vector<XpbdPatch>& patches, std::vector<XpbdSubsetCache>& caches,
+                                std::vector<SoftBody>& bodies,
                                 std::vector<XpbdPoint>* points);
 
 }  // namespace contactsim
