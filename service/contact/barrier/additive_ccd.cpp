@@ -44,8 +44,7 @@ double AdditiveCcd(const CcdPair& p, double fraction, double limit) {
   // a pair measured from a shifted zero (shift < 0) that is apart keeps its
   // true distance d0 + shift above the fraction of its value, not only the
   // shifted one: the shift lets d reach -floor, and only kappa's growth
-  // kept such pairs out of it (a sphere_pile run re-balancing kappa every
-  // step touched d = -9.6e-6 m)
+  // kept such pairs out of it
   const double apart = d0 + p.shift;
   const double target = p.shift < 0.0 && apart > 0.0 ? fraction * apart - p.shift : fraction * d0;
   if (p.pair.kind == PrimitiveKind::kPointPlane) {

@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "service/contact/barrier/additive_ccd.h"
 #include "service/contact/barrier/barrier_potential.h"
@@ -98,19 +97,20 @@ void BarrierSolver::Assemble(const std::vector<Entry>& entries, NewtonSystem* sy
     const Eigen::Vector2d u = f.T.transpose() * rel;
     const double y = u.norm();
     const double w = h2 * f.mu_lambda * FrictionF1OverY(y, eps);
-    // Curvature of mu lambda f0(|u|) in u: f1(y)/y I, the weight of
-    // iteratively reweighted least squares, not the exact Hessian f1/y I +
-    // (f1' y - f1) / y^3 u u^T of IPC's appendix. Since f1(t)/t falls with
-    // t (2/eps - t/eps^2 below eps, 1/t above), the quadratic with this
-    // curvature lies above f0 everywhere (majorisation), so the Newton
-    // model never underestimates friction: with the exact Hessian, whose
-    // curvature along u is 0 while sliding and 2/eps (eps = eps_v h, 4e-7 m)
-    // once held, a contact going from slip to stick overshot by up to
-    // hundreds of times, and box_rain's and sphere_pile's line searches
-    // took alpha ~ 0.004 for 50 iterations. The minimum is the same;
-    // a sliding contact (y >> eps) has curvature mu lambda / y, negligible
-    // against the mass.
-    const Eigen::Matrix2d hess = w * Eigen::Matrix2d::Identity();
+    // Hessian of mu lambda f0(|u|) in u (IPC appendix): f1/y I +
+    // (f1' y - f1) / y^3 u u^T; PSD for the f1 of barrier_potential.h:
+    // for y >= eps it is (I - u u^T / y^2) / y, below eps
+    // f1/y I - u u^T / (eps^2 y). (Its curvature along u jumps from 0
+    // while sliding to 2/eps once held, so a contact going from slip to
+    // stick overshoots and the line search cuts alpha; the IRLS weight
+    // f1/y I, which majorises f0, removed that but stopped Newton early
+    // on a sliding box: BENCHMARKS.md, "barrier at scale".)
+    Eigen::Matrix2d hess = w * Eigen::Matrix2d::Identity();
+    if (y >= eps) {
+      hess -= (w / (y * y)) * u * u.transpose();
+    } else if (y > 1e-12 * eps) {
+      hess -= (h2 * f.mu_lambda / (eps * eps * y)) * u * u.transpose();
+    }
     Eigen::Matrix<double, 12, 2> Ga, Gb;
     for (int k = 0; k < 2; ++k) {
       Ga.col(k) = -AffineJacobianT(f.Xa, f.T.col(k));
@@ -205,70 +205,10 @@ bool BarrierSolver::LineSearch(const Island& island, const std::vector<Vec12>& s
       break;
     }
   }
-  if (island.bodies.size() == 1 || (accepted && alpha >= 1.0)) {
-    if (!accepted) {
-      for (size_t k = 0; k < island.bodies.size(); ++k) bodies_[island.bodies[k]].q = start[k];
-    }
-    return accepted;
+  if (!accepted) {
+    for (size_t k = 0; k < island.bodies.size(); ++k) bodies_[island.bodies[k]].q = start[k];
   }
-  // a short common step: one body's pair or friction term limits the whole
-  // island; a sweep of per-body line searches may go further
-  const double e_common = accepted ? IslandEnergy(island, line) : e0;
-  std::vector<Vec12> common;
-  for (size_t k = 0; k < island.bodies.size(); ++k) {
-    common.push_back(accepted ? bodies_[island.bodies[k]].q : start[k]);
-    bodies_[island.bodies[k]].q = start[k];
-  }
-  const bool swept = SweepBodies(island, step, line);
-  if (swept && IslandEnergy(island, line) < e_common) return true;
-  for (size_t k = 0; k < island.bodies.size(); ++k) bodies_[island.bodies[k]].q = common[k];
   return accepted;
-}
-
-double BarrierSolver::BodyEnergy(int i, const std::vector<int>& pairs, const std::vector<int>& friction,
-                                 const std::vector<Entry>& line) const {
-  Island one;
-  one.bodies = {i};
-  one.line = pairs;
-  one.friction = friction;
-  return IslandEnergy(one, line);
-}
-
-bool BarrierSolver::SweepBodies(const Island& island, const std::vector<Vec12>& step, const std::vector<Entry>& line) {
-  // each body's pairs and friction terms
-  std::unordered_map<int, int> local;
-  for (size_t k = 0; k < island.bodies.size(); ++k) local[island.bodies[k]] = static_cast<int>(k);
-  std::vector<std::vector<int>> pairs(island.bodies.size()), friction(island.bodies.size());
-  auto attach = [&](int body, int k, std::vector<std::vector<int>>* to) {
-    const auto it = local.find(body);
-    if (it != local.end()) (*to)[it->second].push_back(k);
-  };
-  for (int k : island.line) attach(line[k].a, k, &pairs), attach(line[k].b, k, &pairs);
-  for (int k : island.friction) attach(friction_[k].a, k, &friction), attach(friction_[k].b, k, &friction);
-  bool any = false;
-  for (size_t k = 0; k < island.bodies.size(); ++k) {
-    const int i = island.bodies[k];
-    Body& b = bodies_[i];
-    if (step[b.dof].isZero(0.0)) continue;
-    // the CCD bound with every other body where it is now
-    double alpha = 1.0;
-    for (int p : pairs[k]) {
-      CcdPair c = CcdPairOf(line[p], step);
-      if (line[p].a != i) c.dqa.setZero();
-      if (line[p].b != i) c.dqb.setZero();
-      alpha = AdditiveCcd(c, params_.ccd_fraction, alpha);
-    }
-    const double e0 = BodyEnergy(i, pairs[k], friction[k], line);
-    const Vec12 start = b.q;
-    bool accepted = false;
-    for (int halving = 0; halving < 40 && !accepted; ++halving, alpha *= 0.5) {
-      b.q = start + alpha * step[b.dof];
-      accepted = BodyEnergy(i, pairs[k], friction[k], line) <= e0;
-    }
-    if (!accepted) b.q = start;
-    any = any || accepted;
-  }
-  return any;
 }
 
 bool BarrierSolver::AdvanceIslands(const std::vector<Vec12>& step, bool converge, std::vector<Entry>* line,
@@ -299,7 +239,10 @@ bool BarrierSolver::AdvanceIslands(const std::vector<Vec12>& step, bool converge
   // the floor (the line's candidates hold every pair within d_hat of a
   // body that moved)
   double min_d = std::numeric_limits<double>::infinity();
-  for (const Entry& e : *entries) min_d = std::min(min_d, EffectiveDistance(e));
+  // (the true distance d, not d - shift: a shifted pair is always at or
+  // above the floor in shifted terms, so kappa never grew for it, and a
+  // pair shifted after an impact could sink towards d = -floor)
+  for (const Entry& e : *entries) min_d = std::min(min_d, e.dist.d);
   const double kappa_before = kappa_;
   if (min_d < kFloor * params_.d_hat && min_d < *last_min) kappa_ = std::min(kappa_max_, 2.0 * kappa_);
   *last_min = min_d;

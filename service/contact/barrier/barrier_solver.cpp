@@ -194,7 +194,6 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
     s.Stamp(rigid[b.index]);
   }
   state_.bodies = std::move(kept);
-  state_.kappa = kappa_;
   Lag(entries);
   state_.friction.clear();
   for (const Friction& f : friction_) {
@@ -204,7 +203,6 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
 
 void BarrierSolver::InitialKappa(const World& world, const std::vector<Entry>& entries) {
   const double d_hat = params_.d_hat, h2 = h_ * h_;
-  const bool fresh = state_.kappa <= 0.0;
   double mass_sum = 0.0;
   int dynamic = 0;
   for (const Body& b : bodies_) {
@@ -215,12 +213,6 @@ void BarrierSolver::InitialKappa(const World& world, const std::vector<Entry>& e
   const double kappa_min = 0.25 * (dynamic > 0 ? mass_sum / dynamic : 1.0) * std::max(world.gravity.norm(), 1.0) /
                            std::abs(BarrierFirstDerivative(0.5 * d_hat, d_hat));
   kappa_max_ = 1e6 * kappa_min;
-  // kept from the last step: IPC sets kappa once and only raises it
-  // (barrier_state.h)
-  if (!fresh) {
-    kappa_ = std::clamp(state_.kappa, kappa_min, kappa_max_);
-    return;
-  }
   // balance the barrier's gradient against inertia and orthogonality at q_n
   Eigen::VectorXd gE = Eigen::VectorXd::Zero(12 * dofs_), gB = Eigen::VectorXd::Zero(12 * dofs_);
   for (const Body& b : bodies_) {

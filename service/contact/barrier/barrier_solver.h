@@ -163,14 +163,6 @@ class BarrierSolver {
   // The line search of one island along `step`: the CCD bound, then halving
   // until its energy decreases. False (q unchanged) when no alpha did.
   bool LineSearch(const Island& island, const std::vector<Vec12>& step, const std::vector<Entry>& line);
-  // One body's energy: IslandEnergy of the body alone with `pairs` (of
-  // `line`) and `friction` its terms.
-  double BodyEnergy(int i, const std::vector<int>& pairs, const std::vector<int>& friction,
-                    const std::vector<Entry>& line) const;
-  // Moves the island's bodies one after another, each along its part of
-  // `step` by its own line search with the others where they are (block
-  // coordinate descent on E); whether any body moved.
-  bool SweepBodies(const Island& island, const std::vector<Vec12>& step, const std::vector<Entry>& line);
   // Moves each island along `step` by its own line search (an island whose
   // step is below the tolerance, when `converge`, is converged instead and
   // leaves the active set), refreshes `entries` at the new q, doubles kappa

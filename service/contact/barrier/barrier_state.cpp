@@ -54,7 +54,6 @@ std::string BarrierState::Save() const {
     PutMatrix(out, f.T);
     out.Put(f.mu_lambda);
   }
-  out.Put(kappa);
   return out.bytes();
 }
 
@@ -81,7 +80,6 @@ bool BarrierState::Restore(const std::string& bytes) {
          in.Get(&f.mu_lambda);
     loaded.friction.push_back(f);
   }
-  ok = ok && in.Get(&loaded.kappa);
   if (!ok || !in.done()) return false;
   *this = std::move(loaded);
   return true;

@@ -12,12 +12,7 @@
 //  * the lagged friction of Li et al. 2020 (IPC sec. 5): per contact pair at
 //    the end of the previous step, the closest points in the two bodies'
 //    frames, the tangent basis and mu lambda with lambda the barrier force
-//    kappa |b'(d)| the pair carried then;
-//  * the barrier stiffness kappa the last step ended with: IPC (Li et al.
-//    2020, sec. 4.3) sets kappa once and then only raises it when a
-//    distance gets too small; re-balanced every step, kappa and with it
-//    each resting pair's equilibrium gap changed from step to step, so
-//    resting bodies were pushed out and fell back every step.
+//    kappa |b'(d)| the pair carried then.
 // Bodies are keyed by BodyId (std::map: iteration in id order, so the saved
 // bytes are deterministic).
 #pragma once
@@ -55,12 +50,10 @@ struct LaggedFriction {
 struct BarrierState {
   std::map<BodyId, AffineBodyState> bodies;
   std::vector<LaggedFriction> friction;
-  double kappa = 0.0;           // N/m, 0 before the first step
 
   void Clear() {
     bodies.clear();
     friction.clear();
-    kappa = 0.0;
   }
   std::string Save() const;
   // false (and *this unchanged) on truncated or trailing bytes
