@@ -239,10 +239,7 @@ bool BarrierSolver::AdvanceIslands(const std::vector<Vec12>& step, bool converge
   // the floor (the line's candidates hold every pair within d_hat of a
   // body that moved)
   double min_d = std::numeric_limits<double>::infinity();
-  // (the true distance d, not d - shift: a shifted pair is always at or
-  // above the floor in shifted terms, so kappa never grew for it, and a
-  // pair shifted after an impact could sink towards d = -floor)
-  for (const Entry& e : *entries) min_d = std::min(min_d, e.dist.d);
+  for (const Entry& e : *entries) min_d = std::min(min_d, EffectiveDistance(e));
   const double kappa_before = kappa_;
   if (min_d < kFloor * params_.d_hat && min_d < *last_min) kappa_ = std::min(kappa_max_, 2.0 * kappa_);
   *last_min = min_d;
