@@ -26,18 +26,27 @@
 // Hessian of the orthogonality potential, the Gauss-Newton barrier term
 // kappa b''(d) grad d grad d^T (positive semi-definite; the curvature term
 // b'(d) grad^2 d is dropped) and the friction term G H_f G^T with H_f the
-// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled from
-// dense 12x12 blocks into a sparse matrix (SimplicialLDLT).
-// The line search starts at the largest alpha in [0, 1] for which no pair's
-// distance can fall below ccd_fraction of its current value, by additive
-// CCD per pair (additive_ccd.h: conservative advancement with the pair's own
-// relative vertex motion, re-measured along the step, so pairs sliding past
-// each other do not cut alpha to d / |motion|). It then halves alpha until E
-// decreases. Every accepted iterate is therefore intersection-free.
+// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled in dense
+// 12x12 blocks and solved per connected component (newton_system.h: a lone
+// body's 12x12 LDL^T, a sparse LDL^T per contact component).
+// The Newton iterations run island by island (barrier_newton.cpp): bodies
+// that no pair of the step's line, no pair within d_hat and no friction
+// pair joins are separable, so each island has its own line search and
+// convergence test, and a converged island leaves the solve until a
+// neighbour moves or kappa changes.
+// An island's line search starts at the largest alpha in [0, 1] for which
+// no pair's distance can fall below ccd_fraction of its current value, by
+// additive CCD per pair (additive_ccd.h: conservative advancement with the
+// pair's own relative vertex motion, re-measured along the step, so pairs
+// sliding past each other do not cut alpha to d / |motion|). It then halves
+// alpha until the island's E decreases. Every accepted iterate is therefore
+// intersection-free.
 // The pairs are found by a broadphase over swept boxes (pair_search.h): one
 // search along each Newton step gives every pair that can come within d_hat
-// on it, which serves the CCD, the line search's energies and, re-measured
-// at the accepted iterate, the next iteration's gradient and Hessian.
+// on it with each side anywhere on its own step (the islands take different
+// alphas), which serves the CCD, the line searches' energies and,
+// re-measured at the accepted iterate, the next iteration's gradient and
+// Hessian.
 //
 // Barrier stiffness (IPC sec. 4.3, adaptive): at the step's start kappa
 // balances the barrier's gradient against the rest,
@@ -46,7 +55,8 @@
 // d_hat / 2, a box face on its corners, hold the average body's weight; a
 // larger floor would launch such a box by a multiple of its weight in its
 // first step); during the iterations it doubles while the smallest distance
-// is below 1e-2 d_hat and still shrinking.
+// is below 1e-2 d_hat and still shrinking (the islands with a barrier pair
+// are then solved again).
 //
 // Line-search bound for a point against a static plane: d is linear in
 // alpha, d(alpha) = d + alpha n . dx, so the bound is exact and uses only the
