@@ -98,7 +98,7 @@ void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* 
     e.pair = c.pair;
     if (!shift_.empty()) {
       const auto it = shift_.find(KeyOf(e.a, e.b, e.pair));
-      if (it != shift_.end()) e.shift = it->second;
+      if (it != shift_.end()) e.shift = it->second.first, e.apart = it->second.second;
     }
     Evaluate(&e);
     // along a step: those that can come within d_hat by the pair's motion
@@ -285,7 +285,9 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
     // (one zero, -floor, for every pair not deeper: a pair pressed below
     // d = 0 in one step does not get a lower zero in the next)
     const double floor = kFloor * params_.d_hat;
-    if (e.dist.d < floor) shift_[KeyOf(e.a, e.b, e.pair)] = e.dist.d < -floor ? e.dist.d - floor : -floor;
+    if (e.dist.d < floor) {
+      shift_[KeyOf(e.a, e.b, e.pair)] = {e.dist.d < -floor ? e.dist.d - floor : -floor, e.dist.d > kTouch * params_.d_hat};
+    }
   }
   Collect(nullptr, &entries);
   InitialKappa(world, entries);

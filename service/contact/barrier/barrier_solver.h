@@ -131,6 +131,7 @@ class BarrierSolver {
     PairDistance dist;
     EdgeMollifier mollifier;    // edge-edge pairs: IPC's factor for nearly parallel edges
     double shift = 0.0;         // m, subtracted from dist.d
+    bool apart = false;         // shifted, but apart (d > touch) at the step's start
   };
   struct Friction {             // lagged at the step's start
     int a = -1, b = -1;
@@ -228,6 +229,7 @@ class BarrierSolver {
   double SignedDepth() const;
 
   static constexpr double kFloor = 1e-2;  // of d_hat: pairs closer at the start are shifted; kappa grows below it
+  static constexpr double kTouch = 1e-6;  // of d_hat: a shifted pair farther apart at the start was not touching
 
   BarrierParams params_;
   double h_ = 0.0;
@@ -235,7 +237,8 @@ class BarrierSolver {
   double kappa_max_ = 0.0;
   std::vector<Body> bodies_;
   // shifts of the pairs that started too close, by (a, b, kind, ia, ib, swapped)
-  std::map<std::tuple<int, int, int, int, int, bool>, double> shift_;
+  // (and whether the pair was apart, d > touch, then)
+  std::map<std::tuple<int, int, int, int, int, bool>, std::pair<double, bool>> shift_;
   std::vector<Friction> friction_;
   int dofs_ = 0;
   NewtonSystem system_;
