@@ -41,7 +41,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"xpbd", {}, 0x3578b69b1967fb27ull},
       {"lcp", {{"solver", "pgs"}}, 0x4260f8ff293d3aacull},
       {"lcp", {{"solver", "lemke"}}, 0x21d103167c11af6cull},
-      {"barrier", {}, 0x252a7063292c47b2ull},
+      {"barrier", {}, 0xc32a73df9f9d909aull},
       {"soft", {}, 0xe4efb0b6d7f45d92ull},
   };
   return pinned;

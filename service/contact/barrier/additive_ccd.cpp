@@ -31,9 +31,22 @@ double RelativeMotionBound(const CcdPair& p) {
   return la + lb;
 }
 
+double SeparateMotionBound(const CcdPair& p) {
+  const PairVertices v = PrimitiveVertices(*p.a, *p.b, p.pair);
+  double la = 0.0, lb = 0.0;
+  for (int k = 0; k < v.na; ++k) la = std::max(la, AffinePoint(p.dqa, v.a[k]).norm());
+  for (int k = 0; k < v.nb; ++k) lb = std::max(lb, AffinePoint(p.dqb, v.b[k]).norm());
+  return la + lb;
+}
+
 double AdditiveCcd(const CcdPair& p, double fraction, double limit) {
   const double d0 = DistanceAt(p, 0.0);
-  const double target = fraction * d0;
+  // a pair measured from a shifted zero (shift < 0) that is apart keeps its
+  // true distance d0 + shift above the fraction of its value, not only the
+  // shifted one: the shift lets d reach -floor, and only kappa's growth
+  // kept such pairs out of it
+  const double apart = d0 + p.shift;
+  const double target = p.shift < 0.0 && apart > 0.0 ? fraction * apart - p.shift : fraction * d0;
   if (p.pair.kind == PrimitiveKind::kPointPlane) {
     // against a static plane the signed distance is linear in alpha: exact
     const double approach = d0 - DistanceAt(p, 1.0);

@@ -35,8 +35,14 @@ struct CcdPair {
 // vertices, the point's whole motion.)
 double RelativeMotionBound(const CcdPair& p);
 
+// The same bound when the two sides move by different fractions of their
+// steps (the islands of barrier_newton.cpp have their own line searches):
+// no common motion is taken out, l = max_i |dv_i| + max_j |du_j|.
+double SeparateMotionBound(const CcdPair& p);
 // The largest alpha in [0, limit] found safe: the distance minus shift stays
-// at or above fraction times its value at alpha = 0 (which must be > 0).
+// at or above fraction times its value at alpha = 0 (which must be > 0), and
+// for a shifted pair (shift < 0) whose distance is positive, the distance
+// itself stays above fraction times its value.
 // `limit` (at most 1) lets a caller that already has a smaller alpha from
 // another pair skip the search.
 double AdditiveCcd(const CcdPair& p, double fraction, double limit);

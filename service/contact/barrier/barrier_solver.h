@@ -26,18 +26,27 @@
 // Hessian of the orthogonality potential, the Gauss-Newton barrier term
 // kappa b''(d) grad d grad d^T (positive semi-definite; the curvature term
 // b'(d) grad^2 d is dropped) and the friction term G H_f G^T with H_f the
-// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled from
-// dense 12x12 blocks into a sparse matrix (SimplicialLDLT).
-// The line search starts at the largest alpha in [0, 1] for which no pair's
-// distance can fall below ccd_fraction of its current value, by additive
-// CCD per pair (additive_ccd.h: conservative advancement with the pair's own
-// relative vertex motion, re-measured along the step, so pairs sliding past
-// each other do not cut alpha to d / |motion|). It then halves alpha until E
-// decreases. Every accepted iterate is therefore intersection-free.
+// PSD Hessian of mu lambda f0(|u|) in u (IPC appendix), assembled in dense
+// 12x12 blocks and solved per connected component (newton_system.h: a lone
+// body's 12x12 LDL^T, a sparse LDL^T per contact component).
+// The Newton iterations run island by island (barrier_newton.cpp): bodies
+// that no pair of the step's line, no pair within d_hat and no friction
+// pair joins are separable, so each island has its own line search and
+// convergence test, and a converged island leaves the solve until a
+// neighbour moves or kappa changes.
+// An island's line search starts at the largest alpha in [0, 1] for which
+// no pair's distance can fall below ccd_fraction of its current value, by
+// additive CCD per pair (additive_ccd.h: conservative advancement with the
+// pair's own relative vertex motion, re-measured along the step, so pairs
+// sliding past each other do not cut alpha to d / |motion|). It then halves
+// alpha until the island's E decreases. Every accepted iterate is therefore
+// intersection-free.
 // The pairs are found by a broadphase over swept boxes (pair_search.h): one
 // search along each Newton step gives every pair that can come within d_hat
-// on it, which serves the CCD, the line search's energies and, re-measured
-// at the accepted iterate, the next iteration's gradient and Hessian.
+// on it with each side anywhere on its own step (the islands take different
+// alphas), which serves the CCD, the line searches' energies and,
+// re-measured at the accepted iterate, the next iteration's gradient and
+// Hessian.
 //
 // Barrier stiffness (IPC sec. 4.3, adaptive): at the step's start kappa
 // balances the barrier's gradient against the rest,
@@ -46,7 +55,8 @@
 // d_hat / 2, a box face on its corners, hold the average body's weight; a
 // larger floor would launch such a box by a multiple of its weight in its
 // first step); during the iterations it doubles while the smallest distance
-// is below 1e-2 d_hat and still shrinking.
+// is below 1e-2 d_hat and still shrinking (the islands with a barrier pair
+// are then solved again).
 //
 // Line-search bound for a point against a static plane: d is linear in
 // alpha, d(alpha) = d + alpha n . dx, so the bound is exact and uses only the
@@ -78,6 +88,7 @@
 #include "service/contact/barrier/barrier_state.h"
 #include "service/contact/barrier/contact_primitives.h"
 #include "service/contact/barrier/edge_mollifier.h"
+#include "service/contact/barrier/newton_system.h"
 #include "service/contact/barrier/pair_search.h"
 #include "service/physics/world.h"
 
@@ -111,6 +122,8 @@ class BarrierSolver {
     Material material;
     Vec12 q, q0, q_pred;
     bool restarted = false;     // started from its rigid state (no matching affine state)
+    bool active = false;        // still solved by Newton (dynamic, not converged with its island)
+    int slot = -1;              // its block in the Newton system while active
   };
   struct Entry {                // one primitive pair near contact
     int a = -1, b = -1;         // indices into bodies_
@@ -118,6 +131,7 @@ class BarrierSolver {
     PairDistance dist;
     EdgeMollifier mollifier;    // edge-edge pairs: IPC's factor for nearly parallel edges
     double shift = 0.0;         // m, subtracted from dist.d
+    bool apart = false;         // shifted, but apart (d > touch) at the step's start
   };
   struct Friction {             // lagged at the step's start
     int a = -1, b = -1;
@@ -126,28 +140,55 @@ class BarrierSolver {
     double mu_lambda = 0.0;     // N
   };
 
+  // The bodies solved together in one line search: connected by a pair of
+  // the line, a pair within d_hat or a friction pair (barrier_newton.cpp).
+  struct Island {
+    std::vector<int> bodies;    // indices into bodies_
+    std::vector<int> line;      // indices into the line's entries
+    std::vector<int> friction;  // indices into friction_
+  };
+
   void Setup(World& world, const BarrierParams& params);
-  // Primitive pairs with d - shift < d_hat at the bodies' q; with `step`,
-  // every pair that can come within d_hat on the way to q + step
-  // (pair_search.h), evaluated at q.
+  // Primitive pairs with d - shift < d_hat at the bodies' q, of the pairs
+  // with an active body; with `step`, every such pair that can come within
+  // d_hat on the way to q + step (pair_search.h), evaluated at q.
   void Collect(const std::vector<Vec12>* step, std::vector<Entry>* out);
   // Distance and mollifier of an entry at the bodies' q.
   void Evaluate(Entry* e) const;
   // The entries of `line` (a Collect along the step just taken) within d_hat at q.
   void Refresh(const std::vector<Entry>& line, std::vector<Entry>* out) const;
   CcdPair CcdPairOf(const Entry& e, const std::vector<Vec12>& step) const;
-  // The largest safe alpha along `step` by additive CCD over `line`.
-  double LineSearchStart(const std::vector<Vec12>& step, const std::vector<Entry>& line) const;
-  double Energy(const std::vector<Entry>& entries) const;
-  // Moves the bodies along `step` by the line search (CCD bound, then
-  // halving until the energy decreases; `line` the pairs along it), then
-  // refreshes `entries` at the new q and doubles kappa while the closest
-  // pair keeps closing below the floor. False (q unchanged) when no alpha
-  // decreased the energy.
-  bool Advance(const std::vector<Vec12>& step, std::vector<Entry>* line, std::vector<Entry>* entries,
-               double* last_min);
+  // kappa at the step's start (IPC sec. 4.3; the header's derivation).
+  void InitialKappa(const World& world, const std::vector<Entry>& entries);
+
+  // barrier_newton.cpp: the Newton iterations over the active bodies.
+  // Numbers the active bodies' 12-DOF blocks; their count.
+  int AssignSlots();
+  // Gradient and projected Hessian of the incremental potential in the
+  // active bodies' blocks, from the pairs in `entries` and the friction lag.
+  void Assemble(const std::vector<Entry>& entries, NewtonSystem* system) const;
+  // The islands of the active bodies along `step` (`line` its pairs).
+  std::vector<Island> Islands(const std::vector<Entry>& line, const std::vector<Entry>& entries);
+  // Inertia, orthogonality, barrier and friction energy of one island.
+  double IslandEnergy(const Island& island, const std::vector<Entry>& line) const;
+  // The line search of one island along `step`: the CCD bound, then halving
+  // until its energy decreases. False (q unchanged) when no alpha did.
+  bool LineSearch(const Island& island, const std::vector<Vec12>& step, const std::vector<Entry>& line);
+  // Moves each island along `step` by its own line search (an island whose
+  // step is below the tolerance, when `converge`, is converged instead and
+  // leaves the active set), refreshes `entries` at the new q, doubles kappa
+  // while the closest pair keeps closing below the floor, and brings back
+  // the frozen bodies whose neighbourhood moved. Returns whether any island
+  // failed its line search.
+  bool AdvanceIslands(const std::vector<Vec12>& step, bool converge, std::vector<Entry>* line,
+                      std::vector<Entry>* entries, double* last_min);
+  // Makes the frozen bodies active again whose neighbourhood changed: a body
+  // that `moved` shares a pair of `line` or a friction pair with them, or
+  // kappa changed under their barrier pairs; re-collects `entries` then.
+  void WakeNeighbours(const std::vector<Entry>& line, const std::vector<char>& moved, bool kappa_changed,
+                      std::vector<Entry>* entries);
   // Moves each body that turns fast enough from q_n towards its q_pred by
-  // Advance, before the Newton iterations (affine_prediction.h). q_pred's
+  // AdvanceIslands, before the Newton iterations (affine_prediction.h). q_pred's
   // rotation is on the rotation manifold, while from A_n each Newton step
   // leaves it along its tangent and the stiff orthogonality potential slows
   // the return: a free box spinning at 1.7 rad/s took 7 iterations a step
@@ -168,6 +209,14 @@ class BarrierSolver {
   // barrier_params.h) and the box slid 0.05-0.12 mm in 2 s.
   void StartTurningBodiesAtPrediction(std::vector<Vec12>* step, std::vector<Entry>* line,
                                       std::vector<Entry>* entries, double* last_min);
+  // Newton's iterations until every body has converged or max_iterations.
+  void Minimise(std::vector<Entry>* entries, double* last_min, BarrierStepResult* result);
+  // Makes every dynamic body active again.
+  void ActivateAll();
+
+  // Writes q back to the rigid bodies, and the contacts within d_hat.
+  void WriteBack(World& world, const std::vector<Entry>& entries, ContactSet* contacts,
+                 BarrierStepResult* result) const;
   // Lagged friction of the pairs in `entries` at the bodies' q.
   void Lag(const std::vector<Entry>& entries);
   // The previous step's lagged friction, for bodies still present.
@@ -179,15 +228,20 @@ class BarrierSolver {
   // past the lowest shifted zero, -floor
   double SignedDepth() const;
 
+  static constexpr double kFloor = 1e-2;  // of d_hat: pairs closer at the start are shifted; kappa grows below it
+  static constexpr double kTouch = 1e-6;  // of d_hat: a shifted pair farther apart at the start was not touching
+
   BarrierParams params_;
   double h_ = 0.0;
   double kappa_ = 0.0;
   double kappa_max_ = 0.0;
   std::vector<Body> bodies_;
   // shifts of the pairs that started too close, by (a, b, kind, ia, ib, swapped)
-  std::map<std::tuple<int, int, int, int, int, bool>, double> shift_;
+  // (and whether the pair was apart, d > touch, then)
+  std::map<std::tuple<int, int, int, int, int, bool>, std::pair<double, bool>> shift_;
   std::vector<Friction> friction_;
   int dofs_ = 0;
+  NewtonSystem system_;
   PrimitivePairSearch search_;
   std::vector<SearchBody> search_bodies_;
   std::vector<CandidatePair> candidates_;
