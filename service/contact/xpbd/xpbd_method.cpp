@@ -1,6 +1,7 @@
 #include "service/contact/xpbd/xpbd_method.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "service/contact/detect_ahead.h"
 #include "service/contact/sweep_order.h"
@@ -16,12 +17,30 @@ Status XpbdMethod::SetParams(const ParamMap& params) {
   return XpbdParamTable().Parse(Name(), params, params_, &params_);
 }
 
+int XpbdMethod::SubstepsFor(const World& world) const {
+  // one sweep a sub-step leaves a heavy body on a light one about
+  // (m_heavy / m_light) g h^2 deep (the light body takes the push): h is
+  // chosen so that this stays within kMassRatioOverlap
+  const auto& bodies = world.bodies();
+  double ratio = 1.0;
+  for (const Contact& c : contacts_) {
+    const RigidBody& A = bodies[c.a];
+    const RigidBody& B = bodies[c.b];
+    if (!A.IsDynamic() || !B.IsDynamic()) continue;
+    ratio = std::max(ratio, std::max(A.mass, B.mass) / std::min(A.mass, B.mass));
+  }
+  const double needed = world.dt * std::sqrt(ratio * world.gravity.norm() / kMassRatioOverlap);
+  return std::max(params_.substeps, static_cast<int>(std::min(std::ceil(needed), 1000.0)));
+}
+
 void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   auto& bodies = world.bodies();
   XpbdSolve solve;
   solve.h = h;
   solve.alpha_tilde = params_.compliance / (h * h);
-  solve.max_push = params_.max_push_velocity * h;
+  // never below the resting overlap SubstepsFor allows a heavy body on a
+  // light one, which the solve removes again every sub-step
+  solve.max_push = std::max(params_.max_push_velocity * h, kMassRatioOverlap);
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   IntegrateSoftVelocities(world, h, bodies_);
@@ -90,13 +109,14 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   const bool project_joints =
       params_.joint_compliance == 0.0 && JointMassRatioAtLeast(world, params_.direct_mass_ratio);
   predicted_.resize(bodies.size());
-  const double h = world.dt / params_.substeps;
-  for (int sub = 0; sub < params_.substeps; ++sub) Substep(world, h, project_joints);
+  const int substeps = SubstepsFor(world);
+  const double h = world.dt / substeps;
+  for (int sub = 0; sub < substeps; ++sub) Substep(world, h, project_joints);
   StoreSoftBodies(bodies_, world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();
-  stats.iterations = params_.substeps * params_.iterations;
-  stats.substeps = params_.substeps;
+  stats.iterations = substeps * params_.iterations;
+  stats.substeps = substeps;
   stats.contacts = static_cast<int>(contacts_out->size());
   return stats;
 }

@@ -5,7 +5,8 @@ namespace contactsim {
 const ParamTable<XpbdParams>& XpbdParamTable() {
   using P = XpbdParams;
   static const ParamTable<P> table = {
-      IntParam("substeps", &P::substeps, 1, 1000, "", "sub-steps per step"),
+      IntParam("substeps", &P::substeps, 1, 1000, "",
+               "sub-steps per step (more where a heavy body rests on a light one)"),
       IntParam("iterations", &P::iterations, 1, 1000, "", "position iterations per sub-step"),
       DoubleParam("compliance", &P::compliance, 0.0, 1.0, "m/N", "inverse contact stiffness (0: rigid)"),
       DoubleParam("joint_compliance", &P::joint_compliance, 0.0, 1.0, "m/N",
