@@ -33,6 +33,8 @@ class CollisionDetector {
   // and then nothing changes. 1 is the serial code path.
   Status SetThreads(int threads);
   int threads() const { return runner_->threads(); }
+  // The world's threads, for the contact methods' solvers too.
+  ParallelRunner& runner() const { return *runner_; }
 
   // Contacts of the world at its current poses with depth > -margin (m).
   // Boxes are swept by v * sweep_dt so that pairs about to meet are found.

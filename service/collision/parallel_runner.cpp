@@ -76,4 +76,14 @@ void ParallelRunner::For(int n, int grain, const RangeFn& body) {
   });
 }
 
+void ParallelRunner::RunTeam(const std::function<void(int worker)>& walk) {
+  const auto run = [&] { walk(oneapi::tbb::this_task_arena::current_thread_index()); };
+  arena_->arena.execute([&] {
+    oneapi::tbb::task_group group;
+    for (int h = 1; h < threads_; ++h) group.run(run);
+    run();
+    group.wait();
+  });
+}
+
 }  // namespace contactsim

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "service/physics/status.h"
 
@@ -48,8 +49,29 @@ class ParallelRunner {
   using RangeFn = std::function<void(int begin, int end, int worker)>;
   void For(int n, int grain, const RangeFn& body);
 
+  // A stage of Stages: fn(i, j) over disjoint ranges of [begin, end), each
+  // of `grain` indices but the last, in any order and on any thread. The
+  // function must outlive the Stages call.
+  using StageFn = std::function<void(int begin, int end)>;
+  struct Stage {
+    const StageFn* fn = nullptr;
+    int begin = 0, end = 0;
+    int grain = 1;
+  };
+  // Runs the stages in order: no index of stage s starts before every
+  // index of stage s - 1 is done (a barrier between stages, as in the
+  // solver stages of Box2D v3). One call for a whole solve, so that the
+  // threads meet at an atomic counter between stages instead of a task
+  // launch per stage (parallel_stages.cpp says why no thread ever waits for
+  // a particular other one). Serially in order when threads() is 1.
+  void Stages(const std::vector<Stage>& stages);
+
  private:
   struct Arena;
+  // `walk(worker)` on the caller and on threads() - 1 helper tasks of the
+  // arena (worker: the arena slot, in [0, threads())); returns when all
+  // have returned.
+  void RunTeam(const std::function<void(int worker)>& walk);
   int threads_;
   std::unique_ptr<Arena> arena_;  // null when threads_ == 1
 };

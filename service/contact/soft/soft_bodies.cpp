@@ -23,9 +23,9 @@ void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std
   }
 }
 
-void IntegrateSoftVelocities(const World& world, double h, std::vector<SoftBody>& bodies) {
+void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies) {
   const auto& src = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
+  for (int i = begin; i < end; ++i) {
     SoftBody& s = bodies[i];
     if (!s.substepped || s.inv_mass == 0.0) continue;
     s.v += h * s.inv_mass * src[i].force;
@@ -33,9 +33,9 @@ void IntegrateSoftVelocities(const World& world, double h, std::vector<SoftBody>
   }
 }
 
-void IntegrateSoftPositions(double h, World& world, std::vector<SoftBody>& bodies) {
+void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies) {
   auto& dst = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
+  for (int i = begin; i < end; ++i) {
     SoftBody& s = bodies[i];
     if (!s.substepped) continue;
     RigidBody& b = dst[i];

@@ -35,14 +35,15 @@ struct SoftBody {
 // something this step.
 void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std::vector<SoftBody>* bodies);
 
-// v += h F / m and w += h I^-1 tau for the substepped dynamic bodies.
-void IntegrateSoftVelocities(const World& world, double h, std::vector<SoftBody>& bodies);
+// v += h F / m and w += h I^-1 tau for the substepped dynamic bodies among
+// [begin, end).
+void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies);
 
-// Moves the substepped bodies of the world by h at their velocities and
+// Moves the substepped bodies among [begin, end) by h at their velocities and
 // brings dp, dR and the world inverse inertia up to date. A dynamic body's
 // angular momentum I w is kept across the turn (torque-free motion; the
 // gyroscopic term), so w follows the new inertia.
-void IntegrateSoftPositions(double h, World& world, std::vector<SoftBody>& bodies);
+void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies);
 
 // Writes P = m v and L = I w of the substepped dynamic bodies back.
 void StoreSoftBodies(const std::vector<SoftBody>& bodies, World& world);

@@ -26,39 +26,45 @@ double ImpactSpeed(const SoftPoint& p, const World& world, double vn0, double s0
   return -std::sqrt(std::max(squared, 0.0));
 }
 
+// contacts a thread prepares at a time
+constexpr int kPrepareGrain = 256;
+
 }  // namespace
 
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<SoftPoint>* points) {
+                       ParallelRunner& runner, std::vector<SoftPoint>* points) {
   points->resize(contacts.size());
-  for (size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    const SoftBody& sa = bodies[c.a];
-    const SoftBody& sb = bodies[c.b];
-    const ContactRow basis = MakeContactBasis(c, world);
-    SoftPoint p;
-    p.a = c.a;
-    p.b = c.b;
-    p.ra = basis.ra;
-    p.rb = basis.rb;
-    p.n = basis.n;
-    p.t1 = basis.t1;
-    p.t2 = basis.t2;
-    p.friction = basis.friction;
-    p.restitution = basis.restitution;
-    p.ra_n = p.ra.cross(p.n), p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
-    p.rb_n = p.rb.cross(p.n), p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
-    p.ia_n = sa.inv_inertia * p.ra_n, p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
-    p.ib_n = sb.inv_inertia * p.rb_n, p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
-    const double k_lin = sa.inv_mass + sb.inv_mass;
-    p.mass_n = MassOf(k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n));
-    p.mass_t1 = MassOf(k_lin + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1));
-    p.mass_t2 = MassOf(k_lin + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2));
-    p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
-    const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
-    p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
-    (*points)[k] = p;
-  }
+  runner.For(static_cast<int>(contacts.size()), kPrepareGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) (*points)[k] = PrepareSoftPoint(contacts[k], world, bodies);
+  });
+}
+
+SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies) {
+  const SoftBody& sa = bodies[c.a];
+  const SoftBody& sb = bodies[c.b];
+  const ContactRow basis = MakeContactBasis(c, world);
+  SoftPoint p;
+  p.a = c.a;
+  p.b = c.b;
+  p.ra = basis.ra;
+  p.rb = basis.rb;
+  p.n = basis.n;
+  p.t1 = basis.t1;
+  p.t2 = basis.t2;
+  p.friction = basis.friction;
+  p.restitution = basis.restitution;
+  p.ra_n = p.ra.cross(p.n), p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
+  p.rb_n = p.rb.cross(p.n), p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
+  p.ia_n = sa.inv_inertia * p.ra_n, p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
+  p.ib_n = sb.inv_inertia * p.rb_n, p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
+  const double k_lin = sa.inv_mass + sb.inv_mass;
+  p.mass_n = MassOf(k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n));
+  p.mass_t1 = MassOf(k_lin + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1));
+  p.mass_t2 = MassOf(k_lin + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2));
+  p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
+  const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
+  p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
+  return p;
 }
 
 void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,
@@ -71,14 +77,10 @@ void SetSoftPointSprings(double hertz, double damping_ratio, double h, const Wor
   }
 }
 
-void WarmStartSoftPoints(const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
-  for (const SoftPoint& p : points) {
-    SoftBody& A = bodies[p.a];
-    SoftBody& B = bodies[p.b];
-    SoftPoint::Push(p.lambda_n, p.n, p.ia_n, p.ib_n, A, B);
-    SoftPoint::Push(p.lambda_t1, p.t1, p.ia_t1, p.ib_t1, A, B);
-    SoftPoint::Push(p.lambda_t2, p.t2, p.ia_t2, p.ib_t2, A, B);
-  }
+void WarmStartSoftPoint(const SoftPoint& p, SoftBody& A, SoftBody& B) {
+  SoftPoint::Push(p.lambda_n, p.n, p.ia_n, p.ib_n, A, B);
+  SoftPoint::Push(p.lambda_t1, p.t1, p.ia_t1, p.ib_t1, A, B);
+  SoftPoint::Push(p.lambda_t2, p.t2, p.ia_t2, p.ib_t2, A, B);
 }
 
 SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, double s) {
@@ -128,33 +130,31 @@ void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B) {
   p.lambda_t1 = l1;
   p.lambda_t2 = l2;
   const Vec3 J = d1 * p.t1 + d2 * p.t2;
-  A.v -= A.inv_mass * J;
-  A.w -= d1 * p.ia_t1 + d2 * p.ia_t2;
-  B.v += B.inv_mass * J;
-  B.w += d1 * p.ib_t1 + d2 * p.ib_t2;
-}
-
-void ApplySoftRestitution(double threshold, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
-  for (SoftPoint& p : points) {
-    if (p.restitution == 0.0 || p.impact_speed > -threshold || p.max_push <= 0.0) continue;
-    SoftBody& A = bodies[p.a];
-    SoftBody& B = bodies[p.b];
-    const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B);
-    const double increment = -p.mass_n * (vn + p.restitution * p.impact_speed);
-    const double total = std::max(p.lambda_n + increment, 0.0);
-    const double applied = total - p.lambda_n;
-    p.lambda_n = total;
-    p.total_n += applied;
-    SoftPoint::Push(applied, p.n, p.ia_n, p.ib_n, A, B);
+  if (A.inv_mass > 0.0) {
+    A.v -= A.inv_mass * J;
+    A.w -= d1 * p.ia_t1 + d2 * p.ia_t2;
+  }
+  if (B.inv_mass > 0.0) {
+    B.v += B.inv_mass * J;
+    B.w += d1 * p.ib_t1 + d2 * p.ib_t2;
   }
 }
 
-void AccumulateSoftTotals(std::vector<SoftPoint>& points) {
-  for (SoftPoint& p : points) {
-    p.total_n += p.lambda_n;
-    p.total_t1 += p.lambda_t1;
-    p.total_t2 += p.lambda_t2;
-  }
+void RestituteSoftPoint(double threshold, SoftPoint& p, SoftBody& A, SoftBody& B) {
+  if (p.restitution == 0.0 || p.impact_speed > -threshold || p.max_push <= 0.0) return;
+  const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B);
+  const double increment = -p.mass_n * (vn + p.restitution * p.impact_speed);
+  const double total = std::max(p.lambda_n + increment, 0.0);
+  const double applied = total - p.lambda_n;
+  p.lambda_n = total;
+  p.total_n += applied;
+  SoftPoint::Push(applied, p.n, p.ia_n, p.ib_n, A, B);
+}
+
+void AccumulateSoftTotals(SoftPoint& p) {
+  p.total_n += p.lambda_n;
+  p.total_t1 += p.lambda_t1;
+  p.total_t2 += p.lambda_t2;
 }
 
 }  // namespace contactsim

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "service/collision/contact.h"
+#include "service/collision/parallel_runner.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/softness.h"
 
@@ -53,18 +54,27 @@ struct SoftPoint {
   double VelocityAlong(const Vec3& d, const Vec3& ja, const Vec3& jb, const SoftBody& A, const SoftBody& B) const {
     return d.dot(B.v - A.v) + jb.dot(B.w) - ja.dot(A.w);
   }
-  // +impulse * d on B at r_B, -impulse * d on A at r_A
+  // +impulse * d on B at r_B, -impulse * d on A at r_A (a static or
+  // kinematic body is never written: many threads may hold it at once,
+  // block_colours.h)
   static void Push(double impulse, const Vec3& d, const Vec3& ia, const Vec3& ib, SoftBody& A, SoftBody& B) {
-    A.v -= (A.inv_mass * impulse) * d;
-    A.w -= impulse * ia;
-    B.v += (B.inv_mass * impulse) * d;
-    B.w += impulse * ib;
+    if (A.inv_mass > 0.0) {
+      A.v -= (A.inv_mass * impulse) * d;
+      A.w -= impulse * ia;
+    }
+    if (B.inv_mass > 0.0) {
+      B.v += (B.inv_mass * impulse) * d;
+      B.w += impulse * ib;
+    }
   }
 };
 
 // The points of `contacts` at the bodies' state at the step's start.
+// On the world's threads (each point is its own).
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<SoftPoint>* points);
+                       ParallelRunner& runner, std::vector<SoftPoint>* points);
+// One of them.
+SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies);
 
 // Each point's spring for sub-steps of h: `hertz` between two movable
 // bodies, twice it against a static or kinematic one, which carries no
@@ -72,8 +82,8 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
 void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,
                          std::vector<SoftPoint>& points);
 
-// Applies each point's accumulated impulses (warm start of a sub-step).
-void WarmStartSoftPoints(const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+// Applies the point's accumulated impulses (warm start of a sub-step).
+void WarmStartSoftPoint(const SoftPoint& p, SoftBody& A, SoftBody& B);
 
 struct SoftPass {
   double inv_h = 0.0;               // 1 / sub-step
@@ -99,10 +109,10 @@ void SolveSoftNormal(const SoftPass& pass, SoftPoint& p, SoftBody& A, SoftBody& 
 void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B);
 void ApplySoftNormal(double total, SoftPoint& p, SoftBody& A, SoftBody& B);
 
-// The restitution pass after the sub-steps.
-void ApplySoftRestitution(double threshold, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+// The point's share of a restitution pass after the sub-steps.
+void RestituteSoftPoint(double threshold, SoftPoint& p, SoftBody& A, SoftBody& B);
 
-// Adds each point's accumulated impulses to its step totals (end of a sub-step).
-void AccumulateSoftTotals(std::vector<SoftPoint>& points);
+// Adds the point's accumulated impulses to its step totals (end of a sub-step).
+void AccumulateSoftTotals(SoftPoint& p);
 
 }  // namespace contactsim

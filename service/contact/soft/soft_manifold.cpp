@@ -6,6 +6,9 @@
 namespace contactsim {
 namespace {
 
+// manifolds a thread inverts at a time
+constexpr int kInvertGrain = 128;
+
 bool InvertBlock(const std::vector<SoftPoint>& points, SoftManifold* m) {
   const SoftPoint& p0 = points[m->first];
   if (p0.mass_n <= 0.0) return false;
@@ -60,22 +63,33 @@ void SolveBlockNormals(const SoftPass& pass, const SoftManifold& m, std::vector<
     wa += applied * p.ia_n;
     wb += applied * p.ib_n;
   }
-  A.v -= (A.inv_mass * sum) * n;
-  A.w -= wa;
-  B.v += (B.inv_mass * sum) * n;
-  B.w += wb;
+  if (A.inv_mass > 0.0) {
+    A.v -= (A.inv_mass * sum) * n;
+    A.w -= wa;
+  }
+  if (B.inv_mass > 0.0) {
+    B.v += (B.inv_mass * sum) * n;
+    B.w += wb;
+  }
 }
 
 }  // namespace
 
-void BuildSoftManifolds(const std::vector<SoftPoint>& points, std::vector<SoftManifold>* manifolds) {
+void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
+                        std::vector<SoftManifold>* manifolds) {
   GroupNormalBlocks(points, manifolds);
-  for (SoftManifold& m : *manifolds) m.block = m.count >= 2 && InvertBlock(points, &m);
+  runner.For(static_cast<int>(manifolds->size()), kInvertGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      SoftManifold& m = (*manifolds)[k];
+      m.block = m.count >= 2 && InvertBlock(points, &m);
+    }
+  });
 }
 
-void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds,
+void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds, int begin, int end,
                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
-  for (const SoftManifold& m : manifolds) {
+  for (int k = begin; k < end; ++k) {
+    const SoftManifold& m = manifolds[k];
     SoftBody& A = bodies[points[m.first].a];
     SoftBody& B = bodies[points[m.first].b];
     for (int i = 0; i < m.count; ++i) SolveSoftFriction(points[m.first + i], A, B);
@@ -83,6 +97,24 @@ void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& m
       SolveBlockNormals(pass, m, points, bodies);
     } else {
       for (int i = 0; i < m.count; ++i) SolveSoftNormal(pass, points[m.first + i], A, B);
+    }
+  }
+}
+
+void WarmStartSoftManifolds(const std::vector<SoftManifold>& manifolds, int begin, int end,
+                            const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
+  for (int k = begin; k < end; ++k) {
+    for (int i = manifolds[k].first; i < manifolds[k].first + manifolds[k].count; ++i) {
+      WarmStartSoftPoint(points[i], bodies[points[i].a], bodies[points[i].b]);
+    }
+  }
+}
+
+void RestituteSoftManifolds(double threshold, const std::vector<SoftManifold>& manifolds, int begin, int end,
+                            std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
+  for (int k = begin; k < end; ++k) {
+    for (int i = manifolds[k].first; i < manifolds[k].first + manifolds[k].count; ++i) {
+      RestituteSoftPoint(threshold, points[i], bodies[points[i].a], bodies[points[i].b]);
     }
   }
 }

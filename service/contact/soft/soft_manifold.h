@@ -15,11 +15,21 @@ namespace contactsim {
 using SoftManifold = NormalBlock;
 
 // Groups consecutive points of one body pair (the narrowphase emits a
-// pair's points together) and inverts K where a block solve applies.
-void BuildSoftManifolds(const std::vector<SoftPoint>& points, std::vector<SoftManifold>* manifolds);
+// pair's points together) and inverts K where a block solve applies (on
+// the world's threads).
+void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
+                        std::vector<SoftManifold>* manifolds);
 
-// One pass over every manifold: each point's friction, then the normal rows.
-void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds,
+// Passes over the manifolds [begin, end) (one colour of block_colours.h,
+// or all of them in order):
+// the solve: each point's friction, then the normal rows;
+void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds, int begin, int end,
                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+// the warm start: each point's accumulated impulses applied;
+void WarmStartSoftManifolds(const std::vector<SoftManifold>& manifolds, int begin, int end,
+                            const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+// restitution (soft_contact.h, RestituteSoftPoint).
+void RestituteSoftManifolds(double threshold, const std::vector<SoftManifold>& manifolds, int begin, int end,
+                            std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
 
 }  // namespace contactsim

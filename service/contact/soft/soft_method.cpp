@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "service/contact/block_colours.h"
 #include "service/contact/detect_ahead.h"
 #include "service/contact/sweep_order.h"
 #include "service/contact/joints/joint_solver.h"
@@ -9,11 +10,6 @@
 
 namespace contactsim {
 namespace {
-
-// Gauss-Seidel passes of the restitution rows: one pass gives a box landing
-// flat all its bounce at the first corner swept (it leaves spinning); the
-// passes share it between the corners that struck
-constexpr int kRestitutionPasses = 8;
 
 }  // namespace
 
@@ -27,14 +23,14 @@ Status SoftMethod::LoadState(const std::string& bytes) {
                                  " bytes)");
 }
 
-void SoftMethod::Prepare(World& world) {
+void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   auto& bodies = world.bodies();
   in_contact_.assign(bodies.size(), 0);
   for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
   SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, &bodies_);
-  PrepareSoftPoints(contacts_, world, bodies_, &points_);
-  BuildSoftManifolds(points_, &manifolds_);
+  PrepareSoftPoints(contacts_, world, bodies_, runner, &points_);
+  BuildSoftManifolds(points_, runner, &manifolds_);
   OrderBlocksFromTheTop(world, points_, &manifolds_);
   if (!params_.warm_start) return;
   for (size_t k = 0; k < contacts_.size(); ++k) {
@@ -46,44 +42,28 @@ void SoftMethod::Prepare(World& world) {
   }
 }
 
-void SoftMethod::RunSubsteps(World& world) {
-  const double h = world.dt / params_.substeps;
-  // the spring must be resolved by the sub-step: at most a quarter of its rate
-  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
-  SetSoftPointSprings(hertz, params_.damping_ratio, h, world, points_);
-  SubspaceOptions direct;
-  direct.mass_ratio = params_.direct_mass_ratio;
-  direct.max_rows = params_.direct_max_rows;
-  ratio_solve_.Prepare(direct, bodies_, points_);
-  SoftPass solve;
-  solve.inv_h = 1.0 / h;
-  solve.max_push_velocity = params_.max_push_velocity;
-  SoftPass relax = solve;
-  relax.use_bias = false;
-  for (int sub = 0; sub < params_.substeps; ++sub) {
-    IntegrateSoftVelocities(world, h, bodies_);
-    WarmStartSoftPoints(points_, bodies_);
-    SolveSoftManifolds(solve, manifolds_, points_, bodies_);
-    ratio_solve_.Solve(solve, points_, bodies_);
-    joints_.SolveVelocities(world, h, bodies_);
-    IntegrateSoftPositions(h, world, bodies_);
-    for (int it = 0; it < params_.relax_iterations; ++it) SolveSoftManifolds(relax, manifolds_, points_, bodies_);
-    if (params_.relax_iterations > 0) ratio_solve_.Solve(relax, points_, bodies_);
-    joints_.SolveVelocities(world, h, bodies_);
-    AccumulateSoftTotals(points_);
+void SoftMethod::ColourManifolds() {
+  roles_.resize(bodies_.size());
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    roles_[i] = bodies_[i].inv_mass > 0.0 ? ColourRole::kColoured : ColourRole::kFixed;
   }
-  for (int it = 0; it < kRestitutionPasses; ++it) ApplySoftRestitution(params_.restitution_threshold, points_, bodies_);
+  for (int k : ratio_solve_.selected()) {
+    for (int i : {points_[k].a, points_[k].b}) {
+      if (roles_[i] == ColourRole::kColoured) roles_[i] = ColourRole::kSerial;
+    }
+  }
+  colours_ = ColourBlocks(points_, roles_, &manifolds_);
 }
 
 StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   world.AccumulateForces();
   DetectAhead(world, detector, params_.margin, world.dt, &contacts_);
-  Prepare(world);
+  Prepare(world, detector.runner());
   auto& bodies = world.bodies();
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
   }
-  RunSubsteps(world);
+  RunSubsteps(world, detector.runner());
   StoreSoftBodies(bodies_, world);
   if (!world.joints().empty()) ProjectJointPositions(world);
 

@@ -44,6 +44,8 @@
 #include <array>
 #include <vector>
 
+#include "service/collision/parallel_runner.h"
+#include "service/contact/block_colours.h"
 #include "service/contact/contact_method.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/soft_contact.h"
@@ -69,8 +71,12 @@ class SoftMethod : public ContactMethod {
   const SoftParams& params() const { return params_; }
 
  private:
-  void Prepare(World& world);
-  void RunSubsteps(World& world);
+  void Prepare(World& world, ParallelRunner& runner);
+  // Colours the manifolds (after the ratio solve has chosen its points).
+  void ColourManifolds();
+  // Steps 2 to 3 above as the stages of one ParallelRunner::Stages call
+  // (soft_stages.cpp).
+  void RunSubsteps(World& world, ParallelRunner& runner);
   StepStats Report(ContactSet* contacts) const;
 
   SoftParams params_;
@@ -78,7 +84,10 @@ class SoftMethod : public ContactMethod {
   std::vector<char> in_contact_;
   std::vector<SoftBody> bodies_;
   std::vector<SoftPoint> points_;
-  std::vector<SoftManifold> manifolds_;
+  std::vector<SoftManifold> manifolds_;  // colour by colour (block_colours.h)
+  std::vector<ColourRole> roles_;  // per body
+  BlockColours colours_;
+  std::vector<ParallelRunner::Stage> stages_;
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
   std::vector<std::array<double, 3>> impulses_;

@@ -35,6 +35,8 @@ class SoftRatioSolve {
   // the step's start give the masses and the inverse inertias of the solve.
   void Prepare(const SubspaceOptions& options, const std::vector<SoftBody>& bodies, std::vector<SoftPoint>& points);
   bool active() const { return !selected_.empty(); }
+  // The selected points (indices into Prepare's `points`), ascending.
+  const std::vector<int>& selected() const { return selected_; }
   // After a pass: the selected points' rows solved exactly for the same
   // targets the pass aimed at (SoftNormalTarget).
   void Solve(const SoftPass& pass, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);

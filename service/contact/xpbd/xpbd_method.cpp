@@ -43,8 +43,8 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   solve.max_push = std::max(params_.max_push_velocity * h, kMassRatioOverlap);
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
-  IntegrateSoftVelocities(world, h, bodies_);
-  IntegrateSoftPositions(h, world, bodies_);
+  IntegrateSoftVelocities(world, h, 0, static_cast<int>(bodies_.size()), bodies_);
+  IntegrateSoftPositions(h, 0, static_cast<int>(bodies_.size()), world, bodies_);
   for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
   BeginXpbdSubstep(bodies_, &points_);
   BeginXpbdPatches(&patches_);

@@ -1,0 +1,96 @@
+// The soft step's sub-steps (soft_method.h, steps 2 to 3) as stages of one
+// ParallelRunner::Stages call: per-body work split over the bodies, and
+// every pass over the contacts colour by colour (block_colours.h), whose
+// blocks share no dynamic body and so run on any thread in any order with
+// the same result; the direct solve of heavy-on-light contacts and the
+// joints are serial stages. One thread runs the same stages in the same
+// order, so the state does not depend on the thread count.
+#include <algorithm>
+#include <limits>
+
+#include "service/contact/soft/soft_method.h"
+
+namespace contactsim {
+namespace {
+
+// Gauss-Seidel passes of the restitution rows: one pass gives a box landing
+// flat all its bounce at the first corner swept (it leaves spinning); the
+// passes share it between the corners that struck
+constexpr int kRestitutionPasses = 8;
+
+// Indices a thread takes at a time: enough work to pay for the atomic
+// counter, small enough that two threads finish a colour together.
+constexpr int kBodyGrain = 128;
+constexpr int kPointGrain = 512;
+constexpr int kSerial = std::numeric_limits<int>::max();  // one thread takes the stage whole
+
+}  // namespace
+
+void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
+  const double h = world.dt / params_.substeps;
+  // the spring must be resolved by the sub-step: at most a quarter of its rate
+  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
+  SetSoftPointSprings(hertz, params_.damping_ratio, h, world, points_);
+  SubspaceOptions direct;
+  direct.mass_ratio = params_.direct_mass_ratio;
+  direct.max_rows = params_.direct_max_rows;
+  ratio_solve_.Prepare(direct, bodies_, points_);
+  ColourManifolds();
+  SoftPass solve;
+  solve.inv_h = 1.0 / h;
+  solve.max_push_velocity = params_.max_push_velocity;
+  SoftPass relax = solve;
+  relax.use_bias = false;
+
+  using Fn = ParallelRunner::StageFn;
+  const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_); };
+  const Fn warm_start = [&](int i, int j) { WarmStartSoftManifolds(manifolds_, i, j, points_, bodies_); };
+  const Fn warm_points = [&](int i, int j) {
+    for (int k = i; k < j; ++k) WarmStartSoftPoint(points_[k], bodies_[points_[k].a], bodies_[points_[k].b]);
+  };
+  const Fn solve_blocks = [&](int i, int j) { SolveSoftManifolds(solve, manifolds_, i, j, points_, bodies_); };
+  const Fn solve_ratio = [&](int, int) { ratio_solve_.Solve(solve, points_, bodies_); };
+  const Fn solve_joints = [&](int, int) { joints_.SolveVelocities(world, h, bodies_); };
+  const Fn integrate_positions = [&](int i, int j) { IntegrateSoftPositions(h, i, j, world, bodies_); };
+  const Fn relax_blocks = [&](int i, int j) { SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_); };
+  const Fn relax_ratio = [&](int, int) { ratio_solve_.Solve(relax, points_, bodies_); };
+  const Fn accumulate = [&](int i, int j) {
+    for (int k = i; k < j; ++k) AccumulateSoftTotals(points_[k]);
+  };
+  const Fn restitute = [&](int i, int j) {
+    RestituteSoftManifolds(params_.restitution_threshold, manifolds_, i, j, points_, bodies_);
+  };
+
+  stages_.clear();
+  const auto add = [&](const Fn& fn, int begin, int end, int grain) {
+    if (end > begin) stages_.push_back({&fn, begin, end, grain});
+  };
+  // a colour's share per thread: the blocks of one colour stay on one
+  // thread from pass to pass
+  const int threads = runner.threads();
+  const auto add_colours = [&](const Fn& fn) {
+    for (int c = 0; c < colours_.colours(); ++c) {
+      const int block_grain = (colours_.starts[c + 1] - colours_.starts[c] + threads - 1) / threads;
+      add(fn, colours_.starts[c], colours_.starts[c + 1], block_grain);
+    }
+    add(fn, colours_.starts.back(), static_cast<int>(manifolds_.size()), kSerial);  // the overflow, in order
+  };
+  const int bodies = static_cast<int>(bodies_.size());
+  const bool joints = !world.joints().empty();
+  for (int sub = 0; sub < params_.substeps; ++sub) {
+    add(integrate_velocities, 0, bodies, kBodyGrain);
+    add(warm_points, 0, static_cast<int>(points_.size()), kSerial);
+    add_colours(solve_blocks);
+    if (ratio_solve_.active()) add(solve_ratio, 0, 1, kSerial);
+    if (joints) add(solve_joints, 0, 1, kSerial);
+    add(integrate_positions, 0, bodies, kBodyGrain);
+    for (int it = 0; it < params_.relax_iterations; ++it) add_colours(relax_blocks);
+    if (ratio_solve_.active() && params_.relax_iterations > 0) add(relax_ratio, 0, 1, kSerial);
+    if (joints) add(solve_joints, 0, 1, kSerial);
+    add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
+  }
+  for (int it = 0; it < kRestitutionPasses; ++it) add_colours(restitute);
+  runner.Stages(stages_);
+}
+
+}  // namespace contactsim
