@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "service/collision/aabb.h"
+#include "service/collision/parallel_runner.h"
 #include "service/physics/status.h"
 
 namespace contactsim {
@@ -25,6 +26,12 @@ class Broadphase {
                          std::vector<BodyPair>* pairs) = 0;
   // Drops caches (call when bodies are added or removed).
   virtual void Reset() {}
+  // Threads FindPairs may use (the detector's; null or one thread: serial).
+  // The pairs are the same for any number.
+  void SetRunner(ParallelRunner* runner) { runner_ = runner; }
+
+ protected:
+  ParallelRunner* runner_ = nullptr;
 };
 
 // "naive" (all pairs, O(n^2)) or "sap" (sweep and prune, O(n log n + k)).

@@ -33,6 +33,7 @@ Status CollisionDetector::SetBroadphase(const std::string& name) {
 
 void CollisionDetector::Detect(const World& world, double margin, double sweep_dt, ContactSet* contacts) {
   ComputeBoxes(world, margin, sweep_dt);
+  broadphase_->SetRunner(runner_.get());
   broadphase_->FindPairs(boxes_, movable_, &pairs_);
   DropJointedPairs(world);
   contacts->clear();

@@ -53,7 +53,15 @@ class SweepAndPrune : public Broadphase {
   void Rebuild(const std::vector<Aabb>& boxes);
   void Repair(const std::vector<Aabb>& boxes);
   void Gather(const std::vector<Aabb>& boxes, const std::vector<bool>& movable);
+  // Appends the pairs of the boxes at sweep positions [begin, end) with the
+  // boxes after them.
+  void Sweep(int begin, int end, std::vector<BodyPair>* pairs) const;
+  // `pairs` of bodies below n in (first, second) order.
+  void SortPairsByBody(int n, std::vector<BodyPair>* pairs);
 
+  std::vector<int> first_counts_;  // SortPairsByBody's scratch
+  std::vector<BodyPair> sorted_;
+  std::vector<std::vector<BodyPair>> worker_pairs_;  // per thread, of the sweep
   int axis_ = 0;
   std::vector<Entry> entries_;  // sorted by (min, index)
   // gathered in sweep order each call

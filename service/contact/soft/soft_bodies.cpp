@@ -1,26 +1,35 @@
 #include "service/contact/soft/soft_bodies.h"
 
 namespace contactsim {
+namespace {
 
-void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std::vector<SoftBody>* bodies) {
-  const auto& src = world.bodies();
-  bodies->resize(src.size());
-  for (size_t i = 0; i < src.size(); ++i) {
-    const RigidBody& b = src[i];
-    SoftBody& s = (*bodies)[i];
-    s.v = b.LinearVelocity();
-    s.w = b.AngularVelocity();
-    s.inv_mass = b.IsDynamic() ? b.inv_mass : 0.0;
-    s.inv_inertia = b.IsDynamic() ? b.InvInertiaWorld() : Mat3::Zero();
-    s.x0 = b.x;
-    s.q0 = b.q;
-    s.R0t = b.q.toRotationMatrix().transpose();
-    const Mat3& I = b.inertia_body;
-    s.isotropic = I.isDiagonal() && I(0, 0) == I(1, 1) && I(1, 1) == I(2, 2);
-    s.dp.setZero();
-    s.dR.setIdentity();
-    s.substepped = substepped[i] != 0 && b.motion != MotionType::kStatic;
-  }
+// bodies a thread loads or stores at a time
+constexpr int kBodyGrain = 256;
+
+}  // namespace
+
+void LoadSoftBodies(const World& world, const std::vector<char>& substepped, ParallelRunner& runner,
+                    std::vector<SoftBody>* bodies) {
+  bodies->resize(world.bodies().size());
+  runner.For(static_cast<int>(bodies->size()), kBodyGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) LoadSoftBody(world.bodies()[i], substepped[i] != 0, &(*bodies)[i]);
+  });
+}
+
+void LoadSoftBody(const RigidBody& b, bool substepped, SoftBody* soft) {
+  SoftBody& s = *soft;
+  s.v = b.LinearVelocity();
+  s.w = b.AngularVelocity();
+  s.inv_mass = b.IsDynamic() ? b.inv_mass : 0.0;
+  s.inv_inertia = b.IsDynamic() ? b.InvInertiaWorld() : Mat3::Zero();
+  s.x0 = b.x;
+  s.q0 = b.q;
+  s.R0t = b.q.toRotationMatrix().transpose();
+  const Mat3& I = b.inertia_body;
+  s.isotropic = I.isDiagonal() && I(0, 0) == I(1, 1) && I(1, 1) == I(2, 2);
+  s.dp.setZero();
+  s.dR.setIdentity();
+  s.substepped = substepped && b.motion != MotionType::kStatic;
 }
 
 void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies) {
@@ -57,15 +66,17 @@ void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vec
   }
 }
 
-void StoreSoftBodies(const std::vector<SoftBody>& bodies, World& world) {
+void StoreSoftBodies(const std::vector<SoftBody>& bodies, ParallelRunner& runner, World& world) {
   auto& dst = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    const SoftBody& s = bodies[i];
-    if (!s.substepped || s.inv_mass == 0.0) continue;
-    RigidBody& b = dst[i];
-    b.P = b.mass * s.v;
-    b.L = b.InertiaWorld() * s.w;
-  }
+  runner.For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      const SoftBody& s = bodies[i];
+      if (!s.substepped || s.inv_mass == 0.0) continue;
+      RigidBody& b = dst[i];
+      b.P = b.mass * s.v;
+      b.L = b.InertiaWorld() * s.w;
+    }
+  });
 }
 
 }  // namespace contactsim

@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "service/collision/parallel_runner.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -32,8 +33,11 @@ struct SoftBody {
 };
 
 // One SoftBody per world body; `substepped[i]` marks the bodies that touch
-// something this step.
-void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std::vector<SoftBody>* bodies);
+// something this step; on the world's threads (each body is its own).
+void LoadSoftBodies(const World& world, const std::vector<char>& substepped, ParallelRunner& runner,
+                    std::vector<SoftBody>* bodies);
+// One of them.
+void LoadSoftBody(const RigidBody& body, bool substepped, SoftBody* soft);
 
 // v += h F / m and w += h I^-1 tau for the substepped dynamic bodies among
 // [begin, end).
@@ -45,7 +49,8 @@ void IntegrateSoftVelocities(const World& world, double h, int begin, int end, s
 // gyroscopic term), so w follows the new inertia.
 void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies);
 
-// Writes P = m v and L = I w of the substepped dynamic bodies back.
-void StoreSoftBodies(const std::vector<SoftBody>& bodies, World& world);
+// Writes P = m v and L = I w of the substepped dynamic bodies back (on the
+// world's threads).
+void StoreSoftBodies(const std::vector<SoftBody>& bodies, ParallelRunner& runner, World& world);
 
 }  // namespace contactsim

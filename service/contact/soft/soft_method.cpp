@@ -11,6 +11,9 @@
 namespace contactsim {
 namespace {
 
+// bodies a thread moves ballistically at a time
+constexpr int kBallisticGrain = 256;
+
 }  // namespace
 
 Status SoftMethod::SetParams(const ParamMap& params) {
@@ -28,7 +31,7 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   in_contact_.assign(bodies.size(), 0);
   for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
   SoftJoints::MarkJointed(world, &in_contact_);
-  LoadSoftBodies(world, in_contact_, &bodies_);
+  LoadSoftBodies(world, in_contact_, runner, &bodies_);
   PrepareSoftPoints(contacts_, world, bodies_, runner, &points_);
   BuildSoftManifolds(points_, runner, &manifolds_);
   OrderBlocksFromTheTop(world, points_, &manifolds_);
@@ -60,11 +63,13 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   DetectAhead(world, detector, params_.margin, world.dt, &contacts_);
   Prepare(world, detector.runner());
   auto& bodies = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
-  }
+  detector.runner().For(static_cast<int>(bodies.size()), kBallisticGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
+    }
+  });
   RunSubsteps(world, detector.runner());
-  StoreSoftBodies(bodies_, world);
+  StoreSoftBodies(bodies_, detector.runner(), world);
   if (!world.joints().empty()) ProjectJointPositions(world);
 
   impulses_.resize(points_.size());

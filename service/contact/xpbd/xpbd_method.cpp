@@ -98,7 +98,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   substepped_.assign(bodies.size(), 0);
   for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
   SoftJoints::MarkJointed(world, &substepped_);
-  LoadSoftBodies(world, substepped_, &bodies_);
+  LoadSoftBodies(world, substepped_, detector.runner(), &bodies_);
   PrepareXpbdPoints(contacts_, world, bodies_, &points_, &blocks_);
   OrderBlocksFromTheTop(world, points_, &blocks_);
   PrepareXpbdPatches(blocks_, points_, bodies_, &patches_);
@@ -112,7 +112,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   const int substeps = SubstepsFor(world);
   const double h = world.dt / substeps;
   for (int sub = 0; sub < substeps; ++sub) Substep(world, h, project_joints);
-  StoreSoftBodies(bodies_, world);
+  StoreSoftBodies(bodies_, detector.runner(), world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();
   stats.iterations = substeps * params_.iterations;
