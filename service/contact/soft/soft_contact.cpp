@@ -77,10 +77,40 @@ void SetSoftPointSprings(double hertz, double damping_ratio, double h, const Wor
   }
 }
 
-void WarmStartSoftPoint(const SoftPoint& p, SoftBody& A, SoftBody& B) {
-  SoftPoint::Push(p.lambda_n, p.n, p.ia_n, p.ib_n, A, B);
-  SoftPoint::Push(p.lambda_t1, p.t1, p.ia_t1, p.ib_t1, A, B);
-  SoftPoint::Push(p.lambda_t2, p.t2, p.ia_t2, p.ib_t2, A, B);
+void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies) {
+  start.assign(bodies.size() + 1, 0);
+  for (const SoftPoint& p : points) {
+    for (int i : {p.a, p.b}) start[i + 1] += bodies[i].inv_mass > 0.0 ? 1 : 0;
+  }
+  for (size_t i = 0; i < bodies.size(); ++i) start[i + 1] += start[i];
+  entries.resize(start.back());
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (int k = 0; k < static_cast<int>(points.size()); ++k) {
+    if (bodies[points[k].a].inv_mass > 0.0) entries[next[points[k].a]++] = 2 * k;
+    if (bodies[points[k].b].inv_mass > 0.0) entries[next[points[k].b]++] = 2 * k + 1;
+  }
+}
+
+void WarmStartSoftBody(int i, const SoftPointsOfBodies& list, const std::vector<SoftPoint>& points,
+                       std::vector<SoftBody>& bodies) {
+  SoftBody& body = bodies[i];
+  for (int e = list.start[i]; e < list.start[i + 1]; ++e) {
+    const SoftPoint& p = points[list.entries[e] / 2];
+    const bool is_b = (list.entries[e] & 1) != 0;
+    // the terms and their order of SoftPoint::Push: n, t1, t2
+    const double lambdas[3] = {p.lambda_n, p.lambda_t1, p.lambda_t2};
+    const Vec3* dirs[3] = {&p.n, &p.t1, &p.t2};
+    const Vec3* responses[3] = {is_b ? &p.ib_n : &p.ia_n, is_b ? &p.ib_t1 : &p.ia_t1, is_b ? &p.ib_t2 : &p.ia_t2};
+    for (int d = 0; d < 3; ++d) {
+      if (is_b) {
+        body.v += (body.inv_mass * lambdas[d]) * *dirs[d];
+        body.w += lambdas[d] * *responses[d];
+      } else {
+        body.v -= (body.inv_mass * lambdas[d]) * *dirs[d];
+        body.w -= lambdas[d] * *responses[d];
+      }
+    }
+  }
 }
 
 SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, double s) {

@@ -25,9 +25,6 @@ void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& ru
 // the solve: each point's friction, then the normal rows;
 void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds, int begin, int end,
                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
-// the warm start: each point's accumulated impulses applied;
-void WarmStartSoftManifolds(const std::vector<SoftManifold>& manifolds, int begin, int end,
-                            const std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
 // restitution (soft_contact.h, RestituteSoftPoint).
 void RestituteSoftManifolds(double threshold, const std::vector<SoftManifold>& manifolds, int begin, int end,
                             std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);

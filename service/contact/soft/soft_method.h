@@ -88,6 +88,7 @@ class SoftMethod : public ContactMethod {
   std::vector<ColourRole> roles_;  // per body
   BlockColours colours_;
   std::vector<ParallelRunner::Stage> stages_;
+  SoftPointsOfBodies points_of_bodies_;
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
   std::vector<std::array<double, 3>> impulses_;

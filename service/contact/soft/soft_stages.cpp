@@ -44,9 +44,9 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
 
   using Fn = ParallelRunner::StageFn;
   const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_); };
-  const Fn warm_start = [&](int i, int j) { WarmStartSoftManifolds(manifolds_, i, j, points_, bodies_); };
-  const Fn warm_points = [&](int i, int j) {
-    for (int k = i; k < j; ++k) WarmStartSoftPoint(points_[k], bodies_[points_[k].a], bodies_[points_[k].b]);
+  points_of_bodies_.Build(points_, bodies_);
+  const Fn warm_start = [&](int i, int j) {
+    for (int k = i; k < j; ++k) WarmStartSoftBody(k, points_of_bodies_, points_, bodies_);
   };
   const Fn solve_blocks = [&](int i, int j) { SolveSoftManifolds(solve, manifolds_, i, j, points_, bodies_); };
   const Fn solve_ratio = [&](int, int) { ratio_solve_.Solve(solve, points_, bodies_); };
@@ -79,7 +79,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const bool joints = !world.joints().empty();
   for (int sub = 0; sub < params_.substeps; ++sub) {
     add(integrate_velocities, 0, bodies, kBodyGrain);
-    add(warm_points, 0, static_cast<int>(points_.size()), kSerial);
+    add(warm_start, 0, bodies, kBodyGrain);
     add_colours(solve_blocks);
     if (ratio_solve_.active()) add(solve_ratio, 0, 1, kSerial);
     if (joints) add(solve_joints, 0, 1, kSerial);
