@@ -8,17 +8,29 @@
 #include "service/collision/narrowphase.h"
 
 namespace contactsim {
+namespace {
+
+// pairs a thread bounds at a time
+constexpr int kPairGrain = 512;
+
+}  // namespace
 
 void DetectAhead(const World& world, CollisionDetector& detector, double margin, double dt, ContactSet* contacts) {
   detector.Detect(world, margin, dt, contacts);
   const auto& bodies = world.bodies();
+  const std::vector<BodyPair>& pairs = detector.pairs();
+  std::vector<double> pair_reach(pairs.size());
+  detector.runner().For(static_cast<int>(pairs.size()), kPairGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      pair_reach[k] = ClosingSpeedBound(bodies[pairs[k].first], bodies[pairs[k].second], dt) * dt;
+    }
+  });
   std::set<BodyPair> fast;
   std::vector<double> reach;
-  for (const BodyPair& p : detector.pairs()) {
-    const double r = ClosingSpeedBound(bodies[p.first], bodies[p.second], dt) * dt;
-    if (r <= margin) continue;
-    fast.insert(p);
-    reach.push_back(r);
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (pair_reach[k] <= margin) continue;
+    fast.insert(pairs[k]);
+    reach.push_back(pair_reach[k]);
   }
   if (fast.empty()) return;
   ContactSet kept;

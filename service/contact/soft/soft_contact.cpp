@@ -94,21 +94,23 @@ void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::
 void WarmStartSoftBody(int i, const SoftPointsOfBodies& list, const std::vector<SoftPoint>& points,
                        std::vector<SoftBody>& bodies) {
   SoftBody& body = bodies[i];
+  // the terms of SoftPoint::Push in its order, n, t1, t2, with B's sign
   for (int e = list.start[i]; e < list.start[i + 1]; ++e) {
-    const SoftPoint& p = points[list.entries[e] / 2];
-    const bool is_b = (list.entries[e] & 1) != 0;
-    // the terms and their order of SoftPoint::Push: n, t1, t2
-    const double lambdas[3] = {p.lambda_n, p.lambda_t1, p.lambda_t2};
-    const Vec3* dirs[3] = {&p.n, &p.t1, &p.t2};
-    const Vec3* responses[3] = {is_b ? &p.ib_n : &p.ia_n, is_b ? &p.ib_t1 : &p.ia_t1, is_b ? &p.ib_t2 : &p.ia_t2};
-    for (int d = 0; d < 3; ++d) {
-      if (is_b) {
-        body.v += (body.inv_mass * lambdas[d]) * *dirs[d];
-        body.w += lambdas[d] * *responses[d];
-      } else {
-        body.v -= (body.inv_mass * lambdas[d]) * *dirs[d];
-        body.w -= lambdas[d] * *responses[d];
-      }
+    const SoftPoint& p = points[list.entries[e] >> 1];
+    if ((list.entries[e] & 1) != 0) {
+      body.v += (body.inv_mass * p.lambda_n) * p.n;
+      body.w += p.lambda_n * p.ib_n;
+      body.v += (body.inv_mass * p.lambda_t1) * p.t1;
+      body.w += p.lambda_t1 * p.ib_t1;
+      body.v += (body.inv_mass * p.lambda_t2) * p.t2;
+      body.w += p.lambda_t2 * p.ib_t2;
+    } else {
+      body.v -= (body.inv_mass * p.lambda_n) * p.n;
+      body.w -= p.lambda_n * p.ia_n;
+      body.v -= (body.inv_mass * p.lambda_t1) * p.t1;
+      body.w -= p.lambda_t1 * p.ia_t1;
+      body.v -= (body.inv_mass * p.lambda_t2) * p.t2;
+      body.w -= p.lambda_t2 * p.ia_t2;
     }
   }
 }
