@@ -98,11 +98,11 @@ void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, co
                            const NormalBlock& block, XpbdSubsetCache& cache, std::vector<XpbdPoint>& points);
 
 // K^-1 of the block's points idx[0..n) (in block order; K^+ for a face's
-// four), 1 / K for one point, in the top left of *inv; false when no block
-// applies (three points on a line).
-bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                       const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache,
-                       Eigen::Matrix4d* inv);
+// four), 1 / K for one point, in the top left of the matrix pointed to (the
+// block's or the cache's own, not copied); null when no block applies
+// (three points on a line).
+const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                                         const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache);
 
 // Moves a dynamic body by dx and turns it by the small rotation vector theta
 // (first order, renormalised); others stay.

@@ -155,7 +155,8 @@ void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, 
   Vec3 dl = -(patch.inv_k * Vec3(p0.t1.dot(v), p0.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0));
   // Coulomb's disk for the patch's force, its torque within mu N r
   const double limit = p0.friction * pushed / h;
-  const double along = std::hypot(dl[0], dl[1]);
+  // impulses of the patch's bodies: no overflow for hypot to guard against
+  const double along = std::sqrt(dl[0] * dl[0] + dl[1] * dl[1]);
   if (along > limit) {
     dl[0] *= limit / along;
     dl[1] *= limit / along;

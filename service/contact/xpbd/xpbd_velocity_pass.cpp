@@ -39,14 +39,13 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCac
     if (points[m.first + i].lambda_n > 0.0) idx[pushed++] = i;
   }
   if (pushed == 0) return;
-  Eigen::Matrix4d inv;
-  if (XpbdSubsetInverse(points, all, m, idx, pushed, cache, &inv)) {
+  if (const Eigen::Matrix4d* inv = XpbdSubsetInverse(points, all, m, idx, pushed, cache)) {
     Eigen::Vector4d change = Eigen::Vector4d::Zero();
     for (int k = 0; k < pushed; ++k) {
       const XpbdPoint& p = points[m.first + idx[k]];
       change[k] = TargetNormalVelocity(p, threshold) - NormalVelocity(p, A, B);
     }
-    const Eigen::Vector4d dl = inv * change;
+    const Eigen::Vector4d dl = *inv * change;
     for (int k = 0; k < pushed; ++k) {
       XpbdPoint& p = points[m.first + idx[k]];
       PushNormal(dl[k], p, A, B);
