@@ -13,16 +13,30 @@ double CoreRadius(const Shape& shape) {
   return shape.type == ShapeType::kSphere || shape.type == ShapeType::kCapsule ? shape.radius : 0.0;
 }
 
-bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, NormalBlock* m) {
-  const XpbdPoint& p0 = points[m->first];
+// K^-1 of the points idx[0..n) of block m (K^+ for a face's four); the
+// tangents are the first point's (PerpendicularBasis depends on n alone).
+bool InvertPoints(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
+                  const int* idx, int n, Eigen::Matrix4d* inv) {
+  const XpbdPoint& p0 = points[m.first + idx[0]];
   NormalBlockPoint block[kMaxNormalBlock];
-  for (int i = 0; i < m->count; ++i) {
-    const XpbdPoint& p = points[m->first + i];
-    if (p.n.dot(p0.n) < 1.0 - 1e-9) return false;
-    block[i] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
+  for (int k = 0; k < n; ++k) {
+    const XpbdPoint& p = points[m.first + idx[k]];
+    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
   }
   const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  return k_lin > 0.0 && InvertNormalBlock(block, m->count, k_lin, p0.t1, p0.t2, &m->inv_k);
+  Vec3 t1, t2;
+  PerpendicularBasis(p0.n, &t1, &t2);
+  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, t1, t2, inv);
+}
+
+bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, NormalBlock* m) {
+  const XpbdPoint& p0 = points[m->first];
+  int idx[kMaxNormalBlock];
+  for (int i = 0; i < m->count; ++i) {
+    if (points[m->first + i].n.dot(p0.n) < 1.0 - 1e-9) return false;
+    idx[i] = i;
+  }
+  return InvertPoints(points, bodies, *m, idx, m->count, &m->inv_k);
 }
 
 // Points this close to touching join a block's active set: a resting face's
@@ -68,13 +82,7 @@ bool InvertSubset(const std::vector<XpbdPoint>& points, const std::vector<SoftBo
     (*inv)(0, 0) = 1.0 / p0.w_n;
     return true;
   }
-  NormalBlockPoint block[kMaxNormalBlock];
-  for (int k = 0; k < n; ++k) {
-    const XpbdPoint& p = points[m.first + idx[k]];
-    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
-  }
-  const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, p0.t1, p0.t2, inv);
+  return InvertPoints(points, bodies, m, idx, n, inv);
 }
 
 // A block's non-penetration at once (rigid rows) over its active points,
@@ -158,9 +166,11 @@ void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const 
 }
 
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<NormalBlock>* blocks) {
+                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       std::vector<NormalBlock>* blocks) {
   const auto& all = world.bodies();
   points->resize(contacts.size());
+  frames->resize(contacts.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
     const RigidBody& A = all[c.a];
@@ -168,10 +178,11 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
     const SoftBody& sa = bodies[c.a];
     const SoftBody& sb = bodies[c.b];
     XpbdPoint p;
+    XpbdPointFrame f;
     p.a = c.a;
     p.b = c.b;
     p.n = c.normal;
-    PerpendicularBasis(p.n, &p.t1, &p.t2);
+    PerpendicularBasis(p.n, &f.t1, &f.t2);
     p.radius_a = CoreRadius(A.shape);
     p.radius_b = CoreRadius(B.shape);
     // the surface points lie depth/2 either side of the midpoint (conventions.md)
@@ -179,18 +190,19 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
     const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
     p.anchor_a = A.q.conjugate() * (pa - p.radius_a * p.n - A.x);
     p.anchor_b = B.q.conjugate() * (pb + p.radius_b * p.n - B.x);
-    p.material_a = A.q.conjugate() * (pa - A.x);
-    p.material_b = B.q.conjugate() * (pb - B.x);
+    f.material_a = A.q.conjugate() * (pa - A.x);
+    f.material_b = B.q.conjugate() * (pb - B.x);
     p.ra = c.point - A.x;
-    p.rb = c.point - B.x;
+    f.rb = c.point - B.x;
     p.ra_n = p.ra.cross(p.n);
-    p.rb_n = p.rb.cross(p.n);
+    p.rb_n = f.rb.cross(p.n);
     p.ia_n = sa.inv_inertia * p.ra_n;
     p.ib_n = sb.inv_inertia * p.rb_n;
     p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
-    p.friction = CombineFriction(A.material, B.material);
+    f.friction = CombineFriction(A.material, B.material);
     p.restitution = CombineRestitution(A.material, B.material);
     (*points)[k] = p;
+    (*frames)[k] = f;
   }
   GroupNormalBlocks(*points, blocks);
   for (NormalBlock& m : *blocks) m.block = m.count >= 2 && InvertBlock(*points, bodies, &m);
@@ -210,7 +222,6 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3
 void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
   for (XpbdPoint& p : *points) {
     p.lambda_n = 0.0;
-    p.lambda_t.setZero();
     const SoftBody& A = bodies[p.a];
     const SoftBody& B = bodies[p.b];
     p.vn_before = p.n.dot(B.v - A.v) + p.rb_n.dot(B.w) - p.ra_n.dot(A.w);

@@ -44,18 +44,25 @@ struct XpbdPoint {
   int a = -1, b = -1;             // body indices
   Vec3 anchor_a, anchor_b;        // m, each body's anchor in its own frame
   double radius_a = 0.0, radius_b = 0.0;  // m, the shapes' rounding
-  Vec3 material_a, material_b;    // m, the surface points in the bodies' frames
-  Vec3 n, t1, t2;                 // unit, world, n from A to B
-  Vec3 ra, rb;                    // m, contact point minus centres, step start
+  Vec3 n;                         // unit, world, from A to B
+  Vec3 ra;                        // m, contact point minus A's centre, step start
   Vec3 ra_n, rb_n, ia_n, ib_n;    // r x n and I^-1 (r x n), step start
   double w_n = 0.0;               // 1/kg, K along n
-  double friction = 0.0, restitution = 0.0;
+  double restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier
-  Vec3 lambda_t = Vec3::Zero();   // kg m, static friction multiplier (world)
   double vn_before = 0.0;         // m/s, v_n before the position solve
   // per step
   Vec3 impulse = Vec3::Zero();    // N s on B (world) over the step
+};
+
+// What the step's preparation of the friction patches needs of a point
+// besides its rows, kept apart so that the sub-steps sweep only the rows.
+struct XpbdPointFrame {
+  Vec3 t1, t2;                    // unit, world, (t1, t2, n) right-handed
+  Vec3 rb;                        // m, contact point minus B's centre, step start
+  Vec3 material_a, material_b;    // m, the surface points in the bodies' frames
+  double friction = 0.0;
 };
 
 // A body's pose after a sub-step's prediction.
@@ -64,10 +71,12 @@ struct XpbdPose {
   Quat q;
 };
 
-// The points of `contacts` at the step's start; `blocks` groups each body
-// pair's points and inverts their K where a block solve applies.
+// The points of `contacts` at the step's start and their frames (parallel);
+// `blocks` groups each body pair's points and inverts their K where a block
+// solve applies.
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<NormalBlock>* blocks);
+                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       std::vector<NormalBlock>* blocks);
 
 // The point's separation at the world's current poses (m, < 0 penetrating)
 // and, if asked, the surface points of A and B.

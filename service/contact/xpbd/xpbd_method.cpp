@@ -99,9 +99,9 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, &bodies_);
-  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &blocks_);
+  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_);
   OrderBlocksFromTheTop(world, points_, &blocks_);
-  PrepareXpbdPatches(blocks_, points_, bodies_, &patches_);
+  PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);

@@ -75,6 +75,7 @@ class XpbdMethod : public ContactMethod {
   std::vector<char> substepped_;
   std::vector<SoftBody> bodies_;
   std::vector<XpbdPoint> points_;         // parallel to contacts_
+  std::vector<XpbdPointFrame> frames_;    // parallel to contacts_
   std::vector<NormalBlock> blocks_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
   std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_
