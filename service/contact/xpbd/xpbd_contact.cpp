@@ -219,13 +219,8 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3
   return p.n.dot(cb - ca) - p.radius_a - p.radius_b;
 }
 
-void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
-  for (XpbdPoint& p : *points) {
-    p.lambda_n = 0.0;
-    const SoftBody& A = bodies[p.a];
-    const SoftBody& B = bodies[p.b];
-    p.vn_before = p.n.dot(B.v - A.v) + p.rb_n.dot(B.w) - p.ra_n.dot(A.w);
-  }
+void BeginXpbdSubstep(std::vector<XpbdPoint>* points) {
+  for (XpbdPoint& p : *points) p.lambda_n = 0.0;
 }
 
 void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,

@@ -51,7 +51,6 @@ struct XpbdPoint {
   double restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier
-  double vn_before = 0.0;         // m/s, v_n before the position solve
   // per step
   Vec3 impulse = Vec3::Zero();    // N s on B (world) over the step
 };
@@ -65,10 +64,12 @@ struct XpbdPointFrame {
   double friction = 0.0;
 };
 
-// A body's pose after a sub-step's prediction.
+// A body's pose and velocities after a sub-step's prediction (the velocity
+// pass's v~, read only at the points that pushed).
 struct XpbdPose {
   Vec3 x;
   Quat q;
+  Vec3 v, w;
 };
 
 // The points of `contacts` at the step's start and their frames (parallel);
@@ -82,8 +83,13 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
 // and, if asked, the surface points of A and B.
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);
 
-// Zeroes the sub-step's multipliers and records v~_n (after the prediction).
-void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
+// Zeroes the sub-step's multipliers.
+void BeginXpbdSubstep(std::vector<XpbdPoint>* points);
+
+// The point's normal velocity v_n = n . (v_B - v_A) + (r_B x n) . w_B - (r_A x n) . w_A.
+inline double XpbdNormalVelocity(const XpbdPoint& p, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {
+  return p.n.dot(vb - va) + p.rb_n.dot(wb) - p.ra_n.dot(wa);
+}
 
 // The inverses of a block's subsets met in this step (K is the step's start
 // one, so a subset's inverse holds for the whole step): the last two, by

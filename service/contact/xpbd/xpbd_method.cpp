@@ -45,8 +45,8 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   IntegrateSoftVelocities(world, h, bodies_);
   IntegrateSoftPositions(h, world, bodies_);
-  for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
-  BeginXpbdSubstep(bodies_, &points_);
+  for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q, bodies_[i].v, bodies_[i].w};
+  BeginXpbdSubstep(&points_);
   BeginXpbdPatches(&patches_);
   joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
   for (int it = 0; it < params_.iterations; ++it) {
@@ -68,7 +68,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
     s.v += (b.x - predicted_[i].x) / h;
     s.w += (2.0 / h) * dq.vec();
   }
-  SolveXpbdContactVelocities(h, threshold, blocks_, patches_, subsets_, bodies_, &points_);
+  SolveXpbdContactVelocities(h, threshold, blocks_, patches_, subsets_, predicted_, bodies_, &points_);
 }
 
 void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {
