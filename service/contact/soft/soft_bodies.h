@@ -39,10 +39,11 @@ void LoadSoftBodies(const World& world, const std::vector<char>& substepped, std
 void IntegrateSoftVelocities(const World& world, double h, std::vector<SoftBody>& bodies);
 
 // Moves the substepped bodies of the world by h at their velocities and
-// brings dp, dR and the world inverse inertia up to date. A dynamic body's
-// angular momentum I w is kept across the turn (torque-free motion; the
-// gyroscopic term), so w follows the new inertia.
-void IntegrateSoftPositions(double h, World& world, std::vector<SoftBody>& bodies);
+// brings the world inverse inertia and, with `track_motion`, dp and dR up
+// to date (xpbd reads the poses themselves and leaves them). A dynamic
+// body's angular momentum I w is kept across the turn (torque-free motion;
+// the gyroscopic term), so w follows the new inertia.
+void IntegrateSoftPositions(double h, World& world, std::vector<SoftBody>& bodies, bool track_motion = true);
 
 // Writes P = m v and L = I w of the substepped dynamic bodies back.
 void StoreSoftBodies(const std::vector<SoftBody>& bodies, World& world);

@@ -44,7 +44,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   IntegrateSoftVelocities(world, h, bodies_);
-  IntegrateSoftPositions(h, world, bodies_);
+  IntegrateSoftPositions(h, world, bodies_, /*track_motion=*/false);
   for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q, bodies_[i].v, bodies_[i].w};
   BeginXpbdSubstep(&points_);
   BeginXpbdPatches(&patches_);

@@ -52,13 +52,23 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCac
     if (points[m.first + i].lambda_n > 0.0) idx[pushed++] = i;
   }
   if (pushed == 0) return;
-  if (const Eigen::Matrix4d* inv = XpbdSubsetInverse(points, all, m, idx, pushed, cache)) {
+  const Eigen::Matrix4d* inv = nullptr;
+  const XpbdPoint& p0 = points[m.first];
+  // a lone point's K^-1 is 1 / w_n: the same number as through the cache
+  // and the 4 x 4 product (whose other terms are zeros), at a fraction
+  const bool lone = m.count == 1 && p0.w_n > 0.0;
+  if (lone || (inv = XpbdSubsetInverse(points, all, m, idx, pushed, cache)) != nullptr) {
     Eigen::Vector4d change = Eigen::Vector4d::Zero();
     for (int k = 0; k < pushed; ++k) {
       const XpbdPoint& p = points[m.first + idx[k]];
       change[k] = TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B);
     }
-    const Eigen::Vector4d dl = *inv * change;
+    Eigen::Vector4d dl = Eigen::Vector4d::Zero();
+    if (lone) {
+      dl[0] = (1.0 / p0.w_n) * change[0];
+    } else {
+      dl.noalias() = *inv * change;
+    }
     Vec3 J = Vec3::Zero(), wa = Vec3::Zero(), wb = Vec3::Zero();
     for (int k = 0; k < pushed; ++k) {
       XpbdPoint& p = points[m.first + idx[k]];
