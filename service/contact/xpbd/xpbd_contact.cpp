@@ -208,6 +208,26 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
   for (NormalBlock& m : *blocks) m.block = m.count >= 2 && InvertBlock(*points, bodies, &m);
 }
 
+void GatherXpbdPoints(std::vector<NormalBlock>* blocks, std::vector<XpbdPoint>* points,
+                      std::vector<XpbdPointFrame>* frames, std::vector<int>* point_of,
+                      std::vector<XpbdPoint>* scratch_points, std::vector<XpbdPointFrame>* scratch_frames) {
+  scratch_points->resize(points->size());
+  scratch_frames->resize(frames->size());
+  point_of->resize(points->size());
+  int next = 0;
+  for (NormalBlock& m : *blocks) {
+    for (int i = 0; i < m.count; ++i) {
+      (*scratch_points)[next + i] = (*points)[m.first + i];
+      (*scratch_frames)[next + i] = (*frames)[m.first + i];
+      (*point_of)[m.first + i] = next + i;
+    }
+    m.first = next;
+    next += m.count;
+  }
+  points->swap(*scratch_points);
+  frames->swap(*scratch_frames);
+}
+
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3* pb_out) {
   const RigidBody& A = world.bodies()[p.a];
   const RigidBody& B = world.bodies()[p.b];

@@ -79,6 +79,15 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
                        std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
                        std::vector<NormalBlock>* blocks);
 
+// Stores the points and their frames in the blocks' (sweep) order, so that
+// the sub-steps read them front to back rather than in the detector's
+// order; point_of[k] is where point k went. Each block keeps its points in
+// their order, so the solve is the same. `scratch_*` keep their capacity
+// from step to step.
+void GatherXpbdPoints(std::vector<NormalBlock>* blocks, std::vector<XpbdPoint>* points,
+                      std::vector<XpbdPointFrame>* frames, std::vector<int>* point_of,
+                      std::vector<XpbdPoint>* scratch_points, std::vector<XpbdPointFrame>* scratch_frames);
+
 // The point's separation at the world's current poses (m, < 0 penetrating)
 // and, if asked, the surface points of A and B.
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);

@@ -74,8 +74,8 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
 void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {
   // a point is reported while it touches or carried load in the step
   const double dt = world.dt;
-  for (size_t k = 0; k < points_.size(); ++k) {
-    const XpbdPoint& p = points_[k];
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const XpbdPoint& p = points_[point_of_[k]];
     Vec3 pa, pb;
     const double depth = -XpbdSeparation(p, world, &pa, &pb);
     if (depth <= 0.0 && p.impulse.isZero(0.0)) continue;
@@ -101,6 +101,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   LoadSoftBodies(world, substepped_, &bodies_);
   PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_);
   OrderBlocksFromTheTop(world, points_, &blocks_);
+  GatherXpbdPoints(&blocks_, &points_, &frames_, &point_of_, &scratch_points_, &scratch_frames_);
   PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   for (size_t i = 0; i < bodies.size(); ++i) {
