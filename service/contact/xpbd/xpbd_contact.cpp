@@ -162,7 +162,12 @@ const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points, c
 void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta) {
   if (s.inv_mass == 0.0) return;
   body.x += dx;
-  Turn(body.q, theta);
+  // A push through a round body's centre turns it by round-off alone (r x n
+  // of a lever arm along n, ~1e-20 rad): below 1e-18 rad the turn moves no
+  // part of q by more than its renormalisation's own rounding (1.1e-16), so
+  // the sqrt and divisions of Turn are skipped.
+  constexpr double kRoundOffTurn = 1e-18;  // rad
+  if (theta.squaredNorm() >= kRoundOffTurn * kRoundOffTurn) Turn(body.q, theta);
 }
 
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
