@@ -29,14 +29,16 @@ bool InvertPoints(const std::vector<XpbdPoint>& points, const std::vector<SoftBo
   return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, t1, t2, inv);
 }
 
-bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, NormalBlock* m) {
-  const XpbdPoint& p0 = points[m->first];
+// K^-1 of all of a block's points sharing one normal (K^+ for a face's four).
+bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
+                 Eigen::Matrix4d* inv) {
+  const XpbdPoint& p0 = points[m.first];
   int idx[kMaxNormalBlock];
-  for (int i = 0; i < m->count; ++i) {
-    if (points[m->first + i].n.dot(p0.n) < 1.0 - 1e-9) return false;
+  for (int i = 0; i < m.count; ++i) {
+    if (points[m.first + i].n.dot(p0.n) < 1.0 - 1e-9) return false;
     idx[i] = i;
   }
-  return InvertPoints(points, bodies, *m, idx, m->count, &m->inv_k);
+  return InvertPoints(points, bodies, m, idx, m.count, inv);
 }
 
 // Points this close to touching join a block's active set: a resting face's
@@ -146,7 +148,12 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
 
 const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
                                          const NormalBlock& m, const int* idx, int n, XpbdSubsetCache& cache) {
-  if (n == m.count && m.block) return &m.inv_k;
+  if (n == m.count && m.count >= 2) {
+    // the whole block's, inverted when a sub-step first needs it (K is the
+    // step start's): a block that never touches is never inverted
+    if (cache.full < 0) cache.full = InvertBlock(points, bodies, m, &cache.full_inv) ? 1 : 0;
+    if (cache.full == 1) return &cache.full_inv;
+  }
   int mask = 0;
   for (int k = 0; k < n; ++k) mask |= 1 << idx[k];
   for (int c = 0; c < 2; ++c) {
@@ -210,7 +217,6 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
     (*frames)[k] = f;
   }
   GroupNormalBlocks(*points, blocks);
-  for (NormalBlock& m : *blocks) m.block = m.count >= 2 && InvertBlock(*points, bodies, &m);
 }
 
 void GatherXpbdPoints(std::vector<NormalBlock>* blocks, std::vector<XpbdPoint>* points,

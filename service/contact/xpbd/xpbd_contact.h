@@ -73,8 +73,8 @@ struct XpbdPose {
 };
 
 // The points of `contacts` at the step's start and their frames (parallel);
-// `blocks` groups each body pair's points and inverts their K where a block
-// solve applies.
+// `blocks` groups each body pair's points (their K is inverted when a
+// sub-step first needs it, XpbdSubsetInverse).
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
                        std::vector<NormalBlock>* blocks);
@@ -100,10 +100,12 @@ inline double XpbdNormalVelocity(const XpbdPoint& p, const Vec3& va, const Vec3&
   return p.n.dot(vb - va) + p.rb_n.dot(wb) - p.ra_n.dot(wa);
 }
 
-// The inverses of a block's subsets met in this step (K is the step's start
-// one, so a subset's inverse holds for the whole step): the last two, by
-// the subset's bit mask.
+// The inverses of a block's K met in this step (K is the step's start one,
+// so an inverse holds for the whole step): the whole block's, and the last
+// two subsets', by the subset's bit mask.
 struct XpbdSubsetCache {
+  int full = -1;  // the whole block: -1 not inverted yet, 0 no block applies, 1 in full_inv
+  Eigen::Matrix4d full_inv;
   int mask[2] = {-1, -1};
   bool ok[2] = {false, false};
   Eigen::Matrix4d inv[2];
