@@ -37,6 +37,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   auto& bodies = world.bodies();
   XpbdSolve solve;
   solve.h = h;
+  solve.inv_h = 1.0 / h;
   solve.alpha_tilde = params_.compliance / (h * h);
   // never below the resting overlap SubstepsFor allows a heavy body on a
   // light one, which the solve removes again every sub-step

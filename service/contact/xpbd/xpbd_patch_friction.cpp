@@ -152,9 +152,10 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   patch.lambda_t = lambda_t;
   patch.lambda_twist += twist_step;
   // for the report: the patch's impulse shared by the points' pushes
+  const Vec3 share = P / (pushed * h);
   for (int i = 0; i < patch.count; ++i) {
     XpbdPoint& p = points[patch.first + i];
-    p.impulse += (p.lambda_n / pushed / h) * P;
+    p.impulse += p.lambda_n * share;
   }
 }
 
@@ -183,9 +184,10 @@ void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, 
   A.w -= A.inv_inertia * (patch.ra.cross(J) + dl[2] * n);
   B.v += B.inv_mass * J;
   B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
+  const Vec3 share = J / pushed;
   for (int i = 0; i < patch.count; ++i) {
     XpbdPoint& p = points[patch.first + i];
-    p.impulse += (p.lambda_n / pushed) * J;
+    p.impulse += p.lambda_n * share;
   }
 }
 
