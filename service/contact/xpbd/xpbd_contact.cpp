@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/contact_row.h"
+#include "service/contact/sweep_order.h"
 
 namespace contactsim {
 namespace {
@@ -177,66 +178,70 @@ void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const 
   if (theta.squaredNorm() >= kRoundOffTurn * kRoundOffTurn) Turn(body.q, theta);
 }
 
-void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
-                       std::vector<NormalBlock>* blocks) {
-  const auto& all = world.bodies();
-  points->resize(contacts.size());
-  frames->resize(contacts.size());
-  for (size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    const RigidBody& A = all[c.a];
-    const RigidBody& B = all[c.b];
-    const SoftBody& sa = bodies[c.a];
-    const SoftBody& sb = bodies[c.b];
-    XpbdPoint p;
-    XpbdPointFrame f;
-    p.a = c.a;
-    p.b = c.b;
-    p.n = c.normal;
-    PerpendicularBasis(p.n, &f.t1, &f.t2);
-    p.radius_a = CoreRadius(A.shape);
-    p.radius_b = CoreRadius(B.shape);
-    // the surface points lie depth/2 either side of the midpoint (conventions.md)
-    const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
-    const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
-    p.anchor_a = A.q.conjugate() * (pa - p.radius_a * p.n - A.x);
-    p.anchor_b = B.q.conjugate() * (pb + p.radius_b * p.n - B.x);
-    f.material_a = A.q.conjugate() * (pa - A.x);
-    f.material_b = B.q.conjugate() * (pb - B.x);
-    p.ra = c.point - A.x;
-    f.rb = c.point - B.x;
-    p.ra_n = p.ra.cross(p.n);
-    p.rb_n = f.rb.cross(p.n);
-    p.ia_n = sa.inv_inertia * p.ra_n;
-    p.ib_n = sb.inv_inertia * p.rb_n;
-    p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
-    f.friction = CombineFriction(A.material, B.material);
-    p.restitution = CombineRestitution(A.material, B.material);
-    (*points)[k] = p;
-    (*frames)[k] = f;
-  }
-  GroupNormalBlocks(*points, blocks);
+namespace {
+
+// Contact c's point and frame at the step's start.
+void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies, XpbdPoint& p,
+                  XpbdPointFrame& f) {
+  const RigidBody& A = world.bodies()[c.a];
+  const RigidBody& B = world.bodies()[c.b];
+  const SoftBody& sa = bodies[c.a];
+  const SoftBody& sb = bodies[c.b];
+  p.lambda_n = 0.0;
+  p.impulse.setZero();
+  p.a = c.a;
+  p.b = c.b;
+  p.n = c.normal;
+  PerpendicularBasis(p.n, &f.t1, &f.t2);
+  p.radius_a = CoreRadius(A.shape);
+  p.radius_b = CoreRadius(B.shape);
+  // the surface points lie depth/2 either side of the midpoint (conventions.md)
+  const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
+  const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
+  p.anchor_a = A.q.conjugate() * (pa - p.radius_a * p.n - A.x);
+  p.anchor_b = B.q.conjugate() * (pb + p.radius_b * p.n - B.x);
+  f.material_a = A.q.conjugate() * (pa - A.x);
+  f.material_b = B.q.conjugate() * (pb - B.x);
+  p.ra = c.point - A.x;
+  f.rb = c.point - B.x;
+  p.ra_n = p.ra.cross(p.n);
+  p.rb_n = f.rb.cross(p.n);
+  p.ia_n = sa.inv_inertia * p.ra_n;
+  p.ib_n = sb.inv_inertia * p.rb_n;
+  p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+  f.friction = CombineFriction(A.material, B.material);
+  p.restitution = CombineRestitution(A.material, B.material);
 }
 
-void GatherXpbdPoints(std::vector<NormalBlock>* blocks, std::vector<XpbdPoint>* points,
-                      std::vector<XpbdPointFrame>* frames, std::vector<int>* point_of,
-                      std::vector<XpbdPoint>* scratch_points, std::vector<XpbdPointFrame>* scratch_frames) {
-  scratch_points->resize(points->size());
-  scratch_frames->resize(frames->size());
-  point_of->resize(points->size());
+// What sweep_order.h needs of a point to place its block.
+struct PointHeight {
+  int a;
+  Vec3 ra;
+};
+
+}  // namespace
+
+void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
+                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       std::vector<NormalBlock>* blocks, std::vector<int>* point_of) {
+  GroupNormalBlocks(contacts, blocks);
+  std::vector<PointHeight> heights(contacts.size());
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    heights[k] = {contacts[k].a, contacts[k].point - world.bodies()[contacts[k].a].x};
+  }
+  OrderBlocksFromTheTop(world, heights, blocks);
+  points->resize(contacts.size());
+  frames->resize(contacts.size());
+  point_of->resize(contacts.size());
   int next = 0;
   for (NormalBlock& m : *blocks) {
     for (int i = 0; i < m.count; ++i) {
-      (*scratch_points)[next + i] = (*points)[m.first + i];
-      (*scratch_frames)[next + i] = (*frames)[m.first + i];
+      PreparePoint(contacts[m.first + i], world, bodies, (*points)[next + i], (*frames)[next + i]);
       (*point_of)[m.first + i] = next + i;
     }
     m.first = next;
     next += m.count;
   }
-  points->swap(*scratch_points);
-  frames->swap(*scratch_frames);
 }
 
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3* pb_out) {

@@ -72,21 +72,14 @@ struct XpbdPose {
   Vec3 v, w;
 };
 
-// The points of `contacts` at the step's start and their frames (parallel);
-// `blocks` groups each body pair's points (their K is inverted when a
-// sub-step first needs it, XpbdSubsetInverse).
+// The points of `contacts` at the step's start: `blocks` groups each body
+// pair's points and orders the blocks from the highest down (sweep_order.h;
+// their K is inverted when a sub-step first needs it, XpbdSubsetInverse),
+// and the points and their frames are stored in that order, so that the
+// sub-steps read them front to back; point_of[k] is contact k's place.
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
-                       std::vector<NormalBlock>* blocks);
-
-// Stores the points and their frames in the blocks' (sweep) order, so that
-// the sub-steps read them front to back rather than in the detector's
-// order; point_of[k] is where point k went. Each block keeps its points in
-// their order, so the solve is the same. `scratch_*` keep their capacity
-// from step to step.
-void GatherXpbdPoints(std::vector<NormalBlock>* blocks, std::vector<XpbdPoint>* points,
-                      std::vector<XpbdPointFrame>* frames, std::vector<int>* point_of,
-                      std::vector<XpbdPoint>* scratch_points, std::vector<XpbdPointFrame>* scratch_frames);
+                       std::vector<NormalBlock>* blocks, std::vector<int>* point_of);
 
 // The point's separation at the world's current poses (m, < 0 penetrating)
 // and, if asked, the surface points of A and B.

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "service/contact/detect_ahead.h"
-#include "service/contact/sweep_order.h"
 #include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/soft/soft_joints.h"
@@ -100,9 +99,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, &bodies_);
-  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_);
-  OrderBlocksFromTheTop(world, points_, &blocks_);
-  GatherXpbdPoints(&blocks_, &points_, &frames_, &point_of_, &scratch_points_, &scratch_frames_);
+  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &point_of_);
   PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   for (size_t i = 0; i < bodies.size(); ++i) {

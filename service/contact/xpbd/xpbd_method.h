@@ -77,8 +77,6 @@ class XpbdMethod : public ContactMethod {
   std::vector<XpbdPoint> points_;         // in the blocks' order
   std::vector<XpbdPointFrame> frames_;    // parallel to points_
   std::vector<int> point_of_;             // contact k's place in points_
-  std::vector<XpbdPoint> scratch_points_;
-  std::vector<XpbdPointFrame> scratch_frames_;
   std::vector<NormalBlock> blocks_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
   std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_
