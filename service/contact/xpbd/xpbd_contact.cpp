@@ -49,15 +49,19 @@ constexpr double kTouching = 1e-9;  // m
 
 // Turns q by the small rotation vector theta (first order, renormalised):
 // q += (0, theta) q / 2, the product written out for the pure quaternion
-// (0, theta), whose zero part drops four of the sixteen products.
-// The sum is formed in registers and stored once (writing q's parts one by
-// one stalled the read of the whole).
+// (0, theta), whose zero part drops four of the sixteen products. (0, theta) q
+// is orthogonal to q, so a unit q's sum has the norm sqrt(1 + |theta|^2 / 4):
+// the renormalisation comes from theta alone, and the chain of turns through
+// q (block after block) waits on no square root or division. q's own
+// rounding is renormalised away at each sub-step's prediction
+// (IntegrateSoftPositions). The sum is formed in registers and stored once
+// (writing q's parts one by one stalled the read of the whole).
 void Turn(Quat& q, const Vec3& theta) {
+  const double scale = 1.0 / std::sqrt(1.0 + 0.25 * theta.squaredNorm());
   const Vec3 v = q.vec();
   const double w = q.w() - 0.5 * theta.dot(v);
   const Vec3 u = v + 0.5 * (q.w() * theta + theta.cross(v));
-  const double norm = std::sqrt(w * w + u.squaredNorm());
-  q = Quat(w / norm, u.x() / norm, u.y() / norm, u.z() / norm);
+  q = Quat(scale * w, scale * u.x(), scale * u.y(), scale * u.z());
 }
 
 // One point's non-penetration update (Gauss-Seidel).
