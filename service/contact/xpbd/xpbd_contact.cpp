@@ -202,10 +202,11 @@ void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBo
   // the surface points lie depth/2 either side of the midpoint (conventions.md)
   const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
   const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
-  p.anchor_a = A.q.conjugate() * (pa - p.radius_a * p.n - A.x);
-  p.anchor_b = B.q.conjugate() * (pb + p.radius_b * p.n - B.x);
-  f.material_a = A.q.conjugate() * (pa - A.x);
-  f.material_b = B.q.conjugate() * (pb - B.x);
+  // into the bodies' frames by R^T of the step's start, kept by LoadSoftBodies
+  p.anchor_a = sa.R0t * (pa - p.radius_a * p.n - A.x);
+  p.anchor_b = sb.R0t * (pb + p.radius_b * p.n - B.x);
+  f.material_a = sa.R0t * (pa - A.x);
+  f.material_b = sb.R0t * (pb - B.x);
   p.ra = c.point - A.x;
   f.rb = c.point - B.x;
   p.ra_n = p.ra.cross(p.n);

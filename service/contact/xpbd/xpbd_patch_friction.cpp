@@ -12,11 +12,15 @@ Eigen::Matrix3d PatchK(const XpbdPatch& patch, const Vec3& n, const SoftBody& A,
   const Vec3 lin[3] = {patch.t1, patch.t2, Vec3::Zero()};
   const Vec3 ang_a[3] = {patch.ra.cross(patch.t1), patch.ra.cross(patch.t2), n};
   const Vec3 ang_b[3] = {patch.rb.cross(patch.t1), patch.rb.cross(patch.t2), n};
+  Vec3 resp_a[3], resp_b[3];  // I^-1 of each row's angular part, once a column
+  for (int j = 0; j < 3; ++j) {
+    resp_a[j] = A.inv_inertia * ang_a[j];
+    resp_b[j] = B.inv_inertia * ang_b[j];
+  }
   Eigen::Matrix3d k;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      k(i, j) = (A.inv_mass + B.inv_mass) * lin[i].dot(lin[j]) + ang_a[i].dot(A.inv_inertia * ang_a[j]) +
-                ang_b[i].dot(B.inv_inertia * ang_b[j]);
+      k(i, j) = (A.inv_mass + B.inv_mass) * lin[i].dot(lin[j]) + ang_a[i].dot(resp_a[j]) + ang_b[i].dot(resp_b[j]);
     }
   }
   return k;
@@ -34,7 +38,20 @@ bool InvertPatchK(const Eigen::Matrix3d& k, int rows, Eigen::Matrix3d* inv) {
   if (llt.info() != Eigen::Success) return false;
   const Vec3 d = llt.matrixLLT().diagonal();
   if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return false;
-  *inv = llt.solve(Eigen::Matrix3d::Identity());
+  // K^-1 = L^-T L^-1 from the factor by substitution (llt.solve of the
+  // identity went through Eigen's general triangular solver, the larger part
+  // of preparing a patch)
+  const Eigen::Matrix3d L = llt.matrixL();
+  Eigen::Matrix3d inv_l = Eigen::Matrix3d::Zero();
+  for (int j = 0; j < 3; ++j) {
+    inv_l(j, j) = 1.0 / L(j, j);
+    for (int i = j + 1; i < 3; ++i) {
+      double sum = 0.0;
+      for (int m = j; m < i; ++m) sum += L(i, m) * inv_l(m, j);
+      inv_l(i, j) = -sum / L(i, i);
+    }
+  }
+  inv->noalias() = inv_l.transpose() * inv_l;
   return true;
 }
 
