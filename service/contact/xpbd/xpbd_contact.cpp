@@ -151,8 +151,8 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
 
 }  // namespace
 
-const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                                         const NormalBlock& m, const int* idx, int n, XpbdSubsetCache& cache) {
+const Eigen::Matrix4d* XpbdSubsetInverseFind(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                                             const NormalBlock& m, const int* idx, int n, XpbdSubsetCache& cache) {
   if (n == m.count && m.count >= 2) {
     // the whole block's, inverted when a sub-step first needs it (K is the
     // step start's): a block that never touches is never inverted

@@ -121,8 +121,15 @@ void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, co
 // four), 1 / K for one point, in the top left of the matrix pointed to (the
 // block's or the cache's own, not copied); null when no block applies
 // (three points on a line).
-const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                                         const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache);
+// The whole block once inverted is the common case and is answered inline.
+const Eigen::Matrix4d* XpbdSubsetInverseFind(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                                             const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache);
+inline const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points,
+                                                const std::vector<SoftBody>& bodies, const NormalBlock& block,
+                                                const int* idx, int n, XpbdSubsetCache& cache) {
+  if (n == block.count && cache.full == 1) return &cache.full_inv;
+  return XpbdSubsetInverseFind(points, bodies, block, idx, n, cache);
+}
 
 // Moves a dynamic body by dx and turns it by the small rotation vector theta
 // (first order, renormalised); others stay.
