@@ -116,16 +116,15 @@ namespace {
 // (t1, t2), and their twist about n, sum_i (d_i1 o_i2 - d_i2 o_i1) / spread.
 // Both are linear in the m_i, so they come from the patch's sums with the
 // tangents turned into each body's frame, t . R m = (R^T t) . m.
-Vec3 PatchOffset(const World& world, const XpbdPatch& patch, const XpbdPoint& p0) {
-  const RigidBody& A = world.bodies()[p0.a];
-  const RigidBody& B = world.bodies()[p0.b];
+// The bodies' poses are (xa, q_a) and (xb, q_b).
+Vec3 PatchOffset(const XpbdPatch& patch, const Vec3& xa, const Quat& q_a, const Vec3& xb, const Quat& q_b) {
   if (patch.count == 1) {  // one point: turning its two points is cheaper than the four tangents
-    const Vec3 d = (A.x + A.q * patch.mean_a) - (B.x + B.q * patch.mean_b);
+    const Vec3 d = (xa + q_a * patch.mean_a) - (xb + q_b * patch.mean_b);
     return Vec3(patch.t1.dot(d), patch.t2.dot(d), 0.0);
   }
-  const Quat qa = A.q.conjugate(), qb = B.q.conjugate();
+  const Quat qa = q_a.conjugate(), qb = q_b.conjugate();
   const Vec3 at1 = qa * patch.t1, at2 = qa * patch.t2, bt1 = qb * patch.t1, bt2 = qb * patch.t2;
-  const Vec3 centres = A.x - B.x;
+  const Vec3 centres = xa - xb;
   const double c1 = patch.t1.dot(centres), c2 = patch.t2.dot(centres);
   const double u1 = c1 + at1.dot(patch.mean_a) - bt1.dot(patch.mean_b);
   const double u2 = c2 + at2.dot(patch.mean_a) - bt2.dot(patch.mean_b);
@@ -143,11 +142,21 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   const XpbdPoint& p0 = points[patch.first];
   double pushed = 0.0;
   for (int i = 0; i < patch.count; ++i) pushed += points[patch.first + i].lambda_n;
-  const Vec3 offset = PatchOffset(world, patch, p0);
+  const RigidBody& A = world.bodies()[p0.a];
+  const RigidBody& B = world.bodies()[p0.b];
   if (pushed <= 0.0) {  // not touching: hold the present offset from now on
-    patch.origin = offset;
+    patch.origin_pending = true;
+    patch.hold_xa = A.x;
+    patch.hold_qa = A.q;
+    patch.hold_xb = B.x;
+    patch.hold_qb = B.q;
     return;
   }
+  if (patch.origin_pending) {
+    patch.origin = PatchOffset(patch, patch.hold_xa, patch.hold_qa, patch.hold_xb, patch.hold_qb);
+    patch.origin_pending = false;
+  }
+  const Vec3 offset = PatchOffset(patch, A.x, A.q, B.x, B.q);
   const Vec3 dl = patch.inv_k * (offset - patch.origin);
   const double mu = patch.friction;
   const Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;

@@ -45,6 +45,12 @@ struct XpbdPatch {
   bool valid = false;
   // per step: the offsets static friction holds
   Vec3 origin = Vec3::Zero();          // (m, m, rad) along t1, t2 and the twist
+  // A patch that does not touch holds its offset at the present poses; they
+  // are kept instead, and the offset (the same number) is found only when a
+  // later sub-step touches: most untouched patches never need it.
+  bool origin_pending = false;
+  Vec3 hold_xa = Vec3::Zero(), hold_xb = Vec3::Zero();
+  Quat hold_qa = Quat::Identity(), hold_qb = Quat::Identity();
   // per sub-step
   Vec3 lambda_t = Vec3::Zero();        // kg m
   double lambda_twist = 0.0;           // kg m^2
