@@ -132,7 +132,8 @@ inline const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& po
 }
 
 // Moves a dynamic body by dx and turns it by the small rotation vector theta
-// (first order, renormalised); others stay.
+// (first order, renormalised; a turn below 1e-18 rad, round-off, is left
+// out); others stay.
 void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta);
 
 }  // namespace contactsim
