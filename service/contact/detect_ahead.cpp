@@ -14,8 +14,10 @@ void DetectAhead(const World& world, CollisionDetector& detector, double margin,
   const auto& bodies = world.bodies();
   std::set<BodyPair> fast;
   std::vector<double> reach;
+  std::vector<BodyMotion> motion(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) motion[i] = MotionOf(bodies[i]);
   for (const BodyPair& p : detector.pairs()) {
-    const double r = ClosingSpeedBound(bodies[p.first], bodies[p.second], dt) * dt;
+    const double r = ClosingSpeedBound(motion[p.first], motion[p.second], dt) * dt;
     if (r <= margin) continue;
     fast.insert(p);
     reach.push_back(r);
