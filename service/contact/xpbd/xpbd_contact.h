@@ -119,9 +119,9 @@ void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, co
 
 // K^-1 of the block's points idx[0..n) (in block order; K^+ for a face's
 // four), 1 / K for one point, in the top left of the matrix pointed to (the
-// block's or the cache's own, not copied); null when no block applies
-// (three points on a line).
-// The whole block once inverted is the common case and is answered inline.
+// cache's own, not copied); null when no block applies (three points on a
+// line). XpbdSubsetInverse answers the common case, the whole block already
+// inverted, inline, and asks XpbdSubsetInverseFind otherwise.
 const Eigen::Matrix4d* XpbdSubsetInverseFind(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
                                              const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache);
 inline const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points,
