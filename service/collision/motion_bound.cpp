@@ -20,10 +20,21 @@ double BoundingRadius(const Shape& s) {
   }
 }
 
+BodyMotion MotionOf(const RigidBody& body) {
+  BodyMotion m;
+  m.v = body.LinearVelocity();
+  m.accel = body.force * body.inv_mass;
+  m.spin_reach = body.AngularVelocity().norm() * BoundingRadius(body.shape);
+  return m;
+}
+
+double ClosingSpeedBound(const BodyMotion& a, const BodyMotion& b, double h) {
+  const double accel = (a.accel - b.accel).norm() * h;
+  return (a.v - b.v).norm() + accel + a.spin_reach + b.spin_reach;
+}
+
 double ClosingSpeedBound(const RigidBody& a, const RigidBody& b, double h) {
-  const double accel = (a.force * a.inv_mass - b.force * b.inv_mass).norm() * h;
-  return (a.LinearVelocity() - b.LinearVelocity()).norm() + accel +
-         a.AngularVelocity().norm() * BoundingRadius(a.shape) + b.AngularVelocity().norm() * BoundingRadius(b.shape);
+  return ClosingSpeedBound(MotionOf(a), MotionOf(b), h);
 }
 
 }  // namespace contactsim

@@ -17,4 +17,15 @@ double BoundingRadius(const Shape& shape);
 // bounding sphere (|w| r).
 double ClosingSpeedBound(const RigidBody& a, const RigidBody& b, double h);
 
+// One body's terms of that bound, for a caller bounding many pairs: found
+// once a body rather than once a pair (its angular velocity takes the
+// world inverse inertia), the bound from them is the same number.
+struct BodyMotion {
+  Vec3 v = Vec3::Zero();      // m/s
+  Vec3 accel = Vec3::Zero();  // m/s^2, F / m
+  double spin_reach = 0.0;    // m/s, |w| times the bounding radius
+};
+BodyMotion MotionOf(const RigidBody& body);
+double ClosingSpeedBound(const BodyMotion& a, const BodyMotion& b, double h);
+
 }  // namespace contactsim

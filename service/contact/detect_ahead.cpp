@@ -19,10 +19,15 @@ void DetectAhead(const World& world, CollisionDetector& detector, double margin,
   detector.Detect(world, margin, dt, contacts);
   const auto& bodies = world.bodies();
   const std::vector<BodyPair>& pairs = detector.pairs();
+  // each body's terms of the bound once, then each pair's bound
+  std::vector<BodyMotion> motion(bodies.size());
+  detector.runner().For(static_cast<int>(bodies.size()), kPairGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) motion[i] = MotionOf(bodies[i]);
+  });
   std::vector<double> pair_reach(pairs.size());
   detector.runner().For(static_cast<int>(pairs.size()), kPairGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
-      pair_reach[k] = ClosingSpeedBound(bodies[pairs[k].first], bodies[pairs[k].second], dt) * dt;
+      pair_reach[k] = ClosingSpeedBound(motion[pairs[k].first], motion[pairs[k].second], dt) * dt;
     }
   });
   std::set<BodyPair> fast;

@@ -42,7 +42,8 @@ void IntegrateSoftVelocities(const World& world, double h, int begin, int end, s
   }
 }
 
-void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies) {
+void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies,
+                            bool track_motion) {
   auto& dst = world.bodies();
   for (int i = begin; i < end; ++i) {
     SoftBody& s = bodies[i];
@@ -57,9 +58,12 @@ void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vec
     }
     b.x += h * s.v;
     b.q = (QuatFromRotationVector(h * s.w) * b.q).normalized();
+    if (!track_motion && !hold_momentum) continue;
     const Mat3 R = b.q.toRotationMatrix();
-    s.dp = b.x - s.x0;
-    s.dR = R * s.R0t;
+    if (track_motion) {
+      s.dp = b.x - s.x0;
+      s.dR = R * s.R0t;
+    }
     if (!hold_momentum) continue;
     s.inv_inertia = R * b.inv_inertia_body * R.transpose();
     s.w = s.inv_inertia * L;

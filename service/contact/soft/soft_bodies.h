@@ -43,11 +43,13 @@ void LoadSoftBody(const RigidBody& body, bool substepped, SoftBody* soft);
 // [begin, end).
 void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies);
 
-// Moves the substepped bodies among [begin, end) by h at their velocities and
-// brings dp, dR and the world inverse inertia up to date. A dynamic body's
-// angular momentum I w is kept across the turn (torque-free motion; the
-// gyroscopic term), so w follows the new inertia.
-void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies);
+// Moves the substepped bodies among [begin, end) by h at their velocities
+// and brings the world inverse inertia and, with `track_motion`, dp and dR
+// up to date (xpbd reads the poses themselves and leaves them). A dynamic
+// body's angular momentum I w is kept across the turn (torque-free motion;
+// the gyroscopic term), so w follows the new inertia.
+void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies,
+                            bool track_motion = true);
 
 // Writes P = m v and L = I w of the substepped dynamic bodies back (on the
 // world's threads).

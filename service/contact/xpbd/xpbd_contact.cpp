@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/contact_row.h"
+#include "service/contact/sweep_order.h"
 
 namespace contactsim {
 namespace {
@@ -13,16 +14,32 @@ double CoreRadius(const Shape& shape) {
   return shape.type == ShapeType::kSphere || shape.type == ShapeType::kCapsule ? shape.radius : 0.0;
 }
 
-bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, NormalBlock* m) {
-  const XpbdPoint& p0 = points[m->first];
+// K^-1 of the points idx[0..n) of block m (K^+ for a face's four); the
+// tangents are the first point's (PerpendicularBasis depends on n alone).
+bool InvertPoints(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
+                  const int* idx, int n, Eigen::Matrix4d* inv) {
+  const XpbdPoint& p0 = points[m.first + idx[0]];
   NormalBlockPoint block[kMaxNormalBlock];
-  for (int i = 0; i < m->count; ++i) {
-    const XpbdPoint& p = points[m->first + i];
-    if (p.n.dot(p0.n) < 1.0 - 1e-9) return false;
-    block[i] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
+  for (int k = 0; k < n; ++k) {
+    const XpbdPoint& p = points[m.first + idx[k]];
+    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
   }
   const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  return k_lin > 0.0 && InvertNormalBlock(block, m->count, k_lin, p0.t1, p0.t2, &m->inv_k);
+  Vec3 t1, t2;
+  PerpendicularBasis(p0.n, &t1, &t2);
+  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, t1, t2, inv);
+}
+
+// K^-1 of all of a block's points sharing one normal (K^+ for a face's four).
+bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
+                 Eigen::Matrix4d* inv) {
+  const XpbdPoint& p0 = points[m.first];
+  int idx[kMaxNormalBlock];
+  for (int i = 0; i < m.count; ++i) {
+    if (points[m.first + i].n.dot(p0.n) < 1.0 - 1e-9) return false;
+    idx[i] = i;
+  }
+  return InvertPoints(points, bodies, m, idx, m.count, inv);
 }
 
 // Points this close to touching join a block's active set: a resting face's
@@ -30,11 +47,21 @@ bool InvertBlock(const std::vector<XpbdPoint>& points, const std::vector<SoftBod
 // K^+ is the one inverted at the step's start (a subset needs its own).
 constexpr double kTouching = 1e-9;  // m
 
-// Turns q by the small rotation vector theta (first order, renormalised).
+// Turns q by the small rotation vector theta (first order, renormalised):
+// q += (0, theta) q / 2, the product written out for the pure quaternion
+// (0, theta), whose zero part drops four of the sixteen products. (0, theta) q
+// is orthogonal to q, so a unit q's sum has the norm sqrt(1 + |theta|^2 / 4):
+// the renormalisation comes from theta alone, and the chain of turns through
+// q (block after block) waits on no square root or division. q's own
+// rounding is renormalised away at each sub-step's prediction
+// (IntegrateSoftPositions). The sum is formed in registers and stored once
+// (writing q's parts one by one stalled the read of the whole).
 void Turn(Quat& q, const Vec3& theta) {
-  const Quat dq(0.0, theta.x(), theta.y(), theta.z());
-  q.coeffs() += 0.5 * (dq * q).coeffs();
-  q.normalize();
+  const double scale = 1.0 / std::sqrt(1.0 + 0.25 * theta.squaredNorm());
+  const Vec3 v = q.vec();
+  const double w = q.w() - 0.5 * theta.dot(v);
+  const Vec3 u = v + 0.5 * (q.w() * theta + theta.cross(v));
+  q = Quat(scale * w, scale * u.x(), scale * u.y(), scale * u.z());
 }
 
 // One point's non-penetration update (Gauss-Seidel).
@@ -49,7 +76,7 @@ void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const X
   DisplaceXpbdBody(all[p.a], sa, -sa.inv_mass * dl * p.n, -dl * p.ia_n);
   DisplaceXpbdBody(all[p.b], sb, sb.inv_mass * dl * p.n, dl * p.ib_n);
   p.lambda_n += dl;
-  p.impulse += dl / solve.h * p.n;  // a positional impulse p moves like the velocity impulse p / h
+  p.impulse += (dl * solve.inv_h) * p.n;  // a positional impulse p moves like the velocity impulse p / h
 }
 
 // K^-1 of a subset of two or three points (or K^+ of four), 1 / K of one.
@@ -62,13 +89,7 @@ bool InvertSubset(const std::vector<XpbdPoint>& points, const std::vector<SoftBo
     (*inv)(0, 0) = 1.0 / p0.w_n;
     return true;
   }
-  NormalBlockPoint block[kMaxNormalBlock];
-  for (int k = 0; k < n; ++k) {
-    const XpbdPoint& p = points[m.first + idx[k]];
-    block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
-  }
-  const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, p0.t1, p0.t2, inv);
+  return InvertPoints(points, bodies, m, idx, n, inv);
 }
 
 // A block's non-penetration at once (rigid rows) over its active points,
@@ -98,11 +119,11 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
   }
   Eigen::Vector4d step = Eigen::Vector4d::Zero();
   while (active > 0) {
-    Eigen::Matrix4d inv;
-    if (!XpbdSubsetInverse(points, bodies, m, idx, active, cache, &inv)) return false;
+    const Eigen::Matrix4d* inv = XpbdSubsetInverse(points, bodies, m, idx, active, cache);
+    if (inv == nullptr) return false;
     Eigen::Vector4d d = Eigen::Vector4d::Zero();
     for (int k = 0; k < active; ++k) d[k] = depth[idx[k]];
-    step = inv * d;
+    step.noalias() = *inv * d;
     int worst = -1;
     for (int k = 0; k < active; ++k) {
       const double total = points[m.first + idx[k]].lambda_n + step[k];
@@ -117,7 +138,7 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
   for (int k = 0; k < active; ++k) {
     XpbdPoint& p = points[m.first + idx[k]];
     p.lambda_n += step[k];
-    p.impulse += step[k] / solve.h * n;
+    p.impulse += (step[k] * solve.inv_h) * n;
     sum += step[k];
     wa += step[k] * p.ia_n;
     wb += step[k] * p.ib_n;
@@ -130,70 +151,102 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
 
 }  // namespace
 
-bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
-                       const int* idx, int n, XpbdSubsetCache& cache, Eigen::Matrix4d* inv) {
-  if (n == m.count && m.block) {
-    *inv = m.inv_k;
-    return true;
+const Eigen::Matrix4d* XpbdSubsetInverseFind(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                                             const NormalBlock& m, const int* idx, int n, XpbdSubsetCache& cache) {
+  if (n == m.count && m.count >= 2) {
+    // the whole block's, inverted when a sub-step first needs it (K is the
+    // step start's): a block that never touches is never inverted
+    if (cache.full < 0) cache.full = InvertBlock(points, bodies, m, &cache.full_inv) ? 1 : 0;
+    if (cache.full == 1) return &cache.full_inv;
   }
   int mask = 0;
   for (int k = 0; k < n; ++k) mask |= 1 << idx[k];
   for (int c = 0; c < 2; ++c) {
-    if (cache.mask[c] != mask) continue;
-    *inv = cache.inv[c];
-    return cache.ok[c];
+    if (cache.mask[c] == mask) return cache.ok[c] ? &cache.inv[c] : nullptr;
   }
   const int slot = cache.next;
   cache.next ^= 1;
   cache.mask[slot] = mask;
   cache.ok[slot] = InvertSubset(points, bodies, m, idx, n, &cache.inv[slot]);
-  *inv = cache.inv[slot];
-  return cache.ok[slot];
+  return cache.ok[slot] ? &cache.inv[slot] : nullptr;
 }
 
 void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta) {
   if (s.inv_mass == 0.0) return;
   body.x += dx;
-  Turn(body.q, theta);
+  // A push through a round body's centre turns it by round-off alone (r x n
+  // of a lever arm along n, ~1e-20 rad): below 1e-18 rad the turn moves no
+  // part of q by more than its renormalisation's own rounding (1.1e-16), so
+  // the sqrt and divisions of Turn are skipped.
+  constexpr double kRoundOffTurn = 1e-18;  // rad
+  if (theta.squaredNorm() >= kRoundOffTurn * kRoundOffTurn) Turn(body.q, theta);
 }
 
+namespace {
+
+// Contact c's point and frame at the step's start.
+void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies, XpbdPoint& p,
+                  XpbdPointFrame& f) {
+  const RigidBody& A = world.bodies()[c.a];
+  const RigidBody& B = world.bodies()[c.b];
+  const SoftBody& sa = bodies[c.a];
+  const SoftBody& sb = bodies[c.b];
+  p.lambda_n = 0.0;
+  p.impulse.setZero();
+  p.a = c.a;
+  p.b = c.b;
+  p.n = c.normal;
+  PerpendicularBasis(p.n, &f.t1, &f.t2);
+  p.radius_a = CoreRadius(A.shape);
+  p.radius_b = CoreRadius(B.shape);
+  // the surface points lie depth/2 either side of the midpoint (conventions.md)
+  const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
+  const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
+  // into the bodies' frames by R^T of the step's start, kept by LoadSoftBodies
+  p.anchor_a = sa.R0t * (pa - p.radius_a * p.n - A.x);
+  p.anchor_b = sb.R0t * (pb + p.radius_b * p.n - B.x);
+  f.material_a = sa.R0t * (pa - A.x);
+  f.material_b = sb.R0t * (pb - B.x);
+  p.ra = c.point - A.x;
+  f.rb = c.point - B.x;
+  p.ra_n = p.ra.cross(p.n);
+  p.rb_n = f.rb.cross(p.n);
+  p.ia_n = sa.inv_inertia * p.ra_n;
+  p.ib_n = sb.inv_inertia * p.rb_n;
+  p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+  f.friction = CombineFriction(A.material, B.material);
+  p.restitution = CombineRestitution(A.material, B.material);
+}
+
+// What sweep_order.h needs of a point to place its block.
+struct PointHeight {
+  int a;
+  Vec3 ra;
+};
+
+}  // namespace
+
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<NormalBlock>* blocks) {
-  const auto& all = world.bodies();
-  points->resize(contacts.size());
+                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       std::vector<NormalBlock>* blocks, std::vector<int>* point_of) {
+  GroupNormalBlocks(contacts, blocks);
+  std::vector<PointHeight> heights(contacts.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    const RigidBody& A = all[c.a];
-    const RigidBody& B = all[c.b];
-    const SoftBody& sa = bodies[c.a];
-    const SoftBody& sb = bodies[c.b];
-    XpbdPoint p;
-    p.a = c.a;
-    p.b = c.b;
-    p.n = c.normal;
-    PerpendicularBasis(p.n, &p.t1, &p.t2);
-    p.radius_a = CoreRadius(A.shape);
-    p.radius_b = CoreRadius(B.shape);
-    // the surface points lie depth/2 either side of the midpoint (conventions.md)
-    const Vec3 pa = c.point + 0.5 * c.depth * c.normal;
-    const Vec3 pb = c.point - 0.5 * c.depth * c.normal;
-    p.anchor_a = A.q.conjugate() * (pa - p.radius_a * p.n - A.x);
-    p.anchor_b = B.q.conjugate() * (pb + p.radius_b * p.n - B.x);
-    p.material_a = A.q.conjugate() * (pa - A.x);
-    p.material_b = B.q.conjugate() * (pb - B.x);
-    p.ra = c.point - A.x;
-    p.rb = c.point - B.x;
-    p.ra_n = p.ra.cross(p.n);
-    p.rb_n = p.rb.cross(p.n);
-    p.ia_n = sa.inv_inertia * p.ra_n;
-    p.ib_n = sb.inv_inertia * p.rb_n;
-    p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
-    p.friction = CombineFriction(A.material, B.material);
-    p.restitution = CombineRestitution(A.material, B.material);
-    (*points)[k] = p;
+    heights[k] = {contacts[k].a, contacts[k].point - world.bodies()[contacts[k].a].x};
   }
-  GroupNormalBlocks(*points, blocks);
-  for (NormalBlock& m : *blocks) m.block = m.count >= 2 && InvertBlock(*points, bodies, &m);
+  OrderBlocksFromTheTop(world, heights, blocks);
+  points->resize(contacts.size());
+  frames->resize(contacts.size());
+  point_of->resize(contacts.size());
+  int next = 0;
+  for (NormalBlock& m : *blocks) {
+    for (int i = 0; i < m.count; ++i) {
+      PreparePoint(contacts[m.first + i], world, bodies, (*points)[next + i], (*frames)[next + i]);
+      (*point_of)[m.first + i] = next + i;
+    }
+    m.first = next;
+    next += m.count;
+  }
 }
 
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3* pb_out) {
@@ -207,14 +260,8 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3
   return p.n.dot(cb - ca) - p.radius_a - p.radius_b;
 }
 
-void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
-  for (XpbdPoint& p : *points) {
-    p.lambda_n = 0.0;
-    p.lambda_t.setZero();
-    const SoftBody& A = bodies[p.a];
-    const SoftBody& B = bodies[p.b];
-    p.vn_before = p.n.dot(B.v - A.v) + p.rb_n.dot(B.w) - p.ra_n.dot(A.w);
-  }
+void BeginXpbdSubstep(std::vector<XpbdPoint>* points) {
+  for (XpbdPoint& p : *points) p.lambda_n = 0.0;
 }
 
 void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,

@@ -44,42 +44,61 @@ struct XpbdPoint {
   int a = -1, b = -1;             // body indices
   Vec3 anchor_a, anchor_b;        // m, each body's anchor in its own frame
   double radius_a = 0.0, radius_b = 0.0;  // m, the shapes' rounding
-  Vec3 material_a, material_b;    // m, the surface points in the bodies' frames
-  Vec3 n, t1, t2;                 // unit, world, n from A to B
-  Vec3 ra, rb;                    // m, contact point minus centres, step start
+  Vec3 n;                         // unit, world, from A to B
+  Vec3 ra;                        // m, contact point minus A's centre, step start
   Vec3 ra_n, rb_n, ia_n, ib_n;    // r x n and I^-1 (r x n), step start
   double w_n = 0.0;               // 1/kg, K along n
-  double friction = 0.0, restitution = 0.0;
+  double restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier
-  Vec3 lambda_t = Vec3::Zero();   // kg m, static friction multiplier (world)
-  double vn_before = 0.0;         // m/s, v_n before the position solve
   // per step
   Vec3 impulse = Vec3::Zero();    // N s on B (world) over the step
 };
 
-// A body's pose after a sub-step's prediction.
+// What the step's preparation of the friction patches needs of a point
+// besides its rows, kept apart so that the sub-steps sweep only the rows.
+struct XpbdPointFrame {
+  Vec3 t1, t2;                    // unit, world, (t1, t2, n) right-handed
+  Vec3 rb;                        // m, contact point minus B's centre, step start
+  Vec3 material_a, material_b;    // m, the surface points in the bodies' frames
+  double friction = 0.0;
+};
+
+// A body's pose and velocities after a sub-step's prediction (the velocity
+// pass's v~, read only at the points that pushed).
 struct XpbdPose {
   Vec3 x;
   Quat q;
+  Vec3 v, w;
 };
 
-// The points of `contacts` at the step's start; `blocks` groups each body
-// pair's points and inverts their K where a block solve applies.
+// The points of `contacts` at the step's start: `blocks` groups each body
+// pair's points and orders the blocks from the highest down (sweep_order.h;
+// their K is inverted when a sub-step first needs it, XpbdSubsetInverse),
+// and the points and their frames are stored in that order, so that the
+// sub-steps read them front to back; point_of[k] is contact k's place.
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<NormalBlock>* blocks);
+                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       std::vector<NormalBlock>* blocks, std::vector<int>* point_of);
 
 // The point's separation at the world's current poses (m, < 0 penetrating)
 // and, if asked, the surface points of A and B.
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);
 
-// Zeroes the sub-step's multipliers and records v~_n (after the prediction).
-void BeginXpbdSubstep(const std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
+// Zeroes the sub-step's multipliers.
+void BeginXpbdSubstep(std::vector<XpbdPoint>* points);
 
-// The inverses of a block's subsets met in this step (K is the step's start
-// one, so a subset's inverse holds for the whole step): the last two, by
-// the subset's bit mask.
+// The point's normal velocity v_n = n . (v_B - v_A) + (r_B x n) . w_B - (r_A x n) . w_A.
+inline double XpbdNormalVelocity(const XpbdPoint& p, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {
+  return p.n.dot(vb - va) + p.rb_n.dot(wb) - p.ra_n.dot(wa);
+}
+
+// The inverses of a block's K met in this step (K is the step's start one,
+// so an inverse holds for the whole step): the whole block's, and the last
+// two subsets', by the subset's bit mask.
 struct XpbdSubsetCache {
+  int full = -1;  // the whole block: -1 not inverted yet, 0 no block applies, 1 in full_inv
+  Eigen::Matrix4d full_inv;
   int mask[2] = {-1, -1};
   bool ok[2] = {false, false};
   Eigen::Matrix4d inv[2];
@@ -89,6 +108,7 @@ struct XpbdSubsetCache {
 // What a sub-step's position solve needs.
 struct XpbdSolve {
   double h = 0.0;            // s, the sub-step
+  double inv_h = 0.0;        // 1/s, 1 / h (the report's impulses, without a division a point)
   double alpha_tilde = 0.0;  // 1/kg, compliance / h^2
   double max_push = 0.0;     // m, the deepest overlap one sub-step removes
 };
@@ -98,14 +118,22 @@ void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, co
                            const NormalBlock& block, XpbdSubsetCache& cache, std::vector<XpbdPoint>& points);
 
 // K^-1 of the block's points idx[0..n) (in block order; K^+ for a face's
-// four), 1 / K for one point, in the top left of *inv; false when no block
-// applies (three points on a line).
-bool XpbdSubsetInverse(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                       const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache,
-                       Eigen::Matrix4d* inv);
+// four), 1 / K for one point, in the top left of the matrix pointed to (the
+// cache's own, not copied); null when no block applies (three points on a
+// line). XpbdSubsetInverse answers the common case, the whole block already
+// inverted, inline, and asks XpbdSubsetInverseFind otherwise.
+const Eigen::Matrix4d* XpbdSubsetInverseFind(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                                             const NormalBlock& block, const int* idx, int n, XpbdSubsetCache& cache);
+inline const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& points,
+                                                const std::vector<SoftBody>& bodies, const NormalBlock& block,
+                                                const int* idx, int n, XpbdSubsetCache& cache) {
+  if (n == block.count && cache.full == 1) return &cache.full_inv;
+  return XpbdSubsetInverseFind(points, bodies, block, idx, n, cache);
+}
 
 // Moves a dynamic body by dx and turns it by the small rotation vector theta
-// (first order, renormalised); others stay.
+// (first order, renormalised; a turn below 1e-18 rad, round-off, is left
+// out); others stay.
 void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const Vec3& theta);
 
 }  // namespace contactsim

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "service/contact/detect_ahead.h"
-#include "service/contact/sweep_order.h"
 #include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/soft/soft_joints.h"
@@ -37,6 +36,7 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   auto& bodies = world.bodies();
   XpbdSolve solve;
   solve.h = h;
+  solve.inv_h = 1.0 / h;
   solve.alpha_tilde = params_.compliance / (h * h);
   // never below the resting overlap SubstepsFor allows a heavy body on a
   // light one, which the solve removes again every sub-step
@@ -44,9 +44,9 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
   IntegrateSoftVelocities(world, h, 0, static_cast<int>(bodies_.size()), bodies_);
-  IntegrateSoftPositions(h, 0, static_cast<int>(bodies_.size()), world, bodies_);
-  for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q};
-  BeginXpbdSubstep(bodies_, &points_);
+  IntegrateSoftPositions(h, 0, static_cast<int>(bodies_.size()), world, bodies_, /*track_motion=*/false);
+  for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q, bodies_[i].v, bodies_[i].w};
+  BeginXpbdSubstep(&points_);
   BeginXpbdPatches(&patches_);
   joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
   for (int it = 0; it < params_.iterations; ++it) {
@@ -68,14 +68,14 @@ void XpbdMethod::Substep(World& world, double h, bool project_joints) {
     s.v += (b.x - predicted_[i].x) / h;
     s.w += (2.0 / h) * dq.vec();
   }
-  SolveXpbdContactVelocities(h, threshold, blocks_, patches_, subsets_, bodies_, &points_);
+  SolveXpbdContactVelocities(h, threshold, blocks_, patches_, subsets_, predicted_, bodies_, &points_);
 }
 
 void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {
   // a point is reported while it touches or carried load in the step
   const double dt = world.dt;
-  for (size_t k = 0; k < points_.size(); ++k) {
-    const XpbdPoint& p = points_[k];
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const XpbdPoint& p = points_[point_of_[k]];
     Vec3 pa, pb;
     const double depth = -XpbdSeparation(p, world, &pa, &pb);
     if (depth <= 0.0 && p.impulse.isZero(0.0)) continue;
@@ -99,9 +99,8 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, detector.runner(), &bodies_);
-  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &blocks_);
-  OrderBlocksFromTheTop(world, points_, &blocks_);
-  PrepareXpbdPatches(blocks_, points_, bodies_, &patches_);
+  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &point_of_);
+  PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);

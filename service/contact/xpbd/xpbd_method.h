@@ -74,7 +74,9 @@ class XpbdMethod : public ContactMethod {
   ContactSet contacts_;                   // detected once per step
   std::vector<char> substepped_;
   std::vector<SoftBody> bodies_;
-  std::vector<XpbdPoint> points_;         // parallel to contacts_
+  std::vector<XpbdPoint> points_;         // in the blocks' order
+  std::vector<XpbdPointFrame> frames_;    // parallel to points_
+  std::vector<int> point_of_;             // contact k's place in points_
   std::vector<NormalBlock> blocks_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
   std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_

@@ -8,15 +8,19 @@ namespace contactsim {
 namespace {
 
 // K of the rows t1, t2 (at the patch centre) and the twist about n.
-Eigen::Matrix3d PatchK(const XpbdPatch& patch, const XpbdPoint& p0, const SoftBody& A, const SoftBody& B) {
-  const Vec3 lin[3] = {p0.t1, p0.t2, Vec3::Zero()};
-  const Vec3 ang_a[3] = {patch.ra.cross(p0.t1), patch.ra.cross(p0.t2), p0.n};
-  const Vec3 ang_b[3] = {patch.rb.cross(p0.t1), patch.rb.cross(p0.t2), p0.n};
+Eigen::Matrix3d PatchK(const XpbdPatch& patch, const Vec3& n, const SoftBody& A, const SoftBody& B) {
+  const Vec3 lin[3] = {patch.t1, patch.t2, Vec3::Zero()};
+  const Vec3 ang_a[3] = {patch.ra.cross(patch.t1), patch.ra.cross(patch.t2), n};
+  const Vec3 ang_b[3] = {patch.rb.cross(patch.t1), patch.rb.cross(patch.t2), n};
+  Vec3 resp_a[3], resp_b[3];  // I^-1 of each row's angular part, once a column
+  for (int j = 0; j < 3; ++j) {
+    resp_a[j] = A.inv_inertia * ang_a[j];
+    resp_b[j] = B.inv_inertia * ang_b[j];
+  }
   Eigen::Matrix3d k;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      k(i, j) = (A.inv_mass + B.inv_mass) * lin[i].dot(lin[j]) + ang_a[i].dot(A.inv_inertia * ang_a[j]) +
-                ang_b[i].dot(B.inv_inertia * ang_b[j]);
+      k(i, j) = (A.inv_mass + B.inv_mass) * lin[i].dot(lin[j]) + ang_a[i].dot(resp_a[j]) + ang_b[i].dot(resp_b[j]);
     }
   }
   return k;
@@ -34,35 +38,66 @@ bool InvertPatchK(const Eigen::Matrix3d& k, int rows, Eigen::Matrix3d* inv) {
   if (llt.info() != Eigen::Success) return false;
   const Vec3 d = llt.matrixLLT().diagonal();
   if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return false;
-  *inv = llt.solve(Eigen::Matrix3d::Identity());
+  // K^-1 = L^-T L^-1 from the factor by substitution (llt.solve of the
+  // identity went through Eigen's general triangular solver, the larger part
+  // of preparing a patch)
+  const Eigen::Matrix3d L = llt.matrixL();
+  Eigen::Matrix3d inv_l = Eigen::Matrix3d::Zero();
+  for (int j = 0; j < 3; ++j) {
+    inv_l(j, j) = 1.0 / L(j, j);
+    for (int i = j + 1; i < 3; ++i) {
+      double sum = 0.0;
+      for (int m = j; m < i; ++m) sum += L(i, m) * inv_l(m, j);
+      inv_l(i, j) = -sum / L(i, i);
+    }
+  }
+  inv->noalias() = inv_l.transpose() * inv_l;
   return true;
 }
 
 }  // namespace
 
 void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
-                        const std::vector<SoftBody>& bodies, std::vector<XpbdPatch>* patches) {
+                        const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
+                        std::vector<XpbdPatch>* patches) {
   patches->resize(blocks.size());
   for (size_t k = 0; k < blocks.size(); ++k) {
     XpbdPatch patch;
     patch.first = blocks[k].first;
     patch.count = blocks[k].count;
     const XpbdPoint& p0 = points[patch.first];
-    for (int i = 0; i < patch.count; ++i) patch.ra += points[patch.first + i].ra / patch.count;
-    patch.rb = patch.ra + (p0.rb - p0.ra);
+    const XpbdPointFrame& f0 = frames[patch.first];
+    patch.t1 = f0.t1;
+    patch.t2 = f0.t2;
+    patch.friction = f0.friction;
+    for (int i = 0; i < patch.count; ++i) {
+      patch.ra += points[patch.first + i].ra / patch.count;
+      patch.mean_a += frames[patch.first + i].material_a / patch.count;
+      patch.mean_b += frames[patch.first + i].material_b / patch.count;
+    }
+    patch.rb = patch.ra + (f0.rb - p0.ra);
+    double place[kMaxNormalBlock][2];
     for (int i = 0; i < patch.count; ++i) {
       const Vec3 d = points[patch.first + i].ra - patch.ra;
-      patch.place[i][0] = d.dot(p0.t1);
-      patch.place[i][1] = d.dot(p0.t2);
-      const double r2 = patch.place[i][0] * patch.place[i][0] + patch.place[i][1] * patch.place[i][1];
+      place[i][0] = d.dot(patch.t1);
+      place[i][1] = d.dot(patch.t2);
+      const double r2 = place[i][0] * place[i][0] + place[i][1] * place[i][1];
       patch.spread += r2;
       patch.twist_radius += std::sqrt(r2) / patch.count;
     }
-    const SoftBody& A = bodies[p0.a];
-    const SoftBody& B = bodies[p0.b];
     const int rows = patch.twist_radius > 1e-6 ? 3 : 2;
     if (rows == 2) patch.twist_radius = patch.spread = 0.0;
-    patch.valid = p0.friction > 0.0 && InvertPatchK(PatchK(patch, p0, A, B), rows, &patch.inv_k);
+    for (int i = 0; rows == 3 && i < patch.count; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        const double w = place[i][j] / patch.spread;
+        patch.twist_a[j] += w * frames[patch.first + i].material_a;
+        patch.twist_b[j] += w * frames[patch.first + i].material_b;
+        patch.twist_c[j] += w;
+      }
+    }
+    const SoftBody& A = bodies[p0.a];
+    const SoftBody& B = bodies[p0.b];
+    patch.valid = patch.friction > 0.0 && InvertPatchK(PatchK(patch, p0.n, A, B), rows, &patch.inv_k);
     (*patches)[k] = patch;
   }
 }
@@ -77,30 +112,26 @@ void BeginXpbdPatches(std::vector<XpbdPatch>* patches) {
 namespace {
 
 // The patch's offset now, in the tangent frame: the mean of its points'
-// tangential offsets (u1, u2) and their twist about n. The tangents are
-// turned into each body's frame once for the patch, t . R a = (R^T t) . a.
-Vec3 PatchOffset(const World& world, const XpbdPatch& patch, const std::vector<XpbdPoint>& points) {
-  const XpbdPoint& p0 = points[patch.first];
-  const RigidBody& A = world.bodies()[p0.a];
-  const RigidBody& B = world.bodies()[p0.b];
+// tangential offsets o_i = t . ((x_A + R_A m_Ai) - (x_B + R_B m_Bi)) along
+// (t1, t2), and their twist about n, sum_i (d_i1 o_i2 - d_i2 o_i1) / spread.
+// Both are linear in the m_i, so they come from the patch's sums with the
+// tangents turned into each body's frame, t . R m = (R^T t) . m.
+// The bodies' poses are (xa, q_a) and (xb, q_b).
+Vec3 PatchOffset(const XpbdPatch& patch, const Vec3& xa, const Quat& q_a, const Vec3& xb, const Quat& q_b) {
   if (patch.count == 1) {  // one point: turning its two points is cheaper than the four tangents
-    const Vec3 d = (A.x + A.q * p0.material_a) - (B.x + B.q * p0.material_b);
-    return Vec3(p0.t1.dot(d), p0.t2.dot(d), 0.0);
+    const Vec3 d = (xa + q_a * patch.mean_a) - (xb + q_b * patch.mean_b);
+    return Vec3(patch.t1.dot(d), patch.t2.dot(d), 0.0);
   }
-  const Quat qa = A.q.conjugate(), qb = B.q.conjugate();
-  const Vec3 at1 = qa * p0.t1, at2 = qa * p0.t2, bt1 = qb * p0.t1, bt2 = qb * p0.t2;
-  const Vec3 centres = A.x - B.x;
-  const double c1 = p0.t1.dot(centres), c2 = p0.t2.dot(centres);
-  double u1 = 0.0, u2 = 0.0, twist = 0.0;
-  for (int i = 0; i < patch.count; ++i) {
-    const XpbdPoint& p = points[patch.first + i];
-    const double o1 = c1 + at1.dot(p.material_a) - bt1.dot(p.material_b);
-    const double o2 = c2 + at2.dot(p.material_a) - bt2.dot(p.material_b);
-    u1 += o1;
-    u2 += o2;
-    twist += patch.place[i][0] * o2 - patch.place[i][1] * o1;
-  }
-  return Vec3(u1 / patch.count, u2 / patch.count, patch.spread > 0.0 ? twist / patch.spread : 0.0);
+  const Quat qa = q_a.conjugate(), qb = q_b.conjugate();
+  const Vec3 at1 = qa * patch.t1, at2 = qa * patch.t2, bt1 = qb * patch.t1, bt2 = qb * patch.t2;
+  const Vec3 centres = xa - xb;
+  const double c1 = patch.t1.dot(centres), c2 = patch.t2.dot(centres);
+  const double u1 = c1 + at1.dot(patch.mean_a) - bt1.dot(patch.mean_b);
+  const double u2 = c2 + at2.dot(patch.mean_a) - bt2.dot(patch.mean_b);
+  if (patch.spread == 0.0) return Vec3(u1, u2, 0.0);
+  const double twist = (c2 * patch.twist_c[0] + at2.dot(patch.twist_a[0]) - bt2.dot(patch.twist_b[0])) -
+                       (c1 * patch.twist_c[1] + at1.dot(patch.twist_a[1]) - bt1.dot(patch.twist_b[1]));
+  return Vec3(u1, u2, twist);
 }
 
 }  // namespace
@@ -111,14 +142,24 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   const XpbdPoint& p0 = points[patch.first];
   double pushed = 0.0;
   for (int i = 0; i < patch.count; ++i) pushed += points[patch.first + i].lambda_n;
-  const Vec3 offset = PatchOffset(world, patch, points);
+  const RigidBody& A = world.bodies()[p0.a];
+  const RigidBody& B = world.bodies()[p0.b];
   if (pushed <= 0.0) {  // not touching: hold the present offset from now on
-    patch.origin = offset;
+    patch.origin_pending = true;
+    patch.hold_xa = A.x;
+    patch.hold_qa = A.q;
+    patch.hold_xb = B.x;
+    patch.hold_qb = B.q;
     return;
   }
+  if (patch.origin_pending) {
+    patch.origin = PatchOffset(patch, patch.hold_xa, patch.hold_qa, patch.hold_xb, patch.hold_qb);
+    patch.origin_pending = false;
+  }
+  const Vec3 offset = PatchOffset(patch, A.x, A.q, B.x, B.q);
   const Vec3 dl = patch.inv_k * (offset - patch.origin);
-  const double mu = p0.friction;
-  const Vec3 lambda_t = patch.lambda_t + dl[0] * p0.t1 + dl[1] * p0.t2;
+  const double mu = patch.friction;
+  const Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
   if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
     patch.origin = offset;
     return;
@@ -137,9 +178,10 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   patch.lambda_t = lambda_t;
   patch.lambda_twist += twist_step;
   // for the report: the patch's impulse shared by the points' pushes
+  const Vec3 share = P / (pushed * h);
   for (int i = 0; i < patch.count; ++i) {
     XpbdPoint& p = points[patch.first + i];
-    p.impulse += (p.lambda_n / pushed / h) * P;
+    p.impulse += p.lambda_n * share;
   }
 }
 
@@ -152,24 +194,26 @@ void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, 
   const Vec3& n = p0.n;
   const Vec3 v = (B.v + B.w.cross(patch.rb)) - (A.v + A.w.cross(patch.ra));
   const Vec3 spin = B.w - A.w;
-  Vec3 dl = -(patch.inv_k * Vec3(p0.t1.dot(v), p0.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0));
+  Vec3 dl = -(patch.inv_k * Vec3(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0));
   // Coulomb's disk for the patch's force, its torque within mu N r
-  const double limit = p0.friction * pushed / h;
-  const double along = std::hypot(dl[0], dl[1]);
+  const double limit = patch.friction * pushed / h;
+  // impulses of the patch's bodies: no overflow for hypot to guard against
+  const double along = std::sqrt(dl[0] * dl[0] + dl[1] * dl[1]);
   if (along > limit) {
     dl[0] *= limit / along;
     dl[1] *= limit / along;
   }
   const double twist_limit = limit * patch.twist_radius;
   dl[2] = std::max(-twist_limit, std::min(dl[2], twist_limit));
-  const Vec3 J = dl[0] * p0.t1 + dl[1] * p0.t2;
+  const Vec3 J = dl[0] * patch.t1 + dl[1] * patch.t2;
   A.v -= A.inv_mass * J;
   A.w -= A.inv_inertia * (patch.ra.cross(J) + dl[2] * n);
   B.v += B.inv_mass * J;
   B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
+  const Vec3 share = J / pushed;
   for (int i = 0; i < patch.count; ++i) {
     XpbdPoint& p = points[patch.first + i];
-    p.impulse += (p.lambda_n / pushed) * J;
+    p.impulse += p.lambda_n * share;
   }
 }
 

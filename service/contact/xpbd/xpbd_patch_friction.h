@@ -29,22 +29,38 @@ namespace contactsim {
 
 struct XpbdPatch {
   int first = 0, count = 0;            // the points [first, first + count)
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  // unit, the first point's tangents
+  double friction = 0.0;
   Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, the patch centre minus each body's centre, step start
-  double place[kMaxNormalBlock][2] = {};  // m, each point from the centre along t1, t2
   double spread = 0.0;                 // m^2, sum of the points' squared distances from the centre
   double twist_radius = 0.0;           // m, their mean distance; 0: no twist row
+  // The offset is linear in the points' material points m_i, so the patch
+  // keeps their sums (below) and turns two tangents per body a sub-step
+  // instead of reading every point (PatchOffset):
+  Vec3 mean_a = Vec3::Zero(), mean_b = Vec3::Zero();  // m, mean m_i in A's and B's frames
+  // sum_i d_i[k] m_i / spread for k = t1, t2, d_i the point's place from the centre
+  Vec3 twist_a[2] = {Vec3::Zero(), Vec3::Zero()}, twist_b[2] = {Vec3::Zero(), Vec3::Zero()};
+  double twist_c[2] = {0.0, 0.0};      // sum_i d_i[k] / spread (0 up to round-off)
   Eigen::Matrix3d inv_k = Eigen::Matrix3d::Zero();  // rows t1, t2, twist
   bool valid = false;
   // per step: the offsets static friction holds
   Vec3 origin = Vec3::Zero();          // (m, m, rad) along t1, t2 and the twist
+  // A patch that does not touch holds its offset at the present poses; they
+  // are kept instead, and the offset (the same number) is found only when a
+  // later sub-step touches: most untouched patches never need it.
+  bool origin_pending = false;
+  Vec3 hold_xa = Vec3::Zero(), hold_xb = Vec3::Zero();
+  Quat hold_qa = Quat::Identity(), hold_qb = Quat::Identity();
   // per sub-step
   Vec3 lambda_t = Vec3::Zero();        // kg m
   double lambda_twist = 0.0;           // kg m^2
 };
 
-// One patch per normal block, with its K inverted.
+// One patch per normal block, with its K inverted; `frames` is parallel to
+// `points`.
 void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
-                        const std::vector<SoftBody>& bodies, std::vector<XpbdPatch>* patches);
+                        const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
+                        std::vector<XpbdPatch>* patches);
 
 // Zeroes the sub-step's multipliers.
 void BeginXpbdPatches(std::vector<XpbdPatch>* patches);

@@ -15,49 +15,79 @@ void PushNormal(double dl, const XpbdPoint& p, SoftBody& A, SoftBody& B) {
 }
 
 double NormalVelocity(const XpbdPoint& p, const SoftBody& A, const SoftBody& B) {
-  return p.n.dot(B.v - A.v) + p.rb_n.dot(B.w) - p.ra_n.dot(A.w);
+  return XpbdNormalVelocity(p, A.v, A.w, B.v, B.w);
 }
 
 // The normal velocity a point that pushed leaves with: -e v~_n after an
 // impact faster than the threshold, 0 after a slower one; a point already
 // parting before the solve (v~_n > 0: an overlap left from an earlier
-// sub-step) keeps v~_n, so pushing out adds no velocity.
-double TargetNormalVelocity(const XpbdPoint& p, double threshold) {
-  if (p.vn_before >= 0.0) return p.vn_before;
-  const double e = -p.vn_before > threshold ? p.restitution : 0.0;
-  return -e * p.vn_before;
+// sub-step) keeps v~_n, so pushing out adds no velocity. v~_n is taken from
+// the predicted velocities here, for the points that pushed only.
+double TargetNormalVelocity(const XpbdPoint& p, const XpbdPose& a, const XpbdPose& b, double threshold) {
+  const double vn_before = XpbdNormalVelocity(p, a.v, a.w, b.v, b.w);
+  if (vn_before >= 0.0) return vn_before;
+  const double e = -vn_before > threshold ? p.restitution : 0.0;
+  return -e * vn_before;
 }
+
+// The bodies of a block and their predicted states.
+struct BlockBodies {
+  SoftBody& A;
+  SoftBody& B;
+  const XpbdPose& a;
+  const XpbdPose& b;
+};
 
 // Restitution of a block's points that pushed, all at once through the
 // inverse of their K (K^+ for a face's four), so the corners of a face
-// share it whatever their order; point by point where no block applies.
+// share it whatever their order (their impulses summed before they reach
+// the bodies); point by point where no block applies.
 void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCache& cache,
-                           const std::vector<SoftBody>& all, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points) {
+                           const std::vector<SoftBody>& all, const BlockBodies& pair, std::vector<XpbdPoint>& points) {
+  SoftBody& A = pair.A;
+  SoftBody& B = pair.B;
   int idx[kMaxNormalBlock];
   int pushed = 0;
   for (int i = 0; i < m.count; ++i) {
     if (points[m.first + i].lambda_n > 0.0) idx[pushed++] = i;
   }
   if (pushed == 0) return;
-  Eigen::Matrix4d inv;
-  if (XpbdSubsetInverse(points, all, m, idx, pushed, cache, &inv)) {
+  const Eigen::Matrix4d* inv = nullptr;
+  const XpbdPoint& p0 = points[m.first];
+  // a lone point's K^-1 is 1 / w_n: the same number as through the cache
+  // and the 4 x 4 product (whose other terms are zeros), at a fraction
+  const bool lone = m.count == 1 && p0.w_n > 0.0;
+  if (lone || (inv = XpbdSubsetInverse(points, all, m, idx, pushed, cache)) != nullptr) {
     Eigen::Vector4d change = Eigen::Vector4d::Zero();
     for (int k = 0; k < pushed; ++k) {
       const XpbdPoint& p = points[m.first + idx[k]];
-      change[k] = TargetNormalVelocity(p, threshold) - NormalVelocity(p, A, B);
+      change[k] = TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B);
     }
-    const Eigen::Vector4d dl = inv * change;
+    Eigen::Vector4d dl = Eigen::Vector4d::Zero();
+    if (lone) {
+      dl[0] = (1.0 / p0.w_n) * change[0];
+    } else {
+      dl.noalias() = *inv * change;
+    }
+    Vec3 J = Vec3::Zero(), wa = Vec3::Zero(), wb = Vec3::Zero();
     for (int k = 0; k < pushed; ++k) {
       XpbdPoint& p = points[m.first + idx[k]];
-      PushNormal(dl[k], p, A, B);
-      p.impulse += dl[k] * p.n;
+      const Vec3 Jk = dl[k] * p.n;
+      p.impulse += Jk;
+      J += Jk;
+      wa += dl[k] * p.ia_n;
+      wb += dl[k] * p.ib_n;
     }
+    A.v -= A.inv_mass * J;
+    A.w -= wa;
+    B.v += B.inv_mass * J;
+    B.w += wb;
     return;
   }
   for (int k = 0; k < pushed; ++k) {
     XpbdPoint& p = points[m.first + idx[k]];
     if (p.w_n <= 0.0) continue;
-    const double dl = (TargetNormalVelocity(p, threshold) - NormalVelocity(p, A, B)) / p.w_n;
+    const double dl = (TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B)) / p.w_n;
     PushNormal(dl, p, A, B);
     p.impulse += dl * p.n;
   }
@@ -67,13 +97,14 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCac
 
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
                                 const std::vector<XpbdPatch>& patches, std::vector<XpbdSubsetCache>& caches,
-                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
+                                const std::vector<XpbdPose>& predicted, std::vector<SoftBody>& bodies,
+                                std::vector<XpbdPoint>* points) {
   for (size_t k = 0; k < blocks.size(); ++k) {
     const NormalBlock& m = blocks[k];
-    SoftBody& A = bodies[(*points)[m.first].a];
-    SoftBody& B = bodies[(*points)[m.first].b];
-    SolveBlockRestitution(restitution_threshold, m, caches[k], bodies, A, B, *points);
-    BrakeXpbdPatch(h, patches[k], A, B, *points);
+    const int a = (*points)[m.first].a, b = (*points)[m.first].b;
+    const BlockBodies pair{bodies[a], bodies[b], predicted[a], predicted[b]};
+    SolveBlockRestitution(restitution_threshold, m, caches[k], bodies, pair, *points);
+    BrakeXpbdPatch(h, patches[k], pair.A, pair.B, *points);
   }
 }
 

@@ -24,10 +24,11 @@ namespace contactsim {
 
 // The velocity pass on the bodies' v and w; restitution applies above
 // `restitution_threshold` (m/s); `patches` and `caches` are parallel to
-// `blocks`.
+// `blocks`; `predicted` holds the bodies' v~ and w~ (before the position
+// solve).
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
                                 const std::vector<XpbdPatch>& patches, std::vector<XpbdSubsetCache>& caches,
-                                std::vector<SoftBody>& bodies,
+                                const std::vector<XpbdPose>& predicted, std::vector<SoftBody>& bodies,
                                 std::vector<XpbdPoint>* points);
 
 }  // namespace contactsim
