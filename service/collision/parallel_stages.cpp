@@ -50,18 +50,20 @@ int ChunkCount(const ParallelRunner::Stage& stage) {
   return size <= 0 ? 0 : (size + stage.grain - 1) / stage.grain;
 }
 
-// Worker w takes chunks w, w + 1, ... (wrapping around) of each stage that
-// nobody has claimed yet: with as many chunks as threads, each thread gets
-// the same share of a colour pass after pass, so its points stay in its
-// core's cache, and a thread that arrives late finds its share done.
+// Worker w of T starts at chunk w C / T of a stage's C and walks on
+// (wrapping around), taking each chunk nobody has claimed yet: each thread
+// first takes its own contiguous share, the same share of a colour or of the
+// bodies pass after pass, so its data stay in its core's cache; then it
+// helps with what is left of the others', and a thread that arrives late
+// finds its share done.
 void RunStageList(const std::vector<ParallelRunner::Stage>& stages, const std::vector<int>& first_chunk,
-                  std::atomic<char>* claimed, StageCounters* counters, int worker) {
+                  std::atomic<char>* claimed, StageCounters* counters, int worker, int threads) {
   for (size_t s = 0; s < stages.size(); ++s) {
     if (s > 0) WaitUntilDone(counters[s - 1].done, stages[s - 1].end - stages[s - 1].begin);
     const ParallelRunner::Stage& stage = stages[s];
     const int chunks = ChunkCount(stage);
     for (int k = 0; k < chunks; ++k) {
-      const int chunk = (worker + k) % chunks;
+      const int chunk = (worker * chunks / threads + k) % chunks;
       if (claimed[first_chunk[s] + chunk].exchange(1, std::memory_order_relaxed) != 0) continue;
       const int i = stage.begin + chunk * stage.grain;
       const int j = std::min(i + stage.grain, stage.end);
@@ -91,7 +93,9 @@ void ParallelRunner::Stages(const std::vector<Stage>& stages) {
   std::unique_ptr<StageCounters[]> counters(new StageCounters[sized.size()]);
   std::unique_ptr<std::atomic<char>[]> claimed(new std::atomic<char>[chunks]);
   for (int c = 0; c < chunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
-  RunTeam([&](int worker) { RunStageList(sized, first_chunk, claimed.get(), counters.get(), worker); });
+  RunTeam([&](int worker) {
+    RunStageList(sized, first_chunk, claimed.get(), counters.get(), worker, threads_);
+  });
 }
 
 }  // namespace contactsim

@@ -21,6 +21,9 @@ constexpr int kRestitutionPasses = 8;
 // Indices a thread takes at a time: enough work to pay for the atomic
 // counter, small enough that two threads finish a colour together.
 constexpr int kBodyGrain = 128;
+// a colour's chunks per thread: one keeps a thread on its share, more let
+// the threads even out a colour whose halves cost differently
+constexpr int kChunksPerThread = 4;
 constexpr int kPointGrain = 512;
 constexpr int kSerial = std::numeric_limits<int>::max();  // one thread takes the stage whole
 
@@ -65,12 +68,14 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const auto add = [&](const Fn& fn, int begin, int end, int grain) {
     if (end > begin) stages_.push_back({&fn, begin, end, grain});
   };
-  // a colour's share per thread: the blocks of one colour stay on one
-  // thread from pass to pass
+  // a colour in kChunksPerThread chunks per thread, a thread starting on its
+  // own share (ParallelRunner::Stages), so that a colour's blocks tend to
+  // stay on one thread from pass to pass
   const int threads = runner.threads();
   const auto add_colours = [&](const Fn& fn) {
     for (int c = 0; c < colours_.colours(); ++c) {
-      const int block_grain = (colours_.starts[c + 1] - colours_.starts[c] + threads - 1) / threads;
+      const int block_grain = (colours_.starts[c + 1] - colours_.starts[c] + kChunksPerThread * threads - 1) /
+                              (kChunksPerThread * threads);
       add(fn, colours_.starts[c], colours_.starts[c + 1], block_grain);
     }
     add(fn, colours_.starts.back(), static_cast<int>(manifolds_.size()), kSerial);  // the overflow, in order
