@@ -38,7 +38,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0xaca91ecc4d28d48full},
       {"penalty", {}, 0x1cc4e247fc853944ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x8d56be991615df46ull},
-      {"xpbd", {}, 0x404a3034fc918001ull},
+      {"xpbd", {}, 0xb04b996ed0368f00ull},
       {"lcp", {{"solver", "pgs"}}, 0x4260f8ff293d3aacull},
       {"lcp", {{"solver", "lemke"}}, 0x21d103167c11af6cull},
       {"barrier", {}, 0xc32a73df9f9d909aull},

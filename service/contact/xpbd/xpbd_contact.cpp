@@ -228,13 +228,18 @@ struct PointHeight {
 
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
-                       std::vector<NormalBlock>* blocks, std::vector<int>* point_of) {
+                       std::vector<NormalBlock>* blocks, BlockColours* colours, std::vector<int>* point_of) {
   GroupNormalBlocks(contacts, blocks);
   std::vector<PointHeight> heights(contacts.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
     heights[k] = {contacts[k].a, contacts[k].point - world.bodies()[contacts[k].a].x};
   }
   OrderBlocksFromTheTop(world, heights, blocks);
+  std::vector<ColourRole> roles(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    roles[i] = bodies[i].inv_mass > 0.0 ? ColourRole::kColoured : ColourRole::kFixed;
+  }
+  *colours = ColourBlocks(contacts, roles, blocks);
   points->resize(contacts.size());
   frames->resize(contacts.size());
   point_of->resize(contacts.size());
@@ -260,8 +265,8 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3
   return p.n.dot(cb - ca) - p.radius_a - p.radius_b;
 }
 
-void BeginXpbdSubstep(std::vector<XpbdPoint>* points) {
-  for (XpbdPoint& p : *points) p.lambda_n = 0.0;
+void BeginXpbdSubstep(const NormalBlock& m, std::vector<XpbdPoint>* points) {
+  for (int i = m.first; i < m.first + m.count; ++i) (*points)[i].lambda_n = 0.0;
 }
 
 void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve,

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "service/collision/contact.h"
+#include "service/contact/block_colours.h"
 #include "service/contact/normal_block.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/physics/world.h"
@@ -73,20 +74,21 @@ struct XpbdPose {
 };
 
 // The points of `contacts` at the step's start: `blocks` groups each body
-// pair's points and orders the blocks from the highest down (sweep_order.h;
-// their K is inverted when a sub-step first needs it, XpbdSubsetInverse),
-// and the points and their frames are stored in that order, so that the
-// sub-steps read them front to back; point_of[k] is contact k's place.
+// pair's points, orders the blocks from the highest down (sweep_order.h)
+// and then colour by colour (block_colours.h, `colours`; their K is
+// inverted when a sub-step first needs it, XpbdSubsetInverse), and the
+// points and their frames are stored in that order, so that the sub-steps
+// read them front to back; point_of[k] is contact k's place.
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
-                       std::vector<NormalBlock>* blocks, std::vector<int>* point_of);
+                       std::vector<NormalBlock>* blocks, BlockColours* colours, std::vector<int>* point_of);
 
 // The point's separation at the world's current poses (m, < 0 penetrating)
 // and, if asked, the surface points of A and B.
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);
 
-// Zeroes the sub-step's multipliers.
-void BeginXpbdSubstep(std::vector<XpbdPoint>* points);
+// Zeroes the sub-step's multipliers of block m's points.
+void BeginXpbdSubstep(const NormalBlock& m, std::vector<XpbdPoint>* points);
 
 // The point's normal velocity v_n = n . (v_B - v_A) + (r_B x n) . w_B - (r_A x n) . w_A.
 inline double XpbdNormalVelocity(const XpbdPoint& p, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {

@@ -32,45 +32,6 @@ int XpbdMethod::SubstepsFor(const World& world) const {
   return std::max(params_.substeps, static_cast<int>(std::min(std::ceil(needed), 1000.0)));
 }
 
-void XpbdMethod::Substep(World& world, double h, bool project_joints) {
-  auto& bodies = world.bodies();
-  XpbdSolve solve;
-  solve.h = h;
-  solve.inv_h = 1.0 / h;
-  solve.alpha_tilde = params_.compliance / (h * h);
-  // never below the resting overlap SubstepsFor allows a heavy body on a
-  // light one, which the solve removes again every sub-step
-  solve.max_push = std::max(params_.max_push_velocity * h, kMassRatioOverlap);
-  const double joint_alpha_tilde = params_.joint_compliance / (h * h);
-  const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
-  IntegrateSoftVelocities(world, h, 0, static_cast<int>(bodies_.size()), bodies_);
-  IntegrateSoftPositions(h, 0, static_cast<int>(bodies_.size()), world, bodies_, /*track_motion=*/false);
-  for (size_t i = 0; i < bodies.size(); ++i) predicted_[i] = {bodies[i].x, bodies[i].q, bodies_[i].v, bodies_[i].w};
-  BeginXpbdSubstep(&points_);
-  BeginXpbdPatches(&patches_);
-  joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{});
-  for (int it = 0; it < params_.iterations; ++it) {
-    SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_);
-    for (size_t k = 0; k < blocks_.size(); ++k) {
-      SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
-      SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
-    }
-  }
-  if (project_joints) ProjectJointPositions(world);
-  // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    SoftBody& s = bodies_[i];
-    const RigidBody& b = bodies[i];
-    if (!s.substepped || s.inv_mass == 0.0) continue;
-    if (b.x == predicted_[i].x && b.q.coeffs() == predicted_[i].q.coeffs()) continue;
-    Quat dq = b.q * predicted_[i].q.conjugate();
-    if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
-    s.v += (b.x - predicted_[i].x) / h;
-    s.w += (2.0 / h) * dq.vec();
-  }
-  SolveXpbdContactVelocities(h, threshold, blocks_, patches_, subsets_, predicted_, bodies_, &points_);
-}
-
 void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const {
   // a point is reported while it touches or carried load in the step
   const double dt = world.dt;
@@ -99,7 +60,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, detector.runner(), &bodies_);
-  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &point_of_);
+  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &colours_, &point_of_);
   PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   for (size_t i = 0; i < bodies.size(); ++i) {
@@ -110,7 +71,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   predicted_.resize(bodies.size());
   const int substeps = SubstepsFor(world);
   const double h = world.dt / substeps;
-  for (int sub = 0; sub < substeps; ++sub) Substep(world, h, project_joints);
+  RunSubsteps(world, substeps, project_joints, detector.runner());
   StoreSoftBodies(bodies_, detector.runner(), world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();

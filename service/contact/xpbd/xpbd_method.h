@@ -65,8 +65,10 @@ class XpbdMethod : public ContactMethod {
   static constexpr double kMassRatioOverlap = 0.45e-3;
   // `substeps`, or more where a heavy body rests on a light one.
   int SubstepsFor(const World& world) const;
-  // Predict, solve positions, derive velocities, velocity pass: one sub-step.
-  void Substep(World& world, double h, bool project_joints);
+  // `substeps` sub-steps of predict, solve positions, derive velocities,
+  // velocity pass, as the stages of one ParallelRunner::Stages call
+  // (xpbd_stages.cpp).
+  void RunSubsteps(World& world, int substeps, bool project_joints, ParallelRunner& runner);
   // The step's contacts with their depth at the step's end and average force.
   void ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const;
 
@@ -77,11 +79,13 @@ class XpbdMethod : public ContactMethod {
   std::vector<XpbdPoint> points_;         // in the blocks' order
   std::vector<XpbdPointFrame> frames_;    // parallel to points_
   std::vector<int> point_of_;             // contact k's place in points_
-  std::vector<NormalBlock> blocks_;
+  std::vector<NormalBlock> blocks_;      // from the top down, then colour by colour
+  BlockColours colours_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
   std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_
   std::vector<XpbdPose> predicted_;
   std::vector<XpbdJointLambda> joint_lambdas_;
+  std::vector<ParallelRunner::Stage> stages_;
 };
 
 }  // namespace contactsim

@@ -102,11 +102,9 @@ void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vecto
   }
 }
 
-void BeginXpbdPatches(std::vector<XpbdPatch>* patches) {
-  for (XpbdPatch& patch : *patches) {
-    patch.lambda_t.setZero();
-    patch.lambda_twist = 0.0;
-  }
+void BeginXpbdPatch(XpbdPatch* patch) {
+  patch->lambda_t.setZero();
+  patch->lambda_twist = 0.0;
 }
 
 namespace {
@@ -206,10 +204,14 @@ void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, 
   const double twist_limit = limit * patch.twist_radius;
   dl[2] = std::max(-twist_limit, std::min(dl[2], twist_limit));
   const Vec3 J = dl[0] * patch.t1 + dl[1] * patch.t2;
-  A.v -= A.inv_mass * J;
-  A.w -= A.inv_inertia * (patch.ra.cross(J) + dl[2] * n);
-  B.v += B.inv_mass * J;
-  B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
+  if (A.inv_mass > 0.0) {  // a static body is never written (PushNormal)
+    A.v -= A.inv_mass * J;
+    A.w -= A.inv_inertia * (patch.ra.cross(J) + dl[2] * n);
+  }
+  if (B.inv_mass > 0.0) {
+    B.v += B.inv_mass * J;
+    B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
+  }
   const Vec3 share = J / pushed;
   for (int i = 0; i < patch.count; ++i) {
     XpbdPoint& p = points[patch.first + i];

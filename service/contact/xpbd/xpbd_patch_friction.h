@@ -62,8 +62,8 @@ void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vecto
                         const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
                         std::vector<XpbdPatch>* patches);
 
-// Zeroes the sub-step's multipliers.
-void BeginXpbdPatches(std::vector<XpbdPatch>* patches);
+// Zeroes the patch's multipliers of the sub-step.
+void BeginXpbdPatch(XpbdPatch* patch);
 
 // The patch's static friction at the world's current poses (after its
 // points' non-penetration); adds the positional impulses / h to the points'

@@ -7,11 +7,17 @@ namespace contactsim {
 namespace {
 
 // The normal impulse dl n on B and -dl n on A.
+// (a static or kinematic body is never written: several threads may hold
+// it at once, block_colours.h)
 void PushNormal(double dl, const XpbdPoint& p, SoftBody& A, SoftBody& B) {
-  A.v -= (A.inv_mass * dl) * p.n;
-  A.w -= dl * p.ia_n;
-  B.v += (B.inv_mass * dl) * p.n;
-  B.w += dl * p.ib_n;
+  if (A.inv_mass > 0.0) {
+    A.v -= (A.inv_mass * dl) * p.n;
+    A.w -= dl * p.ia_n;
+  }
+  if (B.inv_mass > 0.0) {
+    B.v += (B.inv_mass * dl) * p.n;
+    B.w += dl * p.ib_n;
+  }
 }
 
 double NormalVelocity(const XpbdPoint& p, const SoftBody& A, const SoftBody& B) {
@@ -78,10 +84,14 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCac
       wa += dl[k] * p.ia_n;
       wb += dl[k] * p.ib_n;
     }
-    A.v -= A.inv_mass * J;
-    A.w -= wa;
-    B.v += B.inv_mass * J;
-    B.w += wb;
+    if (A.inv_mass > 0.0) {
+      A.v -= A.inv_mass * J;
+      A.w -= wa;
+    }
+    if (B.inv_mass > 0.0) {
+      B.v += B.inv_mass * J;
+      B.w += wb;
+    }
     return;
   }
   for (int k = 0; k < pushed; ++k) {
@@ -96,10 +106,10 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCac
 }  // namespace
 
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                const std::vector<XpbdPatch>& patches, std::vector<XpbdSubsetCache>& caches,
-                                const std::vector<XpbdPose>& predicted, std::vector<SoftBody>& bodies,
-                                std::vector<XpbdPoint>* points) {
-  for (size_t k = 0; k < blocks.size(); ++k) {
+                                int begin, int end, const std::vector<XpbdPatch>& patches,
+                                std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
+                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
+  for (int k = begin; k < end; ++k) {
     const NormalBlock& m = blocks[k];
     const int a = (*points)[m.first].a, b = (*points)[m.first].b;
     const BlockBodies pair{bodies[a], bodies[b], predicted[a], predicted[b]};

@@ -27,8 +27,8 @@ namespace contactsim {
 // `blocks`; `predicted` holds the bodies' v~ and w~ (before the position
 // solve).
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                const std::vector<XpbdPatch>& patches, std::vector<XpbdSubsetCache>& caches,
-                                const std::vector<XpbdPose>& predicted, std::vector<SoftBody>& bodies,
-                                std::vector<XpbdPoint>* points);
+                                int begin, int end, const std::vector<XpbdPatch>& patches,
+                                std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
+                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
 
 }  // namespace contactsim

@@ -1,0 +1,110 @@
+// xpbd's sub-steps (xpbd_method.h, step 2) as stages of one
+// ParallelRunner::Stages call, as soft's (soft_stages.cpp): the per-body
+// prediction and velocity update split over the bodies, the position sweep
+// and the velocity pass colour by colour (block_colours.h: a colour's blocks
+// share no dynamic body, so any thread may solve any of them in any order
+// with the same result), the joints and their projection serial stages. One
+// thread runs the same stages in the same order, so the state does not
+// depend on the thread count.
+#include <algorithm>
+#include <limits>
+
+#include "service/contact/joints/joint_solver.h"
+#include "service/contact/xpbd/xpbd_method.h"
+#include "service/contact/xpbd/xpbd_velocity_pass.h"
+
+namespace contactsim {
+namespace {
+
+// bodies a thread takes at a time
+constexpr int kBodyGrain = 128;
+// a colour's chunks per thread (ParallelRunner::Stages: each thread starts
+// on its own share, then helps with the rest)
+constexpr int kChunksPerThread = 4;
+constexpr int kSerial = std::numeric_limits<int>::max();  // one thread takes the stage whole
+
+}  // namespace
+
+void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, ParallelRunner& runner) {
+  auto& bodies = world.bodies();
+  const double h = world.dt / substeps;
+  XpbdSolve solve;
+  solve.h = h;
+  solve.inv_h = 1.0 / h;
+  solve.alpha_tilde = params_.compliance / (h * h);
+  // never below the resting overlap SubstepsFor allows a heavy body on a
+  // light one, which the solve removes again every sub-step
+  solve.max_push = std::max(params_.max_push_velocity * h, kMassRatioOverlap);
+  const double joint_alpha_tilde = params_.joint_compliance / (h * h);
+  const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
+
+  using Fn = ParallelRunner::StageFn;
+  const Fn predict = [&](int i, int j) {
+    IntegrateSoftVelocities(world, h, i, j, bodies_);
+    IntegrateSoftPositions(h, i, j, world, bodies_, /*track_motion=*/false);
+    for (int k = i; k < j; ++k) predicted_[k] = {bodies[k].x, bodies[k].q, bodies_[k].v, bodies_[k].w};
+  };
+  const Fn begin_blocks = [&](int i, int j) {
+    for (int k = i; k < j; ++k) {
+      BeginXpbdSubstep(blocks_[k], &points_);
+      BeginXpbdPatch(&patches_[k]);
+    }
+  };
+  const Fn begin_joints = [&](int, int) { joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{}); };
+  const Fn solve_joints = [&](int, int) { SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_); };
+  const Fn solve_blocks = [&](int i, int j) {
+    for (int k = i; k < j; ++k) {
+      SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
+      SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
+    }
+  };
+  const Fn project = [&](int, int) { ProjectJointPositions(world); };
+  // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
+  const Fn derive_velocities = [&](int i, int j) {
+    for (int k = i; k < j; ++k) {
+      SoftBody& s = bodies_[k];
+      const RigidBody& b = bodies[k];
+      if (!s.substepped || s.inv_mass == 0.0) continue;
+      if (b.x == predicted_[k].x && b.q.coeffs() == predicted_[k].q.coeffs()) continue;
+      Quat dq = b.q * predicted_[k].q.conjugate();
+      if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
+      s.v += (b.x - predicted_[k].x) / h;
+      s.w += (2.0 / h) * dq.vec();
+    }
+  };
+  const Fn velocity_pass = [&](int i, int j) {
+    SolveXpbdContactVelocities(h, threshold, blocks_, i, j, patches_, subsets_, predicted_, bodies_, &points_);
+  };
+
+  stages_.clear();
+  const auto add = [&](const Fn& fn, int begin, int end, int grain) {
+    if (end > begin) stages_.push_back({&fn, begin, end, grain});
+  };
+  const int threads = runner.threads();
+  const auto add_colours = [&](const Fn& fn) {
+    for (int c = 0; c < colours_.colours(); ++c) {
+      const int size = colours_.starts[c + 1] - colours_.starts[c];
+      add(fn, colours_.starts[c], colours_.starts[c + 1],
+          (size + kChunksPerThread * threads - 1) / (kChunksPerThread * threads));
+    }
+    add(fn, colours_.starts.back(), static_cast<int>(blocks_.size()), kSerial);  // the overflow, in order
+  };
+  const int n = static_cast<int>(bodies_.size());
+  const bool joints = !world.joints().empty();
+  predicted_.resize(bodies.size());
+  for (int sub = 0; sub < substeps; ++sub) {
+    add(predict, 0, n, kBodyGrain);
+    add(begin_blocks, 0, static_cast<int>(blocks_.size()), kBodyGrain);
+    if (joints) add(begin_joints, 0, 1, kSerial);
+    for (int it = 0; it < params_.iterations; ++it) {
+      if (joints) add(solve_joints, 0, 1, kSerial);
+      add_colours(solve_blocks);
+    }
+    if (project_joints) add(project, 0, 1, kSerial);
+    add(derive_velocities, 0, n, kBodyGrain);
+    add_colours(velocity_pass);
+  }
+  runner.Stages(stages_);
+}
+
+}  // namespace contactsim
