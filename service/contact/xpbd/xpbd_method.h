@@ -69,6 +69,8 @@ class XpbdMethod : public ContactMethod {
   // velocity pass, as the stages of one ParallelRunner::Stages call
   // (xpbd_stages.cpp).
   void RunSubsteps(World& world, int substeps, bool project_joints, ParallelRunner& runner);
+  // v += (x - x~) / h, w += 2 vec(q q~^-1) / h for bodies [begin, end).
+  void DeriveVelocities(const World& world, double h, int begin, int end);
   // The step's contacts with their depth at the step's end and average force.
   void ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const;
 

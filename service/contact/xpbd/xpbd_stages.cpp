@@ -25,6 +25,20 @@ constexpr int kSerial = std::numeric_limits<int>::max();  // one thread takes th
 
 }  // namespace
 
+void XpbdMethod::DeriveVelocities(const World& world, double h, int begin, int end) {
+  // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
+  for (int k = begin; k < end; ++k) {
+    SoftBody& s = bodies_[k];
+    const RigidBody& b = world.bodies()[k];
+    if (!s.substepped || s.inv_mass == 0.0) continue;
+    if (b.x == predicted_[k].x && b.q.coeffs() == predicted_[k].q.coeffs()) continue;
+    Quat dq = b.q * predicted_[k].q.conjugate();
+    if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
+    s.v += (b.x - predicted_[k].x) / h;
+    s.w += (2.0 / h) * dq.vec();
+  }
+}
+
 void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, ParallelRunner& runner) {
   auto& bodies = world.bodies();
   const double h = world.dt / substeps;
@@ -59,19 +73,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     }
   };
   const Fn project = [&](int, int) { ProjectJointPositions(world); };
-  // velocities from what the solve moved (Algorithm 2, v = (x - x_prev) / h)
-  const Fn derive_velocities = [&](int i, int j) {
-    for (int k = i; k < j; ++k) {
-      SoftBody& s = bodies_[k];
-      const RigidBody& b = bodies[k];
-      if (!s.substepped || s.inv_mass == 0.0) continue;
-      if (b.x == predicted_[k].x && b.q.coeffs() == predicted_[k].q.coeffs()) continue;
-      Quat dq = b.q * predicted_[k].q.conjugate();
-      if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
-      s.v += (b.x - predicted_[k].x) / h;
-      s.w += (2.0 / h) * dq.vec();
-    }
-  };
+  const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
   const Fn velocity_pass = [&](int i, int j) {
     SolveXpbdContactVelocities(h, threshold, blocks_, i, j, patches_, subsets_, predicted_, bodies_, &points_);
   };
