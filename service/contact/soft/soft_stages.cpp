@@ -6,8 +6,8 @@
 // joints are serial stages. One thread runs the same stages in the same
 // order, so the state does not depend on the thread count.
 #include <algorithm>
-#include <limits>
 
+#include "service/contact/colour_stages.h"
 #include "service/contact/soft/soft_method.h"
 
 namespace contactsim {
@@ -21,11 +21,7 @@ constexpr int kRestitutionPasses = 8;
 // Indices a thread takes at a time: enough work to pay for the atomic
 // counter, small enough that two threads finish a colour together.
 constexpr int kBodyGrain = 128;
-// a colour's chunks per thread: one keeps a thread on its share, more let
-// the threads even out a colour whose halves cost differently
-constexpr int kChunksPerThread = 4;
 constexpr int kPointGrain = 512;
-constexpr int kSerial = std::numeric_limits<int>::max();  // one thread takes the stage whole
 
 }  // namespace
 
@@ -64,37 +60,23 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     RestituteSoftManifolds(params_.restitution_threshold, manifolds_, i, j, points_, bodies_);
   };
 
-  stages_.clear();
-  const auto add = [&](const Fn& fn, int begin, int end, int grain) {
-    if (end > begin) stages_.push_back({&fn, begin, end, grain});
-  };
-  // a colour in kChunksPerThread chunks per thread, a thread starting on its
-  // own share (ParallelRunner::Stages), so that a colour's blocks tend to
-  // stay on one thread from pass to pass
-  const int threads = runner.threads();
-  const auto add_colours = [&](const Fn& fn) {
-    for (int c = 0; c < colours_.colours(); ++c) {
-      const int block_grain = (colours_.starts[c + 1] - colours_.starts[c] + kChunksPerThread * threads - 1) /
-                              (kChunksPerThread * threads);
-      add(fn, colours_.starts[c], colours_.starts[c + 1], block_grain);
-    }
-    add(fn, colours_.starts.back(), static_cast<int>(manifolds_.size()), kSerial);  // the overflow, in order
-  };
+  ColourStages list(&stages_, runner.threads());
+  const int blocks = static_cast<int>(manifolds_.size());
   const int bodies = static_cast<int>(bodies_.size());
   const bool joints = !world.joints().empty();
   for (int sub = 0; sub < params_.substeps; ++sub) {
-    add(integrate_velocities, 0, bodies, kBodyGrain);
-    add(warm_start, 0, bodies, kBodyGrain);
-    add_colours(solve_blocks);
-    if (ratio_solve_.active()) add(solve_ratio, 0, 1, kSerial);
-    if (joints) add(solve_joints, 0, 1, kSerial);
-    add(integrate_positions, 0, bodies, kBodyGrain);
-    for (int it = 0; it < params_.relax_iterations; ++it) add_colours(relax_blocks);
-    if (ratio_solve_.active() && params_.relax_iterations > 0) add(relax_ratio, 0, 1, kSerial);
-    if (joints) add(solve_joints, 0, 1, kSerial);
-    add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
+    list.Add(integrate_velocities, 0, bodies, kBodyGrain);
+    list.Add(warm_start, 0, bodies, kBodyGrain);
+    list.AddColours(solve_blocks, colours_, blocks);
+    if (ratio_solve_.active()) list.AddSerial(solve_ratio);
+    if (joints) list.AddSerial(solve_joints);
+    list.Add(integrate_positions, 0, bodies, kBodyGrain);
+    for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
+    if (ratio_solve_.active() && params_.relax_iterations > 0) list.AddSerial(relax_ratio);
+    if (joints) list.AddSerial(solve_joints);
+    list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }
-  for (int it = 0; it < kRestitutionPasses; ++it) add_colours(restitute);
+  for (int it = 0; it < kRestitutionPasses; ++it) list.AddColours(restitute, colours_, blocks);
   runner.Stages(stages_);
 }
 

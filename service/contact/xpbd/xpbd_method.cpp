@@ -68,9 +68,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   }
   const bool project_joints =
       params_.joint_compliance == 0.0 && JointMassRatioAtLeast(world, params_.direct_mass_ratio);
-  predicted_.resize(bodies.size());
   const int substeps = SubstepsFor(world);
-  const double h = world.dt / substeps;
   RunSubsteps(world, substeps, project_joints, detector.runner());
   StoreSoftBodies(bodies_, detector.runner(), world);
   ReportContacts(world, contacts_out, &stats);

@@ -7,8 +7,8 @@
 // thread runs the same stages in the same order, so the state does not
 // depend on the thread count.
 #include <algorithm>
-#include <limits>
 
+#include "service/contact/colour_stages.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/xpbd/xpbd_method.h"
 #include "service/contact/xpbd/xpbd_velocity_pass.h"
@@ -18,10 +18,6 @@ namespace {
 
 // bodies a thread takes at a time
 constexpr int kBodyGrain = 128;
-// a colour's chunks per thread (ParallelRunner::Stages: each thread starts
-// on its own share, then helps with the rest)
-constexpr int kChunksPerThread = 4;
-constexpr int kSerial = std::numeric_limits<int>::max();  // one thread takes the stage whole
 
 }  // namespace
 
@@ -78,33 +74,22 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     SolveXpbdContactVelocities(h, threshold, blocks_, i, j, patches_, subsets_, predicted_, bodies_, &points_);
   };
 
-  stages_.clear();
-  const auto add = [&](const Fn& fn, int begin, int end, int grain) {
-    if (end > begin) stages_.push_back({&fn, begin, end, grain});
-  };
-  const int threads = runner.threads();
-  const auto add_colours = [&](const Fn& fn) {
-    for (int c = 0; c < colours_.colours(); ++c) {
-      const int size = colours_.starts[c + 1] - colours_.starts[c];
-      add(fn, colours_.starts[c], colours_.starts[c + 1],
-          (size + kChunksPerThread * threads - 1) / (kChunksPerThread * threads));
-    }
-    add(fn, colours_.starts.back(), static_cast<int>(blocks_.size()), kSerial);  // the overflow, in order
-  };
+  ColourStages list(&stages_, runner.threads());
+  const int blocks = static_cast<int>(blocks_.size());
   const int n = static_cast<int>(bodies_.size());
   const bool joints = !world.joints().empty();
   predicted_.resize(bodies.size());
   for (int sub = 0; sub < substeps; ++sub) {
-    add(predict, 0, n, kBodyGrain);
-    add(begin_blocks, 0, static_cast<int>(blocks_.size()), kBodyGrain);
-    if (joints) add(begin_joints, 0, 1, kSerial);
+    list.Add(predict, 0, n, kBodyGrain);
+    list.Add(begin_blocks, 0, blocks, kBodyGrain);
+    if (joints) list.AddSerial(begin_joints);
     for (int it = 0; it < params_.iterations; ++it) {
-      if (joints) add(solve_joints, 0, 1, kSerial);
-      add_colours(solve_blocks);
+      if (joints) list.AddSerial(solve_joints);
+      list.AddColours(solve_blocks, colours_, blocks);
     }
-    if (project_joints) add(project, 0, 1, kSerial);
-    add(derive_velocities, 0, n, kBodyGrain);
-    add_colours(velocity_pass);
+    if (project_joints) list.AddSerial(project);
+    list.Add(derive_velocities, 0, n, kBodyGrain);
+    list.AddColours(velocity_pass, colours_, blocks);
   }
   runner.Stages(stages_);
 }
