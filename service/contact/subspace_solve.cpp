@@ -94,7 +94,7 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
   for (int root = 0; root < n; ++root) {
     if (count[root] == 0 || count[root] > options.max_rows) continue;
     members.assign(by_component.begin() + start[root], by_component.begin() + start[root + 1]);
-    report.passes += SolveComponent(members, rows, bodies, options.passes);
+    report.passes += SolveComponent(members, rows, bodies, options.passes, options.start_free);
     ++report.components;
     report.rows += static_cast<int>(members.size());
   }
@@ -135,6 +135,37 @@ void SubspaceSolver::BuildCoupling(const std::vector<int>& members, const std::v
   diag_ = A_.diagonal();
 }
 
+SubspaceSolver::Step SubspaceSolver::LongestStep(const std::vector<int>& members, const std::vector<int>& free_rows,
+                                                 const Eigen::VectorXd& dl,
+                                                 const std::vector<ConstraintRow>& rows) const {
+  Step step;
+  // the step at which lambda + alpha slope reaches `room` (>= 0 now) away;
+  // the first row to stop it is held (one row a pass: holding every row
+  // already at a bound at once failed the same bridges as clamping)
+  auto limit = [&step](double room, double slope, int i) {
+    if (slope <= 0.0) return;
+    const double alpha = std::max(0.0, room) / slope;
+    if (alpha < step.alpha) step.alpha = alpha, step.blocking = i;
+  };
+  for (int i = 0; i < static_cast<int>(free_rows.size()); ++i) {
+    const ConstraintRow& r = rows[members[free_rows[i]]];
+    if (r.normal_row < 0) {
+      limit(r.hi - r.lambda, dl(i), i);
+      limit(r.lambda - r.lo, -dl(i), i);
+      continue;
+    }
+    // |lambda_t + alpha dl_t| <= mu (lambda_n + alpha dl_n), dl_n 0 when
+    // the normal row is held
+    const int normal = member_of_[r.normal_row];
+    const int at = normal >= 0 ? position_[normal] : -1;
+    const double dn = at >= 0 ? dl(at) : 0.0;
+    const double bound = r.mu * rows[r.normal_row].lambda;
+    limit(bound - r.lambda, dl(i) - r.mu * dn, i);
+    limit(bound + r.lambda, -dl(i) - r.mu * dn, i);
+  }
+  return step;
+}
+
 // A friction row held at its bound keeps the bound of the pass that
 // clamped it, mu times its normal's impulse then; a later pass may lower
 // that impulse (a tentative answer along a nearly singular direction can
@@ -152,7 +183,7 @@ void SubspaceSolver::ClampHeldFriction(const std::vector<int>& members, const st
 }
 
 int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<ConstraintRow>& rows,
-                                   std::vector<SolverBody>& bodies, int passes) {
+                                   std::vector<SolverBody>& bodies, int passes, bool start_free) {
   const int m = static_cast<int>(members.size());
   BuildCoupling(members, rows, bodies);
   // free: solved for; held: kept at a bound (starting from the sweeps' guess)
@@ -163,7 +194,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
     const ConstraintRow& r = rows[members[i]];
     double lo = r.lo, hi = r.hi;
     if (r.normal_row >= 0) hi = r.mu * rows[r.normal_row].lambda, lo = -hi;
-    held[i] = diag_(i) <= 0.0 || r.lambda <= lo || r.lambda >= hi;
+    held[i] = diag_(i) <= 0.0 || (!start_free && (r.lambda <= lo || r.lambda >= hi));
   }
   std::vector<int> free_rows;
   int pass = 0;
@@ -199,28 +230,25 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
       Eigen::SparseMatrix<double> S(f, f);
       S.setFromTriplets(triplets_.begin(), triplets_.end());
       const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(S, b));
-      // rows the solution would push past a bound are held there, and the
-      // rest solved again; a sticking friction row's bound is mu times its
-      // normal row's new impulse (a row leaving it slides: held at the bound)
-      bool clamped = false;
+      // move along dl as far as every free row stays within its bounds, and
+      // hold the row that stops the step (a feasible active-set step: the
+      // impulses never leave their bounds, so each pass improves on the
+      // last; clamping every violating row at once left an aligned 1:1000
+      // bridge far from the solution and its supports spun out)
+      const Step step = LongestStep(members, free_rows, dl, rows);
       for (int i = 0; i < f; ++i) {
         ConstraintRow& r = rows[members[free_rows[i]]];
-        const double next = r.lambda + dl(i);
-        double lo = r.lo, hi = r.hi;
-        if (r.normal_row >= 0) {
-          const int normal = member_of_[r.normal_row];
-          const int at = normal >= 0 ? position_[normal] : -1;
-          hi = r.mu * std::max(0.0, rows[r.normal_row].lambda + (at >= 0 ? dl(at) : 0.0));
-          lo = -hi;
-        }
-        if (next < lo || next > hi) {
-          SetImpulse(r, next < lo ? lo : hi, bodies);
-          held[free_rows[i]] = true;
-          clamped = true;
-        }
+        SetImpulse(r, r.lambda + step.alpha * dl(i), bodies);
       }
-      if (clamped) continue;
-      for (int i = 0; i < f; ++i) SetImpulse(rows[members[free_rows[i]]], rows[members[free_rows[i]]].lambda + dl(i), bodies);
+      if (step.blocking >= 0) {
+        const int i = free_rows[step.blocking];
+        held[i] = true;
+        ConstraintRow& r = rows[members[i]];
+        double lo = r.lo, hi = r.hi;
+        if (r.normal_row >= 0) hi = r.mu * std::max(0.0, rows[r.normal_row].lambda), lo = -hi;
+        SetImpulse(r, std::clamp(r.lambda, lo, hi), bodies);
+        continue;
+      }
     }
     // held rows the solution leaves approaching (at lo) or pulling (at hi) are freed
     bool joined = false;

@@ -18,10 +18,15 @@
 // C the diagonal of the rows' compliances (ConstraintRow::cfm; 0 for rigid rows),
 // with the rows at a bound (sliding friction among them) held. Sticking
 // friction is in S because its rows converge as slowly: without it a 20 kg
-// box on a 0.02 kg one crept 44 mm sideways in 2 s. A row whose impulse
-// would leave its bounds is held at the bound and S solved again; a held
-// row that the solution makes approach (J v < rhs) joins S again (a
-// principal pivoting pass, Judice and Pires 1994), `passes` times at most.
+// box on a 0.02 kg one crept 44 mm sideways in 2 s. The impulses move
+// toward the solution only as far as every row stays within its bounds
+// (a friction row's bound moves with its normal's impulse); the row that
+// stops them is held at its bound and S solved again (a feasible
+// active-set step, Nocedal and Wright, "Numerical Optimization", 16.5:
+// clamping every row past a bound at once held rows that belonged free).
+// A held row that the solution makes approach (J v < rhs) joins S again
+// (a principal pivoting pass, Judice and Pires 1994), `passes` times at
+// most.
 //
 // A is sparse (rows couple through the bodies they share), scaled to unit
 // diagonal (Jacobi) and solved for the minimum-norm solution
@@ -48,6 +53,14 @@ struct SubspaceOptions {
   double mass_ratio = 10.0;  // heaviest / lightest dynamic body of a component that gets the solve; 0 = off
   int max_rows = 300;        // larger components keep the sweeps' answer
   int passes = 8;            // active-set passes at most
+  // Start with every row free rather than with the rows the sweeps left at
+  // a bound held: for the soft step, whose one sweep a sub-step leaves a
+  // 1:1000 component's impulses at bounds they do not belong at (the
+  // supports of an aligned plank spun out for light masses of 0.03-10 kg;
+  // docs/physics.md, "Mass ratios"). The twenty sweeps of impulse and lcp
+  // leave a better active set, and free starts there need more passes.
+  // A free start holds its rows one a pass, so it wants more passes.
+  bool start_free = false;
 };
 
 struct SubspaceReport {
@@ -72,12 +85,22 @@ class SubspaceSolver {
  private:
   // Solves the component whose rows are `members` (indices in rows).
   int SolveComponent(const std::vector<int>& members, std::vector<ConstraintRow>& rows,
-                     std::vector<SolverBody>& bodies, int passes);
+                     std::vector<SolverBody>& bodies, int passes, bool start_free);
 
   // A = J M^-1 J^T over the members (sparse: rows couple through shared
   // bodies) into A_ and its diagonal into diag_.
   void BuildCoupling(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
                      const std::vector<SolverBody>& bodies);
+
+  // How far (0..1) the free rows' impulses may move along dl before one
+  // leaves its bounds (a friction row's bound moves with its normal's
+  // impulse), and which free row (index into free_rows) stops them, or -1.
+  struct Step {
+    double alpha = 1.0;
+    int blocking = -1;
+  };
+  Step LongestStep(const std::vector<int>& members, const std::vector<int>& free_rows, const Eigen::VectorXd& dl,
+                   const std::vector<ConstraintRow>& rows) const;
 
   // Brings held friction rows inside mu times their normal's impulse.
   void ClampHeldFriction(const std::vector<int>& members, const std::vector<char>& held,

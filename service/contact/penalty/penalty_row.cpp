@@ -31,6 +31,7 @@ double InverseEffectiveMass(const World& world, const PenaltyRow& row, const Vec
 namespace {
 
 struct PairInfo {
+  int index = 0;               // in the map's (deterministic) order
   int points = 0;
   double m_eff = 0.0;          // kg, 1 / (1/m_a + 1/m_b)
   double restitution = -1.0;   // combined, or -1 when kd / alpha are given
@@ -114,6 +115,8 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
   }
 
   SetPairStiffnessAndDamping(world, contacts, params, &pairs);
+  int index = 0;
+  for (auto& entry : pairs) entry.second.index = index++;
 
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
@@ -121,6 +124,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     if (!row.engaged) continue;
     const PairInfo& pair = pairs[{std::min(c.a, c.b), std::max(c.a, c.b)}];
     row.nc = pair.points;
+    row.pair = pair.index;
     row.had_anchor = anchors.Find(c, &row.anchor);
     const bool was_penetrating = row.had_anchor && row.anchor.penetrating;
     if (row.had_anchor) {

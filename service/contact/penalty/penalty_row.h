@@ -31,6 +31,7 @@ struct PenaltyRow {
   double vn0 = 0.0;            // m/s, n . (v_B - v_A) at the point, < 0 approaching
   Vec3 vt0 = Vec3::Zero();     // m/s, tangential part of v_B - v_A
   bool engaged = false;        // takes part in this step (penetrating, or a candidate of the implicit active set)
+  int pair = -1;               // index of the row's body pair among the step's pairs
   double nc = 1.0;             // contact points of the pair
   NormalLaw law;               // includes the onset correction in lambda0
   double kp = 0.0;             // N/m (N/m^n hunt_crossley): the pair's stiffness (penalty_stiffness.h)

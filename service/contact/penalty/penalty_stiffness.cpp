@@ -104,7 +104,10 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
     if (row.rebounds) {
       point = std::max(point, row.law.k / row.m_share);
     } else {
-      point = std::max(point, row.law.k / (row.m_spring * kSettleSlack * kSettleSlack));
+      // the mass the spring was set for, or the pair's own 2 m_eff when that
+      // is lighter (a light body pressed by a heavy one: docs/physics.md)
+      const double m = std::min(row.m_spring, 2.0 * row.m_share);
+      point = std::max(point, row.law.k / (m * kSettleSlack * kSettleSlack));
     }
   }
   return {std::sqrt(point), std::sqrt(PowerIteration(world, rows, counted))};

@@ -45,7 +45,7 @@ double StiffnessFromContactTime(double heaviest_mass, double contact_time);
 // largest sqrt(kp / m_eff) of a pair's normal spring against its effective
 // mass, the frequency its damping and restitution are set for (what a
 // bounce must resolve; pairs of restitution 0 count with
-// sqrt(kp / m_s) / kSettleSlack, having no bounce to resolve); `estimate` omega_max of every normal
+// sqrt(kp / m) / kSettleSlack, having no bounce to resolve); `estimate` omega_max of every normal
 // and tangential spring together (what the step's stability needs; several
 // times `point` for a body held by many), the Rayleigh quotient after
 // kPowerIterations products from a fixed start vector, so deterministic.
@@ -56,10 +56,14 @@ double StiffnessFromContactTime(double heaviest_mass, double contact_time);
 // boxes pushed into them by others.
 constexpr int kPowerIterations = 20;
 // A pair of restitution 0 has no bounce to resolve, only its settling:
-// sqrt(kp / m_s) h <= kSettleSlack max_omega_h, m_s the mass its stiffness
-// was set for (pi / contact_time; m_eff for a fixed kp), not its faster
-// relative mode (sqrt(2) pi / T for two equal bodies), which costs the
-// pyramid and the pile a quarter more sub-steps for no measured gain. A
+// sqrt(kp / m) h <= kSettleSlack max_omega_h, m the lighter of m_s, the
+// mass its stiffness was set for (pi / contact_time; m_eff for a fixed kp),
+// and 2 m_eff. For equal masses and a body on the ground m = m_s, not the
+// faster relative mode (sqrt(2) pi / T for two equal bodies), which costs
+// the pyramid and the pile a quarter more sub-steps for no measured gain;
+// a light body pressed by a heavy one settles at its own frequency,
+// sqrt(kp / m_eff), 30 times pi / T under a 1,000 times heavier plank,
+// and with m_s alone it flew off (docs/physics.md, "Mass ratios"). A
 // 0.2 m box held by mu = 0.7 on a 30 degree slope moved 1e-19 m in 2 s at
 // 1.5 and crept 1 um at 2 (its uphill corners slip and hand their load on).
 constexpr double kSettleSlack = 1.5;
