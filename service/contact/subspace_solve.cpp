@@ -166,6 +166,54 @@ SubspaceSolver::Step SubspaceSolver::LongestStep(const std::vector<int>& members
   return step;
 }
 
+bool SubspaceSolver::ClampPastBounds(const std::vector<int>& members, const std::vector<int>& free_rows,
+                                     const Eigen::VectorXd& dl, std::vector<char>& held,
+                                     std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies) {
+  // a sticking friction row's bound is mu times its normal row's new
+  // impulse (a row leaving it slides: held at the bound)
+  bool clamped = false;
+  for (int i = 0; i < static_cast<int>(free_rows.size()); ++i) {
+    ConstraintRow& r = rows[members[free_rows[i]]];
+    const double next = r.lambda + dl(i);
+    double lo = r.lo, hi = r.hi;
+    if (r.normal_row >= 0) {
+      const int normal = member_of_[r.normal_row];
+      const int at = normal >= 0 ? position_[normal] : -1;
+      hi = r.mu * std::max(0.0, rows[r.normal_row].lambda + (at >= 0 ? dl(at) : 0.0));
+      lo = -hi;
+    }
+    if (next < lo || next > hi) {
+      SetImpulse(r, next < lo ? lo : hi, bodies);
+      held[free_rows[i]] = true;
+      clamped = true;
+    }
+  }
+  if (clamped) return true;
+  for (int i = 0; i < static_cast<int>(free_rows.size()); ++i) {
+    ConstraintRow& r = rows[members[free_rows[i]]];
+    SetImpulse(r, r.lambda + dl(i), bodies);
+  }
+  return false;
+}
+
+bool SubspaceSolver::StepWithinBounds(const std::vector<int>& members, const std::vector<int>& free_rows,
+                                      const Eigen::VectorXd& dl, std::vector<char>& held,
+                                      std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies) {
+  const Step step = LongestStep(members, free_rows, dl, rows);
+  for (int i = 0; i < static_cast<int>(free_rows.size()); ++i) {
+    ConstraintRow& r = rows[members[free_rows[i]]];
+    SetImpulse(r, r.lambda + step.alpha * dl(i), bodies);
+  }
+  if (step.blocking < 0) return false;
+  const int i = free_rows[step.blocking];
+  held[i] = true;
+  ConstraintRow& r = rows[members[i]];
+  double lo = r.lo, hi = r.hi;
+  if (r.normal_row >= 0) hi = r.mu * std::max(0.0, rows[r.normal_row].lambda), lo = -hi;
+  SetImpulse(r, std::clamp(r.lambda, lo, hi), bodies);
+  return true;
+}
+
 // A friction row held at its bound keeps the bound of the pass that
 // clamped it, mu times its normal's impulse then; a later pass may lower
 // that impulse (a tentative answer along a nearly singular direction can
@@ -230,25 +278,9 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
       Eigen::SparseMatrix<double> S(f, f);
       S.setFromTriplets(triplets_.begin(), triplets_.end());
       const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(S, b));
-      // move along dl as far as every free row stays within its bounds, and
-      // hold the row that stops the step (a feasible active-set step: the
-      // impulses never leave their bounds, so each pass improves on the
-      // last; clamping every violating row at once left an aligned 1:1000
-      // bridge far from the solution and its supports spun out)
-      const Step step = LongestStep(members, free_rows, dl, rows);
-      for (int i = 0; i < f; ++i) {
-        ConstraintRow& r = rows[members[free_rows[i]]];
-        SetImpulse(r, r.lambda + step.alpha * dl(i), bodies);
-      }
-      if (step.blocking >= 0) {
-        const int i = free_rows[step.blocking];
-        held[i] = true;
-        ConstraintRow& r = rows[members[i]];
-        double lo = r.lo, hi = r.hi;
-        if (r.normal_row >= 0) hi = r.mu * std::max(0.0, rows[r.normal_row].lambda), lo = -hi;
-        SetImpulse(r, std::clamp(r.lambda, lo, hi), bodies);
-        continue;
-      }
+      const bool newly_held = start_free ? StepWithinBounds(members, free_rows, dl, held, rows, bodies)
+                                         : ClampPastBounds(members, free_rows, dl, held, rows, bodies);
+      if (newly_held) continue;
     }
     // held rows the solution leaves approaching (at lo) or pulling (at hi) are freed
     bool joined = false;

@@ -18,15 +18,15 @@
 // C the diagonal of the rows' compliances (ConstraintRow::cfm; 0 for rigid rows),
 // with the rows at a bound (sliding friction among them) held. Sticking
 // friction is in S because its rows converge as slowly: without it a 20 kg
-// box on a 0.02 kg one crept 44 mm sideways in 2 s. The impulses move
-// toward the solution only as far as every row stays within its bounds
-// (a friction row's bound moves with its normal's impulse); the row that
-// stops them is held at its bound and S solved again (a feasible
-// active-set step, Nocedal and Wright, "Numerical Optimization", 16.5:
-// clamping every row past a bound at once held rows that belonged free).
-// A held row that the solution makes approach (J v < rhs) joins S again
-// (a principal pivoting pass, Judice and Pires 1994), `passes` times at
-// most.
+// box on a 0.02 kg one crept 44 mm sideways in 2 s. Rows the solution
+// pushes past a bound are held there and S solved again; a held row that
+// the solution makes approach (J v < rhs) joins S again (a principal
+// pivoting pass, Judice and Pires 1994), `passes` times at most. With
+// `start_free` every row starts free, and the impulses move toward each
+// solution only as far as every row stays within its bounds (a friction
+// row's bound moves with its normal's impulse); the row that stops them is
+// held (a feasible active-set step, Nocedal and Wright, "Numerical
+// Optimization", 16.5).
 //
 // A is sparse (rows couple through the bodies they share), scaled to unit
 // diagonal (Jacobi) and solved for the minimum-norm solution
@@ -54,12 +54,13 @@ struct SubspaceOptions {
   int max_rows = 300;        // larger components keep the sweeps' answer
   int passes = 8;            // active-set passes at most
   // Start with every row free rather than with the rows the sweeps left at
-  // a bound held: for the soft step, whose one sweep a sub-step leaves a
-  // 1:1000 component's impulses at bounds they do not belong at (the
-  // supports of an aligned plank spun out for light masses of 0.03-10 kg;
-  // docs/physics.md, "Mass ratios"). The twenty sweeps of impulse and lcp
-  // leave a better active set, and free starts there need more passes.
-  // A free start holds its rows one a pass, so it wants more passes.
+  // a bound held, and take feasible steps: for the soft step, whose one
+  // sweep a sub-step leaves a 1:1000 component's impulses at bounds they do
+  // not belong at (the supports of an aligned plank spun out for light
+  // masses of 0.03-10 kg; docs/physics.md, "Mass ratios"). It holds one row
+  // a pass, so it wants more passes. The twenty sweeps of impulse and lcp
+  // leave a better active set: with feasible steps lcp let three of 96
+  // heavy-on-light box stacks fall, against none.
   bool start_free = false;
 };
 
@@ -91,6 +92,19 @@ class SubspaceSolver {
   // bodies) into A_ and its diagonal into diag_.
   void BuildCoupling(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
                      const std::vector<SolverBody>& bodies);
+
+  // The free rows' impulses plus dl, or, where that leaves a row's bounds,
+  // every such row held at the bound it passed and nothing else changed;
+  // true when rows were held.
+  bool ClampPastBounds(const std::vector<int>& members, const std::vector<int>& free_rows,
+                       const Eigen::VectorXd& dl, std::vector<char>& held, std::vector<ConstraintRow>& rows,
+                       std::vector<SolverBody>& bodies);
+  // The free rows' impulses moved along dl as far as all stay within their
+  // bounds (LongestStep), the row that stops them held at its bound; true
+  // when a row was held.
+  bool StepWithinBounds(const std::vector<int>& members, const std::vector<int>& free_rows,
+                        const Eigen::VectorXd& dl, std::vector<char>& held, std::vector<ConstraintRow>& rows,
+                        std::vector<SolverBody>& bodies);
 
   // How far (0..1) the free rows' impulses may move along dl before one
   // leaves its bounds (a friction row's bound moves with its normal's
