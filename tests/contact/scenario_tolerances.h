@@ -8,10 +8,12 @@
 // instead of widening the bound, and the suite skips it saying "known miss".
 #pragma once
 
+#include <fnmatch.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <string>
 
@@ -99,6 +101,20 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"soft", "stack n=20 drift",
      "0.31 mm sideways in 10 s (9.5 mm swept bottom up, 0.38 mm top down before the colours): symmetric to "
      "1e-15 m for 2 s, then it leans slowly"},
+    // the 8-stack at other sizes and masses (MechanicsAlignedStackSweepTest):
+    // the same compliance and gaps as the 0.2 m cubes, and leans where
+    // round-off broke the stack's symmetry (docs/physics.md, "Aligned stacks")
+    {"penalty", "stack n=8 size=* height", "0.57 mm lower at every size and mass: its compliance, as above"},
+    {"barrier", "stack n=8 size=* height", "5.2-5.3 mm higher at every size and mass: barrier gaps, as above"},
+    {"soft", "stack n=8 size=* height", "1.0 mm lower at every size and mass: its springs, as above"},
+    {"impulse", "stack n=8 size=0.04 m=0.1 drift", "0.23 mm sideways in 5 s: it leans"},
+    {"lcp_pgs", "stack n=8 size=0.04 m=0.1 drift", "0.23 mm sideways in 5 s: it leans"},
+    {"lcp_pgs", "stack n=8 size=0.04 m=10 drift", "0.15 mm sideways in 5 s: it leans"},
+    {"lcp_pgs", "stack n=8 size=0.1 m=0.1 drift", "0.50 mm sideways in 5 s: it leans"},
+    {"lcp_pgs", "stack n=8 size=0.1 m=10 drift", "0.86 mm sideways in 5 s: it leans"},
+    {"lcp_lemke", "stack n=8 size=0.04 m=10 drift", "0.25 mm sideways in 1 s"},
+    {"lcp_lemke", "stack n=8 size=0.3 m=0.1 drift", "0.11 mm sideways in 1 s"},
+    {"soft", "stack n=8 size=0.04 m=0.1 drift", "0.11 mm sideways in 5 s: it leans"},
     {"soft", "cradle n=5", "last 0.525 v0, the others 0.525 v0: restitution only where a pair met faster than the "
                            "threshold, so the touching spheres leave together"},
 };
@@ -120,18 +136,22 @@ inline const ScenarioTolerances& TolerancesOf(const std::string& label) {
   return kNone;
 }
 
+// A case_id with '*' lists every case it matches (fnmatch): one cause
+// measured the same at every size of a sweep.
 inline const KnownMiss* FindKnownMiss(const std::string& label, const std::string& case_id) {
   for (const KnownMiss& m : kKnownMisses) {
-    if (label == m.label && case_id == m.case_id) return &m;
+    if (label == m.label && fnmatch(m.case_id, case_id.c_str(), 0) == 0) return &m;
   }
   return nullptr;
 }
+
+inline bool IsPattern(const KnownMiss& m) { return std::strchr(m.case_id, '*') != nullptr; }
 
 // The checks of one test of one method. Every check runs: an unlisted case
 // outside its tolerance fails; a listed one is collected as a known miss
 // (SKIP_KNOWN_MISSES then skips the test naming each, so the suite stays
 // green and the miss visible); a listed case within tolerance fails, so a
-// fixed miss leaves the list.
+// fixed miss leaves the list (a pattern may match cases within it).
 class MechanicsChecks {
  public:
   explicit MechanicsChecks(std::string label) : label_(std::move(label)) {}
@@ -142,10 +162,10 @@ class MechanicsChecks {
     if (miss == nullptr) {
       EXPECT_TRUE(within) << label_ << " " << case_id << ": measured " << measured << ", analytic " << expected
                           << ", tolerance " << tol;
-    } else if (within) {
+    } else if (within && !IsPattern(*miss)) {
       ADD_FAILURE() << label_ << " " << case_id << " is in kKnownMisses but is within tolerance now (measured "
                     << measured << ", analytic " << expected << "): remove it there and in docs/physics.md";
-    } else {
+    } else if (!within) {
       misses_ << (misses_.tellp() > 0 ? "; " : "known miss: ") << label_ << " " << case_id << " measured "
               << measured << " vs " << expected << " (tolerance " << tol << "): " << miss->why;
     }
