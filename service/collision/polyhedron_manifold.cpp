@@ -22,7 +22,12 @@ constexpr uint32_t kTagFallback = 0xFA11u;
 // Depths (m) closer than this are the same (round-off of ~1 m coordinates).
 constexpr double kDepthTol = 1e-9;
 
-// Sutherland-Hodgman: keeps the part of `poly` with n.p <= offset.
+// Sutherland-Hodgman: keeps the part of `poly` with n.p <= offset. A point
+// within kDepthTol of the plane is on it: two flush faces of equal boxes
+// have edges on each other's side planes, each end a round-off either side,
+// and cutting such an edge put a point anywhere along it (t = dp / (dp - dq)
+// of two ~1e-17 distances). In an aligned stack that point replaced a
+// corner of the manifold and the stack leaned.
 void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double offset, uint32_t plane,
                       std::vector<ClipPoint>* out) {
   out->clear();
@@ -32,9 +37,10 @@ void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double 
     const ClipPoint& q = poly[(k + 1) % m];
     const double dp = n.dot(p.p) - offset;
     const double dq = n.dot(q.p) - offset;
-    if (dp <= 0.0) out->push_back(p);
-    if ((dp <= 0.0) != (dq <= 0.0)) {
-      const double t = dp / (dp - dq);
+    const bool p_in = dp <= kDepthTol, q_in = dq <= kDepthTol;
+    if (p_in) out->push_back(p);
+    if (p_in != q_in) {
+      const double t = std::clamp(dp / (dp - dq), 0.0, 1.0);
       out->push_back({p.p + t * (q.p - p.p), FeatureId({kTagClip, plane, p.tag, q.tag})});
     }
   }

@@ -114,12 +114,12 @@ double HitSleepingStack(SleepSim& sim, const Vec3& from_top, const Vec3& v) {
 // top box lands, and that the top box then answers: it moves (a sleeping
 // box would not move by a single bit). The 8 kg box on a rigid stack under
 // a 0.5 kg ball moves little (impulse, its face rows solved as blocks:
-// 8e-8 m), so any motion well above round-off (1e-16 m here) counts.
+// 8e-8 m; Lemke's exact rigid answer 5e-15 m), so any motion counts.
 TEST_P(IslandSleepTest, SleepingStackWakesWhenABallIsDroppedOnIt) {
   SleepSim sim(GetParam());
   const double moved = HitSleepingStack(sim, Vec3(0.02, 0, 0.3), Vec3::Zero());
   std::printf("[%s] top box moved %.3e m under the dropped ball\n", GetParam().label.c_str(), moved);
-  EXPECT_GT(moved, 1e-12);
+  EXPECT_GT(moved, 0.0);
 }
 
 // Verifies that a ball thrown at 4 m/s at the side of a sleeping stack's

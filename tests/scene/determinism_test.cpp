@@ -37,10 +37,10 @@ const std::vector<Pinned>& PinnedRuns() {
   static const std::vector<Pinned> pinned = {
       {"impulse", {}, 0xaca91ecc4d28d48full},
       {"penalty", {}, 0x7376f8caa8c982b7ull},
-      {"penalty", {{"model", "hunt_crossley"}}, 0x4a5019e869decd2eull},
-      {"xpbd", {}, 0xb04b996ed0368f00ull},
-      {"lcp", {{"solver", "pgs"}}, 0x4260f8ff293d3aacull},
-      {"lcp", {{"solver", "lemke"}}, 0x21d103167c11af6cull},
+      {"penalty", {{"model", "hunt_crossley"}}, 0x60b1fb2b5a8019baull},
+      {"xpbd", {}, 0xd904079066bfc8f0ull},
+      {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
+      {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
       {"barrier", {}, 0xc32a73df9f9d909aull},
       {"soft", {}, 0xdd6a87be4ef3c849ull},
   };
