@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "service/collision/narrowphase.h"
 #include "tests/collision/narrowphase_test_util.h"
@@ -86,6 +87,35 @@ TEST(CollidePolyhedronTest, OffsetCubesClipToTheirOverlapSquare) {
     EXPECT_TRUE(HasPoint(out, p)) << p.transpose();
   }
   for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.01, kTol);
+}
+
+// Verifies that two equal cubes stacked flush give their four corners, at
+// every size and height of a stack and with the upper one turned by a
+// round-off: each edge of the incident face lies on a side plane of the
+// reference face, its ends a round-off either side, and cutting it there
+// once put a point anywhere along the edge (104 of these cases failed;
+// docs/physics.md, "Why stacks leaned").
+TEST(CollidePolyhedronTest, FlushEqualCubesGiveTheirFourCorners) {
+  int pairs = 0;
+  for (const double half : {0.02, 0.035, 0.05, 0.1, 0.15}) {
+    for (int layer = 0; layer < 20; ++layer) {
+      for (const double turn : {0.0, 3e-16, -1e-15, 4e-15}) {  // rad, about an axis near z
+        const double z = half * (1 + 2 * layer);
+        const Quat q(Eigen::AngleAxisd(turn, Vec3(0.1, 0.2, 1.0).normalized()));
+        const RigidBody a = Box(1, Vec3(half, half, half), Vec3(0, 0, z));
+        const RigidBody b = Box(2, Vec3(half, half, half), Vec3(0.0, 0.0, z + 2 * half - 1e-6), q);
+        ContactSet out;
+        const std::string where = "half " + std::to_string(half) + " layer " + std::to_string(layer);
+        ASSERT_EQ(Collide(a, 0, b, 1, 0.0, &out), 4) << where << " turn " << turn;
+        for (const Contact& c : out) {
+          EXPECT_NEAR(std::abs(c.point.x()), half, kTol) << where << " turn " << turn;
+          EXPECT_NEAR(std::abs(c.point.y()), half, kTol) << where << " turn " << turn;
+        }
+        ++pairs;
+      }
+    }
+  }
+  EXPECT_EQ(pairs, 400);
 }
 
 // Verifies that two boxes meeting edge to edge (crossed at right angles) give one point.
