@@ -121,10 +121,10 @@ class MassRatioStackTest : public ::testing::TestWithParam<StackParam> {};
 // stack case: the measured stack first, then a heavy light body on a
 // slippery, bouncy pair and a lighter one on a rough, dead one (a method
 // that holds one mass and material by luck fails another).
-struct Material3 {
+struct StackMaterial {
   double light, mu, e;
 };
-constexpr Material3 kStackMaterials[] = {{kLightMass, 0.5, 0.0}, {10.0, 0.2, 0.5}, {0.1, 0.9, 0.0}};
+constexpr StackMaterial kStackMaterials[] = {{kLightMass, 0.5, 0.0}, {10.0, 0.2, 0.5}, {0.1, 0.9, 0.0}};
 
 // Verifies that a two-body stack with the given mass ratio rests: no overlap
 // deeper than kMaxPenetration at any step, and the upper body does not sink
@@ -134,7 +134,7 @@ constexpr Material3 kStackMaterials[] = {{kLightMass, 0.5, 0.0}, {10.0, 0.2, 0.5
 TEST_P(MassRatioStackTest, StackHolds) {
   const auto& [method, top, heavy_on_top, ratio] = GetParam();
   testing::MechanicsChecks checks(method);
-  for (const Material3& mat : kStackMaterials) {
+  for (const StackMaterial& mat : kStackMaterials) {
     Sim sim(method);
     AddGround(sim.world, mat.e, mat.mu);
     const double gap = 1e-4;  // m
@@ -195,6 +195,30 @@ BodySettings FlatBox(double x, double z, double m) {
   return s;
 }
 
+// The plank and its two supports of LightSupportsHold: a plank `ratio` times
+// heavier than each of two flat boxes of mass `light` at x = -+kSupportX,
+// every body of friction mu and restitution e, 0.1 mm apart.
+constexpr double kSupportX = 0.35;  // m
+struct Bridge {
+  BodyId supports[2];
+  BodyId plank;
+};
+Bridge AddBridge(World& world, double light, int ratio, double mu, double e) {
+  const double gap = 1e-4;  // m
+  Bridge bridge{};
+  for (int i = 0; i < 2; ++i) {
+    BodySettings s = FlatBox(i == 0 ? -kSupportX : kSupportX, gap, light);
+    s.friction = mu, s.restitution = e;
+    bridge.supports[i] = AddValidBody(world, s);
+  }
+  BodySettings plank = FlatBox(0.0, 0.1 + 2.0 * gap, light * ratio);
+  plank.half_extents = Vec3(0.5, 0.15, 0.025);
+  plank.position.z() = 0.1 + 2.0 * gap + 0.025;
+  plank.friction = mu, plank.restitution = e;
+  bridge.plank = AddValidBody(world, plank);
+  return bridge;
+}
+
 // Verifies two more layouts of light supports under heavy loads, with the
 // bounds of StackHolds: a plank `ratio` times heavier than each of the two
 // light boxes it bridges (one component, two supports, eight contact points
@@ -210,12 +234,7 @@ TEST_P(MassRatioSupportTest, LightSupportsHold) {
     AddGround(sim.world, 0.0, 0.5);
     BodyId top = 0;
     if (bridge) {
-      AddValidBody(sim.world, FlatBox(-0.35, gap, kLightMass));
-      AddValidBody(sim.world, FlatBox(0.35, gap, kLightMass));
-      BodySettings plank = FlatBox(0.0, 0.1 + 2.0 * gap, kLightMass * ratio);
-      plank.half_extents = Vec3(0.5, 0.15, 0.025);
-      plank.position.z() = 0.1 + 2.0 * gap + 0.025;
-      top = AddValidBody(sim.world, plank);
+      top = AddBridge(sim.world, kLightMass, ratio, 0.5, 0.0).plank;
     } else {
       AddValidBody(sim.world, FlatBox(0.0, gap, kLightMass * ratio));
       AddValidBody(sim.world, FlatBox(0.0, 0.1 + 2.0 * gap, kLightMass));
@@ -241,29 +260,18 @@ class MassRatioBridgeTest : public ::testing::TestWithParam<SupportParam> {};
 
 TEST_P(MassRatioBridgeTest, HoldsAtEveryMassAndMaterial) {
   const auto& [method, ratio] = GetParam();
-  const double gap = 1e-4;  // m
   testing::MechanicsChecks checks(method);
   for (const double light : {0.1, 10.0}) {
     for (const double mu : {0.2, 0.9}) {
       for (const double e : {0.0, 0.5}) {
         Sim sim(method);
         AddGround(sim.world, e, mu);
-        std::vector<BodyId> supports;
-        for (const double x : {-0.35, 0.35}) {
-          BodySettings s = FlatBox(x, gap, light);
-          s.friction = mu, s.restitution = e;
-          supports.push_back(AddValidBody(sim.world, s));
-        }
-        BodySettings plank = FlatBox(0.0, 0.1 + 2.0 * gap, light * ratio);
-        plank.half_extents = Vec3(0.5, 0.15, 0.025);
-        plank.position.z() = 0.1 + 2.0 * gap + 0.025;
-        plank.friction = mu, plank.restitution = e;
-        const BodyId top = AddValidBody(sim.world, plank);
-        const Rest rest = RunStack(sim, top);
+        const Bridge bridge = AddBridge(sim.world, light, ratio, mu, e);
+        const Rest rest = RunStack(sim, bridge.plank);
         double slide = 0.0;  // m, farthest a support moved sideways
-        for (size_t i = 0; i < supports.size(); ++i) {
-          const Vec3 start(i == 0 ? -0.35 : 0.35, 0.0, 0.0);
-          slide = std::max(slide, (sim.world.Find(supports[i])->x - start).head<2>().norm());
+        for (int i = 0; i < 2; ++i) {
+          const Vec3 start(i == 0 ? -kSupportX : kSupportX, 0.0, 0.0);
+          slide = std::max(slide, (sim.world.Find(bridge.supports[i])->x - start).head<2>().norm());
         }
         char id[80];
         std::snprintf(id, sizeof(id), "bridge 1:%d m=%g mu=%g e=%g", ratio, light, mu, e);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -92,6 +93,40 @@ using StackParam = std::tuple<MethodConfig, int>;  // method, cubes
 
 class MechanicsAlignedStackTest : public ::testing::TestWithParam<StackParam> {};
 
+// How an aligned stack stood: the top cube's height change at the end and
+// the largest sideways displacement of any cube at any step (m).
+struct StackStand {
+  double height = 0.0, drift = 0.0;
+};
+
+// Stacks n exactly aligned cubes of half size `half` (mass `mass`, or the
+// default density's when unset; mu 0.5, e = 0) touching on the ground and
+// steps `seconds` under `config`.
+StackStand RunAlignedStack(const MethodConfig& config, int n, double half, std::optional<double> mass,
+                           double seconds) {
+  Sim sim(config.method, config.params);
+  testing::AddGround(sim.world, 0.0, 0.5);
+  std::vector<BodyId> cubes;
+  for (int i = 0; i < n; ++i) {
+    BodySettings s;
+    s.shape = ShapeType::kBox;
+    s.half_extents = Vec3::Constant(half);
+    s.position = Vec3(0, 0, half * (1 + 2 * i));
+    s.mass = mass;
+    s.friction = 0.5;
+    s.restitution = 0.0;
+    cubes.push_back(testing::AddValidBody(sim.world, s));
+  }
+  const double top0 = sim.world.Find(cubes.back())->x.z();
+  StackStand stand;
+  while (sim.world.time < seconds) {
+    sim.Step();
+    for (BodyId id : cubes) stand.drift = std::max(stand.drift, sim.world.Find(id)->x.head<2>().norm());
+  }
+  stand.height = std::abs(sim.world.Find(cubes.back())->x.z() - top0);
+  return stand;
+}
+
 // Verifies that a stack of n exactly aligned 0.2 m cubes (8 kg each, mu 0.5,
 // e = 0) placed touching stands for 10 s (the table's horizon, shorter for a
 // method too slow for it): the top cube's height at the end differs from its
@@ -100,69 +135,38 @@ class MechanicsAlignedStackTest : public ::testing::TestWithParam<StackParam> {}
 TEST_P(MechanicsAlignedStackTest, StandsWithoutDriftingOrSinking) {
   const auto& [config, n] = GetParam();
   const testing::ScenarioTolerances& tol = testing::TolerancesOf(config.label);
-  const double half = 0.1, seconds = n == 8 ? tol.stack8_seconds : tol.stack20_seconds;
-  Sim sim(config.method, config.params);
-  testing::AddGround(sim.world, 0.0, 0.5);
-  std::vector<BodyId> cubes;
-  for (int i = 0; i < n; ++i) {
-    cubes.push_back(testing::AddBox(sim.world, half, Vec3(0, 0, half * (1 + 2 * i)), 0.0, 0.5));
-  }
-  const double top0 = sim.world.Find(cubes.back())->x.z();
-  double drift = 0.0;
-  while (sim.world.time < seconds) {
-    sim.Step();
-    for (BodyId id : cubes) drift = std::max(drift, sim.world.Find(id)->x.head<2>().norm());
-  }
-  const double height = std::abs(sim.world.Find(cubes.back())->x.z() - top0);
+  const double seconds = n == 8 ? tol.stack8_seconds : tol.stack20_seconds;
+  const StackStand stand = RunAlignedStack(config, n, 0.1, std::nullopt, seconds);
   std::printf("%-10s stack of %2d, %.1f s: top height off by %.3g m at the end, sideways drift %.3g m at most\n",
-              config.label.c_str(), n, seconds, height, drift);
+              config.label.c_str(), n, seconds, stand.height, stand.drift);
   const std::string id = "stack n=" + std::to_string(n);
   testing::MechanicsChecks checks(config.label);
-  checks.Expect(id + " height", height, 0.0, tol.stack_height);
-  checks.Expect(id + " drift", drift, 0.0, tol.stack_drift);
+  checks.Expect(id + " height", stand.height, 0.0, tol.stack_height);
+  checks.Expect(id + " drift", stand.drift, 0.0, tol.stack_drift);
   SKIP_KNOWN_MISSES(checks);
 }
 
 // Verifies the 8-stack at other cube sizes (0.04, 0.1 and 0.3 m) and masses
 // (0.1 and 10 kg), with the same bounds over 5 s (a third of the table's
 // horizon for a method that runs it shorter). An aligned stack is symmetric
-// to round-off; whether a solver's round-off broke the symmetry decided
-// whether a stack leaned (lcp: 0.2 m cubes 1e-13 m, 0.1 m cubes 0.35 mm).
+// to round-off; before the box manifold kept flush faces' corners, whether
+// round-off broke the symmetry decided whether a stack leaned (lcp: 0.2 m
+// cubes 1e-13 m, 0.1 m cubes 0.86 mm).
 class MechanicsAlignedStackSweepTest : public ::testing::TestWithParam<MethodConfig> {};
 
 TEST_P(MechanicsAlignedStackSweepTest, StandsAtEverySizeAndMass) {
   const MethodConfig& config = GetParam();
-  const int n = 8;
   const testing::ScenarioTolerances& tol = testing::TolerancesOf(config.label);
   const double seconds = tol.stack8_seconds >= 10.0 ? 5.0 : tol.stack8_seconds / 3.0;
   testing::MechanicsChecks checks(config.label);
   for (const double half : {0.02, 0.05, 0.15}) {
     for (const double mass : {0.1, 10.0}) {
-      Sim sim(config.method, config.params);
-      testing::AddGround(sim.world, 0.0, 0.5);
-      std::vector<BodyId> cubes;
-      for (int i = 0; i < n; ++i) {
-        BodySettings s;
-        s.shape = ShapeType::kBox;
-        s.half_extents = Vec3(half, half, half);
-        s.position = Vec3(0, 0, half * (1 + 2 * i));
-        s.mass = mass;
-        s.friction = 0.5;
-        s.restitution = 0.0;
-        cubes.push_back(testing::AddValidBody(sim.world, s));
-      }
-      const double top0 = sim.world.Find(cubes.back())->x.z();
-      double drift = 0.0;
-      while (sim.world.time < seconds) {
-        sim.Step();
-        for (BodyId id : cubes) drift = std::max(drift, sim.world.Find(id)->x.head<2>().norm());
-      }
-      const double height = std::abs(sim.world.Find(cubes.back())->x.z() - top0);
+      const StackStand stand = RunAlignedStack(config, 8, half, mass, seconds);
       const std::string id = testing::CaseId("stack n=8 size=%g m=%g", 2.0 * half, mass);
       std::printf("%-10s %s, %.1f s: top height off by %.3g m, sideways drift %.3g m at most\n",
-                  config.label.c_str(), id.c_str(), seconds, height, drift);
-      checks.Expect(id + " height", height, 0.0, tol.stack_height);
-      checks.Expect(id + " drift", drift, 0.0, tol.stack_drift);
+                  config.label.c_str(), id.c_str(), seconds, stand.height, stand.drift);
+      checks.Expect(id + " height", stand.height, 0.0, tol.stack_height);
+      checks.Expect(id + " drift", stand.drift, 0.0, tol.stack_drift);
     }
   }
   SKIP_KNOWN_MISSES(checks);
