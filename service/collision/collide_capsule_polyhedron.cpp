@@ -128,26 +128,26 @@ SegmentAxis SegmentSeparatingAxis(const Vec3& p0, const Vec3& p1, const PosedPol
 
 // Both ends of S clipped to the prism over face f of B (Sutherland-Hodgman on
 // a segment: the parameter interval inside every side plane); false when
-// nothing of S is over the face.
+// nothing of S is over the face. An end within kDepthTol of a side plane is on
+// it, as in the polygon clip (polyhedron_manifold.cpp): a capsule lying along
+// a face's edge has both ends in that side plane up to round-off, and cutting
+// it there would put its contact at an arbitrary point of the axis.
 bool ClipSegmentToFace(const Vec3& p0, const Vec3& p1, const PosedPolyhedron& b, int f, double* t0,
                        double* t1) {
   const Vec3& n = b.normals[f];
-  const Vec3 d = p1 - p0;
   double lo = 0.0, hi = 1.0;
   const std::vector<int>& loop = b.topology->faces[f].vertices;
   for (size_t j = 0; j < loop.size(); ++j) {
     const Vec3& v0 = b.vertices[loop[j]];
     const Vec3& v1 = b.vertices[loop[(j + 1) % loop.size()]];
     // edge x normal points out of a counter-clockwise face
-    const Vec3 side = (v1 - v0).cross(n);
-    const double at0 = side.dot(p0 - v0);  // <= 0 inside
-    const double slope = side.dot(d);
-    if (std::abs(slope) < 1e-300) {
-      if (at0 > 0.0) return false;
-      continue;
-    }
-    const double t = -at0 / slope;
-    if (slope > 0.0) {
+    const Vec3 side = (v1 - v0).cross(n).normalized();
+    const double d0 = side.dot(p0 - v0), d1 = side.dot(p1 - v0);  // m, <= 0 inside
+    const bool in0 = d0 <= kDepthTol, in1 = d1 <= kDepthTol;
+    if (!in0 && !in1) return false;
+    if (in0 == in1) continue;
+    const double t = std::clamp(d0 / (d0 - d1), 0.0, 1.0);
+    if (in0) {
       hi = std::min(hi, t);
     } else {
       lo = std::max(lo, t);

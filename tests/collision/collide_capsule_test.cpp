@@ -209,5 +209,37 @@ TEST(CollideCapsuleTest, CapsuleThroughBoxCornerUsesTheEdgeAxis) {
   EXPECT_LT(deepest_point, -separation - 1e-3);
 }
 
+// Verifies a capsule lying exactly along an edge of a box's top face, its
+// axis in the face's side plane up to round-off turns: both caps still give
+// their contact over the face, at the segment's ends (a side plane the axis
+// lies in must neither cut it at an arbitrary parameter nor drop it).
+TEST(CollideCapsuleTest, CapsuleAlongATopEdgeKeepsBothEnds) {
+  int cases = 0;
+  for (const double half : {0.05, 0.2, 1.0}) {
+    for (const double r : {0.01, 0.1}) {
+      for (const double turn : {0.0, 3e-16, -1e-15, 4e-15}) {  // rad, about z
+        const double len = 0.5 * half;                          // the capsule's half length, inside the face
+        const Quat q = Quat(Eigen::AngleAxisd(turn, Vec3::UnitZ())) * kAlongX;
+        const RigidBody capsule = Capsule(1, r, len, Vec3(0, half, half + r - 1e-6), q);
+        ContactSet out;
+        const std::string where = "half " + std::to_string(half) + " r " + std::to_string(r) + " turn " +
+                                  std::to_string(turn);
+        ASSERT_EQ(Collide(capsule, 0, Box(2, Vec3(half, half, half), Vec3::Zero()), 1, 0.0, &out), 2) << where;
+        std::vector<double> xs;
+        for (const Contact& c : out) {
+          xs.push_back(c.point.x());
+          EXPECT_NEAR(c.depth, 1e-6, 1e-9) << where;
+          EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, 1e-9) << where;
+        }
+        std::sort(xs.begin(), xs.end());
+        EXPECT_NEAR(xs[0], -len, 1e-9) << where;
+        EXPECT_NEAR(xs[1], len, 1e-9) << where;
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 24);
+}
+
 }  // namespace
 }  // namespace contactsim
