@@ -22,6 +22,14 @@ constexpr uint32_t kTagFallback = 0xFA11u;
 // Depths (m) closer than this are the same (round-off of ~1 m coordinates).
 constexpr double kDepthTol = 1e-9;
 
+// p is inside the polyhedron or within kDepthTol of its surface.
+bool InsidePolyhedron(const PosedPolyhedron& poly, const Vec3& p) {
+  for (size_t f = 0; f < poly.normals.size(); ++f) {
+    if (poly.normals[f].dot(p) - poly.offsets[f] > kDepthTol) return false;
+  }
+  return true;
+}
+
 // Sutherland-Hodgman: keeps the part of `poly` with n.p <= offset. A point
 // within kDepthTol of the plane is on it: two flush faces of equal boxes
 // have edges on each other's side planes, each end a round-off either side,
@@ -103,12 +111,18 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
   }
   if (deepest < -sat.separation - kDepthTol) {
     // the incident body's deepest vertex, which defines the axis's depth, is
-    // off the incident face or outside the reference face's side planes (deep
-    // overlaps of hulls; or round-off left no point): add it, so that the
-    // deepest contact has the axis's depth and a penetrating pair is not lost
+    // off the incident face or outside the reference face's side planes
+    // (deep overlaps of hulls; or round-off left no point): add it, so that
+    // the deepest contact has the axis's depth and a penetrating pair is not
+    // lost. Only where it is inside the reference body: the far end of a
+    // long plank tilted over a short support lies below the support's top
+    // plane but beside the support, where it touches nothing, and a point
+    // there gave the support a lever arm of the plank's length
+    // (docs/physics.md, "Manifold points beside the body").
     const int v = SupportVertex(inc, -n_ref);
     const double s = n_ref.dot(inc.vertices[v]) - ref_offset;
-    if (-s > -margin) {
+    const bool none = out->size() == first;
+    if (-s > -margin && (none || InsidePolyhedron(ref, inc.vertices[v]))) {
       const Vec3 surface_a = ref_is_a ? Vec3(inc.vertices[v] - s * n_ref) : inc.vertices[v];
       AppendContact(surface_a, normal_ab, -s,
                     FeatureId({kTagFallback, ref_side, static_cast<uint32_t>(ref_face),

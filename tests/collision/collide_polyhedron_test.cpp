@@ -185,5 +185,41 @@ TEST(CollidePolyhedronTest, CubeHullsAgreeWithBoxes) {
   }
 }
 
+// Verifies a long plank lying across a short support, tilted by round-off
+// to 1e-4 rad, both bodies in either order: every contact lies on the
+// support's top face, where the two touch. The plank's far end dips below
+// the support's top plane beside the support, and the separating-axis depth
+// along that face normal is the far end's; a point put there (the deepest
+// vertex) gave a light support a lever arm of the plank's length.
+TEST(CollidePolyhedronTest, PlankOverAShortSupportTouchesOnlyOverIt) {
+  int pairs = 0;
+  for (const double half : {0.05, 0.15}) {           // m, the support's half width
+    for (const double length : {0.5, 1.0, 3.0}) {      // m, the plank's half length
+      for (const double tilt : {1e-7, 1e-5, -1e-5, 1e-4}) {  // rad about y: the far end dips
+        for (const bool support_first : {true, false}) {
+          const RigidBody support = Box(support_first ? 1 : 2, Vec3(half, half, 0.05), Vec3(0, 0, 0.05));
+          // the plank's near end flush with the support's far side, 1e-5 m deep at the support's edge
+          const Quat q(Eigen::AngleAxisd(tilt, Vec3::UnitY()));
+          const Vec3 edge(half, 0.0, 0.1 - 1e-5);
+          const Vec3 centre = edge + q * Vec3(length - 2.0 * half, 0.0, 0.025);
+          const RigidBody plank = Box(support_first ? 2 : 1, Vec3(length, 0.15, 0.025), centre, q);
+          ContactSet out;
+          const int n = support_first ? Collide(support, 0, plank, 1, 0.0, &out) : Collide(plank, 0, support, 1, 0.0, &out);
+          const std::string where = "half " + std::to_string(half) + " length " + std::to_string(length) +
+                                    " tilt " + std::to_string(tilt) + (support_first ? " support first" : " plank first");
+          ASSERT_GE(n, 1) << where;
+          for (const Contact& c : out) {
+            EXPECT_LE(std::abs(c.point.x()), half + 1e-6) << where;
+            EXPECT_LE(std::abs(c.point.y()), half + 1e-6) << where;
+            EXPECT_LE(c.depth, 1e-5 + 2.0 * half * std::abs(tilt) + 1e-9) << where;
+          }
+          ++pairs;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(pairs, 48);
+}
+
 }  // namespace
 }  // namespace contactsim

@@ -36,13 +36,13 @@ struct Pinned {
 const std::vector<Pinned>& PinnedRuns() {
   static const std::vector<Pinned> pinned = {
       {"impulse", {}, 0xaca91ecc4d28d48full},
-      {"penalty", {}, 0x7376f8caa8c982b7ull},
-      {"penalty", {{"model", "hunt_crossley"}}, 0x60b1fb2b5a8019baull},
-      {"xpbd", {}, 0xd904079066bfc8f0ull},
+      {"penalty", {}, 0x927c5adcbe51e516ull},
+      {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
+      {"xpbd", {}, 0x29f3e5cb13743d79ull},
       {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
       {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
       {"barrier", {}, 0xc32a73df9f9d909aull},
-      {"soft", {}, 0xdd6a87be4ef3c849ull},
+      {"soft", {}, 0x77347c8ae889b434ull},
   };
   return pinned;
 }
