@@ -95,12 +95,17 @@ double PowerIteration(const World& world, const std::vector<PenaltyRow>& rows, c
 }  // namespace
 
 ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows) {
+  const auto& bodies = world.bodies();
   std::vector<bool> counted(rows.size());
   double point = 0.0;  // rad^2/s^2
+  double ratio = 1.0;
   for (size_t i = 0; i < rows.size(); ++i) {
     const PenaltyRow& row = rows[i];
     counted[i] = row.engaged;
     if (!row.engaged || row.m_share <= 0.0) continue;
+    const double lighter = std::min(bodies[row.a].IsDynamic() ? bodies[row.a].mass : HUGE_VAL,
+                                    bodies[row.b].IsDynamic() ? bodies[row.b].mass : HUGE_VAL);
+    ratio = std::max(ratio, row.m_spring * row.nc / lighter);
     if (row.rebounds) {
       point = std::max(point, row.law.k / row.m_share);
     } else {
@@ -110,7 +115,7 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
       point = std::max(point, row.law.k / (m * kSettleSlack * kSettleSlack));
     }
   }
-  return {std::sqrt(point), std::sqrt(PowerIteration(world, rows, counted))};
+  return {std::sqrt(point), std::sqrt(PowerIteration(world, rows, counted)), ratio};
 }
 
 double BoundingRadius(const RigidBody& body) {

@@ -70,6 +70,9 @@ constexpr double kSettleSlack = 1.5;
 struct ContactOmega {
   double point = 0.0;
   double estimate = 0.0;
+  // the largest m_s of an engaged pair over the lighter of its dynamic
+  // bodies: how much heavier than a body the springs holding it were set for
+  double mass_ratio = 1.0;
 };
 ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& rows);
 
