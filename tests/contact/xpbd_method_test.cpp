@@ -40,7 +40,8 @@ TEST(XpbdMethod, RestingBoxStaysAndCarriesItsWeight) {
   for (int i = 0; i < 480; ++i) stats = sim.Step();
   const RigidBody& b = *sim.world.Find(id);
   // one sub-step's gravity, g h^2, is the most the box can sink
-  const double h = sim.world.dt / 20.0;  // the default 20 sub-steps
+  const int substeps = XpbdParams().substeps;
+  const double h = sim.world.dt / substeps;
   EXPECT_LT((b.x - x0).norm(), kG * h * h + 1e-9);
   EXPECT_LT(b.LinearVelocity().norm(), 1e-9);
   EXPECT_LT(b.AngularVelocity().norm(), 1e-9);
@@ -49,8 +50,8 @@ TEST(XpbdMethod, RestingBoxStaysAndCarriesItsWeight) {
   for (const Contact& c : sim.contacts) total += c.normal_value;
   EXPECT_NEAR(total, b.mass * kG, 1e-6 * b.mass * kG);
   EXPECT_EQ(sim.method->ValueKind(), ContactValueKind::kForce);
-  EXPECT_EQ(stats.substeps, 16);
-  EXPECT_EQ(stats.iterations, 16);
+  EXPECT_EQ(stats.substeps, substeps);
+  EXPECT_EQ(stats.iterations, substeps);
 }
 
 // Verifies dynamic friction: a box sliding at 3 m/s with mu = 0.4 stops
@@ -187,8 +188,8 @@ TEST(XpbdMethod, TenHeavyCubesStandTenSeconds) {
 // Verifies that the sub-steps grow with the mass ratio of the bodies in
 // contact so that a heavy box rests no deeper in a light one than
 // kMassRatioOverlap (0.45 mm; one sweep a sub-step leaves the heavy body
-// about r g h^2 deep): n = dt sqrt(r g / 0.45 mm), the default 16 below
-// about 1:640, 20 at 1:1000; its top ends less than 0.5 mm below its start
+// about r g h^2 deep): n = dt sqrt(r g / 0.45 mm), the default 12 below
+// about 1:380, 20 at 1:1000; its top ends less than 0.5 mm below its start
 // and no overlap passes 1 mm on the way. (At 1:4000, 39 sub-steps, it still
 // sinks 7.5 mm in 1 s, docs/physics.md, xpbd.)
 TEST(XpbdMethod, SubstepsGrowWithTheMassRatioInContact) {
@@ -211,7 +212,7 @@ TEST(XpbdMethod, SubstepsGrowWithTheMassRatioInContact) {
       stats = sim.Step();
       deepest = std::max(deepest, stats.max_penetration);
     }
-    const double expected = std::max(16.0, std::ceil(sim.world.dt * std::sqrt(ratio * kG / 0.45e-3)));
+    const double expected = std::max(static_cast<double>(XpbdParams().substeps), std::ceil(sim.world.dt * std::sqrt(ratio * kG / 0.45e-3)));
     std::printf("1:%-5g %d sub-steps, deepest %.3g mm, top %.3g mm below its start\n", ratio, stats.substeps,
                 deepest * 1e3, (0.15 - sim.world.Find(top)->x.z()) * 1e3);
     EXPECT_EQ(stats.substeps, static_cast<int>(expected)) << ratio;
@@ -243,7 +244,7 @@ TEST(XpbdMethod, RejectsBadParametersAndKeepsTheOldOnes) {
   EXPECT_FALSE(st.ok());
   EXPECT_NE(st.message().find("compliance"), std::string::npos) << st.message();
   EXPECT_NE(st.message().find("-1"), std::string::npos) << st.message();
-  EXPECT_EQ(m.params().substeps, 16);
+  EXPECT_EQ(m.params().substeps, XpbdParams().substeps);
   EXPECT_TRUE(m.SetParams({{"substeps", "8"}, {"iterations", "2"}}).ok());
   EXPECT_EQ(m.Params().at("substeps"), "8");
   EXPECT_EQ(m.Params().at("iterations"), "2");

@@ -242,6 +242,9 @@ TEST(SnapshotTest, DamagedSnapshotsAreRefusedAndLeaveTheWorldUntouched) {
   bad_state.set_method_state("xyz");
   st = LoadSnapshot(bad_state, &target, &out);
   EXPECT_NE(st.message().find("friction anchors"), std::string::npos) << st.message();
+  bad_state.set_contact_method("xpbd");
+  st = LoadSnapshot(bad_state, &target, &out);
+  EXPECT_NE(st.message().find("friction slips"), std::string::npos) << st.message();
 
   EXPECT_EQ(HashWorldState(target), before);
   EXPECT_EQ(out, nullptr);

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "service/contact/detect_ahead.h"
 #include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/soft/soft_joints.h"
 #include "service/contact/xpbd/xpbd_velocity_pass.h"
+#include "service/physics/byte_stream.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
@@ -50,6 +53,61 @@ void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, St
   }
 }
 
+std::string XpbdMethod::SaveState() const {
+  if (slips_.empty()) return {};
+  ByteWriter out;
+  out.Put(static_cast<uint64_t>(slips_.size()));
+  for (const auto& [key, slip] : slips_) {
+    out.Put(key.first);
+    out.Put(key.second);
+    out.PutVec3(slip.along);
+    out.Put(slip.twist);
+  }
+  return out.bytes();
+}
+
+Status XpbdMethod::LoadState(const std::string& bytes) {
+  std::map<PairKey, XpbdPatchSlip> loaded;
+  ByteReader in(bytes);
+  uint64_t n = 0;
+  bool ok = bytes.empty() || in.Get(&n);
+  for (uint64_t i = 0; ok && i < n; ++i) {
+    PairKey key;
+    XpbdPatchSlip slip;
+    ok = in.Get(&key.first) && in.Get(&key.second) && in.GetVec3(&slip.along) && in.Get(&slip.twist) &&
+         slip.along.allFinite() && std::isfinite(slip.twist);
+    if (ok) loaded[key] = slip;
+  }
+  if (!ok || !in.done()) {
+    return Status::InvalidArgument("xpbd method state: malformed friction slips (" + std::to_string(bytes.size()) +
+                                   " bytes)");
+  }
+  slips_ = std::move(loaded);
+  return Status::Ok();
+}
+
+void XpbdMethod::CarrySlips(const World& world) {
+  if (slips_.empty()) return;
+  const auto& bodies = world.bodies();
+  for (XpbdPatch& patch : patches_) {
+    if (!patch.valid) continue;
+    const XpbdPoint& p0 = points_[patch.first];
+    const auto it = slips_.find({bodies[p0.a].id, bodies[p0.b].id});
+    if (it != slips_.end()) CarryXpbdPatchSlip(it->second, &patch);
+  }
+}
+
+void XpbdMethod::KeepSlips(const World& world) {
+  const auto& bodies = world.bodies();
+  slips_.clear();
+  XpbdPatchSlip slip;
+  for (const XpbdPatch& patch : patches_) {
+    if (!XpbdPatchSlipNow(world, patch, points_, &slip)) continue;
+    const XpbdPoint& p0 = points_[patch.first];
+    slips_[{bodies[p0.a].id, bodies[p0.b].id}] = slip;
+  }
+}
+
 StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
@@ -62,6 +120,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   LoadSoftBodies(world, substepped_, detector.runner(), &bodies_);
   PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &colours_, &point_of_);
   PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
+  CarrySlips(world);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
@@ -70,6 +129,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
       params_.joint_compliance == 0.0 && JointMassRatioAtLeast(world, params_.direct_mass_ratio);
   const int substeps = SubstepsFor(world);
   RunSubsteps(world, substeps, project_joints, detector.runner());
+  KeepSlips(world);
   StoreSoftBodies(bodies_, detector.runner(), world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();

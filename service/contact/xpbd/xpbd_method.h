@@ -37,6 +37,9 @@
 // dt; lambda / h^2 is a sub-step's contact force.
 #pragma once
 
+#include <map>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "service/contact/contact_method.h"
@@ -57,6 +60,10 @@ class XpbdMethod : public ContactMethod {
   std::vector<ParamDoc> ParamDocs() const override { return XpbdParamTable().Docs(); }
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   const XpbdParams& params() const { return params_; }
+  // the slips static friction carries into the next step (XpbdPatchSlip)
+  void ResetCaches() override { slips_.clear(); }
+  std::string SaveState() const override;
+  Status LoadState(const std::string& bytes) override;
 
  private:
   // The deepest a heavy body may rest in a light one (m), which sets the
@@ -73,6 +80,13 @@ class XpbdMethod : public ContactMethod {
   void DeriveVelocities(const World& world, double h, int begin, int end);
   // The step's contacts with their depth at the step's end and average force.
   void ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const;
+
+  // The slips static friction left at the last step's end, by body pair
+  // (ids, in the contact's order): XpbdPatchSlip.
+  using PairKey = std::pair<BodyId, BodyId>;
+  std::map<PairKey, XpbdPatchSlip> slips_;
+  void CarrySlips(const World& world);
+  void KeepSlips(const World& world);
 
   XpbdParams params_;
   ContactSet contacts_;                   // detected once per step

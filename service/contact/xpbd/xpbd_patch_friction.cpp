@@ -134,6 +134,23 @@ Vec3 PatchOffset(const XpbdPatch& patch, const Vec3& xa, const Quat& q_a, const 
 
 }  // namespace
 
+bool XpbdPatchSlipNow(const World& world, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
+                      XpbdPatchSlip* slip) {
+  if (!patch.valid || patch.origin_pending || !patch.sticking) return false;
+  const XpbdPoint& p0 = points[patch.first];
+  const RigidBody& A = world.bodies()[p0.a];
+  const RigidBody& B = world.bodies()[p0.b];
+  const Vec3 d = PatchOffset(patch, A.x, A.q, B.x, B.q) - patch.origin;
+  slip->along = d[0] * patch.t1 + d[1] * patch.t2;
+  slip->twist = d[2];
+  return true;
+}
+
+void CarryXpbdPatchSlip(const XpbdPatchSlip& slip, XpbdPatch* patch) {
+  patch->origin = -Vec3(patch->t1.dot(slip.along), patch->t2.dot(slip.along),
+                        patch->twist_radius > 0.0 ? slip.twist : 0.0);
+}
+
 void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, double h, XpbdPatch& patch,
                             std::vector<XpbdPoint>& points) {
   if (!patch.valid) return;
@@ -142,6 +159,7 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   for (int i = 0; i < patch.count; ++i) pushed += points[patch.first + i].lambda_n;
   const RigidBody& A = world.bodies()[p0.a];
   const RigidBody& B = world.bodies()[p0.b];
+  patch.sticking = false;
   if (pushed <= 0.0) {  // not touching: hold the present offset from now on
     patch.origin_pending = true;
     patch.hold_xa = A.x;
@@ -162,6 +180,7 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
     patch.origin = offset;
     return;
   }
+  patch.sticking = true;
   double twist_step = dl[2];
   if (std::abs(patch.lambda_twist + twist_step) > mu * pushed * patch.twist_radius) {
     patch.origin[2] = offset[2];  // it spins: hold the translation only
@@ -183,7 +202,8 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   }
 }
 
-void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points) {
+void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points,
+                    Vec3* spent) {
   if (!patch.valid) return;
   const XpbdPoint& p0 = points[patch.first];
   double pushed = 0.0;
@@ -192,17 +212,19 @@ void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, 
   const Vec3& n = p0.n;
   const Vec3 v = (B.v + B.w.cross(patch.rb)) - (A.v + A.w.cross(patch.ra));
   const Vec3 spin = B.w - A.w;
-  Vec3 dl = -(patch.inv_k * Vec3(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0));
+  Vec3 total = *spent - patch.inv_k * Vec3(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0);
   // Coulomb's disk for the patch's force, its torque within mu N r
   const double limit = patch.friction * pushed / h;
   // impulses of the patch's bodies: no overflow for hypot to guard against
-  const double along = std::sqrt(dl[0] * dl[0] + dl[1] * dl[1]);
+  const double along = std::sqrt(total[0] * total[0] + total[1] * total[1]);
   if (along > limit) {
-    dl[0] *= limit / along;
-    dl[1] *= limit / along;
+    total[0] *= limit / along;
+    total[1] *= limit / along;
   }
   const double twist_limit = limit * patch.twist_radius;
-  dl[2] = std::max(-twist_limit, std::min(dl[2], twist_limit));
+  total[2] = std::max(-twist_limit, std::min(total[2], twist_limit));
+  const Vec3 dl = total - *spent;
+  *spent = total;
   const Vec3 J = dl[0] * patch.t1 + dl[1] * patch.t2;
   if (A.inv_mass > 0.0) {  // a static body is never written (PushNormal)
     A.v -= A.inv_mass * J;

@@ -113,8 +113,17 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     const NormalBlock& m = blocks[k];
     const int a = (*points)[m.first].a, b = (*points)[m.first].b;
     const BlockBodies pair{bodies[a], bodies[b], predicted[a], predicted[b]};
+    // the brake's torque about the centres of mass (its impulse acts in the
+    // contact plane, below a resting box's centre) turns the bodies, which
+    // the normal rows then undo, and undoing it moves the patch's centre
+    // again, which a second brake within the same limits stops: braked
+    // after the normals only, a box sliding down a slope kept a pitch of
+    // 0.010-0.016 rad/s (16 to 10 sub-steps); braked before them only, a
+    // box held on a slope crept 4.3 mm in 2 s
+    Vec3 spent = Vec3::Zero();
+    BrakeXpbdPatch(h, patches[k], pair.A, pair.B, *points, &spent);
     SolveBlockRestitution(restitution_threshold, m, caches[k], bodies, pair, *points);
-    BrakeXpbdPatch(h, patches[k], pair.A, pair.B, *points);
+    BrakeXpbdPatch(h, patches[k], pair.A, pair.B, *points, &spent);
   }
 }
 

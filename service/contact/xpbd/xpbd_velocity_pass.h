@@ -8,9 +8,10 @@
 //     corners share it whatever their order;
 //   * dynamic friction per patch (xpbd_patch_friction.h, BrakeXpbdPatch):
 //     the impulse that stops the patch's sliding and twist, at most
-//     mu sum lambda_n / h (eq. 30 with f_n = lambda_n / h^2). Where static
-//     friction held the patch this removes what its linearisation left;
-//     skipping those patches let a box on a slope creep.
+//     mu sum lambda_n / h (eq. 30 with f_n = lambda_n / h^2), before the
+//     restitution and again after it, the two within that limit together.
+//     Where static friction held the patch this removes what its
+//     linearisation left; skipping those patches let a box on a slope creep.
 #pragma once
 
 #include <vector>
