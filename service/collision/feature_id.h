@@ -9,13 +9,20 @@
 
 namespace contactsim {
 
+// One byte of FNV-1a.
+inline uint32_t FnvByte(uint32_t hash, uint32_t byte) {
+  return (hash ^ (byte & 0xffu)) * 16777619u;  // FNV-1a prime
+}
+
 inline uint32_t FeatureId(std::initializer_list<uint32_t> parts) {
   uint32_t hash = 2166136261u;  // FNV-1a offset basis
+  // the four bytes of each part, lowest first, spelled out: the loop over
+  // them with a variable shift was a third of clipping a box face
   for (uint32_t part : parts) {
-    for (int byte = 0; byte < 4; ++byte) {
-      hash ^= (part >> (8 * byte)) & 0xffu;
-      hash *= 16777619u;  // FNV-1a prime
-    }
+    hash = FnvByte(hash, part);
+    hash = FnvByte(hash, part >> 8);
+    hash = FnvByte(hash, part >> 16);
+    hash = FnvByte(hash, part >> 24);
   }
   return hash;
 }

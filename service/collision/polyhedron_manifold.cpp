@@ -42,7 +42,7 @@ void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double 
   const size_t m = poly.size();
   for (size_t k = 0; k < m; ++k) {
     const ClipPoint& p = poly[k];
-    const ClipPoint& q = poly[(k + 1) % m];
+    const ClipPoint& q = poly[k + 1 == m ? 0 : k + 1];  // no division in the loop
     const double dp = n.dot(p.p) - offset;
     const double dq = n.dot(q.p) - offset;
     const bool p_in = dp <= kDepthTol, q_in = dq <= kDepthTol;
@@ -86,7 +86,7 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
   const std::vector<int>& loop = ref.topology->faces[ref_face].vertices;
   for (size_t j = 0; j < loop.size() && !poly.empty(); ++j) {
     const Vec3& p0 = ref.vertices[loop[j]];
-    const Vec3& p1 = ref.vertices[loop[(j + 1) % loop.size()]];
+    const Vec3& p1 = ref.vertices[loop[j + 1 == loop.size() ? 0 : j + 1]];
     const Vec3 side = (p1 - p0).cross(n_ref);
     const double len = side.norm();
     if (len <= 0.0) continue;
