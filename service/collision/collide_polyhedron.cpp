@@ -45,9 +45,12 @@ void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideConte
   AxisCacheUpdate* update = ctx.cache_update;
   // a hit is decided on the bodies' own frames, before anything is posed
   if (cache != nullptr) {
-    const bool hit = cache->Separates(a, b, ctx.margin);
-    ++(hit ? update->hits : update->misses);
-    if (hit) return;
+    const SeparatingAxis* kept = cache->StillSeparatingAxis(a, b, ctx.margin);
+    ++(kept != nullptr ? update->hits : update->misses);
+    if (kept != nullptr) {
+      update->Store(a.id, b.id, *kept);  // so that the rebuilt cache keeps it
+      return;
+    }
   }
   const bool boxes = a.shape.type == ShapeType::kBox && b.shape.type == ShapeType::kBox;
   PolyhedronScratch local;

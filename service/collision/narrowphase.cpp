@@ -146,8 +146,21 @@ int Narrowphase::Collide(const RigidBody& a, int ia, const RigidBody& b, int ib,
 void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::vector<BodyPair>& pairs,
                                double margin, ParallelRunner& runner, ContactSet* out) {
   const int n = static_cast<int>(pairs.size());
-  if (runner.threads() == 1 || n <= kPairGrain) {  // the serial path, unchanged
-    for (const BodyPair& p : pairs) Collide(bodies[p.first], p.first, bodies[p.second], p.second, margin, out);
+  updates_.assign(pairs.size(), AxisCacheUpdate());
+  // every pair reads the cache as it was before the detection and writes
+  // its change aside; the cache is rebuilt from the changes in pair order
+  auto collide = [&](int i, PolyhedronScratch* scratch, ContactSet* contacts) {
+    CollideContext ctx;
+    ctx.margin = margin;
+    ctx.cache = &cache_;
+    ctx.cache_update = &updates_[i];
+    ctx.scratch = scratch;
+    const BodyPair& p = pairs[i];
+    Dispatch(bodies[p.first], p.first, bodies[p.second], p.second, ctx, contacts);
+  };
+  if (runner.threads() == 1 || n <= kPairGrain) {  // the serial path
+    for (int i = 0; i < n; ++i) collide(i, &scratch_, out);
+    cache_.Rebuild(updates_);
     return;
   }
   // slots and scratch only grow, so a warmed-up step allocates nothing
@@ -155,23 +168,13 @@ void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::
   if (worker_scratch_.size() < static_cast<size_t>(runner.threads())) worker_scratch_.resize(runner.threads());
   runner.For(n, kPairGrain, [&](int begin, int end, int worker) {
     for (int i = begin; i < end; ++i) {
-      PairSlot& slot = slots_[i];
-      slot.contacts.clear();
-      slot.update = AxisCacheUpdate();
-      CollideContext ctx;
-      ctx.margin = margin;
-      ctx.cache = &cache_;  // read only until every pair is done
-      ctx.cache_update = &slot.update;
-      ctx.scratch = &worker_scratch_[worker];
-      const BodyPair& p = pairs[i];
-      Dispatch(bodies[p.first], p.first, bodies[p.second], p.second, ctx, &slot.contacts);
+      slots_[i].clear();
+      collide(i, &worker_scratch_[worker], &slots_[i]);
     }
   });
-  // pair order, as the serial loop appends and updates
-  for (int i = 0; i < n; ++i) {
-    out->insert(out->end(), slots_[i].contacts.begin(), slots_[i].contacts.end());
-    cache_.Apply(slots_[i].update);
-  }
+  // pair order, as the serial loop appends
+  for (int i = 0; i < n; ++i) out->insert(out->end(), slots_[i].begin(), slots_[i].end());
+  cache_.Rebuild(updates_);
 }
 
 }  // namespace contactsim

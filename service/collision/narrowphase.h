@@ -46,11 +46,13 @@ class Narrowphase {
  public:
   int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out);
   // Collides every pair (indices into `bodies`) and appends the contacts to
-  // `out` in pair order: the same contacts, cache and counters, bit for bit,
-  // as Collide on each pair in turn, which is what one thread runs. With
-  // more, each pair fills its own slot, reading the cache and writing its
-  // change aside (separating_axis_cache.h); the slots are then concatenated
-  // and the changes applied in pair order.
+  // `out` in pair order: the same contacts as Collide on each pair in turn.
+  // Each pair reads the cache and writes its change aside
+  // (separating_axis_cache.h), and the cache is then rebuilt from the
+  // changes in pair order, keeping only this detection's pairs; with more
+  // than one thread each pair fills its own slot of contacts, and the slots
+  // are concatenated in pair order, so cache, counters and contacts are the
+  // same bit for bit for any number of threads.
   void CollidePairs(const std::vector<RigidBody>& bodies, const std::vector<BodyPair>& pairs, double margin,
                     ParallelRunner& runner, ContactSet* out);
   // Forgets the cached axes and zeroes the counters (scene reset or load).
@@ -58,14 +60,11 @@ class Narrowphase {
   const SeparatingAxisCache& cache() const { return cache_; }
 
  private:
-  struct PairSlot {
-    ContactSet contacts;
-    AxisCacheUpdate update;
-  };
   SeparatingAxisCache cache_;
   PolyhedronScratch scratch_;
   std::vector<PolyhedronScratch> worker_scratch_;  // one per runner thread
-  std::vector<PairSlot> slots_;                    // one per pair, kept between steps
+  std::vector<ContactSet> slots_;                  // one per pair, kept between steps
+  std::vector<AxisCacheUpdate> updates_;           // one per pair of the last CollidePairs
 };
 
 }  // namespace contactsim

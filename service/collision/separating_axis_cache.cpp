@@ -106,12 +106,18 @@ bool BodyFrameSeparation(const BodyFrame& a, const BodyFrame& b, const Separatin
 
 }  // namespace
 
-bool SeparatingAxisCache::Separates(const RigidBody& a, const RigidBody& b, double margin) const {
+const SeparatingAxis* SeparatingAxisCache::StillSeparatingAxis(const RigidBody& a, const RigidBody& b,
+                                                               double margin) const {
   const SeparatingAxis* axis = Find(a.id, b.id);
   BodyFrame fa, fb;
   double separation;
-  return axis != nullptr && MakeBodyFrame(a, &fa) && MakeBodyFrame(b, &fb) &&
-         BodyFrameSeparation(fa, fb, *axis, &separation) && separation > margin;
+  const bool separates = axis != nullptr && MakeBodyFrame(a, &fa) && MakeBodyFrame(b, &fb) &&
+                         BodyFrameSeparation(fa, fb, *axis, &separation) && separation > margin;
+  return separates ? axis : nullptr;
+}
+
+bool SeparatingAxisCache::Separates(const RigidBody& a, const RigidBody& b, double margin) const {
+  return StillSeparatingAxis(a, b, margin) != nullptr;
 }
 
 bool SeparatingAxisCache::StillSeparates(const RigidBody& a, const RigidBody& b, double margin) {
@@ -120,14 +126,31 @@ bool SeparatingAxisCache::StillSeparates(const RigidBody& a, const RigidBody& b,
   return hit;
 }
 
-const SeparatingAxis* SeparatingAxisCache::Find(BodyId a, BodyId b) const {
-  const auto it = axes_.find({a, b});
-  return it == axes_.end() ? nullptr : &it->second;
+std::vector<SeparatingAxisCache::Entry>::const_iterator SeparatingAxisCache::Lower(BodyId a, BodyId b) const {
+  Entry key;
+  key.a = a;
+  key.b = b;
+  return std::lower_bound(entries_.begin(), entries_.end(), key);
 }
 
-void SeparatingAxisCache::Store(BodyId a, BodyId b, const SeparatingAxis& axis) { axes_[{a, b}] = axis; }
+const SeparatingAxis* SeparatingAxisCache::Find(BodyId a, BodyId b) const {
+  const auto it = Lower(a, b);
+  return it != entries_.end() && it->a == a && it->b == b ? &it->axis : nullptr;
+}
 
-void SeparatingAxisCache::Erase(BodyId a, BodyId b) { axes_.erase({a, b}); }
+void SeparatingAxisCache::Store(BodyId a, BodyId b, const SeparatingAxis& axis) {
+  const auto it = entries_.begin() + (Lower(a, b) - entries_.begin());
+  if (it != entries_.end() && it->a == a && it->b == b) {
+    it->axis = axis;
+  } else {
+    entries_.insert(it, Entry{a, b, axis});
+  }
+}
+
+void SeparatingAxisCache::Erase(BodyId a, BodyId b) {
+  const auto it = Lower(a, b);
+  if (it != entries_.end() && it->a == a && it->b == b) entries_.erase(it);
+}
 
 void SeparatingAxisCache::Apply(const AxisCacheUpdate& update) {
   if (update.kind == AxisCacheUpdate::Kind::kStore) Store(update.a, update.b, update.axis);
@@ -136,8 +159,21 @@ void SeparatingAxisCache::Apply(const AxisCacheUpdate& update) {
   misses_ += update.misses;
 }
 
+void SeparatingAxisCache::Rebuild(const std::vector<AxisCacheUpdate>& updates) {
+  next_.clear();
+  for (const AxisCacheUpdate& u : updates) {
+    hits_ += u.hits;
+    misses_ += u.misses;
+    if (u.kind == AxisCacheUpdate::Kind::kStore) next_.push_back(Entry{u.a, u.b, u.axis});
+  }
+  // the broadphase's pairs come sorted by body index, which follows the ids
+  // in most worlds, so the sort rarely has anything to do
+  if (!std::is_sorted(next_.begin(), next_.end())) std::sort(next_.begin(), next_.end());
+  entries_.swap(next_);
+}
+
 void SeparatingAxisCache::Clear() {
-  axes_.clear();
+  entries_.clear();
   hits_ = 0;
   misses_ = 0;
 }
