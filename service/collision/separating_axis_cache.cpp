@@ -126,30 +126,30 @@ bool SeparatingAxisCache::StillSeparates(const RigidBody& a, const RigidBody& b,
   return hit;
 }
 
-std::vector<SeparatingAxisCache::Entry>::const_iterator SeparatingAxisCache::Lower(BodyId a, BodyId b) const {
+size_t SeparatingAxisCache::Place(BodyId a, BodyId b) const {
   Entry key;
   key.a = a;
   key.b = b;
-  return std::lower_bound(entries_.begin(), entries_.end(), key);
+  return std::lower_bound(entries_.begin(), entries_.end(), key) - entries_.begin();
 }
 
 const SeparatingAxis* SeparatingAxisCache::Find(BodyId a, BodyId b) const {
-  const auto it = Lower(a, b);
-  return it != entries_.end() && it->a == a && it->b == b ? &it->axis : nullptr;
+  const size_t place = Place(a, b);
+  return At(place, a, b) ? &entries_[place].axis : nullptr;
 }
 
 void SeparatingAxisCache::Store(BodyId a, BodyId b, const SeparatingAxis& axis) {
-  const auto it = entries_.begin() + (Lower(a, b) - entries_.begin());
-  if (it != entries_.end() && it->a == a && it->b == b) {
-    it->axis = axis;
+  const size_t place = Place(a, b);
+  if (At(place, a, b)) {
+    entries_[place].axis = axis;
   } else {
-    entries_.insert(it, Entry{a, b, axis});
+    entries_.insert(entries_.begin() + place, Entry{a, b, axis});
   }
 }
 
 void SeparatingAxisCache::Erase(BodyId a, BodyId b) {
-  const auto it = Lower(a, b);
-  if (it != entries_.end() && it->a == a && it->b == b) entries_.erase(it);
+  const size_t place = Place(a, b);
+  if (At(place, a, b)) entries_.erase(entries_.begin() + place);
 }
 
 void SeparatingAxisCache::Apply(const AxisCacheUpdate& update) {

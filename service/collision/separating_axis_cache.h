@@ -100,7 +100,11 @@ class SeparatingAxisCache {
   };
   std::vector<Entry> entries_;  // sorted by (a, b), no key twice
   std::vector<Entry> next_;     // Rebuild's, kept for its capacity
-  std::vector<Entry>::const_iterator Lower(BodyId a, BodyId b) const;
+  // The place of (a, b) in entries_: its entry, or where it would go.
+  size_t Place(BodyId a, BodyId b) const;
+  bool At(size_t place, BodyId a, BodyId b) const {
+    return place < entries_.size() && entries_[place].a == a && entries_[place].b == b;
+  }
   int64_t hits_ = 0;
   int64_t misses_ = 0;
 };

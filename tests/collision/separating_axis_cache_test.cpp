@@ -33,6 +33,41 @@ void ExpectIdentical(const ContactSet& x, const ContactSet& y) {
   }
 }
 
+// Verifies that a detection's rebuild keeps exactly the pairs it stored
+// (hits hand their axis back as a store), drops erased, untouched and
+// non-candidate pairs, sorts keys that came out of order, and counts.
+TEST(SeparatingAxisCacheTest, RebuildKeepsOnlyThisDetectionsStores) {
+  SeparatingAxisCache cache;
+  const SeparatingAxis face{SeparatingAxis::Kind::kFaceA, 0, -1};
+  const SeparatingAxis edges{SeparatingAxis::Kind::kEdges, 3, 4};
+  cache.Store(1, 2, face);
+  cache.Store(3, 4, face);  // not a candidate next time
+  cache.Store(5, 6, face);  // touches next time
+  std::vector<AxisCacheUpdate> updates(4);
+  updates[0].Store(9, 10, edges);  // out of order: the rebuild sorts
+  updates[0].misses = 1;
+  updates[1].Store(1, 2, face);  // a hit
+  updates[1].hits = 1;
+  updates[2].Erase(5, 6);
+  updates[2].misses = 1;
+  // updates[3]: a pair that is no polyhedron pair changes nothing
+  cache.Rebuild(updates);
+  EXPECT_EQ(cache.size(), 2u);
+  ASSERT_NE(cache.Find(1, 2), nullptr);
+  EXPECT_TRUE(*cache.Find(1, 2) == face);
+  ASSERT_NE(cache.Find(9, 10), nullptr);
+  EXPECT_TRUE(*cache.Find(9, 10) == edges);
+  EXPECT_EQ(cache.Find(3, 4), nullptr);
+  EXPECT_EQ(cache.Find(5, 6), nullptr);
+  EXPECT_EQ(cache.hits(), 1);
+  EXPECT_EQ(cache.misses(), 2);
+  // single stores still insert in order between rebuilt entries
+  cache.Store(4, 1, edges);
+  EXPECT_TRUE(*cache.Find(4, 1) == edges);
+  EXPECT_TRUE(*cache.Find(1, 2) == face);
+  EXPECT_TRUE(*cache.Find(9, 10) == edges);
+}
+
 // Verifies that axes are stored per ordered pair, erased, and cleared with the counters.
 TEST(SeparatingAxisCacheTest, StoresFindsErasesAndClears) {
   SeparatingAxisCache cache;
