@@ -433,7 +433,10 @@ def complete_recording(log_path, prefix, clients):
     applied lockstep inputs without an INPUT in the log; replies logged
     without their command), counting only the well-behaved clients' (garbage
     has no reliable sender): both 0 when lcm-logger lost no command, input
-    or reply on UDP, which a replay needs. A good input gets no reply."""
+    or reply on UDP, which a replay needs. A good input gets no reply.
+    A command lost together with its reply shows as a gap in its client's
+    request ids, which count up by one per command or input (a resend keeps
+    its id); each missing id counts as unanswered."""
     commands, replies, input_steps, digest_steps = set(), set(), set(), set()
     for e in lcm.EventLog(str(log_path), "r"):
         ch = e.channel[len(prefix) + 1:]
@@ -456,7 +459,16 @@ def complete_recording(log_path, prefix, clients):
                 digest_steps.add(m.step)
     sent = {(c, r) for _, c, r in commands}
     unanswered = len({(c, r) for is_input, c, r in commands if not is_input} - replies)
-    return unanswered + len(digest_steps - input_steps), len(replies - sent)
+    return unanswered + request_id_gaps(sent | replies) + len(digest_steps - input_steps), len(replies - sent)
+
+
+def request_id_gaps(requests):
+    """Request ids missing between each client's first and last in
+    ``requests`` ((client id, request id) pairs)."""
+    ids = {}
+    for client, rid in requests:
+        ids.setdefault(client, set()).add(rid)
+    return sum(max(r) - min(r) + 1 - len(r) for r in ids.values())
 
 
 def check_states(log_path, prefix):

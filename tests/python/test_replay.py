@@ -48,9 +48,10 @@ def drive(c):
 
 
 def complete(path, prefix):
-    """True if every logged command has its reply in the log and every step
-    with lockstep inputs has its INPUT: nothing the replay needs was lost."""
-    commands, replies, input_steps, digest_steps = set(), set(), set(), set()
+    """True if every logged command has its reply in the log, every step
+    with lockstep inputs has its INPUT, and no client's request ids skip one
+    (a command lost with its reply): nothing the replay needs was lost."""
+    commands, replies, input_steps, digest_steps, inputs = set(), set(), set(), set(), set()
     for e in lcm.EventLog(str(path), "r"):
         ch = e.channel[len(prefix) + 1:]
         if ch in ("BODY_CMD", "SCENE_CMD", "JOINT_CMD"):
@@ -60,12 +61,18 @@ def complete(path, prefix):
             m = contactsim.reply_t.decode(e.data)
             replies.add((m.client_id, m.request_id))
         elif ch == "INPUT":
-            input_steps.add(contactsim.input_t.decode(e.data).step)
+            m = contactsim.input_t.decode(e.data)
+            input_steps.add(m.step)
+            inputs.add((m.client_id, m.request_id))
         elif ch == "STATE":
             m = contactsim.state_t.decode(e.data)
             if m.input_digest != 0:
                 digest_steps.add(m.step)
-    return commands <= replies and digest_steps <= input_steps
+    ids = {}
+    for client, rid in commands | replies | inputs:
+        ids.setdefault(client, set()).add(rid)
+    no_gaps = all(max(r) - min(r) + 1 == len(r) for r in ids.values())
+    return commands <= replies and digest_steps <= input_steps and no_gaps
 
 
 def replay(server, log, scene=None):
