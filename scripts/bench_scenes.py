@@ -181,11 +181,11 @@ def git_commit():
 
 
 def targets(results):
-    """Issue 7's targets, checked against this run's rows."""
+    """The standard scenes' first targets (BENCHMARKS.md), checked against this run's rows."""
     def row(scene, engine, label):
         return next((r for r in results if r["scene_name"] == scene and r["engine"] == engine
                      and r["label"] == label), None)
-    out = ["Targets (issue 7), from this run:", ""]
+    out = ["The standard scenes' first targets, from this run:", ""]
     lcp = [r["label"] for r in results if r["engine"] == "contactsim" and r["label"].startswith("lcp")]
     pgs = next((l for l in lcp if "pgs" in l), lcp[0] if lcp else None)
     for scene in ("box_pyramid", "sphere_pile"):
