@@ -160,7 +160,7 @@ class RandomScenesTest : public ::testing::TestWithParam<MethodConfig> {};
 // Verifies passivity, no tunnelling and finite state on every drawn scene.
 TEST_P(RandomScenesTest, EnergyNeverRisesAndNothingFallsThrough) {
   if (GetParam().method == "penalty") {
-    GTEST_SKIP() << "penalty's explicit sub-steps gain energy where tumbling bodies strike each other "
+    GTEST_SKIP() << "penalty's explicit dashpots gain energy where tumbling bodies strike each other "
                     "(6 of 40 scenes; docs/physics.md, \"Random scenes\")";
   }
   const char* count = std::getenv("RANDOM_SCENES");
