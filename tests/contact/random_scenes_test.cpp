@@ -159,10 +159,6 @@ class RandomScenesTest : public ::testing::TestWithParam<MethodConfig> {};
 
 // Verifies passivity, no tunnelling and finite state on every drawn scene.
 TEST_P(RandomScenesTest, EnergyNeverRisesAndNothingFallsThrough) {
-  if (GetParam().method == "penalty") {
-    GTEST_SKIP() << "penalty's explicit dashpots gain energy where tumbling bodies strike each other "
-                    "(6 of 40 scenes; docs/physics.md, \"Random scenes\")";
-  }
   const char* count = std::getenv("RANDOM_SCENES");
   const int scenes = count != nullptr ? std::atoi(count) : kScenes;
   for (unsigned seed = 1; seed <= static_cast<unsigned>(scenes); ++seed) {

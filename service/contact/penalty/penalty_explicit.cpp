@@ -245,9 +245,15 @@ class ExplicitStepper {
     // a rocking box as it came down again, m_eff / nc each, it reversed
     // the rocking 2.2 times faster each sub-step (a corner's own effective
     // mass is less than m_eff / nc).
+    // It may take no more momentum than stops the point itself: its own
+    // effective mass 1 / K can be far below m_eff / nc (the edge of a thin
+    // plate spinning into a sphere), and the share alone reversed such a
+    // point past zero and gave the pair energy (docs/physics.md, "Random
+    // scenes"); a cube's corner landing flat has 1 / K = m / 4, the share.
     if (!row.anchor.penetrating && !pair_touched_[row.pair]) {
       const double approach = std::max(0.0, -row.vn0);
-      const double room = std::max(0.0, row.m_share * approach - cn * approach * h_);
+      const double mass = row.inv_mass_n > 0.0 ? std::min(row.m_share, 1.0 / row.inv_mass_n) : row.m_share;
+      const double room = std::max(0.0, mass * approach - cn * approach * h_);
       lambda += std::min(row.law.c * std::min(row.depth, approach * h_), room) / h_;
     }
     row.anchor.penetrating = true;
