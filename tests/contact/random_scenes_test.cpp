@@ -1,7 +1,7 @@
 // Seeded random scenes over every registered contact method
 // (tests/contact/method_configs.h): nine columns of spheres, boxes and
 // capsules of 0.05 to 0.25 m, thrown toward the middle and dropped on the
-// ground, or stacked (every third column exactly aligned touching cubes),
+// ground, or stacked (some columns exactly aligned touching cubes),
 // none overlapping at the start. Each scene's masses lie within 1:3 of
 // one another; the scenes together span 0.1 to 10 kg. Contact is passive
 // here (restitution 0, friction 0.2 to 1), so under any method:
@@ -27,6 +27,7 @@
 #include <random>
 #include <vector>
 
+#include "service/collision/aabb.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/method_configs.h"
 #include "tests/contact/method_sim.h"
@@ -43,21 +44,11 @@ constexpr int kSteps = 240;         // 1 s at the default 1/240 s
 constexpr double kCell = 1.2;       // m between the columns' axes
 constexpr double kMaxSize = 0.25;   // m, largest half size or radius
 constexpr double kLiftSlop = 0.005; // m a body may be pushed up out of an overlap
+constexpr double kG = 9.81;         // m/s^2, World::DefaultGravity
 
-// The body's lowest point (its support along -z).
-double LowestPoint(const RigidBody& b) {
-  const Mat3 R = b.Rotation();
-  switch (b.shape.type) {
-    case ShapeType::kSphere:
-      return b.x.z() - b.shape.radius;
-    case ShapeType::kBox:
-      return b.x.z() - (R.row(2).cwiseAbs().transpose().cwiseProduct(b.shape.half_extents)).sum();
-    case ShapeType::kCapsule:
-      return b.x.z() - b.shape.radius - b.shape.half_length * std::abs(R(2, 2));
-    default:
-      return b.x.z();
-  }
-}
+// The body's lowest point: its bounding box's floor, which is the support
+// along -z for every shape.
+double LowestPoint(const RigidBody& b) { return ComputeAabb(b, 0.0, 0.0).min.z(); }
 
 // A random shape no larger than kMaxSize across any half axis; `cube` forces
 // an axis-aligned cube (for the exactly aligned stacks). Returns its half
@@ -81,9 +72,9 @@ double DrawShape(std::mt19937& rng, bool cube, BodySettings* s) {
   return s->radius + s->half_length;
 }
 
-// One column of bodies per cell of a 3 x 3 grid: a free body tumbling in,
-// or a stack of 2-3 bodies (every other stack exactly aligned cubes that
-// touch). Columns are kCell apart, so no two bodies overlap at the start.
+// One column of bodies per cell of a 3 x 3 grid, each drawn as a free body
+// tumbling in, a loose stack of 2-3 bodies, or a stack of 2-3 exactly
+// aligned cubes that touch. Columns are kCell apart, so no two bodies overlap at the start.
 void BuildScene(unsigned seed, World& world) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -130,7 +121,7 @@ double MechanicalEnergy(const World& world) { return KineticEnergy(world) + Pote
 double SpendableEnergy(const World& world) {
   double e = KineticEnergy(world);
   for (const RigidBody& b : world.bodies()) {
-    if (b.IsDynamic()) e += b.mass * 9.81 * std::max(0.0, LowestPoint(b));
+    if (b.IsDynamic()) e += b.mass * kG * std::max(0.0, LowestPoint(b));
   }
   return e;
 }
@@ -145,7 +136,7 @@ double SpeedLimit(const World& world) {
     v2 = std::max(v2, b.LinearVelocity().squaredNorm());
     top = std::max(top, b.x.z());
   }
-  return 2.0 * std::sqrt(v2 + 2.0 * 9.81 * top) + 1.0;
+  return 2.0 * std::sqrt(v2 + 2.0 * kG * top) + 1.0;
 }
 
 bool AllFinite(const World& world) {
@@ -165,7 +156,7 @@ TEST_P(RandomScenesTest, EnergyNeverRisesAndNothingFallsThrough) {
     Sim sim(GetParam().method, GetParam().params);
     BuildScene(seed, sim.world);
     double lift = 0.0;
-    for (const RigidBody& b : sim.world.bodies()) lift += b.IsDynamic() ? b.mass * 9.81 * kLiftSlop : 0.0;
+    for (const RigidBody& b : sim.world.bodies()) lift += b.IsDynamic() ? b.mass * kG * kLiftSlop : 0.0;
     const double start = MechanicalEnergy(sim.world);
     const double allowed = start + lift + 0.01 * SpendableEnergy(sim.world);
     const double speed_limit = SpeedLimit(sim.world);
