@@ -90,8 +90,10 @@ docker-check: deps
 test: build
 	@$(MAKE) --no-print-directory test-cpp test-py
 
+# RANDOM_SCENES: the seeded random scenes of each set per method
+# (tests/contact/random_scenes_test.cpp; the sanitizer suite runs 3)
 test-cpp:
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+	cd $(BUILD) && RANDOM_SCENES=10 ctest --output-on-failure -j$(JOBS)
 
 test-py:
 	CONTACTSIM_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python

@@ -94,11 +94,42 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
   for (int root = 0; root < n; ++root) {
     if (count[root] == 0 || count[root] > options.max_rows) continue;
     members.assign(by_component.begin() + start[root], by_component.begin() + start[root + 1]);
+    const double start = options.energy_guard ? KineticEnergy(members, rows, bodies, true) : 0.0;
     report.passes += SolveComponent(members, rows, bodies, options.passes, options.start_free);
+    if (options.energy_guard && GainedEnergy(members, rows, bodies, start)) {
+      for (int k : members) SetImpulse(rows[k], 0.0, bodies);
+      report.passes += SolveComponent(members, rows, bodies, options.restart_passes, true);
+      ++report.restarts;
+    }
     ++report.components;
     report.rows += static_cast<int>(members.size());
   }
   return report;
+}
+
+double SubspaceSolver::KineticEnergy(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
+                                     const std::vector<SolverBody>& bodies, bool before) {
+  counted_.resize(bodies.size(), 0);
+  ++energy_calls_;
+  double energy = 0.0;
+  for (int k : members) {
+    for (int i : {rows[k].a, rows[k].b}) {
+      if (!Dynamic(i, bodies) || counted_[i] == energy_calls_) continue;
+      counted_[i] = energy_calls_;
+      const SolverBody& s = bodies[i];
+      const Vec3 v = before ? Vec3(s.v - s.inv_mass * s.dP) : s.v;
+      const Vec3 w = before ? Vec3(s.w - s.inv_inertia * s.dL) : s.w;
+      energy += 0.5 * (v.squaredNorm() / s.inv_mass + w.dot(s.inv_inertia.inverse() * w));
+    }
+  }
+  return energy;
+}
+
+bool SubspaceSolver::GainedEnergy(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,
+                                  const std::vector<SolverBody>& bodies, double start) {
+  double allowed = start * (1.0 + 1e-3) + 1e-12;
+  for (int k : members) allowed += std::max(0.0, rows[k].lambda * rows[k].rhs);
+  return KineticEnergy(members, rows, bodies, false) > allowed;
 }
 
 void SubspaceSolver::BuildCoupling(const std::vector<int>& members, const std::vector<ConstraintRow>& rows,

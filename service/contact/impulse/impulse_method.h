@@ -86,9 +86,19 @@ class ImpulseMethod : public ContactMethod {
   // and the friction rows without targets) in components with a large mass
   // ratio, after the sweeps.
   void SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target);
-  // First time in (0, h] at which a pair that was apart touches, or h.
-  double FindImpactTime(const World& start, const std::vector<std::pair<int, int>>& pairs, double h,
-                        int* iterations) const;
+  // A pair whose deepest point went past `depth` in the sub-step: 0 for a
+  // pair that was apart, the depth it started at plus half the margin for
+  // a pair that was touching (another of its features struck).
+  struct Impact {
+    int a = 0, b = 0;
+    double depth = 0.0;  // m
+  };
+  // The pairs that overlap deeper than the margin now and did not at the
+  // sub-step's start (`bodies` moved on from there by `h`).
+  std::vector<Impact> FindImpacts(const std::vector<RigidBody>& bodies, const ContactSet& contacts,
+                                  CollisionDetector& detector, double h) const;
+  // First time in (0, h] at which an impact's pair reaches its depth, or h.
+  double FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h, int* iterations) const;
 
   ImpulseParams params_;
   std::vector<SolverBody> solver_;

@@ -12,10 +12,13 @@
 namespace contactsim {
 namespace {
 
-SubspaceOptions SubspaceOptionsOf(const LcpParams& p) {
+// `velocities`: the rows act on velocities (the energy guard applies), not
+// on the split impulse's pseudo-velocities.
+SubspaceOptions SubspaceOptionsOf(const LcpParams& p, bool velocities) {
   SubspaceOptions options;
   options.mass_ratio = p.direct_mass_ratio;
   options.max_rows = p.direct_max_rows;
+  options.energy_guard = velocities;
   return options;
 }
 
@@ -59,7 +62,7 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   options.iterations = params_.iterations;
   options.tolerance = 1e-9;  // m
   split_pgs_.Solve(split_rows_, bodies_, options);
-  subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_));
+  subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_, false));
   auto& bodies = world.bodies();
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies[i].IsDynamic()) continue;
@@ -106,7 +109,7 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   }
   options.normal_blocks = &normal_blocks_;
   report_ = pgs_.Solve(rows_, bodies, options);
-  subspace_.Solve(rows_, bodies, SubspaceOptionsOf(params_));
+  subspace_.Solve(rows_, bodies, SubspaceOptionsOf(params_, true));
 }
 
 StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {

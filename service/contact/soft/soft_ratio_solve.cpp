@@ -1,87 +1,22 @@
 #include "service/contact/soft/soft_ratio_solve.h"
 
 #include <algorithm>
-#include <limits>
 
-#include "service/contact/union_find.h"
+#include "service/contact/mass_ratio_select.h"
 
 namespace contactsim {
-namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Whether the dynamic bodies that touch something differ in mass by `ratio`:
-// when not, no component can, and the step pays one pass over its points.
-bool RatioReached(const std::vector<SoftBody>& bodies, const std::vector<SoftPoint>& points, double ratio) {
-  double light = 0.0, heavy = kInf;  // inverse masses
-  for (const SoftPoint& p : points) {
-    for (int i : {p.a, p.b}) {
-      if (bodies[i].inv_mass <= 0.0) continue;
-      light = std::max(light, bodies[i].inv_mass);
-      heavy = std::min(heavy, bodies[i].inv_mass);
-    }
-  }
-  return light >= ratio * heavy;
-}
-
-}  // namespace
 
 void SoftRatioSolve::Prepare(const SubspaceOptions& options, const std::vector<SoftBody>& bodies,
                              std::vector<SoftPoint>& points) {
   options_ = options;
-  Select(bodies, points, options.mass_ratio);
+  selected_ = SelectMassRatioPoints(bodies, points, options.mass_ratio, &load_mass_);
   if (selected_.empty()) return;
   for (int k : selected_) {
     SoftPoint& p = points[k];
     const int body = bodies[p.a].inv_mass > 0.0 ? p.a : p.b;
     p.soft = LoadedSoftness(p.soft, std::min(1.0, p.mass_n / load_mass_[body]));
   }
-  // the solve's bodies: those of the selected points, with the step's start
-  // inertia (the points' Jacobians are the step's start too)
-  slot_of_body_.assign(bodies.size(), -1);
-  body_of_slot_.clear();
-  solver_bodies_.clear();
-  for (int k : selected_) {
-    for (int i : {points[k].a, points[k].b}) {
-      if (bodies[i].inv_mass <= 0.0 || slot_of_body_[i] >= 0) continue;
-      slot_of_body_[i] = static_cast<int>(body_of_slot_.size());
-      body_of_slot_.push_back(i);
-      SolverBody s;
-      s.inv_mass = bodies[i].inv_mass;
-      s.inv_inertia = bodies[i].inv_inertia;
-      solver_bodies_.push_back(s);
-    }
-  }
-}
-
-void SoftRatioSolve::Select(const std::vector<SoftBody>& bodies, const std::vector<SoftPoint>& points,
-                            double ratio) {
-  selected_.clear();
-  if (ratio <= 0.0 || points.empty() || !RatioReached(bodies, points, ratio)) return;
-  const int n = static_cast<int>(bodies.size());
-  UnionFind sets(n);
-  for (const SoftPoint& p : points) {
-    if (bodies[p.a].inv_mass > 0.0 && bodies[p.b].inv_mass > 0.0) sets.Join(p.a, p.b);
-  }
-  std::vector<double> light(n, 0.0), heavy(n, kInf);  // inverse masses per root
-  for (const SoftPoint& p : points) {
-    for (int i : {p.a, p.b}) {
-      if (bodies[i].inv_mass <= 0.0) continue;
-      const int root = sets.Root(i);
-      light[root] = std::max(light[root], bodies[i].inv_mass);
-      heavy[root] = std::min(heavy[root], bodies[i].inv_mass);
-    }
-  }
-  load_mass_.assign(n, 0.0);
-  for (int k = 0; k < static_cast<int>(points.size()); ++k) {
-    const SoftPoint& p = points[k];
-    const int body = bodies[p.a].inv_mass > 0.0 ? p.a : p.b;
-    if (bodies[body].inv_mass <= 0.0) continue;
-    const int root = sets.Root(body);
-    if (light[root] < ratio * heavy[root]) continue;
-    selected_.push_back(k);
-    load_mass_[p.a] = load_mass_[p.b] = 1.0 / heavy[root];
-  }
+  slots_.Build(bodies, points, selected_);
 }
 
 void SoftRatioSolve::BuildRows(const SoftPass& pass, const std::vector<SoftPoint>& points,
@@ -89,7 +24,7 @@ void SoftRatioSolve::BuildRows(const SoftPass& pass, const std::vector<SoftPoint
   rows_.resize(3 * selected_.size());
   for (size_t i = 0; i < selected_.size(); ++i) {
     const SoftPoint& p = points[selected_[i]];
-    const int a = slot_of_body_[p.a], b = slot_of_body_[p.b];
+    const int a = slots_.slot_of_body[p.a], b = slots_.slot_of_body[p.b];
     const SoftRowTarget target = SoftNormalTarget(pass, p, SoftSeparation(p, bodies[p.a], bodies[p.b]));
     const Vec3* dirs[3] = {&p.n, &p.t1, &p.t2};
     const Vec3* ja[3] = {&p.ra_n, &p.ra_t1, &p.ra_t2};
@@ -113,16 +48,16 @@ void SoftRatioSolve::BuildRows(const SoftPass& pass, const std::vector<SoftPoint
       }
     }
   }
-  for (size_t s = 0; s < body_of_slot_.size(); ++s) {
-    solver_bodies_[s].v = bodies[body_of_slot_[s]].v;
-    solver_bodies_[s].w = bodies[body_of_slot_[s]].w;
+  for (size_t s = 0; s < slots_.body_of_slot.size(); ++s) {
+    slots_.solver[s].v = bodies[slots_.body_of_slot[s]].v;
+    slots_.solver[s].w = bodies[slots_.body_of_slot[s]].w;
   }
 }
 
 void SoftRatioSolve::WriteBack(std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) const {
-  for (size_t s = 0; s < body_of_slot_.size(); ++s) {
-    bodies[body_of_slot_[s]].v = solver_bodies_[s].v;
-    bodies[body_of_slot_[s]].w = solver_bodies_[s].w;
+  for (size_t s = 0; s < slots_.body_of_slot.size(); ++s) {
+    bodies[slots_.body_of_slot[s]].v = slots_.solver[s].v;
+    bodies[slots_.body_of_slot[s]].w = slots_.solver[s].w;
   }
   // Friction that slides here is held at +-mu lambda_n per tangent (the
   // subspace solve's bounds) until the next pass sweeps it onto the disk.
@@ -141,7 +76,7 @@ void SoftRatioSolve::WriteBack(std::vector<SoftPoint>& points, std::vector<SoftB
 void SoftRatioSolve::Solve(const SoftPass& pass, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
   if (selected_.empty()) return;
   BuildRows(pass, points, bodies);
-  subspace_.Solve(rows_, solver_bodies_, options_);
+  subspace_.Solve(rows_, slots_.solver, options_);
   WriteBack(points, bodies);
 }
 

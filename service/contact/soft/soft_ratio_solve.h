@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "service/contact/constraint_row.h"
+#include "service/contact/mass_ratio_select.h"
 #include "service/contact/soft/soft_contact.h"
 #include "service/contact/subspace_solve.h"
 
@@ -42,16 +43,13 @@ class SoftRatioSolve {
   void Solve(const SoftPass& pass, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
 
  private:
-  void Select(const std::vector<SoftBody>& bodies, const std::vector<SoftPoint>& points, double ratio);
   void BuildRows(const SoftPass& pass, const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies);
   void WriteBack(std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) const;
 
   SubspaceOptions options_;
   std::vector<int> selected_;       // point indices, ascending
-  std::vector<double> load_mass_;   // per world body root: heaviest mass of its component
-  std::vector<int> slot_of_body_;   // world body index -> solver body, or -1
-  std::vector<int> body_of_slot_;   // solver body -> world body index
-  std::vector<SolverBody> solver_bodies_;
+  std::vector<double> load_mass_;   // per world body: heaviest mass of its component
+  RatioSolveBodies slots_;
   std::vector<ConstraintRow> rows_;  // per selected point: normal, t1, t2
   SubspaceSolver subspace_;
 };

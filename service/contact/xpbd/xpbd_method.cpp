@@ -122,6 +122,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
   CarrySlips(world);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
+  ratio_.Prepare(params_.direct_mass_ratio, bodies_, points_);
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
   }

@@ -24,7 +24,9 @@
 //        h^2); rigid joints between bodies of mass ratio direct_mass_ratio
 //        or more are then projected onto C = 0 by Newton's method
 //        (ProjectJointPositions, joints/joint_solver.h), which the sweeps
-//        approach only at a rate of about 1 - m_light / m_heavy;
+//        approach only at a rate of about 1 - m_light / m_heavy, and the
+//        normal rows of contact components of that mass ratio are solved
+//        together (xpbd_ratio_solve.h);
 //     c. velocities from the poses (Algorithm 2): v += (x - x~) / h and
 //        w += 2 vec(q q~^-1) / h, x~ and q~ the predicted pose;
 //     d. velocity pass: restitution and dynamic friction.
@@ -48,6 +50,7 @@
 #include "service/contact/xpbd/xpbd_joints.h"
 #include "service/contact/xpbd/xpbd_patch_friction.h"
 #include "service/contact/xpbd/xpbd_params.h"
+#include "service/contact/xpbd/xpbd_ratio_solve.h"
 
 namespace contactsim {
 
@@ -99,6 +102,7 @@ class XpbdMethod : public ContactMethod {
   BlockColours colours_;
   std::vector<XpbdPatch> patches_;        // parallel to blocks_
   std::vector<XpbdSubsetCache> subsets_;  // parallel to blocks_
+  XpbdRatioSolve ratio_;                  // heavy-on-light components' direct solve
   std::vector<XpbdPose> predicted_;
   std::vector<XpbdJointLambda> joint_lambdas_;
   std::vector<ParallelRunner::Stage> stages_;
