@@ -78,8 +78,10 @@ struct SubspaceOptions {
   // heavy-on-light box stacks fall, against none.
   bool start_free = false;
   // Re-solve from zero impulses a component that ends with more kinetic
-  // energy than it had before the solve (see above); off for rows that
-  // move positions (pseudo-velocities), whose energy means nothing.
+  // energy than it had before the solve (see above; "before" is what
+  // SolverBody::dP and dL say the bodies were before their impulses); off
+  // for rows that move positions (pseudo-velocities), whose energy means
+  // nothing.
   bool energy_guard = true;
   int restart_passes = 64;  // active-set passes at most in that re-solve
 };

@@ -18,8 +18,22 @@ void XpbdRatioSolve::Prepare(double mass_ratio, const std::vector<SoftBody>& bod
   options_.energy_guard = false;  // displacements, not velocities
 }
 
-void XpbdRatioSolve::Solve(const XpbdSolve& solve, const std::vector<SoftBody>& bodies, World& world,
-                           std::vector<XpbdPoint>& points) {
+double XpbdRatioSolve::DerivedEnergy(const std::vector<SoftBody>& bodies, const std::vector<XpbdPose>& predicted,
+                                     double h, const World& world) const {
+  double energy = 0.0;
+  for (int i : slots_.body_of_slot) {
+    const RigidBody& b = world.bodies()[i];
+    Quat dq = b.q * predicted[i].q.conjugate();
+    if (dq.w() < 0.0) dq.coeffs() = -dq.coeffs();
+    const Vec3 v = bodies[i].v + (b.x - predicted[i].x) / h;
+    const Vec3 w = bodies[i].w + (2.0 / h) * dq.vec();
+    energy += 0.5 * (b.mass * v.squaredNorm() + w.dot(bodies[i].inv_inertia.inverse() * w));
+  }
+  return energy;
+}
+
+void XpbdRatioSolve::Solve(const XpbdSolve& solve, const std::vector<SoftBody>& bodies,
+                           const std::vector<XpbdPose>& predicted, World& world, std::vector<XpbdPoint>& points) {
   rows_.resize(selected_.size());
   for (size_t i = 0; i < selected_.size(); ++i) {
     const XpbdPoint& p = points[selected_[i]];
@@ -37,9 +51,20 @@ void XpbdRatioSolve::Solve(const XpbdSolve& solve, const std::vector<SoftBody>& 
   for (SolverBody& s : slots_.solver) s.v.setZero(), s.w.setZero(), s.dP.setZero(), s.dL.setZero();
   subspace_.Solve(rows_, slots_.solver, options_);
   auto& all = world.bodies();
+  const double before = DerivedEnergy(bodies, predicted, solve.h, world);
+  saved_poses_.clear();
+  for (int i : slots_.body_of_slot) saved_poses_.emplace_back(all[i].x, all[i].q);
   for (size_t s = 0; s < slots_.body_of_slot.size(); ++s) {
     const int i = slots_.body_of_slot[s];
     DisplaceXpbdBody(all[i], bodies[i], slots_.solver[s].v, slots_.solver[s].w);
+  }
+  if (DerivedEnergy(bodies, predicted, solve.h, world) > before * (1.0 + 1e-6) + 1e-12) {
+    for (size_t s = 0; s < slots_.body_of_slot.size(); ++s) {
+      RigidBody& b = all[slots_.body_of_slot[s]];
+      b.x = saved_poses_[s].first;
+      b.q = saved_poses_[s].second;
+    }
+    return;
   }
   for (size_t i = 0; i < selected_.size(); ++i) {
     XpbdPoint& p = points[selected_[i]];

@@ -18,8 +18,17 @@
 // the sweep gave may be taken back, as the sweep itself does). Friction
 // stays with the sweep (xpbd_patch_friction.h). Worlds without such a
 // component are untouched bit for bit.
+// The solve is linear in the displacements, and a light body squeezed
+// between heavy ones can be asked to turn far within a sub-step, where the
+// linearisation fails: in 2 of 150 mixed-mass random scenes the scene's
+// energy rose 4% and 170%. So the solve is kept only where it does not
+// raise the kinetic energy of the velocities the sub-step will derive
+// (v~ + dx / h, XpbdMethod::DeriveVelocities) above what the sweep left;
+// otherwise the sweep's answer stands for that sub-step. Stopping a heavy
+// body that lands on a light one, what the solve is for, lowers it.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "service/contact/constraint_row.h"
@@ -39,11 +48,18 @@ class XpbdRatioSolve {
   // After a sub-step's sweeps: the selected points' normal rows solved
   // together; the bodies are moved and the points' multipliers and
   // impulses updated.
-  void Solve(const XpbdSolve& solve, const std::vector<SoftBody>& bodies, World& world,
-             std::vector<XpbdPoint>& points);
+  // `predicted`: the poses and velocities after the sub-step's prediction.
+  void Solve(const XpbdSolve& solve, const std::vector<SoftBody>& bodies, const std::vector<XpbdPose>& predicted,
+             World& world, std::vector<XpbdPoint>& points);
 
  private:
+  // The kinetic energy of the solve's bodies at the velocities the
+  // sub-step would derive from their poses now.
+  double DerivedEnergy(const std::vector<SoftBody>& bodies, const std::vector<XpbdPose>& predicted, double h,
+                       const World& world) const;
+
   SubspaceOptions options_;
+  std::vector<std::pair<Vec3, Quat>> saved_poses_;  // the solve's bodies before it, per slot
   std::vector<int> selected_;      // point indices, ascending
   RatioSolveBodies slots_;
   std::vector<ConstraintRow> rows_;  // per selected point: its normal

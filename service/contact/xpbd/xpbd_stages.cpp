@@ -69,7 +69,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     }
   };
   const Fn project = [&](int, int) { ProjectJointPositions(world); };
-  const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, world, points_); };
+  const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
   const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
   const Fn velocity_pass = [&](int i, int j) {
     SolveXpbdContactVelocities(h, threshold, blocks_, i, j, patches_, subsets_, predicted_, bodies_, &points_);
