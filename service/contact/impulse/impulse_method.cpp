@@ -358,12 +358,14 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
     const auto was = touching.find(p);
     const bool apart = was == touching.end();
     if (!apart && ClosingSpeedBound(bodies[p.first], bodies[p.second], h) * h <= margin) continue;
-    const double depth = apart ? 0.0 : std::max(0.0, was->second) + 0.5 * margin;
+    const double start = apart ? 0.0 : std::max(0.0, was->second);
+    // the search stops at touching, or half a margin past a touching pair's start
+    const double target = apart ? 0.0 : start + 0.5 * margin;
     scratch.clear();
     Collide(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
     for (const Contact& c : scratch) {
-      if (c.depth > depth + (apart ? margin : 0.5 * margin)) {
-        impacts.push_back({p.first, p.second, depth});
+      if (c.depth > start + margin) {
+        impacts.push_back({p.first, p.second, target});
         break;
       }
     }

@@ -93,8 +93,9 @@ class ImpulseMethod : public ContactMethod {
     int a = 0, b = 0;
     double depth = 0.0;  // m
   };
-  // The pairs that overlap deeper than the margin now and did not at the
-  // sub-step's start (`bodies` moved on from there by `h`).
+  // The pairs that overlap a margin deeper now than at the sub-step's
+  // start (`bodies` moved on from there by `h`): pairs that were apart,
+  // and touching pairs whose motion could close a margin in h.
   std::vector<Impact> FindImpacts(const std::vector<RigidBody>& bodies, const ContactSet& contacts,
                                   CollisionDetector& detector, double h) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.

@@ -47,8 +47,9 @@ class XpbdRatioSolve {
   bool active() const { return !selected_.empty(); }
   // After a sub-step's sweeps: the selected points' normal rows solved
   // together; the bodies are moved and the points' multipliers and
-  // impulses updated.
-  // `predicted`: the poses and velocities after the sub-step's prediction.
+  // impulses updated, unless that would raise the energy of the velocities
+  // the sub-step derives (see above). `predicted`: the poses and
+  // velocities after the sub-step's prediction.
   void Solve(const XpbdSolve& solve, const std::vector<SoftBody>& bodies, const std::vector<XpbdPose>& predicted,
              World& world, std::vector<XpbdPoint>& points);
 
