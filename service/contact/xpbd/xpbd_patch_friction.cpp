@@ -117,11 +117,11 @@ namespace {
 // The bodies' poses are (xa, q_a) and (xb, q_b).
 Vec3 PatchOffset(const XpbdPatch& patch, const Vec3& xa, const Quat& q_a, const Vec3& xb, const Quat& q_b) {
   if (patch.count == 1) {  // one point: turning its two points is cheaper than the four tangents
-    const Vec3 d = (xa + q_a * patch.mean_a) - (xb + q_b * patch.mean_b);
+    const Vec3 d = (xa + Rotate(q_a, patch.mean_a)) - (xb + Rotate(q_b, patch.mean_b));
     return Vec3(patch.t1.dot(d), patch.t2.dot(d), 0.0);
   }
-  const Quat qa = q_a.conjugate(), qb = q_b.conjugate();
-  const Vec3 at1 = qa * patch.t1, at2 = qa * patch.t2, bt1 = qb * patch.t1, bt2 = qb * patch.t2;
+  const Vec3 at1 = RotateInverse(q_a, patch.t1), at2 = RotateInverse(q_a, patch.t2);
+  const Vec3 bt1 = RotateInverse(q_b, patch.t1), bt2 = RotateInverse(q_b, patch.t2);
   const Vec3 centres = xa - xb;
   const double c1 = patch.t1.dot(centres), c2 = patch.t2.dot(centres);
   const double u1 = c1 + at1.dot(patch.mean_a) - bt1.dot(patch.mean_b);
@@ -202,14 +202,9 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   }
 }
 
-void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points,
-                    Vec3* spent) {
+void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const Vec3& n, SoftBody& A, SoftBody& B,
+                    Vec3* spent, Vec3* applied) {
   if (!patch.valid) return;
-  const XpbdPoint& p0 = points[patch.first];
-  double pushed = 0.0;
-  for (int i = 0; i < patch.count; ++i) pushed += points[patch.first + i].lambda_n;
-  if (pushed <= 0.0) return;
-  const Vec3& n = p0.n;
   const Vec3 v = (B.v + B.w.cross(patch.rb)) - (A.v + A.w.cross(patch.ra));
   const Vec3 spin = B.w - A.w;
   Vec3 total = *spent - patch.inv_k * Vec3(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0);
@@ -234,11 +229,7 @@ void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, 
     B.v += B.inv_mass * J;
     B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
   }
-  const Vec3 share = J / pushed;
-  for (int i = 0; i < patch.count; ++i) {
-    XpbdPoint& p = points[patch.first + i];
-    p.impulse += p.lambda_n * share;
-  }
+  *applied += J;
 }
 
 }  // namespace contactsim

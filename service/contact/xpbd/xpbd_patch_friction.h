@@ -30,12 +30,17 @@
 namespace contactsim {
 
 struct XpbdPatch {
-  int first = 0, count = 0;            // the points [first, first + count)
+  // What the velocity pass's brake reads, together at the front (it runs
+  // twice a block a sub-step, and the patch's other fields stayed out of
+  // the cache lines it needs):
   Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  // unit, the first point's tangents
-  double friction = 0.0;
   Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, the patch centre minus each body's centre, step start
+  Eigen::Matrix3d inv_k = Eigen::Matrix3d::Zero();  // rows t1, t2, twist
+  double friction = 0.0;
+  double twist_radius = 0.0;           // m, the points' mean distance from the centre; 0: no twist row
+  bool valid = false;
+  int first = 0, count = 0;            // the points [first, first + count)
   double spread = 0.0;                 // m^2, sum of the points' squared distances from the centre
-  double twist_radius = 0.0;           // m, their mean distance; 0: no twist row
   // The offset is linear in the points' material points m_i, so the patch
   // keeps their sums (below) and turns two tangents per body a sub-step
   // instead of reading every point (PatchOffset):
@@ -43,8 +48,6 @@ struct XpbdPatch {
   // sum_i d_i[k] m_i / spread for k = t1, t2, d_i the point's place from the centre
   Vec3 twist_a[2] = {Vec3::Zero(), Vec3::Zero()}, twist_b[2] = {Vec3::Zero(), Vec3::Zero()};
   double twist_c[2] = {0.0, 0.0};      // sum_i d_i[k] / spread (0 up to round-off)
-  Eigen::Matrix3d inv_k = Eigen::Matrix3d::Zero();  // rows t1, t2, twist
-  bool valid = false;
   // per step: the offsets static friction holds
   Vec3 origin = Vec3::Zero();          // (m, m, rad) along t1, t2 and the twist
   // A patch that does not touch holds its offset at the present poses; they
@@ -97,13 +100,16 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
 
 // Dynamic friction of the patch in the velocity pass (eq. 30, on the patch
 // as a whole): the impulse and twist that stop its relative motion at the
-// centre, the impulse held to mu sum lambda_n / h (Coulomb's disk) and the
-// twist to that times the patch's radius. One impulse for the patch keeps
-// a sliding face's corners alike: braked corner by corner, a box sliding
-// down a slope picked up 0.008-0.014 rad/s of spin. `spent` holds what the
-// patch's earlier brakes of this pass applied (t1, t2, twist): the limits
-// bound their sum, as accumulated impulses are clamped (Catto 2005).
-void BrakeXpbdPatch(double h, const XpbdPatch& patch, SoftBody& A, SoftBody& B, std::vector<XpbdPoint>& points,
-                    Vec3* spent);
+// centre, the impulse held to mu pushed / h (Coulomb's disk, `pushed` the sum
+// of the points' lambda_n, > 0) and the twist to that times the patch's
+// radius. One impulse for the patch keeps a sliding face's corners alike:
+// braked corner by corner, a box sliding down a slope picked up
+// 0.008-0.014 rad/s of spin. `spent` holds what the patch's earlier brakes of
+// this pass applied (t1, t2, twist): the limits bound their sum, as
+// accumulated impulses are clamped (Catto 2005). The impulse applied is
+// added to `applied` (N s, world, on B), which the caller shares among the
+// points for the report.
+void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const Vec3& n, SoftBody& A, SoftBody& B,
+                    Vec3* spent, Vec3* applied);
 
 }  // namespace contactsim

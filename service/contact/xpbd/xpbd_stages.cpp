@@ -54,12 +54,6 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     IntegrateSoftPositions(h, i, j, world, bodies_, /*track_motion=*/false);
     for (int k = i; k < j; ++k) predicted_[k] = {bodies[k].x, bodies[k].q, bodies_[k].v, bodies_[k].w};
   };
-  const Fn begin_blocks = [&](int i, int j) {
-    for (int k = i; k < j; ++k) {
-      BeginXpbdSubstep(blocks_[k], &points_);
-      BeginXpbdPatch(&patches_[k]);
-    }
-  };
   const Fn begin_joints = [&](int, int) { joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{}); };
   const Fn solve_joints = [&](int, int) { SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_); };
   const Fn solve_blocks = [&](int i, int j) {
@@ -67,6 +61,16 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
       SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
       SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
     }
+  };
+  // the sub-step's multipliers start from zero as each block is first
+  // solved (nothing reads a block's multipliers before that), which saves
+  // a pass over the blocks a sub-step
+  const Fn begin_and_solve_blocks = [&](int i, int j) {
+    for (int k = i; k < j; ++k) {
+      BeginXpbdSubstep(blocks_[k], &points_);
+      BeginXpbdPatch(&patches_[k]);
+    }
+    solve_blocks(i, j);
   };
   const Fn project = [&](int, int) { ProjectJointPositions(world); };
   const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
@@ -82,11 +86,10 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   predicted_.resize(bodies.size());
   for (int sub = 0; sub < substeps; ++sub) {
     list.Add(predict, 0, n, kBodyGrain);
-    list.Add(begin_blocks, 0, blocks, kBodyGrain);
     if (joints) list.AddSerial(begin_joints);
     for (int it = 0; it < params_.iterations; ++it) {
       if (joints) list.AddSerial(solve_joints);
-      list.AddColours(solve_blocks, colours_, blocks);
+      list.AddColours(it == 0 ? begin_and_solve_blocks : solve_blocks, colours_, blocks);
     }
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);

@@ -44,20 +44,25 @@ struct BlockBodies {
   const XpbdPose& b;
 };
 
+// The points of a block that pushed in the sub-step (lambda_n > 0): their
+// places in the block and the sum of their multipliers.
+struct Pushed {
+  int idx[kMaxNormalBlock];
+  int count = 0;
+  double sum = 0.0;
+};
+
 // Restitution of a block's points that pushed, all at once through the
 // inverse of their K (K^+ for a face's four), so the corners of a face
 // share it whatever their order (their impulses summed before they reach
 // the bodies); point by point where no block applies.
-void SolveBlockRestitution(double threshold, const NormalBlock& m, XpbdSubsetCache& cache,
-                           const std::vector<SoftBody>& all, const BlockBodies& pair, std::vector<XpbdPoint>& points) {
+void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed& pushed_points,
+                           XpbdSubsetCache& cache, const std::vector<SoftBody>& all, const BlockBodies& pair,
+                           std::vector<XpbdPoint>& points) {
   SoftBody& A = pair.A;
   SoftBody& B = pair.B;
-  int idx[kMaxNormalBlock];
-  int pushed = 0;
-  for (int i = 0; i < m.count; ++i) {
-    if (points[m.first + i].lambda_n > 0.0) idx[pushed++] = i;
-  }
-  if (pushed == 0) return;
+  const int* idx = pushed_points.idx;
+  const int pushed = pushed_points.count;
   const Eigen::Matrix4d* inv = nullptr;
   const XpbdPoint& p0 = points[m.first];
   // a lone point's K^-1 is 1 / w_n: the same number as through the cache
@@ -111,8 +116,17 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
                                 std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
   for (int k = begin; k < end; ++k) {
     const NormalBlock& m = blocks[k];
-    const int a = (*points)[m.first].a, b = (*points)[m.first].b;
-    const BlockBodies pair{bodies[a], bodies[b], predicted[a], predicted[b]};
+    Pushed pushed;
+    for (int i = 0; i < m.count; ++i) {
+      const double lambda = (*points)[m.first + i].lambda_n;
+      if (lambda > 0.0) {
+        pushed.idx[pushed.count++] = i;
+        pushed.sum += lambda;
+      }
+    }
+    if (pushed.count == 0) continue;
+    const XpbdPoint& p0 = (*points)[m.first];
+    const BlockBodies pair{bodies[p0.a], bodies[p0.b], predicted[p0.a], predicted[p0.b]};
     // the brake's torque about the centres of mass (its impulse acts in the
     // contact plane, below a resting box's centre) turns the bodies, which
     // the normal rows then undo, and undoing it moves the patch's centre
@@ -120,10 +134,18 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     // after the normals only, a box sliding down a slope kept a pitch of
     // 0.010-0.016 rad/s (16 to 10 sub-steps); braked before them only, a
     // box held on a slope crept 4.3 mm in 2 s
-    Vec3 spent = Vec3::Zero();
-    BrakeXpbdPatch(h, patches[k], pair.A, pair.B, *points, &spent);
-    SolveBlockRestitution(restitution_threshold, m, caches[k], bodies, pair, *points);
-    BrakeXpbdPatch(h, patches[k], pair.A, pair.B, *points, &spent);
+    Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
+    const Vec3 n = p0.n;
+    BrakeXpbdPatch(h, pushed.sum, patches[k], n, pair.A, pair.B, &spent, &braked);
+    SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], bodies, pair, *points);
+    BrakeXpbdPatch(h, pushed.sum, patches[k], n, pair.A, pair.B, &spent, &braked);
+    // the report's share of the brakes: by the points' pushes
+    if (braked.isZero(0.0)) continue;
+    const Vec3 share = braked / pushed.sum;
+    for (int i = 0; i < pushed.count; ++i) {
+      XpbdPoint& p = (*points)[m.first + pushed.idx[i]];
+      p.impulse += p.lambda_n * share;
+    }
   }
 }
 
