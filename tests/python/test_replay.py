@@ -47,32 +47,58 @@ def drive(c):
     return ball
 
 
-def complete(path, prefix):
-    """True if every logged command has its reply in the log, every step
-    with lockstep inputs has its INPUT, and no client's request ids skip one
-    (a command lost with its reply): nothing the replay needs was lost."""
-    commands, replies, input_steps, digest_steps, inputs = set(), set(), set(), set(), set()
+COMMANDS = ("BODY_CMD", "SCENE_CMD", "JOINT_CMD")
+
+
+def logged(path, prefix):
+    """The log's commands, replies, inputs and STATEs in log order, as
+    (channel suffix, decoded message)."""
+    events = []
     for e in lcm.EventLog(str(path), "r"):
         ch = e.channel[len(prefix) + 1:]
-        if ch in ("BODY_CMD", "SCENE_CMD", "JOINT_CMD"):
-            m = getattr(contactsim, ch.lower() + "_t").decode(e.data)
-            commands.add((m.client_id, m.request_id))
+        if ch in COMMANDS + ("REPLY", "INPUT", "STATE"):
+            events.append((ch, getattr(contactsim, ch.lower() + "_t").decode(e.data)))
+    return events
+
+
+def every_command_fed(events):
+    """The replay feeds a command when its OK reply follows it in the log
+    (log_replay.h), so every logged command needs a reply after it and every
+    OK reply needs its command before it: the logger can lose either one
+    alone, and an OK reply whose command was lost is skipped silently.
+    (Lockstep inputs get only error replies; a refused command changed nothing.)"""
+    waiting = set()
+    for ch, m in events:
+        if ch in COMMANDS:
+            waiting.add((m.client_id, m.request_id))
         elif ch == "REPLY":
-            m = contactsim.reply_t.decode(e.data)
-            replies.add((m.client_id, m.request_id))
-        elif ch == "INPUT":
-            m = contactsim.input_t.decode(e.data)
-            input_steps.add(m.step)
-            inputs.add((m.client_id, m.request_id))
-        elif ch == "STATE":
-            m = contactsim.state_t.decode(e.data)
-            if m.input_digest != 0:
-                digest_steps.add(m.step)
-    ids = {}
-    for client, rid in commands | replies | inputs:
-        ids.setdefault(client, set()).add(rid)
-    no_gaps = all(max(r) - min(r) + 1 == len(r) for r in ids.values())
-    return commands <= replies and digest_steps <= input_steps and no_gaps
+            key = (m.client_id, m.request_id)
+            if key not in waiting and m.code == contactsim.reply_t.OK:
+                return False
+            waiting.discard(key)
+    return not waiting
+
+
+def no_request_id_lost(events, client):
+    """The client's request ids count up from 1 by one per command or input
+    (a resend keeps its id), and the recording spans all it used: a missing
+    id is a command lost together with its reply (first, last or between),
+    or an input. The client keeps no public count of the ids it used."""
+    ids = {m.request_id for ch, m in events if ch != "STATE" and m.client_id == client.client_id}
+    return ids == set(range(1, client._request_id + 1))
+
+
+def every_input_logged(events):
+    """Every step whose STATE shows applied lockstep inputs has an INPUT in the log."""
+    input_steps = {m.step for ch, m in events if ch == "INPUT"}
+    return all(m.step in input_steps for ch, m in events if ch == "STATE" and m.input_digest != 0)
+
+
+def complete(path, prefix, client):
+    """True if the logger lost nothing the replay needs of a run that
+    `client` drove, all of it recorded."""
+    events = logged(path, prefix)
+    return every_command_fed(events) and no_request_id_lost(events, client) and every_input_logged(events)
 
 
 def replay(server, log, scene=None):
@@ -87,9 +113,9 @@ def record(launch, tmp_path):
         path = tmp_path / ("run%d.lcmlog" % attempt)
         with LcmRecorder(server.url, server.prefix + "_.*", path):
             ball = drive(server.client)
-        if complete(path, server.prefix):
+        if complete(path, server.prefix, server.client):
             return server, path, ball
-    pytest.fail("every recording lost a command's reply or an input on UDP")
+    pytest.fail("every recording lost a command, a reply or an input on UDP")
 
 
 def test_replay_of_a_recorded_run_is_identical_and_a_tampered_one_is_not(launch, tmp_path):

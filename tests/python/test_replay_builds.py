@@ -78,10 +78,10 @@ def test_a_run_through_every_method_replays_identically_on_every_build(launch, t
             # a reply lost on UDP (seen once under the sanitizers, the
             # machine loaded): the run is recorded again on a new server
             continue
-        if complete(log, server.prefix):
+        if complete(log, server.prefix, server.client):
             break
     else:
-        pytest.fail("every recording lost a command's reply on UDP")
+        pytest.fail("every recording lost a command, a reply or an input on UDP")
     for binary in servers_of_every_build():
         out = subprocess.run([str(binary), "--config", str(CONFIG), "--scene", str(SCENE),
                               "--prefix", server.prefix, "--replay", str(log)],
