@@ -17,14 +17,21 @@ from lcm_recorder import LcmRecorder
 RECORD_TRIES = 3  # a log that lost a message on UDP is recorded again
 
 
-def drive(c):
+def drive(c, drain):
+    """The recorded run; drain() returns once the logger has written all
+    published so far. The logger queues at most 30 messages and a STEP
+    publishes a burst of STATEs: drained before the long STEP, so that its
+    burst and reply fit, and after each STEP, so that the next command is
+    not lost to a full queue while its later reply is logged."""
     c.set_gravity((0, 0, -9.81))
     c.add_plane((0, 0, 1), 0.0)
     ball = c.add_sphere(0.1, position=(0, 0, 0.5), mass=1.0, restitution=0.5)
     box = c.add_box((0.1, 0.1, 0.1), position=(0.5, 0, 0.3), mass=2.0)
     bob = c.add_sphere(0.05, position=(1.5, 0, 1.0), mass=0.5)
     c.add_joint("distance", bob, None, anchor=(1.5, 0, 1.5))
+    drain()
     c.step(60)
+    drain()
     c.set_contact_method("impulse", iterations=40)
     # realtime: these land at whatever step the server is at, between the
     # 60 Hz STATEs; their replies say which
@@ -36,6 +43,7 @@ def drive(c):
     c.pause()
     c.snapshot("a")
     c.step(30)
+    drain()
     with contactsim.Controller(c, lambda s: {box: (3.0, 0.0, 0.0)}) as ctl:
         c.set_mode("lockstep")
         c.resume()
@@ -111,8 +119,8 @@ def record(launch, tmp_path):
     for attempt in range(RECORD_TRIES):
         server = launch()
         path = tmp_path / ("run%d.lcmlog" % attempt)
-        with LcmRecorder(server.url, server.prefix + "_.*", path):
-            ball = drive(server.client)
+        with LcmRecorder(server.url, server.prefix + "_.*", path) as recorder:
+            ball = drive(server.client, recorder.sync)
         if complete(path, server.prefix, server.client):
             return server, path, ball
     pytest.fail("every recording lost a command, a reply or an input on UDP")
