@@ -76,7 +76,6 @@ void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const X
   DisplaceXpbdBody(all[p.a], sa, -sa.inv_mass * dl * p.n, -dl * p.ia_n);
   DisplaceXpbdBody(all[p.b], sb, sb.inv_mass * dl * p.n, dl * p.ib_n);
   p.lambda_n += dl;
-  p.impulse += (dl * solve.inv_h) * p.n;  // a positional impulse p moves like the velocity impulse p / h
 }
 
 // K^-1 of a subset of two or three points (or K^+ of four), 1 / K of one.
@@ -138,7 +137,6 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
   for (int k = 0; k < active; ++k) {
     XpbdPoint& p = points[m.first + idx[k]];
     p.lambda_n += step[k];
-    p.impulse += (step[k] * solve.inv_h) * n;
     sum += step[k];
     wa += step[k] * p.ia_n;
     wb += step[k] * p.ib_n;

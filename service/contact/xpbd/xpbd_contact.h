@@ -110,7 +110,6 @@ struct XpbdSubsetCache {
 // What a sub-step's position solve needs.
 struct XpbdSolve {
   double h = 0.0;            // s, the sub-step
-  double inv_h = 0.0;        // 1/s, 1 / h (the report's impulses, without a division a point)
   double alpha_tilde = 0.0;  // 1/kg, compliance / h^2
   double max_push = 0.0;     // m, the deepest overlap one sub-step removes
 };

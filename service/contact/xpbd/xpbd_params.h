@@ -8,7 +8,7 @@
 namespace contactsim {
 
 struct XpbdParams {
-  int substeps = 12;
+  int substeps = 10;
   int iterations = 1;
   double compliance = 0.0;             // m/N
   double restitution_threshold = 0.0;  // m/s

@@ -151,8 +151,8 @@ void CarryXpbdPatchSlip(const XpbdPatchSlip& slip, XpbdPatch* patch) {
                         patch->twist_radius > 0.0 ? slip.twist : 0.0);
 }
 
-void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, double h, XpbdPatch& patch,
-                            std::vector<XpbdPoint>& points) {
+void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, XpbdPatch& patch,
+                            const std::vector<XpbdPoint>& points) {
   if (!patch.valid) return;
   const XpbdPoint& p0 = points[patch.first];
   double pushed = 0.0;
@@ -194,12 +194,6 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, d
   DisplaceXpbdBody(world.bodies()[p0.b], sb, sb.inv_mass * P, sb.inv_inertia * (patch.rb.cross(P) + twist_step * n));
   patch.lambda_t = lambda_t;
   patch.lambda_twist += twist_step;
-  // for the report: the patch's impulse shared by the points' pushes
-  const Vec3 share = P / (pushed * h);
-  for (int i = 0; i < patch.count; ++i) {
-    XpbdPoint& p = points[patch.first + i];
-    p.impulse += p.lambda_n * share;
-  }
 }
 
 void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const Vec3& n, SoftBody& A, SoftBody& B,

@@ -93,10 +93,10 @@ void CarryXpbdPatchSlip(const XpbdPatchSlip& slip, XpbdPatch* patch);
 void BeginXpbdPatch(XpbdPatch* patch);
 
 // The patch's static friction at the world's current poses (after its
-// points' non-penetration); adds the positional impulses / h to the points'
-// step impulses in proportion to their normal multipliers.
-void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, double h, XpbdPatch& patch,
-                            std::vector<XpbdPoint>& points);
+// points' non-penetration), accumulated in lambda_t and lambda_twist (the
+// velocity pass reports lambda_t / h).
+void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, XpbdPatch& patch,
+                            const std::vector<XpbdPoint>& points);
 
 // Dynamic friction of the patch in the velocity pass (eq. 30, on the patch
 // as a whole): the impulse and twist that stop its relative motion at the

@@ -68,9 +68,7 @@ void XpbdRatioSolve::Solve(const XpbdSolve& solve, const std::vector<SoftBody>& 
   }
   for (size_t i = 0; i < selected_.size(); ++i) {
     XpbdPoint& p = points[selected_[i]];
-    const double dl = rows_[i].lambda - p.lambda_n;
     p.lambda_n = rows_[i].lambda;
-    p.impulse += (dl * solve.inv_h) * p.n;
   }
 }
 

@@ -40,7 +40,6 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const double h = world.dt / substeps;
   XpbdSolve solve;
   solve.h = h;
-  solve.inv_h = 1.0 / h;
   solve.alpha_tilde = params_.compliance / (h * h);
   // never below the resting overlap SubstepsFor allows a heavy body on a
   // light one, which the solve removes again every sub-step
@@ -59,7 +58,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn solve_blocks = [&](int i, int j) {
     for (int k = i; k < j; ++k) {
       SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
-      SolveXpbdPatchFriction(world, bodies_, h, patches_[k], points_);
+      SolveXpbdPatchFriction(world, bodies_, patches_[k], points_);
     }
   };
   // the sub-step's multipliers start from zero as each block is first

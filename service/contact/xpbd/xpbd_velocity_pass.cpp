@@ -114,6 +114,7 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
                                 int begin, int end, const std::vector<XpbdPatch>& patches,
                                 std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
                                 std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
+  const double inv_h = 1.0 / h;
   for (int k = begin; k < end; ++k) {
     const NormalBlock& m = blocks[k];
     Pushed pushed;
@@ -124,7 +125,13 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
         pushed.sum += lambda;
       }
     }
-    if (pushed.count == 0) continue;
+    const XpbdPatch& patch = patches[k];
+    if (pushed.count == 0) {
+      // static friction acted while the points pushed, and the direct
+      // solve of a heavy-on-light component has since let them go
+      if (!patch.lambda_t.isZero(0.0)) (*points)[m.first].impulse += patch.lambda_t * inv_h;
+      continue;
+    }
     const XpbdPoint& p0 = (*points)[m.first];
     const BlockBodies pair{bodies[p0.a], bodies[p0.b], predicted[p0.a], predicted[p0.b]};
     // the brake's torque about the centres of mass (its impulse acts in the
@@ -136,15 +143,17 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     // box held on a slope crept 4.3 mm in 2 s
     Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
     const Vec3 n = p0.n;
-    BrakeXpbdPatch(h, pushed.sum, patches[k], n, pair.A, pair.B, &spent, &braked);
+    BrakeXpbdPatch(h, pushed.sum, patch, n, pair.A, pair.B, &spent, &braked);
     SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], bodies, pair, *points);
-    BrakeXpbdPatch(h, pushed.sum, patches[k], n, pair.A, pair.B, &spent, &braked);
-    // the report's share of the brakes: by the points' pushes
-    if (braked.isZero(0.0)) continue;
-    const Vec3 share = braked / pushed.sum;
+    BrakeXpbdPatch(h, pushed.sum, patch, n, pair.A, pair.B, &spent, &braked);
+    // the sub-step's impulses for the report, once at its end: a point's
+    // push lambda_n moved the bodies as the velocity impulse lambda_n / h
+    // does, and the patch's friction (its positional multiplier / h and the
+    // brakes) is shared by the points' pushes
+    const Vec3 friction = (patch.lambda_t * inv_h + braked) / pushed.sum;
     for (int i = 0; i < pushed.count; ++i) {
       XpbdPoint& p = (*points)[m.first + pushed.idx[i]];
-      p.impulse += p.lambda_n * share;
+      p.impulse += (p.lambda_n * inv_h) * n + p.lambda_n * friction;
     }
   }
 }

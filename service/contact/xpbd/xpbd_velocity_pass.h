@@ -12,6 +12,9 @@
 //     restitution and again after it, the two within that limit together.
 //     Where static friction held the patch this removes what its
 //     linearisation left; skipping those patches let a box on a slope creep.
+// It also adds the sub-step's impulses to the points' report (XpbdPoint::
+// impulse): the pushes lambda_n / h along n, and the patch's static and
+// dynamic friction shared among the points by their pushes.
 #pragma once
 
 #include <vector>
