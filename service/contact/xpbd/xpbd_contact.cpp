@@ -25,8 +25,9 @@ bool InvertPoints(const std::vector<XpbdPoint>& points, const std::vector<SoftBo
     block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
   }
   const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  Vec3 t1, t2;
-  PerpendicularBasis(p0.n, &t1, &t2);
+  // the tangents serve a face's four points only (normal_block.h)
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
+  if (n == kMaxNormalBlock) PerpendicularBasis(p0.n, &t1, &t2);
   return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, t1, t2, inv);
 }
 
@@ -194,7 +195,6 @@ void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBo
   p.a = c.a;
   p.b = c.b;
   p.n = c.normal;
-  PerpendicularBasis(p.n, &f.t1, &f.t2);
   p.radius_a = CoreRadius(A.shape);
   p.radius_b = CoreRadius(B.shape);
   // the surface points lie depth/2 either side of the midpoint (conventions.md)

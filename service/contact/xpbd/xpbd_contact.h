@@ -59,7 +59,6 @@ struct XpbdPoint {
 // What the step's preparation of the friction patches needs of a point
 // besides its rows, kept apart so that the sub-steps sweep only the rows.
 struct XpbdPointFrame {
-  Vec3 t1, t2;                    // unit, world, (t1, t2, n) right-handed
   Vec3 rb;                        // m, contact point minus B's centre, step start
   Vec3 material_a, material_b;    // m, the surface points in the bodies' frames
   double friction = 0.0;

@@ -67,8 +67,7 @@ void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vecto
     patch.count = blocks[k].count;
     const XpbdPoint& p0 = points[patch.first];
     const XpbdPointFrame& f0 = frames[patch.first];
-    patch.t1 = f0.t1;
-    patch.t2 = f0.t2;
+    PerpendicularBasis(p0.n, &patch.t1, &patch.t2);
     patch.friction = f0.friction;
     for (int i = 0; i < patch.count; ++i) {
       patch.ra += points[patch.first + i].ra / patch.count;

@@ -33,7 +33,7 @@ struct XpbdPatch {
   // What the velocity pass's brake reads, together at the front (it runs
   // twice a block a sub-step, and the patch's other fields stayed out of
   // the cache lines it needs):
-  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  // unit, the first point's tangents
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  // unit, (t1, t2, n) right-handed for the first point's n
   Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, the patch centre minus each body's centre, step start
   Eigen::Matrix3d inv_k = Eigen::Matrix3d::Zero();  // rows t1, t2, twist
   double friction = 0.0;
