@@ -30,23 +30,6 @@ inline void PerpendicularBasis(const Vec3& n, Vec3* t1, Vec3* t2) {
   *t2 = n.cross(*t1);
 }
 
-// q v and q^-1 v for a unit q: Eigen's own formula (v + 2w (u x v) +
-// 2 u x (u x v), u the vector part), written out so that it is inlined into
-// the solvers' inner loops (Eigen's out-of-line call was 8% of an xpbd step)
-// with the same operations, hence the same rounding, as q * v.
-inline Vec3 Rotate(const Quat& q, const Vec3& v) {
-  const Vec3 u = q.vec();
-  Vec3 uv = u.cross(v);
-  uv += uv;
-  return v + q.w() * uv + u.cross(uv);
-}
-inline Vec3 RotateInverse(const Quat& q, const Vec3& v) {
-  const Vec3 u = -q.vec();
-  Vec3 uv = u.cross(v);
-  uv += uv;
-  return v + q.w() * uv + u.cross(uv);
-}
-
 inline bool IsFinite(const Vec3& v) { return v.allFinite(); }
 inline bool IsFinite(const Quat& q) { return q.coeffs().allFinite(); }
 

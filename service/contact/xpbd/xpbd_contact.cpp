@@ -107,7 +107,7 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
   // n . R a = (R^T n) . a: each body's turn is applied to n once per block
   const Vec3& n = p0.n;
   const double shift = n.dot(B.x - A.x);
-  const Vec3 na = RotateInverse(A.q, n), nb = RotateInverse(B.q, n);
+  const Vec3 na = A.q.conjugate() * n, nb = B.q.conjugate() * n;
   double depth[kMaxNormalBlock];
   int idx[kMaxNormalBlock];
   int active = 0;
@@ -256,8 +256,8 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3
   const RigidBody& A = world.bodies()[p.a];
   const RigidBody& B = world.bodies()[p.b];
   // a sphere's anchor is its centre: no turn to apply
-  const Vec3 ca = p.anchor_a.isZero(0.0) ? A.x : Vec3(A.x + Rotate(A.q, p.anchor_a));
-  const Vec3 cb = p.anchor_b.isZero(0.0) ? B.x : Vec3(B.x + Rotate(B.q, p.anchor_b));
+  const Vec3 ca = p.anchor_a.isZero(0.0) ? A.x : Vec3(A.x + A.q * p.anchor_a);
+  const Vec3 cb = p.anchor_b.isZero(0.0) ? B.x : Vec3(B.x + B.q * p.anchor_b);
   if (pa_out) *pa_out = ca + p.radius_a * p.n;
   if (pb_out) *pb_out = cb - p.radius_b * p.n;
   return p.n.dot(cb - ca) - p.radius_a - p.radius_b;

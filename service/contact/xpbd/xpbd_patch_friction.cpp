@@ -116,11 +116,11 @@ namespace {
 // The bodies' poses are (xa, q_a) and (xb, q_b).
 Vec3 PatchOffset(const XpbdPatch& patch, const Vec3& xa, const Quat& q_a, const Vec3& xb, const Quat& q_b) {
   if (patch.count == 1) {  // one point: turning its two points is cheaper than the four tangents
-    const Vec3 d = (xa + Rotate(q_a, patch.mean_a)) - (xb + Rotate(q_b, patch.mean_b));
+    const Vec3 d = (xa + q_a * patch.mean_a) - (xb + q_b * patch.mean_b);
     return Vec3(patch.t1.dot(d), patch.t2.dot(d), 0.0);
   }
-  const Vec3 at1 = RotateInverse(q_a, patch.t1), at2 = RotateInverse(q_a, patch.t2);
-  const Vec3 bt1 = RotateInverse(q_b, patch.t1), bt2 = RotateInverse(q_b, patch.t2);
+  const Quat qa = q_a.conjugate(), qb = q_b.conjugate();
+  const Vec3 at1 = qa * patch.t1, at2 = qa * patch.t2, bt1 = qb * patch.t1, bt2 = qb * patch.t2;
   const Vec3 centres = xa - xb;
   const double c1 = patch.t1.dot(centres), c2 = patch.t2.dot(centres);
   const double u1 = c1 + at1.dot(patch.mean_a) - bt1.dot(patch.mean_b);

@@ -46,10 +46,10 @@ class XpbdRatioSolve {
   void Prepare(double mass_ratio, const std::vector<SoftBody>& bodies, const std::vector<XpbdPoint>& points);
   bool active() const { return !selected_.empty(); }
   // After a sub-step's sweeps: the selected points' normal rows solved
-  // together; the bodies are moved and the points' multipliers and
-  // impulses updated, unless that would raise the energy of the velocities
-  // the sub-step derives (see above). `predicted`: the poses and
-  // velocities after the sub-step's prediction.
+  // together; the bodies are moved and the points' multipliers updated
+  // (the velocity pass reports them), unless that would raise the energy
+  // of the velocities the sub-step derives (see above). `predicted`: the
+  // poses and velocities after the sub-step's prediction.
   void Solve(const XpbdSolve& solve, const std::vector<SoftBody>& bodies, const std::vector<XpbdPose>& predicted,
              World& world, std::vector<XpbdPoint>& points);
 
