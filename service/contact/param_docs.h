@@ -2,7 +2,8 @@
 // declarations (ContactMethod::ParamDocs(), param_table.h), so that the
 // README cannot drift from what SetParams takes: tests/contact/
 // param_docs_test.cpp compares README.md's "Contact methods" table with it,
-// and docs/physics.md's parameter tables with ParamReferenceTable.
+// and each method page's parameter table (docs/methods/NAME.md) with
+// ParamReferenceTable.
 #pragma once
 
 #include <string>
@@ -23,7 +24,7 @@ std::string ReadmeParam(const ParamDoc& doc);
 std::string ReadmeParamColumn(const std::vector<ParamDoc>& docs);
 
 // A markdown table of a method's parameters, one row each: | `name` |
-// default | range | meaning |, with its header (docs/physics.md).
+// default | range | meaning |, with its header (docs/methods/NAME.md).
 std::string ParamReferenceTable(const std::vector<ParamDoc>& docs);
 
 }  // namespace contactsim

@@ -88,11 +88,13 @@ TEST(ParamDocsTest, ReadmeTableMatchesTheDeclarations) {
   }
 }
 
-// docs/physics.md's reference table of a method: the table lines after the
-// line that starts "Parameters of `name`", or "" when there is none.
+// The reference table of a method's page, docs/methods/NAME.md: the table
+// lines after the line that starts "Parameters of `name`", or "" when there
+// is none.
 std::string PhysicsTable(const std::string& method) {
-  std::ifstream in(std::string(CONTACTSIM_SOURCE_DIR) + "/docs/physics.md");
-  EXPECT_TRUE(in.good()) << "cannot read docs/physics.md";
+  const std::string page = "docs/methods/" + method + ".md";
+  std::ifstream in(std::string(CONTACTSIM_SOURCE_DIR) + "/" + page);
+  EXPECT_TRUE(in.good()) << "cannot read " << page;
   const std::string marker = "Parameters of `" + method + "`";
   std::string line, table;
   bool found = false;
@@ -108,13 +110,13 @@ std::string PhysicsTable(const std::string& method) {
   return table;
 }
 
-// Verifies that docs/physics.md has each method's parameter reference
+// Verifies that each method's page has its parameter reference
 // (default, range, meaning) exactly as the declarations write it.
 TEST(ParamDocsTest, PhysicsReferenceTablesMatchTheDeclarations) {
   for (const ContactMethodEntry& e : ContactMethodTable()) {
     const std::string expected = ParamReferenceTable(e.create()->ParamDocs());
     EXPECT_EQ(PhysicsTable(e.name), expected)
-        << "docs/physics.md's table after \"Parameters of `" << e.name
+        << "docs/methods/" << e.name << ".md's table after \"Parameters of `" << e.name
         << "`\" differs from the declarations; it should read:\n"
         << expected;
   }
