@@ -1,11 +1,13 @@
 """Stopping distance of a sliding 0.2 m, 1 kg cube (mu 0.5, 3 m/s) per method and
 heading, through the Python client against a real server (dt 1/240), as the
-table in docs/physics.md ("Coulomb friction in every method").
+friction rows of the method pages (docs/methods/NAME.md, "Friction"; the
+scenes: docs/physics.md, "Coulomb friction in every method").
 
     .venv/bin/python scripts/friction_table.py . [settle]
 
 "settle": the cube rests 0.2 s and is then launched; otherwise it is placed
-flush on the ground with its velocity (the barrier method's hop, docs/physics.md).
+flush on the ground with its velocity (the barrier method's hop,
+docs/methods/barrier.md, "Pairs placed touching").
 """
 import math, os, subprocess, sys, time
 from pathlib import Path

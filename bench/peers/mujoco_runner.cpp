@@ -49,7 +49,7 @@ constexpr double kTimeConstant = 0.02;   // s, MuJoCo's default solref[0]
 // dense lower triangle). 512 KiB a body leaves room for that; measured use
 // was at most 51 MiB on the 1,000-body scenes (box_rain under Newton, 15
 // under CG), 9 MiB on box_pyramid and 263 MiB in 30 Newton steps of the
-// 5,050-box pyramid (BENCHMARKS.md, "MuJoCo 4.0.0 from the wheel: bounded
+// 5,050-box pyramid (BENCHMARKS.md, "MuJoCo on the larger scenes, bounded
 // runs").
 constexpr double kArenaBytesPerBody = 512.0 * 1024;
 constexpr int kMinArenaMb = 64;

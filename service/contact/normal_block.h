@@ -13,7 +13,7 @@
 // (sum c_i = 0, sum c_i r_i parallel to n; + - + - on a square): they get
 // K^+ = (K + c c^T)^-1 - c c^T, the least-norm increment, which adds nothing
 // along c, so a symmetric face gets four equal impulses whatever order its
-// points come in (docs/physics.md, "soft").
+// points come in (docs/methods/soft.md, "Manifold block").
 #pragma once
 
 #include <Eigen/Core>

@@ -44,8 +44,8 @@ struct Limits {
 Limits LimitsOf(const std::string& label) {
   Limits l;
   // xpbd: a 10 kg cube with mu 0.8 sliding along a face normal stops 2.9%
-  // short, at 30, 45 and 60 degrees +0.05% (docs/physics.md, "Coulomb
-  // friction in every method")
+  // short, at 30, 45 and 60 degrees +0.05% (docs/methods/xpbd.md,
+  // "Friction")
   if (label == "xpbd") l.slide = l.isotropy = 0.035;
   return l;
 }
@@ -187,7 +187,7 @@ TEST_P(FrictionTest, SphereAndCapsuleRollDownASlopeWithAnalyticAcceleration) {
 // mu = 0.7 > tan 30 deg, after settling for 0.5 s, moves less than 0.05 mm
 // in the next 2 s, for 0.1 and 10 kg. (Methods that stick exactly move
 // < 0.02 mm; barrier's smoothed friction creeps at most eps_v, 1e-5 m/s
-// by default, docs/physics.md; with 1e-3 m/s it moved 2.8 mm.)
+// by default, docs/methods/barrier.md; with 1e-3 m/s it moved 2.8 mm.)
 TEST_P(FrictionTest, BoxOnSlopeHoldsWithBoundedCreep) {
   const double angle = kPi / 6.0, mu = 0.7;
   for (double mass : {0.1, 10.0}) {

@@ -22,7 +22,8 @@
 // The scenes are drawn, not chosen, so each run meets mixed masses and
 // shapes, random orientations and bodies meeting edge on. RANDOM_SCENES=N
 // in the environment runs N scenes of each set instead of kScenes (`make
-// test` runs 10; docs/physics.md, "Random scenes", has what 40 found).
+// test` runs 10; each method's page, docs/methods/NAME.md, "Random scenes",
+// has what 40 found).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -62,8 +62,8 @@ inline constexpr ScenarioTolerances kScenarioTolerances[] = {
 };
 // clang-format on
 
-// A case a method is known to miss, with its measurement and cause as in
-// docs/physics.md. `case_id` is the name the test gives the check.
+// A case a method is known to miss, with its measurement and cause as on
+// its page, docs/methods/NAME.md. `case_id` is the name the test gives the check.
 struct KnownMiss {
   const char* label;
   const char* case_id;
@@ -83,7 +83,7 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"impulse", "stack n=20 height", "1.0 mm lower after 10 s, 0.05 mm a face"},
     {"lcp_pgs", "stack n=20 height", "1.54 mm lower after 10 s, 0.08 mm a face"},
     // soft (defaults: 4 sub-steps, 120 Hz): a few passes a step
-    // (docs/physics.md, "soft")
+    // (docs/methods/soft.md)
     {"soft", "stack n=8 height", "1.00 mm lower: the springs of the lower layers carry k m g, sum k g / omega^2"},
     {"soft", "stack n=20 height", "6.6 mm lower: its springs, as for 8"},
     // the 8-stack at other sizes and masses (MechanicsAlignedStackSweepTest):
@@ -140,7 +140,7 @@ class MechanicsChecks {
                           << ", tolerance " << tol;
     } else if (within && !IsPattern(*miss)) {
       ADD_FAILURE() << label_ << " " << case_id << " is in kKnownMisses but is within tolerance now (measured "
-                    << measured << ", analytic " << expected << "): remove it there and in docs/physics.md";
+                    << measured << ", analytic " << expected << "): remove it there and in docs/methods/";
     } else if (!within) {
       misses_ << (misses_.tellp() > 0 ? "; " : "known miss: ") << label_ << " " << case_id << " measured "
               << measured << " vs " << expected << " (tolerance " << tol << "): " << miss->why;

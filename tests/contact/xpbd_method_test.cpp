@@ -191,7 +191,7 @@ TEST(XpbdMethod, TenHeavyCubesStandTenSeconds) {
 // about r g h^2 deep): n = dt sqrt(r g / 0.45 mm), the default 12 below
 // about 1:380, 20 at 1:1000; its top ends less than 0.5 mm below its start
 // and no overlap passes 1 mm on the way. (At 1:4000, 39 sub-steps, it still
-// sinks 7.5 mm in 1 s, docs/physics.md, xpbd.)
+// sinks 7.5 mm in 1 s, docs/methods/xpbd.md.)
 TEST(XpbdMethod, SubstepsGrowWithTheMassRatioInContact) {
   for (const double ratio : {1.0, 100.0, 1000.0}) {
     Sim sim("xpbd");

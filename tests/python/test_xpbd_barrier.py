@@ -59,7 +59,7 @@ def test_sliding_box_stops_at_the_coulomb_distance_barrier(client):
     # The box starts D_HAT / 2 above the plane: a barrier pair that starts
     # touching is measured from a shifted zero 1e-2 D_HAT below it and
     # pushed out by the stored barrier energy (a hop that costs a quarter of
-    # the slide; docs/physics.md, barrier), which is not friction's doing.
+    # the slide; docs/methods/barrier.md), which is not friction's doing.
     mu, v0 = 0.4, 3.0
     use(client, "barrier")
     client.add_plane((0, 0, 1), 0.0, restitution=0.0, friction=mu)

@@ -6,7 +6,8 @@
 // |w| h stretched by sqrt(1 + (|w| h)^2), which the orthogonality potential
 // pulls back to a rotation, taking the stretch's kinetic energy with it (a
 // free sphere spinning at 10 rad/s kept 74% after 1 s, a rolling sphere
-// fell up to 19% behind 5/7 g sin(theta); docs/physics.md, barrier). So the
+// fell up to 19% behind 5/7 g sin(theta); docs/methods/barrier.md,
+// "Prediction"). So the
 // rotational rows of q_pred are instead the rigid rotation advanced as
 // service/physics moves a free body (integrator.h, MidpointRotation): L +=
 // h tau, then the implicit midpoint rule with L held fixed, which conserves

@@ -104,7 +104,7 @@ void BarrierSolver::Assemble(const std::vector<Entry>& entries, NewtonSystem* sy
     // while sliding to 2/eps once held, so a contact going from slip to
     // stick overshoots and the line search cuts alpha; the IRLS weight
     // f1/y I, which majorises f0, removed that but stopped Newton early
-    // on a sliding box: BENCHMARKS.md, "barrier at scale".)
+    // on a sliding box: BENCHMARKS.md, "barrier".)
     Eigen::Matrix2d hess = w * Eigen::Matrix2d::Identity();
     if (y >= eps) {
       hess -= (w / (y * y)) * u * u.transpose();

@@ -31,7 +31,7 @@
 // direction through the solve (a body sliding, or held on a slope, by
 // itself: u* is the direction the friction impulse opposes); where other
 // contacts turn the slip within the step, the friction can exceed
-// mu lambda_n by at most the pyramid's factor sqrt(2) (docs/physics.md).
+// mu lambda_n by at most the pyramid's factor sqrt(2) (docs/methods/lcp.md).
 // Below kSlipFloor the contact frame's basis is kept.
 // Material rules are those of contact_row.h (e = max, mu = geometric mean).
 //

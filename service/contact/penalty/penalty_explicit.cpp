@@ -22,7 +22,8 @@ int ExplicitSubsteps(const World& world, const std::vector<PenaltyRow>& rows, co
   // (stage 2 of ExplicitStep), and the corners of a light box between the
   // ground and a heavy plank added up to b = 1.7 in its rocking: at
   // omega h = 0.78 it rocked in a limit cycle and walked 0.2 mm a second,
-  // less but still at ratios of 3 to 8 (docs/physics.md, "Mass ratios").
+  // less but still at ratios of 3 to 8 (docs/methods/penalty.md, "Explicit
+  // integrator").
   // Half the step again held every resting ratio from 2 up; a light box
   // struck by a landing body up to 100 times heavier needs 0.3 (b up to
   // 1.8): at 0.5 three of 40 mixed-mass random scenes pressed one 43-72 mm
@@ -123,7 +124,7 @@ class ExplicitStepper {
   // pushed in this sub-step; the others fly ballistically,
   // x += (v1 - F h / (2 m)) h = v0 h + F h^2 / (2 m), exact under a constant
   // wrench, so that a bounce's flight carries no O(h) bias (as the impulse
-  // method's AdvanceBallistic: docs/physics.md). Not in worlds with joints,
+  // method's AdvanceBallistic: docs/methods/penalty.md). Not in worlds with joints,
   // whose solve changed the momenta after the wrench.
   void MovePositions() {
     auto& bodies = world_.bodies();
@@ -251,8 +252,8 @@ class ExplicitStepper {
     // It may take no more momentum than stops the point itself: its own
     // effective mass 1 / K can be far below m_eff / nc (the edge of a thin
     // plate spinning into a sphere), and the share alone reversed such a
-    // point past zero and gave the pair energy (docs/physics.md, "Random
-    // scenes"); a cube's corner landing flat has 1 / K = m / 4, the share.
+    // point past zero and gave the pair energy (docs/methods/penalty.md,
+    // "Onset correction"); a cube's corner landing flat has 1 / K = m / 4, the share.
     if (!row.anchor.penetrating && !pair_touched_[row.pair]) {
       const double approach = std::max(0.0, -row.vn0);
       const double mass = row.inv_mass_n > 0.0 ? std::min(row.m_share, 1.0 / row.inv_mass_n) : row.m_share;

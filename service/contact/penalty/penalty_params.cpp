@@ -6,7 +6,8 @@ namespace contactsim {
 namespace {
 
 // Stiffness up to 1e15 N/m so that the stable-kp search of the implicit
-// integrator is not cut off by the range (BENCHMARKS.md).
+// integrator is not cut off by the range (BENCHMARKS.md, "Penalty: largest
+// stable kp").
 constexpr double kMaxStiffness = 1.0e15;  // N/m
 constexpr double kMaxDamping = 1.0e9;     // N s/m
 

@@ -110,7 +110,7 @@ ContactOmega ContactOmegas(const World& world, const std::vector<PenaltyRow>& ro
       point = std::max(point, row.law.k / row.m_share);
     } else {
       // the mass the spring was set for, or the pair's own 2 m_eff when that
-      // is lighter (a light body pressed by a heavy one: docs/physics.md)
+      // is lighter (a light body pressed by a heavy one: docs/methods/penalty.md)
       const double m = std::min(row.m_spring, 2.0 * row.m_share);
       point = std::max(point, row.law.k / (m * kSettleSlack * kSettleSlack));
     }

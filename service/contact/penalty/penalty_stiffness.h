@@ -63,7 +63,8 @@ constexpr int kPowerIterations = 20;
 // the pyramid and the pile a quarter more sub-steps for no measured gain;
 // a light body pressed by a heavy one settles at its own frequency,
 // sqrt(kp / m_eff), 30 times pi / T under a 1,000 times heavier plank,
-// and with m_s alone it flew off (docs/physics.md, "Mass ratios"). A
+// and with m_s alone it flew off (docs/methods/penalty.md, "Explicit
+// integrator"). A
 // 0.2 m box held by mu = 0.7 on a 30 degree slope moved 1e-19 m in 2 s at
 // 1.5 and crept 1 um at 2 (its uphill corners slip and hand their load on).
 constexpr double kSettleSlack = 1.5;

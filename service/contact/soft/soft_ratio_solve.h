@@ -1,5 +1,5 @@
 // The soft step's contacts where a heavy body rests on a light one
-// (docs/physics.md, "Mass ratios").
+// (docs/methods/soft.md, "Heavy on light"; docs/physics.md, "Mass ratios").
 //
 // Two things go wrong there under the plain soft step (soft_method.h):
 //  - the spring: its stiffness is m_eff omega^2 with m_eff about the light

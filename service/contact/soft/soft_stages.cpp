@@ -40,7 +40,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   direct.passes = 16;
   // the guard's re-solve from zero impulses loses what the pass found: with
   // it the 1:1000 bridge of MassRatioBridgeTest slid off its supports
-  // (docs/physics.md, "Random scenes")
+  // (docs/methods/soft.md, "Heavy on light")
   direct.energy_guard = false;
   ratio_solve_.Prepare(direct, bodies_, points_);
   ColourManifolds();

@@ -1,5 +1,5 @@
-// xpbd's contacts where a heavy body meets a light one (docs/physics.md,
-// "Mass ratios").
+// xpbd's contacts where a heavy body meets a light one (docs/methods/xpbd.md;
+// docs/physics.md, "Mass ratios").
 //
 // One Gauss-Seidel sweep moves a heavy body's share of the error by about
 // m_light / m_heavy (Erleben, "Velocity-based shock propagation", 2007).

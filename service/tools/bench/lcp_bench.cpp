@@ -13,7 +13,7 @@
 // iterations (sweeps or pivots) per step, top_drift_mm (pyramid: how far
 // the top box has moved since the start), lemke_fallbacks (steps that
 // Lemke did not solve and PGS did).
-// Run (see BENCHMARKS.md, "lcp"):
+// Run (see BENCHMARKS.md, "lcp: pyramid, sphere pile and small stacks"):
 //   build/bin/contactsim-bench --benchmark_filter=Lcp
 #include <benchmark/benchmark.h>
 
