@@ -18,7 +18,7 @@ ray = pytest.importorskip("ray", reason="ray is not importable: the fleet tests 
 pytest.importorskip("pandas", reason="pandas is not importable: fleet results are DataFrames")
 pytest.importorskip("gymnasium", reason="gymnasium is not importable: contactsim.gym needs it")
 
-from contactsim.fleet import Fleet, Job, run_sequential  # noqa: E402
+from contactsim.fleet import Fleet, Job, fork_compare, run_sequential  # noqa: E402
 from contactsim.gym import ContactsimEnv, FleetVectorEnv, HoverTask  # noqa: E402
 
 SCENES = REPO / "config" / "scenes"
@@ -98,7 +98,7 @@ def test_fork_compare_gives_one_row_per_method_from_the_same_snapshot(fleet, lau
     client = launch(scene=SCENES / "default.pbtxt").client
     client.step(60)
     methods = ["impulse", ("penalty", {"kp": 1e5}), "xpbd:substeps=10"]
-    df = client.fork_compare(methods, 90, fleet=fleet)
+    df = fork_compare(client, methods, 90, fleet=fleet)
     assert list(df["method"]) == ["impulse", "penalty", "xpbd"]
     assert list(df["error"]) == [""] * 3, df["error"].tolist()
     assert (df["final_step"] == 150).all()

@@ -94,10 +94,10 @@ def _run_joint(c, a):
 
 
 def _compare(c, a):
-    from .fleet import Fleet
+    from .fleet import Fleet, fork_compare
     fleet = Fleet(workers=a.workers or min(len(a.methods), os.cpu_count() or 1), address=a.address)
     try:
-        df = c.fork_compare(a.methods, a.steps, fleet=fleet, plot=a.plot, progress=sys.stderr.isatty())
+        df = fork_compare(c, a.methods, a.steps, fleet=fleet, plot=a.plot, progress=sys.stderr.isatty())
     finally:
         fleet.close()
     table = df.drop(columns=[k for k in ("trajectory", "traceback") if k in df.columns])

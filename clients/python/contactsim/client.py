@@ -29,7 +29,6 @@ from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
 from .joints import JointCommands
-from .fork import ForkCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -75,7 +74,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands, LockstepCommands, JointCommands, ForkCommands):
+class Client(SnapshotCommands, LockstepCommands, JointCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
