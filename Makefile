@@ -142,7 +142,7 @@ fuzz: fuzz-build
 # MuJoCo, side by side; rewrites the generated tables in BENCHMARKS.md
 # (takes tens of minutes; prints progress).
 bench: build
-	.venv/bin/python scripts/bench_scenes.py --build-dir $(BUILD)
+	.venv/bin/python bench/scripts/bench_scenes.py --build-dir $(BUILD)
 
 # The Google Benchmark micro benchmarks (broadphase, narrowphase, penalty).
 bench-micro: build

@@ -14,7 +14,8 @@ set_target_properties(contactsim_lcmtypes PROPERTIES EXPORT_NAME lcmtypes)
 install(TARGETS contactsim_client contactsim_signature contactsim_lcmtypes EXPORT contactsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT client
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/clients/cpp/include/contactsim ${LCMTYPES_CPP_DIR}/contactsim
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/clients/cpp/include/contactsim ${PROJECT_SOURCE_DIR}/protocol/include/contactsim
+                  ${LCMTYPES_CPP_DIR}/contactsim
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT client)
 install(EXPORT contactsimTargets NAMESPACE contactsim:: DESTINATION ${CONTACTSIM_CMAKE_DIR} COMPONENT client)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/contactsimConfig.cmake.in

@@ -19,7 +19,7 @@ id, until the world has taken --steps steps:
   invalid variants of each;
 * controller: registers as a lockstep controller (wait policy), answers
   STATEs with small forces for a while, releases, again;
-* garbage: malformed payloads on every channel (scripts/lcm_wire.py).
+* garbage: malformed payloads on every channel (tests/python/lcm_wire.py).
 
 Then it checks: the server never died and exits cleanly, no STATE in the
 recording holds a NaN or infinity, the server's RSS at the end is within 5%

@@ -14,7 +14,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "scripts"))
 from server_process import ServerProcess  # noqa: E402
-from viewer_process import ViewerProcess  # noqa: E402
+from contactsim.viewer.process import ViewerProcess  # noqa: E402
 
 from contactsim.viewer.headless import start_browser, wait_for  # noqa: E402
 

@@ -1,6 +1,6 @@
 // contactsim-bench-bullet: a benchmark scene in Bullet 3 (Debian
 // libbullet-dev, double precision as in PyBullet), with the same flags,
-// loop and metrics as contactsim-bench (service/tools/scene_bench).
+// loop and metrics as contactsim-bench (bench/tools/scene_bench).
 //
 // Translation: btDiscreteDynamicsWorld with a DBVT broadphase and the
 // btSequentialImpulseConstraintSolver at its defaults (10 iterations, split
@@ -21,7 +21,7 @@
 #include "bench/peers/peer_mirror.h"
 #include "service/contact/contact_row.h"
 #include "service/contact/param_reader.h"
-#include "service/tools/scene_bench/scene_bench_main.h"
+#include "bench/tools/scene_bench/scene_bench_main.h"
 
 namespace contactsim::bench {
 namespace {

@@ -1,6 +1,6 @@
 // contactsim-bench-mujoco: a benchmark scene in MuJoCo (the mujoco-core
 // wheel in .venv, clients/python/requirements.txt), with the same flags,
-// loop and metrics as contactsim-bench (service/tools/scene_bench).
+// loop and metrics as contactsim-bench (bench/tools/scene_bench).
 //
 // Translation: an MJCF model written in memory (option timestep = the
 // scene's dt, gravity; everything else MuJoCo's default: Newton solver,
@@ -31,7 +31,7 @@
 
 #include "bench/peers/peer_mirror.h"
 #include "service/contact/param_reader.h"
-#include "service/tools/scene_bench/scene_bench_main.h"
+#include "bench/tools/scene_bench/scene_bench_main.h"
 
 namespace contactsim::bench {
 namespace {

@@ -1,6 +1,6 @@
 // contactsim-bench-ode: a benchmark scene in ODE 0.16 (Debian libode-dev,
 // double precision), with the same flags, loop and metrics as
-// contactsim-bench (service/tools/scene_bench).
+// contactsim-bench (bench/tools/scene_bench).
 //
 // Methods: "quickstep" (dWorldQuickStep, projected SOR, 20 iterations) and
 // "dantzig" (dWorldStep: Dantzig's pivoting LCP over each island, exact
@@ -21,7 +21,7 @@
 #include "bench/peers/peer_mirror.h"
 #include "service/contact/contact_row.h"
 #include "service/contact/param_reader.h"
-#include "service/tools/scene_bench/scene_bench_main.h"
+#include "bench/tools/scene_bench/scene_bench_main.h"
 
 namespace contactsim::bench {
 namespace {

@@ -1,4 +1,4 @@
-// Signed messages (clients/cpp/include/contactsim/signature.h): the wire
+// Signed messages (protocol/include/contactsim/signature.h): the wire
 // format against a pinned vector, every way a message can fail the mac, and
 // the anti-replay window.
 #include "contactsim/signature.h"

@@ -7,7 +7,6 @@ returns the server's reply_t; ``code`` is the reply code it must get and
 ``words`` what its message must contain (the field and the value).
 """
 import math
-import sys
 import threading
 from collections import namedtuple
 from pathlib import Path
@@ -15,8 +14,7 @@ from pathlib import Path
 import contactsim
 from contactsim import body_cmd_t as B, input_t, joint_cmd_t as J, reply_t as R, scene_cmd_t as S
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
-import lcm_wire  # noqa: E402
+import lcm_wire
 
 NAN, INF = math.nan, math.inf
 MISSING = 999999  # no body or joint has this id

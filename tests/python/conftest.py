@@ -11,6 +11,7 @@
 * ``fake_server``: a pure-Python stand-in replying to commands, for tests of
   the client alone (no binary needed).
 """
+import importlib.util
 import itertools
 import os
 import re
@@ -42,6 +43,17 @@ REPLY_TIMEOUT = 5.0
 EXIT_TIMEOUT = 10.0
 
 _counter = itertools.count()
+
+
+def load_script(path):
+    """A program of the repository (``path`` relative to it, e.g.
+    bench/scripts/bench_scenes.py) as a module, for testing its functions;
+    scripts are not modules of any package, so they are loaded by path."""
+    path = REPO / path
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def unique_endpoint(tag="PY"):

@@ -1,16 +1,15 @@
 """The MuJoCo peer of the scene benchmark (bench/peers/mujoco_runner.cpp),
 built against the mujoco-core wheel in .venv: it is built whenever the venv
 holds the wheel, it keeps an aligned stack at rest, its thread pool changes
-no result, and bench_scenes.py gives it the same --threads as contactsim."""
+no result, and bench/scripts/bench_scenes.py gives it the same --threads as contactsim."""
 import importlib.util
 import json
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from conftest import BUILD, REPO
+from conftest import BUILD, REPO, load_script
 
 RUNNER = BUILD / "bin" / "contactsim-bench-mujoco"
 
@@ -70,8 +69,7 @@ def test_thread_pool_changes_no_result(runner):
 
 
 def test_bench_scenes_gives_mujoco_the_threads(monkeypatch):
-    sys.path.insert(0, str(REPO / "scripts"))
-    import bench_scenes
+    bench_scenes = load_script("bench/scripts/bench_scenes.py")
 
     seen = []
 

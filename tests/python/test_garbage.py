@@ -2,7 +2,7 @@
 bit-flipped and overwritten messages, string lengths of 0, -1 and huge,
 negative and huge array counts, over-long payloads, one type's message on
 another type's channel and spliced messages, made by a seeded RNG from a
-valid message of every op (scripts/lcm_wire.py), and the SCENE_CMD payload
+valid message of every op (lcm_wire.py), and the SCENE_CMD payload
 that once made the server throw std::length_error.
 
 Payloads that still decode to a command that would change the paused world
@@ -17,7 +17,6 @@ CONTACTSIM_GARBAGE_SEED the seed.
 """
 import collections
 import os
-import sys
 import threading
 import time
 
@@ -29,7 +28,6 @@ from contactsim import reply_t
 
 from conftest import REPO
 
-sys.path.insert(0, str(REPO / "scripts"))
 import lcm_wire  # noqa: E402
 
 COUNT = int(os.environ.get("CONTACTSIM_GARBAGE_COUNT", "3000"))

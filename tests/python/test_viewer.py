@@ -1,7 +1,6 @@
 """contactsim-viewer in a real browser: headless chromium driven by Selenium
 against a real server (docs/viewer.md). Skipped when chromium, chromedriver
 or selenium is missing (make deps installs them)."""
-import sys
 import time
 from pathlib import Path
 
@@ -11,8 +10,7 @@ import pytest
 from conftest import BUILD, REPO
 from lcm_recorder import LcmRecorder
 
-sys.path.insert(0, str(REPO / "scripts"))
-from viewer_process import ViewerProcess  # noqa: E402
+from contactsim.viewer.process import ViewerProcess  # noqa: E402
 
 from contactsim.viewer.headless import find_browser, wait_for  # noqa: E402
 

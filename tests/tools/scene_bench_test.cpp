@@ -10,7 +10,7 @@
 #include <limits>
 #include <string>
 
-#include "service/tools/scene_bench/scene_metrics.h"
+#include "bench/tools/scene_bench/scene_metrics.h"
 #include "service/physics/body_settings.h"
 
 namespace contactsim::bench {

@@ -7,7 +7,8 @@ A signed message is the ordinary LCM encoding followed by a 44-byte trailer::
 
 ``seq`` is the sender's wall clock in ns since the Unix epoch, made strictly
 increasing per sender, so receivers refuse stale and replayed messages. The
-same format as the C++ client's contactsim/signature.h; both test suites pin
+same format as protocol/include/contactsim/signature.h (the C++ server's
+and client's); both test suites pin
 one test vector.
 """
 import collections

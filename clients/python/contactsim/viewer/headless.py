@@ -1,5 +1,5 @@
 """Headless Debian chromium driven by Selenium, for the viewer's tests and
-scripts (tests/python/test_viewer.py, scripts/viewer_bench.py,
+scripts (tests/python/test_viewer.py, bench/scripts/viewer_bench.py,
 scripts/viewer_screenshot.py). Selenium is a test dependency, imported here only."""
 import os
 import shutil

@@ -1,4 +1,4 @@
-#include "service/tools/lockstep_bench/lcm_ping_pong.h"
+#include "bench/tools/lockstep_bench/lcm_ping_pong.h"
 
 #include <lcm/lcm-cpp.hpp>
 

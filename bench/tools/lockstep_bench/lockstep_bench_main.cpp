@@ -25,7 +25,7 @@
 
 #include "contactsim/client.h"
 #include "contactsim/controller.h"
-#include "service/tools/lockstep_bench/lcm_ping_pong.h"
+#include "bench/tools/lockstep_bench/lcm_ping_pong.h"
 
 namespace {
 

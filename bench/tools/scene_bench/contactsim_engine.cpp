@@ -1,4 +1,4 @@
-#include "service/tools/scene_bench/contactsim_engine.h"
+#include "bench/tools/scene_bench/contactsim_engine.h"
 
 #include <utility>
 

@@ -1,4 +1,4 @@
-#include "service/tools/scene_bench/scene_metrics.h"
+#include "bench/tools/scene_bench/scene_metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -16,14 +16,15 @@ in fact a well-formed command that some server would apply.
     for channel, payload, what in Garbage(seed=1).corpus(3000, world):
         lc.publish(prefix + "_" + channel, payload)
 
-Used by tests/python/test_garbage.py and scripts/soak.py.
+A helper of the tests (test_garbage.py, bad_input_cases.py), which
+scripts/soak.py borrows.
 """
 import random
 import re
 import struct
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 LCMTYPES = REPO / "lcmtypes"
 
 PRIMITIVE = {"int8_t": ">b", "byte": ">B", "boolean": ">b", "int16_t": ">h", "int32_t": ">i",

@@ -2,7 +2,7 @@
 local Ray workers and sequentially without Ray, Ray's and the workers'
 start-up, and the per-job start-up cost (a 1-step job).
 
-    CONTACTSIM_BUILD_DIR=build .venv/bin/python scripts/bench_fleet.py [--jobs 16] [--steps 480] [--workers 1,2]
+    CONTACTSIM_BUILD_DIR=build .venv/bin/python bench/scripts/bench_fleet.py [--jobs 16] [--steps 480] [--workers 1,2]
 
 Every job is the default scene (7 bodies) under the impulse method with
 its own iteration count, `--steps` steps, collecting the hash and metrics.
@@ -13,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "clients" / "python"))
 
 from contactsim.fleet import Fleet, Job, run_sequential  # noqa: E402

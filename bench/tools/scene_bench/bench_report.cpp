@@ -1,4 +1,4 @@
-#include "service/tools/scene_bench/bench_report.h"
+#include "bench/tools/scene_bench/bench_report.h"
 
 #include <cmath>
 #include <cstdio>

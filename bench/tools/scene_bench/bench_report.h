@@ -11,7 +11,7 @@
 #include <ostream>
 #include <string>
 
-#include "service/tools/scene_bench/run_scene.h"
+#include "bench/tools/scene_bench/run_scene.h"
 
 namespace contactsim::bench {
 

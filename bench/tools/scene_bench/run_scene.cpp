@@ -1,11 +1,11 @@
-#include "service/tools/scene_bench/run_scene.h"
+#include "bench/tools/scene_bench/run_scene.h"
 
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 
-#include "service/tools/scene_bench/scene_metrics.h"
+#include "bench/tools/scene_bench/scene_metrics.h"
 
 namespace contactsim::bench {
 namespace {

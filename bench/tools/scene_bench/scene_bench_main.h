@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "service/tools/scene_bench/scene_engine.h"
+#include "bench/tools/scene_bench/scene_engine.h"
 
 namespace contactsim::bench {
 

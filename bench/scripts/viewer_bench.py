@@ -1,7 +1,7 @@
 """Frames per second of the viewer in headless chromium on a large scene,
 and the latency the bridge adds from STATE to screen (BENCHMARKS.md, "Viewer").
 
-    CONTACTSIM_BUILD_DIR=build .venv/bin/python scripts/viewer_bench.py [--scene config/scenes/sphere_pile.pbtxt]
+    CONTACTSIM_BUILD_DIR=build .venv/bin/python bench/scripts/viewer_bench.py [--scene config/scenes/sphere_pile.pbtxt]
                                                                         [--seconds 10] [--method impulse]
 
 A real server runs the scene in REALTIME mode; a raw LCM subscriber stamps
@@ -19,10 +19,10 @@ import threading
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "scripts"))
 from server_process import ServerProcess  # noqa: E402
-from viewer_process import ViewerProcess  # noqa: E402
+from contactsim.viewer.process import ViewerProcess  # noqa: E402
 
 import lcm  # noqa: E402
 

@@ -6,8 +6,8 @@
 
 #include <cstring>
 
-#include "service/tools/scene_bench/contactsim_engine.h"
-#include "service/tools/scene_bench/scene_bench_main.h"
+#include "bench/tools/scene_bench/contactsim_engine.h"
+#include "bench/tools/scene_bench/scene_bench_main.h"
 
 namespace {
 

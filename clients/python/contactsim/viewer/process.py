@@ -1,28 +1,31 @@
 """A contactsim-viewer child process for the viewer's tests and scripts
-(tests/python/test_viewer.py, scripts/viewer_bench.py, scripts/viewer_screenshot.py).
+(tests/python/test_viewer.py, bench/scripts/viewer_bench.py,
+scripts/viewer_screenshot.py), beside headless.py's browser.
 
     with ViewerProcess(["--lcm-url", url, "--prefix", prefix]) as v:
         driver.get(v.url)
 
-Starts ``python -m contactsim.viewer --port 0`` with this checkout's client
-first on PYTHONPATH (the .venv may hold another checkout editable), reads
-the URL it prints, and stops it with SIGINT (SIGKILL after 10 s).
+Starts ``python -m contactsim.viewer --port 0`` with this copy of the
+package first on PYTHONPATH (the .venv may hold another checkout editable),
+reads the URL it prints, and stops it with SIGINT (SIGKILL after 10 s).
 """
 import os
-import signal
 import subprocess
 import sys
 import threading
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+from ..process import interrupt
+
+PACKAGE_PARENT = Path(__file__).resolve().parents[2]  # the folder that holds contactsim/
 START_TIMEOUT = 20.0
+STOP_TIMEOUT = 10.0
 
 
 class ViewerProcess:
     def __init__(self, args):
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-            [str(REPO / "clients" / "python"), os.environ.get("PYTHONPATH", "")]))
+            [str(PACKAGE_PARENT), os.environ.get("PYTHONPATH", "")]))
         self.proc = subprocess.Popen([sys.executable, "-m", "contactsim.viewer", "--port", "0", *args], env=env,
                                      stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                      text=True)
@@ -49,11 +52,5 @@ class ViewerProcess:
         self.stop()
 
     def stop(self):
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        interrupt(self.proc, STOP_TIMEOUT)
         return self.proc.returncode

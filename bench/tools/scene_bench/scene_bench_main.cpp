@@ -1,12 +1,12 @@
-#include "service/tools/scene_bench/scene_bench_main.h"
+#include "bench/tools/scene_bench/scene_bench_main.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <iostream>
 
-#include "service/tools/scene_bench/bench_report.h"
-#include "service/tools/scene_bench/run_scene.h"
+#include "bench/tools/scene_bench/bench_report.h"
+#include "bench/tools/scene_bench/run_scene.h"
 
 namespace contactsim::bench {
 namespace {

@@ -2,7 +2,7 @@
 // (CreateContactMethod) with the chosen broadphase.
 #pragma once
 
-#include "service/tools/scene_bench/scene_engine.h"
+#include "bench/tools/scene_bench/scene_engine.h"
 
 namespace contactsim::bench {
 
