@@ -7,7 +7,7 @@
 
 #include "service/proto/config.pb.h"
 #include "service/scene/scene_spec.h"
-#include "service/server/sim_server.h"
+#include "service/server/server_options.h"
 
 namespace contactsim {
 

@@ -28,41 +28,11 @@
 #include "service/server/command_channels.h"
 #include "service/server/journal.h"
 #include "service/server/rate_limiter.h"
+#include "service/server/server_options.h"
 #include "service/server/snapshot_store.h"
 #include "service/server/transport.h"
 
 namespace contactsim {
-
-struct ServerOptions {
-  std::string prefix = "CONTACTSIM";    // channel prefix
-  RunMode mode = RunMode::kRealtime;
-  double real_time_factor = 1.0;        // sim s per wall s, REALTIME
-  bool start_paused = false;
-  double state_rate_hz = 60.0;          // of simulated time; 0 = every step
-  double contacts_rate_hz = 30.0;       // of simulated time; 0 = every step
-  double status_rate_hz = 1.0;          // of wall-clock time
-  std::string broadphase = "sap";
-  int threads = DefaultThreadCount();   // of the collision detector; 1 = serial (parallel_runner.h)
-  // Settled islands sleep (service/contact/sleep/island_sleep.h); on, as in
-  // Box2D, Bullet and Jolt: a served world at rest costs almost nothing.
-  bool sleep = true;
-  int max_bodies = 100000;              // ADD beyond this is refused
-  int max_joints = 100000;              // joint ADD beyond this is refused
-  DecodeLimits decode_limits;           // points of a convex, bytes per channel
-  double max_commands_per_second = 5000.0;  // per client id (token bucket); 0 = no limit
-  double command_burst = 10000.0;       // commands a client may send at once
-  int max_queued_commands = 20000;      // waiting in the inbox, all clients together
-  std::string auth_key;                 // "" = commands need no signature (docs/protocol.md)
-  double auth_window_s = 30.0;          // freshness of a signed command
-  bool live_line = false;               // progress line on stderr
-  std::string journal_dir;              // "" = no journal on disk (REWIND still works)
-  FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
-  int64_t snapshot_every = 0;           // steps between periodic snapshots; 0 = none
-  int max_snapshots = 32;               // periodic snapshots kept in memory for REWIND
-  LatePolicy late_policy = LatePolicy::kWait;  // for controllers registered without one
-  double late_timeout = 0.1;            // s of wall-clock time, likewise
-  bool write_files = true;              // false (a replay): SNAPSHOT to a file writes nothing
-};
 
 // What applying one command did: the reply's status and text, the new ids,
 // and whether the world's content changed.
