@@ -78,4 +78,13 @@ Status CreateContactMethod(const std::string& name, std::unique_ptr<ContactMetho
   return Status::NotFound("unknown contact method \"" + name + "\" (known: " + known + ")");
 }
 
+Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method) {
+  std::unique_ptr<ContactMethod> m;
+  Status st = CreateContactMethod(name, &m);
+  if (!st.ok()) return st;
+  if (!(st = m->SetParams(params)).ok()) return st;
+  *method = std::move(m);
+  return Status::Ok();
+}
+
 }  // namespace contactsim

@@ -25,4 +25,8 @@ const std::vector<ContactMethodEntry>& ContactMethodTable();
 // The row of the method named `name`, or nullptr.
 const ContactMethodEntry* FindContactMethod(const std::string& name);
 
+// Builds a contact method by name with text parameters, validating both
+// (the name against the table, the parameters against the method's ParamTable).
+Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method);
+
 }  // namespace contactsim

@@ -1,15 +1,8 @@
-// SimServer's command batches: the inbox is applied at a step boundary,
-// each command's journal record is written, and the replies go out once
-// the batch's records are durable (a group commit). When the disk journal
-// refuses a record or the sync, the batch's journaled commands are undone
-// (the world as it was before the first of them, the journal cut back) and
-// answered INTERNAL: nothing is acknowledged that a restart would lose, and
-// nothing is applied that was not acknowledged (docs/reliability.md).
-// Simulation thread.
+#include "service/server/command_batch.h"
+
 #include <spdlog/spdlog.h>
 
 #include "service/server/messages.h"
-#include "service/server/sim_server.h"
 
 namespace contactsim {
 namespace {
@@ -39,44 +32,82 @@ bool EndsBatch(Command::Kind kind) {
 
 }  // namespace
 
-Outcome SimServer::Apply(Command& cmd) {
-  using K = Command::Kind;
-  switch (cmd.kind) {
-    case K::kAddBody: case K::kRemoveBody: case K::kSetPose: case K::kSetVelocity: case K::kApplyForce:
-    case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kAddJoint: case K::kRemoveJoint:
-      return ApplyBodyCommand(cmd);
-    case K::kSnapshot: case K::kRestore: case K::kRewind:
-      return ApplySnapshotCommand(cmd);
-    case K::kRegisterController: case K::kReleaseController: case K::kInput:
-      return ApplyLockstepCommand(cmd);
-    default:
-      return ApplyWorldCommand(cmd);
+CommandBatch::CommandBatch(const ServerOptions& options, const Publisher* publisher, const World* world,
+                           const std::shared_ptr<ContactMethod>* method, Hooks hooks)
+    : max_queued_(options.max_queued_commands),
+      publisher_(publisher),
+      world_(world),
+      method_(method),
+      hooks_(std::move(hooks)),
+      history_(options.max_snapshots) {}
+
+// ---- LCM thread -----------------------------------------------------------
+
+Status CommandBatch::Enqueue(Command& cmd) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (static_cast<int>(inbox_.size()) >= max_queued_) {
+      return Status::ResourceExhausted("the server's inbox holds max_queued_commands = " +
+                                       std::to_string(max_queued_) + " commands; try again");
+    }
+    inbox_.push_back(std::move(cmd));
   }
+  wake_.notify_one();
+  return Status::Ok();
 }
 
-bool SimServer::DrainInbox() {
+void CommandBatch::Reject(const std::string& client_id, int64_t request_id, const Status& status, const char* channel) {
+  CountRejection(status);
+  spdlog::warn("rejected {} from \"{}\" #{}: {}", channel, client_id, request_id, status.message());
+  reply_t r;
+  r.client_id = client_id;
+  r.request_id = request_id;
+  r.code = static_cast<int32_t>(status.code());
+  r.message = status.message();
+  r.step = -1;
+  r.time = 0.0;
+  r.num_ids = 0;
+  publisher_->Reply(r);
+}
+
+void CommandBatch::CountRejection(const Status& status) {
+  ++rejected_;
+  if (status.code() == StatusCode::kUnauthenticated) ++unauthenticated_;
+  if (status.code() == StatusCode::kResourceExhausted) ++limited_;
+  std::lock_guard<std::mutex> lock(mutex_);
+  last_error_ = status.message();
+}
+
+// ---- simulation thread ----------------------------------------------------
+
+void CommandBatch::Wait(std::chrono::steady_clock::time_point until, const std::atomic<bool>& stop) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  wake_.wait_until(lock, until, [this, &stop] { return !inbox_.empty() || stop.load(); });
+}
+
+bool CommandBatch::Drain() {
   std::deque<Command> batch;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     batch.swap(inbox_);
   }
   bool changed = false;
-  hold_replies_ = true;
+  holding_ = true;
   for (Command& cmd : batch) ApplyFromInbox(cmd, &changed);
-  CommitBatch();
-  hold_replies_ = false;
+  Commit();
+  holding_ = false;
   return changed;
 }
 
-void SimServer::ApplyFromInbox(Command& cmd, bool* changed) {
+void CommandBatch::ApplyFromInbox(Command& cmd, bool* changed) {
   const bool journaled = Journaled(cmd.kind);
-  if (EndsBatch(cmd.kind)) CommitBatch();
-  if (journaled && journal_.open() && !undo_) undo_ = UndoPoint{world_, method_, journal_.mark()};
-  Outcome out = Apply(cmd);
+  if (EndsBatch(cmd.kind)) Commit();
+  if (journaled && journal_.open() && !undo_) undo_ = UndoPoint{*world_, *method_, journal_.mark()};
+  Outcome out = hooks_.apply(cmd);
   if (out.status.ok() && journaled) {
-    const Status st = JournalCommand(cmd.record, cmd.payload);
+    const Status st = Record(cmd.record, cmd.payload);
     if (!st.ok()) {
-      UndoBatch(st);  // this command too: it answers INTERNAL below
+      Undo(st);  // this command too: it answers INTERNAL below
       out = Outcome::Failed(Status::Internal("not applied: " + st.message()));
     }
   }
@@ -87,30 +118,24 @@ void SimServer::ApplyFromInbox(Command& cmd, bool* changed) {
   reply_undoable_ = false;
 }
 
-// The batch's records are made durable, then its replies go out; a failed
-// sync undoes the batch first.
-void SimServer::CommitBatch() {
+void CommandBatch::Commit() {
   const Status st = journal_.Sync();
-  if (!st.ok()) UndoBatch(st);
+  if (!st.ok()) Undo(st);
   undo_.reset();
-  FlushReplies();
+  for (const HeldReply& h : held_) PublishReply(h.reply);
+  held_.clear();
 }
 
-void SimServer::UndoBatch(const Status& why) {
+void CommandBatch::Undo(const Status& why) {
   spdlog::error("{}; the batch's journaled commands are undone and answered INTERNAL", why.message());
   if (undo_) {
-    world_ = std::move(undo_->world);
-    method_ = std::move(undo_->method);
-    detector_.Reset();
-    sleep_.Reset();
-    contacts_.clear();
-    UpdateRates();
+    hooks_.restore(std::move(undo_->world), std::move(undo_->method));
     const Status cut = journal_.RollBack(undo_->mark);
     if (!cut.ok()) spdlog::critical("{}", cut.message());
-    snapshots_.DropRecordsFrom(undo_->mark.seq);
+    history_.DropRecordsFrom(undo_->mark.seq);
     undo_.reset();
   }
-  for (HeldReply& h : held_replies_) {
+  for (HeldReply& h : held_) {
     if (!h.undoable) continue;
     h.undoable = false;
     h.reply.code = static_cast<int32_t>(StatusCode::kInternal);
@@ -122,10 +147,10 @@ void SimServer::UndoBatch(const Status& why) {
   }
 }
 
-void SimServer::SendReply(const std::string& client_id, int64_t request_id, const Status& status,
-                          const std::string& message, const std::vector<int64_t>& ids) {
+void CommandBatch::SendReply(const std::string& client_id, int64_t request_id, const Status& status,
+                             const std::string& message, const std::vector<int64_t>& ids) {
   if (replaying_) return;
-  reply_t r = MakeReply(client_id, request_id, status, world_);
+  reply_t r = MakeReply(client_id, request_id, status, *world_);
   if (status.ok()) {
     r.message = message;
     ++accepted_;
@@ -135,35 +160,36 @@ void SimServer::SendReply(const std::string& client_id, int64_t request_id, cons
   }
   r.ids = ids;
   r.num_ids = static_cast<int32_t>(ids.size());
-  if (hold_replies_) {
-    held_replies_.push_back({std::move(r), reply_undoable_});
+  if (holding_) {
+    held_.push_back({std::move(r), reply_undoable_});
   } else {
     PublishReply(r);
   }
 }
 
-void SimServer::PublishReply(const reply_t& reply) {
+void CommandBatch::PublishReply(const reply_t& reply) {
   // nothing is acknowledged before its journal record is durable
   const Status st = journal_.Sync();
   if (!st.ok()) spdlog::error("{}", st.message());
-  const int n = reply.getEncodedSize();
-  std::vector<uint8_t> buf(n);
-  reply.encode(buf.data(), 0, n);
-  transport_->Publish(Channel("REPLY"), buf.data(), n);
+  publisher_->Reply(reply);
 }
 
-void SimServer::FlushReplies() {
-  for (const HeldReply& h : held_replies_) PublishReply(h.reply);
-  held_replies_.clear();
-}
-
-Status SimServer::JournalCommand(RecordKind kind, const std::string& payload) {
+Status CommandBatch::Record(RecordKind kind, const std::string& payload) {
   if (replaying_) return Status::Ok();
   JournalRecord record;
-  const Status st = journal_.Append(kind, world_.step, payload, &record);
+  const Status st = journal_.Append(kind, world_->step, payload, &record);
   if (!st.ok()) return st;
-  snapshots_.AddRecord(std::move(record));
+  history_.AddRecord(std::move(record));
   return Status::Ok();
+}
+
+void CommandBatch::CountInto(status_t* s) {
+  s->commands_accepted = accepted_;
+  s->commands_rejected = rejected_;
+  s->commands_unauthenticated = unauthenticated_;
+  s->commands_limited = limited_;
+  std::lock_guard<std::mutex> lock(mutex_);
+  s->last_error = last_error_;
 }
 
 }  // namespace contactsim

@@ -1,7 +1,7 @@
 // The server's command channels in one table: each channel's suffix, its
 // LCM type, the largest payload it takes, the total decoder that turns a
 // payload into a Command, and the journal record kind that stores it. The
-// live receive path (SimServer::OnCommandMessage), journal recovery
+// live receive path (CommandIntake::OnMessage), journal recovery
 // (SimServer::ReplayRecord), `--replay` (LogReplayer) and main's
 // subscriptions all read this table, so a channel is described once.
 //
@@ -24,7 +24,7 @@
 namespace contactsim {
 
 // Limits that bound what one command may ask for; the rest of the server's
-// limits (bodies, joints, rates) are in ServerLimits (sim_server.h).
+// limits (bodies, joints, rates) are in ServerOptions (server_options.h).
 struct DecodeLimits {
   int max_convex_points = 4096;         // points of one CONVEX body
   int max_body_cmd_bytes = 128 << 10;   // a CONVEX of 4,096 points is 98 kB

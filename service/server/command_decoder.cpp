@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "service/contact/contact_method_registry.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/validation.h"
 
@@ -66,15 +67,6 @@ Status DecodeSnapshotTarget(const scene_cmd_t& m, Command* cmd) {
 }
 
 }  // namespace
-
-Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method) {
-  std::unique_ptr<ContactMethod> m;
-  Status st = CreateContactMethod(name, &m);
-  if (!st.ok()) return st;
-  if (!(st = m->SetParams(params)).ok()) return st;
-  *method = std::move(m);
-  return Status::Ok();
-}
 
 Status DecodeBodyCommand(const body_cmd_t& m, const Material& default_material, Command* cmd) {
   cmd->client_id = m.client_id;

@@ -23,7 +23,4 @@ Status DecodeInput(const input_t& msg, Command* cmd);
 // (CheckJointSettings); the simulation thread adds the joint.
 Status DecodeJointCommand(const joint_cmd_t& msg, Command* cmd);
 
-// Builds a contact method by name with text parameters, validating both.
-Status MakeContactMethod(const std::string& name, const ParamMap& params, std::shared_ptr<ContactMethod>* method);
-
 }  // namespace contactsim

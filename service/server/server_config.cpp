@@ -2,9 +2,9 @@
 
 #include <contactsim/signature.h>
 
+#include "service/contact/contact_method_registry.h"
 #include "service/physics/validation.h"
 #include "service/scene/proto_text.h"
-#include "service/server/command_decoder.h"
 
 namespace contactsim {
 namespace {

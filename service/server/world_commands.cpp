@@ -16,9 +16,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       detector_.Reset();
       sleep_.Reset();
       method_->ResetCaches();
-      contacts_.clear();
-      UpdateRates();
-      StartTimeline();
+      StartOver();
       return Outcome::Done("world reset", true);
     case K::kLoadScene: {
       // built into a fresh world first, so that a failure leaves the old one
@@ -28,14 +26,9 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       if (!st.ok()) return Outcome::Failed(st);
       CancelStepCommands("scene loaded");
       world.sleep = world_.sleep;  // the run's setting, not the scene's
-      world_ = std::move(world);
-      detector_.Reset();
-      sleep_.Reset();
-      if (cmd.method) method_ = cmd.method;
+      ReplaceWorld(std::move(world), cmd.method ? cmd.method : method_);
       method_->ResetCaches();
-      contacts_.clear();
-      UpdateRates();
-      StartTimeline();
+      StartOver();
       return Outcome::Done("loaded " + cmd.scene_path + " (" + std::to_string(world_.bodies().size()) + " bodies)", true);
     }
     case K::kSetGravity:
@@ -44,7 +37,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       return Outcome::Done("gravity set", true);
     case K::kSetTimestep:
       world_.dt = cmd.dt;
-      UpdateRates();
+      publisher_.UpdateRates(world_.dt);
       return Outcome::Done("time step set", true);
     case K::kSetMethod: {
       // a switch keeps every body's state and drops only the old method's caches
@@ -72,10 +65,7 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       return Outcome::Done("running", false);
     case K::kStep: {
       paused_ = true;
-      step_budget_ += cmd.steps;
-      pending_steps_.push_back(
-          {cmd.client_id, cmd.request_id, world_.step + step_budget_, cmd.steps, std::chrono::steady_clock::now()});
-      ReportStepProgress(true);  // accepted: the client may wait as long as progress comes
+      steps_.Add(cmd, world_.step);  // reports progress at once: the client may wait as long as progress comes
       Outcome o;
       o.deferred = true;  // FinishStepCommands answers at the last step
       return o;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "service/contact/contact_method_registry.h"
 #include "service/server/command_decoder.h"
 #include "service/server/sim_server.h"
 

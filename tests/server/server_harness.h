@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "service/contact/contact_method_registry.h"
 #include "service/server/command_decoder.h"
 #include "service/server/sim_server.h"
 #include "tests/server/recording_transport.h"
