@@ -19,9 +19,8 @@
 #include <vector>
 
 #include "bench/peers/peer_mirror.h"
-#include "service/contact/contact_row.h"
-#include "service/contact/param_reader.h"
 #include "bench/tools/scene_bench/scene_bench_main.h"
+#include "service/contact/contact_row.h"
 
 namespace contactsim::bench {
 namespace {
@@ -125,10 +124,7 @@ Status CreateBulletEngine(const BenchOptions& options, const SceneSpec&, const W
     return Status::NotFound("unknown Bullet method \"" + options.method + "\" (known: sequential_impulse)");
   }
   int iterations = 10;  // btContactSolverInfo's default
-  ParamReader reader("sequential_impulse", options.params);
-  reader.Int("iterations", 1, 100000, &iterations);
-  Status st = reader.Finish();
-  if (st.ok()) st = CheckPeerShapes(world, "Bullet");
+  const Status st = ReadPeerSettings("Bullet", "sequential_impulse", options.params, true, world, &iterations);
   if (!st.ok()) return st;
   *out = std::make_unique<BulletEngine>(world, iterations);
   return Status::Ok();

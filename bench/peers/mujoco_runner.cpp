@@ -30,8 +30,8 @@
 #include <vector>
 
 #include "bench/peers/peer_mirror.h"
-#include "service/contact/param_reader.h"
 #include "bench/tools/scene_bench/scene_bench_main.h"
+#include "service/contact/param_reader.h"
 
 namespace contactsim::bench {
 namespace {

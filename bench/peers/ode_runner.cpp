@@ -19,9 +19,8 @@
 #include <vector>
 
 #include "bench/peers/peer_mirror.h"
-#include "service/contact/contact_row.h"
-#include "service/contact/param_reader.h"
 #include "bench/tools/scene_bench/scene_bench_main.h"
+#include "service/contact/contact_row.h"
 
 namespace contactsim::bench {
 namespace {
@@ -167,10 +166,7 @@ Status CreateOdeEngine(const BenchOptions& options, const SceneSpec&, const Worl
     return Status::NotFound("unknown ODE method \"" + options.method + "\" (known: quickstep, dantzig)");
   }
   int iterations = 20;
-  ParamReader reader(options.method.c_str(), options.params);
-  if (quickstep) reader.Int("iterations", 1, 100000, &iterations);
-  Status st = reader.Finish();
-  if (st.ok()) st = CheckPeerShapes(world, "ODE");
+  const Status st = ReadPeerSettings("ODE", options.method.c_str(), options.params, quickstep, world, &iterations);
   if (!st.ok()) return st;
   *out = std::make_unique<OdeEngine>(world, quickstep, iterations);
   return Status::Ok();

@@ -1,10 +1,12 @@
-// What every peer runner shares: checking that the scene uses only shapes
-// the peer runner translates, and writing a peer body's state into the
-// contactsim World mirror that the metrics read (scene_engine.h).
+// What every peer runner shares: reading its settings and checking that the
+// scene uses only shapes the peer runner translates, and writing a peer
+// body's state into the contactsim World mirror that the metrics read
+// (scene_engine.h).
 #pragma once
 
 #include <string>
 
+#include "service/contact/param_reader.h"
 #include "service/physics/world.h"
 
 namespace contactsim::bench {
@@ -31,6 +33,17 @@ inline Status CheckPeerShapes(const World& world, const char* engine) {
     }
   }
   return Status::Ok();
+}
+
+// A runner's settings before its engine is built: the `iterations`
+// parameter of `method` when it takes one (`takes_iterations`; *iterations
+// keeps the engine's default otherwise), nothing else, and the scene's shapes.
+inline Status ReadPeerSettings(const char* engine, const char* method, const ParamMap& params, bool takes_iterations,
+                               const World& world, int* iterations) {
+  ParamReader reader(method, params);
+  if (takes_iterations) reader.Int("iterations", 1, 100000, iterations);
+  const Status st = reader.Finish();
+  return st.ok() ? CheckPeerShapes(world, engine) : st;
 }
 
 // A static plane {p : n_W . p <= offset_W} in the world frame.

@@ -45,6 +45,21 @@ EXIT_TIMEOUT = 10.0
 _counter = itertools.count()
 
 
+def current_state(client, gravity):
+    """The STATE of the world as it is, without a step: a paused server
+    publishes STATE after a command that changes the world, and SET_GRAVITY
+    counts as one even when it sets the gravity the world has (``gravity``)."""
+    got = []
+    arrived = threading.Event()
+    remove = client.on_state(lambda s: (got.append(s), arrived.set()))
+    try:
+        client.set_gravity(gravity)
+        assert arrived.wait(10.0), "no STATE after SET_GRAVITY"
+    finally:
+        remove()
+    return got[-1]
+
+
 def load_script(path):
     """A program of the repository (``path`` relative to it, e.g.
     bench/scripts/bench_scenes.py) as a module, for testing its functions;

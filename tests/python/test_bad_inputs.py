@@ -4,7 +4,6 @@ and leaves the world as it was: the STATE after it (hash, clock and every
 body, bit for bit) is the STATE before it, and at the end no body or joint
 id has been used up. scripts/bad_input_table.py renders the same cases
 with their replies for docs/reliability.md."""
-import threading
 
 import pytest
 
@@ -12,23 +11,9 @@ import contactsim
 from contactsim import reply_t
 
 import bad_input_cases as bad
-from conftest import Server
+from conftest import Server, current_state
 
 GRAVITY = (0.0, 0.0, -9.81)
-
-
-def current_state(client):
-    """The STATE of the paused world without a step: SET_GRAVITY counts as a
-    world-changing command (so STATE follows) even when it sets the gravity
-    the world has."""
-    got, arrived = [], threading.Event()
-    remove = client.on_state(lambda s: (got.append(s), arrived.set()))
-    try:
-        client.set_gravity(GRAVITY)
-        assert arrived.wait(10.0), "no STATE after SET_GRAVITY"
-    finally:
-        remove()
-    return got[-1]
 
 
 @pytest.fixture(scope="module")
@@ -77,7 +62,7 @@ def test_the_catalogue_covers_every_channel_and_op(catalogue):
 def test_bad_input_is_refused_with_a_message_naming_it_and_changes_nothing(world, catalogue, index):
     case = catalogue[index]
     client = world.client
-    before = current_state(client)
+    before = current_state(client, GRAVITY)
     r = case.send(client)
     assert r is not None
     name = contactsim.errors.CODE_NAMES.get(r.code, r.code)
@@ -88,13 +73,13 @@ def test_bad_input_is_refused_with_a_message_naming_it_and_changes_nothing(world
     for w in case.words:
         assert w in r.message, "message %r does not name %r" % (r.message, w)
     assert world.proc.poll() is None, "server died:\n" + world.log()
-    after = current_state(client)
+    after = current_state(client, GRAVITY)
     assert after == before, "the world changed"
 
 
 def test_no_body_or_joint_id_was_used_up(world):
     client = world.client
-    state = current_state(client)
+    state = current_state(client, GRAVITY)
     assert sorted(state.bodies) == sorted(bad.IDS.values())
     assert client.add_sphere(0.05, position=(8, 8, 1)) == max(bad.IDS.values()) + 1
     assert client.add_joint("ball", bad.IDS["ball"], None, anchor=(0, 0, 1)) == max(bad.JOINTS) + 1

@@ -26,7 +26,7 @@ import pytest
 import contactsim
 from contactsim import reply_t
 
-from conftest import REPO
+from conftest import current_state
 
 import lcm_wire  # noqa: E402
 
@@ -49,21 +49,6 @@ joints { kind: "hinge" body_a: "door" anchor { x: -2.4 z: 0.85 } axis { z: 1 } l
 joints { kind: "distance" body_a: "bob" anchor { x: 3 z: 3 } }
 """
 N_BODIES, N_JOINTS = 5, 2
-
-
-def current_state(client):
-    """The STATE of the world as it is, without a step: a paused server
-    publishes STATE after a command that changes the world, and SET_GRAVITY
-    counts as one even when it sets the gravity the world has."""
-    got = []
-    arrived = threading.Event()
-    remove = client.on_state(lambda s: (got.append(s), arrived.set()))
-    try:
-        client.set_gravity(GRAVITY)
-        assert arrived.wait(10.0), "no STATE after SET_GRAVITY"
-    finally:
-        remove()
-    return got[-1]
 
 
 class ReplyCounter:
@@ -104,7 +89,7 @@ def test_garbage_on_every_channel_crashes_nothing_and_changes_nothing(launch, tm
     server = launch(scene=scene)
     client = server.client
     client.step(3)
-    before = current_state(client)
+    before = current_state(client, GRAVITY)
     assert len(before.bodies) == N_BODIES
 
     world = dict(bodies=set(before.bodies), joints=set(range(1, N_JOINTS + 1)), slots=set())
@@ -138,7 +123,7 @@ def test_garbage_on_every_channel_crashes_nothing_and_changes_nothing(launch, tm
     assert counter.count == sent, "%d payloads, %d replies (%s)" % (sent, counter.count, codes)
     assert counter.codes[reply_t.DECODE_ERROR] > 0
 
-    after = current_state(client)
+    after = current_state(client, GRAVITY)
     assert after.state_hash == before.state_hash
     assert after == before, "garbage changed the world"
     # a normal command still works and no body id was used up

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import BUILD, REPO
+from conftest import BUILD
 from lcm_recorder import LcmRecorder
 
 from contactsim.viewer.process import ViewerProcess  # noqa: E402

@@ -23,9 +23,9 @@
 #include <thread>
 #include <vector>
 
+#include "bench/tools/lockstep_bench/lcm_ping_pong.h"
 #include "contactsim/client.h"
 #include "contactsim/controller.h"
-#include "bench/tools/lockstep_bench/lcm_ping_pong.h"
 
 namespace {
 
