@@ -138,7 +138,9 @@ std::string Text(const ServerOption& o, const ServerOptions& options) {
   if (auto m = std::get_if<FsyncPolicy SO::*>(&o.member)) {
     return "\"" + std::string(o.choices[static_cast<int>(options.*(*m))]) + "\"";
   }
-  if (auto m = std::get_if<LatePolicy SO::*>(&o.member)) return "\"" + std::string(LatePolicyName(options.*(*m))) + "\"";
+  if (auto m = std::get_if<LatePolicy SO::*>(&o.member)) {
+    return "\"" + std::string(LatePolicyName(options.*(*m))) + "\"";
+  }
   return "";
 }
 

@@ -107,9 +107,10 @@ void SimServer::ApplyInput(const ControllerInput& in, bool live) {
     const RigidBody* body = world_.Find(b.body);
     if (body == nullptr || !body->IsDynamic()) {
       if (live) {
+        const char* why = body == nullptr ? " is unknown" : " is not dynamic";
         batch_.SendReply(in.controller, in.request_id,
                          Status::NotFound("input for step " + std::to_string(in.step) + ": body " +
-                                          std::to_string(b.body) + (body == nullptr ? " is unknown" : " is not dynamic")),
+                                          std::to_string(b.body) + why),
                          "");
       }
       continue;
