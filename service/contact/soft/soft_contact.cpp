@@ -172,17 +172,6 @@ void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B) {
   }
 }
 
-void RestituteSoftPoint(double threshold, SoftPoint& p, SoftBody& A, SoftBody& B) {
-  if (p.restitution == 0.0 || p.impact_speed > -threshold || p.max_push <= 0.0) return;
-  const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, A, B);
-  const double increment = -p.mass_n * (vn + p.restitution * p.impact_speed);
-  const double total = std::max(p.lambda_n + increment, 0.0);
-  const double applied = total - p.lambda_n;
-  p.lambda_n = total;
-  p.total_n += applied;
-  SoftPoint::Push(applied, p.n, p.ia_n, p.ib_n, A, B);
-}
-
 void AccumulateSoftTotals(SoftPoint& p) {
   p.total_n += p.lambda_n;
   p.total_t1 += p.lambda_t1;

@@ -19,8 +19,7 @@
 // Accumulated impulses are clamped at 0 (Catto 2005). Friction is Coulomb's
 // disk: both tangent impulses from the same relative velocity, their sum
 // projected onto |lambda_t| <= mu lambda_n. Restitution comes after the
-// sub-steps (Box2D v3): a point that pushed during the step and approached
-// faster than the threshold gets v_n = -e v_impact.
+// sub-steps (soft_restitution.h).
 #pragma once
 
 #include <vector>
@@ -122,9 +121,6 @@ double SoftSeparation(const SoftPoint& p, const SoftBody& A, const SoftBody& B);
 void SolveSoftNormal(const SoftPass& pass, SoftPoint& p, SoftBody& A, SoftBody& B);
 void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B);
 void ApplySoftNormal(double total, SoftPoint& p, SoftBody& A, SoftBody& B);
-
-// The point's share of a restitution pass after the sub-steps.
-void RestituteSoftPoint(double threshold, SoftPoint& p, SoftBody& A, SoftBody& B);
 
 // Adds the point's accumulated impulses to its step totals (end of a sub-step).
 void AccumulateSoftTotals(SoftPoint& p);

@@ -101,13 +101,4 @@ void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& m
   }
 }
 
-void RestituteSoftManifolds(double threshold, const std::vector<SoftManifold>& manifolds, int begin, int end,
-                            std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
-  for (int k = begin; k < end; ++k) {
-    for (int i = manifolds[k].first; i < manifolds[k].first + manifolds[k].count; ++i) {
-      RestituteSoftPoint(threshold, points[i], bodies[points[i].a], bodies[points[i].b]);
-    }
-  }
-}
-
 }  // namespace contactsim

@@ -22,11 +22,8 @@ void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& ru
 
 // Passes over the manifolds [begin, end) (one colour of block_colours.h,
 // or all of them in order):
-// the solve: each point's friction, then the normal rows;
+// the solve: each point's friction, then the normal rows.
 void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds, int begin, int end,
                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
-// restitution (soft_contact.h, RestituteSoftPoint).
-void RestituteSoftManifolds(double threshold, const std::vector<SoftManifold>& manifolds, int begin, int end,
-                            std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
 
 }  // namespace contactsim

@@ -82,6 +82,14 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   return stats;
 }
 
+// A body resting under gravity meets its support at up to |g| dt each step
+// (the sub-steps' gravity before the contact catches it); twice that keeps
+// a resting contact with restitution from bouncing (the xpbd method's rule
+// with the sub-step there).
+double SoftMethod::RestitutionThreshold(const World& world) const {
+  return std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * world.dt);
+}
+
 StepStats SoftMethod::Report(ContactSet* contacts_out) const {
   StepStats stats;
   contacts_out->clear();

@@ -26,8 +26,10 @@
 //     springs take their stiffness from the heavy body and each solve and
 //     relax pass ends with a direct solve of those contacts
 //     (soft_ratio_solve.h);
-//  3. restitution: points that pushed and met faster than
-//     restitution_threshold get v_n = -e v_impact (soft_contact.h);
+//  3. restitution: in components where a point that pushed met faster
+//     than the threshold (max(restitution_threshold, 2 |g| dt)), the
+//     points that pushed leave with the normal velocities of the impacts
+//     taken one at a time (soft_restitution.h), -e v_impact for a lone pair;
 //  4. the impulses are kept per contact feature for the next step's warm
 //     start (warm_start_cache.h).
 // Small sub-steps with one iteration each converge better than many
@@ -47,6 +49,7 @@
 #include "service/collision/parallel_runner.h"
 #include "service/contact/block_colours.h"
 #include "service/contact/contact_method.h"
+#include "service/contact/sequential_impacts.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/soft_contact.h"
 #include "service/contact/soft/soft_joints.h"
@@ -78,6 +81,8 @@ class SoftMethod : public ContactMethod {
   // (soft_stages.cpp).
   void RunSubsteps(World& world, ParallelRunner& runner);
   StepStats Report(ContactSet* contacts) const;
+  // Restitution applies to approaches faster than this (m/s).
+  double RestitutionThreshold(const World& world) const;
 
   SoftParams params_;
   ContactSet contacts_;
@@ -91,6 +96,7 @@ class SoftMethod : public ContactMethod {
   SoftPointsOfBodies points_of_bodies_;
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
+  SequentialImpacts impacts_;
   std::vector<std::array<double, 3>> impulses_;
   WarmStartCache warm_start_;
 };

@@ -17,7 +17,8 @@ const ParamTable<SoftParams>& SoftParamTable() {
       DoubleParam("max_push_velocity", &P::max_push_velocity, 0.0, 100.0, "m/s",
                   "fastest the soft spring pushes overlapping bodies apart"),
       DoubleParam("restitution_threshold", &P::restitution_threshold, 0.0, 100.0, "m/s",
-                  "approach speed above which restitution applies"),
+                  "restitution applies to points approaching faster than max(this, 2 |g| dt), the floor keeping a "
+                  "resting contact from bouncing"),
       DoubleParam("margin", &P::margin, 0.0, 1.0, "m", "speculative distance beyond each pair's closing motion"),
       BoolParam("warm_start", &P::warm_start, "start each step from the last step's impulses"),
       DirectMassRatioParam(&P::direct_mass_ratio),

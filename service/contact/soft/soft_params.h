@@ -13,7 +13,7 @@ struct SoftParams {
   double contact_hertz = 120.0;          // Hz, capped at a quarter of the sub-step rate
   double damping_ratio = 10.0;          // contact springs are heavily over-damped
   double max_push_velocity = 3.0;       // m/s, fastest a soft contact pushes bodies apart
-  double restitution_threshold = 1.0;   // m/s
+  double restitution_threshold = 0.001;  // m/s, raised to 2 |g| dt under gravity
   double margin = 0.01;                 // m, speculative distance beyond each pair's closing motion
   bool warm_start = true;
   double direct_mass_ratio = 10.0;      // soft_ratio_solve.h

@@ -9,14 +9,10 @@
 
 #include "service/contact/colour_stages.h"
 #include "service/contact/soft/soft_method.h"
+#include "service/contact/soft/soft_restitution.h"
 
 namespace contactsim {
 namespace {
-
-// Gauss-Seidel passes of the restitution rows: one pass gives a box landing
-// flat all its bounce at the first corner swept (it leaves spinning); the
-// passes share it between the corners that struck
-constexpr int kRestitutionPasses = 8;
 
 // Indices a thread takes at a time: enough work to pay for the atomic
 // counter, small enough that two threads finish a colour together.
@@ -65,8 +61,9 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const Fn accumulate = [&](int i, int j) {
     for (int k = i; k < j; ++k) AccumulateSoftTotals(points_[k]);
   };
-  const Fn restitute = [&](int i, int j) {
-    RestituteSoftManifolds(params_.restitution_threshold, manifolds_, i, j, points_, bodies_);
+  const double threshold = RestitutionThreshold(world);
+  const Fn restitute = [&](int, int) {
+    RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
   };
 
   ColourStages list(&stages_, runner.threads());
@@ -85,15 +82,9 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     if (joints) list.AddSerial(solve_joints);
     list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }
-  // a point without restitution, or meeting slower than the threshold, is
-  // left alone by the passes (RestituteSoftPoint): the standard scenes'
-  // e = 0 would spend 8 sweeps of colours, and their threads' hand-overs,
-  // on nothing
-  const double threshold = params_.restitution_threshold;
-  const bool bounces = std::any_of(points_.begin(), points_.end(), [threshold](const SoftPoint& p) {
-    return p.restitution != 0.0 && p.impact_speed <= -threshold;
-  });
-  for (int it = 0; bounces && it < kRestitutionPasses; ++it) list.AddColours(restitute, colours_, blocks);
+  // without a point with restitution (the standard scenes' e = 0) there is
+  // no restitution stage at all
+  if (SoftPointsRestitute(points_)) list.AddSerial(restitute);
   runner.Stages(stages_);
 }
 

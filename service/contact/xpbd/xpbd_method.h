@@ -29,7 +29,9 @@
 //        together (xpbd_ratio_solve.h);
 //     c. velocities from the poses (Algorithm 2): v += (x - x~) / h and
 //        w += 2 vec(q q~^-1) / h, x~ and q~ the predicted pose;
-//     d. velocity pass: restitution and dynamic friction.
+//     d. velocity pass: restitution and dynamic friction; in components
+//        with restitution the bounce is that of the impacts taken one at a
+//        time (xpbd_restitution.h).
 // Small sub-steps rather than many iterations is the paper's point: the
 // error of one Gauss-Seidel sweep shrinks with h^2, so stacks stay stiff.
 //
@@ -45,6 +47,7 @@
 #include <vector>
 
 #include "service/contact/contact_method.h"
+#include "service/contact/sequential_impacts.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/xpbd/xpbd_contact.h"
 #include "service/contact/xpbd/xpbd_joints.h"
@@ -106,6 +109,8 @@ class XpbdMethod : public ContactMethod {
   std::vector<XpbdPose> predicted_;
   std::vector<XpbdJointLambda> joint_lambdas_;
   std::vector<ParallelRunner::Stage> stages_;
+  SequentialImpacts impacts_;             // a sub-step's restitution rows (xpbd_restitution.h)
+  std::vector<char> deferred_;            // per block: restitution left to impacts_
 };
 
 }  // namespace contactsim

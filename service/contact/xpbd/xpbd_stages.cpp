@@ -11,6 +11,7 @@
 #include "service/contact/colour_stages.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/xpbd/xpbd_method.h"
+#include "service/contact/xpbd/xpbd_restitution.h"
 #include "service/contact/xpbd/xpbd_velocity_pass.h"
 
 namespace contactsim {
@@ -74,9 +75,19 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn project = [&](int, int) { ProjectJointPositions(world); };
   const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
   const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
-  const Fn velocity_pass = [&](int i, int j) {
-    SolveXpbdContactVelocities(h, threshold, blocks_, i, j, patches_, subsets_, predicted_, bodies_, &points_);
+  const Fn gather_impacts = [&](int, int) {
+    GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_);
   };
+  const Fn velocity_pass = [&](int i, int j) {
+    SolveXpbdContactVelocities(h, threshold, blocks_, deferred_, i, j, patches_, subsets_, predicted_, bodies_,
+                               &points_);
+  };
+  const Fn solve_impacts = [&](int, int) { SolveXpbdImpacts(h, &impacts_, bodies_, &points_); };
+  // components with restitution take their bounce from the impacts one at
+  // a time (xpbd_restitution.h); the standard scenes' e = 0 have none
+  const bool restitution = std::any_of(points_.begin(), points_.end(),
+                                       [](const XpbdPoint& p) { return p.restitution != 0.0; });
+  deferred_.assign(blocks_.size(), 0);
 
   ColourStages list(&stages_, runner.threads());
   const int blocks = static_cast<int>(blocks_.size());
@@ -93,7 +104,9 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);
     list.Add(derive_velocities, 0, n, kBodyGrain);
+    if (restitution) list.AddSerial(gather_impacts);
     list.AddColours(velocity_pass, colours_, blocks);
+    if (restitution) list.AddSerial(solve_impacts);
   }
   runner.Stages(stages_);
 }

@@ -111,7 +111,8 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed&
 }  // namespace
 
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                int begin, int end, const std::vector<XpbdPatch>& patches,
+                                const std::vector<char>& deferred, int begin, int end,
+                                const std::vector<XpbdPatch>& patches,
                                 std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
                                 std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
   const double inv_h = 1.0 / h;
@@ -144,7 +145,7 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
     const Vec3 n = p0.n;
     BrakeXpbdPatch(h, pushed.sum, patch, n, pair.A, pair.B, &spent, &braked);
-    SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], bodies, pair, *points);
+    if (!deferred[k]) SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], bodies, pair, *points);
     BrakeXpbdPatch(h, pushed.sum, patch, n, pair.A, pair.B, &spent, &braked);
     // the sub-step's impulses for the report, once at its end: a point's
     // push lambda_n moved the bodies as the velocity impulse lambda_n / h

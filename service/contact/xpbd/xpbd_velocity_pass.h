@@ -27,11 +27,13 @@
 namespace contactsim {
 
 // The velocity pass on the bodies' v and w; restitution applies above
-// `restitution_threshold` (m/s); `patches` and `caches` are parallel to
-// `blocks`; `predicted` holds the bodies' v~ and w~ (before the position
+// `restitution_threshold` (m/s), except in the blocks marked in `deferred`
+// (xpbd_restitution.h, after this pass); `patches` and `caches` are parallel
+// to `blocks`; `predicted` holds the bodies' v~ and w~ (before the position
 // solve).
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                int begin, int end, const std::vector<XpbdPatch>& patches,
+                                const std::vector<char>& deferred, int begin, int end,
+                                const std::vector<XpbdPatch>& patches,
                                 std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
                                 std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
 

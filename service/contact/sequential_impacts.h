@@ -1,0 +1,103 @@
+// Restitution across simultaneous contacts for the methods that solve their
+// contacts without bounce and then drive each point that pushed to a
+// velocity target: soft (Box2D v3's restitution pass, Catto, Solver2D
+// "Soft Step", 2024) and xpbd (the velocity pass, Mueller et al. 2020,
+// "Detailed rigid body simulation with extended position based dynamics",
+// eq. 34).
+//
+// Both papers target v_n+ = -e v_n- with v_n- a point's own approach before
+// the solve. That knows one impact per point: in a row of touching bodies
+// struck at one end only the first pair approaches before the solve, the
+// others meet inside it, are held to 0, and the row leaves together (soft's
+// cradle of five under e = 1 kept 36% of its energy; docs/physics.md,
+// "Restitution across simultaneous contacts"). Here the targets are
+// the outcome of the impacts taken one at a time instead (Guendelman,
+// Bridson and Fedkiw 2003, "Nonconvex rigid bodies with stacking", the
+// collision phase of the impulse method):
+//  1. on a copy of the velocities before the solve, each body pair with a
+//     point approaching faster than the threshold collides, its points
+//     together (Gauss-Seidel with accumulated j >= 0), to
+//       u_n+ >= -e u_n-  where it approached, u_n+ >= 0 elsewhere
+//     (Newton's law, Hahn 1988; Mirtich 1996), pass after pass until none
+//     approaches; this carries a strike down a row as a Newton's cradle
+//     does. u_n = v_n + gain, gain <= 0 the approach a pair that met within
+//     the step gained over its gap (the method's free-flight impact speed);
+//  2. each point's target is the u_n it leaves that phase with;
+//  3. on the method's solved velocities, Gauss-Seidel on the rows
+//       v_n >= target, accumulated impulse lambda >= 0 (from the method's
+//       own accumulated impulse), passes until no impulse changes the
+//       velocities by more than 1e-6 of the largest target (a tenth of the
+//       threshold where all are about 0), at most 100, a pair's points
+//       swept until they agree within each pass.
+// In 1D (a row) the targets fix every relative velocity, so with the
+// momentum the rows' answer is the sequential one. The rows are those of the
+// contact components (bodies joined by pushing points) that hold a point
+// with restitution, with or without an impact this step: in the steps after
+// an impact the method's push-out of the overlap it left must not become
+// velocity either (a row of six gained 15% of its energy when only
+// components with an impact took part). Components without restitution
+// are left to the method. Every impulse is equal and opposite, so
+// momentum is kept.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/soft/soft_bodies.h"
+#include "service/physics/math.h"
+
+namespace contactsim {
+
+struct ImpactRow {
+  int point = -1;       // the method's point index (for the caller)
+  int group = -1;       // rows of one body pair with one normal (a block) share it, consecutively
+  int a = -1, b = -1;   // body indices (the world's)
+  Vec3 n, ra_n, rb_n;   // unit normal from A to B; r x n of each body
+  Vec3 ia_n, ib_n;      // I^-1 (r x n), zero for a body that does not move
+  double mass_n = 0.0;  // kg, 1 / K along n
+  double restitution = 0.0;
+  // m/s, the normal velocity at which the pair met: where it is below v_n
+  // before the solve (a pair apart that gained approach over its gap in
+  // free flight) the difference is the row's gain (step 1); else 0
+  double impact = 0.0;
+  double lambda = 0.0;  // N s: in, the method's accumulated impulse; out, after step 3
+  double target = 0.0;  // m/s, out (step 2)
+};
+
+class SequentialImpacts {
+ public:
+  // Starts a new set of rows over `bodies` world bodies.
+  void Begin(int bodies);
+  // A body's velocities before the solve (once per body, before its rows).
+  void SetBody(int index, const Vec3& v, const Vec3& w, double inv_mass);
+  bool HasBody(int index) const { return local_[index] >= 0; }
+  void AddRow(const ImpactRow& row) { rows_.push_back(row); }
+  // Steps 1 and 2 (threshold in m/s); keeps only the rows of components
+  // with restitution and returns whether any is left.
+  bool FindTargets(double threshold);
+  // Step 3 on the method's bodies.
+  void Solve(std::vector<SoftBody>& bodies);
+  const std::vector<ImpactRow>& rows() const { return rows_; }
+
+ private:
+  struct Velocity {
+    Vec3 v, w;
+    double inv_mass;
+  };
+  double Approach(int k) const;  // row k's u_n on the copy
+  void Push(double j, const ImpactRow& r);
+  // one collision of the rows [begin, end): false when none approached
+  bool Collide(int begin, int end, double threshold);
+  void KeepRestitutionComponents();
+  void SetGains();
+
+  std::vector<int> local_;        // per world body: its index in start_, -1 if none
+  std::vector<int> touched_;      // world bodies with local_ set
+  std::vector<Velocity> start_;   // velocities before the solve
+  std::vector<Velocity> scratch_;  // step 1's copy
+  std::vector<ImpactRow> rows_;
+  std::vector<double> j_;
+  std::vector<double> gain_;  // per row, m/s, <= 0
+  double threshold_ = 0.0;    // m/s, FindTargets'
+};
+
+}  // namespace contactsim

@@ -1,0 +1,56 @@
+#include "service/contact/soft/soft_restitution.h"
+
+#include <algorithm>
+
+namespace contactsim {
+namespace {
+
+// A body's velocities at the step's start: v = P / m, w = R0 I_body^-1 R0^T L
+// at its starting orientation.
+void AddStartVelocities(const World& world, const std::vector<SoftBody>& bodies, int i, SequentialImpacts* impacts) {
+  if (impacts->HasBody(i)) return;
+  const RigidBody& b = world.bodies()[i];
+  const SoftBody& s = bodies[i];
+  if (!b.IsDynamic()) {
+    impacts->SetBody(i, b.LinearVelocity(), b.AngularVelocity(), 0.0);
+    return;
+  }
+  const Mat3 R0 = s.R0t.transpose();
+  impacts->SetBody(i, b.inv_mass * b.P, R0 * (b.inv_inertia_body * (s.R0t * b.L)), s.inv_mass);
+}
+
+}  // namespace
+
+bool SoftPointsRestitute(const std::vector<SoftPoint>& points) {
+  return std::any_of(points.begin(), points.end(), [](const SoftPoint& p) { return p.restitution != 0.0; });
+}
+
+void RestituteSoftPoints(double threshold, const World& world, const std::vector<SoftManifold>& manifolds,
+                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies, SequentialImpacts* impacts) {
+  impacts->Begin(static_cast<int>(bodies.size()));
+  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
+    for (int i = manifolds[k].first; i < manifolds[k].first + manifolds[k].count; ++i) {
+      const SoftPoint& p = points[i];
+      if (p.total_n <= 0.0 || p.mass_n <= 0.0) continue;  // carried no impulse in the step
+      AddStartVelocities(world, bodies, p.a, impacts);
+      AddStartVelocities(world, bodies, p.b, impacts);
+      ImpactRow r;
+      r.point = i;
+      r.group = k;
+      r.a = p.a, r.b = p.b;
+      r.n = p.n, r.ra_n = p.ra_n, r.rb_n = p.rb_n, r.ia_n = p.ia_n, r.ib_n = p.ib_n;
+      r.mass_n = p.mass_n;
+      r.restitution = p.restitution;
+      r.impact = p.impact_speed;
+      r.lambda = p.total_n;
+      impacts->AddRow(r);
+    }
+  }
+  if (!impacts->FindTargets(threshold)) return;
+  impacts->Solve(bodies);
+  for (const ImpactRow& r : impacts->rows()) {
+    points[r.point].total_n = r.lambda;
+  }
+}
+
+}  // namespace contactsim

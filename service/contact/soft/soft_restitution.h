@@ -1,0 +1,31 @@
+// The soft step's restitution after its sub-steps (soft_method.h, step 3):
+// the points that pushed in the step, in components where one met faster
+// than the threshold, are driven to the normal velocities the impacts taken
+// one at a time give (sequential_impacts.h), which for a lone pair is Box2D
+// v3's v_n = -e v_impact (Catto, Solver2D "Soft Step", 2024) and carries a
+// strike down a row of touching bodies as a Newton's cradle does.
+//
+// The velocities before the solve are the bodies' at the step's start (the
+// world's P and L, which the sub-steps leave until they are stored), and a
+// point that was apart at the step's start adds what its approach gained
+// over its gap (SoftPoint::impact_speed, free flight).
+#pragma once
+
+#include <vector>
+
+#include "service/contact/sequential_impacts.h"
+#include "service/contact/soft/soft_contact.h"
+#include "service/contact/soft/soft_manifold.h"
+
+namespace contactsim {
+
+// Whether any point has restitution, so that the restitution stage has work.
+bool SoftPointsRestitute(const std::vector<SoftPoint>& points);
+
+// The restitution of the step's points (serial: the impacts pass a strike
+// from pair to pair in order). Adds the impulses to each point's lambda_n
+// and total_n.
+void RestituteSoftPoints(double threshold, const World& world, const std::vector<SoftManifold>& manifolds,
+                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies, SequentialImpacts* impacts);
+
+}  // namespace contactsim
