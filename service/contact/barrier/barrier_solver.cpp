@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "service/contact/barrier/additive_ccd.h"
 #include "service/contact/barrier/affine_prediction.h"
@@ -304,17 +305,33 @@ void BarrierSolver::TakeShifts(const World& world) {
   }
   std::vector<Entry> entries;
   Collect(nullptr, &entries);
+  // the pairs of bodies that start, measured as deep as a placement can
+  // overlap, and the body pairs that overlap (a pair deeper than floor)
+  std::set<std::pair<int, int>> overlapping;
   for (Entry& e : entries) {
+    if (!bodies_[e.a].restarted && !bodies_[e.b].restarted) continue;
+    e.depth = kPlacedDepth * d_hat;
+    Evaluate(&e);
+    if (e.dist.d < -floor) overlapping.insert({e.a, e.b});
+  }
+  for (const Entry& e : entries) {
     const bool starts = bodies_[e.a].restarted || bodies_[e.b].restarted;
     // a kept zero stays, unless a body that starts again is at or below it
-    if (e.placed && (!starts || EffectiveDistance(e) > 0.0)) continue;
+    if (e.placed && (!starts || e.dist.d - e.shift > 0.0)) continue;
     if (starts) {
-      e.depth = kPlacedDepth * d_hat;  // an overlap is seen as one
-      Evaluate(&e);
-      if (e.dist.d < floor) {
-        shift_[KeyOf(e.a, e.b, e.pair)] = {e.dist.d - kPlacedWidth * d_hat, false, true};
+      const Key key = KeyOf(e.a, e.b, e.pair);
+      const bool polyhedral = bodies_[e.a].geometry.radius == 0.0 && bodies_[e.b].geometry.radius == 0.0;
+      if (!e.dist.is_signed && polyhedral && (e.dist.d < SignedDepth() || overlapping.count({e.a, e.b}) > 0)) {
+        // an unsigned distance inside an overlap, or one that can turn
+        // signed (EvaluatePair, at its triangle's or edge's border, within
+        // the signed depth), is no separation: its zero is where the same
+        // distance behind a face would be, so the pair exerts nothing until
+        // it turns signed and deeper
+        shift_[key] = {-e.dist.d - kPlacedWidth * d_hat, false, true};
+      } else if (e.dist.d < floor) {
+        shift_[key] = {e.dist.d - kPlacedWidth * d_hat, false, true};
       } else {
-        shift_.erase(KeyOf(e.a, e.b, e.pair));
+        shift_.erase(key);
       }
       continue;
     }
