@@ -91,6 +91,26 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"penalty", "stack n=8 size=* height", "0.57 mm lower at every size and mass: its compliance, as above"},
     {"barrier", "stack n=8 size=* height", "5.2-5.3 mm higher at every size and mass: barrier gaps, as above"},
     {"soft", "stack n=8 size=* height", "1.0 mm lower at every size and mass: its springs, as above"},
+    // friction_scenarios_test.cpp: a 0.2 m cube placed flush, settled, then
+    // launched at 3 m/s (docs/physics.md, "barrier: bodies placed touching")
+    {"barrier", "slide m=10 mu=0.8 deg=*",
+     "6.0% short along a face normal (1.6-1.9% at 30-60 degrees, 4.7% off its run along x): it rests on placed pairs, the barrier's "
+     "forces over 1/50 of d_hat, so its rocking under the sliding friction's torque swings the lagged normal "
+     "forces 50 times faster than on a resting gap"},
+    // bodies placed touching or overlapping (placement_contact_test.cpp):
+    // moved from the placement, fastest point at any step
+    {"penalty", "* overlap=0mm speed",
+     "2.2 cm/s (stack of three), 1.2 cm/s (wall): its springs start unloaded, so a placed stack falls into them "
+     "and rings at pi / contact_time, about g contact_time / pi = 1.25 cm/s per course of load"},
+    {"penalty", "* from impulse speed", "2.3 cm/s: impulse rests them touching, the same fall into its springs"},
+    {"penalty", "* overlap=0.*mm *",
+     "1.6 / 4.3 / 31 cm/s and 6 mm at 0.01 / 0.1 / 0.5 mm overlaps: its springs push an overlap out with kp d, "
+     "unlimited"},
+    {"xpbd", "* overlap=0.[15]mm *",
+     "24 cm/s and 3.4 mm at 0.1 mm overlaps, 1.3-2.0 m/s and 83-95 mm at 0.5 mm: its position pass removes an "
+     "overlap within a step and the velocity it derives carries it on (max_push_velocity 4 m/s)"},
+    {"xpbd", "* from penalty speed", "3.3 / 6.7 cm/s (wall / stack): penalty's 40-48 um overlaps pushed out the same way"},
+    {"soft", "* overlap=0.5mm speed", "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
     {"soft", "cradle n=5", "last 0.525 v0, the others 0.525 v0: restitution only where a pair met faster than the "
                            "threshold, so the touching spheres leave together"},
 };

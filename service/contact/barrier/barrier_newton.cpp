@@ -80,11 +80,11 @@ void BarrierSolver::Assemble(const std::vector<Entry>& entries, NewtonSystem* sy
     const Vec12 Gb = AffineJacobianT(e.dist.Xb, e.dist.n);
     // kappa m(x) b(d): the product rule adds kappa b grad m (edge-edge);
     // the Hessian keeps the PSD Gauss-Newton part kappa m b'' grad d grad d^T
-    const double m = e.mollifier.m;
-    AddTerm(system, sa, sb, Ga, Gb, Eigen::Matrix<double, 1, 1>(h2 * kappa_ * m * BarrierFirstDerivative(d, w)),
-            Eigen::Matrix<double, 1, 1>(h2 * kappa_ * m * BarrierSecondDerivative(d, w)));
+    const double m = e.mollifier.m, k = kappa_ * e.scale;
+    AddTerm(system, sa, sb, Ga, Gb, Eigen::Matrix<double, 1, 1>(h2 * k * m * BarrierFirstDerivative(d, w)),
+            Eigen::Matrix<double, 1, 1>(h2 * k * m * BarrierSecondDerivative(d, w)));
     if (m < 1.0) {
-      const double kb = h2 * kappa_ * Barrier(d, w);
+      const double kb = h2 * k * Barrier(d, w);
       if (sa >= 0) system->Gradient(sa) += kb * e.mollifier.grad_a;
       if (sb >= 0) system->Gradient(sb) += kb * e.mollifier.grad_b;
     }
@@ -174,7 +174,7 @@ double BarrierSolver::IslandEnergy(const Island& island, const std::vector<Entry
     const double b = Barrier(d.d - e.shift, e.width);
     if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
     if (b == 0.0) continue;
-    potential += kappa_ * MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e.pair).m * b;
+    potential += kappa_ * e.scale * MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e.pair).m * b;
   }
   const double eps = params_.eps_v * h_;
   for (int k : island.friction) {

@@ -107,6 +107,7 @@ void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* 
         if (it->second.placed) {
           e.placed = true;
           e.width = kPlacedWidth * d_hat;
+          e.scale = 1.0 / kPlacedWidth;
           e.depth = std::max(SignedDepth(), kFloor * d_hat - e.shift);
         }
       }
@@ -178,7 +179,7 @@ void BarrierSolver::Lag(const std::vector<Entry>& entries) {
     if (A.geometry.radius > 0.0) f.Xa += A.geometry.radius * (AffineMatrix(A.q).inverse() * e.dist.n);
     if (B.geometry.radius > 0.0) f.Xb -= B.geometry.radius * (AffineMatrix(B.q).inverse() * e.dist.n);
     f.T = TangentBasis(e.dist.n);
-    f.mu_lambda = mu * kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, e.width));
+    f.mu_lambda = mu * kappa_ * e.scale * e.mollifier.m * std::abs(BarrierFirstDerivative(d, e.width));
     if (f.mu_lambda <= 0.0) continue;
     friction_.push_back(f);
   }
@@ -242,7 +243,7 @@ void BarrierSolver::InitialKappa(const World& world, const std::vector<Entry>& e
     gE.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
   }
   for (const Entry& e : entries) {
-    const double db = h2 * e.mollifier.m * BarrierFirstDerivative(EffectiveDistance(e), e.width);
+    const double db = h2 * e.scale * e.mollifier.m * BarrierFirstDerivative(EffectiveDistance(e), e.width);
     if (bodies_[e.a].dof >= 0) gB.segment<12>(12 * bodies_[e.a].dof) -= db * AffineJacobianT(e.dist.Xa, e.dist.n);
     if (bodies_[e.b].dof >= 0) gB.segment<12>(12 * bodies_[e.b].dof) += db * AffineJacobianT(e.dist.Xb, e.dist.n);
   }
@@ -286,7 +287,7 @@ void BarrierSolver::WriteBack(World& world, const std::vector<Entry>& entries, C
     c.normal = e.dist.n;
     c.depth = -e.dist.d;
     c.feature_id = static_cast<uint32_t>(static_cast<int>(e.pair.kind) * 1000003 + e.pair.ia * 1009 + e.pair.ib * 2 + e.pair.swapped);
-    c.normal_value = kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, e.width));
+    c.normal_value = kappa_ * e.scale * e.mollifier.m * std::abs(BarrierFirstDerivative(d, e.width));
     contacts->push_back(c);
   }
 }

@@ -167,6 +167,7 @@ class BarrierSolver {
     bool apart = false;         // shifted, but apart (d > touch) at the step's start
     bool placed = false;        // a placed pair (the header's "Bodies placed touching")
     double width = 0.0;         // m, the barrier's activation distance: d_hat, or w when placed
+    double scale = 1.0;         // of kappa: d_hat / width, so a placed pair's forces are the barrier's
     double depth = 0.0;         // m, EvaluatePair's signed depth: to below the pair's zero
   };
   struct Shift {                // a pair's zero at the step's start, by KeyOf
@@ -280,7 +281,7 @@ class BarrierSolver {
 
   static constexpr double kFloor = 1e-2;  // of d_hat: pairs closer at the start are shifted; kappa grows below it
   static constexpr double kTouch = 1e-6;  // of d_hat: a shifted pair farther apart at the start was not touching
-  static constexpr double kPlacedWidth = 1e-2;  // of d_hat: a placed pair's activation width, and its zero below its start
+  static constexpr double kPlacedWidth = 2e-2;  // of d_hat: a placed pair's activation width, and its zero below its start
   static constexpr double kPlacedDepth = 2.0;   // of d_hat: the deepest overlap a placed pair is measured from
 
   BarrierParams params_;
