@@ -78,7 +78,7 @@ double SlidingDistance(const MethodConfig& config, double heading, double mass, 
   box.friction = mu;
   const BodyId id = AddValidBody(sim.world, box);
   // settle at rest first (penalty sinks to its weight's depth, barrier
-  // lifts to its barrier's), then launch
+  // into its placed pairs' width), then launch
   for (int i = 0; i < 48; ++i) sim.Step();
   RigidBody& b = *sim.world.Find(id);
   const Vec3 dir(std::cos(heading), std::sin(heading), 0.0);

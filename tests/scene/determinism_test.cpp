@@ -41,7 +41,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"xpbd", {}, 0x31af2e24fe8a6110ull},
       {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
       {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
-      {"barrier", {}, 0xc32a73df9f9d909aull},
+      {"barrier", {}, 0xa9d684da5b50ecf2ull},
       {"soft", {}, 0x77347c8ae889b434ull},
   };
   return pinned;

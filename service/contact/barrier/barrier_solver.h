@@ -85,28 +85,40 @@
 // (seen as deep as kPlacedDepth d_hat), when one of its bodies starts (its
 // first step under this method, after a switch or after a command changed
 // it: barrier_state.h) is therefore a placed pair, whose barrier is
-//   kappa b(d - z; w),  z = d_0 - w,  w = kPlacedWidth d_hat = floor:
+//   kappa (d_hat / w) b(d - z; w),  z = d_0 - w,  w = kPlacedWidth d_hat:
 // C-IPC's offset barrier (Li, Kaufman and Jiang 2021, sec. 3: the barrier
 // on d - xi) with the offset taken per pair so that the distance it was
-// placed at, d_0, is the barrier's activation distance. A placed pair so
-// starts with zero force and zero energy (nothing is pushed: a capsule
-// placed against a box's side stays, where a start inside the barrier set
-// it rolling), and under load it gives way by at most w, resting where
-// kappa |b'| carries its share (d - z ~ kappa w^2 / F; a 0.1 m cube on the
-// ground at 0.03 w). So a stack of n placed courses sinks by at most n w in
-// its first step (2.4 mm/s a course at 240 Hz) and stands. A placed pair
-// keeps its zero and width (barrier_state.h) while it is within d_hat at
-// the end of each step, and becomes an ordinary pair only beyond, where
-// both barriers are zero, so the change adds no energy; its zero never
-// moves down while kept (a restarted body's kept pair keeps its zero while
-// it is above it), so a placed pair never gets more than w deeper than it
-// was placed, as the shifted zero above; its CCD keeps only d - z above
-// ccd_fraction of its value (additive_ccd.h). Placed pairs do not grow
-// kappa: under load they rest near their zero by design. Pairs that come
-// within floor later keep the shifted zero above. Unsigned distances cannot
-// see an overlap deeper than the signed depths, so the guarantee assumes a
-// start overlapping by less than kPlacedDepth d_hat (planes and spheres
-// have signed distances and recover).
+// placed at, d_0, is the barrier's activation distance, and the barrier
+// scaled to w with its forces kept (kappa (d_hat / w) b'(x w; w) =
+// kappa b'(x d_hat; d_hat)). A placed pair so starts with zero force and
+// zero energy (nothing is pushed: a capsule placed against a box's side
+// stays, where a start inside the barrier set it rolling), and under load
+// it gives way by at most w, resting where a resting gap would rest in
+// d_hat, about halfway (a 0.1 m cube on the ground sinks 0.5 w). So a
+// stack of n placed courses sinks by less than n w in its first step and
+// stands. Kept at the barrier's own kappa, such a pair rested at 1% of w,
+// 10^4 times stiffer than a resting gap, and a cube launched from it at
+// 3 m/s tipped over on the lagged friction of its rocking (IPC sec. 5);
+// at the scaled kappa it is d_hat / w = 50 times stiffer, and such a cube
+// stops within 2% of v0^2 / (2 mu g) (10 kg with mu 0.8 along a face: 6%,
+// tests/contact/scenario_tolerances.h). A placed pair keeps its zero and
+// width (barrier_state.h) while it is within d_hat at the end of each
+// step, and becomes an ordinary pair only beyond, where both barriers are
+// zero, so the change adds no energy; its zero never moves down while
+// kept (a restarted body's kept pair keeps its zero while it is above it),
+// so a placed pair never gets more than w deeper than it was placed; its
+// CCD keeps only d - z above ccd_fraction of its value (additive_ccd.h).
+// Placed pairs do not grow kappa: under load they rest inside their width
+// by design. An unsigned distance of polyhedra that can turn signed (within
+// the signed depth, or anywhere between two bodies that start overlapping
+// by more than floor) measures no separation: such a pair's zero is taken
+// as if the same distance lay behind the face, z = -d_0 - w, so it pushes
+// nothing until it turns signed and deeper (with z = d_0 - w, such pairs
+// pushed the wrong way, or turned signed below their zero and stopped
+// every line search). Pairs that come within floor later keep the shifted
+// zero above. Unsigned distances cannot see an overlap deeper than the
+// signed depths, so the guarantee assumes a start overlapping by less than
+// kPlacedDepth d_hat (planes and spheres have signed distances and recover).
 #pragma once
 
 #include <algorithm>
