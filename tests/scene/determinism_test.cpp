@@ -41,8 +41,8 @@ const std::vector<Pinned>& PinnedRuns() {
       {"xpbd", {}, 0x160cf05a1361079dull},
       {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
       {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
-      {"barrier", {}, 0xc32a73df9f9d909aull},
-      {"soft", {}, 0xd1bb7878faaddec9ull},
+      {"barrier", {}, 0xa9d684da5b50ecf2ull},
+      {"soft", {}, 0x77347c8ae889b434ull},
   };
   return pinned;
 }

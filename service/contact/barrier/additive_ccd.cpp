@@ -44,9 +44,10 @@ double AdditiveCcd(const CcdPair& p, double fraction, double limit) {
   // a pair measured from a shifted zero (shift < 0) that is apart keeps its
   // true distance d0 + shift above the fraction of its value, not only the
   // shifted one: the shift lets d reach -floor, and only kappa's growth
-  // kept such pairs out of it
+  // kept such pairs out of it; a placed pair's zero is its own, a width
+  // below where it was placed, and it may come down to it
   const double apart = d0 + p.shift;
-  const double target = p.shift < 0.0 && apart > 0.0 ? fraction * apart - p.shift : fraction * d0;
+  const double target = !p.placed && p.shift < 0.0 && apart > 0.0 ? fraction * apart - p.shift : fraction * d0;
   if (p.pair.kind == PrimitiveKind::kPointPlane) {
     // against a static plane the signed distance is linear in alpha: exact
     const double approach = d0 - DistanceAt(p, 1.0);

@@ -28,6 +28,7 @@ struct CcdPair {
   PrimitivePair pair;
   double shift = 0.0; // m, subtracted from the distance (barrier_solver.h)
   double signed_depth = 0.0;  // m, EvaluatePair's
+  bool placed = false;  // a placed pair (barrier_solver.h): only its shifted distance counts
 };
 
 // l above: over the whole step no point of one primitive gets nearer to the
@@ -41,8 +42,8 @@ double RelativeMotionBound(const CcdPair& p);
 double SeparateMotionBound(const CcdPair& p);
 // The largest alpha in [0, limit] found safe: the distance minus shift stays
 // at or above fraction times its value at alpha = 0 (which must be > 0), and
-// for a shifted pair (shift < 0) whose distance is positive, the distance
-// itself stays above fraction times its value.
+// for a shifted pair (shift < 0) whose distance is positive, unless placed,
+// the distance itself stays above fraction times its value.
 // `limit` (at most 1) lets a caller that already has a smaller alpha from
 // another pair skip the search.
 double AdditiveCcd(const CcdPair& p, double fraction, double limit);

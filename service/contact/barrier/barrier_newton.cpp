@@ -63,7 +63,7 @@ int BarrierSolver::AssignSlots() {
 }
 
 void BarrierSolver::Assemble(const std::vector<Entry>& entries, NewtonSystem* system) const {
-  const double d_hat = params_.d_hat, h2 = h_ * h_, eps = params_.eps_v * h_;
+  const double h2 = h_ * h_, eps = params_.eps_v * h_;
   for (const Body& b : bodies_) {
     if (b.slot < 0) continue;
     Vec12 go;
@@ -74,17 +74,17 @@ void BarrierSolver::Assemble(const std::vector<Entry>& entries, NewtonSystem* sy
   }
   for (const Entry& e : entries) {
     const int sa = bodies_[e.a].slot, sb = bodies_[e.b].slot;
-    const double d = EffectiveDistance(e);
-    if (d >= d_hat || (sa < 0 && sb < 0)) continue;
+    const double d = EffectiveDistance(e), w = e.width;
+    if (d >= w || (sa < 0 && sb < 0)) continue;
     const Vec12 Ga = -AffineJacobianT(e.dist.Xa, e.dist.n);
     const Vec12 Gb = AffineJacobianT(e.dist.Xb, e.dist.n);
     // kappa m(x) b(d): the product rule adds kappa b grad m (edge-edge);
     // the Hessian keeps the PSD Gauss-Newton part kappa m b'' grad d grad d^T
-    const double m = e.mollifier.m;
-    AddTerm(system, sa, sb, Ga, Gb, Eigen::Matrix<double, 1, 1>(h2 * kappa_ * m * BarrierFirstDerivative(d, d_hat)),
-            Eigen::Matrix<double, 1, 1>(h2 * kappa_ * m * BarrierSecondDerivative(d, d_hat)));
+    const double m = e.mollifier.m, k = kappa_ * e.scale;
+    AddTerm(system, sa, sb, Ga, Gb, Eigen::Matrix<double, 1, 1>(h2 * k * m * BarrierFirstDerivative(d, w)),
+            Eigen::Matrix<double, 1, 1>(h2 * k * m * BarrierSecondDerivative(d, w)));
     if (m < 1.0) {
-      const double kb = h2 * kappa_ * Barrier(d, d_hat);
+      const double kb = h2 * k * Barrier(d, w);
       if (sa >= 0) system->Gradient(sa) += kb * e.mollifier.grad_a;
       if (sb >= 0) system->Gradient(sb) += kb * e.mollifier.grad_b;
     }
@@ -170,11 +170,11 @@ double BarrierSolver::IslandEnergy(const Island& island, const std::vector<Entry
     const Body& B = bodies_[e.b];
     const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
     const PairDistance d =
-        EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e.pair, SignedDepth());
-    const double b = Barrier(d.d - e.shift, params_.d_hat);
+        EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e.pair, e.depth);
+    const double b = Barrier(d.d - e.shift, e.width);
     if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
     if (b == 0.0) continue;
-    potential += kappa_ * MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e.pair).m * b;
+    potential += kappa_ * e.scale * MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e.pair).m * b;
   }
   const double eps = params_.eps_v * h_;
   for (int k : island.friction) {
@@ -242,9 +242,12 @@ bool BarrierSolver::AdvanceIslands(const std::vector<Vec12>& step, bool converge
   // (a shifted pair that was apart at the step's start by its true
   // distance d: in shifted terms it never gets below the floor, and one
   // that ended a sphere_pile step 3 um apart sank to d = -9.8 um in the
-  // next; pairs placed touching keep d - shift, or every flush pair of the
-  // pyramid doubled kappa, 100 Newton iterations a step)
-  for (const Entry& e : *entries) min_d = std::min(min_d, e.apart ? e.dist.d : EffectiveDistance(e));
+  // next; placed pairs do not count: their zero lies a width below where
+  // they were placed, and under load they rest near it by design,
+  // barrier_solver.h)
+  for (const Entry& e : *entries) {
+    if (!e.placed) min_d = std::min(min_d, e.apart ? e.dist.d : EffectiveDistance(e));
+  }
   const double kappa_before = kappa_;
   if (min_d < kFloor * params_.d_hat && min_d < *last_min) kappa_ = std::min(kappa_max_, 2.0 * kappa_);
   *last_min = min_d;

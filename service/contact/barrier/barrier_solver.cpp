@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "service/contact/barrier/additive_ccd.h"
 #include "service/contact/barrier/affine_prediction.h"
@@ -96,16 +97,27 @@ void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* 
     e.a = c.a;
     e.b = c.b;
     e.pair = c.pair;
+    e.width = d_hat;
+    e.depth = SignedDepth();
     if (!shift_.empty()) {
       const auto it = shift_.find(KeyOf(e.a, e.b, e.pair));
-      if (it != shift_.end()) e.shift = it->second.first, e.apart = it->second.second;
+      if (it != shift_.end()) {
+        e.shift = it->second.shift;
+        e.apart = it->second.apart;
+        if (it->second.placed) {
+          e.placed = true;
+          e.width = kPlacedWidth * d_hat;
+          e.scale = 1.0 / kPlacedWidth;
+          e.depth = std::max(SignedDepth(), kFloor * d_hat - e.shift);
+        }
+      }
     }
     Evaluate(&e);
     // along a step: those that can come within d_hat by the pair's motion
     // bound, with each side at any fraction of its step (the islands'
     // line searches take different alphas: barrier_newton.cpp)
     const double reach = step != nullptr ? SeparateMotionBound(CcdPairOf(e, *step)) : 0.0;
-    if (EffectiveDistance(e) - reach < d_hat) out->push_back(e);
+    if (SearchDistance(e) - reach < d_hat) out->push_back(e);
   }
 }
 
@@ -121,7 +133,8 @@ CcdPair BarrierSolver::CcdPairOf(const Entry& e, const std::vector<Vec12>& step)
   p.dqb = B.active ? step[B.dof] : Vec12::Zero();
   p.pair = e.pair;
   p.shift = e.shift;
-  p.signed_depth = SignedDepth();
+  p.signed_depth = e.depth;
+  p.placed = e.placed;
   return p;
 }
 
@@ -129,7 +142,7 @@ void BarrierSolver::Evaluate(Entry* e) const {
   const Body& A = bodies_[e->a];
   const Body& B = bodies_[e->b];
   const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
-  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair, SignedDepth());
+  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair, e->depth);
   e->mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e->pair);
 }
 
@@ -137,7 +150,7 @@ void BarrierSolver::Refresh(const std::vector<Entry>& line, std::vector<Entry>* 
   out->clear();
   for (Entry e : line) {
     Evaluate(&e);
-    if (EffectiveDistance(e) < params_.d_hat) out->push_back(e);
+    if (SearchDistance(e) < params_.d_hat) out->push_back(e);
   }
 }
 
@@ -147,7 +160,7 @@ void BarrierSolver::Lag(const std::vector<Entry>& entries) {
   friction_.clear();
   for (const Entry& e : entries) {
     const double d = EffectiveDistance(e);
-    if (d >= params_.d_hat) continue;
+    if (d >= e.width) continue;
     const double mu = CombineFriction(bodies_[e.a].material, bodies_[e.b].material);
     if (mu <= 0.0) continue;
     Friction f;
@@ -166,7 +179,7 @@ void BarrierSolver::Lag(const std::vector<Entry>& entries) {
     if (A.geometry.radius > 0.0) f.Xa += A.geometry.radius * (AffineMatrix(A.q).inverse() * e.dist.n);
     if (B.geometry.radius > 0.0) f.Xb -= B.geometry.radius * (AffineMatrix(B.q).inverse() * e.dist.n);
     f.T = TangentBasis(e.dist.n);
-    f.mu_lambda = mu * kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, params_.d_hat));
+    f.mu_lambda = mu * kappa_ * e.scale * e.mollifier.m * std::abs(BarrierFirstDerivative(d, e.width));
     if (f.mu_lambda <= 0.0) continue;
     friction_.push_back(f);
   }
@@ -194,6 +207,13 @@ void BarrierSolver::Remember(const World& world, const std::vector<Entry>& entri
     s.Stamp(rigid[b.index]);
   }
   state_.bodies = std::move(kept);
+  // the placed pairs still within d_hat stay placed
+  state_.placed.clear();
+  for (const Entry& e : entries) {
+    if (!e.placed || e.dist.d >= params_.d_hat) continue;
+    state_.placed.push_back({rigid[bodies_[e.a].index].id, rigid[bodies_[e.b].index].id, static_cast<int>(e.pair.kind),
+                             e.pair.ia, e.pair.ib, e.pair.swapped, e.shift});
+  }
   Lag(entries);
   state_.friction.clear();
   for (const Friction& f : friction_) {
@@ -223,7 +243,7 @@ void BarrierSolver::InitialKappa(const World& world, const std::vector<Entry>& e
     gE.segment<12>(12 * b.dof) = b.mass.Times(b.q - b.q_pred) + h2 * go;
   }
   for (const Entry& e : entries) {
-    const double db = h2 * e.mollifier.m * BarrierFirstDerivative(EffectiveDistance(e), d_hat);
+    const double db = h2 * e.scale * e.mollifier.m * BarrierFirstDerivative(EffectiveDistance(e), e.width);
     if (bodies_[e.a].dof >= 0) gB.segment<12>(12 * bodies_[e.a].dof) -= db * AffineJacobianT(e.dist.Xa, e.dist.n);
     if (bodies_[e.b].dof >= 0) gB.segment<12>(12 * bodies_[e.b].dof) += db * AffineJacobianT(e.dist.Xb, e.dist.n);
   }
@@ -253,7 +273,7 @@ void BarrierSolver::WriteBack(World& world, const std::vector<Entry>& entries, C
   result->min_distance = d_hat;
   for (const Entry& e : entries) {
     const double d = EffectiveDistance(e);
-    if (d >= d_hat) continue;
+    if (d >= e.width) continue;
     result->min_distance = std::min(result->min_distance, e.dist.d);
     const Body& A = bodies_[e.a];
     const Body& B = bodies_[e.b];
@@ -267,8 +287,60 @@ void BarrierSolver::WriteBack(World& world, const std::vector<Entry>& entries, C
     c.normal = e.dist.n;
     c.depth = -e.dist.d;
     c.feature_id = static_cast<uint32_t>(static_cast<int>(e.pair.kind) * 1000003 + e.pair.ia * 1009 + e.pair.ib * 2 + e.pair.swapped);
-    c.normal_value = kappa_ * e.mollifier.m * std::abs(BarrierFirstDerivative(d, d_hat));
+    c.normal_value = kappa_ * e.scale * e.mollifier.m * std::abs(BarrierFirstDerivative(d, e.width));
     contacts->push_back(c);
+  }
+}
+
+void BarrierSolver::TakeShifts(const World& world) {
+  const double d_hat = params_.d_hat, floor = kFloor * d_hat;
+  shift_.clear();
+  // the placed pairs kept from the last step, for bodies still present
+  std::map<BodyId, int> index;
+  for (size_t i = 0; i < bodies_.size(); ++i) index[world.bodies()[bodies_[i].index].id] = static_cast<int>(i);
+  for (const PlacedPair& p : state_.placed) {
+    const auto a = index.find(p.a), b = index.find(p.b);
+    if (a == index.end() || b == index.end()) continue;
+    const PrimitivePair pair{static_cast<PrimitiveKind>(p.kind), p.ia, p.ib, p.swapped};
+    shift_[KeyOf(a->second, b->second, pair)] = {p.zero, false, true};
+  }
+  std::vector<Entry> entries;
+  Collect(nullptr, &entries);
+  // the pairs of bodies that start, measured as deep as a placement can
+  // overlap, and the body pairs that overlap (a pair deeper than floor)
+  std::set<std::pair<int, int>> overlapping;
+  for (Entry& e : entries) {
+    if (!bodies_[e.a].restarted && !bodies_[e.b].restarted) continue;
+    e.depth = kPlacedDepth * d_hat;
+    Evaluate(&e);
+    if (e.dist.d < -floor) overlapping.insert({e.a, e.b});
+  }
+  for (const Entry& e : entries) {
+    const bool starts = bodies_[e.a].restarted || bodies_[e.b].restarted;
+    // a kept zero stays, unless a body that starts again is at or below it
+    if (e.placed && (!starts || e.dist.d - e.shift > 0.0)) continue;
+    if (starts) {
+      const Key key = KeyOf(e.a, e.b, e.pair);
+      const bool polyhedral = bodies_[e.a].geometry.radius == 0.0 && bodies_[e.b].geometry.radius == 0.0;
+      if (!e.dist.is_signed && polyhedral && (e.dist.d < SignedDepth() || overlapping.count({e.a, e.b}) > 0)) {
+        // an unsigned distance inside an overlap, or one that can turn
+        // signed (EvaluatePair, at its triangle's or edge's border, within
+        // the signed depth), is no separation: its zero is where the same
+        // distance behind a face would be, so the pair exerts nothing until
+        // it turns signed and deeper
+        shift_[key] = {-e.dist.d - kPlacedWidth * d_hat, false, true};
+      } else if (e.dist.d < floor) {
+        shift_[key] = {e.dist.d - kPlacedWidth * d_hat, false, true};
+      } else {
+        shift_.erase(key);
+      }
+      continue;
+    }
+    // (one zero, -floor, for every pair not deeper: a pair pressed below
+    // d = 0 in one step does not get a lower zero in the next)
+    if (e.dist.d < floor) {
+      shift_[KeyOf(e.a, e.b, e.pair)] = {e.dist.d < -floor ? e.dist.d - floor : -floor, e.dist.d > kTouch * d_hat, false};
+    }
   }
 }
 
@@ -277,18 +349,8 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   if (world.bodies().size() != bodies_.size()) search_.Reset();
   Setup(world, params);
 
-  // pairs that start closer than the floor get a shifted zero
-  shift_.clear();
+  TakeShifts(world);
   std::vector<Entry> entries;
-  Collect(nullptr, &entries);
-  for (const Entry& e : entries) {
-    // (one zero, -floor, for every pair not deeper: a pair pressed below
-    // d = 0 in one step does not get a lower zero in the next)
-    const double floor = kFloor * params_.d_hat;
-    if (e.dist.d < floor) {
-      shift_[KeyOf(e.a, e.b, e.pair)] = {e.dist.d < -floor ? e.dist.d - floor : -floor, e.dist.d > kTouch * params_.d_hat};
-    }
-  }
   Collect(nullptr, &entries);
   InitialKappa(world, entries);
 

@@ -63,20 +63,65 @@
 // approach along n (a box sliding at 3 m/s, 12 mm a step, 0.5 mm above the
 // ground, would otherwise take small fractions of each Newton step).
 //
-// Pairs that start a step closer than floor = 1e-2 d_hat (bodies placed
-// exactly touching, as the pyramid's, or pressed together) are measured
-// from a shifted zero, d' = d + floor, so the barrier pushes them apart
-// instead of being infinite. The zero is the same -floor in every step, so
-// a pair pressed below d = 0 gets no lower zero in the next step (a zero at
-// d_0 - floor, re-taken every step, let the pyramid sink 0.69 mm in 120
-// steps); near d = 0 point-triangle and crossing edge-edge distances are
-// signed (contact_primitives.h), so d' > 0 means d > -floor. Pairs that
-// start deeper than -floor (bodies overlapping) get d' = floor at their
-// start; unsigned distances cannot see a deep overlap of two polyhedra, so
-// the guarantee assumes an intersection-free start (planes and spheres have
-// signed distances and recover).
+// Pairs that start a step closer than floor = 1e-2 d_hat (pressed
+// together) are measured from a shifted zero, d' = d + floor, so the
+// barrier pushes them apart instead of being infinite. The zero is the same
+// -floor in every step, so a pair pressed below d = 0 gets no lower zero in
+// the next step (a zero at d_0 - floor, re-taken every step, let the pyramid
+// sink 0.69 mm in 120 steps); near d = 0 point-triangle and crossing
+// edge-edge distances are signed (contact_primitives.h), so d' > 0 means
+// d > -floor. Pairs that start deeper than -floor get d' = floor at their
+// start.
+//
+// Bodies placed touching. IPC needs an intersection-free start with
+// positive distances (Li et al. 2020, sec. 3). Bodies placed exactly
+// touching or overlapping by round-off (a wall laid course on course, a
+// stack, a pile; or a world switched from a method that rests bodies
+// touching or slightly inside each other) would start at the shifted zero
+// above, where kappa |b'(floor)| is ~100 times a pair's share of the weight
+// at d_hat / 2: each pair was pushed out to the barrier's rest gap and
+// beyond (a placed wall rose 1.5 mm and threw the half brick at the end of
+// its top course 87 mm). A primitive pair closer than floor, or overlapping
+// (seen as deep as kPlacedDepth d_hat), when one of its bodies starts (its
+// first step under this method, after a switch or after a command changed
+// it: barrier_state.h) is therefore a placed pair, whose barrier is
+//   kappa (d_hat / w) b(d - z; w),  z = d_0 - w,  w = kPlacedWidth d_hat:
+// C-IPC's offset barrier (Li, Kaufman and Jiang 2021, sec. 3: the barrier
+// on d - xi) with the offset taken per pair so that the distance it was
+// placed at, d_0, is the barrier's activation distance, and the barrier
+// scaled to w with its forces kept (kappa (d_hat / w) b'(x w; w) =
+// kappa b'(x d_hat; d_hat)). A placed pair so starts with zero force and
+// zero energy (nothing is pushed: a capsule placed against a box's side
+// stays, where a start inside the barrier set it rolling), and under load
+// it gives way by at most w, resting where a resting gap would rest in
+// d_hat, about halfway (a 0.1 m cube on the ground sinks 0.5 w). So a
+// stack of n placed courses sinks by less than n w in its first step and
+// stands. Kept at the barrier's own kappa, such a pair rested at 1% of w,
+// 10^4 times stiffer than a resting gap, and a cube launched from it at
+// 3 m/s tipped over on the lagged friction of its rocking (IPC sec. 5);
+// at the scaled kappa it is d_hat / w = 50 times stiffer, and such a cube
+// stops within 2% of v0^2 / (2 mu g) (10 kg with mu 0.8 along a face: 6%,
+// tests/contact/scenario_tolerances.h). A placed pair keeps its zero and
+// width (barrier_state.h) while it is within d_hat at the end of each
+// step, and becomes an ordinary pair only beyond, where both barriers are
+// zero, so the change adds no energy; its zero never moves down while
+// kept (a restarted body's kept pair keeps its zero while it is above it),
+// so a placed pair never gets more than w deeper than it was placed; its
+// CCD keeps only d - z above ccd_fraction of its value (additive_ccd.h).
+// Placed pairs do not grow kappa: under load they rest inside their width
+// by design. An unsigned distance of polyhedra that can turn signed (within
+// the signed depth, or anywhere between two bodies that start overlapping
+// by more than floor) measures no separation: such a pair's zero is taken
+// as if the same distance lay behind the face, z = -d_0 - w, so it pushes
+// nothing until it turns signed and deeper (with z = d_0 - w, such pairs
+// pushed the wrong way, or turned signed below their zero and stopped
+// every line search). Pairs that come within floor later keep the shifted
+// zero above. Unsigned distances cannot see an overlap deeper than the
+// signed depths, so the guarantee assumes a start overlapping by less than
+// kPlacedDepth d_hat (planes and spheres have signed distances and recover).
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -132,6 +177,15 @@ class BarrierSolver {
     EdgeMollifier mollifier;    // edge-edge pairs: IPC's factor for nearly parallel edges
     double shift = 0.0;         // m, subtracted from dist.d
     bool apart = false;         // shifted, but apart (d > touch) at the step's start
+    bool placed = false;        // a placed pair (the header's "Bodies placed touching")
+    double width = 0.0;         // m, the barrier's activation distance: d_hat, or w when placed
+    double scale = 1.0;         // of kappa: d_hat / width, so a placed pair's forces are the barrier's
+    double depth = 0.0;         // m, EvaluatePair's signed depth: to below the pair's zero
+  };
+  struct Shift {                // a pair's zero at the step's start, by KeyOf
+    double shift = 0.0;         // m
+    bool apart = false;
+    bool placed = false;
   };
   struct Friction {             // lagged at the step's start
     int a = -1, b = -1;
@@ -149,6 +203,10 @@ class BarrierSolver {
   };
 
   void Setup(World& world, const BarrierParams& params);
+  // The shifted zeros of the step: the placed pairs kept from the last
+  // step, the new placed pairs of the bodies that start, and the pairs
+  // closer than the floor (the header's derivation).
+  void TakeShifts(const World& world);
   // Primitive pairs with d - shift < d_hat at the bodies' q, of the pairs
   // with an active body; with `step`, every such pair that can come within
   // d_hat on the way to q + step (pair_search.h), evaluated at q.
@@ -224,12 +282,19 @@ class BarrierSolver {
   // Stores the bodies' affine state and the end-of-step friction lag.
   void Remember(const World& world, const std::vector<Entry>& entries);
   double EffectiveDistance(const Entry& e) const { return e.dist.d - e.shift; }
+  // m, the distance that keeps an entry among the candidates (< d_hat): a
+  // placed pair's true one counts too, so it stays placed while within d_hat
+  double SearchDistance(const Entry& e) const {
+    return e.placed ? std::min(e.dist.d, EffectiveDistance(e)) : EffectiveDistance(e);
+  }
   // m, how far behind a face a point still counts as inside (EvaluatePair):
   // past the lowest shifted zero, -floor
   double SignedDepth() const;
 
   static constexpr double kFloor = 1e-2;  // of d_hat: pairs closer at the start are shifted; kappa grows below it
   static constexpr double kTouch = 1e-6;  // of d_hat: a shifted pair farther apart at the start was not touching
+  static constexpr double kPlacedWidth = 2e-2;  // of d_hat: a placed pair's activation width, and its zero below its start
+  static constexpr double kPlacedDepth = 2.0;   // of d_hat: the deepest overlap a placed pair is measured from
 
   BarrierParams params_;
   double h_ = 0.0;
@@ -237,8 +302,7 @@ class BarrierSolver {
   double kappa_max_ = 0.0;
   std::vector<Body> bodies_;
   // shifts of the pairs that started too close, by (a, b, kind, ia, ib, swapped)
-  // (and whether the pair was apart, d > touch, then)
-  std::map<std::tuple<int, int, int, int, int, bool>, std::pair<double, bool>> shift_;
+  std::map<std::tuple<int, int, int, int, int, bool>, Shift> shift_;
   std::vector<Friction> friction_;
   int dofs_ = 0;
   NewtonSystem system_;

@@ -54,6 +54,16 @@ std::string BarrierState::Save() const {
     PutMatrix(out, f.T);
     out.Put(f.mu_lambda);
   }
+  out.Put(static_cast<uint64_t>(placed.size()));
+  for (const PlacedPair& p : placed) {
+    out.Put(p.a);
+    out.Put(p.b);
+    out.Put(static_cast<int32_t>(p.kind));
+    out.Put(static_cast<int32_t>(p.ia));
+    out.Put(static_cast<int32_t>(p.ib));
+    out.Put(static_cast<uint8_t>(p.swapped));
+    out.Put(p.zero);
+  }
   return out.bytes();
 }
 
@@ -79,6 +89,18 @@ bool BarrierState::Restore(const std::string& bytes) {
     ok = in.Get(&f.a) && in.Get(&f.b) && GetMatrix(in, &f.Xa) && GetMatrix(in, &f.Xb) && GetMatrix(in, &f.T) &&
          in.Get(&f.mu_lambda);
     loaded.friction.push_back(f);
+  }
+  // (older bytes end here)
+  n = 0;
+  ok = ok && (in.done() || in.Get(&n));
+  for (uint64_t i = 0; ok && i < n; ++i) {
+    PlacedPair p;
+    int32_t kind = 0, ia = 0, ib = 0;
+    uint8_t swapped = 0;
+    ok = in.Get(&p.a) && in.Get(&p.b) && in.Get(&kind) && in.Get(&ia) && in.Get(&ib) && in.Get(&swapped) &&
+         in.Get(&p.zero);
+    p.kind = kind, p.ia = ia, p.ib = ib, p.swapped = swapped != 0;
+    loaded.placed.push_back(p);
   }
   if (!ok || !in.done()) return false;
   *this = std::move(loaded);

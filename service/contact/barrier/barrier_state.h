@@ -12,7 +12,11 @@
 //  * the lagged friction of Li et al. 2020 (IPC sec. 5): per contact pair at
 //    the end of the previous step, the closest points in the two bodies'
 //    frames, the tangent basis and mu lambda with lambda the barrier force
-//    kappa |b'(d)| the pair carried then.
+//    kappa |b'(d)| the pair carried then;
+//  * the placed pairs (barrier_solver.h, "Bodies placed touching"): per
+//    primitive pair that was touching or overlapping when one of its bodies
+//    (re)started, the zero its barrier is measured from, kept while the
+//    pair stays within d_hat.
 // Bodies are keyed by BodyId (std::map: iteration in id order, so the saved
 // bytes are deterministic).
 #pragma once
@@ -47,16 +51,26 @@ struct LaggedFriction {
   double mu_lambda = 0.0;                      // N
 };
 
+struct PlacedPair {
+  BodyId a = 0, b = 0;
+  int kind = 0, ia = 0, ib = 0;   // PrimitivePair (contact_primitives.h)
+  bool swapped = false;
+  double zero = 0.0;              // m, the distance its barrier is measured from
+};
+
 struct BarrierState {
   std::map<BodyId, AffineBodyState> bodies;
   std::vector<LaggedFriction> friction;
+  std::vector<PlacedPair> placed;
 
   void Clear() {
     bodies.clear();
     friction.clear();
+    placed.clear();
   }
   std::string Save() const;
-  // false (and *this unchanged) on truncated or trailing bytes
+  // false (and *this unchanged) on truncated or trailing bytes; bytes
+  // saved before placed pairs existed end after the friction and hold none
   bool Restore(const std::string& bytes);
 };
 

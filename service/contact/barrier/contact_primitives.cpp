@@ -161,6 +161,7 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
       out.n = swapped ? -n12 : n12;
       out.Xa = swapped ? X2 : X1;
       out.Xb = swapped ? X1 : X2;
+      out.is_signed = true;
       return out;
     }
     case PrimitiveKind::kPointTriangle: {
@@ -177,7 +178,9 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
       const Vec3 n_out = (v1 - v0).cross(v2 - v0).normalized();
       const double s = n_out.dot(c1 - v0);
       if (s >= -signed_depth && (c1 - s * n_out - c2).squaredNorm() <= 1e-24 + 1e-20 * (c1 - c2).squaredNorm()) {
-        return Finish(s - g1.radius - g2.radius, -n_out, X1, X2, swapped);
+        PairDistance signed_out = Finish(s - g1.radius - g2.radius, -n_out, X1, X2, swapped);
+        signed_out.is_signed = true;
+        return signed_out;
       }
       break;
     }
@@ -199,7 +202,11 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
         Vec3 n = cross.normalized();
         if (n.dot(p2 - p1) < 0.0) n = -n;
         const double s = n.dot(c2 - c1);
-        if (s >= -signed_depth) return Finish(s - g1.radius - g2.radius, n, X1, X2, false);
+        if (s >= -signed_depth) {
+          PairDistance signed_out = Finish(s - g1.radius - g2.radius, n, X1, X2, false);
+          signed_out.is_signed = true;
+          return signed_out;
+        }
       }
       break;
     }

@@ -71,6 +71,7 @@ struct PairDistance {
   double d = 0.0;         // m, distance minus radii
   Vec3 Xa, Xb;            // body-frame coordinates of the closest points
   Vec3 n = Vec3::UnitZ(); // unit, world, from a's closest point to b's
+  bool is_signed = false; // by a side (plane, face, crossing edges), not |c_b - c_a|
 };
 PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa, const BodyGeometry& b,
                           const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair, double signed_depth = 0.0);
