@@ -18,6 +18,8 @@ namespace {
 
 // bodies a thread takes at a time
 constexpr int kBodyGrain = 128;
+// Newton iterations of a sub-step's joint projection (xpbd_method.h, 2b)
+constexpr int kProjectionIterations = 1;
 
 }  // namespace
 
@@ -71,7 +73,9 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     }
     solve_blocks(i, j);
   };
-  const Fn project = [&](int, int) { ProjectJointPositions(world); };
+  JointSolveOptions projection;
+  projection.max_projection_iterations = kProjectionIterations;
+  const Fn project = [&](int, int) { ProjectJointPositions(world, projection); };
   const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
   const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
   const Fn velocity_pass = [&](int i, int j) {
