@@ -26,13 +26,15 @@ Impact PredictImpact(double depth, double vn_before, double vn_free, double rest
   if (vn_before >= -options.restitution_threshold) return impact;
   const double a = (vn_free - vn_before) / h;  // relative normal acceleration
   const double disc = vn_before * vn_before + 2.0 * a * depth;
+  // a bouncy pair short of the surface at the step's end: no bounce yet
+  const bool short_of_surface = depth < 0.0 && restitution > 0.0;
   if (disc <= 0.0) {  // no approach reaches the surface
-    impact.misses = depth < 0.0;
+    impact.misses = short_of_surface;
     return impact;
   }
   const double vc = -std::sqrt(disc);
   const double t = 2.0 * depth / (vn_before + vc);  // g(t) = 0; < 0: in the past
-  impact.misses = depth < 0.0 && t > h;  // the gap is still open at the step's end
+  impact.misses = short_of_surface && t > h;
   if (t < -h || t > h) return impact;  // not explained by one step
   const double s = h - t;
   const double e = restitution;
