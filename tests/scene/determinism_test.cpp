@@ -38,7 +38,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0xaca91ecc4d28d48full},
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
-      {"xpbd", {}, 0x31af2e24fe8a6110ull},
+      {"xpbd", {}, 0xec1050e2a21f57ebull},
       {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
       {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
       {"barrier", {}, 0xc32a73df9f9d909aull},
