@@ -39,8 +39,8 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
       {"xpbd", {}, 0xec1050e2a21f57ebull},
-      {"lcp", {{"solver", "pgs"}}, 0x8d50c365e9d10584ull},
-      {"lcp", {{"solver", "lemke"}}, 0xe21bff19fb623b25ull},
+      {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
+      {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
       {"barrier", {}, 0xc32a73df9f9d909aull},
       {"soft", {}, 0x77347c8ae889b434ull},
   };

@@ -13,10 +13,7 @@ namespace contactsim {
 struct LcpParams {
   std::string solver = "pgs";
   int iterations = 20;
-  // m/s: a resting body keeps up to this speed, the velocity change pgs
-  // leaves when it stops (a tetrahedron on a face rocked at 1.1-1.3e-6 m/s
-  // with 1e-6; 1.4e-7 m/s now, for 4.5% more sweeps on the box pyramid)
-  double tolerance = 1e-7;
+  double tolerance = 1e-6;               // m/s
   bool warm_start = true;
   int max_pivots = 0;
   int max_lemke_rows = 600;

