@@ -29,9 +29,9 @@
 //        about 1 - pi^2 / n^2 and across a mass ratio by about
 //        1 - m_light / m_heavy, and one sweep a sub-step left a swinging
 //        30-link chain open by 3.8 mm and gaining energy (docs/physics.md,
-//        "Long chains"); the normal rows of contact components of mass
-//        ratio direct_mass_ratio or more are solved together
-//        (xpbd_ratio_solve.h);
+//        "Long chains and resting convex hulls"); the normal rows of
+//        contact components of mass ratio direct_mass_ratio or more are
+//        solved together (xpbd_ratio_solve.h);
 //     c. velocities from the poses (Algorithm 2): v += (x - x~) / h and
 //        w += 2 vec(q q~^-1) / h, x~ and q~ the predicted pose;
 //     d. velocity pass: restitution and dynamic friction.
