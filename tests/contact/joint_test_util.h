@@ -111,23 +111,42 @@ inline EnergyRecord RunDoublePendulum(JointSim& sim, const Vec3& pivot, double s
   return out;
 }
 
-// A chain of n capsules (radius r, half length hl) hanging straight down from
-// a ball joint to the world at `top`, each joined to the next by a ball joint
-// at their touching cap tips. Returns the link ids, top first.
-inline std::vector<BodyId> AddHangingChain(World& world, int n, const Vec3& top, double r, double hl) {
+// A chain of n capsules (radius r, half length hl) laid out from `top`
+// along the unit direction `along`, the first joined to the world by a ball
+// joint at `top`, each joined to the next by a ball joint at their touching
+// cap tips. Returns the link ids, top first.
+inline std::vector<BodyId> AddChain(World& world, int n, const Vec3& top, const Vec3& along, double r, double hl) {
   std::vector<BodyId> links;
   const double pitch = 2.0 * (hl + r);  // tip to tip
+  const Quat turn = Quat::FromTwoVectors(Vec3(0, 0, -1), along);  // the capsule's axis is its z
   for (int i = 0; i < n; ++i) {
     BodySettings s;
     s.shape = ShapeType::kCapsule;
     s.radius = r;
     s.half_length = hl;
-    s.position = top - Vec3(0, 0, (i + 0.5) * pitch);
+    s.position = top + (i + 0.5) * pitch * along;
+    s.orientation = Eigen::Vector4d(turn.w(), turn.x(), turn.y(), turn.z());
     links.push_back(AddValidBody(world, s));
     const BodyId above = i == 0 ? kWorldBody : links[i - 1];
-    AddJoint(world, JointKind::kBall, links[i], above, top - Vec3(0, 0, i * pitch));
+    AddJoint(world, JointKind::kBall, links[i], above, top + i * pitch * along);
   }
   return links;
+}
+
+// The chain of AddChain hanging straight down.
+inline std::vector<BodyId> AddHangingChain(World& world, int n, const Vec3& top, double r, double hl) {
+  return AddChain(world, n, top, Vec3(0, 0, -1), r, hl);
+}
+
+// Largest separation (m) of a joint's two anchors over the world's joints.
+inline double MaxAnchorSeparation(const World& world) {
+  double worst = 0.0;
+  for (const Joint& j : world.joints()) {
+    const RigidBody* a = world.Find(j.body_a);
+    const RigidBody* b = j.body_b == kWorldBody ? nullptr : world.Find(j.body_b);
+    worst = std::max(worst, (AnchorWorld(j.anchor_a, a) - AnchorWorld(j.anchor_b, b)).norm());
+  }
+  return worst;
 }
 
 }  // namespace testing

@@ -339,17 +339,6 @@ using ChainParam = std::tuple<std::string, bool, int>;  // method, heavy end, ra
 
 class MassRatioChainTest : public ::testing::TestWithParam<ChainParam> {};
 
-// Largest separation (m) of a ball joint's two anchors.
-double JointError(const World& world) {
-  double worst = 0.0;
-  for (const Joint& j : world.joints()) {
-    const RigidBody* a = world.Find(j.body_a);
-    const RigidBody* b = j.body_b == kWorldBody ? nullptr : world.Find(j.body_b);
-    worst = std::max(worst, (AnchorWorld(j.anchor_a, a) - AnchorWorld(j.anchor_b, b)).norm());
-  }
-  return worst;
-}
-
 // Verifies that a chain of four light capsules (0.02 kg each) hanging from
 // the world holds a box `ratio` times heavier at its end (heavy on light),
 // or that four heavy links hold a light box (light on heavy): anchors
@@ -386,7 +375,7 @@ TEST_P(MassRatioChainTest, ChainHoldsItsEnd) {
   const int steps = static_cast<int>(kSeconds / sim.world.dt);
   for (int i = 0; i < steps; ++i) {
     sim.Step();
-    worst = std::max(worst, JointError(sim.world));
+    worst = std::max(worst, testing::MaxAnchorSeparation(sim.world));
   }
   std::printf("%-8s chain %s 1:%-4d joint error %.3g mm\n", method.c_str(), heavy_end ? "heavy-end" : "light-end",
               ratio, 1e3 * worst);

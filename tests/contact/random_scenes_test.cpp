@@ -30,13 +30,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <vector>
 
 #include "service/collision/aabb.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/method_configs.h"
 #include "tests/contact/method_sim.h"
+#include "tests/contact/seeded_draw.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
@@ -44,6 +44,7 @@ namespace {
 
 using testing::MethodConfig;
 using Sim = testing::MethodSim;
+using testing::Draw;
 
 constexpr int kScenes = 3;         // without RANDOM_SCENES (the sanitizer suite)
 constexpr int kSteps = 240;         // 1 s at the default 1/240 s
@@ -55,26 +56,6 @@ constexpr double kG = 9.81;         // m/s^2, World::DefaultGravity
 // The body's lowest point: its bounding box's floor, which is the support
 // along -z for every shape.
 double LowestPoint(const RigidBody& b) { return ComputeAabb(b, 0.0, 0.0).min.z(); }
-
-// Random numbers from mt19937's raw output, which the standard fixes, each
-// drawn in its own statement: the standard distributions are each
-// library's own and the order of a call's arguments is each compiler's, so
-// with them g++ and clang built different scenes from one seed.
-class Draw {
- public:
-  explicit Draw(unsigned seed) : rng_(seed) {}
-  double Uniform(double lo, double hi) { return lo + (hi - lo) * (static_cast<double>(rng_()) / 4294967296.0); }
-  int Index(int n) { return static_cast<int>(rng_() % static_cast<unsigned>(n)); }
-  Vec3 Vector(double lo, double hi) {
-    const double x = Uniform(lo, hi);
-    const double y = Uniform(lo, hi);
-    const double z = Uniform(lo, hi);
-    return Vec3(x, y, z);
-  }
-
- private:
-  std::mt19937 rng_;
-};
 
 // A random shape no larger than kMaxSize across any half axis; `cube` forces
 // an axis-aligned cube (for the exactly aligned stacks). Returns its half

@@ -135,6 +135,24 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "overlap within a step and the velocity it derives carries it on (max_push_velocity 4 m/s)"},
     {"xpbd", "* from penalty speed", "3.3 / 6.7 cm/s (wall / stack): penalty's 40-48 um overlaps pushed out the same way"},
     {"soft", "* overlap=0.5mm speed", "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
+    // long chains (joint_chain_scenarios_test.cpp): a 100-link chain whose
+    // masses grow tenfold to its free end gains energy under lcp at the
+    // default step and none at dt / 2, the step-length effect that
+    // joint_substeps.h sub-steps at mass ratios of joint_substep_ratio (100)
+    {"lcp_pgs", "100 links growing from * deg energy rise",
+     "rises 2.8% of the swing's energy from 45 deg within 1 s (impulse 1.2%); 0 at dt / 2"},
+    {"lcp_lemke", "100 links growing from * deg energy rise",
+     "rises 3.0% of the swing's energy from the horizontal within 1 s; 0 under pgs at dt / 2"},
+    // random convex hulls dropped on their most stable face
+    // (resting_hull_scenarios_test.cpp), not traced further
+    {"soft", "hull of * speed",
+     "rocks on 11 of the 15 hulls at 1.9e-4 to 1.1e-3 m/s after 2.5 s, the face tilted 4-14e-5 rad"},
+    {"lcp_pgs", "hull of 4 points * speed",
+     "rocks at 1.1-1.3e-6 m/s on two tetrahedra: PGS stops at its tolerance (1e-6 m/s) of row-velocity change, "
+     "which a resting body keeps; tolerance=1e-7 gives 1.4e-7 m/s"},
+    {"penalty", "hull of 5 points seed 1 * speed", "keeps moving at 0.011 m/s on this hull at either e and drop"},
+    {"penalty", "hull of 30 points seed 3 e=0.5 drop 0.1 m tilt",
+     "tips onto another face (1.1 rad) after landing flat from 10 cm with e = 0.5"},
 };
 
 // The name of a case as kKnownMisses lists it: the scenario and its

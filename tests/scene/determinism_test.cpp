@@ -38,7 +38,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0xaca91ecc4d28d48full},
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
-      {"xpbd", {}, 0x160cf05a1361079dull},
+      {"xpbd", {}, 0xec1050e2a21f57ebull},
       {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
       {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
       {"barrier", {}, 0xa9d684da5b50ecf2ull},

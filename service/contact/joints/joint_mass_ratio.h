@@ -1,11 +1,11 @@
 // Whether a world's joints join bodies of very different masses, which the
-// methods treat apart: one Gauss-Seidel sweep leaves a heavy body hanging
-// from light links far from the joints (it converges at about
-// 1 - m_light / m_heavy per sweep), so xpbd projects such joints exactly
-// after its sweeps; and a velocity-level joint solve over a whole step
+// velocity-level methods treat apart: a joint solve over a whole step
 // spins light links up under a heavy body until it diverges (a 20 kg box
 // on four 0.02 kg links, docs/physics.md "Mass ratios"), so impulse, lcp and
-// penalty take such steps in sub-steps (joint_substeps.h).
+// penalty take such steps in sub-steps (joint_substeps.h). (One
+// Gauss-Seidel sweep, which converges at about 1 - m_light / m_heavy, left
+// such a chain open under xpbd too; xpbd now projects every rigid joint
+// after its sweeps, xpbd_method.h.)
 #pragma once
 
 #include "service/physics/world.h"

@@ -26,9 +26,15 @@ Impact PredictImpact(double depth, double vn_before, double vn_free, double rest
   if (vn_before >= -options.restitution_threshold) return impact;
   const double a = (vn_free - vn_before) / h;  // relative normal acceleration
   const double disc = vn_before * vn_before + 2.0 * a * depth;
-  if (disc <= 0.0) return impact;  // no approach reaches the surface
+  // a bouncy pair short of the surface at the step's end: no bounce yet
+  const bool short_of_surface = depth < 0.0 && restitution > 0.0;
+  if (disc <= 0.0) {  // no approach reaches the surface
+    impact.misses = short_of_surface;
+    return impact;
+  }
   const double vc = -std::sqrt(disc);
   const double t = 2.0 * depth / (vn_before + vc);  // g(t) = 0; < 0: in the past
+  impact.misses = short_of_surface && t > h;
   if (t < -h || t > h) return impact;  // not explained by one step
   const double s = h - t;
   const double e = restitution;
@@ -80,6 +86,8 @@ void AppendContactRows(const ContactSet& contacts, const World& world, const std
     const double vn_before = basis.NormalVelocity(before);
     if (impacts[k].exact) {
       normal.rhs = impacts[k].end_velocity;
+    } else if (impacts[k].misses) {
+      normal.rhs = c.depth / options.h;
     } else if (vn_before < -options.restitution_threshold) {
       normal.rhs = -basis.restitution * vn_before;
     } else if (c.depth < 0.0) {

@@ -25,8 +25,10 @@
 //
 // Drift: with zero compliance a lone joint is met exactly after each of its
 // corrections; coupled joints are met to the Gauss-Seidel residual, which
-// shrinks as h^2 with the sub-steps (the paper's argument). No velocity
-// rows: the sub-step's velocities come from the positions (xpbd_method.h).
+// shrinks as h^2 with the sub-steps (the paper's argument) but grows with a
+// chain's length, so rigid joints are then projected together by a Newton
+// step after the sweeps (xpbd_method.h, 2b). No velocity rows: the
+// sub-step's velocities come from the positions (xpbd_method.h).
 #pragma once
 
 #include <array>

@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "service/contact/detect_ahead.h"
-#include "service/contact/joints/joint_mass_ratio.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/soft/soft_joints.h"
 #include "service/contact/xpbd/xpbd_velocity_pass.h"
@@ -126,8 +125,8 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies_[i].substepped) AdvanceBallistic(bodies[i], world.dt);
   }
-  const bool project_joints =
-      params_.joint_compliance == 0.0 && JointMassRatioAtLeast(world, params_.direct_mass_ratio);
+  // rigid joints are met exactly after every sub-step's sweeps (xpbd_method.h, 2b)
+  const bool project_joints = params_.joint_compliance == 0.0 && !world.joints().empty();
   const int substeps = SubstepsFor(world);
   RunSubsteps(world, substeps, project_joints, detector.runner());
   KeepSlips(world);

@@ -15,9 +15,8 @@ const ParamTable<XpbdParams>& XpbdParamTable() {
                   "restitution applies above max(this, 2 |g| h)"),
       DoubleParam("margin", &P::margin, 0.0, 1.0, "m", "detection distance beyond each pair's closing motion"),
       DoubleParam("direct_mass_ratio", &P::direct_mass_ratio, 0.0, 1e12, "",
-                  "rigid joints, and the contacts of components, that join bodies this many times heavier than "
-                  "others are solved exactly after each sub-step's sweeps (xpbd_joints.h, xpbd_ratio_solve.h); "
-                  "0 = off"),
+                  "the contacts of components that join bodies this many times heavier than others are solved "
+                  "exactly after each sub-step's sweeps (xpbd_ratio_solve.h); 0 = off"),
       DoubleParam("max_push_velocity", &P::max_push_velocity, 1e-6, 1e3, "m/s",
                   "an overlap is removed at most this fast (h times it per sub-step)"),
   };
