@@ -70,6 +70,7 @@ void SimServer::StartOver() {
   contacts_.clear();
   publisher_.UpdateRates(world_.dt);
   StartTimeline();
+  ClearFault();
 }
 
 // ---- the loop ---------------------------------------------------------------
@@ -81,7 +82,10 @@ void SimServer::SimulateStep() {
 
 void SimServer::StepWorld() {
   ApplyInputs();
+  runaway_.BeforeStep(world_);
   SimulateStep();
+  const Status sound = runaway_.AfterStep(world_);
+  if (!sound.ok()) return OnBlowUp(sound);
   steps_.Took();
   if (options_.snapshot_every > 0 && world_.step % options_.snapshot_every == 0) TakePeriodicSnapshot();
   // controllers need every STATE
@@ -89,6 +93,25 @@ void SimServer::StepWorld() {
   if (publisher_.ContactsDue(world_.step)) publisher_.Contacts(world_, contacts_, *method_);
   FinishStepCommands();
   steps_.ReportProgress(world_.step, false);
+}
+
+void SimServer::OnBlowUp(const Status& why) {
+  fault_ = why.message();
+  spdlog::error("{} under {}; stepping stops until RESET, a scene or snapshot load, or REWIND", fault_,
+                method_->Name());
+  paused_ = true;
+  CancelStepCommands(fault_);
+  PublishStatus(Clock::now());  // at once: a client need not wait for the next heartbeat
+}
+
+void SimServer::ClearFault() {
+  fault_.clear();
+  runaway_.Rebase(world_);
+}
+
+// Stepping a world that blew up would only publish more of its garbage.
+Status SimServer::RefusedByFault() const {
+  return Status::FailedPrecondition(fault_ + "; RESET, load a scene or a snapshot, or REWIND to an earlier step first");
 }
 
 void SimServer::ApplyInputs() {
@@ -164,11 +187,13 @@ void SimServer::PublishStatus(Clock::time_point now) {
   s.solver_iterations = last_stats_.iterations;
   batch_.CountInto(&s);
   lockstep_.DescribeInto(&s);
+  s.fault = fault_;
   publisher_.Status(std::move(s), now);
 }
 
 bool SimServer::Tick() {
   const bool changed = batch_.Drain();
+  if (changed) runaway_.Rebase(world_);
   if (Halted()) {
     if (changed) PublishState();
     return false;
@@ -191,6 +216,7 @@ void SimServer::Run(const std::atomic<bool>& stop) {
     }
     publisher_.LiveLine(false, world_, contacts_.size(), method_->Name(), Halted());
     const bool changed = batch_.Drain();
+    if (changed) runaway_.Rebase(world_);
     const bool stepping = steps_.owed();
     if (paused_ && !stepping) {
       if (changed) PublishState();

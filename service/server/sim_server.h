@@ -24,6 +24,7 @@
 #include "service/collision/collision_detector.h"
 #include "service/contact/contact_method.h"
 #include "service/contact/sleep/island_sleep.h"
+#include "service/physics/runaway_watch.h"
 #include "service/physics/world.h"
 #include "service/proto/snapshot.pb.h"
 #include "service/scene/scene_spec.h"
@@ -97,6 +98,12 @@ class SimServer {
 
   // the loop
   void StepWorld();
+  // A step that blew up (runaway_watch.h): its state is not published, the
+  // running STEPs are answered with the reason, STATUS carries it at once,
+  // and stepping stops until a command replaces the world (ClearFault).
+  void OnBlowUp(const Status& why);
+  void ClearFault();
+  Status RefusedByFault() const;
   void SimulateStep();
   void ApplyInputs();
   void ApplyInput(const ControllerInput& input, bool live);
@@ -114,6 +121,8 @@ class SimServer {
   IslandSleep sleep_;
   ContactSet contacts_;
   StepStats last_stats_;
+  RunawayWatch runaway_;
+  std::string fault_;  // "" while the world is sound; STATUS.fault
   bool paused_;
   RunMode mode_;
   double real_time_factor_;

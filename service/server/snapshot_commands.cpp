@@ -28,6 +28,7 @@ Outcome SimServer::ApplySnapshotCommand(Command& cmd) {
     st = Rewind(cmd.target_step, &cmd);
     if (!st.ok()) return Outcome::Failed(st);
     CancelStepCommands("rewind");
+    ClearFault();
     return Outcome::Done("rewound from step " + std::to_string(from) + " to step " + std::to_string(world_.step), true);
   }
   proto::Snapshot loaded;

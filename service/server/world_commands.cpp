@@ -60,10 +60,12 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       CancelStepCommands("cancelled by PAUSE from \"" + cmd.client_id + "\"");
       return Outcome::Done("paused", false);
     case K::kResume:
+      if (!fault_.empty()) return Outcome::Failed(RefusedByFault());
       paused_ = false;
       reanchor_ = true;
       return Outcome::Done("running", false);
     case K::kStep: {
+      if (!fault_.empty()) return Outcome::Failed(RefusedByFault());
       paused_ = true;
       steps_.Add(cmd, world_.step);  // reports progress at once: the client may wait as long as progress comes
       Outcome o;

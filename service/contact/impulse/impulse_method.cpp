@@ -261,7 +261,8 @@ double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
   return worst;
 }
 
-int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
+int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
+                                std::vector<ContactRow>& rows) {
   // Accumulated impulses start from last step's forces times h (or zero);
   // the collision phase's impulses are kept apart (collision_n) so that
   // clamping applies to this phase only.
@@ -310,14 +311,21 @@ int ImpulseMethod::ContactPhase(const ContactSet& contacts, double h, std::vecto
     r.b_t2 = Ib * row.rb.cross(row.t2);
   }
   BuildNormalBlocks(rows);
+  // the joint rows' velocity products at the warm-started velocities, the
+  // nearest to the step's end that is known before the sweeps
+  joints_.Build(world, solver_, h);
+  // joints and contacts as two blocks of one Gauss-Seidel iteration
+  // (joint_block.h): the joints solved exactly after every sweep
   int it = 0;
   for (; it < params_.iterations; ++it) {
-    if (Sweep(rows) < params_.velocity_tolerance) {
+    const double worst = std::max(Sweep(rows), joints_.Solve(solver_));
+    if (worst < params_.velocity_tolerance) {
       ++it;
       break;
     }
   }
   SolveMassRatios(rows, nullptr);
+  joints_.Solve(solver_);
   warm_forces_.resize(rows.size());
   for (size_t k = 0; k < rows.size(); ++k) {
     const ContactRow& row = rows[k];
@@ -436,8 +444,7 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
 
     IntegrateMomenta(world, remaining);
     LoadSolverBodies(world, &solver_);
-    stats.iterations += ContactPhase(contacts, remaining, rows_);
-    ApplyJointImpulses(world, remaining, solver_);
+    stats.iterations += ContactPhase(world, contacts, remaining, rows_);
     StoreSolverBodies(solver_, world);
 
     auto& bodies = world.bodies();

@@ -43,6 +43,7 @@
 #include "service/contact/contact_row.h"
 #include "service/contact/impulse/impulse_params.h"
 #include "service/contact/normal_block.h"
+#include "service/contact/joints/joint_block.h"
 #include "service/contact/solver_body.h"
 #include "service/contact/subspace_solve.h"
 #include "service/contact/warm_start_cache.h"
@@ -70,7 +71,7 @@ class ImpulseMethod : public ContactMethod {
   StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
-  int ContactPhase(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
+  int ContactPhase(const World& world, const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
   struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
     Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
   };
@@ -103,6 +104,7 @@ class ImpulseMethod : public ContactMethod {
 
   ImpulseParams params_;
   std::vector<SolverBody> solver_;
+  JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four

@@ -49,8 +49,9 @@ std::vector<int> AllBlocks(const std::vector<JointBlock>& blocks) {
   return ids;
 }
 
-// Solves the rows with keep[k]; lambda is 0 for the others.
-Eigen::VectorXd SolveKept(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+}  // namespace
+
+Eigen::VectorXd SolveJointRows(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
                           const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
                           const std::vector<char>& keep, JointSolverKind solver) {
   const RowSubset sub = Subset(rows, blocks, AllBlocks(blocks), keep);
@@ -59,8 +60,6 @@ Eigen::VectorXd SolveKept(const std::vector<ConstraintRow>& rows, const std::vec
   for (size_t i = 0; i < sub.source.size(); ++i) lambda[sub.source[i]] = x[i];
   return lambda;
 }
-
-}  // namespace
 
 Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
                                  const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
@@ -132,7 +131,7 @@ JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBo
   std::vector<char> keep(n, 1);
   Eigen::VectorXd lambda;
   for (int pass = 0;; ++pass) {
-    lambda = SolveKept(rows, blocks, bodies, b, keep, options.solver);
+    lambda = SolveJointRows(rows, blocks, bodies, b, keep, options.solver);
     ++stats.limit_passes;
     bool dropped = false;
     for (int k = 0; k < n; ++k) {

@@ -56,6 +56,11 @@ Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const s
                                  const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
                                  JointSolverKind solver);
 
+// The same for the rows with keep[k] only; lambda is 0 for the others.
+Eigen::VectorXd SolveJointRows(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                               const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b,
+                               const std::vector<char>& keep, JointSolverKind solver);
+
 // The velocity rows of the world's joints (AppendJointRows) with the
 // velocity products -(h/2) Jdot qdot taken at the velocity the step ends
 // with, not at qdot*: a first solve projects qdot* onto the constraints

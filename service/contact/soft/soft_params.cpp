@@ -10,6 +10,9 @@ const ParamTable<SoftParams>& SoftParamTable() {
       IntParam("substeps", &P::substeps, 1, 64, "", "sub-steps per step, each with one solve and relax pass"),
       IntParam("relax_iterations", &P::relax_iterations, 0, 64, "",
                "passes without the soft push-out after each sub-step's positions move"),
+      IntParam("joint_passes", &P::joint_passes, 1, 64, "",
+               "in a world with joints, contact passes and exact joint solves taken in turn in each solve and "
+               "relax stage (soft_joints.h): one leaves the joints' last correction unseen by friction"),
       DoubleParam("contact_hertz", &P::contact_hertz, 0.1, 1e4, "Hz",
                   "contact spring frequency, capped at a quarter of the sub-step rate (twice it against static "
                   "bodies)"),

@@ -10,6 +10,7 @@ namespace contactsim {
 struct SoftParams {
   int substeps = 4;                     // Box2D v3 and Box3D's default
   int relax_iterations = 1;             // per sub-step, after the positions move
+  int joint_passes = 8;                 // contact pass and joint solve in turn, per solve and relax
   double contact_hertz = 120.0;          // Hz, capped at a quarter of the sub-step rate
   double damping_ratio = 10.0;          // contact springs are heavily over-damped
   double max_push_velocity = 3.0;       // m/s, fastest a soft contact pushes bodies apart

@@ -70,16 +70,23 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const int blocks = static_cast<int>(manifolds_.size());
   const int bodies = static_cast<int>(bodies_.size());
   const bool joints = !world.joints().empty();
+  // contacts and joints as two blocks of a Gauss-Seidel iteration, taken in
+  // turn joint_passes times (contact/joints/joint_block.h)
+  const int joint_passes = joints ? params_.joint_passes : 1;
   for (int sub = 0; sub < params_.substeps; ++sub) {
     list.Add(integrate_velocities, 0, bodies, kBodyGrain);
     list.Add(warm_start, 0, bodies, kBodyGrain);
-    list.AddColours(solve_blocks, colours_, blocks);
-    if (ratio_solve_.active()) list.AddSerial(solve_ratio);
-    if (joints) list.AddSerial(solve_joints);
+    for (int pass = 0; pass < joint_passes; ++pass) {
+      list.AddColours(solve_blocks, colours_, blocks);
+      if (ratio_solve_.active()) list.AddSerial(solve_ratio);
+      if (joints) list.AddSerial(solve_joints);
+    }
     list.Add(integrate_positions, 0, bodies, kBodyGrain);
-    for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
-    if (ratio_solve_.active() && params_.relax_iterations > 0) list.AddSerial(relax_ratio);
-    if (joints) list.AddSerial(solve_joints);
+    for (int pass = 0; pass < joint_passes; ++pass) {
+      for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
+      if (ratio_solve_.active() && params_.relax_iterations > 0) list.AddSerial(relax_ratio);
+      if (joints) list.AddSerial(solve_joints);
+    }
     list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }
   // without a point with restitution (the standard scenes' e = 0) there is

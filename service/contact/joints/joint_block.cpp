@@ -1,0 +1,51 @@
+#include "service/contact/joints/joint_block.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactsim {
+
+void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>& bodies, double h,
+                               JointSolverKind solver) {
+  rows_.clear();
+  blocks_.clear();
+  solver_ = solver;
+  if (world.joints().empty()) return;
+  BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
+  total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
+}
+
+double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_passes) {
+  const int n = static_cast<int>(rows_.size());
+  if (n == 0) return 0.0;
+  std::vector<char> keep(n, 1);
+  Eigen::VectorXd b(n);
+  double worst = 0.0;
+  for (int k = 0; k < n; ++k) worst = std::max(worst, std::abs(rows_[k].rhs - rows_[k].Velocity(bodies)));
+  for (int pass = 0;; ++pass) {
+    for (int k = 0; k < n; ++k) b[k] = rows_[k].rhs - rows_[k].Velocity(bodies);
+    const Eigen::VectorXd x = SolveJointRows(rows_, blocks_, bodies, b, keep, solver_);
+    // a limit row whose total would leave its bounds is held at the bound
+    bool held = false;
+    for (int k = 0; k < n; ++k) {
+      const ConstraintRow& row = rows_[k];
+      if (!keep[k] || !IsLimitRow(row)) continue;
+      const double next = total_[k] + x[k];
+      if (next >= row.lo && next <= row.hi) continue;
+      const double d = std::clamp(next, row.lo, row.hi) - total_[k];
+      row.Apply(d, bodies);
+      total_[k] += d;
+      keep[k] = 0;
+      held = true;
+    }
+    if (held && pass + 1 < max_limit_passes) continue;
+    for (int k = 0; k < n; ++k) {
+      if (!keep[k]) continue;
+      rows_[k].Apply(x[k], bodies);
+      total_[k] += x[k];
+    }
+    return worst;
+  }
+}
+
+}  // namespace contactsim

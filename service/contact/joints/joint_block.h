@@ -1,0 +1,48 @@
+// The joints as one block of a block Gauss-Seidel iteration with the
+// contacts (impulse and soft call it between their contact sweeps).
+//
+// A contact sweep changes the velocities of jointed bodies; a joint solve
+// after all the sweeps then changes them again, so that the contacts'
+// friction no longer holds what it was solved to hold: a box on a hinged or
+// welded plank creeps a little every step, although mu holds it. Solving the
+// joint rows exactly (joint_solver.h) after every sweep makes the iteration
+// a block Gauss-Seidel over two blocks, joints and contacts, each solved
+// given the other; it converges to the velocities that satisfy both
+// (Cottle, Pang and Stone 1992, block methods for the LCP; Erleben 2007,
+// "Velocity-based shock propagation for multibody dynamics animation", for
+// the same split in a rigid-body solver).
+//
+// The rows are built once per (sub-)step; each Solve adds the increment of
+// the multipliers that brings every equality row back to J v = rhs, and keeps
+// each hinge limit's accumulated impulse within its bounds (a limit whose
+// total would pull is held at its bound and the rest solved again).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "service/contact/joints/joint_solver.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+class JointVelocityBlock {
+ public:
+  // The rows of the world's joints at the current poses, with the velocity
+  // products taken from `bodies` (BuildJointVelocityRows); h (s) is the step.
+  void Build(const World& world, const std::vector<SolverBody>& bodies, double h,
+             JointSolverKind solver = JointSolverKind::kTree);
+  bool empty() const { return rows_.empty(); }
+  // Projects the bodies' velocities onto the joint rows; returns the largest
+  // row velocity error it removed (m/s or rad/s).
+  double Solve(std::vector<SolverBody>& bodies, int max_limit_passes = 8);
+  int rows() const { return static_cast<int>(rows_.size()); }
+
+ private:
+  std::vector<ConstraintRow> rows_;
+  std::vector<JointBlock> blocks_;
+  Eigen::VectorXd total_;  // accumulated impulse per row this step
+  JointSolverKind solver_ = JointSolverKind::kTree;
+};
+
+}  // namespace contactsim
