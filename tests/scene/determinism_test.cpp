@@ -38,11 +38,11 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0x79970dd7b7e315b0ull},
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
-      {"xpbd", {}, 0xec1050e2a21f57ebull},
+      {"xpbd", {}, 0x933460267d44d2c1ull},
       {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
       {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
       {"barrier", {}, 0xa9d684da5b50ecf2ull},
-      {"soft", {}, 0x77347c8ae889b434ull},
+      {"soft", {}, 0xf0635edef5805122ull},
   };
   return pinned;
 }
