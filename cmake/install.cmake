@@ -11,11 +11,13 @@ set(CONTACTSIM_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactsim)
 set_target_properties(contactsim_client PROPERTIES EXPORT_NAME client)
 set_target_properties(contactsim_signature PROPERTIES EXPORT_NAME signature)
 set_target_properties(contactsim_lcmtypes PROPERTIES EXPORT_NAME lcmtypes)
-install(TARGETS contactsim_client contactsim_signature contactsim_lcmtypes EXPORT contactsimTargets
+set_target_properties(contactsim_protocol PROPERTIES EXPORT_NAME protocol)
+install(TARGETS contactsim_client contactsim_signature contactsim_lcmtypes contactsim_protocol
+        EXPORT contactsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT client
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/clients/cpp/include/contactsim ${PROJECT_SOURCE_DIR}/protocol/include/contactsim
-                  ${LCMTYPES_CPP_DIR}/contactsim
+                  ${LCMTYPES_CPP_DIR}/contactsim ${PROTOCOL_CPP_DIR}/contactsim
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT client)
 install(EXPORT contactsimTargets NAMESPACE contactsim:: DESTINATION ${CONTACTSIM_CMAKE_DIR} COMPONENT client)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/contactsimConfig.cmake.in
@@ -32,7 +34,7 @@ install(FILES ${CMAKE_BINARY_DIR}/contactsim.pc DESTINATION ${CMAKE_INSTALL_LIBD
 # target contactsim_install_targets builds what installs (and cpack) need
 # and nothing else (no tests): docker/Dockerfile's build stage
 add_custom_target(contactsim_install_targets)
-add_dependencies(contactsim_install_targets contactsim_client contactsim_signature contactsim_lcmtypes)
+add_dependencies(contactsim_install_targets contactsim_client contactsim_signature contactsim_lcmtypes contactsim_protocol)
 foreach(program contactsim-server contactsim-ctl contactsim-bench contactsim-bench-lockstep)
   if(TARGET ${program})  # a build may leave one out (service/CMakeLists.txt)
     install(TARGETS ${program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)

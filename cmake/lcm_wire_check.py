@@ -14,34 +14,15 @@ passes is safe to hand to the generated decode.
 
     lcm_wire_check.py OUT.hpp FILE.lcm [FILE.lcm ...]
 """
-import re
 import sys
+
+from lcm_schema import parse_lcm
 
 PRIMITIVE_BYTES = {
     "int8_t": 1, "byte": 1, "boolean": 1, "int16_t": 2, "int32_t": 4,
     "int64_t": 8, "float": 4, "double": 8,
 }
 INTEGER_TYPES = {"int8_t", "int16_t", "int32_t", "int64_t", "byte"}
-FIELD = re.compile(r"^\s*([A-Za-z_][\w.]*)\s+([A-Za-z_]\w*)\s*((?:\[[^\]]+\]\s*)*);")
-
-
-def parse(path):
-    """Returns (struct name, [(type, name, [dims])]) for one .lcm file."""
-    text = re.sub(r"//[^\n]*|/\*.*?\*/", "", open(path).read(), flags=re.S)
-    name = re.search(r"\bstruct\s+(\w+)", text).group(1)
-    body = text[text.index("{") + 1:text.rindex("}")]
-    fields = []
-    for stmt in body.split(";"):
-        stmt = stmt.strip()
-        if not stmt or stmt.startswith("const "):
-            continue
-        m = FIELD.match(stmt + ";")
-        if not m:
-            sys.exit(f"{path}: cannot parse field '{stmt}'")
-        ftype = m.group(1).split(".")[-1]  # package.type -> type
-        dims = re.findall(r"\[\s*([^\]\s]+)\s*\]", m.group(3))
-        fields.append((ftype, m.group(2), dims))
-    return name, fields
 
 
 def min_bytes(ftype, structs):
@@ -161,8 +142,8 @@ def main():
     out_path, files = sys.argv[1], sys.argv[2:]
     structs = {}
     for f in sorted(files):
-        name, fields = parse(f)
-        structs[name] = fields
+        s = parse_lcm(f)
+        structs[s.name] = s.fields
     out = [PREAMBLE]
     for name in structs:
         out.append(f"inline bool CheckFields_{name}(Reader& r);")

@@ -2,6 +2,10 @@
 # C++ headers land in ${LCMTYPES_CPP_DIR}/contactsim/*.hpp (target
 # contactsim_lcmtypes), Python modules in ${LCMTYPES_PY_DIR}/contactsim/*.py,
 # which the Python client adds to its package path, and wire_check.hpp.
+# The protocol's table (lcmtypes/protocol.toml: channels, method names; the
+# reply codes are reply_t's) becomes contactsim/protocol.hpp in
+# ${PROTOCOL_CPP_DIR} (target contactsim_protocol, no LCM: the engine's Status
+# takes its codes from it), and a copy beside the Python modules.
 file(GLOB LCM_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
 set(LCMTYPES_CPP_DIR ${CMAKE_BINARY_DIR}/lcmtypes/cpp)
 set(LCMTYPES_PY_DIR ${CMAKE_BINARY_DIR}/lcmtypes/python)
@@ -25,10 +29,23 @@ add_custom_command(
   OUTPUT ${LCM_WIRE_CHECK}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${LCMTYPES_CPP_DIR}/contactsim
   COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${LCM_WIRE_CHECK} ${LCM_FILES}
-  DEPENDS ${LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py
+  DEPENDS ${LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${PROJECT_SOURCE_DIR}/cmake/lcm_schema.py
   COMMENT "lcm_wire_check.py: bounds checks for lcmtypes/*.lcm")
-add_custom_target(contactsim_lcmtypes_gen ALL DEPENDS ${LCM_OUTPUTS} ${LCM_WIRE_CHECK})
+set(PROTOCOL_TABLE ${PROJECT_SOURCE_DIR}/lcmtypes/protocol.toml)
+set(PROTOCOL_CPP_DIR ${CMAKE_BINARY_DIR}/lcmtypes/protocol)
+set(PROTOCOL_HPP ${PROTOCOL_CPP_DIR}/contactsim/protocol.hpp)
+add_custom_command(
+  OUTPUT ${PROTOCOL_HPP} ${LCMTYPES_PY_DIR}/contactsim/protocol.toml
+  COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/protocol_gen.py ${PROTOCOL_HPP} ${PROTOCOL_TABLE} ${LCM_FILES}
+  COMMAND ${CMAKE_COMMAND} -E copy ${PROTOCOL_TABLE} ${LCMTYPES_PY_DIR}/contactsim/protocol.toml
+  DEPENDS ${PROTOCOL_TABLE} ${LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/protocol_gen.py
+          ${PROJECT_SOURCE_DIR}/cmake/lcm_schema.py
+  COMMENT "protocol_gen.py: contactsim/protocol.hpp from lcmtypes/protocol.toml")
+add_custom_target(contactsim_lcmtypes_gen ALL DEPENDS ${LCM_OUTPUTS} ${LCM_WIRE_CHECK} ${PROTOCOL_HPP})
+add_library(contactsim_protocol INTERFACE)
+add_dependencies(contactsim_protocol contactsim_lcmtypes_gen)
+target_include_directories(contactsim_protocol INTERFACE $<BUILD_INTERFACE:${PROTOCOL_CPP_DIR}>)
 add_library(contactsim_lcmtypes INTERFACE)
 add_dependencies(contactsim_lcmtypes contactsim_lcmtypes_gen)
 target_include_directories(contactsim_lcmtypes INTERFACE $<BUILD_INTERFACE:${LCMTYPES_CPP_DIR}>)
-target_link_libraries(contactsim_lcmtypes INTERFACE PkgConfig::LCM)
+target_link_libraries(contactsim_lcmtypes INTERFACE contactsim_protocol PkgConfig::LCM)

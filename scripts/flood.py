@@ -56,7 +56,7 @@ def adder(url, prefix, count, quiet):
             got.add(r.request_id)
             last[0] = time.monotonic()
 
-    sub = lc.subscribe(prefix + "_REPLY", on_reply)
+    sub = lc.subscribe(contactsim.protocol.channel(prefix, "REPLY"), on_reply)
     sub.set_queue_capacity(1000000)
     stop = threading.Event()
 
@@ -75,7 +75,7 @@ def adder(url, prefix, count, quiet):
         m.request_id = i + 1
         m.position = [0.1 * (i % side), 0.1 * ((i // side) % side), 0.05 + 0.1 * (i // (side * side))]
         payloads.append(m.encode())
-    channel = prefix + "_BODY_CMD"
+    channel = contactsim.protocol.channel(prefix, "BODY_CMD")
     t0 = time.monotonic()
     for p in payloads:
         lc.publish(channel, p)

@@ -50,7 +50,7 @@ sys.path.insert(0, str(REPO / "tests" / "python"))
 import lcm  # noqa: E402
 
 import contactsim  # noqa: E402
-from contactsim import reply_t  # noqa: E402
+from contactsim import protocol, reply_t  # noqa: E402
 
 import lcm_wire  # noqa: E402
 from lcm_recorder import LcmRecorder  # noqa: E402
@@ -440,14 +440,15 @@ def complete_recording(log_path, prefix, clients):
     commands, replies, input_steps, digest_steps = set(), set(), set(), set()
     for e in lcm.EventLog(str(log_path), "r"):
         ch = e.channel[len(prefix) + 1:]
-        if ch in ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT"):
+        if ch in protocol.INCOMING:
             try:
-                m = getattr(contactsim, ch.lower() + "_t").decode(e.data)
+                m = protocol.message_class(ch).decode(e.data)
             except Exception:  # noqa: BLE001 - garbage
                 continue
+            unreplied = not protocol.CHANNELS[ch].replied  # a lockstep input
             if m.client_id in clients:
-                commands.add((ch == "INPUT", m.client_id, m.request_id))
-                if ch == "INPUT":
+                commands.add((unreplied, m.client_id, m.request_id))
+                if unreplied:
                     input_steps.add(m.step)
         elif ch == "REPLY":
             r = contactsim.reply_t.decode(e.data)
@@ -473,7 +474,7 @@ def request_id_gaps(requests):
 
 def check_states(log_path, prefix):
     """(STATEs in the recording, those with a NaN or infinity, first bad step)."""
-    channel = prefix + "_STATE"
+    channel = protocol.channel(prefix, "STATE")
     n = bad = 0
     first = None
     for e in lcm.EventLog(str(log_path), "r"):

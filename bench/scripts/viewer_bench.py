@@ -84,7 +84,7 @@ def main():
         c = srv.client
         c.set_contact_method(a.method)
         arrivals, stop = {}, threading.Event()
-        threading.Thread(target=stamp_states, args=(srv.url, srv.prefix + "_STATE", arrivals, stop),
+        threading.Thread(target=stamp_states, args=(srv.url, srv.client.channels["STATE"], arrivals, stop),
                          daemon=True).start()
         with ViewerProcess(["--lcm-url", srv.url, "--prefix", srv.prefix]) as viewer:
             driver = start_browser(*a.window)

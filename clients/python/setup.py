@@ -1,15 +1,16 @@
-"""Puts the generated LCM message modules into the wheel.
+"""Puts the generated LCM message modules and the protocol's table into the wheel.
 
 Everything else is declared in pyproject.toml. A wheel (or a regular,
 non-editable ``pip install``) runs lcm-gen on ``lcmtypes/*.lcm`` and ships
-the modules as ``contactsim/_generated/<type>.py``, where ``_lcmtypes`` finds
-them; the generated code is never committed. An editable install keeps
+the modules as ``contactsim/_generated/<type>.py``, with a copy of
+``lcmtypes/protocol.toml`` beside them, where ``_lcmtypes`` and ``protocol``
+find them; the generated code is never committed. An editable install keeps
 reading them from the build folder, as the repository's own tests do.
 
 lcm-gen is taken from ``$LCM_GEN``, else the ``lcm`` wheel (a build
 requirement, which ships lcm-gen), else the one on PATH (Debian's
-liblcm-bin). The .lcm files are ``$CONTACTSIM_LCMTYPES_DIR``, else an
-sdist's own ``lcmtypes/`` (the sdist command copies them in, since a
+liblcm-bin). The .lcm files and the table are ``$CONTACTSIM_LCMTYPES_DIR``,
+else an sdist's own ``lcmtypes/`` (the sdist command copies them in, since a
 MANIFEST.in cannot reach above this folder), else the repository's
 ``lcmtypes/`` two folders up (docs/packaging.md, "Python sdist").
 """
@@ -25,6 +26,12 @@ from setuptools.command.build_py import build_py
 from setuptools.command.sdist import sdist
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+PROTOCOL_TABLE = "protocol.toml"  # contactsim/_lcmtypes.py reads it under this name
+
+
+def protocol_files(folder):
+    """The files that declare the protocol: the .lcm types and the table."""
+    return sorted(glob.glob(os.path.join(folder, "*.lcm"))) + [os.path.join(folder, PROTOCOL_TABLE)]
 
 
 def lcmtypes_dir():
@@ -33,11 +40,11 @@ def lcmtypes_dir():
     else:
         candidates = [os.path.join(HERE, "lcmtypes"), os.path.join(HERE, "..", "..", "lcmtypes")]
     for folder in candidates:
-        if glob.glob(os.path.join(folder, "*.lcm")):
+        if glob.glob(os.path.join(folder, "*.lcm")) and os.path.isfile(os.path.join(folder, PROTOCOL_TABLE)):
             return os.path.abspath(folder)
-    raise RuntimeError("contactsim: no .lcm files in %s; build the wheel from the repository "
+    raise RuntimeError("contactsim: no .lcm files and %s in %s; build the wheel from the repository "
                        "(pip wheel clients/python), from an sdist, or set CONTACTSIM_LCMTYPES_DIR"
-                       % " or ".join(candidates))
+                       % (PROTOCOL_TABLE, " or ".join(candidates)))
 
 
 def lcm_gen_command():
@@ -75,17 +82,18 @@ class BuildPyWithLcmTypes(build_py):
             os.makedirs(target, exist_ok=True)
             for m in modules:
                 shutil.copy(m, target)
-        print("contactsim: %d generated LCM modules in %s" % (len(modules), target))
+        shutil.copy(os.path.join(lcmtypes_dir(), PROTOCOL_TABLE), target)
+        print("contactsim: %d generated LCM modules and %s in %s" % (len(modules), PROTOCOL_TABLE, target))
 
 
 class SdistWithLcmTypes(sdist):
-    """sdist, plus the .lcm files in lcmtypes/, so a wheel builds from it anywhere."""
+    """sdist, plus the .lcm files and the table in lcmtypes/, so a wheel builds from it anywhere."""
 
     def make_release_tree(self, base_dir, files):
         super().make_release_tree(base_dir, files)
         target = os.path.join(base_dir, "lcmtypes")
         os.makedirs(target, exist_ok=True)
-        for f in sorted(glob.glob(os.path.join(lcmtypes_dir(), "*.lcm"))):
+        for f in protocol_files(lcmtypes_dir()):
             shutil.copy(f, target)
 
 

@@ -36,6 +36,8 @@ std::unique_ptr<ContactMethod> Make() {
 // The contracts (docs/physics.md, "Method contract"): what each method's
 // header says it simulates; tests/contact/method_contract_test.cpp checks
 // every "yes" by a scenario and tests/server/ every "no" by a refusal.
+// The names are the protocol's (lcmtypes/protocol.toml, `methods`), which the
+// clients and the viewer offer; method_contract_test.cpp checks that they agree.
 const std::vector<ContactMethodEntry>& ContactMethodTable() {
   //                           joints restitution kinematic friction
   static const std::vector<ContactMethodEntry> table = {

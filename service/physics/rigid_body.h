@@ -17,8 +17,12 @@ namespace contactsim {
 
 using BodyId = int64_t;
 
+// The defaults are what every contact method simulates: barrier's implicit
+// step is inelastic and refuses restitution > 0 (method_support.h), so a
+// world of default bodies can be switched to any method. Bullet, Box2D, ODE
+// and Jolt default restitution to 0 as well.
 struct Material {
-  double restitution = 0.5;  // unitless, [0, 1]
+  double restitution = 0.0;  // unitless, [0, 1]
   double friction = 0.5;     // unitless Coulomb coefficient, >= 0
 };
 

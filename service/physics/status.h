@@ -5,19 +5,16 @@
 #include <string>
 #include <utility>
 
+#include <contactsim/protocol.hpp>
+
 namespace contactsim {
 
-// The values are reply_t's codes (lcmtypes/reply_t.lcm), so that a status
-// becomes a reply code by a cast.
+// reply_t's codes (lcmtypes/reply_t.lcm, through the generated
+// protocol.hpp), so that a status becomes a reply code by a cast.
 enum class StatusCode {
-  kOk = 0,
-  kInvalidArgument = 1,
-  kNotFound = 2,
-  kDecodeError = 3,
-  kFailedPrecondition = 4,
-  kInternal = 5,
-  kUnauthenticated = 6,
-  kResourceExhausted = 7,
+#define CONTACTSIM_STATUS_CODE(camel, upper, value) camel = value,
+  CONTACTSIM_REPLY_CODES(CONTACTSIM_STATUS_CODE)
+#undef CONTACTSIM_STATUS_CODE
 };
 
 class Status {

@@ -3,11 +3,15 @@
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/protocol.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 #include <contactsim/wire_check.hpp>
 
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
+#include <string_view>
 
 #include "service/server/command_decoder.h"
 
@@ -55,18 +59,32 @@ Status Decode(const void* data, int size, const DecodeContext& context, Command*
   }
 }
 
+// The row of the protocol's incoming channel `name` (lcmtypes/protocol.toml):
+// its suffix, type and whether it is replied come from the protocol, the
+// decoder and journal record from here. A decoder of another type than the
+// protocol's is a programmer's error, caught when the table is built.
+template <typename Msg, int DecodeLimits::*kMaxBytes,
+          Status (*kCheck)(const Msg&, const DecodeContext&, Command*)>
+CommandChannel Row(const char* name, RecordKind record) {
+  const protocol::ChannelSpec* spec = protocol::FindChannel(name);
+  if (spec == nullptr || !spec->incoming || std::string_view(spec->type_name) != Msg::getTypeName()) {
+    std::fprintf(stderr, "command channel %s: lcmtypes/protocol.toml has no incoming channel of type %s\n", name,
+                 Msg::getTypeName());
+    std::abort();
+  }
+  return {spec->name, spec->type_name, record, spec->replied, &Decode<Msg, kMaxBytes, kCheck>};
+}
+
 }  // namespace
 
 const std::vector<CommandChannel>& CommandChannels() {
   static const std::vector<CommandChannel> kChannels = {
-      {"BODY_CMD", "body_cmd_t", RecordKind::kBodyCommand, true,
-       &Decode<body_cmd_t, &DecodeLimits::max_body_cmd_bytes, CheckBody>},
-      {"SCENE_CMD", "scene_cmd_t", RecordKind::kSceneCommand, true,
-       &Decode<scene_cmd_t, &DecodeLimits::max_scene_cmd_bytes, CheckScene>},
-      {"JOINT_CMD", "joint_cmd_t", RecordKind::kJointCommand, true,
-       &Decode<joint_cmd_t, &DecodeLimits::max_joint_cmd_bytes, CheckJoint>},
-      {"INPUT", "input_t", RecordKind::kInput, false,
-       &Decode<input_t, &DecodeLimits::max_input_bytes, CheckInput>},
+      Row<body_cmd_t, &DecodeLimits::max_body_cmd_bytes, CheckBody>(protocol::kBodyCmd, RecordKind::kBodyCommand),
+      Row<scene_cmd_t, &DecodeLimits::max_scene_cmd_bytes, CheckScene>(protocol::kSceneCmd,
+                                                                       RecordKind::kSceneCommand),
+      Row<joint_cmd_t, &DecodeLimits::max_joint_cmd_bytes, CheckJoint>(protocol::kJointCmd,
+                                                                       RecordKind::kJointCommand),
+      Row<input_t, &DecodeLimits::max_input_bytes, CheckInput>(protocol::kInput, RecordKind::kInput),
   };
   return kChannels;
 }

@@ -1,7 +1,8 @@
 // The server's command channels in one table: each channel's suffix, its
-// LCM type, the largest payload it takes, the total decoder that turns a
-// payload into a Command, and the journal record kind that stores it. The
-// live receive path (CommandIntake::OnMessage), journal recovery
+// LCM type and whether it is answered (taken from the protocol's table,
+// lcmtypes/protocol.toml), the largest payload it takes, the total decoder
+// that turns a payload into a Command, and the journal record kind that
+// stores it. The live receive path (CommandIntake::OnMessage), journal recovery
 // (SimServer::ReplayRecord), `--replay` (LogReplayer) and main's
 // subscriptions all read this table, so a channel is described once.
 //
@@ -42,17 +43,17 @@ struct DecodeContext {
 };
 
 struct CommandChannel {
-  const char* suffix;     // the channel is <prefix>_<suffix>
-  const char* type_name;  // its LCM type
+  const char* suffix;     // the channel is <prefix>_<suffix> (protocol.toml)
+  const char* type_name;  // its LCM type (protocol.toml)
   RecordKind record;      // how the journal stores an accepted command
-  bool replied;           // every command is answered; a lockstep input only when refused
+  bool replied;           // every command is answered; a lockstep input only when refused (protocol.toml)
   // Decodes and checks one payload. On success `cmd` holds the command; on
   // failure the status says why, and cmd->client_id / request_id are set
   // whenever the header could be read (for the reply).
   Status (*decode)(const void* data, int size, const DecodeContext& context, Command* cmd);
 };
 
-// BODY_CMD, SCENE_CMD, JOINT_CMD, INPUT.
+// One per incoming channel of the protocol, in its order.
 const std::vector<CommandChannel>& CommandChannels();
 // The channel whose commands the journal stores as `kind`; null for kStepTo.
 const CommandChannel* ChannelOfRecord(RecordKind kind);

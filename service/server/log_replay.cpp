@@ -1,5 +1,6 @@
 #include "service/server/log_replay.h"
 
+#include <contactsim/protocol.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/signature.h>
 #include <contactsim/state_t.hpp>
@@ -53,7 +54,7 @@ std::string ReplayReport::Summary() const {
 }
 
 LogReplayer::LogReplayer(SimServer* server)
-    : server_(server), reply_(server->Channel("REPLY")), state_(server->Channel("STATE")) {
+    : server_(server), reply_(server->Channel(protocol::kReply)), state_(server->Channel(protocol::kState)) {
   for (const CommandChannel& c : CommandChannels()) channels_[server->Channel(c.suffix)] = &c;
 }
 

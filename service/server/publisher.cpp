@@ -1,6 +1,7 @@
 #include "service/server/publisher.h"
 
 #include <contactsim/progress_t.hpp>
+#include <contactsim/protocol.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +15,11 @@ namespace contactsim {
 Publisher::Publisher(const ServerOptions& options, Transport* transport)
     : transport_(transport),
       prefix_(options.prefix),
-      reply_(Channel("REPLY")),
-      state_(Channel("STATE")),
-      contacts_(Channel("CONTACTS")),
-      status_(Channel("STATUS")),
-      progress_(Channel("PROGRESS")),
+      reply_(Channel(protocol::kReply)),
+      state_(Channel(protocol::kState)),
+      contacts_(Channel(protocol::kContacts)),
+      status_(Channel(protocol::kStatus)),
+      progress_(Channel(protocol::kProgress)),
       state_rate_hz_(options.state_rate_hz),
       contacts_rate_hz_(options.contacts_rate_hz),
       live_line_(options.live_line) {}

@@ -4,11 +4,15 @@
 // such a world for that method (tests/server/sim_server_contract_test.cpp).
 #include "service/contact/method_contract.h"
 
+#include <contactsim/protocol.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include "service/contact/contact_method_registry.h"
 #include "tests/contact/method_sim.h"
@@ -24,6 +28,14 @@ using testing::MethodSim;
 TEST(MethodContractTest, DescriptionListsCapabilitiesThenFriction) {
   const MethodContract c{true, false, true, "coulomb disk"};
   EXPECT_EQ(DescribeContract(c), "joints=yes; restitution=no; kinematic=yes; friction=coulomb disk");
+}
+
+// Verifies that the registry holds exactly the methods the protocol names
+// (lcmtypes/protocol.toml), in its order: the clients and the viewer offer
+// that list.
+TEST(MethodContractTest, TheRegistryHoldsTheProtocolsMethods) {
+  const std::vector<std::string> named(std::begin(protocol::kMethodNames), std::end(protocol::kMethodNames));
+  EXPECT_EQ(ContactMethodNames(), named);
 }
 
 // Verifies that the registry's table gives every method a contract with a

@@ -14,9 +14,13 @@
 namespace contactsim {
 namespace testing {
 
+// The material of settings that leave it unset: restitution 0.5, the
+// engine's default when these scenarios and their measurements were made.
+inline constexpr Material kScenarioMaterial{0.5, 0.5};
+
 inline BodyId AddValidBody(World& world, const BodySettings& s) {
   RigidBody b;
-  const Status st = CreateBody(s, Material{}, &b);
+  const Status st = CreateBody(s, kScenarioMaterial, &b);
   EXPECT_TRUE(st.ok()) << st.message();
   return world.AddBody(b);
 }

@@ -178,6 +178,7 @@ class FakeServer:
 
     def __init__(self):
         self.url, self.prefix = unique_endpoint("FAKE")
+        self.channels = contactsim.protocol.channel_names(self.prefix)
         self.lc = lcm.LCM(self.url)
         self.commands = []
         self.behaviour = lambda msg: None
@@ -187,8 +188,8 @@ class FakeServer:
         self.decoy = False
         self.step = 0
         self.next_id = 1
-        self.lc.subscribe(self.prefix + "_BODY_CMD", self._on_body)
-        self.lc.subscribe(self.prefix + "_SCENE_CMD", self._on_scene)
+        self.lc.subscribe(self.channels["BODY_CMD"], self._on_body)
+        self.lc.subscribe(self.channels["SCENE_CMD"], self._on_scene)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, daemon=True)
         self._thread.start()
@@ -208,7 +209,7 @@ class FakeServer:
         m.state_hash = step * 7919
         m.bodies = list(bodies)
         m.num_bodies = len(m.bodies)
-        self.lc.publish(self.prefix + "_STATE", m.encode())
+        self.lc.publish(self.channels["STATE"], m.encode())
 
     def publish_status(self, **fields):
         m = contactsim.status_t()
@@ -216,7 +217,7 @@ class FakeServer:
         m.mode = 2
         for k, v in fields.items():
             setattr(m, k, v)
-        self.lc.publish(self.prefix + "_STATUS", m.encode())
+        self.lc.publish(self.channels["STATUS"], m.encode())
 
     def _reply(self, cmd, code=0, message="", ids=(), client_id=None):
         r = contactsim.reply_t()
@@ -228,7 +229,7 @@ class FakeServer:
         r.time = self.step / 240.0
         r.ids = list(ids)
         r.num_ids = len(r.ids)
-        self.lc.publish(self.prefix + "_REPLY", r.encode())
+        self.lc.publish(self.channels["REPLY"], r.encode())
 
     def _handle(self, cmd, is_add=False, steps=0):
         self.commands.append(cmd)

@@ -19,21 +19,30 @@ in fact a well-formed command that some server would apply.
 A helper of the tests (test_garbage.py, bad_input_cases.py), which
 scripts/soak.py borrows.
 """
+import importlib.util
 import random
-import re
 import struct
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 LCMTYPES = REPO / "lcmtypes"
 
+
+def _load_schema():
+    """cmake/lcm_schema.py, the one reader of lcmtypes/ (the build's generators use it too)."""
+    spec = importlib.util.spec_from_file_location("lcm_schema", REPO / "cmake" / "lcm_schema.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_schema = _load_schema()
 PRIMITIVE = {"int8_t": ">b", "byte": ">B", "boolean": ">b", "int16_t": ">h", "int32_t": ">i",
              "int64_t": ">q", "float": ">f", "double": ">d"}
-FIELD = re.compile(r"^\s*([A-Za-z_][\w.]*)\s+([A-Za-z_]\w*)\s*((?:\[[^\]]+\]\s*)*)$")
-
-# The command channel of each command type (docs/protocol.md).
-CHANNEL_TYPES = {"BODY_CMD": "body_cmd_t", "SCENE_CMD": "scene_cmd_t", "JOINT_CMD": "joint_cmd_t",
-                 "INPUT": "input_t"}
+STRUCTS = {name: s.fields for name, s in _schema.parse_folder(LCMTYPES).items()}
+# The command channel of each command type (lcmtypes/protocol.toml).
+CHANNEL_TYPES = {c.name: c.type for c in _schema.load_protocol(LCMTYPES / "protocol.toml", STRUCTS).channels
+                 if c.incoming}
 
 # A SCENE_CMD payload that made the server throw std::length_error (a string
 # length field of 0, read as a size of -1): kept as a regression case.
@@ -41,27 +50,6 @@ REGRESSION_SCENE_CMD = bytes.fromhex(
     "9efc6968c317985c8000000566757a7a000000007f800000807f00007f7f000000ffff000000007f007f8000007f7f"
     "008000ff008000000000000000000000007f007f0000000000007f00000000ff008000008000000000010000ff00ff"
     "0000000000ff7f000000ff0000")
-
-
-def parse_lcm(path):
-    """(struct name, [(type, name, [dims])]) of one .lcm file; constants skipped."""
-    text = re.sub(r"//[^\n]*|/\*.*?\*/", "", Path(path).read_text(), flags=re.S)
-    name = re.search(r"\bstruct\s+(\w+)", text).group(1)
-    body = text[text.index("{") + 1:text.rindex("}")]
-    fields = []
-    for stmt in body.split(";"):
-        stmt = stmt.strip()
-        if not stmt or stmt.startswith("const "):
-            continue
-        m = FIELD.match(stmt)
-        if not m:
-            raise ValueError("%s: cannot parse field %r" % (path, stmt))
-        dims = re.findall(r"\[\s*([^\]\s]+)\s*\]", m.group(3))
-        fields.append((m.group(1).split(".")[-1], m.group(2), dims))
-    return name, fields
-
-
-STRUCTS = dict(parse_lcm(p) for p in sorted(LCMTYPES.glob("*.lcm")))
 
 
 class Malformed(Exception):

@@ -89,7 +89,7 @@ def test_page_commands_reach_server(server, browser):
     from selenium.webdriver.support.ui import Select
     c = server.client
     c.add_plane((0, 0, 1), 0.0)
-    c.add_sphere(0.1, position=(0, 0, 0.5))
+    c.add_sphere(0.1, position=(0, 0, 0.5), restitution=0.5)
     c.set_mode("realtime")
     c.resume()
     c.wait_for_status(lambda s: not s.paused, timeout=5)
@@ -104,7 +104,7 @@ def test_page_commands_reach_server(server, browser):
         assert [(r["cmd"], r["ok"]) for r in replies] == [("pause", True), ("method", True)]
         # the panel shows what the method simulates (docs/physics.md, "Method
         # contract"), and a switch to one that cannot honour the world (barrier:
-        # the sphere has the default restitution 0.5) comes back refused with why
+        # the sphere has restitution 0.5) comes back refused with why
         contract = "document.getElementById('ro-contract').textContent"
         shown = wait_for(browser, "%s.includes('regularized: tangential spring') && %s" % (contract, contract))
         assert shown.startswith("joints=yes; restitution=yes; kinematic=yes; friction=")

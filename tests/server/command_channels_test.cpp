@@ -3,6 +3,7 @@
 // DECODE_ERROR and limits with RESOURCE_EXHAUSTED.
 #include "service/server/command_channels.h"
 
+#include <contactsim/protocol.hpp>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -41,6 +42,27 @@ TEST(CommandChannelsTest, EveryChannelIsFoundBySuffixAndRecordKind) {
   EXPECT_EQ(suffixes, (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT"}));
   EXPECT_EQ(ChannelOfRecord(RecordKind::kStepTo), nullptr);
   EXPECT_EQ(ChannelOfSuffix("STATE"), nullptr);
+}
+
+// Verifies that the table has one row for each incoming channel of the
+// protocol (lcmtypes/protocol.toml), in its order, with its type and
+// answering, and none for an outgoing one.
+TEST(CommandChannelsTest, EveryIncomingChannelOfTheProtocolHasADecoder) {
+  std::vector<std::string> incoming;
+  for (const protocol::ChannelSpec& spec : protocol::kChannels) {
+    if (!spec.incoming) {
+      EXPECT_EQ(ChannelOfSuffix(spec.name), nullptr) << spec.name;
+      continue;
+    }
+    incoming.push_back(spec.name);
+    const CommandChannel* c = ChannelOfSuffix(spec.name);
+    ASSERT_NE(c, nullptr) << spec.name;
+    EXPECT_STREQ(c->type_name, spec.type_name);
+    EXPECT_EQ(c->replied, spec.replied) << spec.name;
+  }
+  std::vector<std::string> rows;
+  for (const CommandChannel& c : CommandChannels()) rows.push_back(c.suffix);
+  EXPECT_EQ(rows, incoming);
 }
 
 // Verifies that the payload that once ended the server (a string whose

@@ -36,12 +36,16 @@ class ServerHarness {
     return o;
   }
 
+  // An ADD gives restitution 0.5, the server's default material when these
+  // tests and their pinned hashes were written.
   body_cmd_t Body(int8_t op, int64_t id = 0) {
     body_cmd_t m{};
     m.client_id = "test";
     m.op = op;
     m.body_id = id;
     m.orientation[0] = 1.0;
+    m.has_restitution = op == body_cmd_t::ADD;
+    m.restitution = m.has_restitution ? 0.5 : 0.0;
     return m;
   }
   body_cmd_t Box(double half, const Vec3& p, const Vec3& v = Vec3::Zero()) {

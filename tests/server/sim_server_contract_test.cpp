@@ -6,10 +6,12 @@
 // world as it was.
 #include <gtest/gtest.h>
 
+#include <contactsim/protocol.hpp>
 #include <contactsim/status_t.hpp>
 
 #include "service/contact/contact_method_registry.h"
 #include "service/scene/scene_spec.h"
+#include "service/server/server_config.h"
 #include "tests/server/sim_server_fixture.h"
 
 namespace contactsim {
@@ -41,7 +43,7 @@ class SimServerContractTest : public testing::SimServerTest {
 };
 
 // Verifies that a switch to barrier is refused while a body has restitution
-// > 0 (the default material's 0.5), naming the body and the value, and the
+// > 0 (the sphere's 0.5), naming the body and the value, and the
 // method stays; with every restitution set to 0 the switch is taken.
 TEST_F(SimServerContractTest, SwitchToBarrierIsRefusedWhileABodyBounces) {
   const int64_t ball = Send(Sphere(0.1, Vec3(0, 0, 1))).ids[0];
@@ -185,6 +187,75 @@ TEST_P(SimServerContractStatusTest, StatusCarriesTheActiveMethodsContract) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, SimServerContractStatusTest, ::testing::ValuesIn(ContactMethodNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+class SimServerDefaultWorldTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  // Hands one command to the server, applies it and returns its reply.
+  template <typename Msg>
+  reply_t Send(SimServer& server, const char* channel, const Msg& m) {
+    const std::vector<uint8_t> bytes = testing::Encode(m);
+    server.OnMessage(server.Channel(channel), bytes.data(), static_cast<int>(bytes.size()));
+    server.Tick();
+    return transport_.All<reply_t>(server.Channel(protocol::kReply)).back();
+  }
+  // ADD of a body with nothing but its shape and place: the server's
+  // default material.
+  static body_cmd_t Add(int8_t shape, double z) {
+    body_cmd_t m{};
+    m.client_id = "default";
+    m.op = body_cmd_t::ADD;
+    m.shape = shape;
+    m.radius = 0.1;
+    m.half_extents[0] = m.half_extents[1] = m.half_extents[2] = 0.1;
+    m.plane_normal[2] = 1.0;
+    m.position[0] = 3.0;
+    m.position[2] = z;
+    m.orientation[0] = 1.0;
+    return m;
+  }
+  RecordingTransport transport_;
+};
+
+// Verifies that a default world takes every registered method: the server
+// as config/server.pbtxt sets it up (its scene and method), plus a sphere, a
+// box and a plane added over BODY_CMD with the default material, switches
+// to the method by SET_METHOD and steps under it.
+TEST_P(SimServerDefaultWorldTest, SwitchesToTheMethod) {
+  const std::string path = std::string(CONTACTSIM_SOURCE_DIR) + "/config/server.pbtxt";
+  proto::ServerConfig config;
+  ASSERT_TRUE(LoadServerConfig(path, &config).ok());
+  ServerSetup setup;
+  const Status loaded = MakeServerSetup(config, path, "", &setup);
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  ASSERT_NE(setup.scene, nullptr);
+  setup.options.prefix = "D";
+  setup.options.start_paused = true;
+  SimServer server(setup.options, &transport_);
+  ASSERT_TRUE(server.Init(setup.scene.get(), setup.method).ok());
+  for (const auto& [shape, z] : {std::pair<int8_t, double>{body_cmd_t::SPHERE, 1.0}, {body_cmd_t::BOX, 2.0},
+                                 {body_cmd_t::PLANE, -1.0}}) {
+    const reply_t r = Send(server, protocol::kBodyCmd, Add(shape, z));
+    ASSERT_EQ(r.code, reply_t::OK) << r.message;
+  }
+  scene_cmd_t method{};
+  method.client_id = "default";
+  method.op = scene_cmd_t::SET_METHOD;
+  method.method = GetParam();
+  reply_t r = Send(server, protocol::kSceneCmd, method);
+  ASSERT_EQ(r.code, reply_t::OK) << r.message;
+  EXPECT_EQ(server.method().Name(), GetParam());
+  scene_cmd_t step{};
+  step.client_id = "default";
+  step.op = scene_cmd_t::STEP;
+  step.steps = 1;
+  const int64_t before = server.world().step;
+  r = Send(server, protocol::kSceneCmd, step);
+  EXPECT_EQ(r.code, reply_t::OK) << r.message;
+  EXPECT_EQ(server.world().step, before + 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryMethod, SimServerDefaultWorldTest, ::testing::ValuesIn(ContactMethodNames()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace

@@ -37,6 +37,8 @@ class SimServerTest : public ::testing::Test {
     o.mode = RunMode::kFreeRun;
     return o;
   }
+  // Restitution 0.5, the server's default material when these tests were
+  // written.
   body_cmd_t Sphere(double radius, const Vec3& p) {
     body_cmd_t m{};
     m.client_id = "test";
@@ -47,6 +49,8 @@ class SimServerTest : public ::testing::Test {
     for (int i = 0; i < 3; ++i) m.position[i] = p[i];
     m.orientation[0] = 1.0;
     m.num_points = 0;
+    m.has_restitution = true;
+    m.restitution = 0.5;
     return m;
   }
   scene_cmd_t Scene(int8_t op) {

@@ -33,6 +33,8 @@ constexpr double kHalf = 0.1;         // m, half the box size
 constexpr int kSteps = 480;           // 2 s at 1/240 s
 constexpr double kEnergySlack = 0.01; // of the initial energy
 constexpr double kLogLo = 4.0, kLogHi = 15.0, kLogTolerance = 0.01;
+// the scene's mu = 0.5, e = 0.5 (above); e sets penalty's damping
+constexpr Material kStackMaterial{0.5, 0.5};
 
 struct Config {
   const char* integrator;
@@ -44,14 +46,14 @@ void BuildStack(World& world, double gap) {
   BodySettings ground;
   ground.shape = ShapeType::kPlane;
   RigidBody b;
-  CreateBody(ground, Material{}, &b);
+  CreateBody(ground, kStackMaterial, &b);
   world.AddBody(b);
   for (int i = 0; i < 5; ++i) {
     BodySettings s;
     s.shape = ShapeType::kBox;
     s.half_extents = Vec3::Constant(kHalf);
     s.position = Vec3(0, 0, kHalf + i * (2.0 * kHalf + gap));
-    CreateBody(s, Material{}, &b);
+    CreateBody(s, kStackMaterial, &b);
     world.AddBody(b);
   }
 }

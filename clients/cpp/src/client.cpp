@@ -3,6 +3,8 @@
 // live in client_commands.cpp.
 #include "contactsim/client.h"
 
+#include "contactsim/protocol.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -107,11 +109,11 @@ Client::Client(ClientOptions options)
   constexpr int kQueueCapacity = 100000;
   // Plain-function trampolines rather than LCM's pointer-to-member
   // subscriptions, whose dispatch UBSan flags inside lcm-cpp-impl.hpp.
-  lcm_->subscribeFunction(Channel("REPLY"), &OnReply, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribeFunction(Channel("STATE"), &OnState, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribeFunction(Channel("CONTACTS"), &OnContacts, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribeFunction(Channel("STATUS"), &OnStatus, this)->setQueueCapacity(kQueueCapacity);
-  lcm_->subscribeFunction(Channel("PROGRESS"), &OnProgress, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel(protocol::kReply), &OnReply, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel(protocol::kState), &OnState, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel(protocol::kContacts), &OnContacts, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel(protocol::kStatus), &OnStatus, this)->setQueueCapacity(kQueueCapacity);
+  lcm_->subscribeFunction(Channel(protocol::kProgress), &OnProgress, this)->setQueueCapacity(kQueueCapacity);
   thread_ = std::thread(&Client::Run, this);
 }
 
@@ -197,7 +199,7 @@ CommandResult Client::Publish(const std::string& channel, int64_t request_id,
   if (!replied) {
     result.code = ReplyCode::kTimeout;
     result.message = "no reply to request " + std::to_string(request_id) +
-                     " on " + Channel("REPLY") + " and no progress for " +
+                     " on " + Channel(protocol::kReply) + " and no progress for " +
                      std::to_string(options_.reply_timeout.count()) + " ms";
     if (auth_ && auth_->failures() > 0) {  // the likely cause: a server with another key, or none
       result.message += " (" + std::to_string(auth_->failures()) +
@@ -221,7 +223,7 @@ CommandResult Client::Send(body_cmd_t command) {
   for (std::vector<double>& point : command.points) point.resize(3);
   std::vector<uint8_t> buffer(command.getEncodedSize());
   command.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
-  return Publish(Channel("BODY_CMD"), command.request_id, buffer.data(),
+  return Publish(Channel(protocol::kBodyCmd), command.request_id, buffer.data(),
                  static_cast<int>(buffer.size()));
 }
 
@@ -236,7 +238,7 @@ CommandResult Client::Send(scene_cmd_t command, ProgressCallback progress) {
   command.param_values.resize(command.param_names.size());
   std::vector<uint8_t> buffer(command.getEncodedSize());
   command.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
-  return Publish(Channel("SCENE_CMD"), command.request_id, buffer.data(),
+  return Publish(Channel(protocol::kSceneCmd), command.request_id, buffer.data(),
                  static_cast<int>(buffer.size()));
 }
 
@@ -263,7 +265,7 @@ CommandResult Client::Step(int32_t n, ProgressCallback progress) {
     result.code = ReplyCode::kTimeout;
     result.message = "STEP replied (step " + std::to_string(result.step) +
                      ") but no STATE of that step arrived on " +
-                     Channel("STATE");
+                     Channel(protocol::kState);
   }
   return result;
 }

@@ -6,6 +6,8 @@
 
 #include "contactsim/client.h"
 
+#include "contactsim/protocol.hpp"
+
 namespace contactsim {
 namespace {
 
@@ -131,7 +133,7 @@ int64_t Client::SendInput(int64_t step, const BodyInputs& inputs, int64_t reques
   message.num_bodies = static_cast<int32_t>(message.body_ids.size());
   std::vector<uint8_t> buffer(message.getEncodedSize());
   message.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
-  if (!PublishRaw(Channel("INPUT"), buffer.data(), static_cast<int>(buffer.size()))) return 0;
+  if (!PublishRaw(Channel(protocol::kInput), buffer.data(), static_cast<int>(buffer.size()))) return 0;
   return message.request_id;
 }
 

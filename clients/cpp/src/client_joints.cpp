@@ -5,6 +5,8 @@
 
 #include "contactsim/client.h"
 
+#include "contactsim/protocol.hpp"
+
 namespace contactsim {
 
 Result<int64_t> Client::AddJoint(JointType type, int64_t body_a, int64_t body_b,
@@ -40,7 +42,7 @@ CommandResult Client::Send(joint_cmd_t command) {
   command.request_id = NextRequestId();
   std::vector<uint8_t> buffer(command.getEncodedSize());
   command.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
-  return Publish(Channel("JOINT_CMD"), command.request_id, buffer.data(),
+  return Publish(Channel(protocol::kJointCmd), command.request_id, buffer.data(),
                  static_cast<int>(buffer.size()));
 }
 

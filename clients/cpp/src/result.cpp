@@ -7,18 +7,9 @@
 namespace contactsim {
 
 std::string ReplyCodeName(ReplyCode code) {
-  switch (code) {
-    case ReplyCode::kOk: return "OK";
-    case ReplyCode::kInvalidArgument: return "INVALID_ARGUMENT";
-    case ReplyCode::kNotFound: return "NOT_FOUND";
-    case ReplyCode::kDecodeError: return "DECODE_ERROR";
-    case ReplyCode::kFailedPrecondition: return "FAILED_PRECONDITION";
-    case ReplyCode::kInternal: return "INTERNAL";
-    case ReplyCode::kUnauthenticated: return "UNAUTHENTICATED";
-    case ReplyCode::kResourceExhausted: return "RESOURCE_EXHAUSTED";
-    case ReplyCode::kTimeout: return "TIMEOUT";
-    case ReplyCode::kTransport: return "TRANSPORT";
-  }
+  if (code == ReplyCode::kTimeout) return "TIMEOUT";
+  if (code == ReplyCode::kTransport) return "TRANSPORT";
+  if (const char* name = protocol::ReplyCodeName(static_cast<int32_t>(code))) return name;
   // A newer server may send a code this client was not built with.
   return "UNKNOWN(" + std::to_string(static_cast<int32_t>(code)) + ")";
 }

@@ -26,6 +26,7 @@
 
 #include "contactsim/client.h"
 #include "contactsim/mode_names.h"
+#include "contactsim/protocol.hpp"
 
 namespace {
 
@@ -157,7 +158,7 @@ int main(int argc, char** argv) {
               std::chrono::milliseconds>(std::chrono::duration<double>(timeout_s));
           // STATUS comes at ~1 Hz, so the wait is at least a second.
           if (!client.WaitForServer(std::max(timeout, std::chrono::milliseconds(1500)))) {
-            std::cerr << "no STATUS on " << client.Channel("STATUS");
+            std::cerr << "no STATUS on " << client.Channel(contactsim::protocol::kStatus);
             if (client.auth_failures() > 0) std::cerr << " (dropped, last: " << client.last_auth_failure() << ")";
             std::cerr << "\n";
             return kExitNoReply;

@@ -12,7 +12,9 @@ it: the classes then match the client they were built with. In the
 repository (an editable install or PYTHONPATH) there is no such folder, and
 the folder is ``$CONTACTSIM_BUILD_DIR/lcmtypes/python/contactsim`` when that
 variable is set, else ``<repo>/build/lcmtypes/python/contactsim`` relative to
-this file.
+this file. The protocol's table (``protocol.toml``, read by
+``contactsim.protocol``) lies beside the modules, in the wheel and the build
+folder alike.
 """
 import importlib
 import os
@@ -31,6 +33,7 @@ TYPE_NAMES = (
     "status_t",
     "progress_t",
 )
+PROTOCOL_TABLE = "protocol.toml"
 
 
 def packaged_dir():
@@ -53,7 +56,8 @@ def generated_dir():
 def install(package):
     """Extends ``package.__path__`` and binds each generated class on it."""
     folder = generated_dir()
-    missing = [n for n in TYPE_NAMES if not os.path.isfile(os.path.join(folder, n + ".py"))]
+    missing = [f for f in [n + ".py" for n in TYPE_NAMES] + [PROTOCOL_TABLE]
+               if not os.path.isfile(os.path.join(folder, f))]
     if missing:
         raise ImportError(
             "contactsim: generated LCM types not found in %s (missing %s). "

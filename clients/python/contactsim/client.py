@@ -22,7 +22,7 @@ import warnings
 import lcm
 import numpy as np
 
-from . import body_cmd_t, contacts_t, progress_t, reply_t, scene_cmd_t, state_t, status_t
+from . import body_cmd_t, contacts_t, progress_t, protocol, reply_t, scene_cmd_t, state_t, status_t
 from .auth import DEFAULT_WINDOW_S, Authenticator, unsigned_size
 from ._fields import vector as _vec
 from .errors import CommandError, TimeoutError
@@ -94,9 +94,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
         self.client_id = client_id or "py-%s-%d-%s" % (
             socket.gethostname(), os.getpid(), uuid.uuid4().hex[:6])
         self.timeout = timeout
-        self.channels = {k: "%s_%s" % (prefix, k) for k in
-                         ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "REPLY", "STATE", "CONTACTS", "STATUS",
-                          "INPUT", "PROGRESS")}
+        self.channels = protocol.channel_names(prefix)
         self._lock = threading.Lock()
         self._cond = threading.Condition(self._lock)
         self._request_id = 0

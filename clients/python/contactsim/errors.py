@@ -1,17 +1,7 @@
 """Exceptions raised by the contactsim client."""
 import builtins
 
-# reply_t codes, by value (the generated reply_t holds the same constants).
-CODE_NAMES = {
-    0: "OK",
-    1: "INVALID_ARGUMENT",
-    2: "NOT_FOUND",
-    3: "DECODE_ERROR",
-    4: "FAILED_PRECONDITION",
-    5: "INTERNAL",
-    6: "UNAUTHENTICATED",
-    7: "RESOURCE_EXHAUSTED",
-}
+from .protocol import CODE_NAMES  # reply_t code -> name
 
 
 class CommandError(Exception):

@@ -13,17 +13,18 @@ from types import SimpleNamespace
 import lcm
 import numpy as np
 
-from . import contacts_t, state_t, status_t
+from . import contacts_t, protocol, state_t, status_t
 from .state import MODE_NAMES
 
 
 def _detect_prefix(path):
     """The prefix of the first ``<P>_STATE`` channel in the log."""
+    suffix = protocol.channel("", "STATE")
     log = lcm.EventLog(path, "r")
     try:
         for event in log:
-            if event.channel.endswith("_STATE"):
-                return event.channel[:-len("_STATE")]
+            if event.channel.endswith(suffix):
+                return event.channel[:-len(suffix)]
     finally:
         log.close()
     return "CONTACTSIM"
@@ -83,7 +84,7 @@ def read_log(path, prefix=None, progress=False):
     path = os.fspath(path)
     if prefix is None:
         prefix = _detect_prefix(path)
-    names = {prefix + "_STATE": "state", prefix + "_CONTACTS": "contacts", prefix + "_STATUS": "status"}
+    names = {protocol.channel(prefix, c): c.lower() for c in ("STATE", "CONTACTS", "STATUS")}
 
     st = {k: [] for k in ("time", "step", "log_time", "state_hash", "input_digest", "kinetic_energy",
                           "potential_energy")}

@@ -9,19 +9,17 @@
 #include <utility>
 #include <vector>
 
+#include "contactsim/protocol.hpp"
+
 namespace contactsim {
 
-// Values >= 0 mirror reply_t's codes one to one; negative values are decided
-// by the client and never appear on the wire.
+// Values >= 0 are reply_t's codes (lcmtypes/reply_t.lcm, through the
+// generated protocol.hpp); negative values are decided by the client and
+// never appear on the wire.
 enum class ReplyCode : int32_t {
-  kOk = 0,
-  kInvalidArgument = 1,
-  kNotFound = 2,
-  kDecodeError = 3,
-  kFailedPrecondition = 4,
-  kInternal = 5,
-  kUnauthenticated = 6,
-  kResourceExhausted = 7,
+#define CONTACTSIM_CLIENT_REPLY_CODE(camel, upper, value) camel = value,
+  CONTACTSIM_REPLY_CODES(CONTACTSIM_CLIENT_REPLY_CODE)
+#undef CONTACTSIM_CLIENT_REPLY_CODE
   kTimeout = -1,    // no matching reply (or STATE) within the reply timeout
   kTransport = -2,  // LCM could not be opened or the publish failed
 };

@@ -16,11 +16,10 @@ import warnings
 
 import numpy as np
 
+from ..protocol import METHODS  # the contact methods the server registers; STATUS adds the active one
 from .catalog import read_catalog
 from .commands import run_command
 
-# the contact methods the server registers (docs/architecture.md); STATUS adds the active one
-METHODS = ("impulse", "penalty", "xpbd", "lcp", "barrier", "soft")
 RETRY_S = 2.0   # s between snapshot attempts after one failed
 
 
