@@ -43,14 +43,7 @@ class DivergingMethod : public ContactMethod {
 
 class SimServerBlowUpTest : public ::testing::Test {
  protected:
-  static ServerOptions Options() {
-    ServerOptions o;
-    o.prefix = "T";
-    o.start_paused = true;
-    o.mode = RunMode::kFreeRun;
-    return o;
-  }
-  SimServerBlowUpTest() : server_(Options(), &transport_) {}
+  SimServerBlowUpTest() : server_(testing::TestServerOptions(), &transport_) {}
   void Start(int64_t diverge_from) {
     ASSERT_TRUE(server_.Init(nullptr, std::make_shared<DivergingMethod>(diverge_from)).ok());
   }

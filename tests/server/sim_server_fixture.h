@@ -23,6 +23,15 @@
 namespace contactsim {
 namespace testing {
 
+// The options of the servers under test: prefix "T", paused, free-running.
+inline ServerOptions TestServerOptions() {
+  ServerOptions o;
+  o.prefix = "T";
+  o.start_paused = true;
+  o.mode = RunMode::kFreeRun;
+  return o;
+}
+
 class SimServerTest : public ::testing::Test {
  protected:
   SimServerTest() : server_(Options(), &transport_) {
@@ -30,13 +39,7 @@ class SimServerTest : public ::testing::Test {
     EXPECT_TRUE(MakeContactMethod("impulse", {}, &method).ok());
     EXPECT_TRUE(server_.Init(nullptr, method).ok());
   }
-  static ServerOptions Options() {
-    ServerOptions o;
-    o.prefix = "T";
-    o.start_paused = true;
-    o.mode = RunMode::kFreeRun;
-    return o;
-  }
+  static ServerOptions Options() { return TestServerOptions(); }
   // Restitution 0.5, the server's default material when these tests were
   // written.
   body_cmd_t Sphere(double radius, const Vec3& p) {
