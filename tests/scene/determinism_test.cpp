@@ -35,7 +35,7 @@ struct Pinned {
 
 const std::vector<Pinned>& PinnedRuns() {
   static const std::vector<Pinned> pinned = {
-      {"impulse", {}, 0x79970dd7b7e315b0ull},
+      {"impulse", {}, 0xaca91ecc4d28d48full},
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
       {"xpbd", {}, 0x933460267d44d2c1ull},

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/contact/union_find.h"
+
 namespace contactsim {
 
 void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>& bodies, double h,
@@ -10,9 +12,29 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   rows_.clear();
   blocks_.clear();
   solver_ = solver;
+  component_.clear();
   if (world.joints().empty()) return;
   BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
   total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
+  const int n = static_cast<int>(bodies.size());
+  UnionFind sets(n);
+  for (const Joint& j : world.joints()) {
+    const int a = world.IndexOf(j.body_a);
+    const int b = j.body_b == kWorldBody ? -1 : world.IndexOf(j.body_b);
+    if (a >= 0 && b >= 0) sets.Join(a, b);
+  }
+  component_.assign(n, -1);
+  for (const Joint& j : world.joints()) {
+    for (const BodyId id : {j.body_a, j.body_b}) {
+      const int i = id == kWorldBody ? -1 : world.IndexOf(id);
+      if (i >= 0) component_[i] = sets.Root(i);
+    }
+  }
+}
+
+bool JointVelocityBlock::SelfContact(int a, int b) const {
+  if (component_.empty() || a < 0 || b < 0) return false;
+  return component_[a] >= 0 && component_[a] == component_[b];
 }
 
 double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_passes) {

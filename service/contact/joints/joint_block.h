@@ -33,6 +33,15 @@ class JointVelocityBlock {
   void Build(const World& world, const std::vector<SolverBody>& bodies, double h,
              JointSolverKind solver = JointSolverKind::kTree);
   bool empty() const { return rows_.empty(); }
+  // True when a contact joins two bodies (solver indices a, b) of one
+  // jointed component: an articulated body touching itself, whose contact
+  // and joint rows can ask for motions no velocity meets. Solved in turn,
+  // such rows raise each other's impulses without bound (a 100-link chain
+  // of mixed masses folding onto itself blew up), so a method solves the
+  // joints once after its sweeps there instead.
+  bool SelfContact(int a, int b) const;
+  // True when solver body i is jointed.
+  bool Jointed(int i) const { return i >= 0 && i < static_cast<int>(component_.size()) && component_[i] >= 0; }
   // Projects the bodies' velocities onto the joint rows; returns the largest
   // row velocity error it removed (m/s or rad/s).
   double Solve(std::vector<SolverBody>& bodies, int max_limit_passes = 8);
@@ -42,6 +51,7 @@ class JointVelocityBlock {
   std::vector<ConstraintRow> rows_;
   std::vector<JointBlock> blocks_;
   Eigen::VectorXd total_;  // accumulated impulse per row this step
+  std::vector<int> component_;  // per solver body: its jointed component, -1 if unjointed
   JointSolverKind solver_ = JointSolverKind::kTree;
 };
 
