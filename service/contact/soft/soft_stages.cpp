@@ -76,15 +76,18 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   for (int sub = 0; sub < params_.substeps; ++sub) {
     list.Add(integrate_velocities, 0, bodies, kBodyGrain);
     list.Add(warm_start, 0, bodies, kBodyGrain);
+    // the heavy-on-light direct solve, a dense factorisation, once a stage:
+    // before the stage's last joint solve
     for (int pass = 0; pass < joint_passes; ++pass) {
       list.AddColours(solve_blocks, colours_, blocks);
-      if (ratio_solve_.active()) list.AddSerial(solve_ratio);
+      if (ratio_solve_.active() && pass + 1 == joint_passes) list.AddSerial(solve_ratio);
       if (joints) list.AddSerial(solve_joints);
     }
     list.Add(integrate_positions, 0, bodies, kBodyGrain);
     for (int pass = 0; pass < joint_passes; ++pass) {
       for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
-      if (ratio_solve_.active() && params_.relax_iterations > 0) list.AddSerial(relax_ratio);
+      const bool last = pass + 1 == joint_passes;
+      if (ratio_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_ratio);
       if (joints) list.AddSerial(solve_joints);
     }
     list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
