@@ -261,7 +261,7 @@ class MechanicsSlideSpinTest : public ::testing::TestWithParam<SlideSpinParam> {
 // to brake the spin (the two stop together, as a sliding and spinning disc
 // does: Farkas et al. 2003, "Frictional coupling between sliding and
 // spinning motion"). Prints the uniform patch's own answer beside.
-TEST_P(MechanicsSlideSpinTest, SlidingSpinningBoxOnlyLosesEnergyAndStops) {
+TEST_P(MechanicsSlideSpinTest, SlidingSpinningPlateLosesEnergyAndStopsAsItsPointsDo) {
   const auto& [config, uniform] = GetParam();
   if (uniform && !TakesPatchTorsion(config)) GTEST_SKIP() << config.label << " has no patch_torsion";
   // a thin plate: the friction's moment about its centre of mass shifts
