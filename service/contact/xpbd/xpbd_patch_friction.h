@@ -110,10 +110,10 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, X
 // its points' Coulomb disks give for its slip and spin, each point's
 // friction mu lambda_n / h against its own slip v + spin n x d_i (summed to
 // a force and a twist about the centre), no more in either than stopping
-// would take: with the two limits apart, a face sliding at 2 m/s and
+// would take: with the two limits apart, a 0.2 m cube sliding at 2 m/s and
 // spinning at 10 rad/s had its spin braked by the whole mu N r and stopped
-// spinning in 0.10 s, its points' friction 0.44 s (docs/physics.md,
-// "Friction against spin"). A point alone (no twist row) keeps the disk.
+// spinning in 0.10 s, where its points' friction takes 0.44 s
+// (docs/physics.md, "Friction against spin"). A point alone (no twist row) keeps the disk.
 // One impulse for the patch keeps a sliding face's corners alike:
 // braked corner by corner, a box sliding down a slope picked up
 // 0.008-0.014 rad/s of spin. `spent` holds what the patch's earlier brakes of
