@@ -25,6 +25,31 @@ int ArgMax(size_t n, const std::vector<bool>& chosen, Score score) {
   return best;
 }
 
+// Marks in `hidden` the points that lie behind a deeper one: within the
+// cone of half-angle 45 degrees above it, |in-plane offset| <= the depth
+// difference. Such a point supports nothing
+// the deeper one does not, but its 3D distance and, in a near tie, its
+// index could win it a place over the deeper one: a thin plate spun on the
+// ground (its top face within the detection reach) kept two top corners
+// and stood on two of its four bottom ones. Returns how many are left.
+size_t HideShadowedPoints(const Contact* c, size_t n, const Vec3& normal, std::vector<bool>* hidden) {
+  size_t left = n;
+  for (size_t j = 0; j < n; ++j) {
+    for (size_t i = 0; i < n && !(*hidden)[j]; ++i) {
+      if (i == j) continue;
+      const double deeper = c[i].depth - c[j].depth;
+      if (!(deeper > 0.0)) continue;
+      const Vec3 d = c[j].point - c[i].point;
+      const Vec3 in_plane = d - normal.dot(d) * normal;
+      if (in_plane.norm() <= deeper) {
+        (*hidden)[j] = true;
+        --left;
+      }
+    }
+  }
+  return left;
+}
+
 }  // namespace
 
 void ReduceManifold(size_t first, ContactSet* contacts) {
@@ -33,6 +58,19 @@ void ReduceManifold(size_t first, ContactSet* contacts) {
   const Contact* c = contacts->data() + first;
   const Vec3 normal = c[0].normal;
   std::vector<bool> chosen(n, false);
+  // a hidden point is never chosen: it counts as chosen for ArgMax, and
+  // is left out below; when four or fewer are left they are the manifold
+  std::vector<bool> hidden(n, false);
+  if (HideShadowedPoints(c, n, normal, &hidden) <= kMaxManifoldPoints) {
+    ContactSet kept;
+    for (size_t i = 0; i < n; ++i) {
+      if (!hidden[i]) kept.push_back(c[i]);
+    }
+    contacts->resize(first);
+    contacts->insert(contacts->end(), kept.begin(), kept.end());
+    return;
+  }
+  chosen = hidden;
 
   // deepest point
   const int i0 = ArgMax(n, chosen, [&](size_t i) { return c[i].depth; });
@@ -63,7 +101,7 @@ void ReduceManifold(size_t first, ContactSet* contacts) {
 
   ContactSet kept;
   for (size_t i = 0; i < n; ++i) {
-    if (chosen[i]) kept.push_back(c[i]);
+    if (chosen[i] && !hidden[i]) kept.push_back(c[i]);
   }
   contacts->resize(first);
   contacts->insert(contacts->end(), kept.begin(), kept.end());

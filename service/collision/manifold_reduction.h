@@ -1,7 +1,9 @@
 // Reduces a contact manifold to at most four points: the deepest point, the
 // point farthest from it, the point that spans the largest triangle with
 // those two, and the point that adds the most area to that triangle
-// (Gregorius, "Robust Contact Creation for Physics Simulations", GDC 2015).
+// (Gregorius, "Robust Contact Creation for Physics Simulations", GDC 2015),
+// chosen among the points that no deeper point hides (one within 45
+// degrees below it: a thin plate's top corner above a bottom one).
 // Four points that span the largest area are what a solver needs to hold a
 // face on a face; more add cost and no support.
 #pragma once

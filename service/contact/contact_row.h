@@ -16,10 +16,13 @@ namespace contactsim {
 struct ContactRow {
   int a = -1, b = -1;          // body indices
   Vec3 ra, rb;                 // m, contact point minus centre of mass, world
+  Vec3 fa, fb;                 // m, where the friction acts minus centre of mass: ra, rb, or a
+                               // patch's point moved toward its centroid (patch_torsion.h)
   Vec3 n, t1, t2;              // unit, world; n from A to B
   double k_n = 0.0;            // 1/kg: K along n
   double mass_n = 0.0;         // kg: 1 / K_n
   double mass_t1 = 0.0, mass_t2 = 0.0;
+  double k_t12 = 0.0;          // 1/kg: K's coupling of t1 and t2 (slip_friction_step.h)
   double friction = 0.0;       // combined Coulomb coefficient
   double restitution = 0.0;    // combined coefficient
   double lambda_n = 0.0;       // N s accumulated along n (>= 0)
@@ -32,10 +35,19 @@ struct ContactRow {
   Vec3 RelativeVelocity(const std::vector<SolverBody>& s) const {
     return s[b].PointVelocity(rb) - s[a].PointVelocity(ra);
   }
+  // the same where the friction acts
+  Vec3 FrictionVelocity(const std::vector<SolverBody>& s) const {
+    return s[b].PointVelocity(fb) - s[a].PointVelocity(fa);
+  }
   // +J on B, -J on A
   void Apply(const Vec3& J, std::vector<SolverBody>& s) const {
     s[b].ApplyImpulse(J, rb);
     s[a].ApplyImpulse(-J, ra);
+  }
+  // a tangent impulse Jt where the friction acts
+  void ApplyFriction(const Vec3& Jt, std::vector<SolverBody>& s) const {
+    s[b].ApplyImpulse(Jt, fb);
+    s[a].ApplyImpulse(-Jt, fa);
   }
 };
 
@@ -45,12 +57,15 @@ struct ContactRow {
 double CombineRestitution(const Material& a, const Material& b);
 double CombineFriction(const Material& a, const Material& b);
 
-ContactRow MakeContactRow(const Contact& c, const World& world, const std::vector<SolverBody>& s);
+// friction_point (world) null: the friction acts at c.point.
+ContactRow MakeContactRow(const Contact& c, const World& world, const std::vector<SolverBody>& s,
+                          const Vec3* friction_point = nullptr);
 // The same without the effective masses (k_n, mass_*: left 0), for
 // solvers that take them from their own rows (the lcp method).
 ContactRow MakeContactBasis(const Contact& c, const World& world);
 
-// K_d for direction d at the row's lever arms.
+// K_d for direction d at the row's lever arms, and at its friction's.
 double EffectiveInverseMass(const ContactRow& row, const Vec3& d, const std::vector<SolverBody>& s);
+double FrictionInverseMass(const ContactRow& row, const Vec3& d, const std::vector<SolverBody>& s);
 
 }  // namespace contactsim

@@ -2,10 +2,16 @@
 
 #include <algorithm>
 
+#include "service/contact/patch_torsion.h"
+
 
 namespace contactsim {
 
 Status BarrierMethod::SetParams(const ParamMap& params) {
+  const Status refused = RefusePatchTorsion(Name(), params,
+                                            "its friction acts at the closest points of its own pair search "
+                                            "(barrier/pair_search.h), which has no contact patch");
+  if (!refused.ok()) return refused;
   return BarrierParamTable().Parse(Name(), params, params_, &params_);
 }
 

@@ -8,6 +8,8 @@
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/patch_torsion.h"
+#include "service/contact/slip_friction_step.h"
 #include "service/physics/byte_stream.h"
 #include "service/physics/integrator.h"
 
@@ -109,13 +111,13 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
         ContactRow& row = rows[k];
         row.lambda_n += j[k];
         if (j[k] <= 0.0 || row.friction <= 0.0) continue;
-        Vec3 vt = row.RelativeVelocity(solver_);
+        Vec3 vt = row.FrictionVelocity(solver_);
         vt -= row.n * row.n.dot(vt);
         const double speed_t = vt.norm();
         if (speed_t <= 1e-12) continue;
         const Vec3 t = vt / speed_t;
-        const double jt = std::min(speed_t / EffectiveInverseMass(row, t, solver_), row.friction * j[k]);
-        row.Apply(-jt * t, solver_);
+        const double jt = std::min(speed_t / FrictionInverseMass(row, t, solver_), row.friction * j[k]);
+        row.ApplyFriction(-jt * t, solver_);
         row.lambda_t1 -= jt * t.dot(row.t1);
         row.lambda_t2 -= jt * t.dot(row.t2);
       }
@@ -144,9 +146,9 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
       r.a = c.a;
       r.b = c.b;
       r.lin_a = -dirs[d];
-      r.ang_a = -c.ra.cross(dirs[d]);
+      r.ang_a = -(d == 0 ? c.ra : c.fa).cross(dirs[d]);
       r.lin_b = dirs[d];
-      r.ang_b = c.rb.cross(dirs[d]);
+      r.ang_b = (d == 0 ? c.rb : c.fb).cross(dirs[d]);
       r.lambda = lambdas[d];
       if (d == 0) {
         r.lo = 0.0;
@@ -198,25 +200,27 @@ bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<Cont
 double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
   // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
   // (the same sums as SolverBody::ApplyImpulse)
-  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb) {
+  // at lever arms ra, rb
+  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& ra,
+                      const Vec3& rb) {
     SolverBody& A = solver_[row.a];
     SolverBody& B = solver_[row.b];
     if (B.inv_mass != 0.0) {
       B.v += B.inv_mass * J;
       B.w += dwb;
       B.dP += J;
-      B.dL += row.rb.cross(J);
+      B.dL += rb.cross(J);
     }
     if (A.inv_mass != 0.0) {
       A.v -= A.inv_mass * J;
       A.w -= dwa;
       A.dP -= J;
-      A.dL -= row.ra.cross(J);
+      A.dL -= ra.cross(J);
     }
   };
   auto normal = [&](ContactRow& row, const AngularResponse& r, double dn) {
     row.lambda_n += dn;
-    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n);
+    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n, row.ra, row.rb);
     return std::abs(dn) * row.k_n;
   };
   double worst = 0.0;  // largest change of a relative velocity, m/s
@@ -225,23 +229,16 @@ double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
     for (int k = m.first; k < m.first + m.count; ++k) {
       ContactRow& row = rows[k];
       const AngularResponse& r = responses_[k];
-      const Vec3 vrel = row.RelativeVelocity(solver_);
-      const double limit = row.friction * row.lambda_n;
+      const Vec3 vrel = row.FrictionVelocity(solver_);
       const double old1 = row.lambda_t1, old2 = row.lambda_t2;
-      double l1 = old1 - row.t1.dot(vrel) * row.mass_t1;
-      double l2 = old2 - row.t2.dot(vrel) * row.mass_t2;
-      // not std::hypot: its overflow guard cost 15% of the step on the pyramid
-      const double norm = std::sqrt(l1 * l1 + l2 * l2);
-      if (norm > limit) {
-        const double scale = norm > 0.0 ? limit / norm : 0.0;
-        l1 *= scale;
-        l2 *= scale;
-      }
+      double l1 = old1, l2 = old2;
+      SlipFrictionStep(row.friction * row.lambda_n, row.t1.dot(vrel), row.t2.dot(vrel), row.mass_t1, row.mass_t2,
+                       row.k_t12, &l1, &l2);
       row.lambda_t1 = l1;
       row.lambda_t2 = l2;
       const double d1 = l1 - old1, d2 = l2 - old2;
       const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
-      apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2);
+      apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, row.fa, row.fb);
       worst = std::max(worst, dJt.norm() * row.k_n);
     }
     // then the normal rows: together where the block keeps every impulse >= 0
@@ -292,7 +289,12 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
       row.lambda_t1 *= scale;
       row.lambda_t2 *= scale;
     }
-    row.Apply(row.lambda_n * row.n + row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
+    if (row.fa == row.ra && row.fb == row.rb) {  // one impulse where friction acts at the contact point
+      row.Apply(row.lambda_n * row.n + row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
+    } else {
+      row.Apply(row.lambda_n * row.n, solver_);
+      row.ApplyFriction(row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
+    }
   }
   // The angular velocity change per unit impulse along n, t1, t2 of each
   // row's bodies, I^-1 (r x d) (world), computed once: the sweeps below
@@ -304,11 +306,11 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
     const Mat3& Ib = solver_[row.b].inv_inertia;
     AngularResponse& r = responses_[k];
     r.a_n = Ia * row.ra.cross(row.n);
-    r.a_t1 = Ia * row.ra.cross(row.t1);
-    r.a_t2 = Ia * row.ra.cross(row.t2);
+    r.a_t1 = Ia * row.fa.cross(row.t1);
+    r.a_t2 = Ia * row.fa.cross(row.t2);
     r.b_n = Ib * row.rb.cross(row.n);
-    r.b_t1 = Ib * row.rb.cross(row.t1);
-    r.b_t2 = Ib * row.rb.cross(row.t2);
+    r.b_t1 = Ib * row.fb.cross(row.t1);
+    r.b_t2 = Ib * row.fb.cross(row.t2);
   }
   BuildNormalBlocks(rows);
   // the joint rows' velocity products at the warm-started velocities, the
@@ -449,7 +451,11 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     if (sub > 0) detector.Detect(world, margin, remaining, &contacts);
     LoadSolverBodies(world, &solver_);
     rows_.clear();
-    for (const Contact& c : contacts) rows_.push_back(MakeContactRow(c, world, solver_));
+    const bool torsion = ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform;
+    if (torsion) PatchFrictionPoints(contacts, &friction_points_);
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      rows_.push_back(MakeContactRow(contacts[k], world, solver_, torsion ? &friction_points_[k] : nullptr));
+    }
     stats.iterations += CollisionPhase(rows_);
     StoreSolverBodies(solver_, world);
     start_state.bodies() = world.bodies();

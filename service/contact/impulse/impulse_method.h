@@ -105,6 +105,7 @@ class ImpulseMethod : public ContactMethod {
   ImpulseParams params_;
   std::vector<SolverBody> solver_;
   JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps
+  std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four

@@ -1,6 +1,7 @@
 #include "service/contact/impulse/impulse_params.h"
 
 #include "service/contact/direct_solve_params.h"
+#include "service/contact/patch_torsion.h"
 
 namespace contactsim {
 
@@ -23,6 +24,7 @@ const ParamTable<ImpulseParams>& ImpulseParamTable() {
       DirectMaxRowsParam(&P::direct_max_rows),
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),
+      PatchTorsionParam(&P::patch_torsion),
   };
   return table;
 }

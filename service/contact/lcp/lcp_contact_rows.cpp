@@ -61,12 +61,23 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
 
 namespace {
 
+// Contact k's basis with its friction's lever arms (patch_torsion.h).
+ContactRow FrictionBasis(const ContactSet& contacts, size_t k, const World& world,
+                         const std::vector<Vec3>* friction_points) {
+  ContactRow basis = MakeContactBasis(contacts[k], world);
+  if (friction_points != nullptr) {
+    basis.fa = (*friction_points)[k] - world.bodies()[basis.a].x;
+    basis.fb = (*friction_points)[k] - world.bodies()[basis.b].x;
+  }
+  return basis;
+}
+
 // The friction directions of a contact (see the header): the contact
 // frame's, or t1 along the predicted slip u*.
 void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free, Vec3* t1, Vec3* t2) {
   *t1 = basis.t1;
   *t2 = basis.t2;
-  const Vec3 u = basis.RelativeVelocity(free);
+  const Vec3 u = basis.FrictionVelocity(free);
   const Vec3 slip = u - basis.n.dot(u) * basis.n;
   const double speed = slip.norm();
   if (!(speed > kSlipFloor)) return;
@@ -78,10 +89,10 @@ void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free
 
 void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
                        const std::vector<Impact>& impacts, const ContactRowOptions& options,
-                       std::vector<ConstraintRow>* rows) {
+                       const std::vector<Vec3>* friction_points, std::vector<ConstraintRow>* rows) {
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
-    const ContactRow basis = MakeContactBasis(c, world);
+    const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
     ConstraintRow normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
     const double vn_before = basis.NormalVelocity(before);
     if (impacts[k].exact) {
@@ -98,7 +109,7 @@ void AppendContactRows(const ContactSet& contacts, const World& world, const std
     const int normal_index = static_cast<int>(rows->size());
     rows->push_back(normal);
     for (const Vec3& t : {basis.t1, basis.t2}) {
-      ConstraintRow friction = DirectionRow(c.a, c.b, basis.ra, basis.rb, t);
+      ConstraintRow friction = DirectionRow(c.a, c.b, basis.fa, basis.fb, t);
       friction.lo = -ConstraintRow::kInf;
       friction.normal_row = normal_index;
       friction.mu = basis.friction;
@@ -108,14 +119,14 @@ void AppendContactRows(const ContactSet& contacts, const World& world, const std
 }
 
 void AlignFrictionRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& free,
-                       std::vector<ConstraintRow>* rows) {
+                       const std::vector<Vec3>* friction_points, std::vector<ConstraintRow>* rows) {
   for (size_t k = 0; k < contacts.size(); ++k) {
-    const ContactRow basis = MakeContactBasis(contacts[k], world);
+    const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
     Vec3 t[2];
     SlipDirections(basis, free, &t[0], &t[1]);
     for (int j = 0; j < 2; ++j) {
       ConstraintRow& row = (*rows)[3 * k + 1 + j];
-      const ConstraintRow turned = DirectionRow(row.a, row.b, basis.ra, basis.rb, t[j]);
+      const ConstraintRow turned = DirectionRow(row.a, row.b, basis.fa, basis.fb, t[j]);
       row.lin_a = turned.lin_a;
       row.ang_a = turned.ang_a;
       row.lin_b = turned.lin_b;

@@ -115,14 +115,17 @@ ConstraintRow DirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const V
 // Appends three rows per contact in contact order: normal, t1, t2. `before`
 // holds the body velocities at the step's start (restitution); the row
 // Jacobians use the world's current poses; `impacts` from PredictImpacts.
+// The friction rows act at `friction_points` (patch_torsion.h; null: at
+// the contact points).
 void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
                        const std::vector<Impact>& impacts, const ContactRowOptions& options,
-                       std::vector<ConstraintRow>* rows);
+                       const std::vector<Vec3>* friction_points, std::vector<ConstraintRow>* rows);
 
 // Turns the friction rows of the contacts (rows 3k + 1, 3k + 2, as
 // AppendContactRows wrote them) so that t1 lies along each contact's
-// predicted slip at the velocities `free` (after this step's forces).
+// predicted slip at the velocities `free` (after this step's forces), the
+// slip where its friction acts.
 void AlignFrictionRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& free,
-                       std::vector<ConstraintRow>* rows);
+                       const std::vector<Vec3>* friction_points, std::vector<ConstraintRow>* rows);
 
 }  // namespace contactsim

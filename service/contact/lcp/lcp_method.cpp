@@ -7,6 +7,7 @@
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
 #include "service/contact/lcp/lemke_rows.h"
+#include "service/contact/patch_torsion.h"
 #include "service/physics/integrator.h"
 
 namespace contactsim {
@@ -80,7 +81,7 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
     // Lemke's pyramid is exact along t1: turn t1 to the predicted slip
     // (lcp_contact_rows.h); a fallback solves the rows as built, as pgs does
     lemke_rows_ = rows_;
-    AlignFrictionRows(contacts_, world, free_, &lemke_rows_);
+    AlignFrictionRows(contacts_, world, free_, FrictionPoints(), &lemke_rows_);
     const Status st = SolveRowsLemke(lemke_rows_, bodies, options, &report_);
     if (st.ok() && report_.converged) {
       rows_.swap(lemke_rows_);
@@ -142,7 +143,12 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
 
   LoadSolverBodies(world, &before_);
   rows_.clear();
-  AppendContactRows(contacts_, world, before_, impacts_, row_options, &rows_);
+  if (ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform) {
+    PatchFrictionPoints(contacts_, &friction_points_);
+  } else {
+    friction_points_.clear();
+  }
+  AppendContactRows(contacts_, world, before_, impacts_, row_options, FrictionPoints(), &rows_);
 
   IntegrateMomenta(world, h);
   LoadSolverBodies(world, &bodies_);

@@ -83,9 +83,14 @@ class LcpMethod : public ContactMethod {
   StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts);
   void Solve(const World& world, std::vector<SolverBody>& bodies);
+  // where the contacts' friction acts with patch_torsion, else null (the contact points)
+  const std::vector<Vec3>* FrictionPoints() const {
+    return friction_points_.empty() ? nullptr : &friction_points_;
+  }
 
   LcpParams params_;
   ContactSet contacts_;
+  std::vector<Vec3> friction_points_;  // patch_torsion.h
   std::vector<SolverBody> before_, free_, bodies_;
   std::vector<Impact> impacts_;
   std::vector<ConstraintRow> rows_, split_rows_, joint_rows_, lemke_rows_;

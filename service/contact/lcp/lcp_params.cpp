@@ -1,6 +1,7 @@
 #include "service/contact/lcp/lcp_params.h"
 
 #include "service/contact/direct_solve_params.h"
+#include "service/contact/patch_torsion.h"
 
 namespace contactsim {
 
@@ -26,6 +27,7 @@ const ParamTable<LcpParams>& LcpParamTable() {
       DirectMaxRowsParam(&P::direct_max_rows, true),
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),
+      PatchTorsionParam(&P::patch_torsion),
   };
   return table;
 }

@@ -25,6 +25,7 @@ struct LcpParams {
   int direct_max_rows = 300;
   double joint_substep_ratio = 100.0;
   int joint_substeps = 4;
+  std::string patch_torsion = "off";     // patch_torsion.h
 };
 
 const ParamTable<LcpParams>& LcpParamTable();

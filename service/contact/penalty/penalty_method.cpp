@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/patch_torsion.h"
 #include "service/contact/penalty/penalty_explicit.h"
 #include "service/contact/penalty/penalty_stiffness.h"
 #include "service/contact/penalty/penalty_implicit.h"
@@ -11,6 +12,9 @@
 namespace contactsim {
 
 Status PenaltyMethod::SetParams(const ParamMap& params) {
+  const Status refused = RefusePatchTorsion(
+      Name(), params, "its friction is a spring anchored at each contact point (penalty_friction.h), not a patch's");
+  if (!refused.ok()) return refused;
   return ParsePenaltyParams(Name(), params, params_, &params_);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/contact_row.h"
+#include "service/contact/slip_friction_step.h"
 
 namespace contactsim {
 namespace {
@@ -32,14 +33,19 @@ constexpr int kPrepareGrain = 256;
 }  // namespace
 
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       ParallelRunner& runner, std::vector<SoftPoint>* points) {
+                       const std::vector<Vec3>* friction_points, ParallelRunner& runner,
+                       std::vector<SoftPoint>* points) {
   points->resize(contacts.size());
   runner.For(static_cast<int>(contacts.size()), kPrepareGrain, [&](int begin, int end, int) {
-    for (int k = begin; k < end; ++k) (*points)[k] = PrepareSoftPoint(contacts[k], world, bodies);
+    for (int k = begin; k < end; ++k) {
+      (*points)[k] = PrepareSoftPoint(contacts[k], world, bodies,
+                                      friction_points != nullptr ? &(*friction_points)[k] : nullptr);
+    }
   });
 }
 
-SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies) {
+SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
+                           const Vec3* friction_point) {
   const SoftBody& sa = bodies[c.a];
   const SoftBody& sb = bodies[c.b];
   const ContactRow basis = MakeContactBasis(c, world);
@@ -53,14 +59,18 @@ SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vect
   p.t2 = basis.t2;
   p.friction = basis.friction;
   p.restitution = basis.restitution;
-  p.ra_n = p.ra.cross(p.n), p.ra_t1 = p.ra.cross(p.t1), p.ra_t2 = p.ra.cross(p.t2);
-  p.rb_n = p.rb.cross(p.n), p.rb_t1 = p.rb.cross(p.t1), p.rb_t2 = p.rb.cross(p.t2);
+  // where the friction acts: the contact point, or one of the patch's (patch_torsion.h)
+  const Vec3 fa = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.a].x) : p.ra;
+  const Vec3 fb = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.b].x) : p.rb;
+  p.ra_n = p.ra.cross(p.n), p.ra_t1 = fa.cross(p.t1), p.ra_t2 = fa.cross(p.t2);
+  p.rb_n = p.rb.cross(p.n), p.rb_t1 = fb.cross(p.t1), p.rb_t2 = fb.cross(p.t2);
   p.ia_n = sa.inv_inertia * p.ra_n, p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
   p.ib_n = sb.inv_inertia * p.rb_n, p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
   const double k_lin = sa.inv_mass + sb.inv_mass;
   p.mass_n = MassOf(k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n));
   p.mass_t1 = MassOf(k_lin + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1));
   p.mass_t2 = MassOf(k_lin + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2));
+  p.k_t12 = p.ra_t1.dot(p.ia_t2) + p.rb_t1.dot(p.ib_t2);
   p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
   const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
   p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
@@ -149,15 +159,10 @@ void SolveSoftNormal(const SoftPass& pass, SoftPoint& p, SoftBody& A, SoftBody& 
 void SolveSoftFriction(SoftPoint& p, SoftBody& A, SoftBody& B) {
   // both tangents from one relative velocity, one update of each body
   const Vec3 dv = B.v - A.v;
-  double l1 = p.lambda_t1 - p.mass_t1 * (p.t1.dot(dv) + p.rb_t1.dot(B.w) - p.ra_t1.dot(A.w));
-  double l2 = p.lambda_t2 - p.mass_t2 * (p.t2.dot(dv) + p.rb_t2.dot(B.w) - p.ra_t2.dot(A.w));
-  const double limit = p.friction * p.lambda_n;
-  const double squared = l1 * l1 + l2 * l2;
-  if (squared > limit * limit) {
-    const double scale = squared > 0.0 ? limit / std::sqrt(squared) : 0.0;
-    l1 *= scale;
-    l2 *= scale;
-  }
+  const double u1 = p.t1.dot(dv) + p.rb_t1.dot(B.w) - p.ra_t1.dot(A.w);
+  const double u2 = p.t2.dot(dv) + p.rb_t2.dot(B.w) - p.ra_t2.dot(A.w);
+  double l1 = p.lambda_t1, l2 = p.lambda_t2;
+  SlipFrictionStep(p.friction * p.lambda_n, u1, u2, p.mass_t1, p.mass_t2, p.k_t12, &l1, &l2);
   const double d1 = l1 - p.lambda_t1, d2 = l2 - p.lambda_t2;
   p.lambda_t1 = l1;
   p.lambda_t2 = l2;

@@ -36,11 +36,13 @@ struct SoftPoint {
   Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, anchors at the step's start
   Vec3 n = Vec3::UnitZ(), t1 = Vec3::UnitX(), t2 = Vec3::UnitY();  // unit, world; n from A to B
   // the rows' angular Jacobians r x d and responses I^-1 (r x d) for
-  // d = n, t1, t2, at the step's start (the solve keeps them for the step)
+  // d = n, t1, t2, at the step's start (the solve keeps them for the step);
+  // the friction rows' r is where the point's friction acts (patch_torsion.h)
   Vec3 ra_n, ra_t1, ra_t2, rb_n, rb_t1, rb_t2;
   Vec3 ia_n, ia_t1, ia_t2, ib_n, ib_t1, ib_t2;
   double adjusted_separation = 0.0;  // m: s_0 - n . (r_B - r_A)
   double mass_n = 0.0, mass_t1 = 0.0, mass_t2 = 0.0;  // kg
+  double k_t12 = 0.0;          // 1/kg, K's coupling of t1 and t2 (slip_friction_step.h)
   double friction = 0.0, restitution = 0.0;
   double impact_speed = 0.0;   // m/s, relative normal velocity at impact (< 0 approaching)
   double lambda_n = 0.0, lambda_t1 = 0.0, lambda_t2 = 0.0;  // N s per sub-step, accumulated
@@ -68,12 +70,15 @@ struct SoftPoint {
   }
 };
 
-// The points of `contacts` at the bodies' state at the step's start.
-// On the world's threads (each point is its own).
+// The points of `contacts` at the bodies' state at the step's start, their
+// friction rows acting at `friction_points` (patch_torsion.h; null: at the
+// contact points). On the world's threads (each point is its own).
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       ParallelRunner& runner, std::vector<SoftPoint>* points);
-// One of them.
-SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies);
+                       const std::vector<Vec3>* friction_points, ParallelRunner& runner,
+                       std::vector<SoftPoint>* points);
+// One of them; friction_point null: at c.point.
+SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
+                           const Vec3* friction_point = nullptr);
 
 // Each point's spring for sub-steps of h: `hertz` between two movable
 // bodies, twice it against a static or kinematic one, which carries no

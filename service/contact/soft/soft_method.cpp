@@ -4,6 +4,7 @@
 
 #include "service/contact/block_colours.h"
 #include "service/contact/detect_ahead.h"
+#include "service/contact/patch_torsion.h"
 #include "service/contact/sweep_order.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/physics/integrator.h"
@@ -32,7 +33,9 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
   SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, runner, &bodies_);
-  PrepareSoftPoints(contacts_, world, bodies_, runner, &points_);
+  const bool torsion = ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform;
+  if (torsion) PatchFrictionPoints(contacts_, &friction_points_);
+  PrepareSoftPoints(contacts_, world, bodies_, torsion ? &friction_points_ : nullptr, runner, &points_);
   BuildSoftManifolds(points_, runner, &manifolds_);
   OrderBlocksFromTheTop(world, points_, &manifolds_);
   if (!params_.warm_start) return;

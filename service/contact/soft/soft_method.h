@@ -88,6 +88,7 @@ class SoftMethod : public ContactMethod {
   ContactSet contacts_;
   std::vector<char> in_contact_;
   std::vector<SoftBody> bodies_;
+  std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<SoftPoint> points_;
   std::vector<SoftManifold> manifolds_;  // colour by colour (block_colours.h)
   std::vector<ColourRole> roles_;  // per body

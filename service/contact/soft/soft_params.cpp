@@ -1,6 +1,7 @@
 #include "service/contact/soft/soft_params.h"
 
 #include "service/contact/direct_solve_params.h"
+#include "service/contact/patch_torsion.h"
 
 namespace contactsim {
 
@@ -26,6 +27,7 @@ const ParamTable<SoftParams>& SoftParamTable() {
       BoolParam("warm_start", &P::warm_start, "start each step from the last step's impulses"),
       DirectMassRatioParam(&P::direct_mass_ratio),
       DirectMaxRowsParam(&P::direct_max_rows),
+      PatchTorsionParam(&P::patch_torsion),
   };
   return table;
 }

@@ -3,6 +3,8 @@
 // SoftParamTable() (soft_params.cpp; param_table.h).
 #pragma once
 
+#include <string>
+
 #include "service/contact/param_table.h"
 
 namespace contactsim {
@@ -19,6 +21,7 @@ struct SoftParams {
   bool warm_start = true;
   double direct_mass_ratio = 10.0;      // soft_ratio_solve.h
   int direct_max_rows = 300;
+  std::string patch_torsion = "off";   // patch_torsion.h
 };
 
 const ParamTable<SoftParams>& SoftParamTable();

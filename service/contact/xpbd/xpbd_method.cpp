@@ -118,7 +118,7 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, detector.runner(), &bodies_);
   PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &colours_, &point_of_);
-  PrepareXpbdPatches(blocks_, points_, frames_, bodies_, &patches_);
+  PrepareXpbdPatches(blocks_, points_, frames_, bodies_, ParsePatchTorsion(params_.patch_torsion), &patches_);
   CarrySlips(world);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   ratio_.Prepare(params_.direct_mass_ratio, bodies_, points_);

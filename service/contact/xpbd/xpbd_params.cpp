@@ -1,5 +1,7 @@
 #include "service/contact/xpbd/xpbd_params.h"
 
+#include "service/contact/patch_torsion.h"
+
 namespace contactsim {
 
 const ParamTable<XpbdParams>& XpbdParamTable() {
@@ -19,6 +21,7 @@ const ParamTable<XpbdParams>& XpbdParamTable() {
                   "exactly after each sub-step's sweeps (xpbd_ratio_solve.h); 0 = off"),
       DoubleParam("max_push_velocity", &P::max_push_velocity, 1e-6, 1e3, "m/s",
                   "an overlap is removed at most this fast (h times it per sub-step)"),
+      PatchTorsionParam(&P::patch_torsion),
   };
   return table;
 }

@@ -3,6 +3,8 @@
 // XpbdParamTable() (xpbd_params.cpp; param_table.h).
 #pragma once
 
+#include <string>
+
 #include "service/contact/param_table.h"
 
 namespace contactsim {
@@ -16,6 +18,7 @@ struct XpbdParams {
   double joint_compliance = 0.0;       // m/N (and rad/(N m))
   double direct_mass_ratio = 10.0;
   double max_push_velocity = 4.0;      // m/s
+  std::string patch_torsion = "off";   // patch_torsion.h
 };
 
 const ParamTable<XpbdParams>& XpbdParamTable();

@@ -59,7 +59,7 @@ bool InvertPatchK(const Eigen::Matrix3d& k, int rows, Eigen::Matrix3d* inv) {
 
 void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
                         const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
-                        std::vector<XpbdPatch>* patches) {
+                        PatchTorsion torsion, std::vector<XpbdPatch>* patches) {
   patches->resize(blocks.size());
   for (size_t k = 0; k < blocks.size(); ++k) {
     XpbdPatch patch;
@@ -86,6 +86,15 @@ void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vecto
     }
     const int rows = patch.twist_radius > 1e-6 ? 3 : 2;
     if (rows == 2) patch.twist_radius = patch.spread = 0.0;
+    if (rows == 3 && torsion == PatchTorsion::kUniform) {
+      Vec3 arms[kMaxNormalBlock], centre;
+      for (int i = 0; i < patch.count; ++i) arms[i] = points[patch.first + i].ra;
+      const double r_eff = UniformPatchRadius(arms, patch.count, p0.n, &centre);
+      if (r_eff > 0.0) {
+        patch.lever_scale = r_eff / patch.twist_radius;
+        patch.twist_radius = r_eff;
+      }
+    }
     for (int i = 0; rows == 3 && i < patch.count; ++i) {
       for (int j = 0; j < 2; ++j) {
         const double w = place[i][j] / patch.spread;
@@ -195,22 +204,56 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, X
   patch.lambda_twist += twist_step;
 }
 
-void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const Vec3& n, SoftBody& A, SoftBody& B,
-                    Vec3* spent, Vec3* applied) {
+namespace {
+
+// The friction impulse (t1, t2, twist about n) on B of the patch's points
+// sliding with the patch's slip (v1, v2) at its centre and its spin about
+// n: each point's Coulomb disk at its rim, against its own slip
+// u_i = v + spin n x d_i (Moreau's maximal dissipation, point by point).
+Vec3 PointsSlidingImpulse(double h, const XpbdPatch& patch, const std::vector<XpbdPoint>& points, double v1,
+                          double v2, double spin) {
+  Vec3 total = Vec3::Zero();
+  for (int i = 0; i < patch.count; ++i) {
+    const XpbdPoint& p = points[patch.first + i];
+    if (!(p.lambda_n > 0.0)) continue;
+    const Vec3 d = p.ra - patch.ra;
+    const double d1 = patch.lever_scale * patch.t1.dot(d), d2 = patch.lever_scale * patch.t2.dot(d);
+    const double u1 = v1 - spin * d2, u2 = v2 + spin * d1;
+    const double speed = std::sqrt(u1 * u1 + u2 * u2);
+    if (!(speed > 0.0)) continue;
+    const double f = -patch.friction * p.lambda_n / (h * speed);
+    total += Vec3(f * u1, f * u2, f * (d1 * u2 - d2 * u1));
+  }
+  return total;
+}
+
+}  // namespace
+
+void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
+                    const Vec3& n, SoftBody& A, SoftBody& B, Vec3* spent, Vec3* applied) {
   if (!patch.valid) return;
   const Vec3 v = (B.v + B.w.cross(patch.rb)) - (A.v + A.w.cross(patch.ra));
   const Vec3 spin = B.w - A.w;
-  Vec3 total = *spent - patch.inv_k * Vec3(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0);
+  const Vec3 slip(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0);
+  Vec3 total = *spent - patch.inv_k * slip;
   // Coulomb's disk for the patch's force, its torque within mu N r
   const double limit = patch.friction * pushed / h;
   // impulses of the patch's bodies: no overflow for hypot to guard against
   const double along = std::sqrt(total[0] * total[0] + total[1] * total[1]);
-  if (along > limit) {
+  const double twist_limit = limit * patch.twist_radius;
+  if ((along > limit || std::abs(total[2]) > twist_limit) && patch.twist_radius > 0.0) {
+    // it slides: the force and torque its points' friction gives for this
+    // slip (separate limits on the two let a sliding face brake its spin
+    // with the whole mu N r), stopping neither the slide nor the spin
+    // beyond what the free brake above would
+    const Vec3 sliding = PointsSlidingImpulse(h, patch, points, slip[0], slip[1], slip[2]);
+    const double sliding_along = std::sqrt(sliding[0] * sliding[0] + sliding[1] * sliding[1]);
+    if (sliding_along < along) total.head<2>() = sliding.head<2>();
+    if (std::abs(sliding[2]) < std::abs(total[2])) total[2] = sliding[2];
+  } else if (along > limit) {
     total[0] *= limit / along;
     total[1] *= limit / along;
   }
-  const double twist_limit = limit * patch.twist_radius;
-  total[2] = std::max(-twist_limit, std::min(total[2], twist_limit));
   const Vec3 dl = total - *spent;
   *spent = total;
   const Vec3 J = dl[0] * patch.t1 + dl[1] * patch.t2;

@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 
 #include "service/contact/normal_block.h"
+#include "service/contact/patch_torsion.h"
 #include "service/contact/xpbd/xpbd_contact.h"
 
 namespace contactsim {
@@ -37,7 +38,8 @@ struct XpbdPatch {
   Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, the patch centre minus each body's centre, step start
   Eigen::Matrix3d inv_k = Eigen::Matrix3d::Zero();  // rows t1, t2, twist
   double friction = 0.0;
-  double twist_radius = 0.0;           // m, the points' mean distance from the centre; 0: no twist row
+  double twist_radius = 0.0;           // m, the points' mean distance from the centre (or r_eff); 0: no twist row
+  double lever_scale = 1.0;            // the points' friction acts at lever_scale d_i (patch_torsion.h)
   bool valid = false;
   int first = 0, count = 0;            // the points [first, first + count)
   double spread = 0.0;                 // m^2, sum of the points' squared distances from the centre
@@ -63,10 +65,12 @@ struct XpbdPatch {
 };
 
 // One patch per normal block, with its K inverted; `frames` is parallel to
-// `points`.
+// `points`. With `torsion` uniform, a patch of three or more points
+// twists against mu sum lambda_n r_eff, r_eff its area's mean distance from
+// its centroid (patch_torsion.h), instead of its points' mean distance.
 void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
                         const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
-                        std::vector<XpbdPatch>* patches);
+                        PatchTorsion torsion, std::vector<XpbdPatch>* patches);
 
 // What a patch's static friction left uncorrected at a step's end: the
 // slip of A's surface against B's in the contact plane (m, world) and its
@@ -100,16 +104,24 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, X
 
 // Dynamic friction of the patch in the velocity pass (eq. 30, on the patch
 // as a whole): the impulse and twist that stop its relative motion at the
-// centre, the impulse held to mu pushed / h (Coulomb's disk, `pushed` the sum
-// of the points' lambda_n, > 0) and the twist to that times the patch's
-// radius. One impulse for the patch keeps a sliding face's corners alike:
+// centre, when the impulse is within mu pushed / h (Coulomb's disk,
+// `pushed` the sum of the points' lambda_n, > 0) and the twist within that
+// times the patch's radius. Beyond either the patch slides, and gets what
+// its points' Coulomb disks give for its slip and spin, each point's
+// friction mu lambda_n / h against its own slip v + spin n x d_i (summed to
+// a force and a twist about the centre), no more in either than stopping
+// would take: with the two limits apart, a 0.2 m cube sliding at 2 m/s and
+// spinning at 10 rad/s had its spin braked by the whole mu N r and stopped
+// spinning in 0.10 s, where its points' friction takes 0.44 s
+// (docs/physics.md, "Friction against spin"). A point alone (no twist row) keeps the disk.
+// One impulse for the patch keeps a sliding face's corners alike:
 // braked corner by corner, a box sliding down a slope picked up
 // 0.008-0.014 rad/s of spin. `spent` holds what the patch's earlier brakes of
 // this pass applied (t1, t2, twist): the limits bound their sum, as
 // accumulated impulses are clamped (Catto 2005). The impulse applied is
 // added to `applied` (N s, world, on B), which the caller shares among the
 // points for the report.
-void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const Vec3& n, SoftBody& A, SoftBody& B,
-                    Vec3* spent, Vec3* applied);
+void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
+                    const Vec3& n, SoftBody& A, SoftBody& B, Vec3* spent, Vec3* applied);
 
 }  // namespace contactsim

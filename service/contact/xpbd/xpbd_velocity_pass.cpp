@@ -144,9 +144,9 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     // box held on a slope crept 4.3 mm in 2 s
     Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
     const Vec3 n = p0.n;
-    BrakeXpbdPatch(h, pushed.sum, patch, n, pair.A, pair.B, &spent, &braked);
+    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, pair.A, pair.B, &spent, &braked);
     if (!deferred[k]) SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], bodies, pair, *points);
-    BrakeXpbdPatch(h, pushed.sum, patch, n, pair.A, pair.B, &spent, &braked);
+    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, pair.A, pair.B, &spent, &braked);
     // the sub-step's impulses for the report, once at its end: a point's
     // push lambda_n moved the bodies as the velocity impulse lambda_n / h
     // does, and the patch's friction (its positional multiplier / h and the
