@@ -35,7 +35,7 @@ struct Pinned {
 
 const std::vector<Pinned>& PinnedRuns() {
   static const std::vector<Pinned> pinned = {
-      {"impulse", {}, 0xaca91ecc4d28d48full},
+      {"impulse", {}, 0x97ad4b6d49e0a696ull},
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
       {"xpbd", {}, 0x4de916201833cc1dull},
