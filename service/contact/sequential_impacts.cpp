@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/contact/normal_push.h"
 #include "service/contact/union_find.h"
 
 namespace contactsim {
@@ -63,16 +64,7 @@ void SequentialImpacts::SetGains() {
 }
 
 void SequentialImpacts::Push(double j, const ImpactRow& r) {
-  Velocity& A = scratch_[local_[r.a]];
-  Velocity& B = scratch_[local_[r.b]];
-  if (A.inv_mass > 0.0) {
-    A.v -= (A.inv_mass * j) * r.n;
-    A.w -= j * r.ia_n;
-  }
-  if (B.inv_mass > 0.0) {
-    B.v += (B.inv_mass * j) * r.n;
-    B.w += j * r.ib_n;
-  }
+  PushNormalImpulse(j, r.n, r.ia_n, r.ib_n, scratch_[local_[r.a]], scratch_[local_[r.b]]);
 }
 
 bool SequentialImpacts::Collide(int begin, int end, double threshold) {
@@ -162,14 +154,7 @@ double SolveRow(ImpactRow& r, std::vector<SoftBody>& bodies) {
   const double next = std::max(0.0, r.lambda + (r.target - vn) * r.mass_n);
   const double d = next - r.lambda;
   r.lambda = next;
-  if (A.inv_mass > 0.0) {
-    A.v -= (A.inv_mass * d) * r.n;
-    A.w -= d * r.ia_n;
-  }
-  if (B.inv_mass > 0.0) {
-    B.v += (B.inv_mass * d) * r.n;
-    B.w += d * r.ib_n;
-  }
+  PushNormalImpulse(d, r.n, r.ia_n, r.ib_n, A, B);
   return std::abs(d) / r.mass_n;
 }
 

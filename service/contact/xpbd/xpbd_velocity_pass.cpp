@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/contact/normal_push.h"
+
 namespace contactsim {
 namespace {
 
@@ -10,14 +12,7 @@ namespace {
 // (a static or kinematic body is never written: several threads may hold
 // it at once, block_colours.h)
 void PushNormal(double dl, const XpbdPoint& p, SoftBody& A, SoftBody& B) {
-  if (A.inv_mass > 0.0) {
-    A.v -= (A.inv_mass * dl) * p.n;
-    A.w -= dl * p.ia_n;
-  }
-  if (B.inv_mass > 0.0) {
-    B.v += (B.inv_mass * dl) * p.n;
-    B.w += dl * p.ib_n;
-  }
+  PushNormalImpulse(dl, p.n, p.ia_n, p.ib_n, A, B);
 }
 
 double NormalVelocity(const XpbdPoint& p, const SoftBody& A, const SoftBody& B) {
