@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "service/contact/normal_push.h"
+#include "service/contact/push_impulse.h"
 #include "service/contact/union_find.h"
 
 namespace contactsim {
@@ -64,7 +64,7 @@ void SequentialImpacts::SetGains() {
 }
 
 void SequentialImpacts::Push(double j, const ImpactRow& r) {
-  PushNormalImpulse(j, r.n, r.ia_n, r.ib_n, scratch_[local_[r.a]], scratch_[local_[r.b]]);
+  PushImpulse(j, r.n, r.ia_n, r.ib_n, scratch_[local_[r.a]], scratch_[local_[r.b]]);
 }
 
 bool SequentialImpacts::Collide(int begin, int end, double threshold) {
@@ -154,7 +154,7 @@ double SolveRow(ImpactRow& r, std::vector<SoftBody>& bodies) {
   const double next = std::max(0.0, r.lambda + (r.target - vn) * r.mass_n);
   const double d = next - r.lambda;
   r.lambda = next;
-  PushNormalImpulse(d, r.n, r.ia_n, r.ib_n, A, B);
+  PushImpulse(d, r.n, r.ia_n, r.ib_n, A, B);
   return std::abs(d) / r.mass_n;
 }
 

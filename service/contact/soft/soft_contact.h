@@ -26,6 +26,7 @@
 
 #include "service/collision/contact.h"
 #include "service/collision/parallel_runner.h"
+#include "service/contact/push_impulse.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/softness.h"
 
@@ -59,14 +60,7 @@ struct SoftPoint {
   // kinematic body is never written: many threads may hold it at once,
   // block_colours.h)
   static void Push(double impulse, const Vec3& d, const Vec3& ia, const Vec3& ib, SoftBody& A, SoftBody& B) {
-    if (A.inv_mass > 0.0) {
-      A.v -= (A.inv_mass * impulse) * d;
-      A.w -= impulse * ia;
-    }
-    if (B.inv_mass > 0.0) {
-      B.v += (B.inv_mass * impulse) * d;
-      B.w += impulse * ib;
-    }
+    PushImpulse(impulse, d, ia, ib, A, B);
   }
 };
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "service/contact/normal_push.h"
+#include "service/contact/push_impulse.h"
 
 namespace contactsim {
 namespace {
@@ -12,7 +12,7 @@ namespace {
 // (a static or kinematic body is never written: several threads may hold
 // it at once, block_colours.h)
 void PushNormal(double dl, const XpbdPoint& p, SoftBody& A, SoftBody& B) {
-  PushNormalImpulse(dl, p.n, p.ia_n, p.ib_n, A, B);
+  PushImpulse(dl, p.n, p.ia_n, p.ib_n, A, B);
 }
 
 double NormalVelocity(const XpbdPoint& p, const SoftBody& A, const SoftBody& B) {
