@@ -1,5 +1,6 @@
 // The joints as one block of a block Gauss-Seidel iteration with the
-// contacts (impulse and soft call it between their contact sweeps).
+// contacts (impulse solves it between its contact sweeps; soft takes the
+// same turns through SoftJoints, soft_joints.h).
 //
 // A contact sweep changes the velocities of jointed bodies; a joint solve
 // after all the sweeps then changes them again, so that the contacts'
@@ -45,7 +46,6 @@ class JointVelocityBlock {
   // Projects the bodies' velocities onto the joint rows; returns the largest
   // row velocity error it removed (m/s or rad/s).
   double Solve(std::vector<SolverBody>& bodies, int max_limit_passes = 8);
-  int rows() const { return static_cast<int>(rows_.size()); }
 
  private:
   std::vector<ConstraintRow> rows_;
