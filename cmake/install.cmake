@@ -35,7 +35,7 @@ install(FILES ${CMAKE_BINARY_DIR}/contactsim.pc DESTINATION ${CMAKE_INSTALL_LIBD
 # and nothing else (no tests): docker/Dockerfile's build stage
 add_custom_target(contactsim_install_targets)
 add_dependencies(contactsim_install_targets contactsim_client contactsim_signature contactsim_lcmtypes contactsim_protocol)
-foreach(program contactsim-server contactsim-ctl contactsim-bench contactsim-bench-lockstep)
+foreach(program contactsim-server contactsim-ctl contactsim-bench contactsim-bench-lockstep contactsim-model-info)
   if(TARGET ${program})  # a build may leave one out (service/CMakeLists.txt)
     install(TARGETS ${program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
     add_dependencies(contactsim_install_targets ${program})

@@ -1,0 +1,72 @@
+#include "service/model/mesh_reader.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+namespace contactsim::model {
+namespace {
+
+// Appends the vertices of `node` and its children, with `parent` the
+// transform from the node's parent to the file's root frame.
+Status CollectVertices(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, const Vec3& scale,
+                       size_t max_vertices, const std::string& path, std::vector<Vec3>* out) {
+  const aiMatrix4x4 to_root = parent * node.mTransformation;
+  for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+    if (out->size() + mesh.mNumVertices > max_vertices) {
+      return Status::ResourceExhausted("mesh '" + path + "' has more than " + std::to_string(max_vertices) +
+                                       " vertices (the limit max_mesh_vertices)");
+    }
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D p = to_root * mesh.mVertices[v];
+      const Vec3 vertex(scale.x() * p.x, scale.y() * p.y, scale.z() * p.z);
+      if (!IsFinite(vertex)) return Status::InvalidArgument("mesh '" + path + "' has a vertex that is not finite");
+      out->push_back(vertex);
+    }
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c) {
+    Status st = CollectVertices(scene, *node.mChildren[c], to_root, scale, max_vertices, path, out);
+    if (!st.ok()) return st;
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ReadMeshVertices(const std::string& path, const Vec3& scale, const ReadLimits& limits,
+                        std::vector<Vec3>* vertices) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) return Status::NotFound("mesh '" + path + "' cannot be read: " + ec.message());
+  if (bytes > limits.max_mesh_bytes) {
+    return Status::ResourceExhausted("mesh '" + path + "' is " + std::to_string(bytes) + " bytes, over the limit of " +
+                                     std::to_string(limits.max_mesh_bytes) + " (max_mesh_bytes)");
+  }
+  if (!scale.allFinite()) return Status::InvalidArgument("mesh '" + path + "' has a scale that is not finite");
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // shared corners once, not once per face: STL repeats them in every triangle
+  const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    return Status::InvalidArgument("mesh '" + path + "' cannot be read: " + importer.GetErrorString());
+  }
+  std::vector<Vec3> out;
+  Status st = CollectVertices(*scene, *scene->mRootNode, aiMatrix4x4(), scale, limits.max_mesh_vertices, path, &out);
+  if (!st.ok()) return st;
+  if (out.empty()) return Status::InvalidArgument("mesh '" + path + "' has no vertices");
+  // each corner once: assimp keeps a corner once per normal (an STL cube
+  // has 24), and the hull needs positions only
+  std::sort(out.begin(), out.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  *vertices = std::move(out);
+  return Status::Ok();
+}
+
+}  // namespace contactsim::model
