@@ -48,24 +48,25 @@ Status CheckInertial(const Inertial& in, const std::string& where) {
   return Status::Ok();
 }
 
-Status CheckGeometry(const Geometry& g, const std::string& what, const std::string& where) {
+// A collision needs a positive size to have a volume; a visual of size
+// zero is only invisible (PyBullet's laikago_toes_zup.urdf draws its toes as
+// spheres of radius 0), so visuals need sizes that are only not negative.
+Status CheckGeometry(const Geometry& g, bool collision, const std::string& what, const std::string& where) {
   const std::string w = where + what + ": ";
+  const char* need = collision ? " must be positive" : " must not be negative";
+  auto bad = [collision](double v) { return !std::isfinite(v) || (collision ? !(v > 0.0) : v < 0.0); };
   switch (g.type) {
     case GeometryType::kBox:
-      if (!(g.box_size.minCoeff() > 0.0) || !IsFinite(g.box_size)) {
-        return Status::InvalidArgument(w + "box size " + VecText(g.box_size) + " must be positive");
+      if (bad(g.box_size.x()) || bad(g.box_size.y()) || bad(g.box_size.z())) {
+        return Status::InvalidArgument(w + "box size " + VecText(g.box_size) + need);
       }
       break;
     case GeometryType::kCylinder:
     case GeometryType::kCapsule:
-      if (!(g.length > 0.0) || !std::isfinite(g.length)) {
-        return Status::InvalidArgument(w + "length " + Num(g.length) + " must be positive");
-      }
+      if (bad(g.length)) return Status::InvalidArgument(w + "length " + Num(g.length) + need);
       [[fallthrough]];
     case GeometryType::kSphere:
-      if (!(g.radius > 0.0) || !std::isfinite(g.radius)) {
-        return Status::InvalidArgument(w + "radius " + Num(g.radius) + " must be positive");
-      }
+      if (bad(g.radius)) return Status::InvalidArgument(w + "radius " + Num(g.radius) + need);
       break;
     case GeometryType::kMesh:
       if (!IsFinite(g.mesh_scale) || g.mesh_scale.cwiseAbs().minCoeff() == 0.0) {
@@ -84,13 +85,13 @@ Status CheckLink(const Link& link, const std::string& where) {
   for (size_t i = 0; i < link.collisions.size(); ++i) {
     const std::string what = "collision " + std::to_string(i);
     Status st = CheckPose(link.collisions[i].origin, what + " origin", where);
-    if (st.ok()) st = CheckGeometry(link.collisions[i].geometry, what, where);
+    if (st.ok()) st = CheckGeometry(link.collisions[i].geometry, true, what, where);
     if (!st.ok()) return st;
   }
   for (size_t i = 0; i < link.visuals.size(); ++i) {
     const std::string what = "visual " + std::to_string(i);
     Status st = CheckPose(link.visuals[i].origin, what + " origin", where);
-    if (st.ok()) st = CheckGeometry(link.visuals[i].geometry, what, where);
+    if (st.ok()) st = CheckGeometry(link.visuals[i].geometry, false, what, where);
     if (st.ok() && !link.visuals[i].rgba.allFinite()) st = Status::InvalidArgument(where + what + " rgba is not finite");
     if (!st.ok()) return st;
   }

@@ -13,7 +13,7 @@
 // triangle inequality I1 + I2 >= I3 for each order (a real body's moments
 // do: I1 + I2 - I3 = 2 * integral of z^2 dm >= 0), within
 // kInertiaTolerance of their sum, since files print rounded moments;
-// geometry sizes positive; joint axes of non-zero length (normalised here)
+// collision sizes positive (visual sizes not negative); joint axes of non-zero length (normalised here)
 // for joints that have one; limits with lower <= upper and non-negative
 // effort and velocity; non-negative damping and friction.
 #pragma once
