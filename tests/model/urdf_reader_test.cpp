@@ -257,5 +257,32 @@ TEST(UrdfReaderTest, LimitsAreEnforced) {
   EXPECT_NE(st.message().find("max_total_mesh_vertices"), std::string::npos) << st.message();
 }
 
+// Verifies that every cut of the fixture file and every character of it
+// turned into a stray one is either read or refused with the file named,
+// never a crash (run under the sanitizers in CI).
+TEST(UrdfReaderTest, DamagedFilesAreReadOrRefused) {
+  const std::string path = DataDir() + "/arm.urdf";
+  const std::string text = ReadText(path);
+  size_t refused = 0, tried = 0;
+  auto attempt = [&](const std::string& damaged) {
+    ModelDescription d;
+    const Status st = ReadUrdf(damaged, path, FixturePaths(), ReadLimits{}, &d);
+    ++tried;
+    if (!st.ok()) {
+      ++refused;
+      EXPECT_NE(st.message().find("arm.urdf"), std::string::npos) << st.message();
+    }
+  };
+  for (size_t cut = 0; cut < text.size(); cut += 23) attempt(text.substr(0, cut));
+  for (size_t at = 0; at < text.size(); at += 17) {
+    for (const char c : {'<', '"', '-', 'x'}) {
+      std::string damaged = text;
+      damaged[at] = c;
+      attempt(damaged);
+    }
+  }
+  EXPECT_GT(refused, tried / 4) << "most damage must be noticed";
+}
+
 }  // namespace
 }  // namespace contactsim::model
