@@ -30,6 +30,7 @@ is compared at the zero configuration with the file's own <pose>s, composed
 here, and over random configurations with PyBullet's loadSDF; the others
 are in EXPECTED_SDF_REFUSALS.
 """
+import functools
 import json
 import os
 import xml.etree.ElementTree as ET
@@ -101,6 +102,12 @@ BULLET_JACOBI_TOL = 1e-6
 FK_TOL = 1e-9
 
 
+@functools.lru_cache(maxsize=None)
+def model_info_once(rel):
+    """The tool's reading of a file, once per file for all the tests."""
+    return model_info(rel)
+
+
 def model_info(rel, stdin=None):
     args = [str(TOOL), str(DATA / rel), "--no-env"] + (["--fk"] if stdin is not None else [])
     return subprocess.run(args, input=stdin, capture_output=True, text=True, timeout=120)
@@ -151,7 +158,7 @@ def inertia_scaling(rel):
 
 
 def read(rel):
-    out = model_info(rel)
+    out = model_info_once(rel)
     if rel in EXPECTED_REFUSALS:
         assert out.returncode == 1, f"{rel} was expected to be refused"
         assert EXPECTED_REFUSALS[rel] in out.stderr, out.stderr
@@ -285,7 +292,7 @@ EXPECTED_SDF_REFUSALS = {
 
 
 def read_sdf(rel):
-    out = model_info(rel)
+    out = model_info_once(rel)
     if rel in EXPECTED_SDF_REFUSALS:
         assert out.returncode == 1, f"{rel} was expected to be refused"
         assert EXPECTED_SDF_REFUSALS[rel] in out.stderr, out.stderr
