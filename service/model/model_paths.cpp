@@ -195,7 +195,22 @@ Status ResolveModelUri(const std::string& uri, const std::string& base_dir, cons
 
 Status ResolveModelFile(const std::string& name, const ModelPaths& paths, std::string* resolved) {
   // a relative name is looked up in the search directories, not the cwd
-  return ResolveModelUri(name, "", paths, resolved);
+  std::string path;
+  Status st = ResolveModelUri(name, "", paths, &path);
+  if (!st.ok() || !IsDirectory(path)) {
+    *resolved = path;
+    return st;
+  }
+  // a Gazebo model folder: the SDF file its model.config names
+  TiXmlDocument config;
+  const TiXmlElement* sdf = nullptr;
+  if (config.LoadFile((fs::path(path) / "model.config").string()) && config.RootElement() != nullptr) {
+    sdf = config.RootElement()->FirstChildElement("sdf");
+  }
+  const fs::path file = fs::path(path) / (sdf != nullptr && sdf->GetText() != nullptr ? sdf->GetText() : "model.sdf");
+  if (!Exists(file)) return Status::NotFound("'" + name + "' is a folder without model.config or model.sdf");
+  *resolved = file.string();
+  return Status::Ok();
 }
 
 }  // namespace contactsim::model

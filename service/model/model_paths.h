@@ -43,7 +43,9 @@ ModelPaths MakeModelPaths(const std::vector<std::string>& flag_paths, const std:
 
 // The model file a user names: an absolute path or file:// URI as is; a
 // package:// or model:// URI as ResolveModelUri does; a relative path
-// against each search directory in order. NotFound names every place tried.
+// against each search directory in order. A Gazebo model folder
+// (model://name) stands for the SDF file its model.config names, or its
+// model.sdf. NotFound names every place tried.
 Status ResolveModelFile(const std::string& name, const ModelPaths& paths, std::string* resolved);
 
 // A file named inside a model file (a mesh, an included model):

@@ -78,8 +78,10 @@ Status PickModel(const sdf::Root& root, const SourceMap& where, const sdf::Model
 std::string MeshName(const sdf::Mesh& mesh) {
   const std::string uri = mesh.Uri();
   const std::filesystem::path from = mesh.FilePath();
-  if (uri.find("://") != std::string::npos || std::filesystem::path(uri).is_absolute() || !from.is_absolute()) {
-    return uri;
+  std::error_code ec;
+  if (uri.find("://") != std::string::npos || std::filesystem::path(uri).is_absolute() ||
+      !std::filesystem::is_regular_file(from, ec)) {
+    return uri;  // the text given to the reader has no file of its own
   }
   return (from.parent_path() / uri).string();
 }

@@ -28,6 +28,19 @@ TEST(ModelFileTest, TopElementPicksTheReader) {
   EXPECT_EQ(format, ModelFormat::kUrdf);
 }
 
+// Verifies that a Gazebo model folder named by model:// stands for the SDF
+// file its model.config names.
+TEST(ModelFileTest, ModelFolderReadsTheFileItsConfigNames) {
+  ModelDescription d;
+  const Status st = ReadModelFile("model://tetra_model", ModelPaths{{DataDir() + "/models"}}, ReadLimits{}, &d);
+  ASSERT_TRUE(st.ok()) << st.message();
+  EXPECT_EQ(d.name, "tetra");
+  EXPECT_EQ(d.source, DataDir() + "/models/tetra_model/tetra.sdf");
+  const Status folder = ReadModelFile("packages", ModelPaths{{DataDir()}}, ReadLimits{}, &d);
+  EXPECT_EQ(folder.code(), StatusCode::kNotFound);
+  EXPECT_NE(folder.message().find("without model.config or model.sdf"), std::string::npos) << folder.message();
+}
+
 // Verifies the refusals: neither format, malformed XML, a missing file, a
 // file over the size limit (checked before it is read).
 TEST(ModelFileTest, BadFilesAreRefused) {

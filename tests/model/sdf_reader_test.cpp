@@ -138,6 +138,29 @@ TEST(SdfReaderTest, InertiaAxesLimitsAndGeometryAreRead) {
   EXPECT_EQ(finger.collisions[1].geometry.mesh_vertices.size(), 4u);
 }
 
+// Verifies an <include> of model://tetra_model (found on the search path,
+// its model.config naming tetra.sdf): its link is scoped by the include's
+// <name>, placed by its <pose>, and its mesh, named relative to the
+// included file, is found next to that file.
+TEST(SdfReaderTest, IncludedModelsAreFoundPlacedAndScoped) {
+  ModelDescription d;
+  const std::string path = DataDir() + "/with_include.sdf";
+  const Status st = ReadSdf(ReadText(path), path, ModelPaths{{DataDir() + "/models"}}, ReadLimits{}, &d);
+  ASSERT_TRUE(st.ok()) << st.message();
+  ASSERT_EQ(d.links.size(), 2u);
+  EXPECT_EQ(d.links[1].name, "top::body");
+  ASSERT_EQ(d.joints.size(), 1u);
+  ExpectPose(d.joints[0].origin, Vec3(0, 0, 0.5), Quat::Identity(), "mount origin");
+  const Geometry& hull = d.links[1].collisions.at(0).geometry;
+  EXPECT_EQ(hull.mesh_path, DataDir() + "/models/tetra_model/meshes/tetra.obj");
+  EXPECT_EQ(hull.mesh_vertices.size(), 4u);
+  // without the search path the include is not found, and the message says which
+  ModelDescription none;
+  const Status missing = ReadSdf(ReadText(path), path, ModelPaths{}, ReadLimits{}, &none);
+  EXPECT_FALSE(missing.ok());
+  EXPECT_NE(missing.message().find("tetra_model"), std::string::npos) << missing.message();
+}
+
 // Verifies that a model inside a <world> is read, that an unbounded
 // revolute becomes continuous, and a link without <inertial> takes SDF's
 // default of 1 kg.

@@ -70,8 +70,11 @@ int main(int argc, char** argv) {
   app.add_flag("--fk", fk, "read joint coordinates from stdin and add each link's world pose");
   CLI11_PARSE(app, argc, argv);
 
-  const model::ModelPaths paths =
-      model::MakeModelPaths(model_paths, {}, no_env ? decltype(model::ModelPathEnvironment()){} : model::ModelPathEnvironment());
+  // absolute, so that messages and included files name where they are
+  for (std::string& dir : model_paths) dir = std::filesystem::absolute(dir).lexically_normal().string();
+  std::vector<std::pair<std::string, std::string>> environment;
+  if (!no_env) environment = model::ModelPathEnvironment();
+  const model::ModelPaths paths = model::MakeModelPaths(model_paths, {}, environment);
   model::ModelDescription description;
   Status st = model::ReadModelFile(FileName(file), paths, model::ReadLimits{}, &description);
   std::vector<std::vector<model::Pose>> poses;
