@@ -11,8 +11,9 @@
 // node, which the node walk composes), so a DAE in centimetres comes out in
 // metres; STL and OBJ carry no unit and are read as metres, as URDF and SDF
 // specify. A COLLADA <up_axis> is not applied (assimp would turn Z_UP files
-// to Y up): robot meshes are in their link's frame as written, as ROS's and
-// Gazebo's readers take them.
+// to Y up): robot meshes are in their link's frame as written, as RViz (it
+// keeps the root node's scale and drops its rotation), MoveIt's
+// geometric_shapes and Gazebo take them.
 #pragma once
 
 #include <string>
