@@ -34,10 +34,12 @@ std::string PackageXmlName(const fs::path& dir) {
 }
 
 // A directory at or below `dir` (at most `depth` levels down) whose
-// package.xml names `package`, in directory-name order for determinism.
+// package.xml names `package`, in directory-name order for determinism. As
+// ROS's crawl does, it does not look inside another package.
 std::string CrawlForPackage(const fs::path& dir, const std::string& package, int depth) {
-  if (PackageXmlName(dir) == package) return dir.string();
-  if (depth == 0) return "";
+  const std::string name = PackageXmlName(dir);
+  if (name == package) return dir.string();
+  if (depth == 0 || !name.empty()) return "";
   std::vector<fs::path> children;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
