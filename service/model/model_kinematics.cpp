@@ -65,6 +65,13 @@ Pose Compose(const Pose& a, const Pose& b) {
   return out;
 }
 
+Pose InversePose(const Pose& a) {
+  Pose out;
+  out.orientation = a.orientation.conjugate();
+  out.position = -(out.orientation * a.position);
+  return out;
+}
+
 Status LinkWorldPoses(const ModelDescription& model, const Pose& root, const std::vector<double>& q,
                       std::vector<Pose>* poses) {
   const int n = ModelCoordinateCount(model);

@@ -36,4 +36,7 @@ Status LinkWorldPoses(const ModelDescription& model, const Pose& root, const std
 // a * b: b's frame given in a's, then a's in its parent's.
 Pose Compose(const Pose& a, const Pose& b);
 
+// The inverse: Compose(InversePose(a), a) is the identity.
+Pose InversePose(const Pose& a);
+
 }  // namespace contactsim::model

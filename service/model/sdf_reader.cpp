@@ -1,43 +1,22 @@
 #include "service/model/sdf_reader.h"
 
 #include <sdf/Console.hh>
-#include <sdf/Geometry.hh>
-#include <sdf/Box.hh>
-#include <sdf/Capsule.hh>
-#include <sdf/Collision.hh>
-#include <sdf/Cylinder.hh>
-#include <sdf/JointAxis.hh>
-#include <sdf/Material.hh>
-#include <sdf/Mesh.hh>
 #include <sdf/ParserConfig.hh>
 #include <sdf/Root.hh>
-#include <sdf/Sphere.hh>
-#include <sdf/Visual.hh>
 #include <sdf/World.hh>
 
-#include <cmath>
-#include <filesystem>
 #include <map>
 #include <mutex>
 
 #include "service/model/description_check.h"
 #include "service/model/description_meshes.h"
 #include "service/model/model_kinematics.h"
+#include "service/model/sdf_elements.h"
 #include "service/model/sdf_flatten.h"
 #include "service/model/source_map.h"
 
 namespace contactsim::model {
 namespace {
-
-// SDF's default joint limits (+-1e16) mean "none".
-constexpr double kSdfUnbounded = 1e16;
-
-Pose Inverse(const Pose& p) {
-  Pose out;
-  out.orientation = p.orientation.conjugate();
-  out.position = -(out.orientation * p.position);
-  return out;
-}
 
 // Parses the text; <include> URIs resolve with model_paths.h.
 Status LoadRoot(const std::string& text, const std::string& base_dir, const ModelPaths& paths, const SourceMap& where,
@@ -73,142 +52,6 @@ Status PickModel(const sdf::Root& root, const SourceMap& where, const sdf::Model
   return Status::Ok();
 }
 
-// A mesh name relative to the file it was written in (an <include>d model's
-// own file), as SDF resolves it; URIs are left to ResolveMeshes.
-std::string MeshName(const sdf::Mesh& mesh) {
-  const std::string uri = mesh.Uri();
-  const std::filesystem::path from = mesh.FilePath();
-  std::error_code ec;
-  if (uri.find("://") != std::string::npos || std::filesystem::path(uri).is_absolute() ||
-      !std::filesystem::is_regular_file(from, ec)) {
-    return uri;  // the text given to the reader has no file of its own
-  }
-  return (from.parent_path() / uri).string();
-}
-
-Status ToGeometry(const sdf::Geometry& in, const std::string& where, Geometry* out) {
-  switch (in.Type()) {
-    case sdf::GeometryType::BOX: {
-      const auto& s = in.BoxShape()->Size();
-      out->type = GeometryType::kBox;
-      out->box_size = Vec3(s.X(), s.Y(), s.Z());
-      return Status::Ok();
-    }
-    case sdf::GeometryType::SPHERE:
-      out->type = GeometryType::kSphere;
-      out->radius = in.SphereShape()->Radius();
-      return Status::Ok();
-    case sdf::GeometryType::CYLINDER:
-      out->type = GeometryType::kCylinder;
-      out->radius = in.CylinderShape()->Radius();
-      out->length = in.CylinderShape()->Length();
-      return Status::Ok();
-    case sdf::GeometryType::CAPSULE:
-      out->type = GeometryType::kCapsule;
-      out->radius = in.CapsuleShape()->Radius();
-      out->length = in.CapsuleShape()->Length();
-      return Status::Ok();
-    case sdf::GeometryType::MESH: {
-      const sdf::Mesh& m = *in.MeshShape();
-      if (!m.Submesh().empty()) return Status::InvalidArgument(where + "a <submesh> is not read");
-      out->type = GeometryType::kMesh;
-      out->mesh_path = MeshName(m);
-      out->mesh_scale = Vec3(m.Scale().X(), m.Scale().Y(), m.Scale().Z());
-      return Status::Ok();
-    }
-    default:
-      return Status::InvalidArgument(where + "geometry of this type (plane, ellipsoid, heightmap, polyline or "
-                                             "empty) is not read: box, sphere, cylinder, capsule and mesh are");
-  }
-}
-
-// The link's elements in the description frame F_top (top model frame).
-Status ToLink(const FlatSdfLink& flat, const Pose& frame, const SourceMap& where, Link* out) {
-  const Pose link_in_frame = Compose(Inverse(frame), flat.pose);
-  const std::string w = where.Link(flat.name);
-  out->name = flat.name;
-  const ignition::math::Inertiald& in = flat.link->Inertial();
-  if (in.MassMatrix().Mass() != 0.0) {
-    Inertial inertial;
-    inertial.mass = in.MassMatrix().Mass();
-    inertial.origin = Compose(link_in_frame, FromIgnition(in.Pose()));
-    const ignition::math::Matrix3d moi = in.MassMatrix().Moi();
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) inertial.inertia(r, c) = moi(r, c);
-    }
-    out->inertial = inertial;
-  }
-  for (uint64_t i = 0; i < flat.link->CollisionCount(); ++i) {
-    const sdf::Collision& c = *flat.link->CollisionByIndex(i);
-    ignition::math::Pose3d p;  // in the link frame, a collision's default
-    const sdf::Errors errors = c.SemanticPose().Resolve(p);
-    if (!errors.empty()) return Status::InvalidArgument(w + "collision '" + c.Name() + "': " + FirstError(errors));
-    CollisionElement e{c.Name(), Compose(link_in_frame, FromIgnition(p)), {}};
-    Status st = ToGeometry(*c.Geom(), w + "collision '" + c.Name() + "': ", &e.geometry);
-    if (!st.ok()) return st;
-    out->collisions.push_back(e);
-  }
-  for (uint64_t i = 0; i < flat.link->VisualCount(); ++i) {
-    const sdf::Visual& v = *flat.link->VisualByIndex(i);
-    ignition::math::Pose3d p;
-    const sdf::Errors errors = v.SemanticPose().Resolve(p);
-    if (!errors.empty()) return Status::InvalidArgument(w + "visual '" + v.Name() + "': " + FirstError(errors));
-    VisualElement e{v.Name(), Compose(link_in_frame, FromIgnition(p)), {}};
-    Status st = ToGeometry(*v.Geom(), w + "visual '" + v.Name() + "': ", &e.geometry);
-    if (!st.ok()) return st;
-    if (v.Material() != nullptr) {
-      const auto& d = v.Material()->Diffuse();
-      e.rgba = Eigen::Vector4d(d.R(), d.G(), d.B(), d.A());
-    }
-    out->visuals.push_back(e);
-  }
-  return Status::Ok();
-}
-
-const char* SdfJointTypeName(sdf::JointType t) {
-  switch (t) {
-    case sdf::JointType::BALL: return "ball";
-    case sdf::JointType::GEARBOX: return "gearbox";
-    case sdf::JointType::REVOLUTE2: return "revolute2";
-    case sdf::JointType::SCREW: return "screw";
-    case sdf::JointType::UNIVERSAL: return "universal";
-    default: return "invalid";
-  }
-}
-
-// Type, axis, limits and dynamics of a revolute, continuous, prismatic or
-// fixed joint.
-Status ToJointMotion(const sdf::Joint& in, const std::string& where, ModelJoint* out) {
-  switch (in.Type()) {
-    case sdf::JointType::REVOLUTE: out->type = JointType::kRevolute; break;
-    case sdf::JointType::CONTINUOUS: out->type = JointType::kContinuous; break;
-    case sdf::JointType::PRISMATIC: out->type = JointType::kPrismatic; break;
-    case sdf::JointType::FIXED: out->type = JointType::kFixed; return Status::Ok();
-    default:
-      return Status::InvalidArgument(where + "joint type '" + SdfJointTypeName(in.Type()) +
-                                     "' is not supported (revolute, continuous, prismatic and fixed are)");
-  }
-  const sdf::JointAxis* axis = in.Axis(0);
-  if (axis == nullptr) return Status::InvalidArgument(where + "no <axis>");
-  ignition::math::Vector3d xyz;  // in the joint frame, the default
-  const sdf::Errors errors = axis->ResolveXyz(xyz);
-  if (!errors.empty()) return Status::InvalidArgument(where + "axis: " + FirstError(errors));
-  out->axis = Vec3(xyz.X(), xyz.Y(), xyz.Z());
-  out->damping = axis->Damping();
-  out->friction = axis->Friction();
-  const bool bounded = axis->Lower() > -kSdfUnbounded || axis->Upper() < kSdfUnbounded;
-  if (out->type == JointType::kRevolute && !bounded) out->type = JointType::kContinuous;
-  // SDF writes "no limit" as -1 or infinity; the description as 0
-  auto given = [](double v) { return std::isfinite(v) && v > 0.0 ? v : 0.0; };
-  const double effort = given(axis->Effort()), velocity = given(axis->MaxVelocity());
-  if (out->type == JointType::kContinuous && (effort > 0.0 || velocity > 0.0)) {
-    out->limits = JointLimits{0.0, 0.0, effort, velocity};
-  } else if (out->type != JointType::kContinuous && bounded) {
-    out->limits = JointLimits{axis->Lower(), axis->Upper(), effort, velocity};
-  }
-  return Status::Ok();
-}
-
 // The flat lists as a description with names only, for the tree check.
 ModelDescription Skeleton(const FlatSdfModel& flat) {
   ModelDescription d;
@@ -230,14 +73,14 @@ Status Convert(const FlatSdfModel& flat, const SourceMap& where, ModelDescriptio
   for (const FlatSdfLink& l : flat.links) frame[l.name] = l.pose;
   for (const FlatSdfJoint& j : flat.joints) frame[j.child] = j.pose;
   for (size_t i = 0; i < flat.links.size(); ++i) {
-    Status st = ToLink(flat.links[i], frame.at(flat.links[i].name), where, &out->links[i]);
+    Status st = SdfLinkElements(flat.links[i], frame.at(flat.links[i].name), where, &out->links[i]);
     if (!st.ok()) return st;
   }
   for (size_t i = 0; i < flat.joints.size(); ++i) {
     const FlatSdfJoint& j = flat.joints[i];
     ModelJoint& mj = out->joints[i];
-    mj.origin = Compose(Inverse(frame.at(j.parent)), frame.at(j.child));
-    Status st = ToJointMotion(*j.joint, where.Joint(j.name), &mj);
+    mj.origin = Compose(InversePose(frame.at(j.parent)), frame.at(j.child));
+    Status st = SdfJointMotion(*j.joint, where.Joint(j.name), &mj);
     if (!st.ok()) return st;
   }
   return Status::Ok();
