@@ -183,14 +183,19 @@ def test_names_counts_and_mass_properties_match_pybullet(bullet, rel):
         if by_name[name]["type"] in BULLET_JOINT_TYPE:
             assert BULLET_JOINT_TYPE[by_name[name]["type"]] == bullet_type, name
     scaling = inertia_scaling(rel)
+    inertials = {l.get("name") for l in ET.parse(DATA / rel).getroot().iter("link") if l.find("inertial") is not None}
     for link in desc["links"]:
         info = links[link["name"]]
         mass, moments, com, orn = info[0], np.array(info[2]), np.array(info[3]), info[4]
         moments = moments / scaling.get(link["name"], 1.0)
         if link["massless"]:
-            # PyBullet gives a link without <inertial> (or with mass 0) mass 0
-            # or its default of 1 kg with a unit inertia
-            assert mass in (0.0, 1.0), link["name"]
+            # an explicit mass of 0 PyBullet keeps; without <inertial> a root
+            # gets mass 0 (a static base) and any other link 1 kg with a unit
+            # inertia, PyBullet's defaults
+            if link["name"] in inertials or link["name"] == desc["root_link"]:
+                assert mass == 0.0, link["name"]
+            else:
+                assert mass == 1.0 and list(moments) == [1.0, 1.0, 1.0], (link["name"], mass, moments)
             continue
         assert abs(mass - link["mass"]) <= REL_TOL * link["mass"], link["name"]
         origin = link["inertial_origin"]
