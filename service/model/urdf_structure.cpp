@@ -15,12 +15,12 @@ std::string Attribute(const TiXmlElement* e, const char* name) {
 std::string LineOf(const TiXmlElement* e) { return " (line " + std::to_string(e->Row()) + ")"; }
 
 // The links of <robot>, in order, into the skeleton and the source map.
-Status ReadLinks(const TiXmlElement* robot, const SourceMap& where, SourceMap* lines, ModelDescription* skeleton) {
+Status ReadLinks(const TiXmlElement* robot, SourceMap* lines, ModelDescription* skeleton) {
   for (const TiXmlElement* e = robot->FirstChildElement("link"); e != nullptr; e = e->NextSiblingElement("link")) {
     const std::string name = Attribute(e, "name");
-    if (name.empty()) return Status::InvalidArgument(where.File() + "a <link> without a name" + LineOf(e));
+    if (name.empty()) return Status::InvalidArgument(lines->File() + "a <link> without a name" + LineOf(e));
     if (lines->link_lines.count(name)) {
-      return Status::InvalidArgument(where.Link(name) + "a second link of this name" + LineOf(e));
+      return Status::InvalidArgument(lines->Link(name) + "a second link of this name" + LineOf(e));
     }
     lines->link_lines[name] = e->Row();
     skeleton->links.push_back(Link{name, std::nullopt, {}, {}});
@@ -85,7 +85,7 @@ Status ReadUrdfStructure(const std::string& text, const ReadLimits& limits, Sour
   Status st = CheckCounts(links, joints, limits, *where);
   if (!st.ok()) return st;
   ModelDescription skeleton;
-  st = ReadLinks(robot, *where, where, &skeleton);
+  st = ReadLinks(robot, where, &skeleton);
   if (st.ok()) st = ReadJoints(robot, where, &skeleton);
   if (st.ok()) st = CheckTree(*where, &skeleton);
   if (!st.ok()) return st;
