@@ -214,6 +214,9 @@ TEST(UrdfReaderTest, BadStructureIsRefused) {
       "<joint name=\"ba\" type=\"fixed\"><parent link=\"b\"/><child link=\"a\"/></joint></robot>";
   ExpectRefused(cycle, {"kinematic loop", "a -> b -> a"});
   ExpectRefused("<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/></robot>", {"2 root links", "'a'", "'b'"});
+  ExpectRefused("<robot name=\"r\">\n<link name=\"a\"/>\n<link name=\"a\"/>\n</robot>",
+                {"link 'a' (line 2)", "a second link of this name (line 3)"});
+  ExpectRefused("<robot name=\"r\">\n<link/>\n</robot>", {"a <link> without a name (line 2)"});
   ExpectRefused(TwoLinkUrdf("", "continuous", "<parent link=\"a\"/><child link=\"b\"/><axis xyz=\"0 0 0\"/>"),
                 {"joint 'j'", "axis"});
   ExpectRefused(
