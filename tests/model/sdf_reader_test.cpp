@@ -161,6 +161,22 @@ TEST(SdfReaderTest, IncludedModelsAreFoundPlacedAndScoped) {
   EXPECT_NE(missing.message().find("tetra_model"), std::string::npos) << missing.message();
 }
 
+// Verifies SDF 1.7 frames: a link placed relative_to a <frame> attached to
+// another link (0.2 above it, turned 90 degrees about z, then 0.1 higher),
+// and an axis expressed in the model frame: the model's x is the turned
+// child's -y.
+TEST(SdfReaderTest, FramesAndRelativePosesAreResolved) {
+  const std::string text = Model(
+      "<frame name=\"mount\" attached_to=\"a\"><pose>0 0 0.2 0 0 1.5707963267948966</pose></frame>\n" +
+      SimpleLink("a") + "<link name=\"b\"><pose relative_to=\"mount\">0 0 0.1 0 0 0</pose></link>\n" +
+      Joint("j", "continuous", "a", "b", "<axis><xyz expressed_in=\"__model__\">1 0 0</xyz></axis>"));
+  ModelDescription d;
+  const Status st = ReadSdf(text, "test.sdf", ModelPaths{}, ReadLimits{}, &d);
+  ASSERT_TRUE(st.ok()) << st.message();
+  ExpectPose(d.joints[0].origin, Vec3(0, 0, 0.3), Yaw(kPi / 2), "j origin");
+  EXPECT_LT((d.joints[0].axis - Vec3(0, -1, 0)).norm(), kTol) << d.joints[0].axis.transpose();
+}
+
 // Verifies that a model inside a <world> is read, that an unbounded
 // revolute becomes continuous, and a link without <inertial> takes SDF's
 // default of 1 kg.
