@@ -192,6 +192,7 @@ Status ResolveModelUri(const std::string& uri, const std::string& base_dir, cons
       return Status::Ok();
     }
   }
+  if (tried.empty()) return Status::NotFound("cannot find '" + uri + "': a relative name and no search directories");
   return Status::NotFound("cannot find '" + uri + "' (tried " + Joined(tried) + ")");
 }
 
