@@ -9,8 +9,11 @@
 //   2. the server config's model_path entries, in the file's order;
 //   3. ROS_PACKAGE_PATH, GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH,
 //      SDF_PATH, each split at ':' (kModelPathVariables' order).
-// A directory named twice is kept at its first place. docs/models.md,
-// "How paths resolve", gives the rules with examples.
+// A directory named twice is kept at its first place. Directories are used
+// as given: a relative one is relative to the working directory, so a
+// caller that wants stable messages and <include>s makes them absolute
+// first (contactsim-model-info does). docs/models.md, "How paths resolve",
+// gives the rules with examples.
 #pragma once
 
 #include <string>
