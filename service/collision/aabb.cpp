@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/collision/compound_children.h"
 #include "service/physics/convex_hull.h"
 
 namespace contactsim {
@@ -26,11 +27,28 @@ Aabb PlaneAabb(const RigidBody& body) {
   return box;
 }
 
+// The union of the children's boxes, then the margin and the sweep of the
+// body's own velocity.
+Aabb CompoundAabb(const RigidBody& body, double margin, double dt) {
+  Aabb box{Vec3::Constant(kHuge), Vec3::Constant(-kHuge)};
+  for (const ShapeChild& child : body.shape.compound->children) {
+    const Aabb c = ComputeAabb(ChildBody(body, child), 0.0, 0.0);
+    box.min = box.min.cwiseMin(c.min);
+    box.max = box.max.cwiseMax(c.max);
+  }
+  box.Inflate(margin);
+  const Vec3 d = body.LinearVelocity() * dt;
+  box.min += d.cwiseMin(Vec3::Zero());
+  box.max += d.cwiseMax(Vec3::Zero());
+  return box;
+}
+
 }  // namespace
 
 Aabb ComputeAabb(const RigidBody& body, double margin, double dt) {
   const Shape& s = body.shape;
   if (s.type == ShapeType::kPlane) return PlaneAabb(body);
+  if (s.type == ShapeType::kCompound) return CompoundAabb(body, margin, dt);
   const Mat3 R = body.Rotation();
   Vec3 half;
   switch (s.type) {

@@ -16,6 +16,11 @@ double BoundingRadius(const Shape& s) {
       for (const Vec3& v : s.hull->vertices) r = std::max(r, v.norm());
       return r;
     }
+    case ShapeType::kCompound: {
+      double r = 0.0;
+      for (const ShapeChild& c : s.compound->children) r = std::max(r, c.position.norm() + BoundingRadius(c.shape));
+      return r;
+    }
     default: return 0.0;
   }
 }

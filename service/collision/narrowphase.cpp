@@ -9,6 +9,8 @@
 #include <array>
 
 #include "service/collision/collide_pairs.h"
+#include "service/collision/compound_children.h"
+#include "service/collision/feature_id.h"
 #include "service/collision/polyhedron_sat.h"
 #include "service/collision/separating_axis_cache.h"
 
@@ -24,12 +26,13 @@ constexpr int kPairGrain = 16;
 
 // rows: shape of body a; columns: shape of body b
 const std::array<std::array<PairCollider, kShapeTypes>, kShapeTypes> kCollisionTable = {{
-    //  sphere               box                       capsule                 convex                    plane
-    {{CollideSphereSphere, CollideSphereBox, CollideSphereCapsule, CollideSphereConvex, CollideSpherePlane}},
-    {{nullptr, CollidePolyhedra, nullptr, CollidePolyhedra, CollidePolyhedronPlane}},
-    {{nullptr, CollideCapsulePolyhedron, CollideCapsuleCapsule, CollideCapsulePolyhedron, CollideCapsulePlane}},
-    {{nullptr, nullptr, nullptr, CollidePolyhedra, CollidePolyhedronPlane}},
-    {{nullptr, nullptr, nullptr, nullptr, nullptr}},  // plane-plane: never in contact
+    //  sphere               box                       capsule                 convex                    plane  compound
+    {{CollideSphereSphere, CollideSphereBox, CollideSphereCapsule, CollideSphereConvex, CollideSpherePlane, nullptr}},
+    {{nullptr, CollidePolyhedra, nullptr, CollidePolyhedra, CollidePolyhedronPlane, nullptr}},
+    {{nullptr, CollideCapsulePolyhedron, CollideCapsuleCapsule, CollideCapsulePolyhedron, CollideCapsulePlane, nullptr}},
+    {{nullptr, nullptr, nullptr, CollidePolyhedra, CollidePolyhedronPlane, nullptr}},
+    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // plane-plane: never in contact
+    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // compound: by its children (DispatchCompound)
 }};
 
 // Canonical order of two bodies of the same shape type, so that (a, b) and
@@ -48,12 +51,17 @@ bool Precedes(const RigidBody& a, const RigidBody& b) {
 
 bool PoseIsFinite(const RigidBody& body) { return IsFinite(body.x) && IsFinite(body.q); }
 
+int DispatchCompound(const RigidBody& a, int ia, const RigidBody& b, int ib, const CollideContext& ctx,
+                     ContactSet* out);
+
 int Dispatch(const RigidBody& a, int ia, const RigidBody& b, int ib, const CollideContext& ctx,
              ContactSet* out) {
   // non-finite poses have no meaningful contacts; the state checks report them
   if (!PoseIsFinite(a) || !PoseIsFinite(b)) return 0;
   const int ta = static_cast<int>(a.shape.type);
   const int tb = static_cast<int>(b.shape.type);
+  constexpr int kCompound = static_cast<int>(ShapeType::kCompound);
+  if (ta == kCompound || tb == kCompound) return DispatchCompound(a, ia, b, ib, ctx, out);
   if (ta < 0 || ta >= kShapeTypes || tb < 0 || tb >= kShapeTypes) return 0;
 
   PairCollider fn = kCollisionTable[ta][tb];
@@ -79,6 +87,45 @@ int Dispatch(const RigidBody& a, int ia, const RigidBody& b, int ib, const Colli
     if (swapped) c.normal = -c.normal;
   }
   return static_cast<int>(out->size() - first);
+}
+
+// A compound collides child by child with the other body's pieces (its
+// children, or itself), each child pair through the table. The pair is
+// taken in one order (by id, as Precedes), so that (a, b) and (b, a) give
+// the same points; each point's feature id also hashes the two children's
+// indices, so warm starts and manifolds stay per child pair. The
+// separating-axis cache holds one axis per body pair, not per child pair:
+// children run without it.
+int DispatchCompound(const RigidBody& a, int ia, const RigidBody& b, int ib, const CollideContext& ctx,
+                     ContactSet* out) {
+  const bool swapped = !Precedes(a, b);
+  const RigidBody& first = swapped ? b : a;
+  const RigidBody& second = swapped ? a : b;
+  CollideContext child_ctx = ctx;
+  child_ctx.cache = nullptr;
+  child_ctx.cache_update = nullptr;
+  const size_t begin = out->size();
+  const int n1 = PieceCount(first), n2 = PieceCount(second);
+  for (int k1 = 0; k1 < n1; ++k1) {
+    const RigidBody p1 = PieceBody(first, k1);
+    for (int k2 = 0; k2 < n2; ++k2) {
+      const size_t before = out->size();
+      Dispatch(p1, 0, PieceBody(second, k2), 0, child_ctx, out);
+      for (size_t k = before; k < out->size(); ++k) {
+        Contact& c = (*out)[k];
+        c.feature_id = FeatureId({c.feature_id, static_cast<uint32_t>(k1), static_cast<uint32_t>(k2)});
+      }
+    }
+  }
+  for (size_t k = begin; k < out->size(); ++k) {
+    Contact& c = (*out)[k];
+    c.a = ia;
+    c.b = ib;
+    c.id_a = a.id;
+    c.id_b = b.id;
+    if (swapped) c.normal = -c.normal;
+  }
+  return static_cast<int>(out->size() - begin);
 }
 
 }  // namespace

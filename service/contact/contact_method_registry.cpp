@@ -49,8 +49,11 @@ const std::vector<ContactMethodEntry>& ContactMethodTable() {
       // barrier: the implicit step is inelastic (no restitution), and a
       // kinematic body is moved to its end pose before the solve
       // (barrier_solver.cpp, Setup), so its motion reaches neither the CCD
-      // nor the friction: a rising platform passes through what rests on it
-      {"barrier", Make<BarrierMethod>, {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)"}},
+      // nor the friction: a rising platform passes through what rests on it.
+      // Its distances come from one BodyGeometry per body (one rounding
+      // radius), not from the narrowphase: it takes no compound bodies
+      {"barrier", Make<BarrierMethod>,
+       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false}},
       {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk"}},
   };
   return table;

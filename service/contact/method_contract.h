@@ -1,5 +1,6 @@
 // What a contact method promises to simulate (docs/physics.md, "Method
-// contract"): joints, restitution, kinematic bodies, and its friction model.
+// contract"): joints, restitution, kinematic bodies, its friction model and
+// compound bodies.
 // Each method's contract is declared once, in its row of the registry
 // (contact_method_registry.h); the server refuses a world the active method
 // cannot honour (method_support.h) and publishes the contract in STATUS.
@@ -17,6 +18,9 @@ struct MethodContract {
   // "coulomb pyramid" (each tangent alone), "regularized" (a spring or a
   // smoothing of the stick-slip switch), with what decides between them.
   const char* friction = "";
+  // compound bodies (shape.h): a body of several shapes collides child by
+  // child; last, so that the table's rows may leave it at its default
+  bool compound_bodies = true;
 };
 
 // "joints=yes; restitution=no; kinematic=yes; friction=...", the text

@@ -55,6 +55,12 @@ Status CheckMethodAcceptsBody(const std::string& method, const RigidBody& body, 
                                       "; give it restitution 0 or choose " +
                                       MethodsWith(&MethodContract::restitution));
   }
+  if (body.shape.type == ShapeType::kCompound && !contract.compound_bodies) {
+    return Status::FailedPrecondition("contact method " + method + " does not simulate compound bodies: " + what +
+                                      " is a compound of " + std::to_string(body.shape.compound->children.size()) +
+                                      " shape(s); give it one shape centred at its centre of mass or choose " +
+                                      MethodsWith(&MethodContract::compound_bodies));
+  }
   if (body.motion == MotionType::kKinematic && !contract.kinematic_bodies) {
     return Status::FailedPrecondition("contact method " + method + " does not simulate kinematic bodies: " + what +
                                       " is kinematic; make it dynamic or fixed, or choose " +

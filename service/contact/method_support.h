@@ -26,7 +26,7 @@ Status CheckMethodSupports(const std::string& method, const World& world);
 Status CheckMethodAcceptsJoint(const std::string& method);
 
 // Ok when the method can simulate `body` (its restitution, its motion
-// type): an added body, or one whose material changes; else
+// type, a compound shape): an added body, or one whose material changes; else
 // FailedPrecondition naming `what` ("body 3", "the new sphere").
 Status CheckMethodAcceptsBody(const std::string& method, const RigidBody& body, const std::string& what);
 

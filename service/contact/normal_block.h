@@ -42,15 +42,18 @@ struct NormalBlock {
   Eigen::Matrix4d inv_k = Eigen::Matrix4d::Zero();
 };
 
-// Groups `points` (anything with body indices a and b) into blocks; the
-// caller inverts each block's K.
+// Groups `points` (anything with body indices a and b, and a unit normal
+// `normal`) into blocks of one body pair and one normal; the caller
+// inverts each block's K. The normal splits a compound body's points,
+// whose child pairs touch along different normals (shape.h).
 template <class Point>
-void GroupNormalBlocks(const std::vector<Point>& points, std::vector<NormalBlock>* blocks) {
+void GroupNormalBlocks(const std::vector<Point>& points, Vec3 Point::*normal, std::vector<NormalBlock>* blocks) {
   blocks->clear();
   for (int k = 0; k < static_cast<int>(points.size()); ++k) {
     NormalBlock* last = blocks->empty() ? nullptr : &blocks->back();
     if (last != nullptr && last->count < kMaxNormalBlock && points[last->first].a == points[k].a &&
-        points[last->first].b == points[k].b) {
+        points[last->first].b == points[k].b &&
+        (points[last->first].*normal).dot(points[k].*normal) >= 1.0 - 1e-9) {
       ++last->count;
     } else {
       blocks->push_back(NormalBlock{k, 1, false, Eigen::Matrix4d::Zero()});

@@ -1,6 +1,6 @@
 #include "service/physics/body_settings.h"
 
-#include "service/physics/convex_hull.h"
+#include "service/physics/body_shape.h"
 #include "service/physics/mass_properties.h"
 #include "service/physics/validation.h"
 
@@ -11,54 +11,58 @@ namespace {
 // broadphase stop being meaningful.
 constexpr double kMaxLength = 1e6;  // m
 
-Status MakeShape(const BodySettings& s, Shape* shape, Vec3* origin_offset) {
+Status MakePlane(const BodySettings& s, Shape* shape) {
   Status st;
-  *origin_offset = Vec3::Zero();
-  switch (s.shape) {
-    case ShapeType::kSphere:
-      if (!(st = CheckPositive("radius", s.radius)).ok()) return st;
-      if (!(st = CheckInRange("radius", s.radius, 0.0, kMaxLength)).ok()) return st;
-      *shape = Shape::Sphere(s.radius);
-      return Status::Ok();
-    case ShapeType::kBox:
-      for (int i = 0; i < 3; ++i) {
-        const std::string field = std::string("half_extents[") + char('0' + i) + "]";
-        if (!(st = CheckPositive(field, s.half_extents[i])).ok()) return st;
-        if (!(st = CheckInRange(field, s.half_extents[i], 0.0, kMaxLength)).ok()) return st;
-      }
-      *shape = Shape::Box(s.half_extents);
-      return Status::Ok();
-    case ShapeType::kCapsule:
-      if (!(st = CheckPositive("radius", s.radius)).ok()) return st;
-      if (!(st = CheckNonNegative("half_length", s.half_length)).ok()) return st;
-      if (!(st = CheckInRange("radius", s.radius, 0.0, kMaxLength)).ok()) return st;
-      if (!(st = CheckInRange("half_length", s.half_length, 0.0, kMaxLength)).ok()) return st;
-      *shape = Shape::Capsule(s.radius, s.half_length);
-      return Status::Ok();
-    case ShapeType::kPlane: {
-      if (!(st = CheckFinite("plane_normal", s.plane_normal)).ok()) return st;
-      if (s.plane_normal.norm() < 1e-9) {
-        return Status::InvalidArgument("plane_normal must be a non-zero vector, got " + FormatValue(s.plane_normal));
-      }
-      if (!(st = CheckFinite("plane_offset", s.plane_offset)).ok()) return st;
-      *shape = Shape::Plane(s.plane_normal, s.plane_offset);
-      return Status::Ok();
-    }
-    case ShapeType::kConvex: {
-      for (size_t i = 0; i < s.points.size(); ++i) {
-        if (!(st = CheckFinite("points[" + std::to_string(i) + "]", s.points[i])).ok()) return st;
-      }
-      std::shared_ptr<const ConvexHull> hull;
-      Vec3 centroid;
-      if (!(st = BuildConvexHull(s.points, &hull, &centroid)).ok()) return st;
-      *shape = Shape::Convex(hull);
-      *origin_offset = centroid;
-      return Status::Ok();
-    }
-    case ShapeType::kCount: break;
+  if (!(st = CheckFinite("plane_normal", s.plane_normal)).ok()) return st;
+  if (s.plane_normal.norm() < 1e-9) {
+    return Status::InvalidArgument("plane_normal must be a non-zero vector, got " + FormatValue(s.plane_normal));
   }
-  return Status::InvalidArgument("shape must be sphere, box, capsule, convex or plane, got type " +
-                                 std::to_string(static_cast<int>(s.shape)));
+  if (!(st = CheckFinite("plane_offset", s.plane_offset)).ok()) return st;
+  *shape = Shape::Plane(s.plane_normal, s.plane_offset);
+  return Status::Ok();
+}
+
+// The explicit mass properties' own checks (the inertia needs a mass to
+// go with it; a plane has none).
+Status CheckExplicitMass(const BodySettings& s) {
+  Status st;
+  if (s.shape == ShapeType::kPlane && (s.center_of_mass || s.inertia)) {
+    return Status::InvalidArgument("a plane has no mass properties (center_of_mass or inertia given)");
+  }
+  if (s.center_of_mass) {
+    if (!(st = CheckFinite("center_of_mass", *s.center_of_mass)).ok()) return st;
+    if (!(st = CheckInRange("center_of_mass", s.center_of_mass->cwiseAbs().maxCoeff(), 0.0, kMaxLength)).ok()) {
+      return st;
+    }
+  }
+  if (s.inertia) {
+    if (!s.mass) return Status::InvalidArgument("an explicit inertia needs an explicit mass, got none");
+    if (!(st = CheckInertiaTensor("inertia", *s.inertia)).ok()) return st;
+  }
+  return Status::Ok();
+}
+
+// The shape posed about its centre of mass, the body's origin: `com`
+// receives that centre in the settings' frame (the explicit one, else the
+// shape's at uniform density).
+Status MakeShape(const BodySettings& s, Shape* shape, Vec3* com) {
+  *com = Vec3::Zero();
+  if (s.shape == ShapeType::kPlane) {
+    if (!s.parts.empty()) return Status::InvalidArgument("parts are for a compound shape, got them on a plane");
+    return MakePlane(s, shape);
+  }
+  std::vector<ShapeChild> children;
+  Status st = MakeFrameChildren(s, &children);
+  if (!st.ok()) return st;
+  if (s.center_of_mass) {
+    *com = *s.center_of_mass;
+  } else if (s.shape == ShapeType::kCompound) {
+    *com = ComputeMassProperties(Shape::Compound(children), 1.0).center;
+  } else {
+    *com = children[0].position;  // a hull's centroid, or the origin
+  }
+  *shape = PlaceChildren(s, children, *com);
+  return Status::Ok();
 }
 
 }  // namespace
@@ -73,8 +77,9 @@ Status CheckMaterial(std::optional<double> restitution, std::optional<double> fr
 Status CreateBody(const BodySettings& s, const Material& default_material, RigidBody* body) {
   Status st;
   Shape shape;
-  Vec3 origin_offset;
-  if (!(st = MakeShape(s, &shape, &origin_offset)).ok()) return st;
+  Vec3 com;
+  if (!(st = CheckExplicitMass(s)).ok()) return st;
+  if (!(st = MakeShape(s, &shape, &com)).ok()) return st;
   if (!(st = CheckFinite("position", s.position)).ok()) return st;
   if (!(st = CheckInRange("position", s.position.cwiseAbs().maxCoeff(), 0.0, kMaxLength)).ok()) return st;
   if (!(st = CheckFinite("linear_velocity", s.linear_velocity)).ok()) return st;
@@ -106,10 +111,13 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   if (s.restitution) b.material.restitution = *s.restitution;
   if (s.friction) b.material.friction = *s.friction;
   b.q = q;
-  b.x = s.position + q * origin_offset;
+  b.x = s.position + q * com;
+  b.frame_origin = Vec3::Zero() - com;  // +0, not -0, for a centred shape
   if (is_static) {
     b.MakeStatic();
     if (s.kinematic) b.motion = MotionType::kKinematic;
+  } else if (s.inertia) {
+    b.SetMassProperties(*s.mass, *s.inertia);
   } else if (s.mass) {
     b.SetMass(*s.mass);
   } else {

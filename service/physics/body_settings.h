@@ -12,6 +12,24 @@
 
 namespace contactsim {
 
+// One shape of a compound body, posed in the frame that
+// BodySettings::position and orientation place in the world (a robot
+// link's frame): a sphere, box, capsule or convex hull, with the same
+// fields as a single shape.
+struct ShapePart {
+  ShapeType type = ShapeType::kSphere;
+  double radius = 0.0;                    // m, sphere and capsule
+  Vec3 half_extents = Vec3::Zero();       // m, box
+  double half_length = 0.0;               // m, capsule: cap centres at (0, 0, +-half_length)
+  std::vector<Vec3> points;               // m, convex, in the part's frame
+  Vec3 position = Vec3::Zero();           // m, the part's frame in the settings' frame
+  Quat orientation = Quat::Identity();    // part to settings' frame; normalised here
+};
+
+// Most parts one body takes: a robot link has a handful of collision
+// elements; more would make every pair of it cost parts^2 child pairs.
+constexpr int kMaxShapeParts = 64;
+
 struct BodySettings {
   std::string name;
   ShapeType shape = ShapeType::kSphere;
@@ -21,7 +39,14 @@ struct BodySettings {
   Vec3 plane_normal = Vec3::UnitZ();      // plane, world (normalised here)
   double plane_offset = 0.0;              // m, plane
   std::vector<Vec3> points;               // m, convex, in the body's frame
+  std::vector<ShapePart> parts;           // compound: the shapes, 1 to kMaxShapeParts
   std::optional<double> mass;             // kg
+  // Explicit mass properties, for any shape (a robot link's inertial):
+  // the centre of mass (m, in the settings' frame) and the inertia about
+  // it (kg m^2, in the settings' axes; needs `mass`). Without them they
+  // come from the shape at uniform density.
+  std::optional<Vec3> center_of_mass;
+  std::optional<Mat3> inertia;
   std::optional<double> density;          // kg/m^3; default kDefaultDensity
   bool fixed = false;                     // static body
   bool kinematic = false;                 // infinite mass, moves with its velocity
@@ -36,9 +61,13 @@ struct BodySettings {
 constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water
 
 // Validates every field and builds the body; on error `body` is untouched
-// and the message names the field and the value. For a convex shape the
-// hull's centre of mass becomes the body origin, so `position` (the origin
-// of the points' frame) is moved to it.
+// and the message names the field and the value. The centre of mass
+// becomes the body origin (a hull's, a compound's, or the explicit one),
+// so `position` (the origin of the settings' frame) is moved to it and kept
+// as RigidBody::frame_origin; the body axes are the settings' axes. A
+// single shape whose centre is not the centre of mass becomes a compound
+// of one child, exactly (docs/physics.md, "Compound bodies and mass
+// properties").
 Status CreateBody(const BodySettings& settings, const Material& default_material, RigidBody* body);
 
 // Validates restitution and friction for SET_MATERIAL-like changes.

@@ -1,8 +1,12 @@
 #include "service/physics/mass_properties.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "service/physics/convex_hull.h"
+#include "service/physics/validation.h"
 
 namespace contactsim {
 namespace {
@@ -22,7 +26,61 @@ Mat3 CapsuleInertia(double r, double h, double density) {
   return Eigen::Vector3d(ixx, ixx, izz).asDiagonal();
 }
 
+// Children summed: m = sum m_i, c = sum m_i c_i / m,
+// I_c = sum (R_i I_i R_i^T + m_i (|d_i|^2 E - d_i d_i^T)), d_i = c_i - c.
+MassProperties CompoundMassProperties(const CompoundShape& compound, double density) {
+  MassProperties mp;
+  Vec3 moment = Vec3::Zero();
+  for (const ShapeChild& child : compound.children) {
+    const MassProperties part = ComputeMassProperties(child.shape, density);
+    mp.mass += part.mass;
+    moment += part.mass * (child.position + child.orientation * part.center);
+  }
+  if (mp.mass <= 0.0) return mp;
+  mp.center = moment / mp.mass;
+  for (const ShapeChild& child : compound.children) {
+    const MassProperties part = ComputeMassProperties(child.shape, density);
+    const Mat3 R = child.orientation.toRotationMatrix();
+    const Vec3 d = child.position + child.orientation * part.center - mp.center;
+    mp.inertia += ShiftInertia(R * part.inertia * R.transpose(), part.mass, d);
+  }
+  return mp;
+}
+
 }  // namespace
+
+Mat3 ShiftInertia(const Mat3& inertia_c, double mass, const Vec3& d) {
+  return inertia_c + mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+}
+
+Mat3 InertiaAboutOrigin(const MassProperties& mp) {
+  // a centred shape keeps its tensor bit for bit
+  if (mp.center.isZero(0.0)) return mp.inertia;
+  return ShiftInertia(mp.inertia, mp.mass, mp.center);
+}
+
+Status CheckInertiaTensor(const std::string& field, const Mat3& I) {
+  auto text = [&I]() {
+    return "[[" + FormatValue(Vec3(I.row(0).transpose())) + ", " + FormatValue(Vec3(I.row(1).transpose())) + ", " +
+           FormatValue(Vec3(I.row(2).transpose())) + "]]";
+  };
+  if (!I.allFinite()) return Status::InvalidArgument(field + " must be finite, got " + text());
+  const double scale = I.cwiseAbs().maxCoeff();
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) {
+    return Status::InvalidArgument(field + " must be symmetric, got " + text());
+  }
+  const Vec3 moments = Eigen::SelfAdjointEigenSolver<Mat3>(0.5 * (I + I.transpose()), Eigen::EigenvaluesOnly)
+                           .eigenvalues();  // ascending
+  if (!(moments[0] > 0.0)) {
+    return Status::InvalidArgument(field + " must be positive definite, got principal moments " +
+                                   FormatValue(moments) + " from " + text());
+  }
+  if (moments[0] + moments[1] < moments[2] * (1.0 - 1e-9)) {
+    return Status::InvalidArgument(field + " breaks the triangle inequality of principal moments (I1 + I2 >= I3), "
+                                   "got principal moments " + FormatValue(moments) + " from " + text());
+  }
+  return Status::Ok();
+}
 
 double ShapeVolume(const Shape& shape) {
   switch (shape.type) {
@@ -31,6 +89,13 @@ double ShapeVolume(const Shape& shape) {
     case ShapeType::kCapsule:
       return kPi * shape.radius * shape.radius * (2.0 * shape.half_length + 4.0 / 3.0 * shape.radius);
     case ShapeType::kConvex: return shape.hull ? ConvexHullVolume(*shape.hull) : 0.0;
+    case ShapeType::kCompound: {
+      double volume = 0.0;
+      if (shape.compound) {
+        for (const ShapeChild& child : shape.compound->children) volume += ShapeVolume(child.shape);
+      }
+      return volume;
+    }
     case ShapeType::kPlane:
     case ShapeType::kCount: break;
   }
@@ -59,6 +124,10 @@ MassProperties ComputeMassProperties(const Shape& shape, double density) {
     }
     case ShapeType::kConvex: {
       if (shape.hull) mp = ConvexHullMassProperties(*shape.hull, density);
+      break;
+    }
+    case ShapeType::kCompound: {
+      if (shape.compound) mp = CompoundMassProperties(*shape.compound, density);
       break;
     }
     case ShapeType::kPlane:

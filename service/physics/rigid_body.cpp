@@ -66,15 +66,33 @@ void RigidBody::SetMassFromDensity(double density) {
 }
 
 void RigidBody::SetMass(double new_mass) {
-  // Inertia scales with mass for a fixed shape: take the unit-density tensor.
+  if (explicit_inertia && mass > 0.0) {
+    // the given distribution of mass keeps its shape: I scales with m
+    SetMassProperties(new_mass, inertia_body * (new_mass / mass));
+    return;
+  }
+  // Inertia scales with mass for a fixed shape: take the unit-density tensor
+  // about the body origin (a compound's children are posed about it).
   const Vec3 v = LinearVelocity();
   const Vec3 w = AngularVelocity();
   const MassProperties unit = ComputeMassProperties(shape, 1.0);
   motion = MotionType::kDynamic;
   mass = new_mass;
   inv_mass = 1.0 / new_mass;
-  inertia_body = unit.inertia * (new_mass / unit.mass);
+  inertia_body = InertiaAboutOrigin(unit) * (new_mass / unit.mass);
   inv_inertia_body = inertia_body.inverse();
+  SetVelocity(v, w);
+}
+
+void RigidBody::SetMassProperties(double new_mass, const Mat3& inertia) {
+  const Vec3 v = LinearVelocity();
+  const Vec3 w = AngularVelocity();
+  motion = MotionType::kDynamic;
+  mass = new_mass;
+  inv_mass = 1.0 / new_mass;
+  inertia_body = 0.5 * (inertia + inertia.transpose());
+  inv_inertia_body = inertia_body.inverse();
+  explicit_inertia = true;
   SetVelocity(v, w);
 }
 

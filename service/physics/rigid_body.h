@@ -43,6 +43,16 @@ struct RigidBody {
   double inv_mass = 0.0;                      // 1/kg
   Mat3 inertia_body = Mat3::Zero();           // kg m^2, body frame
   Mat3 inv_inertia_body = Mat3::Zero();       // 1/(kg m^2), body frame
+  // The inertia was given explicitly (explicit_inertia in BodySettings), not
+  // found from the shape: a new mass scales it instead of recomputing it.
+  bool explicit_inertia = false;
+
+  // The frame the body was described in (BodySettings::position and
+  // orientation place it: a robot link's frame, a hull's points' frame)
+  // is its origin here, in the body frame, whose origin is the centre of
+  // mass; its axes are the body axes. The link frame's world pose is
+  // (x + q * frame_origin, q).
+  Vec3 frame_origin = Vec3::Zero();           // m, body frame
 
   Vec3 x = Vec3::Zero();                      // m, world
   Quat q = Quat::Identity();                  // body to world
@@ -79,9 +89,13 @@ struct RigidBody {
   void ApplyAngularImpulse(const Vec3& H);
   double KineticEnergy() const;               // J
   // Sets mass and inertia from the shape and a density (kg/m^3) or a mass
-  // (kg); dynamic bodies only.
+  // (kg), the inertia about the body origin (the centre of mass); with an
+  // explicit inertia, that inertia scaled by the new mass. Dynamic bodies only.
   void SetMassFromDensity(double density);
   void SetMass(double mass);
+  // Sets a mass (kg) and an inertia about the centre of mass in the body
+  // axes (kg m^2, checked by CheckInertiaTensor), marking it explicit.
+  void SetMassProperties(double mass, const Mat3& inertia);
   void MakeStatic();
 };
 

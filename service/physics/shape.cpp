@@ -11,6 +11,7 @@ const char* ShapeTypeName(ShapeType type) {
     case ShapeType::kCapsule: return "capsule";
     case ShapeType::kConvex: return "convex";
     case ShapeType::kPlane: return "plane";
+    case ShapeType::kCompound: return "compound";
     case ShapeType::kCount: break;
   }
   return "unknown";
@@ -51,6 +52,19 @@ Shape Shape::Convex(std::shared_ptr<const ConvexHull> hull) {
   s.type = ShapeType::kConvex;
   s.hull = std::move(hull);
   return s;
+}
+
+Shape Shape::Compound(std::shared_ptr<const CompoundShape> compound) {
+  Shape s;
+  s.type = ShapeType::kCompound;
+  s.compound = std::move(compound);
+  return s;
+}
+
+Shape Shape::Compound(std::vector<ShapeChild> children) {
+  auto compound = std::make_shared<CompoundShape>();
+  compound->children = std::move(children);
+  return Compound(std::shared_ptr<const CompoundShape>(std::move(compound)));
 }
 
 }  // namespace contactsim

@@ -4,18 +4,27 @@
 // shared between copies. Planes are half-spaces {p : n . p <= offset} in the
 // body frame; the body is static, so for a plane at the identity pose the
 // frame is the world frame.
+//
+// A compound holds several shapes at fixed poses in the body frame (a robot
+// link with several collision elements, or one shape whose centre is not
+// the body's centre of mass): the body collides as the union of its
+// children, each child collided as its own shape (docs/physics.md,
+// "Compound bodies and mass properties").
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "service/physics/math.h"
 
 namespace contactsim {
 
 struct ConvexHull;  // service/physics/convex_hull.h
+struct CompoundShape;
+struct ShapeChild;
 
-enum class ShapeType { kSphere = 0, kBox, kCapsule, kConvex, kPlane, kCount };
+enum class ShapeType { kSphere = 0, kBox, kCapsule, kConvex, kPlane, kCompound, kCount };
 
 const char* ShapeTypeName(ShapeType type);
 
@@ -27,14 +36,31 @@ struct Shape {
   Vec3 plane_normal = Vec3::UnitZ();// unit, plane: outward normal of the solid side's face
   double plane_offset = 0.0;        // m, plane: n . p = offset on the surface
   std::shared_ptr<const ConvexHull> hull;  // convex, vertices about the centre of mass
+  std::shared_ptr<const CompoundShape> compound;  // compound, children posed in the body frame
 
   static Shape Sphere(double radius);
   static Shape Box(const Vec3& half_extents);
   static Shape Capsule(double radius, double half_length);
   static Shape Plane(const Vec3& normal, double offset);
   static Shape Convex(std::shared_ptr<const ConvexHull> hull);
+  static Shape Compound(std::shared_ptr<const CompoundShape> compound);
+  static Shape Compound(std::vector<ShapeChild> children);
 
   bool IsPlane() const { return type == ShapeType::kPlane; }
+  bool IsCompound() const { return type == ShapeType::kCompound; }
+};
+
+// One shape of a compound: a sphere, box, capsule or convex hull (never a
+// plane or another compound), at `position` (m) turned by `orientation`
+// (child to body) in the body frame, whose origin is the centre of mass.
+struct ShapeChild {
+  Shape shape;
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+};
+
+struct CompoundShape {
+  std::vector<ShapeChild> children;
 };
 
 }  // namespace contactsim

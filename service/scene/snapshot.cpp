@@ -132,6 +132,9 @@ Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
                                    std::to_string(static_cast<int>(ShapeType::kCount) - 1) + "], got " +
                                    std::to_string(s.type()));
   }
+  if (s.type() == static_cast<int>(ShapeType::kCompound)) {
+    return Status::InvalidArgument("snapshot: " + where + " shape: compound bodies are not kept in snapshots yet");
+  }
   b->shape.type = static_cast<ShapeType>(s.type());
   b->shape.radius = s.radius();
   b->shape.half_length = s.half_length();

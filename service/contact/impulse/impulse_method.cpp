@@ -169,7 +169,7 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
 }
 
 void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
-  GroupNormalBlocks(rows, &blocks_);
+  GroupNormalBlocks(rows, &ContactRow::n, &blocks_);
   for (NormalBlock& m : blocks_) {
     if (m.count < 2) continue;
     const ContactRow& r0 = rows[m.first];

@@ -100,7 +100,7 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   PgsOptions options;
   options.iterations = params_.iterations;
   options.tolerance = params_.tolerance;
-  GroupNormalBlocks(contacts_, &pairs_);
+  GroupNormalBlocks(contacts_, &Contact::normal, &pairs_);
   normal_blocks_.clear();
   for (const NormalBlock& pair : pairs_) {
     PgsNormalBlock blk;

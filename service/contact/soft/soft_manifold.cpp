@@ -77,7 +77,7 @@ void SolveBlockNormals(const SoftPass& pass, const SoftManifold& m, std::vector<
 
 void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
                         std::vector<SoftManifold>* manifolds) {
-  GroupNormalBlocks(points, manifolds);
+  GroupNormalBlocks(points, &SoftPoint::n, manifolds);
   runner.For(static_cast<int>(manifolds->size()), kInvertGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       SoftManifold& m = (*manifolds)[k];

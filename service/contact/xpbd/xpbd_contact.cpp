@@ -227,7 +227,7 @@ struct PointHeight {
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
                        std::vector<NormalBlock>* blocks, BlockColours* colours, std::vector<int>* point_of) {
-  GroupNormalBlocks(contacts, blocks);
+  GroupNormalBlocks(contacts, &Contact::normal, blocks);
   std::vector<PointHeight> heights(contacts.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
     heights[k] = {contacts[k].a, contacts[k].point - world.bodies()[contacts[k].a].x};

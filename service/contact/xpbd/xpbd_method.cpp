@@ -52,13 +52,30 @@ void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, St
   }
 }
 
+// The slips of patches 0 of their pairs in the layout from before compound
+// bodies (count, then a, b, along, twist each), then, when a pair had more
+// patches, the others (count, then a, b, place, along, twist each), so a
+// world without compounds saves the same bytes.
 std::string XpbdMethod::SaveState() const {
   if (slips_.empty()) return {};
   ByteWriter out;
-  out.Put(static_cast<uint64_t>(slips_.size()));
+  uint64_t first = 0;
+  for (const auto& entry : slips_) first += std::get<2>(entry.first) == 0;
+  out.Put(first);
   for (const auto& [key, slip] : slips_) {
-    out.Put(key.first);
-    out.Put(key.second);
+    if (std::get<2>(key) != 0) continue;
+    out.Put(std::get<0>(key));
+    out.Put(std::get<1>(key));
+    out.PutVec3(slip.along);
+    out.Put(slip.twist);
+  }
+  if (first == slips_.size()) return out.bytes();
+  out.Put(static_cast<uint64_t>(slips_.size() - first));
+  for (const auto& [key, slip] : slips_) {
+    if (std::get<2>(key) == 0) continue;
+    out.Put(std::get<0>(key));
+    out.Put(std::get<1>(key));
+    out.Put(std::get<2>(key));
     out.PutVec3(slip.along);
     out.Put(slip.twist);
   }
@@ -68,14 +85,18 @@ std::string XpbdMethod::SaveState() const {
 Status XpbdMethod::LoadState(const std::string& bytes) {
   std::map<PairKey, XpbdPatchSlip> loaded;
   ByteReader in(bytes);
-  uint64_t n = 0;
-  bool ok = bytes.empty() || in.Get(&n);
-  for (uint64_t i = 0; ok && i < n; ++i) {
-    PairKey key;
-    XpbdPatchSlip slip;
-    ok = in.Get(&key.first) && in.Get(&key.second) && in.GetVec3(&slip.along) && in.Get(&slip.twist) &&
-         slip.along.allFinite() && std::isfinite(slip.twist);
-    if (ok) loaded[key] = slip;
+  bool ok = true;
+  for (int section = 0; ok && section < 2 && !bytes.empty() && !in.done(); ++section) {
+    uint64_t n = 0;
+    ok = in.Get(&n);
+    for (uint64_t i = 0; ok && i < n; ++i) {
+      BodyId a = 0, b = 0;
+      int64_t place = 0;
+      XpbdPatchSlip slip;
+      ok = in.Get(&a) && in.Get(&b) && (section == 0 || (in.Get(&place) && place > 0)) && in.GetVec3(&slip.along) &&
+           in.Get(&slip.twist) && slip.along.allFinite() && std::isfinite(slip.twist);
+      if (ok) loaded[{a, b, place}] = slip;
+    }
   }
   if (!ok || !in.done()) {
     return Status::InvalidArgument("xpbd method state: malformed friction slips (" + std::to_string(bytes.size()) +
@@ -85,25 +106,36 @@ Status XpbdMethod::LoadState(const std::string& bytes) {
   return Status::Ok();
 }
 
+std::vector<XpbdMethod::PairKey> XpbdMethod::PatchKeys(const World& world) const {
+  const auto& bodies = world.bodies();
+  std::vector<PairKey> keys(patches_.size());
+  for (size_t k = 0; k < patches_.size(); ++k) {
+    const XpbdPoint& p0 = points_[patches_[k].first];
+    const BodyId a = bodies[p0.a].id, b = bodies[p0.b].id;
+    // a pair's patches are consecutive (its contacts are)
+    const bool same = k > 0 && std::get<0>(keys[k - 1]) == a && std::get<1>(keys[k - 1]) == b;
+    keys[k] = {a, b, same ? std::get<2>(keys[k - 1]) + 1 : 0};
+  }
+  return keys;
+}
+
 void XpbdMethod::CarrySlips(const World& world) {
   if (slips_.empty()) return;
-  const auto& bodies = world.bodies();
-  for (XpbdPatch& patch : patches_) {
-    if (!patch.valid) continue;
-    const XpbdPoint& p0 = points_[patch.first];
-    const auto it = slips_.find({bodies[p0.a].id, bodies[p0.b].id});
-    if (it != slips_.end()) CarryXpbdPatchSlip(it->second, &patch);
+  const std::vector<PairKey> keys = PatchKeys(world);
+  for (size_t k = 0; k < patches_.size(); ++k) {
+    if (!patches_[k].valid) continue;
+    const auto it = slips_.find(keys[k]);
+    if (it != slips_.end()) CarryXpbdPatchSlip(it->second, &patches_[k]);
   }
 }
 
 void XpbdMethod::KeepSlips(const World& world) {
-  const auto& bodies = world.bodies();
   slips_.clear();
+  const std::vector<PairKey> keys = PatchKeys(world);
   XpbdPatchSlip slip;
-  for (const XpbdPatch& patch : patches_) {
-    if (!XpbdPatchSlipNow(world, patch, points_, &slip)) continue;
-    const XpbdPoint& p0 = points_[patch.first];
-    slips_[{bodies[p0.a].id, bodies[p0.b].id}] = slip;
+  for (size_t k = 0; k < patches_.size(); ++k) {
+    if (!XpbdPatchSlipNow(world, patches_[k], points_, &slip)) continue;
+    slips_[keys[k]] = slip;
   }
 }
 

@@ -48,6 +48,7 @@
 
 #include <map>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -93,9 +94,13 @@ class XpbdMethod : public ContactMethod {
   void ReportContacts(const World& world, ContactSet* contacts_out, StepStats* stats) const;
 
   // The slips static friction left at the last step's end, by body pair
-  // (ids, in the contact's order): XpbdPatchSlip.
-  using PairKey = std::pair<BodyId, BodyId>;
+  // (ids, in the contact's order) and the patch's place among the pair's
+  // patches (0 but for a compound body, whose child pairs each have one):
+  // XpbdPatchSlip.
+  using PairKey = std::tuple<BodyId, BodyId, int64_t>;
   std::map<PairKey, XpbdPatchSlip> slips_;
+  // patch k's PairKey
+  std::vector<PairKey> PatchKeys(const World& world) const;
   void CarrySlips(const World& world);
   void KeepSlips(const World& world);
 
