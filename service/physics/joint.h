@@ -13,9 +13,22 @@
 //             fixed in B (2 more); optional limits on the hinge angle (1)
 //   fixed     ball, and the orientation of B relative to A stays the one
 //             it had at creation (3 more): a weld
+//   prismatic the anchor of B stays on the line through the anchor of A
+//             along the axis fixed in A (2), and the orientation of B
+//             relative to A stays the one it had at creation (3): a slider
 // The hinge angle is the rotation of B relative to A about the axis,
 // right-handed, measured from the relative orientation at creation (so a new
 // hinge is at angle 0); limits bound it in [lower, upper] within [-pi, pi].
+// The prismatic slide is s = a . (p_B - p_A) with a the axis fixed in A
+// (m, 0 at creation, where the anchors coincide); limits bound it in any
+// finite [lower, upper].
+//
+// Joint coordinate (hinge angle, prismatic slide): its limits are
+// unilateral constraints (inactive inside the range, a one-sided row at a
+// bound, as a contact); `damping` is a viscous torque or force -c qdot on
+// it, and `friction` a Coulomb torque or force of at most that size
+// opposing its motion (docs/physics.md, "Prismatic joints, limits, damping
+// and friction").
 // The rows, their solvers and the drift correction live in
 // service/contact/joints/.
 #pragma once
@@ -35,9 +48,10 @@ using JointId = int64_t;
 // body_b of a joint to the world (body ids start at 1)
 constexpr BodyId kWorldBody = 0;
 
-enum class JointKind { kDistance, kBall, kHinge, kFixed };
+enum class JointKind { kDistance, kBall, kHinge, kFixed, kPrismatic };
 
-const char* JointKindName(JointKind kind);  // "distance", "ball", "hinge", "fixed"
+// "distance", "ball", "hinge", "fixed", "prismatic"
+const char* JointKindName(JointKind kind);
 // Parses a name as printed by JointKindName; false when unknown.
 bool ParseJointKind(const std::string& name, JointKind* kind);
 
@@ -48,13 +62,19 @@ struct Joint {
   BodyId body_b = kWorldBody;
   Vec3 anchor_a = Vec3::Zero();  // m, A's frame
   Vec3 anchor_b = Vec3::Zero();  // m, B's frame (world frame for the world)
-  Vec3 axis_a = Vec3::UnitZ();   // unit, A's frame (hinge)
-  Vec3 axis_b = Vec3::UnitZ();   // unit, B's frame (hinge)
-  Quat rest = Quat::Identity();  // q_A^-1 q_B at creation (hinge angle 0, weld pose)
+  Vec3 axis_a = Vec3::UnitZ();   // unit, A's frame (hinge, prismatic)
+  Vec3 axis_b = Vec3::UnitZ();   // unit, B's frame (hinge, prismatic)
+  Quat rest = Quat::Identity();  // q_A^-1 q_B at creation (hinge angle 0, weld and slider pose)
   double length = 0.0;           // m (distance)
-  bool limited = false;          // hinge angle limits
-  double lower = 0.0, upper = 0.0;  // rad
+  bool limited = false;          // limits on the joint coordinate (hinge, prismatic)
+  double lower = 0.0, upper = 0.0;  // rad (hinge) or m (prismatic)
+  double damping = 0.0;          // N m s/rad (hinge) or N s/m (prismatic), >= 0
+  double friction = 0.0;         // N m (hinge) or N (prismatic), >= 0
 };
+
+// True for the kinds with one joint coordinate (hinge, prismatic): the kinds
+// that take limits, damping and friction.
+bool HasJointCoordinate(JointKind kind);
 
 // A joint as it arrives from a command or a scene file: everything in world
 // coordinates at the moment of creation.
@@ -63,15 +83,19 @@ struct JointSettings {
   BodyId body_a = 0;
   BodyId body_b = kWorldBody;
   Vec3 anchor = Vec3::Zero();     // m, world: the joint point (distance: the point on B)
-  std::optional<Vec3> axis;       // world, hinge only; normalised here
+  std::optional<Vec3> axis;       // world, hinge and prismatic; normalised here
   std::optional<double> length;   // m, distance only; default: the current distance
-  std::optional<std::pair<double, double>> limits;  // rad (lower, upper), hinge only
+  // (lower, upper), hinge (rad) and prismatic (m) only
+  std::optional<std::pair<double, double>> limits;
+  double damping = 0.0;           // N m s/rad (hinge) or N s/m (prismatic); 0: none
+  double friction = 0.0;          // N m (hinge) or N (prismatic); 0: none
 };
 
-// The checks that need no world: finite anchor, a nonzero hinge axis, a
-// positive length, lower <= upper within [-pi, pi], fields given only to the
-// kinds they apply to, body_a a body and body_b another one (or the world).
-// The message names the field and the value.
+// The checks that need no world: finite anchor, a nonzero axis for hinge
+// and prismatic, a positive length, lower <= upper (within [-pi, pi] for a
+// hinge, finite for a slider), finite damping and friction >= 0, fields
+// given only to the kinds they apply to, body_a a body and body_b another
+// one (or the world). The message names the field and the value.
 Status CheckJointSettings(const JointSettings& settings);
 
 // Validates the settings (CheckJointSettings) against the two bodies
@@ -87,5 +111,15 @@ Quat BodyOrientation(const RigidBody* body);
 // Hinge angle (rad, in (-pi, pi]): rotation of B relative to A about the
 // axis since creation.
 double HingeAngle(const Joint& joint, const RigidBody& a, const RigidBody* b);
+// Prismatic slide (m): a . (p_B - p_A), a the axis fixed in A.
+double PrismaticSlide(const Joint& joint, const RigidBody& a, const RigidBody* b);
+
+// The joint coordinate: the hinge angle (rad) or the prismatic slide (m);
+// 0 for the kinds without one (HasJointCoordinate).
+double JointPosition(const Joint& joint, const RigidBody& a, const RigidBody* b);
+// Its rate (rad/s or m/s): a . (w_B - w_A) for a hinge; for a slider
+// a . (pdot_B - pdot_A) + (w_A x a) . (p_B - p_A), the derivative of the
+// slide with the axis turning with A. 0 for the other kinds.
+double JointVelocity(const Joint& joint, const RigidBody& a, const RigidBody* b);
 
 }  // namespace contactsim

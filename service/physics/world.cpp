@@ -220,6 +220,11 @@ uint64_t HashWorldState(const World& world) {
     f.Bytes(&j.limited, sizeof j.limited);
     f.Double(j.lower);
     f.Double(j.upper);
+    // only when set, so that the hash of a world without them is unchanged
+    if (j.damping != 0.0 || j.friction != 0.0) {
+      f.Double(j.damping);
+      f.Double(j.friction);
+    }
   }
   return f.h;
 }

@@ -186,6 +186,21 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "bounces higher at each landing (0.10 to 0.94 m in 2 s) or flips over on its four legs' 16 points: the "
      "explicit sub-steps gain energy with more than one manifold on a body pair (two legs already do, one does "
      "not); not traced further"},
+    // xpbd's sliders and joint friction (prismatic_joint_test.cpp,
+    // joint_dynamics_test.cpp; docs/methods/xpbd.md)
+    {"xpbd", "slider m=* axis=* rate",
+     "1.5e-5 (axis (1,2,0)), 1.7e-6 (axis (0.3,-0.4,0.5)) relative after 1 s: each sideways push of the line at "
+     "the anchor, 5 cm off the centre, turns the block and tilts its axis under the next push, and the torque's "
+     "turn does the same, so part of each correction lands along the axis (2e-10 with the anchor at the centre "
+     "and no torque)"},
+    {"xpbd", "two-body slider ma=0.1 mb=10 momentum",
+     "3.1e-9 relative (1e-10 kg m/s of 0.03): velocities taken from positions, (x - x~) / h, lose eps |x| / h a "
+     "sub-step on the 10 kg body"},
+    {"xpbd", "hinge friction m=* f=1.2 tau hold",
+     "3.9e-3 rad in 2 s: joint friction acts in the velocity pass only, so every sub-step the prediction moves "
+     "the joint by alpha h^2 before the friction stops it, a creep at alpha h = 4.7 rad/s^2 / 2400 Hz = "
+     "2.0e-3 rad/s"},
+    {"xpbd", "slider hold m=*", "8.4e-4 m in 1 s: as the hinge, a creep at a h = 2 m/s^2 / 2400 Hz"},
 };
 
 // The name of a case as kKnownMisses lists it: the scenario and its

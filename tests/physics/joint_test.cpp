@@ -138,10 +138,116 @@ TEST(JointTest, RejectsBadSettingsAndLeavesTheWorldUnchanged) {
 
   JointSettings ball = Ball(a, kWorldBody, Vec3(0, 0, 2));
   ball.axis = Vec3::UnitX();
-  EXPECT_EQ(Rejected(world, ball), "axis applies to hinge joints only, not ball");
+  EXPECT_EQ(Rejected(world, ball), "axis applies to hinge and prismatic joints only, not ball");
   ball.axis.reset();
   ball.length = 1.0;
   EXPECT_EQ(Rejected(world, ball), "length applies to distance joints only, not ball");
+}
+
+// Verifies that a prismatic joint and the joint dynamics reject garbage
+// with a message naming the field and the value, and add nothing: a zero or
+// NaN axis, NaN or inverted limits, negative or NaN damping and friction,
+// damping or friction on a kind without a joint coordinate.
+TEST(JointTest, RejectsBadSliderAndDynamicsSettings) {
+  World world;
+  const BodyId a = AddSphere(world, Vec3(0, 0, 1));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  JointSettings slider = Ball(a, kWorldBody, Vec3(0, 0, 1));
+  slider.kind = JointKind::kPrismatic;
+  EXPECT_EQ(Rejected(world, slider), "axis is required for a prismatic joint");
+  slider.axis = Vec3::Zero();
+  EXPECT_EQ(Rejected(world, slider), "axis must be a finite nonzero vector, got (0, 0, 0)");
+  slider.axis = Vec3(nan, 0, 1);
+  EXPECT_EQ(Rejected(world, slider), "axis must be a finite nonzero vector, got (nan, 0, 1)");
+  slider.axis = Vec3::UnitX();
+  slider.limits = std::make_pair(0.5, -0.5);
+  EXPECT_EQ(Rejected(world, slider), "limits must have lower <= upper, got lower 0.5 > upper -0.5");
+  slider.limits = std::make_pair(nan, 0.5);
+  EXPECT_EQ(Rejected(world, slider), "limits.lower must be a finite number, got nan");
+  slider.limits = std::make_pair(-1.0, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(Rejected(world, slider), "limits.upper must be a finite number, got inf");
+  slider.limits = std::make_pair(-10.0, 10.0);  // metres: beyond a hinge's [-pi, pi], fine for a slider
+  slider.damping = -1.0;
+  EXPECT_EQ(Rejected(world, slider), "damping must be a finite number >= 0, got -1");
+  slider.damping = nan;
+  EXPECT_EQ(Rejected(world, slider), "damping must be a finite number >= 0, got nan");
+  slider.damping = 0.5;
+  slider.friction = -0.1;
+  EXPECT_EQ(Rejected(world, slider), "friction must be a finite number >= 0, got -0.1");
+  JointSettings ball = Ball(a, kWorldBody, Vec3(0, 0, 2));
+  ball.friction = 0.3;
+  EXPECT_EQ(Rejected(world, ball), "friction applies to hinge and prismatic joints only, not ball (got 0.3)");
+  ball.friction = 0.0;
+  ball.damping = 2.0;
+  EXPECT_EQ(Rejected(world, ball), "damping applies to hinge and prismatic joints only, not ball (got 2)");
+  ball.damping = 0.0;
+  ball.limits = std::make_pair(-0.1, 0.1);
+  EXPECT_EQ(Rejected(world, ball), "limits apply to hinge and prismatic joints only, not ball");
+
+  slider.friction = 0.25;
+  JointId id = 0;
+  ASSERT_TRUE(world.AddJoint(slider, &id).ok());
+  const Joint* j = world.FindJoint(id);
+  EXPECT_EQ(j->kind, JointKind::kPrismatic);
+  EXPECT_TRUE(j->limited);
+  EXPECT_EQ(j->lower, -10.0);
+  EXPECT_EQ(j->damping, 0.5);
+  EXPECT_EQ(j->friction, 0.25);
+  JointKind parsed = JointKind::kBall;
+  ASSERT_TRUE(ParseJointKind("prismatic", &parsed));
+  EXPECT_EQ(parsed, JointKind::kPrismatic);
+  EXPECT_STREQ(JointKindName(JointKind::kPrismatic), "prismatic");
+}
+
+// Verifies JointPosition and JointVelocity against the motion they measure:
+// a slider's slide and rate along an axis turning with A (the rate is the
+// derivative of the slide, checked by a finite difference of the poses), and
+// a hinge's angle and rate; 0 for kinds without a coordinate.
+TEST(JointTest, JointPositionAndVelocityMeasureTheCoordinate) {
+  World world;
+  const BodyId a = AddSphere(world, Vec3(0, 0, 1));
+  const BodyId b = AddSphere(world, Vec3(0.5, 0, 1));
+  JointSettings s = Ball(b, a, Vec3(0.2, 0.1, 1.0));
+  s.kind = JointKind::kPrismatic;
+  s.axis = Vec3(1, 1, 0);
+  JointId id = 0;
+  ASSERT_TRUE(world.AddJoint(s, &id).ok());
+  const Joint j = *world.FindJoint(id);
+  RigidBody* body_a = world.Find(b);  // the joint's A (body_a = b)
+  RigidBody* body_b = world.Find(a);
+  EXPECT_NEAR(JointPosition(j, *body_a, body_b), 0.0, 1e-15);
+  // B moved 0.3 m along the axis and 0.1 m across it: the slide is 0.3
+  body_b->x += 0.3 * Vec3(1, 1, 0).normalized() + 0.1 * Vec3(0, 0, 1);
+  EXPECT_NEAR(JointPosition(j, *body_a, body_b), 0.3, 1e-12);
+  // both moving and turning: the rate is d(slide)/dt
+  body_a->SetVelocity(Vec3(0.1, -0.2, 0.3), Vec3(0.4, -0.5, 0.6));
+  body_b->SetVelocity(Vec3(-0.3, 0.2, 0.1), Vec3(0.2, 0.1, -0.3));
+  const double rate = JointVelocity(j, *body_a, body_b);
+  const double dt = 1e-6;
+  auto advance = [dt](RigidBody& r, double sign) {
+    const Vec3 w = r.AngularVelocity();
+    r.x += sign * dt * r.LinearVelocity();
+    r.q = (Quat(Eigen::AngleAxisd(sign * dt * w.norm(), w.normalized())) * r.q).normalized();
+  };
+  RigidBody plus_a = *body_a, plus_b = *body_b, minus_a = *body_a, minus_b = *body_b;
+  advance(plus_a, 1.0), advance(plus_b, 1.0), advance(minus_a, -1.0), advance(minus_b, -1.0);
+  const double fd = (JointPosition(j, plus_a, &plus_b) - JointPosition(j, minus_a, &minus_b)) / (2.0 * dt);
+  EXPECT_NEAR(rate, fd, 1e-8);
+
+  JointSettings h = Ball(a, kWorldBody, Vec3(0, 0, 1));
+  h.kind = JointKind::kHinge;
+  h.axis = Vec3::UnitZ();
+  ASSERT_TRUE(world.AddJoint(h, &id).ok());
+  const Joint hinge = *world.FindJoint(id);
+  body_b->q = Quat(Eigen::AngleAxisd(0.7, Vec3::UnitZ())) * body_b->q;
+  body_b->SetVelocity(Vec3::Zero(), Vec3(0.1, 0.2, 1.5));
+  EXPECT_NEAR(JointPosition(hinge, *body_b, nullptr), -0.7, 1e-12);  // B is the world: A turned +0.7
+  EXPECT_NEAR(JointVelocity(hinge, *body_b, nullptr), -1.5, 1e-12);
+  const Joint ball = *world.FindJoint(1);
+  Joint as_ball = ball;
+  as_ball.kind = JointKind::kBall;
+  EXPECT_EQ(JointPosition(as_ball, *body_a, body_b), 0.0);
+  EXPECT_EQ(JointVelocity(as_ball, *body_a, body_b), 0.0);
 }
 
 // Verifies that joint ids count up from 1 and are never reused, and that

@@ -6,6 +6,15 @@
 #include "service/contact/union_find.h"
 
 namespace contactsim {
+namespace {
+
+// rhs - J v - cfm lambda: what the row still asks, a compliant row (a
+// joint's damping) counting the impulse it already carries
+double RowError(const ConstraintRow& row, const std::vector<SolverBody>& bodies, double total) {
+  return row.rhs - row.Velocity(bodies) - row.cfm * total;
+}
+
+}  // namespace
 
 void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>& bodies, double h,
                                JointSolverKind solver) {
@@ -43,9 +52,9 @@ double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_
   std::vector<char> keep(n, 1);
   Eigen::VectorXd b(n);
   double worst = 0.0;
-  for (int k = 0; k < n; ++k) worst = std::max(worst, std::abs(rows_[k].rhs - rows_[k].Velocity(bodies)));
+  for (int k = 0; k < n; ++k) worst = std::max(worst, std::abs(RowError(rows_[k], bodies, total_[k])));
   for (int pass = 0;; ++pass) {
-    for (int k = 0; k < n; ++k) b[k] = rows_[k].rhs - rows_[k].Velocity(bodies);
+    for (int k = 0; k < n; ++k) b[k] = RowError(rows_[k], bodies, total_[k]);
     const Eigen::VectorXd x = SolveJointRows(rows_, blocks_, bodies, b, keep, solver_);
     // a limit row whose total would leave its bounds is held at the bound
     bool held = false;

@@ -34,7 +34,7 @@ Eigen::MatrixXd JointSystemMatrix(const std::vector<ConstraintRow>& rows, const 
       }
     }
   }
-  for (int k = 0; k < n; ++k) A(k, k) *= 1.0 + kJointRegularisation;
+  for (int k = 0; k < n; ++k) A(k, k) = A(k, k) * (1.0 + kJointRegularisation) + rows[k].cfm;
   return A;
 }
 

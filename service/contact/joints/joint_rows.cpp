@@ -40,7 +40,7 @@ class RowWriter {
       : a_(a), b_(b), h_(h), mode_(mode), rows_(rows), errors_(errors) {}
 
   // a row with J = (lin, r_A x lin + ang | -lin, -(r_B x lin) - ang)
-  ConstraintRow& Add(const Vec3& lin, const Vec3& ang, double error, double velocity_product) {
+  ConstraintRow Make(const Vec3& lin, const Vec3& ang, double velocity_product) const {
     ConstraintRow row;
     row.a = a_.index;
     row.b = b_.index;
@@ -48,10 +48,34 @@ class RowWriter {
     row.ang_a = a_.r.cross(lin) + ang;
     row.lin_b = -lin;
     row.ang_b = -(b_.r.cross(lin)) - ang;
-    row.rhs = mode_ == JointRowMode::kVelocity ? -0.5 * h_ * velocity_product : 0.0;
+    row.rhs = mode_ != JointRowMode::kPosition ? -0.5 * h_ * velocity_product : 0.0;
+    return row;
+  }
+
+  ConstraintRow& Push(const ConstraintRow& row, double error) {
     rows_->push_back(row);
     if (errors_ != nullptr) errors_->push_back(error);
     return rows_->back();
+  }
+
+  ConstraintRow& Add(const Vec3& lin, const Vec3& ang, double error, double velocity_product) {
+    return Push(Make(lin, ang, velocity_product), error);
+  }
+
+  // C = u . (p_A - p_B) for a direction u fixed in A (world now): B's
+  // anchor kept on a line or plane of A. Cdot = u . ddot + (w_A x u) . d,
+  // so A's lever arm reaches B's anchor: J = (u, (p_B - x_A) x u | -u,
+  // -r_B x u); vp = (w_A x (w_A x u)) . d + 2 (w_A x u) . ddot +
+  // u . (w_A x (w_A x r_A) - w_B x (w_B x r_B)).
+  ConstraintRow Line(const Vec3& u, double* error) const {
+    const Vec3 d = a_.p - b_.p;
+    const Vec3 ddot = a_.PointVelocity() - b_.PointVelocity();
+    const Vec3 turn = a_.w.cross(u);
+    const double vp = a_.w.cross(turn).dot(d) + 2.0 * turn.dot(ddot) + u.dot(a_.Centripetal() - b_.Centripetal());
+    ConstraintRow row = Make(u, Vec3::Zero(), vp);
+    row.ang_a = (b_.p - a_.body->x).cross(u);
+    *error = u.dot(d);
+    return row;
   }
 
   void Point() {
@@ -84,26 +108,91 @@ class RowWriter {
     for (int k = 0; k < 3; ++k) Add(Vec3::Zero(), Vec3::Unit(k), error[k], 0.0);
   }
 
-  // hinge angle rows: J qdot = angle rate = a . (w_B - w_A)
-  void Limits(const Joint& j, const Vec3& axis) {
-    const double angle = HingeAngle(j, *a_.body, b_.body);
-    const double rate = axis.dot(b_.w - a_.w);
+  // The joint coordinate (hinge angle, prismatic slide) as a row with
+  // J qdot = its rate (JointVelocity, physics/joint.h).
+  struct Coordinate {
+    ConstraintRow row;    // rhs from the velocity product, bounds free
+    double value = 0.0;   // rad or m
+    double rate = 0.0;    // rad/s or m/s
+  };
+
+  // hinge: J = (0, -a | 0, a), vp = (w_A x a) . (w_B - w_A)
+  Coordinate HingeCoordinate(const Joint& j, const Vec3& axis) const {
     const double vp = a_.w.cross(axis).dot(b_.w - a_.w);
+    return {Make(Vec3::Zero(), -axis, vp), HingeAngle(j, *a_.body, b_.body), axis.dot(b_.w - a_.w)};
+  }
+
+  // prismatic: s = a . (p_B - p_A), the line row of u = -a
+  Coordinate SlideCoordinate(const Vec3& axis) const {
+    Coordinate c;
+    c.row = Line(-axis, &c.value);  // C = -a . (p_A - p_B) = s
+    c.rate = axis.dot(b_.PointVelocity() - a_.PointVelocity()) + a_.w.cross(axis).dot(b_.p - a_.p);
+    return c;
+  }
+
+  // Limit rows of the coordinate. Lower limit: lambda >= 0, active when the
+  // coordinate would pass it within the step; rhs = min(0, (lower - q) / h),
+  // so the joint may still reach the limit but not cross it (speculative,
+  // as the contact methods' margins). Upper: mirrored, lambda <= 0.
+  // Position rows only when violated, C = q - limit.
+  void Limits(const Joint& j, const Coordinate& c) {
+    if (!j.limited) return;
     if (mode_ == JointRowMode::kPosition) {
-      if (angle < j.lower) Add(Vec3::Zero(), -axis, angle - j.lower, 0.0).lo = 0.0;
-      if (angle > j.upper) Add(Vec3::Zero(), -axis, angle - j.upper, 0.0).hi = 0.0;
+      if (c.value < j.lower) Push(c.row, c.value - j.lower).lo = 0.0;
+      if (c.value > j.upper) Push(c.row, c.value - j.upper).hi = 0.0;
       return;
     }
-    if (angle + h_ * rate <= j.lower) {
-      ConstraintRow& row = Add(Vec3::Zero(), -axis, angle - j.lower, vp);
-      row.rhs = std::min(0.0, (j.lower - angle) / h_);
+    if (LowerActive(j, c)) {
+      ConstraintRow& row = Push(c.row, c.value - j.lower);
+      row.rhs = std::min(0.0, (j.lower - c.value) / h_);
       row.lo = 0.0;
     }
-    if (angle + h_ * rate >= j.upper) {
-      ConstraintRow& row = Add(Vec3::Zero(), -axis, angle - j.upper, vp);
-      row.rhs = std::max(0.0, (j.upper - angle) / h_);
+    if (UpperActive(j, c)) {
+      ConstraintRow& row = Push(c.row, c.value - j.upper);
+      row.rhs = std::max(0.0, (j.upper - c.value) / h_);
       row.hi = 0.0;
     }
+  }
+
+  bool LowerActive(const Joint& j, const Coordinate& c) const { return j.limited && c.value + h_ * c.rate <= j.lower; }
+  bool UpperActive(const Joint& j, const Coordinate& c) const { return j.limited && c.value + h_ * c.rate >= j.upper; }
+
+  // Velocity rows of the joint's damping and friction, J qdot = the
+  // coordinate's rate, target 0:
+  //   damping c: implicit viscous impulse lambda = -c h (J qdot_new), i.e.
+  //     a row with compliance cfm = 1 / (c h): (J M^-1 J^T + 1/(c h))
+  //     lambda = -J qdot*, the backward-Euler damper, stable for any c
+  //     (Baraff and Witkin 1998, implicit damping forces; ODE's CFM);
+  //   friction f: a row bounded by |lambda| <= f h, Coulomb friction of the
+  //     joint (stick below f, slide at f), the bounded rows of Erleben 2013.
+  // A friction row is left out while a limit row of the same coordinate is
+  // active: the two would have the same Jacobian (a singular pair), and the
+  // stop itself holds the joint there.
+  void Dynamics(const Joint& j, const Coordinate& c) {
+    if (mode_ != JointRowMode::kVelocity || h_ <= 0.0) return;
+    ConstraintRow row = c.row;
+    row.rhs = 0.0;
+    if (j.damping > 0.0) {
+      ConstraintRow& damper = Push(row, 0.0);
+      damper.cfm = 1.0 / (j.damping * h_);
+    }
+    if (j.friction > 0.0 && !LowerActive(j, c) && !UpperActive(j, c)) {
+      ConstraintRow& friction = Push(row, 0.0);
+      friction.lo = -j.friction * h_;
+      friction.hi = j.friction * h_;
+    }
+  }
+
+  // prismatic: two line rows across the axis, then the weld
+  void Slider(const Vec3& axis, const Quat& q_a, const Quat& rest, const Quat& q_b) {
+    Vec3 t[2];
+    PerpendicularBasis(axis, &t[0], &t[1]);
+    for (const Vec3& tk : t) {
+      double error = 0.0;
+      const ConstraintRow row = Line(tk, &error);
+      Push(row, error);
+    }
+    Weld(q_a, rest, q_b);
   }
 
  private:
@@ -116,6 +205,13 @@ class RowWriter {
 };
 
 }  // namespace
+
+bool HasJointDynamics(const World& world) {
+  for (const Joint& j : world.joints()) {
+    if (j.damping > 0.0 || j.friction > 0.0) return true;
+  }
+  return false;
+}
 
 void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks,
@@ -135,13 +231,23 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
         const Vec3 axis_a = q_a * j.axis_a;
         writer.Point();
         writer.HingeAxis(axis_a, q_b * j.axis_b);
-        if (j.limited) writer.Limits(j, axis_a);
+        const auto coordinate = writer.HingeCoordinate(j, axis_a);
+        writer.Dynamics(j, coordinate);
+        writer.Limits(j, coordinate);
         break;
       }
       case JointKind::kFixed:
         writer.Point();
         writer.Weld(q_a, j.rest, q_b);
         break;
+      case JointKind::kPrismatic: {
+        const Vec3 axis_a = q_a * j.axis_a;
+        writer.Slider(axis_a, q_a, j.rest, q_b);
+        const auto coordinate = writer.SlideCoordinate(axis_a);
+        writer.Dynamics(j, coordinate);
+        writer.Limits(j, coordinate);
+        break;
+      }
     }
     if (blocks != nullptr) blocks->push_back({j.id, first, static_cast<int>(rows->size()) - first, a.index, b.index});
   }

@@ -36,12 +36,23 @@
 //   weld orientation (3 rows): J = (0, e_k | 0, -e_k),
 //     C = 2 vec(q_A rest q_B^-1) (the rotation vector of the misalignment for
 //     small errors), vp = 0;
-//   hinge limit (1 row, only near or past a limit): J = (0, -a | 0, a),
-//     J qdot = the hinge angle rate. Lower limit: lambda >= 0, active when the
-//     angle would pass it within the step; rhs = min(0, (lower - angle) / h), so
-//     the joint may still reach the limit but not cross it (speculative, as
-//     the contact methods' margins). Upper: mirrored, lambda <= 0. Limits are
-//     plastic (no bounce).
+//   line (prismatic; 2 rows, t_1, t_2 perpendicular to the axis a fixed
+//     in A): C_k = t_k . (p_A - p_B), J = (t_k, (p_B - x_A) x t_k | -t_k,
+//     -r_B x t_k), vp = (w_A x (w_A x t_k)) . d + 2 (w_A x t_k) . ddot +
+//     t_k . (w_A x (w_A x r_A) - w_B x (w_B x r_B)), d = p_A - p_B; then
+//     the weld's 3 orientation rows;
+//   joint coordinate q (hinge angle: J = (0, -a | 0, a); prismatic slide
+//     s = a . (p_B - p_A): the line row of u = -a), J qdot = its rate:
+//     damping (cfm = 1/(c h), rhs 0: the implicit damper), friction
+//     (|lambda| <= f h, rhs 0; left out while a limit row is active), then
+//     the limits: lower: lambda >= 0, active when q would pass it within
+//     the step; rhs = min(0, (lower - q) / h), so the joint may still reach
+//     the limit but not cross it (speculative, as the contact methods'
+//     margins). Upper: mirrored, lambda <= 0. Limits are unilateral and
+//     plastic (no bounce), as a contact with restitution 0.
+// The rows of a joint come in that order: equality rows, then damping and
+// friction, then limits, so that a joint's equality rows have the same
+// places whatever its limits do.
 // Position rows (for the projection, joint_solver.h) have the same Jacobians
 // with the errors C; a limit row only when the limit is violated, C = angle -
 // limit.
@@ -74,8 +85,10 @@ struct JointBlock {
 };
 
 enum class JointRowMode {
-  kVelocity,  // rhs = -(h/2) Jdot qdot; limit rows when a limit would be reached within h
-  kPosition,  // error = C; limit rows only when violated; rhs unused (0)
+  kVelocity,  // rhs = -(h/2) Jdot qdot; limit rows when a limit would be reached within h;
+              // damping and friction rows (h > 0)
+  kPosition,  // error = C; limit rows only when violated; rhs unused (0); no damping or friction
+  kVelocityGeometry,  // kVelocity without the damping and friction rows
 };
 
 // Appends the rows of every joint of the world, in joint id order, for the
@@ -86,7 +99,19 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks = nullptr,
                      std::vector<double>* errors = nullptr);
 
-// True when the row bounds make it one-sided (a hinge limit).
+// True when the row has a finite bound: a joint limit (one-sided) or a
+// joint's friction (boxed). A solver holds such a row at the bound it
+// would pass.
 inline bool IsLimitRow(const ConstraintRow& row) { return row.lo > -ConstraintRow::kInf || row.hi < ConstraintRow::kInf; }
+
+// True when some joint of the world has damping or friction.
+bool HasJointDynamics(const World& world);
+
+// True for a joint's damping or friction row: rows of the joint's dynamics,
+// not of its geometry, which the projection of BuildJointVelocityRows
+// leaves out.
+inline bool IsJointDynamicsRow(const ConstraintRow& row) {
+  return row.cfm > 0.0 || (row.lo > -ConstraintRow::kInf && row.hi < ConstraintRow::kInf);
+}
 
 }  // namespace contactsim

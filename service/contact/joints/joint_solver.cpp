@@ -90,14 +90,19 @@ Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const s
 
 void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& bodies, double h,
                             JointSolverKind solver, std::vector<ConstraintRow>* rows,
-                            std::vector<JointBlock>* blocks) {
-  AppendJointRows(world, bodies, h, JointRowMode::kVelocity, rows, blocks);
+                            std::vector<JointBlock>* blocks, JointRowMode mode) {
+  AppendJointRows(world, bodies, h, mode, rows, blocks);
   if (rows->empty()) return;
-  // the velocity tangent to every row (all as equalities): qdot* + M^-1 J^T lambda0
+  // the velocity tangent to every row of the joints' geometry (all as
+  // equalities; damping and friction rows left out): qdot* + M^-1 J^T lambda0
   const int n = static_cast<int>(rows->size());
   Eigen::VectorXd b(n);
   for (int k = 0; k < n; ++k) b[k] = -(*rows)[k].Velocity(bodies);
-  const Eigen::VectorXd lambda0 = SolveJointSystem(*rows, *blocks, bodies, b, solver);
+  std::vector<char> geometry(n, 1);
+  for (int k = 0; k < n; ++k) geometry[k] = !IsJointDynamicsRow((*rows)[k]);
+  const bool all = std::find(geometry.begin(), geometry.end(), 0) == geometry.end();
+  const Eigen::VectorXd lambda0 = all ? SolveJointSystem(*rows, *blocks, bodies, b, solver)
+                                      : SolveJointRows(*rows, *blocks, bodies, b, geometry, solver);
   std::vector<SolverBody> tangent = bodies;
   for (int k = 0; k < n; ++k) {
     (*rows)[k].Apply(lambda0[k], tangent);
@@ -107,7 +112,7 @@ void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& b
   // each block; the same joints in the same order)
   std::vector<ConstraintRow> at_tangent;
   std::vector<JointBlock> tangent_blocks;
-  AppendJointRows(world, tangent, h, JointRowMode::kVelocity, &at_tangent, &tangent_blocks);
+  AppendJointRows(world, tangent, h, mode, &at_tangent, &tangent_blocks);
   for (size_t i = 0; i < blocks->size(); ++i) {
     const JointBlock& blk = (*blocks)[i];
     for (int r = 0; r < blk.count; ++r) {
@@ -117,30 +122,40 @@ void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& b
   }
 }
 
-JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
-                              const JointSolveOptions& options) {
+namespace {
+
+// The active-set solve of the rows on `bodies` (see ApplyJointImpulses):
+// applies the impulses and leaves them in the rows' lambda.
+JointStats SolveActiveSet(std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                          std::vector<SolverBody>& bodies, JointSolverKind solver, int max_passes) {
   JointStats stats;
-  std::vector<ConstraintRow> rows;
-  std::vector<JointBlock> blocks;
-  BuildJointVelocityRows(world, bodies, h, options.solver, &rows, &blocks);
-  if (rows.empty()) return stats;
   const int n = static_cast<int>(rows.size());
   Eigen::VectorXd b(n);
   for (int k = 0; k < n; ++k) b[k] = rows[k].rhs - rows[k].Velocity(bodies);
-  // active set over the one-sided limit rows
+  // active set over the bounded rows (limits, friction): a row whose
+  // impulse leaves its bounds is held at the bound it passed (a limit at 0,
+  // friction at +-f h) and the others solved again
   std::vector<char> keep(n, 1);
   Eigen::VectorXd lambda;
   for (int pass = 0;; ++pass) {
-    lambda = SolveJointRows(rows, blocks, bodies, b, keep, options.solver);
+    lambda = SolveJointRows(rows, blocks, bodies, b, keep, solver);
     ++stats.limit_passes;
-    bool dropped = false;
+    bool dropped = false, moved = false;
     for (int k = 0; k < n; ++k) {
       if (keep[k] && IsLimitRow(rows[k]) && (lambda[k] < rows[k].lo || lambda[k] > rows[k].hi)) {
         keep[k] = 0;
         dropped = true;
+        const double bound = std::clamp(lambda[k], rows[k].lo, rows[k].hi);
+        rows[k].lambda = bound;
+        if (bound == 0.0) continue;
+        rows[k].Apply(bound, bodies);
+        moved = true;
       }
     }
-    if (!dropped || pass + 1 >= options.max_limit_passes) break;
+    if (!dropped || pass + 1 >= max_passes) break;
+    if (moved) {
+      for (int k = 0; k < n; ++k) b[k] = rows[k].rhs - rows[k].Velocity(bodies);
+    }
   }
   for (int k = 0; k < n; ++k) {
     if (!keep[k]) continue;
@@ -149,6 +164,24 @@ JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBo
     ++stats.rows;
   }
   return stats;
+}
+
+}  // namespace
+
+void GuessJointImpulses(const std::vector<SolverBody>& bodies, JointSolverKind solver,
+                        std::vector<ConstraintRow>* rows, const std::vector<JointBlock>& blocks) {
+  std::vector<SolverBody> scratch = bodies;
+  SolveActiveSet(*rows, blocks, scratch, solver, JointSolveOptions().max_limit_passes);
+}
+
+JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
+                              const JointSolveOptions& options) {
+  std::vector<ConstraintRow> rows;
+  std::vector<JointBlock> blocks;
+  BuildJointVelocityRows(world, bodies, h, options.solver, &rows, &blocks,
+                         options.joint_dynamics ? JointRowMode::kVelocity : JointRowMode::kVelocityGeometry);
+  if (rows.empty()) return {};
+  return SolveActiveSet(rows, blocks, bodies, options.solver, options.max_limit_passes);
 }
 
 JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions& options) {

@@ -6,10 +6,12 @@
 // Velocity: the rows of joint_rows.h at the current poses and the bodies'
 // velocities qdot* (forces and contact impulses included); solve
 //   (J M^-1 J^T + R) lambda = rhs - J qdot*
-// and add M^-1 J^T lambda (Lagrange multipliers as impulses). Hinge limit
-// rows are one-sided: a limit row whose lambda comes out on the wrong side
-// (pulling) is dropped and the system solved again (active set, at most
-// max_limit_passes solves).
+// and add M^-1 J^T lambda (Lagrange multipliers as impulses). Limit rows
+// (hinge and prismatic) are one-sided: a limit row whose lambda comes out on
+// the wrong side (pulling) is dropped and the system solved again; a
+// friction row whose lambda passes +-f h is held there and the others
+// solved again (active set, at most max_limit_passes solves). A damping row
+// carries its compliance 1/(c h) on the diagonal (joint_rows.h).
 //
 // Drift: the velocity solve keeps C constant only to O(h^2) per step, so C
 // drifts. Post-stabilisation (Cline and Pai, "Post-stabilization for rigid
@@ -42,6 +44,7 @@ struct JointSolveOptions {
   int max_limit_passes = 8;             // active-set solves per velocity step at most
   int max_projection_iterations = 10;   // Newton iterations per projection at most
   double projection_tolerance = 1e-12;  // m, or rad for angular rows: largest |C| left
+  bool joint_dynamics = true;           // false: without the joints' damping and friction rows
 };
 
 struct JointStats {
@@ -73,9 +76,19 @@ Eigen::VectorXd SolveJointRows(const std::vector<ConstraintRow>& rows, const std
 // a starting guess for an iterative solver that has no better one (a
 // hanging chain's tensions at once, where projected Gauss-Seidel from zero
 // needs hundreds of sweeps).
+// `mode` is kVelocity or kVelocityGeometry (without damping and friction).
 void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& bodies, double h,
                             JointSolverKind solver, std::vector<ConstraintRow>* rows,
-                            std::vector<JointBlock>* blocks);
+                            std::vector<JointBlock>* blocks, JointRowMode mode = JointRowMode::kVelocity);
+
+// Sets the rows' lambda to the joints' answer alone, the active-set solve
+// of ApplyJointImpulses on a copy of `bodies`: with damping and friction
+// rows, which the first solve of BuildJointVelocityRows leaves at 0, the
+// starting guess an iterative solver needs (a joint's friction torque acts
+// on a body's spin about its centre, which projected Gauss-Seidel couples
+// to the swing about the pivot only at a rate of I_cm / I_pivot a sweep).
+void GuessJointImpulses(const std::vector<SolverBody>& bodies, JointSolverKind solver,
+                        std::vector<ConstraintRow>* rows, const std::vector<JointBlock>& blocks);
 
 // The velocity solve on solver bodies (LoadSolverBodies of `world`, with the
 // step's forces and contact impulses already in v and w); h (s) is the step.

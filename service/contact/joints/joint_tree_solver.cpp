@@ -153,7 +153,7 @@ MatrixXd TreeSystem::Diagonal(const Node& n) const {
         H.block<1, 6>(r, 0) = j;
         H.block<6, 1>(0, r) = j.transpose();
       }
-      H(r, r) = -kJointRegularisation * row.Diagonal(bodies_);
+      H(r, r) = -kJointRegularisation * row.Diagonal(bodies_) - row.cfm;  // R: regularisation and compliance
     }
   }
   return H;

@@ -90,10 +90,12 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   }
   if (params_.solver == "lemke") ++lemke_fallbacks_;
   // PGS (also as Lemke's fallback) starts from last step's impulses; joint
-  // rows without one keep the joint-only solution they were built with
+  // rows without one keep the joint-only solution they were built with, and
+  // so do all of them where joints have damping or friction: last step's
+  // impulses of a friction row are a worse start than the joints' answer
   if (params_.warm_start) {
     warm_start_.Load(contacts_, &rows_);
-    warm_start_.LoadJoints(joint_blocks_, 3 * contacts_.size(), &rows_);
+    if (!HasJointDynamics(world)) warm_start_.LoadJoints(joint_blocks_, 3 * contacts_.size(), &rows_);
   } else {
     for (size_t k = 3 * contacts_.size(); k < rows_.size(); ++k) rows_[k].lambda = 0.0;
   }
@@ -157,6 +159,8 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
   joint_rows_.clear();
   joint_blocks_.clear();
   BuildJointVelocityRows(world, bodies_, h, JointSolverKind::kTree, &joint_rows_, &joint_blocks_);
+  // joints with damping or friction start from the joints' whole answer
+  if (HasJointDynamics(world)) GuessJointImpulses(bodies_, JointSolverKind::kTree, &joint_rows_, joint_blocks_);
   const size_t first_joint_row = rows_.size();
   rows_.insert(rows_.end(), joint_rows_.begin(), joint_rows_.end());
 

@@ -16,7 +16,9 @@ namespace {
 // by round-off at 0.1-2.
 constexpr double kMaxResidual = 1e-7;
 
-enum class Kind { kFree, kUnilateral, kUpper, kFriction };  // kUpper: lambda <= 0 (a joint's upper limit)
+// kUpper: lambda <= 0 (a joint's upper limit); kBox: |lambda| <= hi (a
+// joint's friction), the friction form with a fixed bound
+enum class Kind { kFree, kUnilateral, kUpper, kFriction, kBox };
 
 Status Classify(const std::vector<ConstraintRow>& rows, std::vector<Kind>* kinds) {
   kinds->resize(rows.size());
@@ -35,10 +37,12 @@ Status Classify(const std::vector<ConstraintRow>& rows, std::vector<Kind>* kinds
       (*kinds)[k] = Kind::kUnilateral;
     } else if (r.lo == -ConstraintRow::kInf && r.hi == 0.0) {
       (*kinds)[k] = Kind::kUpper;
+    } else if (std::isfinite(r.hi) && r.hi > 0.0 && r.lo == -r.hi) {
+      (*kinds)[k] = Kind::kBox;
     } else {
       return Status::InvalidArgument("row " + std::to_string(k) + ": bounds [" + std::to_string(r.lo) + ", " +
                                      std::to_string(r.hi) + "] have no LCP form here (lemke takes free, [0, inf) "
-                                     "and friction rows)");
+                                     "friction and [-hi, hi] rows)");
     }
   }
   return Status::Ok();
@@ -62,7 +66,7 @@ Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>&
   int nv = 0;
   for (int k = 0; k < m; ++k) {
     var[k] = nv++;
-    if (kinds[k] == Kind::kFriction) minus[k] = nv++, slip[k] = nv++;
+    if (kinds[k] == Kind::kFriction || kinds[k] == Kind::kBox) minus[k] = nv++, slip[k] = nv++;
   }
   // lambda = P y (an upper-limit row's variable is -lambda >= 0)
   MatX P = MatX::Zero(m, nv);
@@ -70,7 +74,9 @@ Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>&
     P(k, var[k]) = kinds[k] == Kind::kUpper ? -1.0 : 1.0;
     if (minus[k] >= 0) P(k, minus[k]) = -1.0;
   }
-  const MatX GP = DenseDelassus(rows, bodies) * P;
+  MatX G = DenseDelassus(rows, bodies);
+  for (int k = 0; k < m; ++k) G(k, k) += rows[k].cfm;  // a compliant row: J v + cfm lambda = rhs
+  const MatX GP = G * P;
   VecX c = RowVelocities(rows, bodies);
   for (int k = 0; k < m; ++k) c[k] -= rows[k].rhs;
 
@@ -82,12 +88,14 @@ Status SolveRowsLemke(std::vector<ConstraintRow>& rows, std::vector<SolverBody>&
     A.row(var[k]) = sign * GP.row(k);
     b[var[k]] = sign * c[k];
     if (kinds[k] == Kind::kFree) free[var[k]] = true;
-    if (kinds[k] != Kind::kFriction) continue;
+    if (kinds[k] != Kind::kFriction && kinds[k] != Kind::kBox) continue;
     A(var[k], slip[k]) += 1.0;
     A.row(minus[k]) = -GP.row(k);
     A(minus[k], slip[k]) += 1.0;
     b[minus[k]] = -c[k];
-    A(slip[k], var[rows[k].normal_row]) = rows[k].mu;
+    // the slack of the bound: mu lambda_n - |lambda|, or hi - |lambda|
+    if (kinds[k] == Kind::kFriction) A(slip[k], var[rows[k].normal_row]) = rows[k].mu;
+    if (kinds[k] == Kind::kBox) b[slip[k]] = rows[k].hi;
     A(slip[k], var[k]) = -1.0;
     A(slip[k], minus[k]) = -1.0;
   }

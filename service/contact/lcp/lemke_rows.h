@@ -6,7 +6,7 @@
 // linear complementarity problems", Nonlinear Dynamics 1997), with joints
 // as equality rows.
 //
-// With G = J M^-1 J^T and c = J v* - rhs (v* the velocities before the
+// With G = J M^-1 J^T (+ the rows' cfm on its diagonal) and c = J v* - rhs (v* the velocities before the
 // solve) each row becomes:
 //   equality (lo = -inf, hi = +inf):  G_k lambda + c_k = 0, lambda_k free;
 //   unilateral (lo = 0, hi = +inf):   0 <= lambda_k  _|_  G_k lambda + c_k >= 0;
@@ -24,7 +24,10 @@
 // disk itself (pgs.h). Anitescu and Potra show that Lemke's method
 // processes these LCPs (their matrix is copositive-plus after the
 // substitution), so ray termination means a modelling error, reported.
-// Other bounds (finite boxes) are not expressed here: InvalidArgument.
+//   box (lo = -hi, 0 < hi < inf: a joint's friction): the friction form
+//     with the fixed bound hi in place of mu lambda_n.
+// A compliant row (cfm > 0, a joint's damping) adds cfm to G_kk.
+// Other bounds are not expressed here: InvalidArgument.
 // Friction rows must name a [0, inf) normal row.
 #pragma once
 

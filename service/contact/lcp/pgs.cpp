@@ -35,7 +35,8 @@ void PgsSolver::Prepare(const std::vector<ConstraintRow>& rows, const std::vecto
     r.mb_lin = B ? Vec3(B->inv_mass * r.jb_lin) : Vec3::Zero();
     r.mb_ang = B ? Vec3(B->inv_inertia * r.jb_ang) : Vec3::Zero();
     r.diag = c.Diagonal(bodies);
-    r.inv_diag = r.diag > 0.0 ? 1.0 / r.diag : 0.0;
+    r.cfm = c.cfm;
+    r.inv_diag = r.diag + r.cfm > 0.0 ? 1.0 / (r.diag + r.cfm) : 0.0;
     r.rhs = c.rhs;
     r.lo = c.lo;
     r.hi = c.hi;
@@ -112,7 +113,8 @@ double PgsSolver::SolveRow(Row& r) {
   const Velocity A = vel_[r.a];
   const Velocity B = vel_[r.b];
   const double jv = r.ja_lin.dot(A.v) + r.ja_ang.dot(A.w) + r.jb_lin.dot(B.v) + r.jb_ang.dot(B.w);
-  const double next = std::clamp(r.lambda + (r.rhs - jv) * r.inv_diag, lo, hi);
+  // a compliant row aims at J v + cfm lambda = rhs (constraint_row.h)
+  const double next = std::clamp(r.lambda + (r.rhs - jv - r.cfm * r.lambda) * r.inv_diag, lo, hi);
   const double d = next - r.lambda;
   r.lambda = next;
   Apply(r, A, B, d);

@@ -8,7 +8,9 @@
 // visits each row k once and sets
 //   lambda_k <- clamp(lambda_k + (rhs_k - J_k v) / A_kk, lo_k, hi_k),
 //   v        <- v + M^-1 J_k^T (change of lambda_k),
-// which is Gauss-Seidel on A with projection onto the bounds. Rows come in
+// which is Gauss-Seidel on A with projection onto the bounds (a compliant
+// row, a joint's damping, aims at J v + cfm lambda = rhs: A_kk + cfm and
+// rhs_k - cfm lambda_k in place of A_kk and rhs_k). Rows come in
 // with lambda as the warm start (last step's impulses), which is applied
 // first.
 //
@@ -90,6 +92,7 @@ class PgsSolver {
     Vec3 ma_lin, ma_ang, mb_lin, mb_ang;  // M^-1 J^T
     double diag, inv_diag;
     double rhs, lo, hi, mu, lambda;
+    double cfm;                   // compliance (a joint's damping row), 0 for rigid rows
     int normal_row;               // in rows_ order
     int second;                   // first row of a friction pair: the second's index in rows_, else -1
     bool in_pair;                 // second row of a friction pair (updated with the first)

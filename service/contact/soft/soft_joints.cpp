@@ -14,14 +14,33 @@ void SoftJoints::MarkJointed(const World& world, std::vector<char>* substepped) 
   }
 }
 
-void SoftJoints::SolveVelocities(const World& world, double h, std::vector<SoftBody>& bodies) {
-  if (world.joints().empty()) return;
-  LoadSolverBodies(world, &solver_);
+void SoftJoints::Load(const std::vector<SoftBody>& bodies) {
   for (size_t i = 0; i < bodies.size(); ++i) {
     solver_[i].v = bodies[i].v;
     solver_[i].w = bodies[i].w;
   }
-  ApplyJointImpulses(world, h, solver_);
+}
+
+void SoftJoints::Begin(const World& world, double h, const std::vector<SoftBody>& bodies) {
+  dynamics_ = HasJointDynamics(world);
+  if (!dynamics_) return;
+  LoadSolverBodies(world, &solver_);
+  Load(bodies);
+  block_.Build(world, solver_, h);
+}
+
+void SoftJoints::SolveVelocities(const World& world, double h, std::vector<SoftBody>& bodies, bool relax) {
+  if (world.joints().empty()) return;
+  LoadSolverBodies(world, &solver_);
+  Load(bodies);
+  const bool dynamics = dynamics_ && HasJointDynamics(world);  // Begin's rows are this step's
+  if (dynamics && !relax) {
+    block_.Solve(solver_);
+  } else {
+    JointSolveOptions options;
+    options.joint_dynamics = !dynamics;
+    ApplyJointImpulses(world, h, solver_, options);
+  }
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (solver_[i].dP.squaredNorm() + solver_[i].dL.squaredNorm() == 0.0) continue;
     bodies[i].v = solver_[i].v;

@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "service/contact/joints/joint_block.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/solver_body.h"
 #include "service/physics/world.h"
@@ -21,12 +22,24 @@ class SoftJoints {
   // sub-step even without a contact.
   static void MarkJointed(const World& world, std::vector<char>* substepped);
 
+  // Where joints have damping or friction (HasJointDynamics): the
+  // sub-step's joint rows with them, built once before its solve stage, so
+  // that their impulses accumulate over the stage's joint passes
+  // (joint_block.h) instead of being taken again at every pass.
+  void Begin(const World& world, double h, const std::vector<SoftBody>& bodies);
+
   // The velocity solve of the world's joints over a sub-step h on the
-  // bodies' v and w (the world holds the sub-step's poses).
-  void SolveVelocities(const World& world, double h, std::vector<SoftBody>& bodies);
+  // bodies' v and w (the world holds the sub-step's poses). After Begin:
+  // its rows in the solve stage, the joints' geometry alone in the relax
+  // stage (`relax`), whose velocities only take back the positions' bias.
+  void SolveVelocities(const World& world, double h, std::vector<SoftBody>& bodies, bool relax = false);
 
  private:
+  void Load(const std::vector<SoftBody>& bodies);
+
   std::vector<SolverBody> solver_;
+  JointVelocityBlock block_;
+  bool dynamics_ = false;  // Begin built block_
 };
 
 }  // namespace contactsim

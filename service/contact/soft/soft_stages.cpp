@@ -54,7 +54,10 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   };
   const Fn solve_blocks = [&](int i, int j) { SolveSoftManifolds(solve, manifolds_, i, j, points_, bodies_); };
   const Fn solve_ratio = [&](int, int) { ratio_solve_.Solve(solve, points_, bodies_); };
+  const Fn begin_joints = [&](int, int) { joints_.Begin(world, h, bodies_); };
   const Fn solve_joints = [&](int, int) { joints_.SolveVelocities(world, h, bodies_); };
+  const Fn relax_joints = [&](int, int) { joints_.SolveVelocities(world, h, bodies_, /*relax=*/true); };
+  const bool joint_dynamics = HasJointDynamics(world);
   const Fn integrate_positions = [&](int i, int j) { IntegrateSoftPositions(h, i, j, world, bodies_); };
   const Fn relax_blocks = [&](int i, int j) { SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_); };
   const Fn relax_ratio = [&](int, int) { ratio_solve_.Solve(relax, points_, bodies_); };
@@ -76,6 +79,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   for (int sub = 0; sub < params_.substeps; ++sub) {
     list.Add(integrate_velocities, 0, bodies, kBodyGrain);
     list.Add(warm_start, 0, bodies, kBodyGrain);
+    if (joint_dynamics) list.AddSerial(begin_joints);
     // the heavy-on-light direct solve, a dense factorisation, once a stage:
     // before the stage's last joint solve
     for (int pass = 0; pass < joint_passes; ++pass) {
@@ -88,7 +92,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
       for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
       const bool last = pass + 1 == joint_passes;
       if (ratio_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_ratio);
-      if (joints) list.AddSerial(solve_joints);
+      if (joints) list.AddSerial(relax_joints);
     }
     list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "service/contact/xpbd/positional_correction.h"
+#include "service/contact/xpbd/xpbd_slider.h"
 #include "service/physics/portable_math.h"
 
 namespace contactsim {
@@ -38,12 +39,13 @@ void SolveJoint(const Joint& j, RigidBody& a, RigidBody& b, double alpha_tilde, 
       const double excess = angle < j.lower ? j.lower - angle : angle > j.upper ? j.upper - angle : 0.0;
       if (excess != 0.0) Turn(a, b, (a.q * j.axis_a) * excess, alpha_tilde, &lambda[1]);
     }
-  } else if (j.kind == JointKind::kFixed) {
+  } else if (j.kind == JointKind::kFixed || j.kind == JointKind::kPrismatic) {
     Quat e = a.q * j.rest * b.q.conjugate();
     if (e.w() < 0.0) e.coeffs() = -e.coeffs();
     const double s = e.vec().norm();
     if (s > 0.0) Turn(a, b, e.vec() / s * (2.0 * portable::Atan2(s, e.w())), alpha_tilde, &lambda[0]);
   }
+  if (j.kind == JointKind::kPrismatic) return SolveXpbdSlide(j, a, b, alpha_tilde, lambda);
   Attach(a, b, j, j.kind == JointKind::kDistance ? j.length : 0.0, alpha_tilde, &lambda[2]);
 }
 

@@ -10,6 +10,7 @@
 
 #include "service/contact/colour_stages.h"
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/soft/soft_joints.h"
 #include "service/contact/xpbd/xpbd_method.h"
 #include "service/contact/xpbd/xpbd_restitution.h"
 #include "service/contact/xpbd/xpbd_velocity_pass.h"
@@ -84,6 +85,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn project = [&](int, int) { ProjectJointPositions(world, projection); };
   const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
   const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
+  // joints with damping or friction: their velocity rows (joints/joint_rows.h)
+  // solved with the joints' geometry on the derived velocities
+  SoftJoints joint_velocities;
+  const Fn solve_joint_dynamics = [&](int, int) { joint_velocities.SolveVelocities(world, h, bodies_); };
+  const bool joint_dynamics = HasJointDynamics(world);
   const Fn gather_impacts = [&](int, int) {
     GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_);
   };
@@ -113,6 +119,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);
     list.Add(derive_velocities, 0, n, kBodyGrain);
+    if (joint_dynamics) list.AddSerial(solve_joint_dynamics);
     if (restitution) list.AddSerial(gather_impacts);
     list.AddColours(velocity_pass, colours_, blocks);
     if (restitution) list.AddSerial(solve_impacts);
