@@ -105,6 +105,9 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   b.material = default_material;
   if (s.restitution) b.material.restitution = *s.restitution;
   if (s.friction) b.material.friction = *s.friction;
+  b.collision_category = s.collision_category;
+  b.collision_mask = s.collision_mask;
+  b.collision_group = s.collision_group;
   b.q = q;
   b.x = s.position + q * origin_offset;
   if (is_static) {

@@ -54,6 +54,7 @@ struct Joint {
   double length = 0.0;           // m (distance)
   bool limited = false;          // hinge angle limits
   double lower = 0.0, upper = 0.0;  // rad
+  bool collide_connected = false;  // may A and B touch each other (collision_filter.h)
 };
 
 // A joint as it arrives from a command or a scene file: everything in world
@@ -66,6 +67,9 @@ struct JointSettings {
   std::optional<Vec3> axis;       // world, hinge only; normalised here
   std::optional<double> length;   // m, distance only; default: the current distance
   std::optional<std::pair<double, double>> limits;  // rad (lower, upper), hinge only
+  // Box2D's collideConnected: false (PyBullet's, Drake's and Box2D's
+  // default) keeps the two bodies from touching each other
+  bool collide_connected = false;
 };
 
 // The checks that need no world: finite anchor, a nonzero hinge axis, a
