@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/collision/narrowphase.h"
+#include "service/physics/collision_filter.h"
 
 namespace contactsim {
 namespace {
@@ -35,7 +36,7 @@ void CollisionDetector::Detect(const World& world, double margin, double sweep_d
   ComputeBoxes(world, margin, sweep_dt);
   broadphase_->SetRunner(runner_.get());
   broadphase_->FindPairs(boxes_, movable_, &pairs_);
-  DropJointedPairs(world);
+  DropFilteredPairs(world);
   contacts->clear();
   narrowphase_.CollidePairs(world.bodies(), pairs_, margin, *runner_, contacts);
   stats_.candidate_pairs = static_cast<int>(pairs_.size());
@@ -56,20 +57,11 @@ void CollisionDetector::ComputeBoxes(const World& world, double margin, double s
   for (int i = 0; i < n; ++i) movable_[i] = bodies[i].IsDynamic();
 }
 
-void CollisionDetector::DropJointedPairs(const World& world) {
-  if (world.joints().empty()) return;
-  jointed_.clear();
-  for (const Joint& j : world.joints()) {
-    if (j.body_b == kWorldBody) continue;
-    const int a = world.IndexOf(j.body_a), b = world.IndexOf(j.body_b);
-    jointed_.push_back({std::min(a, b), std::max(a, b)});
-  }
-  std::sort(jointed_.begin(), jointed_.end());
-  pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
-                              [this](const BodyPair& p) {  // first < second, as jointed_
-                                return std::binary_search(jointed_.begin(), jointed_.end(), p);
-                              }),
-               pairs_.end());
+void CollisionDetector::DropFilteredPairs(const World& world) {
+  const auto& bodies = world.bodies();
+  const JointPairSet& joined = world.joined_pairs();
+  const auto refused = [&](const BodyPair& p) { return !ShouldCollide(bodies[p.first], bodies[p.second], joined); };
+  pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), refused), pairs_.end());
 }
 
 }  // namespace contactsim

@@ -38,10 +38,12 @@ class CollisionDetector {
 
   // Contacts of the world at its current poses with depth > -margin (m).
   // Boxes are swept by v * sweep_dt so that pairs about to meet are found.
-  // Two bodies joined by a joint never collide with each other (as MuJoCo
-  // excludes a body and its parent, and Bullet's
-  // disableCollisionsBetweenLinkedBodies): the joint holds them, and the
-  // links of a chain touch at their joints.
+  // Only the pairs ShouldCollide accepts (collision_filter.h) reach the
+  // narrowphase: their filters, and the two bodies of a joint without
+  // collide_connected never touch (as MuJoCo excludes a body and its
+  // parent, and Bullet's disableCollisionsBetweenLinkedBodies): the joint
+  // holds them, and the links of a chain touch at their joints. The test
+  // runs once on the broadphase's pairs, so every broadphase agrees.
   void Detect(const World& world, double margin, double sweep_dt, ContactSet* contacts);
   // The candidate pairs of the last Detect (body indices).
   const std::vector<BodyPair>& pairs() const { return pairs_; }
@@ -60,10 +62,9 @@ class CollisionDetector {
   std::vector<Aabb> boxes_;
   std::vector<bool> movable_;
   void ComputeBoxes(const World& world, double margin, double sweep_dt);
-  void DropJointedPairs(const World& world);
+  void DropFilteredPairs(const World& world);
 
   std::vector<BodyPair> pairs_;
-  std::vector<BodyPair> jointed_;  // index pairs joined by a joint, sorted
   CollisionStats stats_;
 };
 

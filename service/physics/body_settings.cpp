@@ -110,6 +110,9 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   b.material = default_material;
   if (s.restitution) b.material.restitution = *s.restitution;
   if (s.friction) b.material.friction = *s.friction;
+  b.collision_category = s.collision_category;
+  b.collision_mask = s.collision_mask;
+  b.collision_group = s.collision_group;
   b.q = q;
   b.x = s.position + q * com;
   b.frame_origin = Vec3::Zero() - com;  // +0, not -0, for a centred shape

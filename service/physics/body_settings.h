@@ -56,6 +56,9 @@ struct BodySettings {
   Vec3 angular_velocity = Vec3::Zero();   // rad/s, world
   std::optional<double> restitution;      // [0, 1]; default from the world's material
   std::optional<double> friction;         // >= 0
+  uint32_t collision_category = 1;        // collision_filter.h
+  uint32_t collision_mask = 0xFFFFFFFF;
+  int32_t collision_group = 0;
 };
 
 constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water

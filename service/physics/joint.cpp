@@ -127,6 +127,7 @@ Status CreateJoint(const JointSettings& s, const RigidBody& a, const RigidBody* 
   j.kind = s.kind;
   j.body_a = a.id;
   j.body_b = b == nullptr ? kWorldBody : b->id;
+  j.collide_connected = s.collide_connected;
   // a distance joint holds A's centre of mass; the others the anchor on both
   j.anchor_a = s.kind == JointKind::kDistance ? Vec3::Zero() : ToBodyFrame(s.anchor, &a);
   j.anchor_b = ToBodyFrame(s.anchor, b);

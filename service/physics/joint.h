@@ -70,6 +70,7 @@ struct Joint {
   double lower = 0.0, upper = 0.0;  // rad (hinge) or m (prismatic)
   double damping = 0.0;          // N m s/rad (hinge) or N s/m (prismatic), >= 0
   double friction = 0.0;         // N m (hinge) or N (prismatic), >= 0
+  bool collide_connected = false;  // may A and B touch each other (collision_filter.h)
 };
 
 // True for the kinds with one joint coordinate (hinge, prismatic): the kinds
@@ -89,6 +90,9 @@ struct JointSettings {
   std::optional<std::pair<double, double>> limits;
   double damping = 0.0;           // N m s/rad (hinge) or N s/m (prismatic); 0: none
   double friction = 0.0;          // N m (hinge) or N (prismatic); 0: none
+  // Box2D's collideConnected: false (PyBullet's, Drake's and Box2D's
+  // default) keeps the two bodies from touching each other
+  bool collide_connected = false;
 };
 
 // The checks that need no world: finite anchor, a nonzero axis for hinge

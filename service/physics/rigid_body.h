@@ -38,6 +38,11 @@ struct RigidBody {
   Shape shape;
   Material material;
   MotionType motion = MotionType::kDynamic;
+  // Collision filter (collision_filter.h): the bits this body is, the bits
+  // it touches, and Box2D's group (same positive: always, same negative: never).
+  uint32_t collision_category = 1;
+  uint32_t collision_mask = 0xFFFFFFFF;
+  int32_t collision_group = 0;
 
   double mass = 0.0;                          // kg (0 for static and kinematic)
   double inv_mass = 0.0;                      // 1/kg

@@ -27,6 +27,7 @@ Status World::RemoveBody(BodyId id) {
                                [id](const Joint& j) { return j.body_a == id || j.body_b == id; }),
                 joints_.end());
   Reindex();
+  IndexJointPairs();
   return Status::Ok();
 }
 
@@ -60,6 +61,7 @@ Status World::AssignJoints(std::vector<Joint> joints, JointId next) {
   }
   joints_ = std::move(joints);
   next_joint_id = next;
+  IndexJointPairs();
   return Status::Ok();
 }
 
@@ -80,6 +82,7 @@ Status World::AddJoint(const JointSettings& settings, JointId* id) {
   if (b != nullptr) WakeBody(settings.body_b);
   joint.id = next_joint_id++;
   joints_.push_back(joint);  // ids grow, so the vector stays sorted
+  if (!joint.collide_connected && joint.body_b != kWorldBody) joined_.Add(joint.body_a, joint.body_b);
   *id = joint.id;
   return Status::Ok();
 }
@@ -89,7 +92,21 @@ Status World::RemoveJoint(JointId id) {
   if (it == joints_.end()) return Status::NotFound("unknown joint id " + std::to_string(id));
   WakeBody(it->body_a);
   if (it->body_b != kWorldBody) WakeBody(it->body_b);
+  if (!it->collide_connected && it->body_b != kWorldBody) joined_.Remove(it->body_a, it->body_b);
   joints_.erase(it);
+  return Status::Ok();
+}
+
+Status World::SetCollisionFilter(BodyId id, uint32_t category, uint32_t mask, int32_t group) {
+  RigidBody* b = Find(id);
+  if (b == nullptr) {
+    return Status::NotFound(id == kWorldBody ? std::string("body id 0 is the world, which has no collision filter")
+                                             : "unknown body id " + std::to_string(id));
+  }
+  WakeBody(id);
+  b->collision_category = category;
+  b->collision_mask = mask;
+  b->collision_group = group;
   return Status::Ok();
 }
 
@@ -179,6 +196,7 @@ void World::Clear() {
   index_.clear();
   wrenches_.clear();
   joints_.clear();
+  joined_.Clear();
   gravity = DefaultGravity();
   dt = kDefaultDt;
   time = 0.0;
@@ -190,6 +208,13 @@ void World::Clear() {
 void World::Reindex() {
   index_.clear();
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) index_[bodies_[i].id] = i;
+}
+
+void World::IndexJointPairs() {
+  joined_.Clear();
+  for (const Joint& j : joints_) {
+    if (!j.collide_connected && j.body_b != kWorldBody) joined_.Add(j.body_a, j.body_b);
+  }
 }
 
 uint64_t HashWorldState(const World& world) {
@@ -225,6 +250,7 @@ uint64_t HashWorldState(const World& world) {
       f.Double(j.damping);
       f.Double(j.friction);
     }
+    if (j.collide_connected) f.Bytes(&j.collide_connected, sizeof j.collide_connected);
   }
   return f.h;
 }

@@ -7,6 +7,7 @@
 #include <map>
 #include <vector>
 
+#include "service/physics/collision_filter.h"
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/physics/sleep_settings.h"
@@ -45,6 +46,14 @@ class World {
   Status RemoveJoint(JointId id);
   const Joint* FindJoint(JointId id) const;
   const std::vector<Joint>& joints() const { return joints_; }
+  // The body pairs whose joints exclude their contacts (collide_connected
+  // false), kept in step with the joints: ShouldCollide's third argument.
+  const JointPairSet& joined_pairs() const { return joined_; }
+
+  // Replaces a body's collision filter (collision_filter.h) and wakes its
+  // island: what rested on it through a pair that is now filtered falls.
+  // NotFound for an unknown id (0 is the world, which has no filter).
+  Status SetCollisionFilter(BodyId id, uint32_t category, uint32_t mask, int32_t group);
 
   // Adds a wrench and wakes the body's island (a force is never lost to sleep).
   void AddWrench(const TimedWrench& wrench);
@@ -85,10 +94,12 @@ class World {
 
  private:
   void Reindex();
+  void IndexJointPairs();
   std::vector<RigidBody> bodies_;
   std::map<BodyId, int> index_;
   std::vector<TimedWrench> wrenches_;
   std::vector<Joint> joints_;
+  JointPairSet joined_;
 };
 
 // 64-bit FNV-1a hash over every body's id and state bits (x, q, P, L), every
@@ -96,7 +107,8 @@ class World {
 // clock: equal hashes mean bit-identical worlds. A world without joints
 // hashes as it did before joints existed; with sleep enabled each body's
 // rest timer and island label follow its state bits (with sleep off they
-// are never set, and the hash is what it was before sleeping existed).
+// are never set, and the hash is what it was before sleeping existed). A
+// joint that lets its bodies touch adds that flag; the default adds nothing.
 uint64_t HashWorldState(const World& world);
 
 // Total kinetic energy of the dynamic bodies (J): sum of |P|^2 / 2m + L.w / 2.

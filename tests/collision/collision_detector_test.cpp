@@ -1,6 +1,7 @@
 // Tests of CollisionDetector: the thread count is checked, and any number
 // of threads gives the serial detector's pairs, contacts and separating-axis
-// cache, bit for bit, step after step.
+// cache, bit for bit, step after step; the collision filter drops exactly
+// the pairs ShouldCollide refuses, under either broadphase.
 #include "service/collision/collision_detector.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <random>
 
+#include "service/physics/collision_filter.h"
 #include "tests/collision/narrowphase_test_util.h"
 
 namespace contactsim {
@@ -105,6 +107,65 @@ TEST(CollisionDetectorTest, AnyThreadCountGivesTheSerialResult) {
     EXPECT_EQ(touching_steps, 8) << "the heap should stay in contact";
     EXPECT_GT(serial.narrowphase().cache().hits(), 0);
     EXPECT_GT(serial.stats().candidate_pairs, 500);
+  }
+}
+
+// Gives the heap's bodies random filters (a third keep the default) and
+// joins random pairs, half of them allowed to touch.
+void RandomFilters(World* world, std::mt19937_64* rng) {
+  std::uniform_int_distribution<int> pick(0, 5), group(-2, 2), bit(0, 3);
+  auto& bodies = world->bodies();
+  for (size_t i = 1; i < bodies.size(); ++i) {
+    if (pick(*rng) < 2) continue;
+    const uint32_t category = 1u << bit(*rng);
+    const uint32_t mask = ~(1u << bit(*rng));
+    ASSERT_TRUE(world->SetCollisionFilter(bodies[i].id, category, mask, group(*rng)).ok());
+  }
+  std::uniform_int_distribution<size_t> body(1, bodies.size() - 1);
+  for (int k = 0; k < 40; ++k) {
+    JointSettings s;
+    s.body_a = bodies[body(*rng)].id;
+    s.body_b = bodies[body(*rng)].id;
+    if (s.body_a == s.body_b) continue;
+    s.anchor = world->Find(s.body_a)->x;
+    s.collide_connected = k % 2 == 0;
+    JointId id = 0;
+    ASSERT_TRUE(world->AddJoint(s, &id).ok());
+  }
+}
+
+// Verifies that sweep and prune and the naive broadphase give the same
+// filtered pairs and contacts, and that these are exactly the unfiltered
+// heap's pairs that ShouldCollide accepts (the filter drops nothing else
+// and keeps nothing it refuses).
+TEST(CollisionDetectorTest, FilterDropsExactlyTheRefusedPairsUnderEitherBroadphase) {
+  constexpr double kMargin = 0.01, kDt = 1.0 / 240.0;
+  for (const uint64_t seed : {3u, 17u, 29u}) {
+    World world = Heap(300, seed);
+    std::mt19937_64 rng(seed);
+    RandomFilters(&world, &rng);
+    World plain = world;  // the same poses, no filters, no joints
+    for (RigidBody& b : plain.bodies()) ASSERT_TRUE(plain.SetCollisionFilter(b.id, 1u, 0xFFFFFFFFu, 0).ok());
+    ASSERT_TRUE(plain.AssignJoints({}, plain.next_joint_id).ok());
+    CollisionDetector sap, naive, reference;
+    ASSERT_TRUE(naive.SetBroadphase("naive").ok());
+    ContactSet from_sap, from_naive, unfiltered;
+    sap.Detect(world, kMargin, kDt, &from_sap);
+    naive.Detect(world, kMargin, kDt, &from_naive);
+    reference.Detect(plain, kMargin, kDt, &unfiltered);
+    ASSERT_EQ(sap.pairs(), naive.pairs());
+    ExpectBitIdentical(from_sap, from_naive);
+    std::vector<BodyPair> accepted;
+    const auto& bodies = world.bodies();
+    for (const BodyPair& p : reference.pairs()) {
+      if (ShouldCollide(bodies[p.first], bodies[p.second], world.joined_pairs())) accepted.push_back(p);
+    }
+    EXPECT_EQ(sap.pairs(), accepted);
+    EXPECT_LT(accepted.size(), reference.pairs().size()) << "the filters should refuse some pairs";
+    EXPECT_GT(accepted.size(), reference.pairs().size() / 4) << "and accept others";
+    for (const Contact& c : from_sap) {
+      ASSERT_TRUE(ShouldCollide(bodies[c.a], bodies[c.b], world.joined_pairs())) << c.a << " " << c.b;
+    }
   }
 }
 

@@ -104,7 +104,7 @@ TEST(BarrierPairSearch, FindsEveryPairWithinReach) {
   const double reach = 0.02;
   PrimitivePairSearch search;
   std::vector<CandidatePair> found;
-  search.Find(bodies, reach, &found);
+  search.Find(bodies, reach, JointPairSet(), &found);
   std::set<std::tuple<int, int, int, int, int, bool>> have;
   for (const CandidatePair& c : found) have.insert({c.a, c.b, static_cast<int>(c.pair.kind), c.pair.ia, c.pair.ib, c.pair.swapped});
   int near = 0;

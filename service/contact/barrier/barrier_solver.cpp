@@ -40,6 +40,7 @@ Eigen::Matrix<double, 3, 2> TangentBasis(const Vec3& n) {
 void BarrierSolver::Setup(World& world, const BarrierParams& params) {
   params_ = params;
   h_ = world.dt;
+  world_ = &world;
   bodies_.clear();
   dofs_ = 0;
   auto& rigid = world.bodies();
@@ -89,9 +90,10 @@ void BarrierSolver::Collect(const std::vector<Vec12>* step, std::vector<Entry>* 
     s.q = b.q;
     s.q_end = step != nullptr && b.active ? Vec12(b.q + (*step)[b.dof]) : b.q;
     s.movable = b.active;
+    s.body = &world_->bodies()[b.index];
   }
   // (shifts are <= 0, so d - shift < d_hat needs d < d_hat)
-  search_.Find(search_bodies_, d_hat, &candidates_);
+  search_.Find(search_bodies_, d_hat, world_->joined_pairs(), &candidates_);
   for (const CandidatePair& c : candidates_) {
     Entry e;
     e.a = c.a;

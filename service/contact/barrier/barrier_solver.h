@@ -297,6 +297,7 @@ class BarrierSolver {
   static constexpr double kPlacedDepth = 2.0;   // of d_hat: the deepest overlap a placed pair is measured from
 
   BarrierParams params_;
+  const World* world_ = nullptr;  // the stepped world, from Setup: its bodies' filters
   double h_ = 0.0;
   double kappa_ = 0.0;
   double kappa_max_ = 0.0;

@@ -92,7 +92,8 @@ void PrimitivePairSearch::AddSolidPairs(const std::vector<SearchBody>& bodies, i
   if (ga.edges.empty() && gb.edges.empty()) pairs(kept_a_[0], A.points, kept_b_[0], B.points, PrimitiveKind::kPointPoint, false);
 }
 
-void PrimitivePairSearch::Find(const std::vector<SearchBody>& bodies, double reach, std::vector<CandidatePair>* out) {
+void PrimitivePairSearch::Find(const std::vector<SearchBody>& bodies, double reach, const JointPairSet& joined,
+                               std::vector<CandidatePair>* out) {
   out->clear();
   const double half = 0.5 * reach;
   const int n = static_cast<int>(bodies.size());
@@ -124,6 +125,13 @@ void PrimitivePairSearch::Find(const std::vector<SearchBody>& bodies, double rea
       if (bodies[s].movable) body_pairs_.emplace_back(std::min(p, s), std::max(p, s));
     }
   }
+  body_pairs_.erase(std::remove_if(body_pairs_.begin(), body_pairs_.end(),
+                                   [&](const BodyPair& p) {
+                                     const RigidBody* a = bodies[p.first].body;
+                                     const RigidBody* b = bodies[p.second].body;
+                                     return a != nullptr && b != nullptr && !ShouldCollide(*a, *b, joined);
+                                   }),
+                    body_pairs_.end());
   std::sort(body_pairs_.begin(), body_pairs_.end());
   for (const BodyPair& p : body_pairs_) {
     const bool a_plane = bodies[p.first].geometry->plane, b_plane = bodies[p.second].geometry->plane;

@@ -14,6 +14,8 @@
 //  * primitives of a body pair: only the points, edges and triangles whose
 //    own boxes overlap the other body's box, then the pairs of those whose
 //    boxes overlap (of the kinds contact_primitives.h enumerates).
+// Body pairs that ShouldCollide refuses (collision_filter.h) are dropped
+// before any primitive is looked at, as the collision detector drops them.
 // The order of the output is deterministic: body pairs ascending, then the
 // enumeration order of EnumeratePrimitivePairs.
 #pragma once
@@ -24,6 +26,7 @@
 #include "service/collision/sweep_and_prune.h"
 #include "service/contact/barrier/affine_body.h"
 #include "service/contact/barrier/contact_primitives.h"
+#include "service/physics/collision_filter.h"
 
 namespace contactsim {
 
@@ -32,6 +35,7 @@ struct SearchBody {
   Vec12 q = Vec12::Zero();       // affine coordinates now
   Vec12 q_end = Vec12::Zero();   // at the end of the motion (q for none)
   bool movable = false;          // pairs of two bodies that cannot move are skipped
+  const RigidBody* body = nullptr;  // its collision filter; null: touches every body
 };
 
 struct CandidatePair {
@@ -41,8 +45,10 @@ struct CandidatePair {
 
 class PrimitivePairSearch {
  public:
-  // Fills `out` (cleared first) with the candidates within `reach` (m).
-  void Find(const std::vector<SearchBody>& bodies, double reach, std::vector<CandidatePair>* out);
+  // Fills `out` (cleared first) with the candidates within `reach` (m) of
+  // the body pairs the filters and `joined` accept.
+  void Find(const std::vector<SearchBody>& bodies, double reach, const JointPairSet& joined,
+            std::vector<CandidatePair>* out);
   // Drops the sweep order kept between calls (bodies added or removed).
   void Reset() { sap_.Reset(); }
 

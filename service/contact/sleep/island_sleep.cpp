@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/collision/aabb.h"
+#include "service/physics/collision_filter.h"
 #include "service/contact/sleep/islands.h"
 
 namespace contactsim {
@@ -65,11 +66,13 @@ void IslandSleep::WakeTouched(World& world) {
     boxes_[i] = WakeBox(bodies[i], world.dt);
     movable_[i] = Awake(bodies[i]) || MovingKinematic(bodies[i]);
   }
-  // the broadphase skips pairs of two non-movable bodies: sleeping or static
+  // the broadphase skips pairs of two non-movable bodies: sleeping or static;
+  // a filtered pair passes through each other, so it neither wakes nor joins
   broadphase_->FindPairs(boxes_, movable_, &pairs_);
   for (const auto& [i, j] : pairs_) {
     const RigidBody& a = bodies[i];
     const RigidBody& b = bodies[j];
+    if (!ShouldCollide(a, b, world.joined_pairs())) continue;
     if (a.asleep() != b.asleep()) world.WakeIsland(a.asleep() ? a.sleep_island : b.sleep_island);
     if (a.IsDynamic() && b.IsDynamic()) near_.emplace_back(i, j);
   }
