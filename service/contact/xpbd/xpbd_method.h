@@ -102,6 +102,9 @@ class XpbdMethod : public ContactMethod {
   XpbdParams params_;
   ContactSet contacts_;                   // detected once per step
   std::vector<char> substepped_;
+  std::vector<char> touching_;            // per body: it has a contact this step
+  XpbdArticulation articulation_;         // the contacts' view of jointed bodies
+  std::vector<int> jointed_blocks_;       // the blocks of jointed points
   std::vector<SoftBody> bodies_;
   std::vector<XpbdPoint> points_;         // in the blocks' order
   std::vector<XpbdPointFrame> frames_;    // parallel to points_

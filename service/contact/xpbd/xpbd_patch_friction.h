@@ -41,6 +41,7 @@ struct XpbdPatch {
   double twist_radius = 0.0;           // m, the points' mean distance from the centre (or r_eff); 0: no twist row
   double lever_scale = 1.0;            // the points' friction acts at lever_scale d_i (patch_torsion.h)
   bool valid = false;
+  bool jointed = false;                // its pushes go through XpbdArticulation (XpbdPoint::jointed)
   int first = 0, count = 0;            // the points [first, first + count)
   double spread = 0.0;                 // m^2, sum of the points' squared distances from the centre
   // The offset is linear in the points' material points m_i, so the patch
@@ -68,9 +69,15 @@ struct XpbdPatch {
 // `points`. With `torsion` uniform, a patch of three or more points
 // twists against mu sum lambda_n r_eff, r_eff its area's mean distance from
 // its centroid (patch_torsion.h), instead of its points' mean distance.
+// K of a jointed patch takes its bodies' mobility from `articulation`.
 void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
                         const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
-                        PatchTorsion torsion, std::vector<XpbdPatch>* patches);
+                        const XpbdArticulation& articulation, PatchTorsion torsion,
+                        std::vector<XpbdPatch>* patches);
+
+// A jointed patch's K inverted again at its bodies' present mobility.
+void RefreshJointedXpbdPatch(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                             const XpbdArticulation& articulation, XpbdPatch* patch);
 
 // What a patch's static friction left uncorrected at a step's end: the
 // slip of A's surface against B's in the contact plane (m, world) and its
@@ -99,8 +106,8 @@ void BeginXpbdPatch(XpbdPatch* patch);
 // The patch's static friction at the world's current poses (after its
 // points' non-penetration), accumulated in lambda_t and lambda_twist (the
 // velocity pass reports lambda_t / h).
-void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, XpbdPatch& patch,
-                            const std::vector<XpbdPoint>& points);
+void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
+                            XpbdPatch& patch, const std::vector<XpbdPoint>& points);
 
 // Dynamic friction of the patch in the velocity pass (eq. 30, on the patch
 // as a whole): the impulse and twist that stop its relative motion at the
@@ -121,7 +128,10 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, X
 // accumulated impulses are clamped (Catto 2005). The impulse applied is
 // added to `applied` (N s, world, on B), which the caller shares among the
 // points for the report.
+// A jointed patch's impulses go to the bodies' components (`articulation`,
+// `bodies` holding A and B).
 void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
-                    const Vec3& n, SoftBody& A, SoftBody& B, Vec3* spent, Vec3* applied);
+                    const Vec3& n, const XpbdArticulation& articulation, std::vector<SoftBody>& bodies, Vec3* spent,
+                    Vec3* applied);
 
 }  // namespace contactsim
