@@ -31,7 +31,10 @@
 //        30-link chain open by 3.8 mm and gaining energy (docs/physics.md,
 //        "Long chains and resting convex hulls"); the normal rows of
 //        contact components of mass ratio direct_mass_ratio or more are
-//        solved together (xpbd_ratio_solve.h);
+//        solved together (xpbd_ratio_solve.h); a contact on a body held
+//        by rigid joints moves the body's jointed component as the joints
+//        let it, through their constrained mobility at the sub-step's
+//        predicted poses (xpbd_articulation.h), here and in d;
 //     c. velocities from the poses (Algorithm 2): v += (x - x~) / h and
 //        w += 2 vec(q q~^-1) / h, x~ and q~ the predicted pose;
 //     d. velocity pass: restitution and dynamic friction; in components

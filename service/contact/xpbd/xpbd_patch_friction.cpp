@@ -143,6 +143,7 @@ void RefreshJointedXpbdPatch(const std::vector<XpbdPoint>& points, const std::ve
 void BeginXpbdPatch(XpbdPatch* patch) {
   patch->lambda_t.setZero();
   patch->lambda_twist = 0.0;
+  patch->clamped = false;
 }
 
 namespace {
@@ -213,13 +214,20 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, c
   const Vec3 offset = PatchOffset(patch, A.x, A.q, B.x, B.q);
   const Vec3 dl = patch.inv_k * (offset - patch.origin);
   const double mu = patch.friction;
-  const Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
-  if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
-    patch.origin = offset;
-    return;
-  }
-  patch.sticking = true;
+  Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
   double twist_step = dl[2];
+  if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
+    if (!patch.jointed) {
+      patch.origin = offset;
+      return;
+    }
+    // a jointed patch keeps its offset and takes the cone's most (header)
+    lambda_t *= mu * pushed / lambda_t.norm();
+    twist_step = 0.0;
+    patch.clamped = true;
+  } else {
+    patch.sticking = true;
+  }
   if (std::abs(patch.lambda_twist + twist_step) > mu * pushed * patch.twist_radius) {
     patch.origin[2] = offset[2];  // it spins: hold the translation only
     twist_step = 0.0;

@@ -159,6 +159,9 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     // 0.010-0.016 rad/s (16 to 10 sub-steps); braked before them only, a
     // box held on a slope crept 4.3 mm in 2 s
     Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
+    // a patch held at its cone in positions has spent that friction already
+    // (XpbdPatch::clamped): the brakes stay within the limit with it
+    if (patch.clamped) spent = Vec3(patch.t1.dot(patch.lambda_t), patch.t2.dot(patch.lambda_t), 0.0) * inv_h;
     const Vec3 n = p0.n;
     BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &spent, &braked);
     if (!deferred[k]) {
