@@ -19,15 +19,28 @@ double CoreRadius(const Shape& shape) {
 bool InvertPoints(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies, const NormalBlock& m,
                   const int* idx, int n, Eigen::Matrix4d* inv) {
   const XpbdPoint& p0 = points[m.first + idx[0]];
+  // the tangents serve a face's four points only (normal_block.h)
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
+  if (n == kMaxNormalBlock) PerpendicularBasis(p0.n, &t1, &t2);
+  if (p0.jointed) {  // K_ij = k_lin_j + (r_Ai x n) . ia_n_j + (r_Bi x n) . ib_n_j (XpbdPoint)
+    Eigen::Matrix4d k = Eigen::Matrix4d::Zero();
+    Vec3 plane[kMaxNormalBlock];
+    for (int i = 0; i < n; ++i) {
+      const XpbdPoint& pi = points[m.first + idx[i]];
+      plane[i] = pi.ra;
+      for (int j = 0; j < n; ++j) {
+        const XpbdPoint& pj = points[m.first + idx[j]];
+        k(i, j) = pj.k_lin + pi.ra_n.dot(pj.ia_n) + pi.rb_n.dot(pj.ib_n);
+      }
+    }
+    return p0.k_lin > 0.0 && InvertNormalBlockK(0.5 * (k + k.transpose()), n, plane, t1, t2, inv);
+  }
   NormalBlockPoint block[kMaxNormalBlock];
   for (int k = 0; k < n; ++k) {
     const XpbdPoint& p = points[m.first + idx[k]];
     block[k] = {p.ra, p.ra_n, p.rb_n, p.ia_n, p.ib_n};
   }
   const double k_lin = bodies[p0.a].inv_mass + bodies[p0.b].inv_mass;
-  // the tangents serve a face's four points only (normal_block.h)
-  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
-  if (n == kMaxNormalBlock) PerpendicularBasis(p0.n, &t1, &t2);
   return k_lin > 0.0 && InvertNormalBlock(block, n, k_lin, t1, t2, inv);
 }
 
@@ -71,12 +84,17 @@ void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const X
   if (depth <= 0.0 && p.lambda_n == 0.0) return;
   const double alpha_tilde = solve.alpha_tilde;
   const double dl = std::max((depth - alpha_tilde * p.lambda_n) / (p.w_n + alpha_tilde), -p.lambda_n);
+  p.lambda_n += dl;
+  if (p.jointed) {
+    solve.articulation->Displace(world, bodies, p.a, -dl * p.n, -dl * p.ra_n);
+    solve.articulation->Displace(world, bodies, p.b, dl * p.n, dl * p.rb_n);
+    return;
+  }
   auto& all = world.bodies();
   const SoftBody& sa = bodies[p.a];
   const SoftBody& sb = bodies[p.b];
   DisplaceXpbdBody(all[p.a], sa, -sa.inv_mass * dl * p.n, -dl * p.ia_n);
   DisplaceXpbdBody(all[p.b], sb, sb.inv_mass * dl * p.n, dl * p.ib_n);
-  p.lambda_n += dl;
 }
 
 // K^-1 of a subset of two or three points (or K^+ of four), 1 / K of one.
@@ -143,6 +161,17 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
     wb += step[k] * p.ib_n;
   }
   if (active == 0) return true;
+  if (p0.jointed) {
+    Vec3 ta = Vec3::Zero(), tb = Vec3::Zero();  // the pushes' torques
+    for (int k = 0; k < active; ++k) {
+      const XpbdPoint& p = points[m.first + idx[k]];
+      ta += step[k] * p.ra_n;
+      tb += step[k] * p.rb_n;
+    }
+    solve.articulation->Displace(world, bodies, p0.a, -sum * n, -ta);
+    solve.articulation->Displace(world, bodies, p0.b, sum * n, tb);
+    return true;
+  }
   DisplaceXpbdBody(A, bodies[p0.a], -bodies[p0.a].inv_mass * sum * n, -wa);
   DisplaceXpbdBody(B, bodies[p0.b], bodies[p0.b].inv_mass * sum * n, wb);
   return true;
@@ -183,9 +212,19 @@ void DisplaceXpbdBody(RigidBody& body, const SoftBody& s, const Vec3& dx, const 
 
 namespace {
 
+// A jointed point's responses and K along n through its bodies' mobility.
+void SetJointedResponse(const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation, XpbdPoint& p) {
+  const Vec6 resp_a = articulation.Response(p.a, bodies[p.a], p.n, p.ra_n);
+  const Vec6 resp_b = articulation.Response(p.b, bodies[p.b], p.n, p.rb_n);
+  p.k_lin = p.n.dot(resp_a.head<3>() + resp_b.head<3>());
+  p.ia_n = resp_a.tail<3>();
+  p.ib_n = resp_b.tail<3>();
+  p.w_n = p.k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+}
+
 // Contact c's point and frame at the step's start.
-void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies, XpbdPoint& p,
-                  XpbdPointFrame& f) {
+void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
+                  const XpbdArticulation& articulation, XpbdPoint& p, XpbdPointFrame& f) {
   const RigidBody& A = world.bodies()[c.a];
   const RigidBody& B = world.bodies()[c.b];
   const SoftBody& sa = bodies[c.a];
@@ -211,7 +250,10 @@ void PreparePoint(const Contact& c, const World& world, const std::vector<SoftBo
   p.rb_n = f.rb.cross(p.n);
   p.ia_n = sa.inv_inertia * p.ra_n;
   p.ib_n = sb.inv_inertia * p.rb_n;
-  p.w_n = sa.inv_mass + sb.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+  p.k_lin = sa.inv_mass + sb.inv_mass;
+  p.w_n = p.k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
+  p.jointed = articulation.Applies(c.a, c.b);
+  if (p.jointed) SetJointedResponse(bodies, articulation, p);
   f.friction = CombineFriction(A.material, B.material);
   p.restitution = CombineRestitution(A.material, B.material);
 }
@@ -225,7 +267,7 @@ struct PointHeight {
 }  // namespace
 
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       const XpbdArticulation& articulation, std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
                        std::vector<NormalBlock>* blocks, BlockColours* colours, std::vector<int>* point_of) {
   GroupNormalBlocks(contacts, &Contact::normal, blocks);
   std::vector<PointHeight> heights(contacts.size());
@@ -235,7 +277,9 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
   OrderBlocksFromTheTop(world, heights, blocks);
   std::vector<ColourRole> roles(bodies.size());
   for (size_t i = 0; i < bodies.size(); ++i) {
-    roles[i] = bodies[i].inv_mass > 0.0 ? ColourRole::kColoured : ColourRole::kFixed;
+    roles[i] = bodies[i].inv_mass == 0.0             ? ColourRole::kFixed
+               : articulation.InComponent(static_cast<int>(i)) ? ColourRole::kSerial
+                                                               : ColourRole::kColoured;
   }
   *colours = ColourBlocks(contacts, roles, blocks);
   points->resize(contacts.size());
@@ -244,7 +288,7 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
   int next = 0;
   for (NormalBlock& m : *blocks) {
     for (int i = 0; i < m.count; ++i) {
-      PreparePoint(contacts[m.first + i], world, bodies, (*points)[next + i], (*frames)[next + i]);
+      PreparePoint(contacts[m.first + i], world, bodies, articulation, (*points)[next + i], (*frames)[next + i]);
       (*point_of)[m.first + i] = next + i;
     }
     m.first = next;
@@ -273,6 +317,12 @@ void SolveXpbdBlockNormals(World& world, const std::vector<SoftBody>& bodies, co
       m.count > 1 && solve.alpha_tilde == 0.0 && SolveBlockNormals(world, bodies, solve, m, cache, points);
   if (solved) return;
   for (int i = 0; i < m.count; ++i) SolvePointNormal(world, bodies, solve, points[m.first + i]);
+}
+
+void RefreshJointedXpbdBlock(const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
+                             const NormalBlock& m, XpbdSubsetCache* cache, std::vector<XpbdPoint>* points) {
+  for (int i = m.first; i < m.first + m.count; ++i) SetJointedResponse(bodies, articulation, (*points)[i]);
+  *cache = XpbdSubsetCache{};
 }
 
 }  // namespace contactsim

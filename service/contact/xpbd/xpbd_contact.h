@@ -37,6 +37,7 @@
 #include "service/contact/block_colours.h"
 #include "service/contact/normal_block.h"
 #include "service/contact/soft/soft_bodies.h"
+#include "service/contact/xpbd/xpbd_articulation.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -49,6 +50,12 @@ struct XpbdPoint {
   Vec3 ra;                        // m, contact point minus A's centre, step start
   Vec3 ra_n, rb_n, ia_n, ib_n;    // r x n and I^-1 (r x n), step start
   double w_n = 0.0;               // 1/kg, K along n
+  // n . (the linear responses of A and B to the row): 1/m_A + 1/m_B for free
+  // bodies; K_ij = k_lin_j + (r_Ai x n) . ia_n_j + (r_Bi x n) . ib_n_j
+  double k_lin = 0.0;
+  // a body of the pair is held by rigid joints: its pushes go through
+  // XpbdArticulation (ia_n, ib_n its angular responses then)
+  bool jointed = false;
   double restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier
@@ -77,9 +84,12 @@ struct XpbdPose {
 // and then colour by colour (block_colours.h, `colours`; their K is
 // inverted when a sub-step first needs it, XpbdSubsetInverse), and the
 // points and their frames are stored in that order, so that the sub-steps
-// read them front to back; point_of[k] is contact k's place.
+// read them front to back; point_of[k] is contact k's place. The blocks on
+// bodies of a jointed component are solved serially (a push on one moves
+// the others) and their points take the component's mobility
+// (`articulation`).
 void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
+                       const XpbdArticulation& articulation, std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
                        std::vector<NormalBlock>* blocks, BlockColours* colours, std::vector<int>* point_of);
 
 // The point's separation at the world's current poses (m, < 0 penetrating)
@@ -111,6 +121,7 @@ struct XpbdSolve {
   double h = 0.0;            // s, the sub-step
   double alpha_tilde = 0.0;  // 1/kg, compliance / h^2
   double max_push = 0.0;     // m, the deepest overlap one sub-step removes
+  const XpbdArticulation* articulation = nullptr;  // the jointed points' pushes
 };
 
 // The non-penetration of one block's points (one position iteration).
@@ -130,6 +141,12 @@ inline const Eigen::Matrix4d* XpbdSubsetInverse(const std::vector<XpbdPoint>& po
   if (n == block.count && cache.full == 1) return &cache.full_inv;
   return XpbdSubsetInverseFind(points, bodies, block, idx, n, cache);
 }
+
+// A jointed block's K at its bodies' present mobility (after
+// XpbdArticulation::Refresh): its points' responses again, and the
+// inverses of its K forgotten.
+void RefreshJointedXpbdBlock(const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
+                             const NormalBlock& m, XpbdSubsetCache* cache, std::vector<XpbdPoint>* points);
 
 // Moves a dynamic body by dx and turns it by the small rotation vector theta
 // (first order, renormalised; a turn below 1e-18 rad, round-off, is left

@@ -149,8 +149,16 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (const Contact& c : contacts_) substepped_[c.a] = substepped_[c.b] = 1;
   SoftJoints::MarkJointed(world, &substepped_);
   LoadSoftBodies(world, substepped_, detector.runner(), &bodies_);
-  PrepareXpbdPoints(contacts_, world, bodies_, &points_, &frames_, &blocks_, &colours_, &point_of_);
-  PrepareXpbdPatches(blocks_, points_, frames_, bodies_, ParsePatchTorsion(params_.patch_torsion), &patches_);
+  touching_.assign(bodies.size(), 0);
+  for (const Contact& c : contacts_) touching_[c.a] = touching_[c.b] = 1;
+  articulation_.Prepare(world, bodies_, touching_, params_.joint_compliance == 0.0);
+  PrepareXpbdPoints(contacts_, world, bodies_, articulation_, &points_, &frames_, &blocks_, &colours_, &point_of_);
+  PrepareXpbdPatches(blocks_, points_, frames_, bodies_, articulation_, ParsePatchTorsion(params_.patch_torsion),
+                     &patches_);
+  jointed_blocks_.clear();
+  for (size_t k = 0; k < blocks_.size(); ++k) {
+    if (points_[blocks_[k].first].jointed) jointed_blocks_.push_back(static_cast<int>(k));
+  }
   CarrySlips(world);
   subsets_.assign(blocks_.size(), XpbdSubsetCache{});
   ratio_.Prepare(params_.direct_mass_ratio, bodies_, points_);

@@ -31,7 +31,10 @@
 //        30-link chain open by 3.8 mm and gaining energy (docs/physics.md,
 //        "Long chains and resting convex hulls"); the normal rows of
 //        contact components of mass ratio direct_mass_ratio or more are
-//        solved together (xpbd_ratio_solve.h);
+//        solved together (xpbd_ratio_solve.h); a contact on a body held
+//        by rigid joints moves the body's jointed component as the joints
+//        let it, through their constrained mobility at the sub-step's
+//        predicted poses (xpbd_articulation.h), here and in d;
 //     c. velocities from the poses (Algorithm 2): v += (x - x~) / h and
 //        w += 2 vec(q q~^-1) / h, x~ and q~ the predicted pose;
 //     d. velocity pass: restitution and dynamic friction; in components
@@ -107,6 +110,9 @@ class XpbdMethod : public ContactMethod {
   XpbdParams params_;
   ContactSet contacts_;                   // detected once per step
   std::vector<char> substepped_;
+  std::vector<char> touching_;            // per body: it has a contact this step
+  XpbdArticulation articulation_;         // the contacts' view of jointed bodies
+  std::vector<int> jointed_blocks_;       // the blocks of jointed points
   std::vector<SoftBody> bodies_;
   std::vector<XpbdPoint> points_;         // in the blocks' order
   std::vector<XpbdPointFrame> frames_;    // parallel to points_

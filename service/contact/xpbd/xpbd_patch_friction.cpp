@@ -7,6 +7,24 @@
 namespace contactsim {
 namespace {
 
+// K of a jointed patch's rows (t1, t2, twist) through the bodies' mobility.
+Eigen::Matrix3d JointedPatchK(const XpbdPatch& patch, const Vec3& n, const XpbdArticulation& articulation,
+                              const XpbdPoint& p0, const SoftBody& A, const SoftBody& B) {
+  const Vec3 lin[3] = {patch.t1, patch.t2, Vec3::Zero()};
+  const Vec3 ang_a[3] = {patch.ra.cross(patch.t1), patch.ra.cross(patch.t2), n};
+  const Vec3 ang_b[3] = {patch.rb.cross(patch.t1), patch.rb.cross(patch.t2), n};
+  Eigen::Matrix3d k;
+  for (int j = 0; j < 3; ++j) {
+    const Vec6 resp_a = articulation.Response(p0.a, A, lin[j], ang_a[j]);
+    const Vec6 resp_b = articulation.Response(p0.b, B, lin[j], ang_b[j]);
+    for (int i = 0; i < 3; ++i) {
+      k(i, j) = lin[i].dot(resp_a.head<3>() + resp_b.head<3>()) + ang_a[i].dot(resp_a.tail<3>()) +
+                ang_b[i].dot(resp_b.tail<3>());
+    }
+  }
+  return 0.5 * (k + k.transpose());
+}
+
 // K of the rows t1, t2 (at the patch centre) and the twist about n.
 Eigen::Matrix3d PatchK(const XpbdPatch& patch, const Vec3& n, const SoftBody& A, const SoftBody& B) {
   const Vec3 lin[3] = {patch.t1, patch.t2, Vec3::Zero()};
@@ -59,7 +77,8 @@ bool InvertPatchK(const Eigen::Matrix3d& k, int rows, Eigen::Matrix3d* inv) {
 
 void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vector<XpbdPoint>& points,
                         const std::vector<XpbdPointFrame>& frames, const std::vector<SoftBody>& bodies,
-                        PatchTorsion torsion, std::vector<XpbdPatch>* patches) {
+                        const XpbdArticulation& articulation, PatchTorsion torsion,
+                        std::vector<XpbdPatch>* patches) {
   patches->resize(blocks.size());
   for (size_t k = 0; k < blocks.size(); ++k) {
     XpbdPatch patch;
@@ -105,14 +124,26 @@ void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vecto
     }
     const SoftBody& A = bodies[p0.a];
     const SoftBody& B = bodies[p0.b];
-    patch.valid = patch.friction > 0.0 && InvertPatchK(PatchK(patch, p0.n, A, B), rows, &patch.inv_k);
+    patch.jointed = p0.jointed;
+    const Eigen::Matrix3d K =
+        patch.jointed ? JointedPatchK(patch, p0.n, articulation, p0, A, B) : PatchK(patch, p0.n, A, B);
+    patch.valid = patch.friction > 0.0 && InvertPatchK(K, rows, &patch.inv_k);
     (*patches)[k] = patch;
   }
+}
+
+void RefreshJointedXpbdPatch(const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
+                             const XpbdArticulation& articulation, XpbdPatch* patch) {
+  const XpbdPoint& p0 = points[patch->first];
+  const int rows = patch->twist_radius > 0.0 ? 3 : 2;
+  const Eigen::Matrix3d K = JointedPatchK(*patch, p0.n, articulation, p0, bodies[p0.a], bodies[p0.b]);
+  patch->valid = patch->friction > 0.0 && InvertPatchK(K, rows, &patch->inv_k);
 }
 
 void BeginXpbdPatch(XpbdPatch* patch) {
   patch->lambda_t.setZero();
   patch->lambda_twist = 0.0;
+  patch->clamped = false;
 }
 
 namespace {
@@ -159,8 +190,8 @@ void CarryXpbdPatchSlip(const XpbdPatchSlip& slip, XpbdPatch* patch) {
                         patch->twist_radius > 0.0 ? slip.twist : 0.0);
 }
 
-void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, XpbdPatch& patch,
-                            const std::vector<XpbdPoint>& points) {
+void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
+                            XpbdPatch& patch, const std::vector<XpbdPoint>& points) {
   if (!patch.valid) return;
   const XpbdPoint& p0 = points[patch.first];
   double pushed = 0.0;
@@ -183,25 +214,37 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, X
   const Vec3 offset = PatchOffset(patch, A.x, A.q, B.x, B.q);
   const Vec3 dl = patch.inv_k * (offset - patch.origin);
   const double mu = patch.friction;
-  const Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
-  if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
-    patch.origin = offset;
-    return;
-  }
-  patch.sticking = true;
+  Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
   double twist_step = dl[2];
+  if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
+    if (!patch.jointed) {
+      patch.origin = offset;
+      return;
+    }
+    // a jointed patch keeps its offset and takes the cone's most (header)
+    lambda_t *= mu * pushed / lambda_t.norm();
+    twist_step = 0.0;
+    patch.clamped = true;
+  } else {
+    patch.sticking = true;
+  }
   if (std::abs(patch.lambda_twist + twist_step) > mu * pushed * patch.twist_radius) {
     patch.origin[2] = offset[2];  // it spins: hold the translation only
     twist_step = 0.0;
   }
   const Vec3 P = lambda_t - patch.lambda_t;
   const Vec3& n = p0.n;
+  patch.lambda_t = lambda_t;
+  patch.lambda_twist += twist_step;
+  if (patch.jointed) {
+    articulation.Displace(world, bodies, p0.a, -P, -(patch.ra.cross(P) + twist_step * n));
+    articulation.Displace(world, bodies, p0.b, P, patch.rb.cross(P) + twist_step * n);
+    return;
+  }
   const SoftBody& sa = bodies[p0.a];
   const SoftBody& sb = bodies[p0.b];
   DisplaceXpbdBody(world.bodies()[p0.a], sa, -sa.inv_mass * P, -(sa.inv_inertia * (patch.ra.cross(P) + twist_step * n)));
   DisplaceXpbdBody(world.bodies()[p0.b], sb, sb.inv_mass * P, sb.inv_inertia * (patch.rb.cross(P) + twist_step * n));
-  patch.lambda_t = lambda_t;
-  patch.lambda_twist += twist_step;
 }
 
 namespace {
@@ -230,8 +273,12 @@ Vec3 PointsSlidingImpulse(double h, const XpbdPatch& patch, const std::vector<Xp
 }  // namespace
 
 void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
-                    const Vec3& n, SoftBody& A, SoftBody& B, Vec3* spent, Vec3* applied) {
+                    const Vec3& n, const XpbdArticulation& articulation, std::vector<SoftBody>& bodies, Vec3* spent,
+                    Vec3* applied) {
   if (!patch.valid) return;
+  const XpbdPoint& p0 = points[patch.first];
+  SoftBody& A = bodies[p0.a];
+  SoftBody& B = bodies[p0.b];
   const Vec3 v = (B.v + B.w.cross(patch.rb)) - (A.v + A.w.cross(patch.ra));
   const Vec3 spin = B.w - A.w;
   const Vec3 slip(patch.t1.dot(v), patch.t2.dot(v), patch.twist_radius > 0.0 ? n.dot(spin) : 0.0);
@@ -257,6 +304,12 @@ void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::
   const Vec3 dl = total - *spent;
   *spent = total;
   const Vec3 J = dl[0] * patch.t1 + dl[1] * patch.t2;
+  *applied += J;
+  if (patch.jointed) {
+    articulation.Kick(bodies, p0.a, -J, -(patch.ra.cross(J) + dl[2] * n));
+    articulation.Kick(bodies, p0.b, J, patch.rb.cross(J) + dl[2] * n);
+    return;
+  }
   if (A.inv_mass > 0.0) {  // a static body is never written (PushNormal)
     A.v -= A.inv_mass * J;
     A.w -= A.inv_inertia * (patch.ra.cross(J) + dl[2] * n);
@@ -265,7 +318,6 @@ void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::
     B.v += B.inv_mass * J;
     B.w += B.inv_inertia * (patch.rb.cross(J) + dl[2] * n);
   }
-  *applied += J;
 }
 
 }  // namespace contactsim

@@ -7,6 +7,10 @@ namespace contactsim {
 void XpbdRatioSolve::Prepare(double mass_ratio, const std::vector<SoftBody>& bodies,
                              const std::vector<XpbdPoint>& points) {
   selected_ = SelectMassRatioPoints(bodies, points, mass_ratio);
+  // a jointed point's bodies move as their joints let them, which the
+  // solve's free bodies do not (xpbd_articulation.h)
+  selected_.erase(std::remove_if(selected_.begin(), selected_.end(), [&](int k) { return points[k].jointed; }),
+                  selected_.end());
   if (selected_.empty()) return;
   slots_.Build(bodies, points, selected_);
   options_ = SubspaceOptions{};

@@ -16,7 +16,9 @@
 //   J dx + alpha~ lambda = d,   d = min(-s, max_push),   lambda >= 0,
 // lambda the point's multiplier accumulated over the sub-step (so a push
 // the sweep gave may be taken back, as the sweep itself does). Friction
-// stays with the sweep (xpbd_patch_friction.h). Worlds without such a
+// stays with the sweep (xpbd_patch_friction.h), and so do the points on
+// jointed bodies (xpbd_articulation.h), which the solve's free bodies would
+// move off their joints. Worlds without such a
 // component are untouched bit for bit.
 // The solve is linear in the displacements, and a light body squeezed
 // between heavy ones can be asked to turn far within a sub-step, where the

@@ -11,6 +11,7 @@ bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock
     for (int i = blocks[k].first; i < blocks[k].first + blocks[k].count; ++i) {
       const XpbdPoint& p = points[i];
       if (p.lambda_n <= 0.0 || p.w_n <= 0.0) continue;  // did not push in the sub-step
+      if (p.jointed) continue;  // the velocity pass's block restitution, through the articulation
       for (int b : {p.a, p.b}) {
         if (!impacts->HasBody(b)) impacts->SetBody(b, predicted[b].v, predicted[b].w, bodies[b].inv_mass);
       }

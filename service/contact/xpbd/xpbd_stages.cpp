@@ -53,6 +53,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   // never below the resting overlap SubstepsFor allows a heavy body on a
   // light one, which the solve removes again every sub-step
   solve.max_push = std::max(params_.max_push_velocity * h, kMassRatioOverlap);
+  solve.articulation = &articulation_;
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
 
@@ -62,12 +63,20 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     IntegrateSoftPositions(h, i, j, world, bodies_, /*track_motion=*/false);
     for (int k = i; k < j; ++k) predicted_[k] = {bodies[k].x, bodies[k].q, bodies_[k].v, bodies_[k].w};
   };
+  // the jointed contacts' mobility at the predicted poses (XpbdArticulation::Refresh)
+  const Fn refresh_articulation = [&](int, int) {
+    articulation_.Refresh(world, bodies_);
+    for (int k : jointed_blocks_) {
+      RefreshJointedXpbdBlock(bodies_, articulation_, blocks_[k], &subsets_[k], &points_);
+      RefreshJointedXpbdPatch(points_, bodies_, articulation_, &patches_[k]);
+    }
+  };
   const Fn begin_joints = [&](int, int) { joint_lambdas_.assign(world.joints().size(), XpbdJointLambda{}); };
   const Fn solve_joints = [&](int, int) { SolveXpbdJoints(world, joint_alpha_tilde, &joint_lambdas_); };
   const Fn solve_blocks = [&](int i, int j) {
     for (int k = i; k < j; ++k) {
       SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
-      SolveXpbdPatchFriction(world, bodies_, patches_[k], points_);
+      SolveXpbdPatchFriction(world, bodies_, articulation_, patches_[k], points_);
     }
   };
   // the sub-step's multipliers start from zero as each block is first
@@ -94,8 +103,8 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_);
   };
   const Fn velocity_pass = [&](int i, int j) {
-    SolveXpbdContactVelocities(h, threshold, blocks_, deferred_, i, j, patches_, subsets_, predicted_, bodies_,
-                               &points_);
+    SolveXpbdContactVelocities(h, threshold, blocks_, deferred_, i, j, patches_, subsets_, predicted_, articulation_,
+                               bodies_, &points_);
   };
   const Fn solve_impacts = [&](int, int) { SolveXpbdImpacts(h, &impacts_, bodies_, &points_); };
   // components with restitution take their bounce from the impacts one at
@@ -111,6 +120,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   predicted_.resize(bodies.size());
   for (int sub = 0; sub < substeps; ++sub) {
     list.Add(predict, 0, n, kBodyGrain);
+    if (articulation_.active()) list.AddSerial(refresh_articulation);
     if (joints) list.AddSerial(begin_joints);
     for (int it = 0; it < params_.iterations; ++it) {
       if (joints) list.AddSerial(solve_joints);

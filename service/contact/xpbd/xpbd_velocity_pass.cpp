@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "service/contact/push_impulse.h"
 
@@ -52,8 +53,8 @@ struct Pushed {
 // share it whatever their order (their impulses summed before they reach
 // the bodies); point by point where no block applies.
 void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed& pushed_points,
-                           XpbdSubsetCache& cache, const std::vector<SoftBody>& all, const BlockBodies& pair,
-                           std::vector<XpbdPoint>& points) {
+                           XpbdSubsetCache& cache, const XpbdArticulation& articulation, std::vector<SoftBody>& all,
+                           const BlockBodies& pair, std::vector<XpbdPoint>& points) {
   SoftBody& A = pair.A;
   SoftBody& B = pair.B;
   const int* idx = pushed_points.idx;
@@ -81,8 +82,14 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed&
       const Vec3 Jk = dl[k] * p.n;
       p.impulse += Jk;
       J += Jk;
-      wa += dl[k] * p.ia_n;
-      wb += dl[k] * p.ib_n;
+      // the torques of the impulses where the articulation takes them
+      wa += dl[k] * (p0.jointed ? p.ra_n : p.ia_n);
+      wb += dl[k] * (p0.jointed ? p.rb_n : p.ib_n);
+    }
+    if (p0.jointed) {
+      articulation.Kick(all, p0.a, -J, -wa);
+      articulation.Kick(all, p0.b, J, wb);
+      return;
     }
     if (A.inv_mass > 0.0) {
       A.v -= A.inv_mass * J;
@@ -98,8 +105,13 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed&
     XpbdPoint& p = points[m.first + idx[k]];
     if (p.w_n <= 0.0) continue;
     const double dl = (TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B)) / p.w_n;
-    PushNormal(dl, p, A, B);
     p.impulse += dl * p.n;
+    if (p.jointed) {
+      articulation.Kick(all, p.a, -dl * p.n, -dl * p.ra_n);
+      articulation.Kick(all, p.b, dl * p.n, dl * p.rb_n);
+      continue;
+    }
+    PushNormal(dl, p, A, B);
   }
 }
 
@@ -109,7 +121,8 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
                                 const std::vector<char>& deferred, int begin, int end,
                                 const std::vector<XpbdPatch>& patches,
                                 std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
-                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points) {
+                                const XpbdArticulation& articulation, std::vector<SoftBody>& bodies,
+                                std::vector<XpbdPoint>* points) {
   const double inv_h = 1.0 / h;
   for (int k = begin; k < end; ++k) {
     const NormalBlock& m = blocks[k];
@@ -129,7 +142,15 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
       continue;
     }
     const XpbdPoint& p0 = (*points)[m.first];
-    const BlockBodies pair{bodies[p0.a], bodies[p0.b], predicted[p0.a], predicted[p0.b]};
+    // a jointed body's v~ as its joints leave it (XpbdArticulation::Projected)
+    XpbdPose a = predicted[p0.a], b = predicted[p0.b];
+    for (auto [i, pose] : {std::pair<int, XpbdPose*>{p0.a, &a}, {p0.b, &b}}) {
+      if (!p0.jointed || !articulation.Jointed(i)) continue;
+      const Vec6 v = articulation.Projected(i, predicted, bodies);
+      pose->v = v.head<3>();
+      pose->w = v.tail<3>();
+    }
+    const BlockBodies pair{bodies[p0.a], bodies[p0.b], a, b};
     // the brake's torque about the centres of mass (its impulse acts in the
     // contact plane, below a resting box's centre) turns the bodies, which
     // the normal rows then undo, and undoing it moves the patch's centre
@@ -138,10 +159,15 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     // 0.010-0.016 rad/s (16 to 10 sub-steps); braked before them only, a
     // box held on a slope crept 4.3 mm in 2 s
     Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
+    // a patch held at its cone in positions has spent that friction already
+    // (XpbdPatch::clamped): the brakes stay within the limit with it
+    if (patch.clamped) spent = Vec3(patch.t1.dot(patch.lambda_t), patch.t2.dot(patch.lambda_t), 0.0) * inv_h;
     const Vec3 n = p0.n;
-    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, pair.A, pair.B, &spent, &braked);
-    if (!deferred[k]) SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], bodies, pair, *points);
-    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, pair.A, pair.B, &spent, &braked);
+    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &spent, &braked);
+    if (!deferred[k]) {
+      SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], articulation, bodies, pair, *points);
+    }
+    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &spent, &braked);
     // the sub-step's impulses for the report, once at its end: a point's
     // push lambda_n moved the bodies as the velocity impulse lambda_n / h
     // does, and the patch's friction (its positional multiplier / h and the

@@ -30,11 +30,13 @@ namespace contactsim {
 // `restitution_threshold` (m/s), except in the blocks marked in `deferred`
 // (xpbd_restitution.h, after this pass); `patches` and `caches` are parallel
 // to `blocks`; `predicted` holds the bodies' v~ and w~ (before the position
-// solve).
+// solve); the jointed blocks' impulses go to their bodies' components
+// (`articulation`).
 void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
                                 const std::vector<char>& deferred, int begin, int end,
                                 const std::vector<XpbdPatch>& patches,
                                 std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
-                                std::vector<SoftBody>& bodies, std::vector<XpbdPoint>* points);
+                                const XpbdArticulation& articulation, std::vector<SoftBody>& bodies,
+                                std::vector<XpbdPoint>* points);
 
 }  // namespace contactsim
