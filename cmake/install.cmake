@@ -17,7 +17,7 @@ install(TARGETS contactsim_client contactsim_signature contactsim_lcmtypes conta
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT client
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/clients/cpp/include/contactsim ${PROJECT_SOURCE_DIR}/protocol/include/contactsim
-                  ${LCMTYPES_CPP_DIR}/contactsim ${PROTOCOL_CPP_DIR}/contactsim
+                  ${LCMTYPES_CPP_DIR}/contactsim ${LCMTYPES_CPP_DIR}/drake ${PROTOCOL_CPP_DIR}/contactsim
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT client)
 install(EXPORT contactsimTargets NAMESPACE contactsim:: DESTINATION ${CONTACTSIM_CMAKE_DIR} COMPONENT client)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/contactsimConfig.cmake.in

@@ -22,16 +22,19 @@ CONSTANT = re.compile(r"^const\s+\w+\s+([A-Za-z_]\w*)\s*=\s*(-?\w+)$")
 
 class LcmStruct:
     """One .lcm file: ``name``, ``fields`` [(type, name, [dims])] and
-    ``constants`` [(name, int value)], both in declaration order."""
+    ``constants`` [(name, int value)], both in declaration order, and its
+    ``package`` (the C++ namespace of the generated class)."""
 
-    def __init__(self, name, fields, constants):
+    def __init__(self, name, fields, constants, package="contactsim"):
         self.name, self.fields, self.constants = name, fields, constants
+        self.package = package
 
 
 def parse_lcm(path):
     """The LcmStruct of one .lcm file; raises ValueError on a statement it cannot read."""
     text = re.sub(r"//[^\n]*|/\*.*?\*/", "", Path(path).read_text(), flags=re.S)
     name = re.search(r"\bstruct\s+(\w+)", text).group(1)
+    package = re.search(r"\bpackage\s+(\w+)\s*;", text)
     body = text[text.index("{") + 1:text.rindex("}")]
     fields, constants = [], []
     for stmt in (s.strip() for s in body.split(";")):
@@ -48,7 +51,7 @@ def parse_lcm(path):
             raise ValueError("%s: cannot parse field %r" % (path, stmt))
         dims = re.findall(r"\[\s*([^\]\s]+)\s*\]", m.group(3))
         fields.append((m.group(1).split(".")[-1], m.group(2), dims))  # package.type -> type
-    return LcmStruct(name, fields, constants)
+    return LcmStruct(name, fields, constants, package.group(1) if package else "contactsim")
 
 
 def parse_folder(folder):

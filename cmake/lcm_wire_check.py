@@ -140,10 +140,10 @@ bool Check(const void* data, int size, std::string* why);
 
 def main():
     out_path, files = sys.argv[1], sys.argv[2:]
-    structs = {}
+    structs, packages = {}, {}
     for f in sorted(files):
         s = parse_lcm(f)
-        structs[s.name] = s.fields
+        structs[s.name], packages[s.name] = s.fields, s.package
     out = [PREAMBLE]
     for name in structs:
         out.append(f"inline bool CheckFields_{name}(Reader& r);")
@@ -158,16 +158,17 @@ def main():
     out.append("\n}  // namespace wire\n}  // namespace contactsim\n")
     # the specialisations need the generated types for their hashes
     for name in structs:
-        out.append(f'#include "contactsim/{name}.hpp"')
+        out.append(f'#include "{packages[name]}/{name}.hpp"')
     out.append("\nnamespace contactsim {\nnamespace wire {")
     for name in structs:
+        cls = f"::{packages[name]}::{name}"
         out.append(f"""
 template <>
-inline bool Check<{name}>(const void* data, int size, std::string* why) {{
+inline bool Check<{cls}>(const void* data, int size, std::string* why) {{
   Reader r(data, size, why);
   int64_t hash = 0;
   if (!r.Int(8, &hash, "fingerprint")) return false;
-  if (hash != {name}::getHash()) return r.Fail("fingerprint is not {name}'s");
+  if (hash != {cls}::getHash()) return r.Fail("fingerprint is not {name}'s");
   if (!CheckFields_{name}(r)) return false;
   if (r.left() != 0) return r.Fail(std::to_string(r.left()) + " bytes after the end of {name}");
   return true;

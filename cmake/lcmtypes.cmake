@@ -6,7 +6,10 @@
 # reply codes are reply_t's) becomes contactsim/protocol.hpp in
 # ${PROTOCOL_CPP_DIR} (target contactsim_protocol, no LCM: the engine's Status
 # takes its codes from it), and a copy beside the Python modules.
+# Drake's arm-driver messages (lcmtypes/drake/*.lcm, package drake, outside the
+# protocol table; docs/protocol.md) land beside them in drake/ and are checked alike.
 file(GLOB LCM_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
+file(GLOB DRAKE_LCM_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lcmtypes/drake/*.lcm)
 set(LCMTYPES_CPP_DIR ${CMAKE_BINARY_DIR}/lcmtypes/cpp)
 set(LCMTYPES_PY_DIR ${CMAKE_BINARY_DIR}/lcmtypes/python)
 set(LCM_OUTPUTS)
@@ -15,12 +18,16 @@ foreach(f ${LCM_FILES})
   list(APPEND LCM_OUTPUTS ${LCMTYPES_CPP_DIR}/contactsim/${name}.hpp
                           ${LCMTYPES_PY_DIR}/contactsim/${name}.py)
 endforeach()
+foreach(f ${DRAKE_LCM_FILES})
+  get_filename_component(name ${f} NAME_WE)
+  list(APPEND LCM_OUTPUTS ${LCMTYPES_CPP_DIR}/drake/${name}.hpp ${LCMTYPES_PY_DIR}/drake/${name}.py)
+endforeach()
 add_custom_command(
   OUTPUT ${LCM_OUTPUTS}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${LCMTYPES_CPP_DIR} ${LCMTYPES_PY_DIR}
-  COMMAND ${LCM_GEN} --cpp --cpp-hpath ${LCMTYPES_CPP_DIR} --python --ppath ${LCMTYPES_PY_DIR} ${LCM_FILES}
-  DEPENDS ${LCM_FILES}
-  COMMENT "lcm-gen: C++ and Python code for lcmtypes/*.lcm")
+  COMMAND ${LCM_GEN} --cpp --cpp-hpath ${LCMTYPES_CPP_DIR} --python --ppath ${LCMTYPES_PY_DIR} ${LCM_FILES} ${DRAKE_LCM_FILES}
+  DEPENDS ${LCM_FILES} ${DRAKE_LCM_FILES}
+  COMMENT "lcm-gen: C++ and Python code for lcmtypes/*.lcm and lcmtypes/drake/*.lcm")
 # wire_check.hpp: bounds checks of every type's encoding, run before a
 # generated decoder sees bytes from the network (cmake/lcm_wire_check.py).
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
@@ -28,8 +35,8 @@ set(LCM_WIRE_CHECK ${LCMTYPES_CPP_DIR}/contactsim/wire_check.hpp)
 add_custom_command(
   OUTPUT ${LCM_WIRE_CHECK}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${LCMTYPES_CPP_DIR}/contactsim
-  COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${LCM_WIRE_CHECK} ${LCM_FILES}
-  DEPENDS ${LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${PROJECT_SOURCE_DIR}/cmake/lcm_schema.py
+  COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${LCM_WIRE_CHECK} ${LCM_FILES} ${DRAKE_LCM_FILES}
+  DEPENDS ${LCM_FILES} ${DRAKE_LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/lcm_wire_check.py ${PROJECT_SOURCE_DIR}/cmake/lcm_schema.py
   COMMENT "lcm_wire_check.py: bounds checks for lcmtypes/*.lcm")
 set(PROTOCOL_TABLE ${PROJECT_SOURCE_DIR}/lcmtypes/protocol.toml)
 set(PROTOCOL_CPP_DIR ${CMAKE_BINARY_DIR}/lcmtypes/protocol)
