@@ -5,6 +5,7 @@
 #include "service/contact/contact_method_registry.h"
 #include "service/physics/validation.h"
 #include "service/scene/proto_text.h"
+#include "service/server/arm_driver/arm_driver_config.h"
 
 namespace contactsim {
 namespace {
@@ -40,11 +41,23 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
   if (!(st = MakeContactMethod(config->contact_method(), params, &method)).ok()) {
     return Status::InvalidArgument(at("contact_method") + st.message());
   }
+  if (config->has_arm_driver()) {
+    ArmDriverConfig arm;
+    if (!(st = ReadArmDriverConfig(config->arm_driver(), options.prefix, &arm, &field)).ok()) {
+      const auto* block = tree.GetTreeForNested(config->GetDescriptor()->FindFieldByName("arm_driver"), -1);
+      return Status::InvalidArgument(FieldLocation(path, block, config->arm_driver(), field) + ": arm_driver: " +
+                                     st.message());
+    }
+  }
   return Status::Ok();
 }
 
 Status MakeServerSetup(const proto::ServerConfig& config, const std::string& config_path,
                        const std::string& scene_override, ServerSetup* setup) {
+  if (config.has_arm_driver()) {  // checked by LoadServerConfig; nothing serves it in this release
+    return Status::FailedPrecondition(config_path + ": arm_driver: this contactsim-server does not serve Drake's "
+                                      "arm-driver protocol in this release; remove the arm_driver block to start it");
+  }
   ServerSetup s;
   ReadServerOptions(config, &s.options);  // checked by LoadServerConfig
   if (!config.auth_key_file().empty()) {

@@ -1,0 +1,80 @@
+#include "service/server/arm_driver/arm_driver_config.h"
+
+#include <cmath>
+
+namespace contactsim {
+namespace {
+
+// Drake's iiwa driver publishes its status at 200 Hz; a faster rate than one
+// message per millisecond is more than any arm interface offers (the
+// KUKA FRI and the Franka control loop both run at 1 kHz at most).
+constexpr double kDefaultStatusRateHz = 200;
+constexpr double kMaxStatusRateHz = 1000;
+
+std::string ProtocolPrefix(const std::string& protocol) { return protocol == "iiwa" ? "IIWA" : "PANDA"; }
+
+// An LCM channel name the shell and lcm-spy show as is: printable, no spaces.
+bool PlainChannelName(const std::string& name) {
+  if (name.empty() || name.size() > 255) return false;
+  for (char c : name) {
+    if (c <= ' ' || c > '~') return false;
+  }
+  return true;
+}
+
+Status CheckChannel(const std::string& name, const std::string& server_prefix, const char* which) {
+  if (!PlainChannelName(name)) {
+    return Status::InvalidArgument(std::string(which) + " must be 1 to 255 printable characters without spaces, got \"" +
+                                   name + "\"");
+  }
+  if (name.rfind(server_prefix + "_", 0) == 0) {
+    return Status::InvalidArgument(std::string(which) + " \"" + name + "\" is among the server's own channels (" +
+                                   server_prefix + "_*); choose a name outside them");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+std::string DefaultArmCommandChannel(const std::string& protocol) { return ProtocolPrefix(protocol) + "_COMMAND"; }
+std::string DefaultArmStatusChannel(const std::string& protocol) { return ProtocolPrefix(protocol) + "_STATUS"; }
+
+Status ReadArmDriverConfig(const proto::ArmDriver& block, const std::string& server_prefix, ArmDriverConfig* out,
+                           std::string* field) {
+  ArmDriverConfig c;
+  c.protocol = block.protocol();
+  if (c.protocol != "iiwa" && c.protocol != "panda") {
+    *field = "protocol";
+    return Status::InvalidArgument("protocol must be \"iiwa\" or \"panda\", got \"" + c.protocol + "\"");
+  }
+  c.model = block.model();
+  if (c.model.empty()) {
+    *field = "model";
+    return Status::InvalidArgument("model must name the loaded model the driver moves");
+  }
+  c.command_channel = block.has_command_channel() ? block.command_channel() : DefaultArmCommandChannel(c.protocol);
+  c.status_channel = block.has_status_channel() ? block.status_channel() : DefaultArmStatusChannel(c.protocol);
+  Status st = CheckChannel(c.command_channel, server_prefix, "command_channel");
+  if (!st.ok()) {
+    *field = "command_channel";
+    return st;
+  }
+  if (!(st = CheckChannel(c.status_channel, server_prefix, "status_channel")).ok()) {
+    *field = "status_channel";
+    return st;
+  }
+  if (c.status_channel == c.command_channel) {
+    *field = "status_channel";
+    return Status::InvalidArgument("status_channel and command_channel are both \"" + c.status_channel +
+                                   "\"; the driver's status and its commands need channels of their own");
+  }
+  c.status_rate_hz = block.has_status_rate_hz() ? block.status_rate_hz() : kDefaultStatusRateHz;
+  if (!std::isfinite(c.status_rate_hz) || c.status_rate_hz <= 0 || c.status_rate_hz > kMaxStatusRateHz) {
+    *field = "status_rate_hz";
+    return Status::InvalidArgument("status_rate_hz must be in (0, 1000] Hz, got " + std::to_string(c.status_rate_hz));
+  }
+  *out = c;
+  return Status::Ok();
+}
+
+}  // namespace contactsim

@@ -1,0 +1,33 @@
+// The server config's arm_driver block (service/proto/config.proto): which
+// loaded model answers Drake's arm-driver protocol, on which channels and at
+// which status rate (docs/configuration.md, "Arm driver").
+#pragma once
+
+#include <string>
+
+#include "service/physics/status.h"
+#include "service/proto/config.pb.h"
+
+namespace contactsim {
+
+struct ArmDriverConfig {
+  std::string protocol;         // "iiwa" (lcmt_iiwa_*) or "panda" (lcmt_panda_*)
+  std::string model;            // name of the loaded model driven
+  std::string command_channel;  // full LCM channel name, no server prefix
+  std::string status_channel;
+  double status_rate_hz = 0;    // status messages per second of simulated time
+};
+
+// The protocol's default channel names, those of Drake's drivers:
+// IIWA_COMMAND / IIWA_STATUS and PANDA_COMMAND / PANDA_STATUS.
+std::string DefaultArmCommandChannel(const std::string& protocol);
+std::string DefaultArmStatusChannel(const std::string& protocol);
+
+// Checks the block and fills *out, absent fields taking Drake's defaults. On
+// a bad value returns InvalidArgument and names the block's field in *field.
+// server_prefix is the server's channel prefix: the driver's channels must
+// not be among the server's own <prefix>_* channels.
+Status ReadArmDriverConfig(const proto::ArmDriver& block, const std::string& server_prefix, ArmDriverConfig* out,
+                           std::string* field);
+
+}  // namespace contactsim
