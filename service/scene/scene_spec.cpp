@@ -90,7 +90,7 @@ Eigen::Vector4d RandomOrientation(std::mt19937_64& rng) {
 Status ToSceneJoint(const proto::Joint& j, const std::string& where, SceneJoint* out) {
   SceneJoint sj;
   if (!ParseJointKind(j.kind(), &sj.settings.kind)) {
-    return Status::InvalidArgument(where + ": kind must be one of distance, ball, hinge, fixed, got \"" + j.kind() +
+    return Status::InvalidArgument(where + ": kind must be one of distance, ball, hinge, fixed, prismatic, got \"" + j.kind() +
                                    "\"");
   }
   if (j.body_a().empty()) return Status::InvalidArgument(where + ": body_a must name a body");
@@ -105,6 +105,8 @@ Status ToSceneJoint(const proto::Joint& j, const std::string& where, SceneJoint*
     }
     sj.settings.limits = std::make_pair(j.limits().lower(), j.limits().upper());
   }
+  sj.settings.damping = j.damping();
+  sj.settings.friction = j.friction();
   *out = std::move(sj);
   return Status::Ok();
 }

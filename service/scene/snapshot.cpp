@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -187,11 +188,14 @@ void SaveJoint(const Joint& j, proto::SnapshotJoint* out) {
   out->set_limited(j.limited);
   out->set_lower(j.lower);
   out->set_upper(j.upper);
+  // only when set, so that a snapshot of a world without them keeps its bytes
+  if (j.damping != 0.0) out->set_damping(j.damping);
+  if (j.friction != 0.0) out->set_friction(j.friction);
 }
 
 Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
-  if (p.kind() < 0 || p.kind() > static_cast<int32_t>(JointKind::kFixed)) {
-    return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) + " kind must be in [0, 3], got " +
+  if (p.kind() < 0 || p.kind() > static_cast<int32_t>(JointKind::kPrismatic)) {
+    return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) + " kind must be in [0, 4], got " +
                                    std::to_string(p.kind()));
   }
   j->id = p.id();
@@ -210,6 +214,12 @@ Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
   j->limited = p.limited();
   j->lower = p.lower();
   j->upper = p.upper();
+  if (!std::isfinite(p.damping()) || p.damping() < 0.0 || !std::isfinite(p.friction()) || p.friction() < 0.0) {
+    return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) +
+                                   " damping and friction must be finite and >= 0");
+  }
+  j->damping = p.damping();
+  j->friction = p.friction();
   return Status::Ok();
 }
 

@@ -267,8 +267,9 @@ Status DecodeJointCommand(const joint_cmd_t& m, Command* cmd) {
     case joint_cmd_t::BALL: s.kind = JointKind::kBall; break;
     case joint_cmd_t::HINGE: s.kind = JointKind::kHinge; break;
     case joint_cmd_t::FIXED: s.kind = JointKind::kFixed; break;
+    case joint_cmd_t::PRISMATIC: s.kind = JointKind::kPrismatic; break;
     default:
-      return Status::InvalidArgument("kind must be one of DISTANCE=1, BALL=2, HINGE=3, FIXED=4, got " +
+      return Status::InvalidArgument("kind must be one of DISTANCE=1, BALL=2, HINGE=3, FIXED=4, PRISMATIC=5, got " +
                                      std::to_string(m.kind));
   }
   s.body_a = m.body_a;
@@ -277,6 +278,8 @@ Status DecodeJointCommand(const joint_cmd_t& m, Command* cmd) {
   if (m.has_axis) s.axis = V3(m.axis);
   if (m.has_length) s.length = m.length;
   if (m.has_limits) s.limits = std::make_pair(m.lower, m.upper);
+  if (m.has_damping) s.damping = m.damping;
+  if (m.has_friction) s.friction = m.friction;
   return CheckJointSettings(s);
 }
 

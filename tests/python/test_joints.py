@@ -113,6 +113,32 @@ def test_hinge_with_limits_and_a_world_weld(client):
     np.testing.assert_allclose(s.bodies[crate].position, (3, 0, 3), atol=1e-9)
 
 
+def test_prismatic_slider_rests_on_its_limit_and_joint_friction_holds(client):
+    """A carriage on a vertical slider falls 0.3 m onto its lower limit and
+    rests there (a one-sided stop: no bounce, no sinking); a second one, its
+    joint friction above its weight, does not move; a damped hinge swings
+    down more slowly than an undamped one."""
+    client.reset()
+    carriage = client.add_box((0.1, 0.1, 0.1), position=(0, 0, 1))
+    # the slide is the world's motion relative to the carriage along the
+    # axis: with the axis down it is the carriage's height change
+    client.add_joint("prismatic", carriage, None, anchor=(0, 0, 1), axis=(0, 0, -1), limits=(-0.3, 0.5))
+    held = client.add_box((0.1, 0.1, 0.1), position=(2, 0, 1))
+    client.add_joint("prismatic", held, None, anchor=(2, 0, 1), axis=(0, 0, 1), friction=1e4)
+    free = client.add_sphere(0.05, position=(-2, 0, 1))
+    damped = client.add_sphere(0.05, position=(-4, 0, 1))
+    client.add_joint("hinge", free, None, anchor=(-1, 0, 1), axis=(0, 1, 0))
+    client.add_joint("hinge", damped, None, anchor=(-3, 0, 1), axis=(0, 1, 0), damping=0.5)
+    client.step(48)  # 0.2 s: both pendulums still falling from the horizontal
+    s = client.state()
+    assert s.bodies[damped].position[2] > s.bodies[free].position[2] + 1e-3
+    client.step(192)
+    s = client.state()
+    np.testing.assert_allclose(s.bodies[carriage].position, (0, 0, 0.7), atol=1e-6)
+    assert abs(s.bodies[carriage].linear_velocity[2]) < 1e-6
+    np.testing.assert_allclose(s.bodies[held].position, (2, 0, 1), atol=1e-9)
+
+
 BAD = [
     ("unknown_body_a", lambda c, b: c.add_joint("ball", 999, None, anchor=(0, 0, 1)),
      ["body_a", "999"], reply_t.NOT_FOUND),
@@ -131,6 +157,15 @@ BAD = [
     ("swapped_limits", lambda c, b: c.add_joint("hinge", b, None, anchor=(0, 0, 1), axis=(0, 1, 0),
                                                 limits=(0.5, -0.5)),
      ["lower", "upper"], reply_t.INVALID_ARGUMENT),
+    ("prismatic_zero_axis", lambda c, b: c.add_joint("prismatic", b, None, anchor=(0, 0, 1), axis=(0, 0, 0)),
+     ["axis"], reply_t.INVALID_ARGUMENT),
+    ("prismatic_swapped_limits", lambda c, b: c.add_joint("prismatic", b, None, anchor=(0, 0, 1), axis=(1, 0, 0),
+                                                          limits=(2.0, 1.0)),
+     ["lower", "upper"], reply_t.INVALID_ARGUMENT),
+    ("negative_damping", lambda c, b: c.add_joint("hinge", b, None, anchor=(0, 0, 2), axis=(0, 1, 0), damping=-1.0),
+     ["damping", "-1"], reply_t.INVALID_ARGUMENT),
+    ("ball_friction", lambda c, b: c.add_joint("ball", b, None, anchor=(0, 0, 2), friction=0.5),
+     ["friction", "ball"], reply_t.INVALID_ARGUMENT),
     ("remove_unknown", lambda c, b: c.remove_joint(999), ["999"], reply_t.NOT_FOUND),
 ]
 

@@ -44,6 +44,37 @@ TEST(SceneJoints, JointsAreBuiltFromNamesAndWorldAnchors) {
   EXPECT_TRUE(hinge.anchor_a.isApprox(Vec3(-0.4, 0, 0)));
 }
 
+// Verifies that a prismatic joint of a scene file takes its axis, limits
+// (m), damping and friction.
+TEST(SceneJoints, PrismaticJointsTakeLimitsDampingAndFriction) {
+  constexpr char kSlider[] = R"pb(
+bodies { name: "carriage" box { half_extents { x: 0.1 y: 0.1 z: 0.1 } } position { z: 1 } }
+joints {
+  kind: "prismatic"
+  body_a: "carriage"
+  anchor { z: 1 }
+  axis { x: 2 }
+  limits { lower: -0.5 upper: 1.5 }
+  damping: 3
+  friction: 0.5
+}
+)pb";
+  SceneSpec scene;
+  ASSERT_TRUE(ParseSceneText(kSlider, "slider.pbtxt", &scene).ok());
+  World world;
+  const Status st = BuildWorld(scene, &world);
+  ASSERT_TRUE(st.ok()) << st.message();
+  ASSERT_EQ(world.joints().size(), 1u);
+  const Joint& j = world.joints()[0];
+  EXPECT_EQ(j.kind, JointKind::kPrismatic);
+  EXPECT_TRUE(j.axis_a.isApprox(Vec3::UnitX()));
+  EXPECT_TRUE(j.limited);
+  EXPECT_EQ(j.lower, -0.5);
+  EXPECT_EQ(j.upper, 1.5);
+  EXPECT_EQ(j.damping, 3.0);
+  EXPECT_EQ(j.friction, 0.5);
+}
+
 // Verifies that a joint naming a missing or ambiguous body, or with a bad
 // field, is refused with the file, line and field, and the world is left as
 // it was.
@@ -61,7 +92,13 @@ TEST(SceneJoints, BadJointsNameLineAndFieldAndLeaveTheWorld) {
       {"joints { kind: \"distance\" body_a: \"solo\" length: 0 }",
        "s.pbtxt:3: joints[0]: length must be a finite number > 0, got 0"},
       {"joints { kind: \"slider\" body_a: \"solo\" }",
-       "s.pbtxt:3: joints[0]: kind must be one of distance, ball, hinge, fixed, got \"slider\""},
+       "s.pbtxt:3: joints[0]: kind must be one of distance, ball, hinge, fixed, prismatic, got \"slider\""},
+      {"joints { kind: \"prismatic\" body_a: \"solo\" axis { x: 1 } limits { lower: 1 upper: -1 } }",
+       "s.pbtxt:3: joints[0]: limits must have lower <= upper, got lower 1 > upper -1"},
+      {"joints { kind: \"prismatic\" body_a: \"solo\" axis { x: 1 } damping: -2 }",
+       "s.pbtxt:3: joints[0]: damping must be a finite number >= 0, got -2"},
+      {"joints { kind: \"ball\" body_a: \"solo\" friction: 1 }",
+       "s.pbtxt:3: joints[0]: friction applies to hinge and prismatic joints only, not ball (got 1)"},
       {"joints { kind: \"hinge\" body_a: \"solo\" axis { } }",
        "s.pbtxt:3: joints[0]: axis must be a finite nonzero vector, got (0, 0, 0)"},
   };

@@ -91,6 +91,62 @@ TEST_F(SimServerJointsTest, BadJointCommandsAreRejectedAndLeaveTheWorld) {
   EXPECT_EQ(Send(Joint(joint_cmd_t::BALL, a, 0, Vec3(0, 0, 2))).ids[0], 1);
 }
 
+// Verifies that a PRISMATIC joint with limits (m), damping and friction is
+// added with them, and that its garbage (no axis, inverted or NaN limits,
+// negative damping or friction, friction on a ball joint) is refused with a
+// message naming the field and the value, the world left as it was.
+TEST_F(SimServerJointsTest, PrismaticJointsCarryLimitsDampingAndFriction) {
+  const int64_t a = Send(Sphere(0.1, Vec3(0, 0, 1))).ids[0];
+  joint_cmd_t slider = Joint(joint_cmd_t::PRISMATIC, a, 0, Vec3(0, 0, 1));
+  const uint64_t before = HashWorldState(server_.world());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Case {
+    joint_cmd_t cmd;
+    const char* says;
+  };
+  std::vector<Case> cases;
+  cases.push_back({slider, "axis is required for a prismatic joint"});
+  slider.has_axis = true;
+  slider.axis[2] = 1.0;
+  slider.has_limits = true;
+  slider.lower = 0.2;
+  slider.upper = -0.2;
+  cases.push_back({slider, "limits must have lower <= upper, got lower 0.2 > upper -0.2"});
+  slider.upper = nan;
+  cases.push_back({slider, "limits.upper must be a finite number, got nan"});
+  slider.lower = -0.5;
+  slider.upper = 2.5;
+  slider.has_damping = true;
+  slider.damping = -1.0;
+  cases.push_back({slider, "damping must be a finite number >= 0, got -1"});
+  slider.damping = 3.0;
+  slider.has_friction = true;
+  slider.friction = nan;
+  cases.push_back({slider, "friction must be a finite number >= 0, got nan"});
+  joint_cmd_t ball = Joint(joint_cmd_t::BALL, a, 0, Vec3(0, 0, 2));
+  ball.has_friction = true;
+  ball.friction = 1.0;
+  cases.push_back({ball, "friction applies to hinge and prismatic joints only, not ball"});
+  for (const Case& c : cases) {
+    const reply_t r = Send(c.cmd);
+    EXPECT_EQ(r.code, reply_t::INVALID_ARGUMENT) << r.message;
+    EXPECT_NE(r.message.find(c.says), std::string::npos) << r.message;
+    EXPECT_EQ(HashWorldState(server_.world()), before) << c.says;
+  }
+  slider.friction = 0.5;
+  const reply_t r = Send(slider);
+  ASSERT_EQ(r.code, reply_t::OK) << r.message;
+  EXPECT_EQ(r.message, "added prismatic joint 1");
+  const contactsim::Joint* j = server_.world().FindJoint(r.ids[0]);
+  ASSERT_NE(j, nullptr);
+  EXPECT_EQ(j->kind, JointKind::kPrismatic);
+  EXPECT_TRUE(j->limited);
+  EXPECT_EQ(j->lower, -0.5);
+  EXPECT_EQ(j->upper, 2.5);
+  EXPECT_EQ(j->damping, 3.0);
+  EXPECT_EQ(j->friction, 0.5);
+}
+
 // Verifies that an undecodable joint payload gets a DECODE_ERROR reply.
 TEST_F(SimServerJointsTest, UndecodableJointPayloadGetsDecodeError) {
   const uint8_t garbage[] = {1, 2, 3};

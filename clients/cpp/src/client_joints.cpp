@@ -27,6 +27,10 @@ Result<int64_t> Client::AddJoint(JointType type, int64_t body_a, int64_t body_b,
     command.lower = options.limits->first;
     command.upper = options.limits->second;
   }
+  command.has_damping = options.damping.has_value();
+  command.damping = options.damping.value_or(0.0);
+  command.has_friction = options.friction.has_value();
+  command.friction = options.friction.value_or(0.0);
   return WithNewId(Send(command));
 }
 

@@ -218,14 +218,16 @@ int main(int argc, char** argv) {
       {"distance", contactsim::JointType::kDistance},
       {"ball", contactsim::JointType::kBall},
       {"hinge", contactsim::JointType::kHinge},
-      {"fixed", contactsim::JointType::kFixed}};
+      {"fixed", contactsim::JointType::kFixed},
+      {"prismatic", contactsim::JointType::kPrismatic}};
   contactsim::JointType joint_type = contactsim::JointType::kBall;
   int64_t body_a = 0, body_b = 0;
   std::array<double, 3> anchor{0, 0, 0}, axis{0, 0, 0};
   std::optional<double> length;
   std::vector<double> limits;
+  std::optional<double> damping, friction;
   CLI::App* joint_add = joint->add_subcommand("add", "add a joint; prints its id");
-  joint_add->add_option("kind", joint_type, "distance | ball | hinge | fixed")
+  joint_add->add_option("kind", joint_type, "distance | ball | hinge | fixed | prismatic")
       ->required()
       ->transform(CLI::CheckedTransformer(joint_types, CLI::ignore_case));
   joint_add->add_option("body_a", body_a, "body id")->required();
@@ -234,16 +236,20 @@ int main(int argc, char** argv) {
   joint_add->add_option("--anchor,-a", anchor,
                         "m, world: the joint point (distance: the point on body_b)")
       ->required();
-  CLI::Option* axis_opt = joint_add->add_option("--axis", axis, "world, hinge only");
+  CLI::Option* axis_opt = joint_add->add_option("--axis", axis, "world, hinge and prismatic");
   joint_add->add_option("--length,-l", length, "m, distance only (default: current)");
-  joint_add->add_option("--limits", limits, "rad: lower upper, hinge only")
+  joint_add->add_option("--limits", limits, "lower upper: hinge (rad) and prismatic (m)")
       ->expected(2);
+  joint_add->add_option("--damping", damping, "N m s/rad (hinge) or N s/m (prismatic)");
+  joint_add->add_option("--friction", friction, "N m (hinge) or N (prismatic), Coulomb");
   joint_add->callback([&] {
     run = [&](Client& client) {
       contactsim::JointOptions joint_options;
       if (axis_opt->count() > 0) joint_options.axis = ToVector(axis);
       joint_options.length = length;
       if (limits.size() == 2) joint_options.limits = std::make_pair(limits[0], limits[1]);
+      joint_options.damping = damping;
+      joint_options.friction = friction;
       return ExitCode(client
                           .AddJoint(joint_type, body_a, body_b, ToVector(anchor),
                                     joint_options)

@@ -79,16 +79,19 @@ def _joint_parser(sub):
     a.add_argument("body_b", type=int, nargs="?", default=0, help="body id, or 0 for the world")
     a.add_argument("--anchor", "-a", type=float, nargs=3, required=True, metavar=("X", "Y", "Z"),
                    help="m, world: the joint point (distance: the point on body_b)")
-    a.add_argument("--axis", type=float, nargs=3, metavar=("X", "Y", "Z"), help="world, hinge only")
+    a.add_argument("--axis", type=float, nargs=3, metavar=("X", "Y", "Z"), help="world, hinge and prismatic")
     a.add_argument("--length", "-l", type=float, help="m, distance only (default: current)")
-    a.add_argument("--limits", type=float, nargs=2, metavar=("LOWER", "UPPER"), help="rad, hinge only")
+    a.add_argument("--limits", type=float, nargs=2, metavar=("LOWER", "UPPER"),
+                   help="hinge (rad) and prismatic (m)")
+    a.add_argument("--damping", type=float, help="N m s/rad (hinge) or N s/m (prismatic)")
+    a.add_argument("--friction", type=float, help="N m (hinge) or N (prismatic), Coulomb")
     j.add_parser("remove", help="remove a joint").add_argument("id", type=int)
 
 
 def _run_joint(c, a):
     if a.joint_cmd == "add":
         print(c.add_joint(a.kind, a.body_a, a.body_b or None, anchor=a.anchor, axis=a.axis,
-                          length=a.length, limits=a.limits))
+                          length=a.length, limits=a.limits, damping=a.damping, friction=a.friction))
         return None
     return c.remove_joint(a.id)
 

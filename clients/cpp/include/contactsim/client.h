@@ -102,13 +102,16 @@ struct BodyOptions {
 };
 
 // Joint kinds, as joint_cmd_t codes (docs/physics.md, "Joints").
-enum class JointType : int8_t { kDistance = 1, kBall = 2, kHinge = 3, kFixed = 4 };
+enum class JointType : int8_t { kDistance = 1, kBall = 2, kHinge = 3, kFixed = 4, kPrismatic = 5 };
 
 // The optional fields of a new joint. World frame, at the moment of creation.
 struct JointOptions {
-  std::optional<Eigen::Vector3d> axis;  // hinge only, required there
+  std::optional<Eigen::Vector3d> axis;  // hinge and prismatic, required there
   std::optional<double> length;         // m, distance only; unset: the current distance
-  std::optional<std::pair<double, double>> limits;  // rad (lower, upper), hinge only
+  // (lower, upper): hinge (rad) and prismatic (m, along the axis); one-sided stops
+  std::optional<std::pair<double, double>> limits;
+  std::optional<double> damping;   // N m s/rad (hinge) or N s/m (prismatic), >= 0; unset: 0
+  std::optional<double> friction;  // N m (hinge) or N (prismatic), >= 0, Coulomb; unset: 0
 };
 
 class Client {

@@ -5,7 +5,7 @@ from .protowire import parse
 
 SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane"}
 MOTIONS = {0: "dynamic", 1: "static", 2: "kinematic"}
-JOINT_KINDS = {0: "distance", 1: "ball", 2: "hinge", 3: "fixed"}
+JOINT_KINDS = {0: "distance", 1: "ball", 2: "hinge", 3: "fixed", 4: "prismatic"}
 
 _FACE = {1: ("normal", "double", True), 3: ("vertices", "int", True)}
 _HULL = {1: ("vertices", "double", True), 2: ("faces", _FACE, True)}
