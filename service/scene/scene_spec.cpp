@@ -27,6 +27,49 @@ Material ToMaterial(const proto::Material& m) {
   return out;
 }
 
+Eigen::Vector4d ToWxyz(const proto::Quaternion& q) { return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()); }
+
+// A part's shape fields; an unset shape stays kCount, which CreateBody
+// refuses naming the part.
+ShapePart ToShapePart(const proto::Part& p) {
+  ShapePart part;
+  switch (p.shape_case()) {
+    case proto::Part::kSphere:
+      part.type = ShapeType::kSphere;
+      part.radius = p.sphere().radius();
+      break;
+    case proto::Part::kBox:
+      part.type = ShapeType::kBox;
+      part.half_extents = ToVec3(p.box().half_extents());
+      break;
+    case proto::Part::kCapsule:
+      part.type = ShapeType::kCapsule;
+      part.radius = p.capsule().radius();
+      part.half_length = p.capsule().half_length();
+      break;
+    case proto::Part::kConvex:
+      part.type = ShapeType::kConvex;
+      for (const auto& v : p.convex().points()) part.points.push_back(ToVec3(v));
+      break;
+    case proto::Part::SHAPE_NOT_SET: part.type = ShapeType::kCount; break;
+  }
+  part.position = ToVec3(p.position());
+  const Eigen::Vector4d q = ToWxyz(p.orientation());
+  part.orientation = Quat(q[0], q[1], q[2], q[3]);
+  return part;
+}
+
+// The explicit mass properties, when the file gives them.
+void ToMassProperties(const proto::Body& b, BodySettings* s) {
+  if (b.has_center_of_mass()) s->center_of_mass = ToVec3(b.center_of_mass());
+  if (b.has_inertia()) {
+    const proto::Inertia& i = b.inertia();
+    Mat3 I;
+    I << i.ixx(), i.ixy(), i.ixz(), i.ixy(), i.iyy(), i.iyz(), i.ixz(), i.iyz(), i.izz();
+    s->inertia = I;
+  }
+}
+
 BodySettings ToBodySettings(const proto::Body& b, const Material& default_material) {
   BodySettings s;
   s.name = b.name();
@@ -53,6 +96,10 @@ BodySettings ToBodySettings(const proto::Body& b, const Material& default_materi
       s.shape = ShapeType::kConvex;
       for (const auto& p : b.convex().points()) s.points.push_back(ToVec3(p));
       break;
+    case proto::Body::kCompound:
+      s.shape = ShapeType::kCompound;
+      for (const proto::Part& p : b.compound().parts()) s.parts.push_back(ToShapePart(p));
+      break;
     case proto::Body::SHAPE_NOT_SET:
       s.shape = ShapeType::kCount;  // rejected by CreateBody
       break;
@@ -68,6 +115,7 @@ BodySettings ToBodySettings(const proto::Body& b, const Material& default_materi
   if (b.has_density()) s.density = b.density();
   s.fixed = b.fixed();
   s.kinematic = b.kinematic();
+  ToMassProperties(b, &s);
   const Material m = b.has_material() ? ToMaterial(b.material()) : default_material;
   s.restitution = m.restitution;
   s.friction = m.friction;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <utility>
 
+#include "service/physics/body_settings.h"
 #include "service/physics/convex_hull.h"
 #include "service/scene/proto_text.h"
 
@@ -93,17 +94,75 @@ Status LoadSleep(const proto::SnapshotSleep& in, SleepSettings* out) {
   return Status::Ok();
 }
 
+// A shape and, for a compound, its children with their poses as stored.
+void SaveShape(const Shape& shape, proto::SnapshotShape* s) {
+  s->set_type(static_cast<int>(shape.type));
+  s->set_radius(shape.radius);
+  PutAll(shape.half_extents, s->mutable_half_extents());
+  s->set_half_length(shape.half_length);
+  PutAll(shape.plane_normal, s->mutable_plane_normal());
+  s->set_plane_offset(shape.plane_offset);
+  if (shape.hull) SaveHull(*shape.hull, s->mutable_hull());
+  if (!shape.compound) return;
+  for (const ShapeChild& child : shape.compound->children) {
+    proto::SnapshotChild* c = s->add_children();
+    SaveShape(child.shape, c->mutable_shape());
+    PutAll(child.position, c->mutable_position());
+    for (double v : {child.orientation.w(), child.orientation.x(), child.orientation.y(), child.orientation.z()}) {
+      c->add_orientation(v);
+    }
+  }
+}
+
+// The inverse of SaveShape; a child may be any shape but a plane or a
+// compound (`compound_ok` false), as CreateBody builds them.
+Status LoadShape(const proto::SnapshotShape& s, const std::string& where, bool compound_ok, Shape* shape) {
+  const int last = static_cast<int>(ShapeType::kCount) - 1;
+  if (s.type() < 0 || s.type() > last) {
+    return Status::InvalidArgument("snapshot: " + where + " shape type must be in [0, " + std::to_string(last) +
+                                   "], got " + std::to_string(s.type()));
+  }
+  Shape out;
+  out.type = static_cast<ShapeType>(s.type());
+  if (!compound_ok && (out.type == ShapeType::kCompound || out.type == ShapeType::kPlane)) {
+    return Status::InvalidArgument("snapshot: " + where + " must be a sphere, box, capsule or convex, got " +
+                                   ShapeTypeName(out.type));
+  }
+  out.radius = s.radius();
+  out.half_length = s.half_length();
+  out.plane_offset = s.plane_offset();
+  Status st;
+  if (!(st = GetAll(s.half_extents(), where + " half_extents", &out.half_extents)).ok()) return st;
+  if (!(st = GetAll(s.plane_normal(), where + " plane_normal", &out.plane_normal)).ok()) return st;
+  if (out.type == ShapeType::kConvex && !(st = LoadHull(s.hull(), where, &out.hull)).ok()) return st;
+  if (out.type == ShapeType::kCompound) {
+    if (s.children_size() < 1 || s.children_size() > kMaxShapeParts) {
+      return Status::InvalidArgument("snapshot: " + where + " compound must hold 1 to " +
+                                     std::to_string(kMaxShapeParts) + " children, got " +
+                                     std::to_string(s.children_size()));
+    }
+    std::vector<ShapeChild> children(s.children_size());
+    for (int k = 0; k < s.children_size(); ++k) {
+      const std::string child = where + " child " + std::to_string(k);
+      const proto::SnapshotChild& c = s.children(k);
+      Eigen::Vector4d q;
+      if (!(st = LoadShape(c.shape(), child, false, &children[k].shape)).ok()) return st;
+      if (!(st = GetAll(c.position(), child + " position", &children[k].position)).ok()) return st;
+      if (!(st = GetAll(c.orientation(), child + " orientation", &q)).ok()) return st;
+      children[k].orientation = Quat(q[0], q[1], q[2], q[3]);  // as stored, bit for bit
+    }
+    out.compound = Shape::Compound(std::move(children)).compound;
+  }
+  *shape = std::move(out);
+  return Status::Ok();
+}
+
 void SaveBody(const RigidBody& b, proto::SnapshotBody* out) {
   out->set_id(b.id);
   out->set_name(b.name);
-  proto::SnapshotShape* s = out->mutable_shape();
-  s->set_type(static_cast<int>(b.shape.type));
-  s->set_radius(b.shape.radius);
-  PutAll(b.shape.half_extents, s->mutable_half_extents());
-  s->set_half_length(b.shape.half_length);
-  PutAll(b.shape.plane_normal, s->mutable_plane_normal());
-  s->set_plane_offset(b.shape.plane_offset);
-  if (b.shape.hull) SaveHull(*b.shape.hull, s->mutable_hull());
+  SaveShape(b.shape, out->mutable_shape());
+  if (!b.frame_origin.isZero(0.0)) PutAll(b.frame_origin, out->mutable_frame_origin());
+  if (b.explicit_inertia) out->set_explicit_inertia(true);
   out->set_restitution(b.material.restitution);
   out->set_friction(b.material.friction);
   out->set_motion(static_cast<int>(b.motion));
@@ -127,23 +186,13 @@ Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
   const std::string where = "body " + std::to_string(in.id());
   b->id = in.id();
   b->name = in.name();
-  const proto::SnapshotShape& s = in.shape();
-  if (s.type() < 0 || s.type() >= static_cast<int>(ShapeType::kCount)) {
-    return Status::InvalidArgument("snapshot: " + where + " shape type must be in [0, " +
-                                   std::to_string(static_cast<int>(ShapeType::kCount) - 1) + "], got " +
-                                   std::to_string(s.type()));
-  }
-  if (s.type() == static_cast<int>(ShapeType::kCompound)) {
-    return Status::InvalidArgument("snapshot: " + where + " shape: compound bodies are not kept in snapshots yet");
-  }
-  b->shape.type = static_cast<ShapeType>(s.type());
-  b->shape.radius = s.radius();
-  b->shape.half_length = s.half_length();
-  b->shape.plane_offset = s.plane_offset();
   Status st;
-  if (!(st = GetAll(s.half_extents(), where + " half_extents", &b->shape.half_extents)).ok()) return st;
-  if (!(st = GetAll(s.plane_normal(), where + " plane_normal", &b->shape.plane_normal)).ok()) return st;
-  if (b->shape.type == ShapeType::kConvex && !(st = LoadHull(s.hull(), where, &b->shape.hull)).ok()) return st;
+  if (!(st = LoadShape(in.shape(), where, true, &b->shape)).ok()) return st;
+  b->frame_origin.setZero();
+  if (in.frame_origin_size() > 0 && !(st = GetAll(in.frame_origin(), where + " frame_origin", &b->frame_origin)).ok()) {
+    return st;
+  }
+  b->explicit_inertia = in.explicit_inertia();
   if (in.motion() < 0 || in.motion() > static_cast<int>(MotionType::kKinematic)) {
     return Status::InvalidArgument("snapshot: " + where + " motion must be 0, 1 or 2, got " + std::to_string(in.motion()));
   }

@@ -13,6 +13,7 @@
 #include <new>
 #include <string_view>
 
+#include "service/physics/body_settings.h"
 #include "service/server/command_decoder.h"
 
 namespace contactsim {
@@ -22,6 +23,15 @@ Status CheckBody(const body_cmd_t& m, const DecodeContext& context, Command* cmd
   if (m.num_points > context.limits.max_convex_points) {
     return Status::ResourceExhausted("num_points " + std::to_string(m.num_points) + " exceeds max_convex_points = " +
                                      std::to_string(context.limits.max_convex_points));
+  }
+  // a compound's parts share the bound of one hull's points
+  if (m.num_part_points > context.limits.max_convex_points) {
+    return Status::ResourceExhausted("num_part_points " + std::to_string(m.num_part_points) +
+                                     " exceeds max_convex_points = " + std::to_string(context.limits.max_convex_points));
+  }
+  if (m.num_parts > kMaxShapeParts) {
+    return Status::ResourceExhausted("num_parts " + std::to_string(m.num_parts) + " exceeds " +
+                                     std::to_string(kMaxShapeParts));
   }
   return DecodeBodyCommand(m, context.default_material, cmd);
 }

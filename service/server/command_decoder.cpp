@@ -11,20 +11,85 @@ namespace contactsim {
 namespace {
 
 Vec3 V3(const double v[3]) { return Vec3(v[0], v[1], v[2]); }
+Vec3 V3(const std::vector<double>& v) { return Vec3(v[0], v[1], v[2]); }  // a row of 3 (wire-checked)
+
+// The wire's shape code; false for an unknown one.
+bool ShapeOfCode(int8_t code, ShapeType* type) {
+  switch (code) {
+    case body_cmd_t::SPHERE: *type = ShapeType::kSphere; return true;
+    case body_cmd_t::BOX: *type = ShapeType::kBox; return true;
+    case body_cmd_t::PLANE: *type = ShapeType::kPlane; return true;
+    case body_cmd_t::CAPSULE: *type = ShapeType::kCapsule; return true;
+    case body_cmd_t::CONVEX: *type = ShapeType::kConvex; return true;
+    case body_cmd_t::COMPOUND: *type = ShapeType::kCompound; return true;
+    default: return false;
+  }
+}
+
+// The parts of a COMPOUND: every count consistent, then each part's fields
+// as CreateBody checks them (a plane or compound part is refused there).
+Status DecodeParts(const body_cmd_t& m, BodySettings* s) {
+  const size_t n = static_cast<size_t>(std::max(m.num_parts, 0));
+  if (m.num_parts < 0 || m.part_shape.size() != n) {
+    return Status::InvalidArgument("num_parts must equal the number of parts, got " + std::to_string(m.num_parts));
+  }
+  if (m.num_parts > 0 && m.shape != body_cmd_t::COMPOUND) {
+    return Status::InvalidArgument("num_parts is for shape COMPOUND=6, got " + std::to_string(m.num_parts) +
+                                   " part(s) with shape " + std::to_string(m.shape));
+  }
+  int64_t rows = 0;
+  for (size_t k = 0; k < n; ++k) {
+    if (m.part_num_points[k] < 0) {
+      return Status::InvalidArgument("part_num_points[" + std::to_string(k) + "] must be >= 0, got " +
+                                     std::to_string(m.part_num_points[k]));
+    }
+    rows += m.part_num_points[k];
+  }
+  if (m.num_part_points < 0 || rows != m.num_part_points) {
+    return Status::InvalidArgument("num_part_points must be the sum of part_num_points (" + std::to_string(rows) +
+                                   "), got " + std::to_string(m.num_part_points));
+  }
+  size_t row = 0;
+  for (size_t k = 0; k < n; ++k) {
+    ShapePart p;
+    if (!ShapeOfCode(m.part_shape[k], &p.type)) {
+      return Status::InvalidArgument("part_shape[" + std::to_string(k) +
+                                     "] must be SPHERE=1, BOX=2, CAPSULE=4 or CONVEX=5, got " +
+                                     std::to_string(m.part_shape[k]));
+    }
+    p.radius = m.part_radius[k];
+    p.half_extents = V3(m.part_half_extents[k]);
+    p.half_length = m.part_half_length[k];
+    for (int i = 0; i < m.part_num_points[k]; ++i, ++row) p.points.push_back(V3(m.part_points[row]));
+    p.position = V3(m.part_position[k]);
+    const std::vector<double>& q = m.part_orientation[k];
+    p.orientation = Quat(q[0], q[1], q[2], q[3]);  // (w, x, y, z); CreateBody checks and normalises it
+    s->parts.push_back(std::move(p));
+  }
+  return Status::Ok();
+}
+
+// The explicit mass properties: the inertia's six unique entries.
+void DecodeMassProperties(const body_cmd_t& m, BodySettings* s) {
+  if (m.has_center_of_mass) s->center_of_mass = V3(m.center_of_mass);
+  if (m.has_inertia) {
+    const double* i = m.inertia;  // ixx, iyy, izz, ixy, ixz, iyz
+    Mat3 I;
+    I << i[0], i[3], i[4], i[3], i[1], i[5], i[4], i[5], i[2];
+    s->inertia = I;
+  }
+}
 
 Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command* cmd) {
   BodySettings s;
   s.name = m.name;
-  switch (m.shape) {
-    case body_cmd_t::SPHERE: s.shape = ShapeType::kSphere; break;
-    case body_cmd_t::BOX: s.shape = ShapeType::kBox; break;
-    case body_cmd_t::PLANE: s.shape = ShapeType::kPlane; break;
-    case body_cmd_t::CAPSULE: s.shape = ShapeType::kCapsule; break;
-    case body_cmd_t::CONVEX: s.shape = ShapeType::kConvex; break;
-    default:
-      return Status::InvalidArgument("shape must be one of SPHERE=1, BOX=2, PLANE=3, CAPSULE=4, CONVEX=5, got " +
-                                     std::to_string(m.shape));
+  if (!ShapeOfCode(m.shape, &s.shape)) {
+    return Status::InvalidArgument("shape must be one of SPHERE=1, BOX=2, PLANE=3, CAPSULE=4, CONVEX=5, COMPOUND=6, "
+                                   "got " + std::to_string(m.shape));
   }
+  Status parts = DecodeParts(m, &s);
+  if (!parts.ok()) return parts;
+  DecodeMassProperties(m, &s);
   s.radius = m.radius;
   s.half_extents = V3(m.half_extents);
   s.half_length = m.half_length;

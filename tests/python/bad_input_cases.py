@@ -96,6 +96,13 @@ def add(shape, **fields):
     return body(B.ADD, shape=shape, **defaults)
 
 
+def compound_part(shape, position=(0.0, 0.0, 0.0)):
+    """The part fields of a one-part COMPOUND (a 0.1 m part of `shape`)."""
+    return dict(num_parts=1, part_shape=[shape], part_radius=[0.1], part_half_extents=[[0.1, 0.1, 0.1]],
+                part_half_length=[0.1], part_num_points=[0], num_part_points=0, part_points=[],
+                part_position=[list(position)], part_orientation=[[1.0, 0.0, 0.0, 0.0]])
+
+
 def scene(op, **fields):
     m = S()
     m.op = op
@@ -275,6 +282,19 @@ def cases(tmp):
              ["undecodable", "body_cmd_t"]),
         Case("add_convex_too_many_points", "BODY_CMD", "ADD",
              bodycmd(lambda: add(B.CONVEX, num_points=5000, points=cube_points(5000))), RE, ["max_convex_points", "5000"]),
+        Case("add_compound_no_parts", "BODY_CMD", "ADD", bodycmd(lambda: add(B.COMPOUND)), IA,
+             ["a compound takes 1 to 64 parts, got 0"]),
+        Case("add_compound_plane_part", "BODY_CMD", "ADD", bodycmd(lambda: add(B.COMPOUND, **compound_part(B.PLANE))),
+             IA, ["parts[0].type", "plane"]),
+        Case("add_compound_nan_part_position", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.COMPOUND, **compound_part(B.SPHERE, position=[0.0, NAN, 0.0]))), IA,
+             ["parts[0].position", "nan"]),
+        Case("add_inertia_triangle_inequality", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.SPHERE, mass=1.0, has_inertia=True, inertia=[1.0, 1.0, 3.0, 0.0, 0.0, 0.0])), IA,
+             ["inertia", "triangle inequality"]),
+        Case("add_inertia_not_positive", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.SPHERE, mass=1.0, has_inertia=True, inertia=[1.0, -1.0, 1.0, 0.0, 0.0, 0.0])), IA,
+             ["inertia", "positive definite"]),
         Case("add_nan_position", "BODY_CMD", "ADD", bodycmd(lambda: add(B.SPHERE, position=[NAN, 0.0, 1.0])), IA,
              ["position", "nan"]),
         Case("add_inf_position", "BODY_CMD", "ADD", bodycmd(lambda: add(B.SPHERE, position=[0.0, -INF, 1.0])), IA,

@@ -7,6 +7,7 @@
 #include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,24 @@ inline std::vector<SampleMessage> SampleCommandMessages() {
       m.points = {{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0, 0, 0.1}};
       m.num_points = 4;
     }
+    if (shape == body_cmd_t::COMPOUND) {  // a box and a hull beside it, with a link's inertial
+      m.num_parts = 2;
+      m.part_shape = {body_cmd_t::BOX, body_cmd_t::CONVEX};
+      m.part_radius = {0.0, 0.0};
+      m.part_half_extents = {{0.1, 0.1, 0.1}, {0, 0, 0}};
+      m.part_half_length = {0.0, 0.0};
+      m.part_num_points = {0, 4};
+      m.num_part_points = 4;
+      m.part_points = {{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0, 0, 0.1}};
+      m.part_position = {{0, 0, 0}, {0.2, 0, 0}};
+      m.part_orientation = {{1, 0, 0, 0}, {0, 0, 0, 1}};
+      m.mass = 2.0;
+      m.has_center_of_mass = true;
+      m.center_of_mass[0] = 0.05;
+      m.has_inertia = true;
+      const double inertia[6] = {0.02, 0.03, 0.025, 0.001, -0.002, 0.0005};
+      std::copy(inertia, inertia + 6, m.inertia);
+    }
     m.name = "b";
     out.push_back({"BODY_CMD", "BODY_CMD " + label, EncodeMessage(m)});
   };
@@ -59,6 +78,7 @@ inline std::vector<SampleMessage> SampleCommandMessages() {
   body(body_cmd_t::ADD, body_cmd_t::PLANE, "ADD plane");
   body(body_cmd_t::ADD, body_cmd_t::CAPSULE, "ADD capsule");
   body(body_cmd_t::ADD, body_cmd_t::CONVEX, "ADD convex");
+  body(body_cmd_t::ADD, body_cmd_t::COMPOUND, "ADD compound");
   for (int8_t op = body_cmd_t::REMOVE; op <= body_cmd_t::SET_MATERIAL; ++op) {
     body(op, body_cmd_t::SPHERE, "op " + std::to_string(op));
   }

@@ -152,6 +152,14 @@ CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
   command.fixed = options.fixed;
   command.kinematic = options.kinematic;
   command.name = options.name;
+  command.has_center_of_mass = options.center_of_mass.has_value();
+  if (options.center_of_mass) Copy(*options.center_of_mass, command.center_of_mass);
+  command.has_inertia = options.inertia.has_value();
+  if (options.inertia) {
+    const Eigen::Matrix3d& i = *options.inertia;
+    const double unique[6] = {i(0, 0), i(1, 1), i(2, 2), i(0, 1), i(0, 2), i(1, 2)};
+    std::copy(unique, unique + 6, command.inertia);
+  }
   return Send(command);
 }
 
@@ -185,6 +193,27 @@ Result<int64_t> Client::AddConvex(const std::vector<Eigen::Vector3d>& points,
   command.shape = body_cmd_t::CONVEX;
   for (const Eigen::Vector3d& p : points) {
     command.points.push_back({p.x(), p.y(), p.z()});
+  }
+  return WithNewId(AddBody(command, options));
+}
+
+Result<int64_t> Client::AddCompound(const std::vector<ShapePart>& parts,
+                                    const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::COMPOUND;
+  for (const ShapePart& part : parts) {
+    command.part_shape.push_back(static_cast<int8_t>(part.type));
+    command.part_radius.push_back(part.radius);
+    command.part_half_extents.push_back(
+        {part.half_extents.x(), part.half_extents.y(), part.half_extents.z()});
+    command.part_half_length.push_back(part.half_length);
+    command.part_num_points.push_back(static_cast<int32_t>(part.points.size()));
+    for (const Eigen::Vector3d& p : part.points) {
+      command.part_points.push_back({p.x(), p.y(), p.z()});
+    }
+    command.part_position.push_back({part.position.x(), part.position.y(), part.position.z()});
+    command.part_orientation.push_back(
+        {part.orientation[0], part.orientation[1], part.orientation[2], part.orientation[3]});
   }
   return WithNewId(AddBody(command, options));
 }

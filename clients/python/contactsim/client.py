@@ -50,6 +50,40 @@ def _param_text(value):
     return str(value)
 
 
+_PART_SHAPES = {"sphere": body_cmd_t.SPHERE, "box": body_cmd_t.BOX,
+                "capsule": body_cmd_t.CAPSULE, "convex": body_cmd_t.CONVEX}
+
+
+def _part(part, k):
+    """One compound part as its wire fields: (shape, radius, half_extents,
+    half_length, points, position, orientation)."""
+    shape = part.get("shape")
+    if shape not in _PART_SHAPES:
+        raise ValueError("parts[%d].shape must be one of %s, got %r" % (k, ", ".join(_PART_SHAPES), shape))
+    points = np.asarray(part.get("points", np.zeros((0, 3))), dtype=np.float64)
+    if points.ndim != 2 or points.shape[1] != 3:
+        raise ValueError("parts[%d].points must be an N x 3 array, got shape %s" % (k, points.shape))
+    return (_PART_SHAPES[shape], float(part.get("radius", 0.0)),
+            _vec(part.get("half_extents", (0, 0, 0)), 3, "parts[%d].half_extents" % k),
+            float(part.get("half_length", 0.0)), [[float(v) for v in p] for p in points],
+            _vec(part.get("position", (0, 0, 0)), 3, "parts[%d].position" % k),
+            _vec(part.get("orientation", (1, 0, 0, 0)), 4, "parts[%d].orientation" % k))
+
+
+def _mass_properties(m, center_of_mass, inertia):
+    """Explicit centre of mass (m, body frame) and inertia (kg m^2: 3 x 3, or
+    ixx, iyy, izz, ixy, ixz, iyz) on an ADD."""
+    m.has_center_of_mass = center_of_mass is not None
+    if center_of_mass is not None:
+        m.center_of_mass = _vec(center_of_mass, 3, "center_of_mass")
+    m.has_inertia = inertia is not None
+    if inertia is not None:
+        a = np.asarray(inertia, dtype=np.float64)
+        if a.shape == (3, 3):
+            a = np.array([a[0, 0], a[1, 1], a[2, 2], a[0, 1], a[0, 2], a[1, 2]])
+        m.inertia = _vec(a, 6, "inertia")
+
+
 class _Pending:
     __slots__ = ("event", "reply", "heard", "on_progress")
 
@@ -466,10 +500,12 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
 
     # bodies
     def _add(self, shape, fill, position, mass, density, orientation, velocity,
-             angular_velocity, restitution, friction, fixed, kinematic, name):
+             angular_velocity, restitution, friction, fixed, kinematic, name,
+             center_of_mass=None, inertia=None):
         m = self._body(body_cmd_t.ADD)
         m.shape = shape
         fill(m)
+        _mass_properties(m, center_of_mass, inertia)
         m.position = _vec(position, 3, "position")
         m.orientation = _vec(orientation, 4, "orientation")
         m.linear_velocity = _vec(velocity, 3, "velocity")
@@ -533,6 +569,38 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             m.points = [[float(v) for v in p] for p in pts]
         return self._add(body_cmd_t.CONVEX, fill, position, mass, density, orientation, velocity,
                          angular_velocity, restitution, friction, fixed, kinematic, name)
+
+    def add_compound(self, parts, *, position=(0, 0, 0), mass=None, density=None,
+                     center_of_mass=None, inertia=None,
+                     orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
+                     restitution=None, friction=None, fixed=False, kinematic=False, name=""):
+        """Adds one rigid body of several shapes (1 to 64 parts); returns its id.
+
+        Each part is a dict: "shape" ("sphere", "box", "capsule" or "convex")
+        with that shape's "radius", "half_extents", "half_length" or "points"
+        (m), and its pose in the body's frame, "position" (m) and
+        "orientation" (w, x, y, z). position/orientation place that frame in
+        the world; the server moves the body's origin to the centre of mass.
+        Without center_of_mass (m, body frame) and inertia (kg m^2 about it,
+        3 x 3 or ixx, iyy, izz, ixy, ixz, iyz; needs mass) the mass
+        properties are the parts' at uniform density (docs/physics.md,
+        "Compound bodies and mass properties")."""
+        rows = [_part(p, k) for k, p in enumerate(parts)]
+
+        def fill(m):
+            m.num_parts = len(rows)
+            m.part_shape = [r[0] for r in rows]
+            m.part_radius = [r[1] for r in rows]
+            m.part_half_extents = [r[2] for r in rows]
+            m.part_half_length = [r[3] for r in rows]
+            m.part_num_points = [len(r[4]) for r in rows]
+            m.part_points = [pt for r in rows for pt in r[4]]
+            m.num_part_points = len(m.part_points)
+            m.part_position = [r[5] for r in rows]
+            m.part_orientation = [r[6] for r in rows]
+        return self._add(body_cmd_t.COMPOUND, fill, position, mass, density, orientation, velocity,
+                         angular_velocity, restitution, friction, fixed, kinematic, name,
+                         center_of_mass, inertia)
 
     def add_plane(self, normal, offset, *, restitution=None, friction=None, name=""):
         """Adds a static plane {p : normal . p = offset}; returns its id."""

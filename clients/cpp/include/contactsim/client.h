@@ -88,7 +88,9 @@ using BodyInputs = std::map<int64_t, BodyWrench>;  // body id -> wrench
 
 // Initial state and material of a new body. Units are SI, world frame.
 struct BodyOptions {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();    // m, centre of mass
+  // m: the origin of the body's frame (a convex's points', a compound's
+  // parts'), the centre of mass for a sphere, box or capsule
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z)
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // m/s
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s
@@ -99,6 +101,23 @@ struct BodyOptions {
   bool fixed = false;                 // static body
   bool kinematic = false;             // infinite mass, moves with its velocity
   std::string name;                   // label in logs and snapshots
+  // Explicit mass properties (a robot link's inertial), any shape but a
+  // plane: the centre of mass (m, body frame) and the inertia about it (kg
+  // m^2, body axes, symmetric positive definite; needs mass).
+  std::optional<Eigen::Vector3d> center_of_mass;
+  std::optional<Eigen::Matrix3d> inertia;
+};
+
+// One shape of a compound body (AddCompound), posed in the body's frame.
+struct ShapePart {
+  enum class Type : int8_t { kSphere = 1, kBox = 2, kCapsule = 4, kConvex = 5 };  // body_cmd_t codes
+  Type type = Type::kSphere;
+  double radius = 0.0;                                         // m, sphere and capsule
+  Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();      // m, box
+  double half_length = 0.0;                                    // m, capsule, along the part's z
+  std::vector<Eigen::Vector3d> points;                         // m, convex, part frame
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // m, body frame
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};       // (w, x, y, z), part to body
 };
 
 // Joint kinds, as joint_cmd_t codes (docs/physics.md, "Joints").
@@ -196,6 +215,10 @@ class Client {
                              const BodyOptions& options = {});
   Result<int64_t> AddConvex(const std::vector<Eigen::Vector3d>& points,
                             const BodyOptions& options = {});
+  // One rigid body of 1 to 64 shapes (docs/physics.md, "Compound bodies and
+  // mass properties"); options.position places the parts' frame.
+  Result<int64_t> AddCompound(const std::vector<ShapePart>& parts,
+                              const BodyOptions& options = {});
   // The plane {p : normal . p = offset}; always static. Only the material
   // and name of `options` are used.
   Result<int64_t> AddPlane(const Eigen::Vector3d& normal, double offset = 0.0,
