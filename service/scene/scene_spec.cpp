@@ -119,6 +119,9 @@ BodySettings ToBodySettings(const proto::Body& b, const Material& default_materi
   const Material m = b.has_material() ? ToMaterial(b.material()) : default_material;
   s.restitution = m.restitution;
   s.friction = m.friction;
+  s.collision_category = b.filter().category();
+  s.collision_mask = b.filter().mask();
+  s.collision_group = b.filter().group();
   return s;
 }
 
@@ -155,6 +158,7 @@ Status ToSceneJoint(const proto::Joint& j, const std::string& where, SceneJoint*
   }
   sj.settings.damping = j.damping();
   sj.settings.friction = j.friction();
+  sj.settings.collide_connected = j.collide_connected();
   *out = std::move(sj);
   return Status::Ok();
 }

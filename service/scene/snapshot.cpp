@@ -180,6 +180,11 @@ void SaveBody(const RigidBody& b, proto::SnapshotBody* out) {
   PutAll(b.kinematic_w, out->mutable_kinematic_w());
   out->set_rest_time(b.rest_time);
   out->set_sleep_island(b.sleep_island);
+  if (!HasDefaultFilter(b)) {  // a default filter leaves the bytes as before filters existed
+    out->set_collision_category(b.collision_category);
+    out->set_collision_mask(b.collision_mask);
+    out->set_collision_group(b.collision_group);
+  }
 }
 
 Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
@@ -214,6 +219,9 @@ Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
   b->q = Quat(q[0], q[1], q[2], q[3]);  // as stored: no normalisation, bit for bit
   b->rest_time = in.rest_time();
   b->sleep_island = in.sleep_island();
+  b->collision_category = in.collision_category();
+  b->collision_mask = in.collision_mask();
+  b->collision_group = in.collision_group();
   if (b->sleep_island < 0 || (b->sleep_island != 0 && !b->IsDynamic())) {
     return Status::InvalidArgument("snapshot: " + where + " sleep_island must be 0, or > 0 on a dynamic body, got " +
                                    std::to_string(b->sleep_island));
@@ -240,6 +248,7 @@ void SaveJoint(const Joint& j, proto::SnapshotJoint* out) {
   // only when set, so that a snapshot of a world without them keeps its bytes
   if (j.damping != 0.0) out->set_damping(j.damping);
   if (j.friction != 0.0) out->set_friction(j.friction);
+  if (j.collide_connected) out->set_collide_connected(true);
 }
 
 Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
@@ -269,6 +278,7 @@ Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
   }
   j->damping = p.damping();
   j->friction = p.friction();
+  j->collide_connected = p.collide_connected();
   return Status::Ok();
 }
 

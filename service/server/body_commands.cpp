@@ -65,6 +65,15 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
     case K::kRemoveJoint:
       if (!(st = world_.RemoveJoint(cmd.joint_id)).ok()) return Outcome::Failed(st);
       return Outcome::Done("removed joint " + std::to_string(cmd.joint_id), true);
+    case K::kSetFilter:
+      // World names the world (id 0) in its refusal; the change wakes the
+      // body's island, and what touches it wakes here
+      if (!(st = world_.SetCollisionFilter(cmd.body_id, cmd.collision_category, cmd.collision_mask,
+                                           cmd.collision_group)).ok()) {
+        return Outcome::Failed(st);
+      }
+      WakeTouching(world_, cmd.body_id);
+      return Outcome::Done("collision filter of " + body + " set", true);
     default:
       break;
   }

@@ -49,7 +49,7 @@ struct Command {
     kAddBody, kRemoveBody, kSetPose, kSetVelocity, kApplyForce, kApplyImpulse, kSetMass, kSetMaterial,
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
-    kAddJoint, kRemoveJoint,
+    kAddJoint, kRemoveJoint, kSetFilter,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -65,6 +65,8 @@ struct Command {
   std::optional<Vec3> point;           // APPLY_IMPULSE
   std::optional<double> mass, density; // SET_MASS
   std::optional<double> restitution, friction;  // SET_MATERIAL
+  uint32_t collision_category = 1, collision_mask = 0xFFFFFFFF;  // SET_FILTER
+  int32_t collision_group = 0;
   JointSettings joint;                 // ADD joint (checked but for the bodies' existence)
   JointId joint_id = 0;                // REMOVE joint
 

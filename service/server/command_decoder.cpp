@@ -110,6 +110,11 @@ Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command*
   s.angular_velocity = V3(m.angular_velocity);
   if (m.has_restitution) s.restitution = m.restitution;
   if (m.has_friction) s.friction = m.friction;
+  if (m.has_filter) {
+    s.collision_category = static_cast<uint32_t>(m.collision_category);  // the wire's bit pattern
+    s.collision_mask = static_cast<uint32_t>(m.collision_mask);
+    s.collision_group = m.collision_group;
+  }
   cmd->kind = Command::Kind::kAddBody;
   return CreateBody(s, default_material, &cmd->new_body);
 }
@@ -188,9 +193,15 @@ Status DecodeBodyCommand(const body_cmd_t& m, const Material& default_material, 
       if (m.has_restitution) cmd->restitution = m.restitution;
       if (m.has_friction) cmd->friction = m.friction;
       return CheckMaterial(cmd->restitution, cmd->friction);
+    case body_cmd_t::SET_FILTER:  // every bit pattern is a filter
+      cmd->kind = Command::Kind::kSetFilter;
+      cmd->collision_category = static_cast<uint32_t>(m.collision_category);
+      cmd->collision_mask = static_cast<uint32_t>(m.collision_mask);
+      cmd->collision_group = m.collision_group;
+      return Status::Ok();
     default: break;
   }
-  return Status::InvalidArgument("op must be one of ADD=1 .. SET_MATERIAL=8, got " + std::to_string(m.op));
+  return Status::InvalidArgument("op must be one of ADD=1 .. SET_FILTER=9, got " + std::to_string(m.op));
 }
 
 Status DecodeSceneCommand(const scene_cmd_t& m, Command* cmd) {
@@ -345,6 +356,7 @@ Status DecodeJointCommand(const joint_cmd_t& m, Command* cmd) {
   if (m.has_limits) s.limits = std::make_pair(m.lower, m.upper);
   if (m.has_damping) s.damping = m.damping;
   if (m.has_friction) s.friction = m.friction;
+  s.collide_connected = m.collide_connected;
   return CheckJointSettings(s);
 }
 

@@ -48,7 +48,8 @@ Outcome SimServer::Apply(Command& cmd) {
   using K = Command::Kind;
   switch (cmd.kind) {
     case K::kAddBody: case K::kRemoveBody: case K::kSetPose: case K::kSetVelocity: case K::kApplyForce:
-    case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kAddJoint: case K::kRemoveJoint:
+    case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kSetFilter: case K::kAddJoint:
+    case K::kRemoveJoint:
       return ApplyBodyCommand(cmd);
     case K::kSnapshot: case K::kRestore: case K::kRewind:
       return ApplySnapshotCommand(cmd);

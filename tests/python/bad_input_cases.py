@@ -388,6 +388,10 @@ def cases(tmp):
              bodycmd(lambda: body(B.SET_MATERIAL, ball, has_friction=True, friction=NAN)), IA, ["friction", "nan"]),
         Case("set_material_unknown_body", "BODY_CMD", "SET_MATERIAL",
              bodycmd(lambda: body(B.SET_MATERIAL, MISSING, has_friction=True, friction=0.3)), NF, [str(MISSING)]),
+        Case("set_filter_unknown_body", "BODY_CMD", "SET_FILTER",
+             bodycmd(lambda: body(B.SET_FILTER, MISSING, collision_category=2, collision_mask=1)), NF, [str(MISSING)]),
+        Case("set_filter_world", "BODY_CMD", "SET_FILTER",
+             bodycmd(lambda: body(B.SET_FILTER, 0, collision_category=2, collision_mask=1)), NF, ["0", "world"]),
         # ---- SCENE_CMD
         Case("scene_op_zero", "SCENE_CMD", "op 0", scenecmd(lambda: scene(0)), IA, ["op", "0"]),
         Case("scene_unknown_op", "SCENE_CMD", "op 99", scenecmd(lambda: scene(99)), IA, ["op", "99"]),

@@ -198,6 +198,7 @@ def seed_messages(missing_body=123456789, missing_joint=987654321):
     body("APPLY_IMPULSE", impulse=[1.0, 0.0, 0.0], has_point=True, point=[0.0, 0.0, 1.0])
     body("SET_MASS", mass=2.0)
     body("SET_MATERIAL", has_restitution=True, restitution=0.4, has_friction=True, friction=0.7)
+    body("SET_FILTER", collision_category=2, collision_mask=-1, collision_group=-3)
 
     def scene(op_name, **fields):
         m = S()
@@ -257,7 +258,7 @@ def world_changing(type_name, values, world):
     if type_name == "body_cmd_t":
         if op == 1:
             return True                                  # ADD
-        return 2 <= op <= 8 and values["body_id"] in world["bodies"]
+        return 2 <= op <= 9 and values["body_id"] in world["bodies"]
     if type_name == "joint_cmd_t":
         if op == 2:
             return values["joint_id"] in world["joints"]

@@ -46,7 +46,8 @@ def world(files):
 def test_the_catalogue_covers_every_channel_and_op(catalogue):
     assert len(catalogue) >= 60
     ops = {(c.channel, c.op) for c in catalogue}
-    body_ops = {"ADD", "REMOVE", "SET_POSE", "SET_VELOCITY", "APPLY_FORCE", "APPLY_IMPULSE", "SET_MASS", "SET_MATERIAL"}
+    body_ops = {"ADD", "REMOVE", "SET_POSE", "SET_VELOCITY", "APPLY_FORCE", "APPLY_IMPULSE", "SET_MASS", "SET_MATERIAL",
+                "SET_FILTER"}
     scene_ops = {"LOAD_SCENE", "SET_GRAVITY", "SET_TIMESTEP", "SET_METHOD", "STEP", "SET_MODE", "SNAPSHOT", "RESTORE",
                  "REWIND", "REGISTER_CONTROLLER", "RELEASE_CONTROLLER"}
     assert {("BODY_CMD", o) for o in body_ops} <= ops

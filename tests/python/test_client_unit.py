@@ -60,6 +60,25 @@ def test_other_shapes_and_body_ops(fake_server, fake_client):
     assert (m.op, m.has_restitution, m.restitution, m.has_friction) == (body_cmd_t.SET_MATERIAL, True, 0.1, False)
 
 
+def test_collision_filters_are_encoded_as_the_wires_bit_patterns(fake_server, fake_client):
+    c = fake_client
+    c.add_box((0.1, 0.1, 0.1))
+    m = fake_server.commands[-1]
+    assert (m.has_filter, m.collision_category, m.collision_mask, m.collision_group) == (False, 1, -1, 0)
+    c.add_sphere(0.1, collision_category=0x80000000, collision_group=-4)
+    m = fake_server.commands[-1]
+    assert (m.has_filter, m.collision_category, m.collision_mask, m.collision_group) == (True, -(1 << 31), -1, -4)
+    c.add_plane((0, 0, 1), 0.0, collision_mask=6)
+    assert (fake_server.commands[-1].has_filter, fake_server.commands[-1].collision_mask) == (True, 6)
+    c.set_filter(3, collision_category=2, collision_mask=0xFFFFFFFE, collision_group=5)
+    m = fake_server.commands[-1]
+    assert (m.op, m.body_id, m.collision_category, m.collision_mask, m.collision_group) == (
+        body_cmd_t.SET_FILTER, 3, 2, -2, 5)
+    c.set_filter(3)
+    m = fake_server.commands[-1]
+    assert (m.collision_category, m.collision_mask, m.collision_group) == (1, -1, 0)
+
+
 def test_scene_commands(fake_server, fake_client):
     c = fake_client
     c.reset()

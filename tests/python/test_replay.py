@@ -1,7 +1,8 @@
 """Re-simulation of a recorded run: a real server is recorded with lcm-logger
 while a client drives it (commands, STEPs, a realtime stretch with commands
 landing between decimated STATEs, a lockstep controller, snapshot and
-rewind); ``contactsim-server --replay LOG`` must agree at every logged STATE,
+rewind, collision filters given at ADD and by SET_FILTER);
+``contactsim-server --replay LOG`` must agree at every logged STATE,
 and must name the first divergent step of a tampered log."""
 import subprocess
 import time
@@ -26,13 +27,14 @@ def drive(c, drain):
     c.set_gravity((0, 0, -9.81))
     c.add_plane((0, 0, 1), 0.0)
     ball = c.add_sphere(0.1, position=(0, 0, 0.5), mass=1.0, restitution=0.5)
-    box = c.add_box((0.1, 0.1, 0.1), position=(0.5, 0, 0.3), mass=2.0)
+    box = c.add_box((0.1, 0.1, 0.1), position=(0.5, 0, 0.3), mass=2.0, collision_category=4)
     bob = c.add_sphere(0.05, position=(1.5, 0, 1.0), mass=0.5)
     c.add_joint("distance", bob, None, anchor=(1.5, 0, 1.5))
     drain()
     c.step(60)
     drain()
     c.set_contact_method("impulse", iterations=40)
+    c.set_filter(ball, collision_category=2, collision_mask=1)  # the ball passes through the box
     # realtime: these land at whatever step the server is at, between the
     # 60 Hz STATEs; their replies say which
     c.set_mode("realtime")

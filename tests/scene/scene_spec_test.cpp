@@ -106,3 +106,40 @@ TEST(SceneSpec, ShippedScenesLoad) {
 
 }  // namespace
 }  // namespace contactsim
+
+namespace contactsim {
+namespace {
+
+// Verifies that a body's filter and a joint's collide_connected are read
+// from a scene file (hex masks included; a grid's prototype passes its
+// filter to every body), and that bodies and joints without them get the
+// defaults.
+TEST(SceneSpec, CollisionFiltersAndCollideConnectedAreRead) {
+  SceneSpec scene;
+  const std::string text =
+      "bodies { name: \"a\" sphere { radius: 0.1 } position { z: 1 }\n"
+      "         filter { category: 2 mask: 0xFFFFFFFE group: -3 } }\n"
+      "bodies { name: \"b\" sphere { radius: 0.1 } position { z: 1.2 } }\n"
+      "grids { prototype { box { half_extents { x: 0.1 y: 0.1 z: 0.1 } } filter { group: 4 } }\n"
+      "        nx: 2 spacing { x: 1 } origin { x: 3 z: 1 } }\n"
+      "joints { kind: \"ball\" body_a: \"a\" body_b: \"b\" anchor { z: 1.1 } collide_connected: true }\n"
+      "joints { kind: \"ball\" body_a: \"b\" anchor { z: 2 } }\n";
+  ASSERT_TRUE(ParseSceneText(text, "f.pbtxt", &scene).ok());
+  World world;
+  ASSERT_TRUE(BuildWorld(scene, &world).ok());
+  const RigidBody& a = world.bodies()[0];
+  EXPECT_EQ(a.collision_category, 2u);
+  EXPECT_EQ(a.collision_mask, 0xFFFFFFFEu);
+  EXPECT_EQ(a.collision_group, -3);
+  EXPECT_TRUE(HasDefaultFilter(world.bodies()[1]));
+  ASSERT_EQ(world.bodies().size(), 4u);
+  EXPECT_EQ(world.bodies()[2].collision_group, 4);
+  EXPECT_EQ(world.bodies()[3].collision_group, 4);
+  ASSERT_EQ(world.joints().size(), 2u);
+  EXPECT_TRUE(world.joints()[0].collide_connected);
+  EXPECT_FALSE(world.joints()[1].collide_connected);
+  EXPECT_TRUE(world.joined_pairs().empty()) << "the only joint between two bodies lets them touch";
+}
+
+}  // namespace
+}  // namespace contactsim

@@ -310,5 +310,55 @@ TEST(SnapshotTest, FilesRoundTrip) {
   EXPECT_EQ(ReadSnapshotFile(path, &read).code(), StatusCode::kNotFound);
 }
 
+// Verifies that a snapshot keeps every body's collision filter and a
+// joint's collide_connected, that a world of default filters writes the
+// bytes it wrote before filters existed (no filter fields), and that the
+// restored world excludes the same joint pairs.
+TEST(SnapshotTest, FiltersAndCollideConnectedRoundTrip) {
+  World world = MixedWorld();
+  auto method = Method("impulse");
+  proto::Snapshot plain;
+  SaveSnapshot(world, *method, &plain);
+  for (const proto::SnapshotBody& b : plain.bodies()) {
+    EXPECT_FALSE(b.has_collision_category() || b.has_collision_mask() || b.has_collision_group());
+  }
+  for (const proto::SnapshotJoint& j : plain.joints()) EXPECT_FALSE(j.has_collide_connected());
+  ASSERT_TRUE(world.SetCollisionFilter(2, 2u, 0xFFFFFFF0u, -5).ok());
+  ASSERT_TRUE(world.SetCollisionFilter(3, 0u, 0u, 7).ok());
+  JointSettings weld;
+  weld.kind = JointKind::kFixed;
+  weld.body_a = 3;
+  weld.body_b = 4;
+  weld.anchor = Vec3(0.5, 0, 0.2);
+  weld.collide_connected = true;
+  JointSettings ball = weld;
+  ball.kind = JointKind::kBall;
+  ball.body_a = 2;
+  ball.collide_connected = false;
+  JointId id = 0;
+  ASSERT_TRUE(world.AddJoint(weld, &id).ok());
+  ASSERT_TRUE(world.AddJoint(ball, &id).ok());
+  proto::Snapshot saved;
+  SaveSnapshot(world, *method, &saved);
+  World restored;
+  std::shared_ptr<ContactMethod> m;
+  ASSERT_TRUE(LoadSnapshot(saved, &restored, &m).ok());
+  ASSERT_EQ(restored.bodies().size(), world.bodies().size());
+  for (size_t i = 0; i < world.bodies().size(); ++i) {
+    const RigidBody& a = world.bodies()[i];
+    const RigidBody& b = restored.bodies()[i];
+    EXPECT_EQ(a.collision_category, b.collision_category) << i;
+    EXPECT_EQ(a.collision_mask, b.collision_mask) << i;
+    EXPECT_EQ(a.collision_group, b.collision_group) << i;
+  }
+  ASSERT_EQ(restored.joints().size(), world.joints().size());
+  for (size_t i = 0; i < world.joints().size(); ++i) {
+    EXPECT_EQ(restored.joints()[i].collide_connected, world.joints()[i].collide_connected) << i;
+  }
+  EXPECT_FALSE(restored.joined_pairs().Contains(3, 4));
+  EXPECT_TRUE(restored.joined_pairs().Contains(2, 4));
+  EXPECT_EQ(HashWorldState(restored), HashWorldState(world));
+}
+
 }  // namespace
 }  // namespace contactsim

@@ -79,7 +79,7 @@ inline std::vector<SampleMessage> SampleCommandMessages() {
   body(body_cmd_t::ADD, body_cmd_t::CAPSULE, "ADD capsule");
   body(body_cmd_t::ADD, body_cmd_t::CONVEX, "ADD convex");
   body(body_cmd_t::ADD, body_cmd_t::COMPOUND, "ADD compound");
-  for (int8_t op = body_cmd_t::REMOVE; op <= body_cmd_t::SET_MATERIAL; ++op) {
+  for (int8_t op = body_cmd_t::REMOVE; op <= body_cmd_t::SET_FILTER; ++op) {
     body(op, body_cmd_t::SPHERE, "op " + std::to_string(op));
   }
   for (int8_t op = scene_cmd_t::RESET; op <= scene_cmd_t::RELEASE_CONTROLLER; ++op) {

@@ -131,6 +131,31 @@ class LiveRun {
       }
     }
   }
+  // A stack of two boxes under the server's default method, the lower one
+  // of category 2 given at ADD, the upper one's mask set to the ground's
+  // category by SET_FILTER after 100 steps: it falls through the lower box.
+  void RecordFilterChange() {
+    Collect();
+    body_cmd_t plane = live_.Body(body_cmd_t::ADD);
+    plane.shape = body_cmd_t::PLANE;
+    plane.plane_normal[2] = 1.0;
+    Send(plane, "BODY_CMD");
+    body_cmd_t lower = live_.Box(0.1, Vec3(0, 0, 0.101));
+    lower.has_filter = true;
+    lower.collision_category = 2;
+    lower.collision_mask = -1;
+    Send(lower, "BODY_CMD");
+    Send(live_.Box(0.1, Vec3(0, 0, 0.302)), "BODY_CMD");  // id 3
+    Step(100);
+    body_cmd_t filter = live_.Body(body_cmd_t::SET_FILTER, 3);
+    filter.collision_category = 1;
+    filter.collision_mask = 1;
+    filter_index_ = tape_.size();
+    Send(filter, "BODY_CMD");
+    Step(100);
+  }
+  double z(BodyId id) const { return live_.server.world().Find(id)->x.z(); }
+  size_t filter_index() const { return filter_index_; }
   // Sets every body's restitution to 0 by SET_MATERIAL.
   void RemoveRestitution() {
     std::vector<BodyId> ids;
@@ -176,6 +201,7 @@ class LiveRun {
   Tape tape_;
   size_t seen_ = 0;
   size_t kick_index_ = 0;
+  size_t filter_index_ = 0;
   std::vector<size_t> input_index_;
 };
 
@@ -248,6 +274,27 @@ TEST(LogReplayTest, ReplayOfARunThroughEveryMethodIsIdentical) {
     EXPECT_EQ(r.last_step, 20 * static_cast<int64_t>(ContactMethodNames().size() + 1));
     EXPECT_NE(r.Summary().find("identical"), std::string::npos) << r.Summary();
   }
+}
+
+// Verifies that a run with a filter given at ADD and changed by SET_FILTER
+// replays bit for bit (the top box falls through the lower one in both),
+// and that the tape without the SET_FILTER diverges after it (a filter is
+// not part of the state hash, so at the first STATE whose poses differ).
+TEST(LogReplayTest, ReplayOfARunWithAFilterChangeIsIdentical) {
+  LiveRun run;
+  run.RecordFilterChange();
+  ASSERT_TRUE(run.AllAccepted());
+  EXPECT_NEAR(run.z(3), 0.1, 0.01) << "the top box fell through";
+  const ReplayReport r = Replay(run.tape());
+  EXPECT_FALSE(r.diverged) << r.Summary();
+  EXPECT_EQ(r.states_compared, CountStates(run.tape()));
+  EXPECT_EQ(r.last_step, 200);
+  Tape without = run.tape();
+  without.erase(without.begin() + static_cast<long>(run.filter_index()));
+  const ReplayReport cut = Replay(without);
+  ASSERT_TRUE(cut.diverged);
+  EXPECT_GE(cut.divergent_step, FirstStateStepAfter(run.tape(), run.filter_index()));
+  EXPECT_LE(cut.divergent_step, 200);
 }
 
 // Verifies that a tampered command (a larger impulse) is reported at the

@@ -15,6 +15,14 @@ void Copy(const Eigen::Vector3d& from, double to[3]) {
   std::copy(from.data(), from.data() + 3, to);
 }
 
+// The wire carries the 32-bit sets as int32 bit patterns (LCM has no
+// unsigned types).
+void PutFilter(const CollisionFilter& filter, body_cmd_t* command) {
+  command->collision_category = static_cast<int32_t>(filter.category);
+  command->collision_mask = static_cast<int32_t>(filter.mask);
+  command->collision_group = filter.group;
+}
+
 }  // namespace
 
 body_cmd_t Client::NewBodyCommand(int8_t op, int64_t body_id) const {
@@ -160,6 +168,8 @@ CommandResult Client::AddBody(body_cmd_t command, const BodyOptions& options) {
     const double unique[6] = {i(0, 0), i(1, 1), i(2, 2), i(0, 1), i(0, 2), i(1, 2)};
     std::copy(unique, unique + 6, command.inertia);
   }
+  command.has_filter = options.filter.has_value();
+  PutFilter(options.filter.value_or(CollisionFilter{}), &command);
   return Send(command);
 }
 
@@ -230,6 +240,7 @@ Result<int64_t> Client::AddPlane(const Eigen::Vector3d& normal, double offset,
   plane.restitution = options.restitution;
   plane.friction = options.friction;
   plane.name = options.name;
+  plane.filter = options.filter;
   plane.fixed = true;
   return WithNewId(AddBody(command, plane));
 }
@@ -292,6 +303,12 @@ CommandResult Client::SetMaterial(int64_t id, std::optional<double> restitution,
   command.restitution = restitution.value_or(0.0);
   command.has_friction = friction.has_value();
   command.friction = friction.value_or(0.0);
+  return Send(command);
+}
+
+CommandResult Client::SetFilter(int64_t id, const CollisionFilter& filter) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::SET_FILTER, id);
+  PutFilter(filter, &command);
   return Send(command);
 }
 

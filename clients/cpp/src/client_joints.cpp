@@ -31,6 +31,7 @@ Result<int64_t> Client::AddJoint(JointType type, int64_t body_a, int64_t body_b,
   command.damping = options.damping.value_or(0.0);
   command.has_friction = options.friction.has_value();
   command.friction = options.friction.value_or(0.0);
+  command.collide_connected = options.collide_connected;
   return WithNewId(Send(command));
 }
 

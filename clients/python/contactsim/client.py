@@ -28,6 +28,7 @@ from ._fields import vector as _vec
 from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
+from .filters import FilterCommands, fill_filter
 from .joints import JointCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
@@ -108,7 +109,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands, LockstepCommands, JointCommands):
+class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -500,9 +501,10 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
 
     # bodies
     def _add(self, shape, fill, position, mass, density, orientation, velocity,
-             angular_velocity, restitution, friction, fixed, kinematic, name,
+             angular_velocity, restitution, friction, fixed, kinematic, name, filt,
              center_of_mass=None, inertia=None):
         m = self._body(body_cmd_t.ADD)
+        fill_filter(m, *filt)
         m.shape = shape
         fill(m)
         _mass_properties(m, center_of_mass, inertia)
@@ -527,38 +529,47 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
 
     def add_sphere(self, radius, *, position=(0, 0, 0), mass=None, density=None,
                    orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                   restitution=None, friction=None, fixed=False, kinematic=False, name=""):
+                   restitution=None, friction=None, fixed=False, kinematic=False, name="",
+                   collision_category=None, collision_mask=None, collision_group=None):
         """Adds a sphere (radius m); returns its id. Give mass (kg) or density
         (kg/m^3), not both; neither: density 1000. fixed: a static body;
         kinematic: infinite mass, moves with its velocity (set_velocity steers
-        it) and pushes dynamic bodies without being pushed (same for every add_)."""
+        it) and pushes dynamic bodies without being pushed (same for every add_).
+        collision_category, collision_mask, collision_group: the body's
+        collision filter (filters.py; None: 1, all bits, 0)."""
         def fill(m):
             m.radius = float(radius)
         return self._add(body_cmd_t.SPHERE, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, kinematic, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name,
+                         (collision_category, collision_mask, collision_group))
 
     def add_box(self, half_extents, *, position=(0, 0, 0), mass=None, density=None,
                 orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                restitution=None, friction=None, fixed=False, kinematic=False, name=""):
+                restitution=None, friction=None, fixed=False, kinematic=False, name="",
+                collision_category=None, collision_mask=None, collision_group=None):
         """Adds a box with half_extents (m, body x y z); returns its id."""
         def fill(m):
             m.half_extents = _vec(half_extents, 3, "half_extents")
         return self._add(body_cmd_t.BOX, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, kinematic, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name,
+                         (collision_category, collision_mask, collision_group))
 
     def add_capsule(self, radius, half_length, *, position=(0, 0, 0), mass=None, density=None,
                     orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                    restitution=None, friction=None, fixed=False, kinematic=False, name=""):
+                    restitution=None, friction=None, fixed=False, kinematic=False, name="",
+                    collision_category=None, collision_mask=None, collision_group=None):
         """Adds a capsule along body z (radius, half_length between cap centres, m)."""
         def fill(m):
             m.radius = float(radius)
             m.half_length = float(half_length)
         return self._add(body_cmd_t.CAPSULE, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, kinematic, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name,
+                         (collision_category, collision_mask, collision_group))
 
     def add_convex(self, points, *, position=(0, 0, 0), mass=None, density=None,
                    orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                   restitution=None, friction=None, fixed=False, kinematic=False, name=""):
+                   restitution=None, friction=None, fixed=False, kinematic=False, name="",
+                   collision_category=None, collision_mask=None, collision_group=None):
         """Adds the convex hull of points (N x 3, m, body frame); returns its id."""
         pts = np.asarray(points, dtype=np.float64)
         if pts.ndim != 2 or pts.shape[1] != 3:
@@ -568,12 +579,14 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             m.num_points = len(pts)
             m.points = [[float(v) for v in p] for p in pts]
         return self._add(body_cmd_t.CONVEX, fill, position, mass, density, orientation, velocity,
-                         angular_velocity, restitution, friction, fixed, kinematic, name)
+                         angular_velocity, restitution, friction, fixed, kinematic, name,
+                         (collision_category, collision_mask, collision_group))
 
     def add_compound(self, parts, *, position=(0, 0, 0), mass=None, density=None,
                      center_of_mass=None, inertia=None,
                      orientation=(1, 0, 0, 0), velocity=(0, 0, 0), angular_velocity=(0, 0, 0),
-                     restitution=None, friction=None, fixed=False, kinematic=False, name=""):
+                     restitution=None, friction=None, fixed=False, kinematic=False, name="",
+                     collision_category=None, collision_mask=None, collision_group=None):
         """Adds one rigid body of several shapes (1 to 64 parts); returns its id.
 
         Each part is a dict: "shape" ("sphere", "box", "capsule" or "convex")
@@ -600,11 +613,13 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             m.part_orientation = [r[6] for r in rows]
         return self._add(body_cmd_t.COMPOUND, fill, position, mass, density, orientation, velocity,
                          angular_velocity, restitution, friction, fixed, kinematic, name,
-                         center_of_mass, inertia)
+                         (collision_category, collision_mask, collision_group), center_of_mass, inertia)
 
-    def add_plane(self, normal, offset, *, restitution=None, friction=None, name=""):
+    def add_plane(self, normal, offset, *, restitution=None, friction=None, name="",
+                  collision_category=None, collision_mask=None, collision_group=None):
         """Adds a static plane {p : normal . p = offset}; returns its id."""
         m = self._body(body_cmd_t.ADD)
+        fill_filter(m, collision_category, collision_mask, collision_group)
         m.shape = body_cmd_t.PLANE
         m.plane_normal = _vec(normal, 3, "normal")
         m.plane_offset = float(offset)

@@ -29,7 +29,7 @@ class JointCommands:
     """Mixin of Client: needs its ``_send(channel, msg)``."""
 
     def add_joint(self, kind, body_a, body_b, *, anchor, axis=None, length=None, limits=None, damping=None,
-                  friction=None):
+                  friction=None, collide_connected=False):
         """Adds a joint and returns its id (ids count from 1, never reused).
 
         kind: "distance", "ball", "hinge", "fixed" or "prismatic". body_b
@@ -38,6 +38,8 @@ class JointCommands:
         length (m): distance only; None = the current distance. limits:
         hinge (rad) and prismatic (m), (lower, upper). damping (N m s/rad or
         N s/m) and friction (N m or N): hinge and prismatic, >= 0.
+        collide_connected: may body_a and body_b touch each other (False, the
+        default, as in PyBullet and Drake: never).
         """
         if kind not in KINDS:
             raise ValueError("kind must be one of %s, got %r" % (sorted(KINDS), kind))
@@ -57,6 +59,9 @@ class JointCommands:
         m.damping = 0.0 if damping is None else float(damping)
         m.has_friction = friction is not None
         m.friction = 0.0 if friction is None else float(friction)
+        if not isinstance(collide_connected, bool):
+            raise TypeError("collide_connected must be True or False, got %r" % (collide_connected,))
+        m.collide_connected = collide_connected
         return self._send("JOINT_CMD", m).ids[0]
 
     def remove_joint(self, joint_id):

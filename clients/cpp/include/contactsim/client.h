@@ -86,6 +86,16 @@ struct BodyWrench {
 };
 using BodyInputs = std::map<int64_t, BodyWrench>;  // body id -> wrench
 
+// Which bodies a body touches (docs/physics.md, "Collision filtering"), as
+// Box2D's b2Filter: two bodies touch when (category_a & mask_b) and
+// (category_b & mask_a) are nonzero, except that two bodies of one nonzero
+// group always touch (group > 0) or never (group < 0).
+struct CollisionFilter {
+  uint32_t category = 1;         // the bits the body is
+  uint32_t mask = 0xFFFFFFFFu;   // the bits it touches
+  int32_t group = 0;
+};
+
 // Initial state and material of a new body. Units are SI, world frame.
 struct BodyOptions {
   // m: the origin of the body's frame (a convex's points', a compound's
@@ -106,6 +116,7 @@ struct BodyOptions {
   // m^2, body axes, symmetric positive definite; needs mass).
   std::optional<Eigen::Vector3d> center_of_mass;
   std::optional<Eigen::Matrix3d> inertia;
+  std::optional<CollisionFilter> filter;  // unset: touches every body
 };
 
 // One shape of a compound body (AddCompound), posed in the body's frame.
@@ -131,6 +142,7 @@ struct JointOptions {
   std::optional<std::pair<double, double>> limits;
   std::optional<double> damping;   // N m s/rad (hinge) or N s/m (prismatic), >= 0; unset: 0
   std::optional<double> friction;  // N m (hinge) or N (prismatic), >= 0, Coulomb; unset: 0
+  bool collide_connected = false;  // may the two bodies touch each other (default: never)
 };
 
 class Client {
@@ -241,6 +253,8 @@ class Client {
   CommandResult SetDensity(int64_t id, double density);  // kg/m^3
   CommandResult SetMaterial(int64_t id, std::optional<double> restitution,
                             std::optional<double> friction);
+  // Replaces the body's collision filter; wakes it and what touches it.
+  CommandResult SetFilter(int64_t id, const CollisionFilter& filter);
 
   // --- joint commands ---
   // Adds a joint between body_a and body_b (0: the world) at `anchor` (m,
