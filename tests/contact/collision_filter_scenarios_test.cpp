@@ -176,6 +176,31 @@ TEST_P(CollisionFilterScenarioTest, FilterSetAtRuntimeDropsTheTopOfARestingStack
   }
 }
 
+// Verifies that a filtered pair does not join two islands: two cubes
+// resting on the ground inside each other (their masks exclude each other)
+// fall asleep as two islands, and waking one leaves the other asleep; the
+// same cubes unfiltered, one resting on the other, sleep as one island.
+TEST_P(CollisionFilterScenarioTest, FilteredPairsSleepAsSeparateIslands) {
+  for (const bool filtered : {true, false}) {
+    FilterSim sim(GetParam(), true);
+    AddGround(sim.world, 0.0, 0.5);
+    // inside each other, or stacked
+    const Vec3 at_b = filtered ? Vec3(kHalf, 0, kHalf + 1e-3) : Vec3(0, 0, 3 * kHalf + 2e-3);
+    const BodyId a = AddFilteredBox(sim.world, Vec3(0, 0, kHalf + 1e-3), 2u, filtered ? 1u : 0xFFFFFFFFu, 0);
+    const BodyId b = AddFilteredBox(sim.world, at_b, 4u, filtered ? 1u : 0xFFFFFFFFu, 0);
+    for (int i = 0; i < 720 && !(sim.world.Find(a)->asleep() && sim.world.Find(b)->asleep()); ++i) sim.Step();
+    ASSERT_TRUE(sim.world.Find(a)->asleep() && sim.world.Find(b)->asleep()) << GetParam().label;
+    if (!filtered) {
+      EXPECT_EQ(sim.world.Find(a)->sleep_island, sim.world.Find(b)->sleep_island) << "stacked: one island";
+      continue;
+    }
+    EXPECT_NE(sim.world.Find(a)->sleep_island, sim.world.Find(b)->sleep_island);
+    sim.world.WakeBody(a);
+    sim.Step();
+    EXPECT_TRUE(sim.world.Find(b)->asleep()) << "the filtered neighbour's wake box must not wake it";
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryMethod, CollisionFilterScenarioTest, ::testing::ValuesIn(testing::EveryMethodConfig()),
                          testing::ConfigName);
 
