@@ -39,7 +39,8 @@ TEST(CommandChannelsTest, EveryChannelIsFoundBySuffixAndRecordKind) {
     EXPECT_EQ(ChannelOfSuffix(c.suffix), &c);
     EXPECT_EQ(ChannelOfRecord(c.record), &c);
   }
-  EXPECT_EQ(suffixes, (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT"}));
+  EXPECT_EQ(suffixes,
+            (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "SENSOR_CMD", "RAY_CAST"}));
   EXPECT_EQ(ChannelOfRecord(RecordKind::kStepTo), nullptr);
   EXPECT_EQ(ChannelOfSuffix("STATE"), nullptr);
 }

@@ -29,6 +29,7 @@ from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
 from .joints import JointCommands
+from .sensors import SensorCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -108,7 +109,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands, LockstepCommands, JointCommands):
+class Client(SnapshotCommands, LockstepCommands, JointCommands, SensorCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -153,6 +154,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands):
             self._lc.subscribe(self.channels["STATUS"], self._on_status_msg),
             self._lc.subscribe(self.channels["PROGRESS"], self._on_progress_msg),
         ]
+        self._subs += self._init_sensors()
         # LCM keeps at most 30 undelivered messages per subscription and drops
         # the rest; a free-running server sends STATE in bursts far larger.
         for sub in self._subs:
