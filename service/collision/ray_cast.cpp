@@ -19,8 +19,9 @@ bool Nearer(const RayHit& a, const RayHit& b) {
   return a.distance < b.distance || (a.distance == b.distance && a.body < b.body);
 }
 
-bool Ignored(const std::vector<BodyId>& sorted_ignore, BodyId id) {
-  return std::binary_search(sorted_ignore.begin(), sorted_ignore.end(), id);
+bool Ignored(const std::vector<BodyId>& sorted_ignore, uint32_t mask, const RigidBody& body) {
+  return (body.collision_category & mask) == 0 ||
+         std::binary_search(sorted_ignore.begin(), sorted_ignore.end(), body.id);
 }
 
 std::vector<BodyId> SortedIgnore(const RayCastOptions& options) {
@@ -79,7 +80,7 @@ std::vector<RayHit> RayCastWorld(const World& world, const std::vector<Ray>& ray
   std::vector<int> planes, solids;
   std::vector<Aabb> boxes;
   for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
-    if (Ignored(ignore, bodies[i].id)) continue;
+    if (Ignored(ignore, options.mask, bodies[i])) continue;
     if (bodies[i].shape.IsPlane()) {
       planes.push_back(i);
     } else {
@@ -123,7 +124,7 @@ std::vector<RayHit> RayCastBruteForce(const World& world, const std::vector<Ray>
   std::vector<RayHit> hits(rays.size());
   for (size_t r = 0; r < rays.size(); ++r) {
     for (const RigidBody& b : world.bodies()) {
-      if (Ignored(ignore, b.id)) continue;
+      if (Ignored(ignore, options.mask, b)) continue;
       const RayHit h = RayCastBody(b, rays[r]);
       if (Nearer(h, hits[r])) hits[r] = h;
     }

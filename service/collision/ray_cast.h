@@ -11,6 +11,7 @@
 // bit, to testing every body in id order (RayCastBruteForce).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "service/collision/parallel_runner.h"
@@ -36,6 +37,9 @@ struct RayHit {
 
 struct RayCastOptions {
   std::vector<BodyId> ignore;     // bodies the rays pass through (a sensor's own body)
+  // Only bodies whose collision_category shares a bit with the mask are hit
+  // (collision_filter.h's categories); all bits: every body.
+  uint32_t mask = 0xFFFFFFFFu;
 };
 
 // Checks one ray as it arrives (finite origin and direction, a direction

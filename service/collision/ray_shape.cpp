@@ -117,6 +117,26 @@ RayShapeResult Hull(const ConvexHull& hull, const Vec3& o, const Vec3& u, double
   return clip.Finish(max_distance, hit);
 }
 
+RayShapeResult Compound(const CompoundShape& compound, const Vec3& o, const Vec3& u, double max_distance,
+                        RayShapeHit* hit) {
+  // each child in its own frame; the nearest entry wins, the first child on
+  // a tie, and a start inside any child is inside the body
+  RayShapeResult result = RayShapeResult::kMiss;
+  for (const ShapeChild& child : compound.children) {
+    const Quat to_child = child.orientation.conjugate();
+    RayShapeHit h;
+    const RayShapeResult r =
+        RayCastShape(child.shape, to_child * (o - child.position), to_child * u, max_distance, &h);
+    if (r == RayShapeResult::kInside) return r;
+    if (r == RayShapeResult::kHit && (result == RayShapeResult::kMiss || h.t < hit->t)) {
+      result = r;
+      hit->t = h.t;
+      hit->normal = child.orientation * h.normal;
+    }
+  }
+  return result;
+}
+
 }  // namespace
 
 RayShapeResult RayCastShape(const Shape& shape, const Vec3& origin, const Vec3& direction, double max_distance,
@@ -131,6 +151,7 @@ RayShapeResult RayCastShape(const Shape& shape, const Vec3& origin, const Vec3& 
       clip.Plane(shape.plane_normal, shape.plane_offset, origin, direction);
       return clip.Finish(max_distance, hit);
     }
+    case ShapeType::kCompound: return Compound(*shape.compound, origin, direction, max_distance, hit);
     default: return RayShapeResult::kMiss;
   }
 }

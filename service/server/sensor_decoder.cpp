@@ -57,6 +57,11 @@ Status DecodeRayCast(const ray_cast_t& m, int max_rays, Command* cmd) {
   }
   cmd->rays = std::move(rays);
   cmd->ray_options.ignore = m.ignore_ids;
+  if (m.collision_mask < 0 || m.collision_mask > 0xFFFFFFFFll) {
+    return Status::InvalidArgument("collision_mask " + std::to_string(m.collision_mask) +
+                                   " must be 0 (every body) or a 32-bit mask");
+  }
+  if (m.collision_mask != 0) cmd->ray_options.mask = static_cast<uint32_t>(m.collision_mask);
   return Status::Ok();
 }
 

@@ -243,10 +243,15 @@ World ThousandBodyWorld(std::mt19937_64& rng) {
   World world;
   world.AddBody(MakeBody(0, Shape::Plane(Vec3::UnitZ(), 0.0)));
   std::uniform_real_distribution<double> size(0.05, 0.5);
-  std::uniform_int_distribution<int> kind(0, 3);
+  std::uniform_int_distribution<int> kind(0, 4);
   for (int i = 0; i < 1000; ++i) {
     Shape shape;
     switch (kind(rng)) {
+      case 4:
+        shape = Shape::Compound(std::vector<ShapeChild>{
+            {Shape::Sphere(size(rng)), Vec3(-0.3, 0, 0), Quat::Identity()},
+            {Shape::Box(Vec3(size(rng), size(rng), size(rng))), Vec3(0.3, 0, 0), RandomRotation(rng)}});
+        break;
       case 0: shape = Shape::Sphere(size(rng)); break;
       case 1: shape = Shape::Box(Vec3(size(rng), size(rng), size(rng))); break;
       case 2: shape = Shape::Capsule(size(rng), size(rng)); break;
@@ -295,6 +300,56 @@ TEST(RayCastTest, BatchOverAThousandBodiesEqualsBruteForce) {
   const std::vector<RayHit> brute_ignoring = RayCastBruteForce(world, rays, options);
   ExpectSameHits(RayCastWorld(world, rays, options, &four), brute_ignoring);
   for (const RayHit& h : brute_ignoring) EXPECT_FALSE(h.hit && (h.body - 1) % 3 == 0);
+}
+
+// Verifies a compound of two spheres (at x = -1 and x = +1, radius 0.5)
+// and a box, turned and moved: the nearer child is hit, from inside any
+// child the hit is at 0, between the children the ray passes.
+TEST(RayCastTest, CompoundsAreCastChildByChild) {
+  std::mt19937_64 rng(11);
+  const Quat q = RandomRotation(rng);
+  const Vec3 x(0.3, -0.2, 1.0);
+  std::vector<ShapeChild> children = {{Shape::Sphere(0.5), Vec3(-1, 0, 0), Quat::Identity()},
+                                      {Shape::Sphere(0.5), Vec3(1, 0, 0), Quat::Identity()},
+                                      {Shape::Box(Vec3(0.1, 0.2, 0.3)), Vec3(0, 0, 2), RandomRotation(rng)}};
+  const RigidBody body = MakeBody(1, Shape::Compound(children), x, q);
+  auto world_point = [&](const Vec3& p) -> Vec3 { return x + q * p; };
+  // along -x from x = 5: the +x sphere's far side at 1.5
+  RayHit h = RayCastBody(body, MakeTestRay(world_point(Vec3(5, 0, 0)), q * Vec3(-1, 0, 0), 10));
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.distance, 3.5, kTol);
+  EXPECT_NEAR((h.normal - q * Vec3(1, 0, 0)).norm(), 0.0, kTol);
+  // along y between the spheres, below the box: nothing
+  EXPECT_FALSE(RayCastBody(body, MakeTestRay(world_point(Vec3(0, -5, 0)), q * Vec3(0, 1, 0), 10)).hit);
+  // from inside the -x sphere
+  h = RayCastBody(body, MakeTestRay(world_point(Vec3(-1.1, 0, 0)), q * Vec3(0, 0, 1), 10));
+  ASSERT_TRUE(h.hit);
+  EXPECT_EQ(h.distance, 0.0);
+  // down onto the box from above: its top face, turned by the child's and the body's rotation
+  const ShapeChild& box = children[2];
+  const Vec3 top = box.position + box.orientation * Vec3(0, 0, 0.3);
+  const Vec3 up = box.orientation * Vec3(0, 0, 1);
+  h = RayCastBody(body, MakeTestRay(world_point(top + 2.0 * up), q * -up, 10));
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.distance, 2.0, kTol);
+  EXPECT_NEAR((h.normal - q * up).norm(), 0.0, kTol);
+}
+
+// Verifies the mask: a body whose category shares no bit with it is passed.
+TEST(RayCastTest, MaskSelectsBodiesByCategory) {
+  World world;
+  RigidBody near = MakeBody(0, Shape::Sphere(0.5), Vec3(2, 0, 0));
+  near.collision_category = 0x2;
+  const BodyId near_id = world.AddBody(near);
+  const BodyId far_id = world.AddBody(MakeBody(0, Shape::Sphere(0.5), Vec3(5, 0, 0)));
+  const std::vector<Ray> rays = {MakeTestRay(Vec3::Zero(), Vec3::UnitX(), 10)};
+  RayCastOptions options;
+  EXPECT_EQ(RayCastWorld(world, rays, options, nullptr)[0].body, near_id);
+  options.mask = 0x1;
+  EXPECT_EQ(RayCastWorld(world, rays, options, nullptr)[0].body, far_id);
+  EXPECT_EQ(RayCastBruteForce(world, rays, options)[0].body, far_id);
+  options.mask = 0x4;
+  EXPECT_FALSE(RayCastWorld(world, rays, options, nullptr)[0].hit);
 }
 
 // Verifies an empty world and an empty batch.

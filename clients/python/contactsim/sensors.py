@@ -113,11 +113,13 @@ class SensorCommands:
             self._sensors_cond.notify_all()
         self._call("sensors", reading)
 
-    def ray_cast(self, origins, directions, max_distance, *, ignore=(), timeout=None):
+    def ray_cast(self, origins, directions, max_distance, *, ignore=(), mask=None, timeout=None):
         """Casts N rays (origins and directions: N x 3 arrays, world frame;
         max_distance: a number or N numbers, m) and returns a RayHits, which
         unpacks as (hit, body_ids, points, normals, distances). Rays pass
-        through the bodies in ``ignore``. Bad rays raise CommandError."""
+        through the bodies in ``ignore``; with ``mask`` (32 bits) only bodies
+        whose collision category shares a bit with it are hit. Bad rays
+        raise CommandError."""
         o = _rows(origins, None, "origins")
         d = _rows(directions, o.shape[0], "directions")
         n = o.shape[0]
@@ -129,6 +131,7 @@ class SensorCommands:
         m.max_distances = [float(x) for x in dist]
         m.ignore_ids = [int(i) for i in ignore]
         m.num_ignore = len(m.ignore_ids)
+        m.collision_mask = 0 if mask is None else int(mask)
         self._send("RAY_CAST", m, timeout=timeout)  # sets m.request_id
         with self._ray_cond:
             # the answer is published before the reply; allow for reordering
