@@ -39,22 +39,23 @@ std::unique_ptr<ContactMethod> Make() {
 // The names are the protocol's (lcmtypes/protocol.toml, `methods`), which the
 // clients and the viewer offer; method_contract_test.cpp checks that they agree.
 const std::vector<ContactMethodEntry>& ContactMethodTable() {
-  //                           joints restitution kinematic friction
+  //                           joints restitution kinematic friction compound contact_forces
   static const std::vector<ContactMethodEntry> table = {
-      {"impulse", Make<ImpulseMethod>, {true, true, true, "coulomb disk"}},
+      {"impulse", Make<ImpulseMethod>, {true, true, true, "coulomb disk", true, true}},
       {"penalty", Make<PenaltyMethod>,
-       {true, true, true, "regularized: tangential spring with a coulomb disk limit"}},
-      {"xpbd", Make<XpbdMethod>, {true, true, true, "coulomb disk (positional static, velocity-level dynamic)"}},
-      {"lcp", Make<LcpMethod>, {true, true, true, "coulomb disk (solver=pgs) or coulomb pyramid (solver=lemke)"}},
+       {true, true, true, "regularized: tangential spring with a coulomb disk limit", true, true}},
+      {"xpbd", Make<XpbdMethod>, {true, true, true, "coulomb disk (positional static, velocity-level dynamic)", true, true}},
+      {"lcp", Make<LcpMethod>, {true, true, true, "coulomb disk (solver=pgs) or coulomb pyramid (solver=lemke)", true, true}},
       // barrier: the implicit step is inelastic (no restitution), and a
       // kinematic body is moved to its end pose before the solve
       // (barrier_solver.cpp, Setup), so its motion reaches neither the CCD
       // nor the friction: a rising platform passes through what rests on it.
       // Its distances come from one BodyGeometry per body (one rounding
-      // radius), not from the narrowphase: it takes no compound bodies
+      // radius), not from the narrowphase: it takes no compound bodies; its
+      // contacts carry the barrier force alone, not the friction
       {"barrier", Make<BarrierMethod>,
-       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false}},
-      {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk"}},
+       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false, false}},
+      {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk", true, true}},
   };
   return table;
 }

@@ -19,11 +19,14 @@ struct MethodContract {
   // smoothing of the stick-slip switch), with what decides between them.
   const char* friction = "";
   // compound bodies (shape.h): a body of several shapes collides child by
-  // child; last, so that the table's rows may leave it at its default
+  // child
   bool compound_bodies = true;
+  // Each contact's normal and friction force (or impulse) is reported, so
+  // that a contact sensor can sum the wrench a body received (contact_wrench.h).
+  bool contact_forces = false;
 };
 
-// "joints=yes; restitution=no; kinematic=yes; friction=...", the text
+// "joints=yes; restitution=no; kinematic=yes; contact_forces=yes; friction=...", the text
 // STATUS carries (lcmtypes/status_t.lcm, method_contract); friction comes
 // last because its words hold spaces.
 std::string DescribeContract(const MethodContract& contract);

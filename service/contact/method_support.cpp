@@ -33,6 +33,12 @@ Status CheckMethodSupports(const std::string& method, const World& world) {
                                       std::to_string(world.joints().size()) + " joint(s): remove them or choose " +
                                       MethodsWith(&MethodContract::joints));
   }
+  if (!world.sensors.contacts.empty() && !contract.contact_forces) {
+    return Status::FailedPrecondition("contact method " + method + " does not report contact forces; the world holds " +
+                                      std::to_string(world.sensors.contacts.size()) +
+                                      " contact sensor(s): remove them or choose " +
+                                      MethodsWith(&MethodContract::contact_forces));
+  }
   for (const RigidBody& b : world.bodies()) {
     const std::string what = "body " + std::to_string(b.id) + (b.name.empty() ? "" : " \"" + b.name + "\"");
     const Status st = CheckMethodAcceptsBody(method, b, what);
@@ -45,6 +51,13 @@ Status CheckMethodAcceptsJoint(const std::string& method) {
   if (ContractOf(method).joints) return Status::Ok();
   return Status::FailedPrecondition("contact method " + method + " does not simulate joints: choose " +
                                     MethodsWith(&MethodContract::joints) + " before adding one");
+}
+
+Status CheckMethodAcceptsContactSensor(const std::string& method) {
+  if (ContractOf(method).contact_forces) return Status::Ok();
+  return Status::FailedPrecondition("contact method " + method +
+                                    " does not report contact forces, so a contact sensor would read nothing: choose " +
+                                    MethodsWith(&MethodContract::contact_forces) + " before adding one");
 }
 
 Status CheckMethodAcceptsBody(const std::string& method, const RigidBody& body, const std::string& what) {

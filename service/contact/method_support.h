@@ -25,6 +25,10 @@ Status CheckMethodSupports(const std::string& method, const World& world);
 // Ok when the method can take a joint; else FailedPrecondition.
 Status CheckMethodAcceptsJoint(const std::string& method);
 
+// Ok when the method reports contact forces for a contact sensor to sum;
+// else FailedPrecondition.
+Status CheckMethodAcceptsContactSensor(const std::string& method);
+
 // Ok when the method can simulate `body` (its restitution, its motion
 // type, a compound shape): an added body, or one whose material changes; else
 // FailedPrecondition naming `what` ("body 3", "the new sphere").

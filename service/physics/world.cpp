@@ -26,6 +26,7 @@ Status World::RemoveBody(BodyId id) {
   joints_.erase(std::remove_if(joints_.begin(), joints_.end(),
                                [id](const Joint& j) { return j.body_a == id || j.body_b == id; }),
                 joints_.end());
+  sensors.RemoveBody(id);
   Reindex();
   IndexJointPairs();
   return Status::Ok();
@@ -197,6 +198,7 @@ void World::Clear() {
   wrenches_.clear();
   joints_.clear();
   joined_.Clear();
+  sensors.Clear();
   gravity = DefaultGravity();
   dt = kDefaultDt;
   time = 0.0;

@@ -10,6 +10,7 @@
 #include "service/physics/collision_filter.h"
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
+#include "service/physics/sensors.h"
 #include "service/physics/sleep_settings.h"
 #include "service/physics/status.h"
 
@@ -29,8 +30,8 @@ class World {
 
   // Adds a body, assigning it the next id (ids are never reused).
   BodyId AddBody(RigidBody body);
-  // Removes the body and every joint attached to it (as PyBullet's
-  // removeBody does), so that no joint ever refers to a missing body.
+  // Removes the body, every joint attached to it (as PyBullet's removeBody
+  // does), so that no joint ever refers to a missing body, and its sensors.
   Status RemoveBody(BodyId id);
   RigidBody* Find(BodyId id);
   const RigidBody* Find(BodyId id) const;
@@ -91,6 +92,7 @@ class World {
   BodyId next_id = 1;
   JointId next_joint_id = 1;
   SleepSettings sleep;
+  Sensors sensors;  // not part of the state hash: they read the world, never change it
 
  private:
   void Reindex();

@@ -1,5 +1,6 @@
 #include "service/scene/snapshot.h"
 
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include "service/physics/body_settings.h"
 #include "service/physics/convex_hull.h"
 #include "service/scene/proto_text.h"
+#include "service/scene/snapshot_sensors.h"
 
 namespace contactsim {
 namespace {
@@ -305,6 +307,7 @@ void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapsh
   }
   for (const Joint& j : world.joints()) SaveJoint(j, out->add_joints());
   out->set_next_joint_id(world.next_joint_id);
+  SaveSensors(world.sensors, out);
   out->set_contact_method(method.Name());
   for (const auto& [name, value] : method.Params()) {
     proto::Param* p = out->add_method_params();
@@ -355,6 +358,7 @@ Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<C
   if (!(st = w.AssignJoints(std::move(joints), snap.next_joint_id())).ok()) {
     return Status::InvalidArgument("snapshot: " + st.message());
   }
+  if (!(st = LoadSensors(snap, &w)).ok()) return st;
   if (snap.has_state_hash() && HashWorldState(w) != snap.state_hash()) {
     return Status::InvalidArgument("snapshot: the bodies do not match the stored state hash");
   }

@@ -8,7 +8,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "service/collision/ray_cast.h"
 #include "service/contact/contact_method.h"
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
@@ -49,7 +51,7 @@ struct Command {
     kAddBody, kRemoveBody, kSetPose, kSetVelocity, kApplyForce, kApplyImpulse, kSetMass, kSetMaterial,
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
-    kAddJoint, kRemoveJoint, kSetFilter,
+    kAddJoint, kRemoveJoint, kSetFilter, kAddRangeSensor, kAddContactSensor, kRemoveSensor, kRayCast,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -85,6 +87,10 @@ struct Command {
   double late_timeout = 0.0;           // REGISTER_CONTROLLER, s; 0 = the server's
   bool late_default = true;            // REGISTER_CONTROLLER gave no policy
   ControllerInput input;               // INPUT
+  RangeSensor range_sensor;            // ADD_RANGE (checked, directions unit)
+  std::string sensor_name;             // ADD_CONTACT, REMOVE sensor
+  std::shared_ptr<std::vector<Ray>> rays;  // RAY_CAST (checked, directions unit)
+  RayCastOptions ray_options;          // RAY_CAST
 
   // The command as it arrived (LCM-encoded), and how the journal stores it.
   std::string payload;

@@ -4,7 +4,9 @@
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/protocol.hpp>
+#include <contactsim/ray_cast_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/sensor_cmd_t.hpp>
 #include <contactsim/wire_check.hpp>
 
 #include <cstdio>
@@ -39,6 +41,12 @@ Status CheckBody(const body_cmd_t& m, const DecodeContext& context, Command* cmd
 Status CheckScene(const scene_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeSceneCommand(m, cmd); }
 Status CheckJoint(const joint_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeJointCommand(m, cmd); }
 Status CheckInput(const input_t& m, const DecodeContext&, Command* cmd) { return DecodeInput(m, cmd); }
+Status CheckSensor(const sensor_cmd_t& m, const DecodeContext& context, Command* cmd) {
+  return DecodeSensorCommand(m, context.limits.max_rays_per_sensor, cmd);
+}
+Status CheckRayCast(const ray_cast_t& m, const DecodeContext& context, Command* cmd) {
+  return DecodeRayCast(m, context.limits.max_rays_per_cast, cmd);
+}
 
 // The total decoder of one channel: size limit, bounds check of the
 // encoding, the generated decode, then the command's own checks, with
@@ -95,6 +103,10 @@ const std::vector<CommandChannel>& CommandChannels() {
       Row<joint_cmd_t, &DecodeLimits::max_joint_cmd_bytes, CheckJoint>(protocol::kJointCmd,
                                                                        RecordKind::kJointCommand),
       Row<input_t, &DecodeLimits::max_input_bytes, CheckInput>(protocol::kInput, RecordKind::kInput),
+      Row<sensor_cmd_t, &DecodeLimits::max_sensor_cmd_bytes, CheckSensor>(protocol::kSensorCmd,
+                                                                          RecordKind::kSensorCommand),
+      Row<ray_cast_t, &DecodeLimits::max_ray_cast_bytes, CheckRayCast>(protocol::kRayCast,
+                                                                       RecordKind::kNotJournaled),
   };
   return kChannels;
 }

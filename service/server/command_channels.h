@@ -32,6 +32,10 @@ struct DecodeLimits {
   int max_scene_cmd_bytes = 64 << 10;
   int max_joint_cmd_bytes = 4 << 10;
   int max_input_bytes = 8 << 20;        // 100,000 bodies' forces and torques are 5.6 MB
+  int max_rays_per_cast = 100000;       // a RAY_CAST's answer of 100,000 rays is 6.5 MB
+  int max_rays_per_sensor = 4096;       // a 4,096-ray lidar's reading is 233 kB a step
+  int max_ray_cast_bytes = 8 << 20;     // 100,000 rays are 5.6 MB
+  int max_sensor_cmd_bytes = 128 << 10; // 4,096 directions are 98 kB
 };
 
 struct DecodeContext {

@@ -6,7 +6,9 @@
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/ray_cast_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/sensor_cmd_t.hpp>
 
 #include "service/physics/status.h"
 #include "service/server/command.h"
@@ -22,5 +24,10 @@ Status DecodeInput(const input_t& msg, Command* cmd);
 // Joint commands: every check of the settings but whether the bodies exist
 // (CheckJointSettings); the simulation thread adds the joint.
 Status DecodeJointCommand(const joint_cmd_t& msg, Command* cmd);
+// Sensor commands: the name, and a range sensor's rays within `max_rays`;
+// the simulation thread checks the body and that the name is free.
+Status DecodeSensorCommand(const sensor_cmd_t& msg, int max_rays, Command* cmd);
+// A batch of rays: 1 to `max_rays` rays, each checked by MakeRay.
+Status DecodeRayCast(const ray_cast_t& msg, int max_rays, Command* cmd);
 
 }  // namespace contactsim

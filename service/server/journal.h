@@ -35,6 +35,8 @@ enum class RecordKind : uint8_t {
   kInput = 3,         // input_t: a lockstep controller's forces for one step
   kStepTo = 4,        // no payload: the world reached `step` (a STEP finished)
   kJointCommand = 5,  // joint_cmd_t
+  kSensorCommand = 6, // sensor_cmd_t
+  kNotJournaled = 7,  // a query (ray_cast_t): never written
 };
 
 struct JournalRecord {

@@ -55,6 +55,10 @@ Outcome SimServer::Apply(Command& cmd) {
       return ApplySnapshotCommand(cmd);
     case K::kRegisterController: case K::kReleaseController: case K::kInput:
       return lockstep_.Apply(cmd, world_.step);
+    case K::kAddRangeSensor: case K::kAddContactSensor: case K::kRemoveSensor:
+      return ApplySensorCommand(cmd);
+    case K::kRayCast:
+      return ApplyRayCast(cmd);
     default:
       return ApplyWorldCommand(cmd);
   }
@@ -165,7 +169,10 @@ void SimServer::CancelStepCommands(const std::string& why) {
   }
 }
 
-void SimServer::PublishState() { publisher_.State(world_, lockstep_.input_digest()); }
+void SimServer::PublishState() {
+  publisher_.State(world_, lockstep_.input_digest());
+  PublishSensors();
+}
 
 void SimServer::PublishStatus(Clock::time_point now) {
   status_t s;

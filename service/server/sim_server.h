@@ -82,6 +82,8 @@ class SimServer {
   RigidBody* FindBody(BodyId id, bool need_dynamic, Status* status);
   Outcome ApplyWorldCommand(Command& cmd);  // scene, method, running (world_commands.cpp)
   Outcome ApplySnapshotCommand(Command& cmd);  // snapshot, restore, rewind (snapshot_commands.cpp)
+  Outcome ApplySensorCommand(Command& cmd);    // add and remove sensors (sensor_commands.cpp)
+  Outcome ApplyRayCast(Command& cmd);          // a batch of rays, answered on RAY_HITS
   // the timeline: recovery, snapshots and rewind (timeline.cpp)
   Status Recover();
   proto::Snapshot SaveDurableSnapshot();
@@ -111,7 +113,8 @@ class SimServer {
   void FinishStepCommands();
   void CancelStepCommands(const std::string& why);
   bool Halted() const { return paused_ && !steps_.owed(); }  // paused with no STEP to take
-  void PublishState();
+  void PublishState();    // and the sensors' readings with it
+  void PublishSensors();
   void PublishStatus(Clock::time_point now);
 
   const ServerOptions options_;

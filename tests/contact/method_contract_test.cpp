@@ -23,11 +23,11 @@ namespace {
 
 using testing::MethodSim;
 
-// Verifies the text STATUS carries: the three capabilities, then friction
+// Verifies the text STATUS carries: the four capabilities, then friction
 // (last, since its words hold spaces).
 TEST(MethodContractTest, DescriptionListsCapabilitiesThenFriction) {
-  const MethodContract c{true, false, true, "coulomb disk"};
-  EXPECT_EQ(DescribeContract(c), "joints=yes; restitution=no; kinematic=yes; friction=coulomb disk");
+  const MethodContract c{true, false, true, "coulomb disk", true, true};
+  EXPECT_EQ(DescribeContract(c), "joints=yes; restitution=no; kinematic=yes; contact_forces=yes; friction=coulomb disk");
 }
 
 // Verifies that the registry holds exactly the methods the protocol names

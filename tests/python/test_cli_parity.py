@@ -52,8 +52,8 @@ def _ctl_subcommands(*path):
 def _py_subcommands(*path):
     parser = py_cli._parser()
     for name in path:
-        parser = next(a for a in parser._actions if a.dest in ("cmd", "joint_cmd") and a.choices).choices[name]
-    action = next(a for a in parser._actions if a.choices and a.dest in ("cmd", "joint_cmd", "shape"))
+        parser = next(a for a in parser._actions if a.dest == "cmd" and a.choices).choices[name]
+    action = next(a for a in parser._actions if a.choices and a.dest in ("cmd", "joint_cmd", "shape", "sensor_cmd"))
     return sorted(action.choices)
 
 
@@ -62,6 +62,7 @@ def test_the_clis_have_the_same_subcommands():
     assert sorted(set(_py_subcommands()) - {"compare"}) == _ctl_subcommands()
     assert _py_subcommands("joint") == _ctl_subcommands("joint")
     assert _py_subcommands("add") == _ctl_subcommands("add")
+    assert _py_subcommands("sensor") == _ctl_subcommands("sensor")
 
 
 def test_python_cli_joints_and_lockstep_status(server):
@@ -78,7 +79,7 @@ def test_python_cli_joints_and_lockstep_status(server):
     r = cli(server, "status")
     assert re.search(r"^mode\s+lockstep$", r.stdout, re.M), r.stdout + r.stderr
     # the active method's contract (docs/physics.md, "Method contract")
-    assert re.search(r"^method_contract\s+joints=yes; restitution=yes; kinematic=yes; friction=coulomb disk$",
+    assert re.search(r"^method_contract\s+joints=yes; restitution=yes; kinematic=yes; contact_forces=yes; friction=coulomb disk$",
                      r.stdout, re.M), r.stdout
 
 
@@ -90,4 +91,4 @@ def test_ctl_names_the_lockstep_mode(server):
     r = subprocess.run([str(CTL), "--lcm-url", server.url, "--prefix", server.prefix, "status"],
                        capture_output=True, text=True, timeout=30)
     assert r.returncode == 0 and "mode: lockstep" in r.stdout, r.stdout + r.stderr
-    assert "\nmethod_contract: joints=yes; restitution=yes; kinematic=yes; friction=coulomb disk\n" in r.stdout, r.stdout
+    assert "\nmethod_contract: joints=yes; restitution=yes; kinematic=yes; contact_forces=yes; friction=coulomb disk\n" in r.stdout, r.stdout

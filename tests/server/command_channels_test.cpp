@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <map>
 #include <set>
 
 #include "tests/server/command_messages.h"
@@ -39,7 +40,8 @@ TEST(CommandChannelsTest, EveryChannelIsFoundBySuffixAndRecordKind) {
     EXPECT_EQ(ChannelOfSuffix(c.suffix), &c);
     EXPECT_EQ(ChannelOfRecord(c.record), &c);
   }
-  EXPECT_EQ(suffixes, (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT"}));
+  EXPECT_EQ(suffixes,
+            (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "SENSOR_CMD", "RAY_CAST"}));
   EXPECT_EQ(ChannelOfRecord(RecordKind::kStepTo), nullptr);
   EXPECT_EQ(ChannelOfSuffix("STATE"), nullptr);
 }
@@ -190,7 +192,9 @@ TEST(CommandChannelsTest, TheAdmissionHookAnswersFirst) {
     Command cmd;
     const Status st = DecodeOn(m.suffix, m.bytes, &cmd, context);
     EXPECT_EQ(st.code(), StatusCode::kResourceExhausted) << m.label;
-    EXPECT_EQ(cmd.request_id, m.suffix == "BODY_CMD" ? 7 : m.suffix == "SCENE_CMD" ? 8 : m.suffix == "JOINT_CMD" ? 9 : 10);
+    const std::map<std::string, int64_t> ids = {{"BODY_CMD", 7},    {"SCENE_CMD", 8},   {"JOINT_CMD", 9},
+                                                 {"INPUT", 10},      {"SENSOR_CMD", 11}, {"RAY_CAST", 12}};
+    EXPECT_EQ(cmd.request_id, ids.at(m.suffix)) << m.label;
   }
   EXPECT_EQ(seen.size(), SampleCommandMessages().size());
 }

@@ -5,7 +5,9 @@
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/ray_cast_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/sensor_cmd_t.hpp>
 
 #include <algorithm>
 #include <string>
@@ -113,6 +115,28 @@ inline std::vector<SampleMessage> SampleCommandMessages() {
     m.axis[2] = 1.0;
     out.push_back({"JOINT_CMD", "JOINT_CMD op " + std::to_string(op), EncodeMessage(m)});
   }
+  for (int8_t op = sensor_cmd_t::ADD_RANGE; op <= sensor_cmd_t::REMOVE; ++op) {
+    sensor_cmd_t m{};
+    m.client_id = "sample";
+    m.request_id = 11;
+    m.op = op;
+    m.name = "lidar";
+    m.body_id = 1;
+    m.directions = {{1, 0, 0}, {0, 1, 0}};
+    m.num_rays = 2;
+    m.max_distance = 5.0;
+    out.push_back({"SENSOR_CMD", "SENSOR_CMD op " + std::to_string(op), EncodeMessage(m)});
+  }
+  ray_cast_t rays{};
+  rays.client_id = "sample";
+  rays.request_id = 12;
+  rays.origins = {{0, 0, 1}, {0, 0, 2}};
+  rays.directions = {{0, 0, -1}, {1, 0, 0}};
+  rays.max_distances = {5.0, 5.0};
+  rays.num_rays = 2;
+  rays.ignore_ids = {1};
+  rays.num_ignore = 1;
+  out.push_back({"RAY_CAST", "RAY_CAST", EncodeMessage(rays)});
   input_t in{};
   in.client_id = "sample";
   in.request_id = 10;

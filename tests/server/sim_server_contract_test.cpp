@@ -182,7 +182,8 @@ TEST_P(SimServerContractStatusTest, StatusCarriesTheActiveMethodsContract) {
   EXPECT_EQ(status.back().method_contract, DescribeContract(c));
   auto yes = [](bool b) { return b ? "yes" : "no"; };
   const std::string expected_start = std::string("joints=") + yes(c.joints) + "; restitution=" + yes(c.restitution) +
-                                     "; kinematic=" + yes(c.kinematic_bodies) + "; friction=";
+                                     "; kinematic=" + yes(c.kinematic_bodies) +
+                                     "; contact_forces=" + yes(c.contact_forces) + "; friction=";
   EXPECT_EQ(status.back().method_contract.rfind(expected_start, 0), 0u) << status.back().method_contract;
 }
 

@@ -51,6 +51,7 @@ struct Client::Callbacks {
   std::map<int, ContactsCallback> contacts;
   std::map<int, StatusCallback> status;
   std::map<int, ReplyCallback> reply;
+  std::map<int, SensorsCallback> sensors;
 };
 
 std::string ResolveLcmUrl(const std::string& url) {
@@ -92,6 +93,40 @@ void Client::OnProgress(const lcm::ReceiveBuffer* rb, const std::string& ch, Cli
   if (c->Unwrap(rb, ch, &m)) c->HandleProgress(&m);
 }
 
+void Client::OnRayHits(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  ray_hits_t m;
+  if (!c->Unwrap(rb, ch, &m) || m.client_id != c->options_.client_id) return;
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  c->ray_hits_[m.request_id] = std::move(m);
+  // answers nobody took (their RayCast gave up): the oldest go
+  while (c->ray_hits_.size() > 64) c->ray_hits_.erase(c->ray_hits_.begin());
+  c->changed_.notify_all();
+}
+
+void Client::OnSensors(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  sensors_t m;
+  if (!c->Unwrap(rb, ch, &m)) return;
+  for (const auto& callback : Snapshot(c->mutex_, c->callbacks_->sensors)) callback(m);
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  c->latest_sensors_ = std::move(m);
+}
+
+void Client::SubscribeSensors(int queue_capacity) {
+  lcm_->subscribeFunction(Channel(protocol::kRayHits), &OnRayHits, this)->setQueueCapacity(queue_capacity);
+  lcm_->subscribeFunction(Channel(protocol::kSensors), &OnSensors, this)->setQueueCapacity(queue_capacity);
+}
+
+int Client::OnSensors(SensorsCallback callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->sensors[callbacks_->next_id] = std::move(callback);
+  return callbacks_->next_id++;
+}
+
+std::optional<sensors_t> Client::LatestSensors() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_sensors_;
+}
+
 Client::Client(ClientOptions options)
     : options_(std::move(options)), callbacks_(std::make_unique<Callbacks>()) {
   options_.url = ResolveLcmUrl(options_.url);
@@ -114,6 +149,7 @@ Client::Client(ClientOptions options)
   lcm_->subscribeFunction(Channel(protocol::kContacts), &OnContacts, this)->setQueueCapacity(kQueueCapacity);
   lcm_->subscribeFunction(Channel(protocol::kStatus), &OnStatus, this)->setQueueCapacity(kQueueCapacity);
   lcm_->subscribeFunction(Channel(protocol::kProgress), &OnProgress, this)->setQueueCapacity(kQueueCapacity);
+  SubscribeSensors(kQueueCapacity);
   thread_ = std::thread(&Client::Run, this);
 }
 
@@ -370,6 +406,7 @@ void Client::RemoveCallback(int id) {
   callbacks_->contacts.erase(id);
   callbacks_->status.erase(id);
   callbacks_->reply.erase(id);
+  callbacks_->sensors.erase(id);
 }
 
 std::optional<state_t> Client::LatestState() const {

@@ -6,6 +6,7 @@
 //   contactsim-ctl method impulse restitution=0.3
 //   contactsim-ctl step 10
 //   contactsim-ctl joint add hinge 3 0 --anchor 0 0 1 --axis 0 1 0 --limits -0.5 0.5
+//   contactsim-ctl ray 0 0 5 0 0 -1 --max-distance 10
 //
 // Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout), LCM unusable
 // or an unusable auth key file; CLI11's own codes for a bad command line.
@@ -262,6 +263,48 @@ int main(int argc, char** argv) {
         run = [&](Client& client) { return ExitCode(client.RemoveJoint(joint_id)); };
       })
       ->add_option("id", joint_id, "joint id")
+      ->required();
+
+  std::array<double, 3> ray_origin{0, 0, 0}, ray_direction{0, 0, 0};
+  double ray_max_distance = 100.0;
+  std::vector<int64_t> ray_ignore;
+  CLI::App* ray = app.add_subcommand("ray", "cast one ray; prints what it hits (docs/protocol.md, Ray casts)");
+  ray->add_option("origin", ray_origin, "m, world")->required();
+  ray->add_option("direction", ray_direction, "world, any length")->required();
+  ray->add_option("--max-distance", ray_max_distance, "m")->capture_default_str();
+  ray->add_option("--ignore", ray_ignore, "body ids the ray passes through");
+  ray->callback([&] {
+    run = [&](Client& client) {
+      const auto r = client.RayCast({ToVector(ray_origin)}, {ToVector(ray_direction)}, {ray_max_distance}, ray_ignore);
+      if (!r.ok()) return ExitCode(r.status);
+      const contactsim::ray_hits_t& h = r.value;
+      if (!h.hit[0]) {
+        std::printf("miss\n");
+        return 0;
+      }
+      std::printf("hit body %lld distance %.9g point %.9g %.9g %.9g normal %.9g %.9g %.9g\n",
+                  static_cast<long long>(h.body_ids[0]), h.distances[0], h.points[0][0], h.points[0][1],
+                  h.points[0][2], h.normals[0][0], h.normals[0][1], h.normals[0][2]);
+      return 0;
+    };
+  });
+
+  CLI::App* sensor = app.add_subcommand("sensor", "add a contact sensor or remove a sensor");
+  sensor->require_subcommand(1);
+  int64_t sensor_body = 0;
+  std::string sensor_name;
+  CLI::App* sensor_contact =
+      sensor->add_subcommand("contact", "the contact wrench a body receives each step, on SENSORS");
+  sensor_contact->add_option("body", sensor_body, "body id")->required();
+  sensor_contact->add_option("name", sensor_name, "sensor name")->required();
+  sensor_contact->callback([&] {
+    run = [&](Client& client) { return ExitCode(client.AddContactSensor(sensor_body, sensor_name)); };
+  });
+  sensor->add_subcommand("remove", "remove a sensor")
+      ->callback([&] {
+        run = [&](Client& client) { return ExitCode(client.RemoveSensor(sensor_name)); };
+      })
+      ->add_option("name", sensor_name, "sensor name")
       ->required();
 
   std::string method;

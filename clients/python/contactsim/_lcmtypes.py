@@ -32,6 +32,12 @@ TYPE_NAMES = (
     "contacts_t",
     "status_t",
     "progress_t",
+    "range_reading_t",
+    "contact_reading_t",
+    "sensors_t",
+    "sensor_cmd_t",
+    "ray_cast_t",
+    "ray_hits_t",
 )
 PROTOCOL_TABLE = "protocol.toml"
 

@@ -86,6 +86,17 @@ def _joint_parser(sub):
     a.add_argument("--damping", type=float, help="N m s/rad (hinge) or N s/m (prismatic)")
     a.add_argument("--friction", type=float, help="N m (hinge) or N (prismatic), Coulomb")
     j.add_parser("remove", help="remove a joint").add_argument("id", type=int)
+    r = sub.add_parser("ray", help="cast one ray; prints what it hits (docs/protocol.md, Ray casts)")
+    r.add_argument("origin", type=float, nargs=3, help="m, world")
+    r.add_argument("direction", type=float, nargs=3, help="world, any length")
+    r.add_argument("--max-distance", type=float, default=100.0, help="m")
+    r.add_argument("--ignore", type=int, nargs="*", default=[], help="body ids the ray passes through")
+    sn = sub.add_parser("sensor", help="add a contact sensor or remove a sensor").add_subparsers(
+        dest="sensor_cmd", required=True)
+    sc = sn.add_parser("contact", help="the contact wrench a body receives each step, on SENSORS")
+    sc.add_argument("body", type=int)
+    sc.add_argument("name")
+    sn.add_parser("remove", help="remove a sensor").add_argument("name")
 
 
 def _run_joint(c, a):
@@ -94,6 +105,15 @@ def _run_joint(c, a):
                           length=a.length, limits=a.limits, damping=a.damping, friction=a.friction))
         return None
     return c.remove_joint(a.id)
+
+
+def _ray(c, a):
+    hit, ids, points, normals, dist = c.ray_cast([a.origin], [a.direction], a.max_distance, ignore=a.ignore)
+    if not hit[0]:
+        print("miss")
+        return
+    print("hit body %d distance %.9g point %.9g %.9g %.9g normal %.9g %.9g %.9g"
+          % (ids[0], dist[0], *points[0], *normals[0]))
 
 
 def _compare(c, a):
@@ -128,10 +148,15 @@ def _run(c, a):
     if a.cmd == "compare":
         _compare(c, a)
         return
+    if a.cmd == "ray":
+        _ray(c, a)
+        return
     if a.cmd == "joint":
         r = _run_joint(c, a)
         if r is None:
             return
+    elif a.cmd == "sensor":
+        r = c.add_contact_sensor(a.body, a.name) if a.sensor_cmd == "contact" else c.remove_sensor(a.name)
     elif a.cmd == "remove":
         r = c.remove_body(a.id)
     elif a.cmd == "method":

@@ -30,6 +30,7 @@ from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
 from .filters import FilterCommands, fill_filter
 from .joints import JointCommands
+from .sensors import SensorCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -109,7 +110,7 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands):
+class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, SensorCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -154,6 +155,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands):
             self._lc.subscribe(self.channels["STATUS"], self._on_status_msg),
             self._lc.subscribe(self.channels["PROGRESS"], self._on_progress_msg),
         ]
+        self._subs += self._init_sensors()
         # LCM keeps at most 30 undelivered messages per subscription and drops
         # the rest; a free-running server sends STATE in bursts far larger.
         for sub in self._subs:

@@ -37,9 +37,13 @@
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/progress_t.hpp>
+#include <contactsim/ray_cast_t.hpp>
+#include <contactsim/ray_hits_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/result.h>
 #include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/sensor_cmd_t.hpp>
+#include <contactsim/sensors_t.hpp>
 #include <contactsim/signature.h>
 #include <contactsim/state_t.hpp>
 #include <contactsim/status_t.hpp>
@@ -152,6 +156,7 @@ class Client {
   using StatusCallback = std::function<void(const status_t&)>;
   using ReplyCallback = std::function<void(const reply_t&)>;
   using ProgressCallback = std::function<void(const progress_t&)>;
+  using SensorsCallback = std::function<void(const sensors_t&)>;
   using Clock = std::chrono::steady_clock;
 
   explicit Client(ClientOptions options = {});
@@ -265,12 +270,31 @@ class Client {
                            const JointOptions& options = {});
   CommandResult RemoveJoint(int64_t id);
 
+  // --- ray casts and sensors (docs/protocol.md, "Ray casts", "Sensors") ---
+  // Casts one ray per origin (m, world) along the direction of the same
+  // index, each up to its max distance (m; one value applies to all);
+  // rays pass through the bodies in `ignore`. The value is the server's
+  // answer from RAY_HITS, in the rays' order.
+  Result<ray_hits_t> RayCast(const std::vector<Eigen::Vector3d>& origins,
+                             const std::vector<Eigen::Vector3d>& directions,
+                             const std::vector<double>& max_distances,
+                             const std::vector<int64_t>& ignore = {});
+  // A fan of rays from `body` (origin and directions in its frame), read
+  // on SENSORS as the range reading called `name`.
+  CommandResult AddRangeSensor(int64_t body, const std::string& name,
+                               const std::vector<Eigen::Vector3d>& directions, double max_distance,
+                               const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+  // The contact wrench `body` receives each step, read on SENSORS.
+  CommandResult AddContactSensor(int64_t body, const std::string& name);
+  CommandResult RemoveSensor(const std::string& name);
+
   // Raw commands: client_id and request_id are filled in here. For fields
   // the typed methods do not cover, and for tests of the server's checks.
   CommandResult Send(body_cmd_t command);
   // progress: called with each PROGRESS report of this command (STEP, REWIND).
   CommandResult Send(scene_cmd_t command, ProgressCallback progress = {});
   CommandResult Send(joint_cmd_t command);
+  CommandResult Send(sensor_cmd_t command);
 
   // --- subscriptions ---
   // Each returns an id for RemoveCallback. Callbacks run on the LCM thread,
@@ -280,11 +304,13 @@ class Client {
   int OnContacts(ContactsCallback callback);
   int OnStatus(StatusCallback callback);
   int OnReply(ReplyCallback callback);  // every reply, any client's
+  int OnSensors(SensorsCallback callback);
   void RemoveCallback(int id);
 
   std::optional<state_t> LatestState() const;
   std::optional<contacts_t> LatestContacts() const;
   std::optional<status_t> LatestStatus() const;
+  std::optional<sensors_t> LatestSensors() const;
 
   // True once a STATUS has arrived (the server publishes one at start and
   // then at status_rate_hz), false after `timeout`.
@@ -325,6 +351,9 @@ class Client {
   static void OnContacts(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnStatus(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnProgress(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  static void OnRayHits(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  static void OnSensors(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  void SubscribeSensors(int queue_capacity);
   void HandleProgress(const progress_t* progress);
 
   ClientOptions options_;
@@ -344,6 +373,8 @@ class Client {
   uint64_t states_received_ = 0;  // lets Step ignore states older than its command
   std::optional<contacts_t> latest_contacts_;
   std::optional<status_t> latest_status_;
+  std::optional<sensors_t> latest_sensors_;
+  std::map<int64_t, ray_hits_t> ray_hits_;  // request id -> answer, until RayCast takes it
   std::unique_ptr<Callbacks> callbacks_;
   std::atomic<bool> running_{true};
   std::thread thread_;  // last: starts after every member is ready
