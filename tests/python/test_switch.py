@@ -118,7 +118,8 @@ def test_status_carries_the_contract_of_the_active_method(client):
     # (docs/physics.md, "Method contract") and follows a switch.
     use(client, "impulse")
     st = client.wait_for_status(lambda s: s.method == "impulse", timeout=3.0)
-    assert st.contract() == {"joints": True, "restitution": True, "kinematic": True, "friction": "coulomb disk"}
+    assert st.contract() == {"joints": True, "restitution": True, "kinematic": True, "contact_forces": True,
+                             "friction": "coulomb disk"}
     use(client, "barrier")
     c = client.wait_for_status(lambda s: s.method == "barrier", timeout=3.0).contract()
     assert (c["joints"], c["restitution"], c["kinematic"]) == (False, False, False)

@@ -107,7 +107,7 @@ def test_page_commands_reach_server(server, browser):
         # the sphere has restitution 0.5) comes back refused with why
         contract = "document.getElementById('ro-contract').textContent"
         shown = wait_for(browser, "%s.includes('regularized: tangential spring') && %s" % (contract, contract))
-        assert shown.startswith("joints=yes; restitution=yes; kinematic=yes; friction=")
+        assert shown.startswith("joints=yes; restitution=yes; kinematic=yes; contact_forces=yes; friction=")
         Select(browser.find_element(By.ID, "method-select")).select_by_value("barrier")
         browser.find_element(By.ID, "btn-method").click()
         replies = wait_for(browser, "%s.replies().length >= 3 && %s.replies()" % (VIEWER, VIEWER))
