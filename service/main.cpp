@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
   std::vector<std::string> model_paths;
   app.add_option("--model-path", model_paths,
-                 "a folder of model files and their meshes (repeatable; after the config's model_path)");
+                 "a folder of model files and their meshes (repeatable; searched before the config's model_path)");
   app.add_option("--replay", replay_log,
                  "re-simulate an lcm-logger log of a run from this config and scene; report the first divergent step");
   CLI11_PARSE(app, argc, argv);
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
   if (!journal_dir.empty()) setup.options.journal_dir = journal_dir;
-  for (const std::string& p : model_paths) setup.options.model_paths.push_back(p);
+  setup.options.model_path_flags = model_paths;
   if (!auth_key_file.empty()) {
     std::string error;
     if (!LoadAuthKey(auth_key_file, &setup.options.auth_key, &error)) {

@@ -1,7 +1,5 @@
 #include "service/model/body_plan.h"
 
-#include <map>
-
 namespace contactsim::model {
 namespace {
 
@@ -30,25 +28,16 @@ void FinishMass(const Vec3& first, const Mat3& second, BodyPlan* b) {
 
 }  // namespace
 
-Pose Compose(const Pose& a, const Pose& b) {
-  Pose c;
-  c.position = a.position + a.orientation * b.position;
-  c.orientation = (a.orientation * b.orientation).normalized();
-  return c;
-}
-
 void PlanBodies(const ModelDescription& d, const ModelTree& tree, std::vector<BodyPlan>* bodies,
                 std::vector<int>* link_body, std::vector<Pose>* link_in_body) {
   bodies->clear();
   link_body->assign(d.links.size(), -1);
   link_in_body->assign(d.links.size(), Pose());
-  std::map<std::string, int> link_index;
-  for (size_t k = 0; k < d.links.size(); ++k) link_index[d.links[k].name] = static_cast<int>(k);
   // parents come first in tree.order, so a welded child finds its parent's body
   for (int li : tree.order) {
     const int pj = tree.parent_joint[li];
     if (pj >= 0 && d.joints[pj].type == JointType::kFixed) {
-      const int parent = link_index.at(d.joints[pj].parent);
+      const int parent = tree.parent_link[li];
       (*link_body)[li] = (*link_body)[parent];
       (*link_in_body)[li] = Compose((*link_in_body)[parent], d.joints[pj].origin);
       (*bodies)[(*link_body)[li]].links.push_back(li);

@@ -15,11 +15,9 @@
 
 #include "service/model/model_check.h"
 #include "service/model/model_description.h"
+#include "service/model/model_kinematics.h"
 
 namespace contactsim::model {
-
-// p_A = a * p_B for two frames given as poses: a's pose composed with b's.
-Pose Compose(const Pose& a, const Pose& b);
 
 struct PartPlan {
   const Geometry* geometry = nullptr;  // points into the description

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "service/model/engine_settings.h"
+
 namespace contactsim::model {
 namespace {
 
@@ -24,9 +26,14 @@ Status PrepareModel(ModelBuild build, const World& world, const Material& defaul
     }
   }
   PreparedModel p;
+  // one negative group per model, named by its id: its bodies never collide
+  // with each other unless it asks for self-collision
+  const int group = -static_cast<int>(world.next_model_id % 1000000000);
   for (size_t i = 0; i < build.bodies.size(); ++i) {
     RigidBody b;
-    if (Status st = CreateBody(build.bodies[i].settings, default_material, &b); !st.ok()) {
+    Status st = ApplySelfCollision(build.record.self_collide, group, &build.bodies[i].settings);
+    if (st.ok()) st = CreateBody(build.bodies[i].settings, default_material, &b);
+    if (!st.ok()) {
       return Status::InvalidArgument("model \"" + name + "\", link \"" + build.record.links[build.bodies[i].link].name +
                                      "\": " + st.message());
     }

@@ -19,23 +19,18 @@ const char* JointTypeName(JointType t) {
   return "unknown";
 }
 
-// The world pose of every link at q = 0: the base pose for the root, then
-// each child at its parent's pose composed with its joint's origin
-// (forward kinematics with every joint at zero).
-std::vector<Pose> LinkPosesAtZero(const ModelDescription& d, const ModelTree& tree, const Pose& base) {
-  std::vector<Pose> pose(d.links.size());
-  std::vector<int> index_of_parent(d.links.size(), -1);
-  for (int li : tree.order) {
-    const int pj = tree.parent_joint[li];
-    if (pj < 0) {
-      pose[li] = base;
-      continue;
-    }
-    for (size_t k = 0; k < d.links.size(); ++k) {
-      if (d.links[k].name == d.joints[pj].parent) pose[li] = Compose(pose[k], d.joints[pj].origin);
+// Every joint at its zero: 0 for the moving ones, the identity pose for a
+// floating one (x, y, z, qw, qx, qy, qz).
+std::vector<double> ZeroCoordinates(const ModelDescription& d) {
+  std::vector<double> q;
+  for (const ModelJoint& j : d.joints) {
+    if (j.type == JointType::kFloating) {
+      q.insert(q.end(), {0, 0, 0, 1, 0, 0, 0});
+    } else {
+      q.insert(q.end(), JointCoordinateCount(j.type), 0.0);
     }
   }
-  return pose;
+  return q;
 }
 
 ModelRecord MakeRecord(const ModelDescription& d, const ModelOptions& o) {
@@ -62,9 +57,9 @@ ModelRecord MakeRecord(const ModelDescription& d, const ModelOptions& o) {
 
 }  // namespace
 
-Status BuildModel(const ModelDescription& d, const ModelOptions& options, ModelBuild* build) {
+Status BuildModel(ModelDescription d, const ModelOptions& options, ModelBuild* build) {
   ModelTree tree;
-  if (Status st = CheckModel(d, &tree); !st.ok()) return st;
+  if (Status st = CheckModel(&d, &tree); !st.ok()) return st;
   const std::string model = ModelWhere(d);
   if (!options.base.position.allFinite() || !options.base.orientation.coeffs().allFinite() ||
       std::abs(options.base.orientation.norm() - 1.0) > 1e-6) {
@@ -74,7 +69,10 @@ Status BuildModel(const ModelDescription& d, const ModelOptions& options, ModelB
   std::vector<BodyPlan> plans;
   std::vector<Pose> link_in_body;
   PlanBodies(d, tree, &plans, &b.link_body, &link_in_body);
-  b.link_pose_W = LinkPosesAtZero(d, tree, options.base);
+  // every link's pose with every joint at zero (forward kinematics)
+  if (Status st = LinkWorldPoses(d, options.base, ZeroCoordinates(d), &b.link_pose_W); !st.ok()) {
+    return st.Prefixed(model + ": ");
+  }
   for (const BodyPlan& plan : plans) {
     const std::string where = model + ", link \"" + d.links[plan.owner].name + "\"";
     const bool is_static = options.fixed_base && plan.owner == tree.root;
@@ -84,20 +82,17 @@ Status BuildModel(const ModelDescription& d, const ModelOptions& options, ModelB
       return st;
     }
     body.settings.name = (options.name.empty() ? d.name : options.name) + "/" + d.links[plan.owner].name;
-    if (Status st = ApplySelfCollision(options.self_collide, options.collision_group, &body.settings); !st.ok()) {
-      return Status::InvalidArgument(where + ": " + st.message());
-    }
     b.bodies.push_back(std::move(body));
   }
   for (size_t ji = 0; ji < d.joints.size(); ++ji) {
     const ModelJoint& j = d.joints[ji];
     if (j.type == JointType::kFixed || j.type == JointType::kFloating) continue;  // merged, or free
     const std::string where = model + ", joint \"" + j.name + "\"";
-    int child = -1, parent = -1;
+    int child = -1;
     for (size_t k = 0; k < d.links.size(); ++k) {
-      if (d.links[k].name == j.child) child = static_cast<int>(k);
-      if (d.links[k].name == j.parent) parent = static_cast<int>(k);
+      if (tree.parent_joint[k] == static_cast<int>(ji)) child = static_cast<int>(k);
     }
+    const int parent = tree.parent_link[child];
     BuiltJoint bj;
     bj.joint = static_cast<int>(ji);
     bj.body_a = b.link_body[parent];

@@ -37,8 +37,7 @@ struct ModelOptions {
   std::string name;                 // the model's name in the world; empty: the description's
   Pose base;                        // the root link's frame in the world
   bool fixed_base = false;          // the root link is static
-  bool self_collide = false;        // the model's non-adjacent links collide with each other
-  int collision_group = 0;          // < 0: the group self_collide false uses (the caller picks one per model)
+  bool self_collide = false;        // the model's links not joined by a joint collide with each other
 };
 
 // One body of the built model: a link, with any links merged into it.
@@ -65,8 +64,9 @@ struct ModelBuild {
   ModelRecord record;               // names, types, dynamics; ids filled when added
 };
 
-// Checks the description and builds every body's and joint's settings.
-// Errors name the model and the link or joint; on error *build is untouched.
-Status BuildModel(const ModelDescription& description, const ModelOptions& options, ModelBuild* build);
+// Checks the description (model_check.h) and builds every body's and
+// joint's settings. Errors name the model and the link or joint; on error
+// *build is untouched.
+Status BuildModel(ModelDescription description, const ModelOptions& options, ModelBuild* build);
 
 }  // namespace contactsim::model

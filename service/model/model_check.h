@@ -1,8 +1,7 @@
-// The checks of a model description that need no world: unique names,
-// joints that name existing links, one tree with one root (no link is the
-// child of two joints, no loop), finite poses, unit-able axes, masses and
-// inertias a rigid body can have, limits in order, geometry sizes positive.
-// A hand-made description passes through the same gate as a file's.
+// The builder's gate on a description: the readers' own checks
+// (description_check.h: names, one tree, finite values, masses and
+// inertias a body can have), run again because a description also arrives
+// hand-made or from a journal, and the tree's order for the builder.
 #pragma once
 
 #include <string>
@@ -17,17 +16,15 @@ namespace contactsim::model {
 struct ModelTree {
   int root = -1;                     // index of the root link
   std::vector<int> parent_joint;     // per link: the joint whose child it is, -1 for the root
+  std::vector<int> parent_link;      // per link: its parent link, -1 for the root
   std::vector<int> order;            // link indices, every parent before its children
 };
 
-// "model \"name\"" and ", link \"x\"" / ", joint \"y\"" prefixes for errors.
+// "model \"name\" (source)" for the builder's errors.
 std::string ModelWhere(const ModelDescription& d);
 
-Status CheckModel(const ModelDescription& d, ModelTree* tree);
-
-// The inertia tensor a rigid body can have: symmetric, positive definite,
-// and its principal moments obey the triangle inequality (each at most the
-// sum of the other two), within round-off.
-Status CheckInertia(const std::string& where, const Mat3& inertia);
+// Checks *d (setting its root link and normalising its axes, as the readers
+// do) and orders its tree. Errors start with ModelWhere.
+Status CheckModel(ModelDescription* d, ModelTree* tree);
 
 }  // namespace contactsim::model

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "service/model/model_paths.h"
 #include "service/physics/status.h"
 #include "service/server/command.h"
 #include "service/server/journal.h"
@@ -47,7 +48,7 @@ struct DecodeContext {
   // checks; a refusal is the decoder's answer. Empty: everyone is admitted.
   std::function<Status(const std::string& client_id)> admit;
   // Where model files and their meshes are looked for (docs/models.md).
-  std::vector<std::string> model_paths;
+  model::ModelPaths model_paths;
 };
 
 struct CommandChannel {

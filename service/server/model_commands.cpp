@@ -33,12 +33,8 @@ std::vector<int64_t> LoadIds(const ModelRecord& r) {
 }  // namespace
 
 Outcome SimServer::LoadModel(Command& cmd) {
-  model::ModelOptions options = cmd.model_options;
-  // one negative group per model: its links never collide with each other
-  // unless it asks for self-collision (and joined links never do)
-  options.collision_group = -static_cast<int>(world_.next_model_id % 1000000000);
   model::ModelBuild build;
-  Status st = model::BuildModel(*cmd.model, options, &build);
+  Status st = model::BuildModel(*cmd.model, cmd.model_options, &build);
   if (st.ok()) st = CheckRoom("bodies", world_.bodies().size(), build.bodies.size(), options_.max_bodies);
   if (st.ok()) st = CheckRoom("joints", world_.joints().size(), build.joints.size(), options_.max_joints);
   model::PreparedModel prepared;

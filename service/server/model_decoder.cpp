@@ -6,7 +6,7 @@
 // bytes, not from files that may have changed or gone since.
 #include <contactsim/model_cmd_t.hpp>
 
-#include "service/model/model_source.h"
+#include "service/model/model_file.h"
 #include "service/physics/validation.h"
 #include "service/proto/model.pb.h"
 #include "service/scene/model_proto.h"
@@ -17,6 +17,21 @@ namespace {
 
 constexpr size_t kMaxModelName = 256;   // bytes
 constexpr size_t kMaxModelPath = 4096;  // bytes, as PATH_MAX
+
+// A format the client named must be the one the text's top element shows
+// (a file's is checked by its reader, which reads the same element).
+Status CheckFormat(const model_cmd_t& m) {
+  if (m.format == model_cmd_t::FORMAT_AUTO || m.text.empty()) return Status::Ok();
+  model::ModelFormat found;
+  Status st = model::DetectModelFormat(m.text, "<inline>", &found);
+  if (!st.ok()) return st;
+  const bool urdf = found == model::ModelFormat::kUrdf;
+  if (urdf != (m.format == model_cmd_t::FORMAT_URDF)) {
+    return Status::InvalidArgument(std::string("format says ") + (urdf ? "SDF" : "URDF") + ", but the text is " +
+                                   (urdf ? "URDF (<robot>)" : "SDF (<sdf>)"));
+  }
+  return Status::Ok();
+}
 
 // The model a LOAD names: from its resolved bytes, or read from its path or
 // text; on success *resolved holds the bytes the journal keeps.
@@ -45,11 +60,11 @@ Status ReadLoadedModel(const model_cmd_t& m, const DecodeContext& context, model
                                      " bytes exceeds max_model_text_bytes = " +
                                      std::to_string(context.limits.max_model_text_bytes));
   }
-  model::ModelSource source;
-  source.path = m.path;
-  source.text = m.text;
-  source.format = static_cast<model::ModelFormat>(m.format);
-  Status st = model::ReadModelSource(source, context.model_paths, d);
+  Status st = CheckFormat(m);
+  if (st.ok()) {
+    st = m.path.empty() ? model::ReadModelText(m.text, "<inline>", context.model_paths, model::ReadLimits(), d)
+                        : model::ReadModelFile(m.path, context.model_paths, model::ReadLimits(), d);
+  }
   if (!st.ok()) return st;
   proto::ModelDescription p;
   SaveModelDescription(*d, &p);

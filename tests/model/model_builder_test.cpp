@@ -99,13 +99,13 @@ TEST(ModelBuilderTest, BadJointInTheMiddleRefusesAll) {
     const char* expect;
   };
   const Case cases[] = {
-      {"unknown child", [](ModelJoint* j) { j->child = "nowhere"; }, "unknown child link \"nowhere\""},
-      {"unknown parent", [](ModelJoint* j) { j->parent = "nowhere"; }, "unknown parent link \"nowhere\""},
+      {"unknown child", [](ModelJoint* j) { j->child = "nowhere"; }, "child link 'nowhere' is not in the model"},
+      {"unknown parent", [](ModelJoint* j) { j->parent = "nowhere"; }, "parent link 'nowhere' is not in the model"},
       {"zero axis", [](ModelJoint* j) { j->axis = Vec3::Zero(); }, "axis"},
-      {"limits out of order", [](ModelJoint* j) { j->limits->lower = 3.0; }, "lower <= upper"},
+      {"limits out of order", [](ModelJoint* j) { j->limits->lower = 3.0; }, "is above upper"},
       {"negative damping", [](ModelJoint* j) { j->damping = -1.0; }, "damping"},
       {"planar", [](ModelJoint* j) { j->type = JointType::kPlanar; }, "planar"},
-      {"loop", [](ModelJoint* j) { j->child = "base"; }, "kinematic loop"},
+      {"loop", [](ModelJoint* j) { j->child = "base"; }, "loop"},
   };
   for (const Case& c : cases) {
     ModelDescription d = Arm();
@@ -134,22 +134,23 @@ TEST(ModelBuilderTest, RefusesImpossibleLinks) {
   };
   ModelDescription d = Arm();
   d.links[1].inertial->mass = 0.0;
-  refused(d, "link \"upper\": mass must be in (0, 1e9] kg, got 0");
+  refused(d, "link 'upper'");
+  refused(d, "mass is 0 kg; a link's mass must be positive");
   d = Arm();
   d.links[1].inertial->mass = -2.0;
-  refused(d, "got -2");
+  refused(d, "mass is -2 kg");
   d = Arm();
   d.links[2].inertial->inertia = Vec3(1, 1, -1).asDiagonal();
-  refused(d, "link \"fore\": inertia is not positive definite");
+  refused(d, "inertia is not positive definite");
   d = Arm();
   d.links[2].inertial->inertia = Vec3(1, 1, 3).asDiagonal();
   refused(d, "triangle inequality");
   d = Arm();
   d.joints.pop_back();
-  refused(d, "two root links");
+  refused(d, "2 root links");
   d = Arm();
   d.links.clear();
-  refused(d, "has no links");
+  refused(d, "the model has no links");
 }
 
 // Verifies the mass properties of links merged by fixed joints against
@@ -174,7 +175,7 @@ TEST(ModelBuilderTest, MergesFixedLinksExactly) {
   j.origin.orientation = Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()));
   d.joints = {j};
   ModelTree tree;
-  ASSERT_TRUE(CheckModel(d, &tree).ok());
+  ASSERT_TRUE(CheckModel(&d, &tree).ok());
   std::vector<BodyPlan> plans;
   std::vector<int> link_body;
   std::vector<Pose> link_in_body;

@@ -299,7 +299,7 @@ def test_garbage_is_refused(models_server):
     c = models_server.client
     cases = [
         (dict(path_or_text="<robot name='x'><link name='a'></robot>"), "x"),
-        (dict(path_or_text="/nonexistent/robot.urdf"), "no such file"),
+        (dict(path_or_text="/nonexistent/robot.urdf"), "cannot find"),
         (dict(path_or_text="<robot>" + " " * (2 << 20) + "</robot>"), "max_model_text_bytes"),
     ]
     for kw, expect in cases:

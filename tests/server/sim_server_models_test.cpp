@@ -109,7 +109,7 @@ TEST(SimServerModelsTest, BadLoadsChangeNothing) {
   bad.joints.insert(bad.joints.begin() + 1, model::testing::Revolute("wrist", "fore", "nowhere", Vec3::Zero(),
                                                                      Vec3::UnitX()));
   std::vector<Case> cases;
-  cases.push_back({Load(bad), reply_t::INVALID_ARGUMENT, "joint \"wrist\": names an unknown child link \"nowhere\""});
+  cases.push_back({Load(bad), reply_t::INVALID_ARGUMENT, "child link 'nowhere' is not in the model"});
   model_cmd_t garbage = Load(model::testing::Arm());
   garbage.resolved = {0xff, 0xff, 0xff};
   cases.push_back({garbage, reply_t::INVALID_ARGUMENT, "not a serialized model description"});
@@ -121,13 +121,13 @@ TEST(SimServerModelsTest, BadLoadsChangeNothing) {
   cases.push_back({both, reply_t::INVALID_ARGUMENT, "exactly one of them"});
   model_cmd_t missing = Op(model_cmd_t::LOAD);
   missing.path = "/nonexistent/robot.urdf";
-  cases.push_back({missing, reply_t::NOT_FOUND, "/nonexistent/robot.urdf: no such file"});
+  cases.push_back({missing, reply_t::NOT_FOUND, "cannot find '/nonexistent/robot.urdf'"});
   model_cmd_t huge = Op(model_cmd_t::LOAD);
   huge.text = "<robot>" + std::string(2 << 20, ' ') + "</robot>";
   cases.push_back({huge, reply_t::RESOURCE_EXHAUSTED, "exceeds max_model_text_bytes"});
   model_cmd_t junk = Op(model_cmd_t::LOAD);
   junk.text = "<html>not a model</html>";
-  cases.push_back({junk, reply_t::INVALID_ARGUMENT, "neither a URDF"});
+  cases.push_back({junk, reply_t::INVALID_ARGUMENT, "neither URDF (<robot>) nor SDF (<sdf>)"});
   model_cmd_t turned = Load(model::testing::Arm());
   turned.orientation[0] = std::numeric_limits<double>::quiet_NaN();
   cases.push_back({turned, reply_t::INVALID_ARGUMENT, "orientation"});
