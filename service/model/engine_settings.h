@@ -1,7 +1,10 @@
 // The builder's plans (body_plan.h) as the engine's body and joint
-// settings. This file is the one place that knows what the engine can take:
-// each thing it cannot take yet is refused here, in its own function, with
-// an error that names the model, the link or joint and what is missing.
+// settings: a body is a compound of its links' collision elements with the
+// file's mass properties (body_settings.h), a moving joint a hinge or a
+// slider with its limits, damping and friction, and self-collision off a
+// negative collision group (collision_filter.h). What the engine cannot
+// take (a planar joint, a body without a shape) is refused here with an
+// error that names the model, the link or joint.
 #pragma once
 
 #include <string>

@@ -7,6 +7,7 @@
 
 #include "service/model/body_plan.h"
 #include "service/model/model_adder.h"
+#include "service/physics/cylinder_hull.h"
 #include "tests/model/hand_made_models.h"
 
 namespace contactsim::model {
@@ -34,8 +35,13 @@ TEST(ModelBuilderTest, PosesAxesAndLimitsAtZero) {
   const Vec3 fore = upper + R * Vec3(0.4, 0, 0);
   EXPECT_LT((b.link_pose_W[1].position - upper).norm(), 1e-15);
   EXPECT_LT((b.link_pose_W[2].position - fore).norm(), 1e-15);
-  // the forearm's centre (0.2, 0, 0) in its frame, turned 90 degrees about z
-  EXPECT_LT((b.bodies[2].settings.position - (fore + R * Vec3(0, 0.2, 0))).norm(), 1e-15);
+  // the forearm's body is given in its link frame, with its centre of mass
+  // (0.2, 0, 0) in that frame and its sphere there
+  EXPECT_LT((b.bodies[2].settings.position - fore).norm(), 1e-15);
+  ASSERT_TRUE(b.bodies[2].settings.center_of_mass.has_value());
+  EXPECT_LT((*b.bodies[2].settings.center_of_mass - Vec3(0.2, 0, 0)).norm(), 1e-15);
+  ASSERT_EQ(b.bodies[2].settings.parts.size(), 1u);
+  EXPECT_LT((b.bodies[2].settings.parts[0].position - Vec3(0.2, 0, 0)).norm(), 1e-15);
   EXPECT_LT((*b.joints[0].settings.axis - R * Vec3::UnitY()).norm(), 1e-15);
   EXPECT_LT((*b.joints[1].settings.axis - R * Vec3::UnitZ()).norm(), 1e-15);
   EXPECT_LT((b.joints[1].settings.anchor - fore).norm(), 1e-15);
@@ -188,6 +194,97 @@ TEST(ModelBuilderTest, MergesFixedLinksExactly) {
   // on x at 0.15 and 0.05 m from the centre: m d^2 adds 0.0225 + 0.0075 to y and z
   const Mat3 expect = Vec3(0.1 + 0.5, 0.2 + 0.4 + 0.03, 0.3 + 0.6 + 0.03).asDiagonal();
   EXPECT_LT((plans[0].inertia - expect).cwiseAbs().maxCoeff(), 1e-14) << plans[0].inertia;
+}
+
+// Verifies that a link's file mass properties reach the body exactly: an
+// off-centre centre of mass and an inertia with products of inertia in a
+// turned inertial frame, on a link of two collision elements (a compound),
+// one of them a cylinder (a hull of two 71-gons).
+TEST(ModelBuilderTest, LinkMassPropertiesAreExact) {
+  ModelDescription d = Arm();
+  Link& upper = d.links[1];
+  upper.inertial->origin.position = Vec3(0.01, 0.02, 0.15);
+  upper.inertial->origin.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()));
+  upper.inertial->inertia << 0.02, 0.001, -0.002, 0.001, 0.03, 0.0015, -0.002, 0.0015, 0.015;
+  CollisionElement shaft;
+  shaft.origin.position = Vec3(0, 0, 0.15);
+  shaft.geometry.type = GeometryType::kCylinder;
+  shaft.geometry.radius = 0.05;
+  shaft.geometry.length = 0.3;
+  upper.collisions.push_back(shaft);
+  World world;
+  ModelBuild b;
+  ASSERT_TRUE(BuildModel(d, ModelOptions(), &b).ok());
+  ASSERT_EQ(b.bodies[1].settings.parts.size(), 2u);
+  EXPECT_EQ(b.bodies[1].settings.parts[1].type, ShapeType::kConvex);
+  EXPECT_EQ(b.bodies[1].settings.parts[1].points.size(), 2u * CylinderSides());
+  PreparedModel p;
+  ASSERT_TRUE(PrepareModel(b, world, Material(), &p).ok());
+  ModelRecord r;
+  ASSERT_TRUE(CommitModel(std::move(p), &world, &r).ok());
+  const RigidBody& body = *world.Find(r.links[1].body);
+  const Mat3 R = upper.inertial->origin.orientation.toRotationMatrix();
+  const Mat3 expect = R * upper.inertial->inertia * R.transpose();  // about the centre, in the link's axes
+  EXPECT_DOUBLE_EQ(body.mass, 1.0);
+  EXPECT_LT((body.inertia_body - expect).cwiseAbs().maxCoeff(), 1e-15) << body.inertia_body;
+  EXPECT_LT((body.x - (Vec3(0, 0, 0.5) + Vec3(0.01, 0.02, 0.15))).norm(), 1e-15);
+  EXPECT_LT((r.links[1].position + Vec3(0.01, 0.02, 0.15)).norm(), 1e-15);
+}
+
+// Verifies the joints the engine gained for models: a prismatic joint with
+// its limits, damping and friction, and that self-collision off puts every
+// body of a model in its own negative collision group (on: no group).
+TEST(ModelBuilderTest, PrismaticJointsAndSelfCollisionGroups) {
+  ModelDescription d = Arm();
+  d.joints[1].type = JointType::kPrismatic;
+  d.joints[1].limits = JointLimits{-0.1, 0.2, 5.0, 1.0};
+  d.joints[1].damping = 0.5;
+  d.joints[1].friction = 0.25;
+  World world;
+  for (bool self_collide : {false, true}) {
+    ModelOptions o;
+    o.self_collide = self_collide;
+    o.name = self_collide ? "with" : "without";
+    ModelBuild b;
+    ASSERT_TRUE(BuildModel(d, o, &b).ok());
+    const JointSettings& s = b.joints[1].settings;
+    EXPECT_EQ(s.kind, JointKind::kPrismatic);
+    EXPECT_EQ(*s.limits, std::make_pair(-0.1, 0.2));
+    EXPECT_EQ(s.damping, 0.5);
+    EXPECT_EQ(s.friction, 0.25);
+    EXPECT_FALSE(s.collide_connected);
+    PreparedModel p;
+    ASSERT_TRUE(PrepareModel(b, world, Material(), &p).ok());
+    ModelRecord r;
+    ASSERT_TRUE(CommitModel(std::move(p), &world, &r).ok());
+    for (const ModelLinkEntry& l : r.links) {
+      EXPECT_EQ(world.Find(l.body)->collision_group, self_collide ? 0 : -r.id) << l.name;
+    }
+  }
+}
+
+// Verifies PyBullet's default for a link without <inertial> that is a body
+// of its own (1 kg, unit inertia at the link origin), and that a massless
+// link welded to a massive one adds nothing.
+TEST(ModelBuilderTest, MasslessLinks) {
+  ModelDescription d = Arm();
+  d.links[2].inertial.reset();
+  Link tool;
+  tool.name = "tool";
+  d.links.push_back(tool);
+  ModelJoint weld;
+  weld.name = "tool_weld";
+  weld.type = JointType::kFixed;
+  weld.parent = "upper";
+  weld.child = "tool";
+  d.joints.push_back(weld);
+  ModelBuild b;
+  ASSERT_TRUE(BuildModel(d, ModelOptions(), &b).ok());
+  ASSERT_EQ(b.bodies.size(), 3u);
+  EXPECT_EQ(*b.bodies[2].settings.mass, kDefaultLinkMass);
+  EXPECT_EQ(*b.bodies[2].settings.inertia, Mat3::Identity());
+  EXPECT_EQ(*b.bodies[1].settings.mass, 1.0);  // upper, with the massless tool welded on
+  EXPECT_EQ(b.link_body[3], 1);
 }
 
 }  // namespace
