@@ -36,6 +36,17 @@ SCENES = [
 ]
 
 
+def _bent_iiwa_poses(path, base):
+    """{link: (p, R)} of the iiwa at IIWA_BENT with its base at `base`, by pinocchio."""
+    import numpy as np  # noqa: PLC0415
+    import pinocchio as pin  # noqa: PLC0415
+    model = pin.buildModelFromUrdf(path)
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, np.array(IIWA_BENT))
+    return {f.name: (np.asarray(base) + data.oMf[i].translation, data.oMf[i].rotation)
+            for i, f in enumerate(model.frames) if f.type == pin.FrameType.BODY}
+
+
 def bench_pybullet(models, steps):
     import pybullet as p  # noqa: PLC0415
     out = {"load": {}, "step": {}}
@@ -95,8 +106,10 @@ def bench_contactsim(models, steps, build, method):
                 c.set_timestep(DT)
                 if ground:
                     c.add_plane((0, 0, 1), 0.0)
-                for k, (name, pos, fixed, _) in enumerate(placed):
-                    c.load_model(models[name], name="%s%d" % (name, k), position=pos, fixed_base=fixed)
+                for k, (name, pos, fixed, bent) in enumerate(placed):
+                    m = c.load_model(models[name], name="%s%d" % (name, k), position=pos, fixed_base=fixed)
+                    if bent:
+                        m.set_link_poses(_bent_iiwa_poses(models["iiwa"], pos))
                 c.step(10, timeout=60)  # warm: caches and first contacts
                 t = time.perf_counter()
                 c.step(steps, timeout=600)

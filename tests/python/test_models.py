@@ -41,13 +41,7 @@ KNOWN_MISSES = {}
 
 @pytest.fixture
 def models_server(launch):
-    server = launch(args=("--model-path", DATA))
-    try:
-        server.client.load_model(IIWA, name="probe").remove()
-    except contactsim.CommandError as e:
-        if "no URDF or SDF reader" in str(e):
-            pytest.skip(str(e))
-    return server
+    return launch(args=("--model-path", DATA))
 
 
 def _rotation_about(axis, angle):
@@ -73,24 +67,6 @@ def _link_poses_pin(model, data, q, base_p=np.zeros(3), base_R=np.eye(3)):
 def _quat_wxyz(R):
     q = pin.Quaternion(R)
     return (q.w, q.x, q.y, q.z)
-
-
-def _set_link_poses(client, model, poses):
-    """Puts every body where its owning link's pose in ``poses`` says (the
-    body frame is the link frame composed with the inverse of the link's
-    frame in its body)."""
-    done = set()
-    for link in model.links:
-        body = model.body_id(link)
-        if body in done:
-            continue
-        done.add(body)
-        p_l, R_l = poses[link]
-        p_off, q_off = model.link_frame(link)
-        R_off = contactsim.models._rotation(q_off)
-        R_b = R_l @ R_off.T
-        client.set_pose(body, p_l - R_b @ np.asarray(p_off), _quat_wxyz(R_b))
-        client.set_velocity(body, (0, 0, 0), (0, 0, 0))
 
 
 def _joint_angles(model, state, pin_model):
@@ -202,7 +178,7 @@ def test_random_configurations_hold_pinocchio_poses(models_server):
     for _ in range(100):
         q = rng.uniform(pm.lowerPositionLimit, pm.upperPositionLimit)
         poses = _link_poses_pin(pm, pd, q)
-        _set_link_poses(c, iiwa, poses)
+        iiwa.set_link_poses(poses)
         c.step(1)
         state = c.state()
         for link in iiwa.links:
@@ -224,7 +200,7 @@ def test_passive_iiwa_follows_pinocchio(models_server, tmp_path, pin_reference, 
     except contactsim.CommandError as e:
         pytest.skip("%s refuses the iiwa: %s" % (method, e))
     pm, pd = _pin_iiwa()
-    _set_link_poses(c, iiwa, _link_poses_pin(pm, pd, BENT))
+    iiwa.set_link_poses(_link_poses_pin(pm, pd, BENT))
     _run(c, int(round(1.0 / dt)))
     q = _joint_angles(iiwa, c.state(), pm)
     err = float(np.abs(q - pin_reference).max())

@@ -75,6 +75,30 @@ class Model:
         p_off, q_off = self._frames[link]
         return np.asarray(body.position) + R @ np.asarray(p_off), R @ _rotation(q_off)
 
+    def set_link_poses(self, poses):
+        """Puts the model's bodies where the links' world poses say, at rest.
+
+        poses: {link: (position (m), 3x3 rotation matrix)} for at least each
+        body's first link (e.g. the forward kinematics of a joint
+        configuration from pinocchio or PyBullet). A body is placed from the
+        first of its links in the file's order: p_body = p_link - R_body
+        p_off, R_body = R_link R_off^T, with (p_off, R_off) the link's frame
+        in the body. The joints' angles are then the configuration's, since
+        each hinge measures its angle from the pose at load (q = 0).
+        """
+        import numpy as np  # noqa: PLC0415
+        done = set()
+        for link in self.links:
+            body = self.body_id(link)
+            if body in done or link not in poses:
+                continue
+            done.add(body)
+            p_link, R_link = (np.asarray(x, dtype=float) for x in poses[link])
+            p_off, q_off = self._frames[link]
+            R_body = R_link @ _rotation(q_off).T
+            self._client.set_pose(body, p_link - R_body @ np.asarray(p_off), _quaternion(R_body))
+            self._client.set_velocity(body, (0, 0, 0), (0, 0, 0))
+
     def remove(self):
         """Removes the model's bodies and joints from the world."""
         return self._client.remove_model(self.id)
@@ -87,6 +111,25 @@ def _rotation(wxyz):
     return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
                      [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def _quaternion(R):
+    """The unit quaternion (w, x, y, z) of a rotation matrix (Shepperd's method)."""
+    import numpy as np  # noqa: PLC0415
+    t = np.trace(R)
+    if t > 0:
+        s = 2.0 * np.sqrt(1.0 + t)
+        q = (0.25 * s, (R[2, 1] - R[1, 2]) / s, (R[0, 2] - R[2, 0]) / s, (R[1, 0] - R[0, 1]) / s)
+    else:
+        i = int(np.argmax(np.diag(R)))
+        j, k = (i + 1) % 3, (i + 2) % 3
+        s = 2.0 * np.sqrt(1.0 + R[i, i] - R[j, j] - R[k, k])
+        v = [0.0, 0.0, 0.0]
+        v[i] = 0.25 * s
+        v[j] = (R[j, i] + R[i, j]) / s
+        v[k] = (R[k, i] + R[i, k]) / s
+        q = ((R[k, j] - R[j, k]) / s, *v)
+    return tuple(float(c) for c in q)
 
 
 def _is_text(path_or_text):
