@@ -11,7 +11,7 @@ import time
 
 from . import model_cmd_t
 from ._fields import vector
-from .errors import TimeoutError
+from .errors import CommandError, TimeoutError
 
 FORMATS = {None: model_cmd_t.FORMAT_AUTO, "urdf": model_cmd_t.FORMAT_URDF, "sdf": model_cmd_t.FORMAT_SDF}
 
@@ -97,7 +97,10 @@ class Model:
             p_off, q_off = self._frames[link]
             R_body = R_link @ _rotation(q_off).T
             self._client.set_pose(body, p_link - R_body @ np.asarray(p_off), _quaternion(R_body))
-            self._client.set_velocity(body, (0, 0, 0), (0, 0, 0))
+            try:
+                self._client.set_velocity(body, (0, 0, 0), (0, 0, 0))
+            except CommandError:  # the fixed base: static, nothing to stop
+                pass
 
     def remove(self):
         """Removes the model's bodies and joints from the world."""
@@ -132,6 +135,16 @@ def _quaternion(R):
     return tuple(float(c) for c in q)
 
 
+def _command(op):
+    """A model_cmd_t of op with its byte field empty (the generated default is a str)."""
+    m = model_cmd_t()
+    m.op = op
+    m.orientation = [1.0, 0.0, 0.0, 0.0]
+    m.resolved_size = 0
+    m.resolved = b""
+    return m
+
+
 def _is_text(path_or_text):
     return path_or_text.lstrip().startswith("<")
 
@@ -155,8 +168,7 @@ class ModelCommands:
         """
         if format not in FORMATS:
             raise ValueError("format must be 'urdf', 'sdf' or None, got %r" % (format,))
-        m = model_cmd_t()
-        m.op = model_cmd_t.LOAD
+        m = _command(model_cmd_t.LOAD)
         m.format = FORMATS[format]
         if _is_text(path_or_text):
             m.text = path_or_text
@@ -167,15 +179,12 @@ class ModelCommands:
         m.orientation = vector(orientation, 4, "orientation")
         m.fixed_base = bool(fixed_base)
         m.self_collide = bool(self_collide)
-        m.resolved_size = 0
-        m.resolved = b""
         reply = self._send("MODEL_CMD", m, timeout=timeout)
         return self._model_with_id(reply.ids[0], timeout)
 
     def remove_model(self, model_id):
         """Removes a model (its id, or a Model) with its bodies and joints."""
-        m = model_cmd_t()
-        m.op = model_cmd_t.REMOVE
+        m = _command(model_cmd_t.REMOVE)
         m.model_id = int(getattr(model_id, "id", model_id))
         return self._send("MODEL_CMD", m)
 
@@ -192,10 +201,7 @@ class ModelCommands:
         return found[name]
 
     def _request_model_info(self, timeout):
-        m = model_cmd_t()
-        m.op = model_cmd_t.INFO
-        m.resolved_size = 0
-        m.resolved = b""
+        m = _command(model_cmd_t.INFO)
         seq = self._model_info_seq
         self._send("MODEL_CMD", m, timeout=timeout)
         return self._wait_model_info(lambda info: self._model_info_seq > seq, timeout)
