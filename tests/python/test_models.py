@@ -331,3 +331,24 @@ def test_garbage_is_refused(models_server):
         c.remove_model(99)
     assert "unknown model id 99" in str(e.value)
     assert c.models() == {}
+
+
+# Verifies that both command lines load, list and remove a model, printing
+# each link's body id and each joint's id in the file's order.
+def test_the_clis_load_list_and_remove_a_model(models_server):
+    import subprocess  # noqa: PLC0415
+    from conftest import BUILD  # noqa: PLC0415
+    from test_cli import cli  # noqa: PLC0415
+    r = cli(models_server, "model", "load", IIWA, "--name", "arm", "--fixed-base")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert re.search(r"^  link lbr_iiwa_link_7\s+body 8$", r.stdout, re.M), r.stdout
+    assert re.search(r"^  joint lbr_iiwa_joint_7\s+revolute\s+id 7$", r.stdout, re.M), r.stdout
+    ctl = BUILD / "bin" / "contactsim-ctl"
+    if ctl.exists():
+        out = subprocess.run([str(ctl), "--lcm-url", models_server.url, "--prefix", models_server.prefix,
+                              "model", "list"], capture_output=True, text=True, timeout=30)
+        assert out.returncode == 0 and re.search(r"^  link lbr_iiwa_link_0\s+body 1$", out.stdout, re.M), (
+            out.stdout + out.stderr)
+    assert cli(models_server, "model", "remove", "1").returncode == 0
+    r = cli(models_server, "model", "list")
+    assert r.returncode == 0 and r.stdout.strip() == "", r.stdout + r.stderr
