@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
   app.add_option("--auth-key-file", auth_key_file, "shared key: commands must be signed with it (config auth_key_file)");
   app.add_option("--journal", journal_dir, "journal and snapshot folder; recovers from it when it holds a snapshot");
+  std::vector<std::string> model_paths;
+  app.add_option("--model-path", model_paths,
+                 "a folder of model files and their meshes (repeatable; searched before the config's model_path)");
   app.add_option("--replay", replay_log,
                  "re-simulate an lcm-logger log of a run from this config and scene; report the first divergent step");
   CLI11_PARSE(app, argc, argv);
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
   if (!journal_dir.empty()) setup.options.journal_dir = journal_dir;
+  setup.options.model_path_flags = model_paths;
   if (!auth_key_file.empty()) {
     std::string error;
     if (!LoadAuthKey(auth_key_file, &setup.options.auth_key, &error)) {

@@ -205,6 +205,8 @@ void World::Clear() {
   step = 0;
   next_id = 1;
   next_joint_id = 1;
+  models.clear();
+  next_model_id = 1;
 }
 
 void World::Reindex() {

@@ -9,6 +9,7 @@
 
 #include "service/physics/collision_filter.h"
 #include "service/physics/joint.h"
+#include "service/physics/model_record.h"
 #include "service/physics/rigid_body.h"
 #include "service/physics/sensors.h"
 #include "service/physics/sleep_settings.h"
@@ -93,6 +94,11 @@ class World {
   JointId next_joint_id = 1;
   SleepSettings sleep;
   Sensors sensors;  // not part of the state hash: they read the world, never change it
+  // The robot models the world holds (model_record.h), in the order they
+  // were added, and the id the next one gets. Kept with the world, not in
+  // the state hash.
+  std::vector<ModelRecord> models;
+  ModelId next_model_id = 1;
 
  private:
   void Reindex();

@@ -309,6 +309,7 @@ Status Convert(const proto::Scene& p, const std::string& filename, const TextFor
     scene.joints.push_back(std::move(joint));
     scene.joint_origins.push_back(where);
   }
+  if (!(st = ReadSceneModels(p, filename, tree, &scene.models)).ok()) return st;
   scene.contact_method = p.contact_method();
   for (const auto& param : p.method_params()) scene.method_params[param.name()] = param.value();
   *out = std::move(scene);
@@ -371,6 +372,7 @@ Status BuildWorld(const SceneSpec& scene, World* world) {
     if (st.ok()) st = next.AddJoint(s, &id);
     if (!st.ok()) return Status::InvalidArgument(scene.joint_origins[i] + ": " + st.message());
   }
+  if (Status st = AddSceneModels(scene.models, scene.default_material, &next); !st.ok()) return st;
   *world = std::move(next);
   return Status::Ok();
 }

@@ -9,6 +9,7 @@
 #include "service/contact/contact_method.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/world.h"
+#include "service/scene/scene_models.h"
 
 namespace contactsim {
 
@@ -27,6 +28,7 @@ struct SceneSpec {
   std::vector<std::string> origins;        // "FILE:LINE" of each body, for errors
   std::vector<SceneJoint> joints;
   std::vector<std::string> joint_origins;  // "FILE:LINE: joints[i]" of each joint
+  std::vector<SceneModel> models;          // robot models, read with the scene (scene_models.h)
   std::string contact_method;              // empty: keep the current one
   ParamMap method_params;
   int steps = 0;                           // benchmark length; 0: not given

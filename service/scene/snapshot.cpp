@@ -14,6 +14,7 @@
 #include "service/physics/convex_hull.h"
 #include "service/scene/proto_text.h"
 #include "service/scene/snapshot_sensors.h"
+#include "service/scene/model_proto.h"
 
 namespace contactsim {
 namespace {
@@ -308,6 +309,8 @@ void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapsh
   for (const Joint& j : world.joints()) SaveJoint(j, out->add_joints());
   out->set_next_joint_id(world.next_joint_id);
   SaveSensors(world.sensors, out);
+  for (const ModelRecord& m : world.models) SaveModelRecord(m, out->add_models());
+  out->set_next_model_id(world.next_model_id);
   out->set_contact_method(method.Name());
   for (const auto& [name, value] : method.Params()) {
     proto::Param* p = out->add_method_params();
@@ -359,6 +362,11 @@ Status LoadSnapshot(const proto::Snapshot& snap, World* world, std::shared_ptr<C
     return Status::InvalidArgument("snapshot: " + st.message());
   }
   if (!(st = LoadSensors(snap, &w)).ok()) return st;
+  for (const proto::ModelRecord& pm : snap.models()) {
+    w.models.emplace_back();
+    if (!(st = LoadModelRecord(pm, &w.models.back())).ok()) return Status::InvalidArgument("snapshot: " + st.message());
+  }
+  w.next_model_id = snap.next_model_id();
   if (snap.has_state_hash() && HashWorldState(w) != snap.state_hash()) {
     return Status::InvalidArgument("snapshot: the bodies do not match the stored state hash");
   }

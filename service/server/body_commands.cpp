@@ -42,6 +42,7 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
       return o;
     }
     case K::kRemoveBody: {
+      if (!(st = CheckNotInModel(cmd.body_id, 0)).ok()) return Outcome::Failed(st);
       const size_t joints = world_.joints().size();
       WakeTouching(world_, cmd.body_id);  // what rested on it, or against it
       if (!(st = world_.RemoveBody(cmd.body_id)).ok()) return Outcome::Failed(st);
@@ -63,6 +64,7 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
       return o;
     }
     case K::kRemoveJoint:
+      if (!(st = CheckNotInModel(0, cmd.joint_id)).ok()) return Outcome::Failed(st);
       if (!(st = world_.RemoveJoint(cmd.joint_id)).ok()) return Outcome::Failed(st);
       return Outcome::Done("removed joint " + std::to_string(cmd.joint_id), true);
     case K::kSetFilter:

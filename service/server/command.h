@@ -12,6 +12,7 @@
 
 #include "service/collision/ray_cast.h"
 #include "service/contact/contact_method.h"
+#include "service/model/model_builder.h"
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/scene/scene_spec.h"
@@ -52,6 +53,7 @@ struct Command {
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
     kAddJoint, kRemoveJoint, kSetFilter, kAddRangeSensor, kAddContactSensor, kRemoveSensor, kRayCast,
+    kLoadModel, kRemoveModel, kModelInfo,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -71,6 +73,12 @@ struct Command {
   int32_t collision_group = 0;
   JointSettings joint;                 // ADD joint (checked but for the bodies' existence)
   JointId joint_id = 0;                // REMOVE joint
+  // LOAD model: the model as read (file and meshes), its options, and the
+  // default material of its bodies; REMOVE model: its id
+  std::shared_ptr<const model::ModelDescription> model;
+  model::ModelOptions model_options;
+  Material model_material;
+  ModelId model_id = 0;
 
   std::shared_ptr<SceneSpec> scene;    // LOAD_SCENE
   std::string scene_path;

@@ -3,6 +3,7 @@
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/model_cmd_t.hpp>
 #include <contactsim/protocol.hpp>
 #include <contactsim/ray_cast_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
@@ -40,6 +41,9 @@ Status CheckBody(const body_cmd_t& m, const DecodeContext& context, Command* cmd
 
 Status CheckScene(const scene_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeSceneCommand(m, cmd); }
 Status CheckJoint(const joint_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeJointCommand(m, cmd); }
+Status CheckModel(const model_cmd_t& m, const DecodeContext& context, Command* cmd) {
+  return DecodeModelCommand(m, context, cmd);
+}
 Status CheckInput(const input_t& m, const DecodeContext&, Command* cmd) { return DecodeInput(m, cmd); }
 Status CheckSensor(const sensor_cmd_t& m, const DecodeContext& context, Command* cmd) {
   return DecodeSensorCommand(m, context.limits.max_rays_per_sensor, cmd);
@@ -68,7 +72,8 @@ Status Decode(const void* data, int size, const DecodeContext& context, Command*
     cmd->request_id = msg.request_id;
     Status st = context.admit ? context.admit(msg.client_id) : Status::Ok();
     if (st.ok()) st = kCheck(msg, context, cmd);
-    if (st.ok()) cmd->payload.assign(static_cast<const char*>(data), size);
+    // a decoder may store the command in another form (a model LOAD as read)
+    if (st.ok() && cmd->payload.empty()) cmd->payload.assign(static_cast<const char*>(data), size);
     return st;
   } catch (const std::bad_alloc&) {
     return Status::ResourceExhausted(what + ": out of memory while decoding");
@@ -102,6 +107,8 @@ const std::vector<CommandChannel>& CommandChannels() {
                                                                        RecordKind::kSceneCommand),
       Row<joint_cmd_t, &DecodeLimits::max_joint_cmd_bytes, CheckJoint>(protocol::kJointCmd,
                                                                        RecordKind::kJointCommand),
+      Row<model_cmd_t, &DecodeLimits::max_model_cmd_bytes, CheckModel>(protocol::kModelCmd,
+                                                                       RecordKind::kModelCommand),
       Row<input_t, &DecodeLimits::max_input_bytes, CheckInput>(protocol::kInput, RecordKind::kInput),
       Row<sensor_cmd_t, &DecodeLimits::max_sensor_cmd_bytes, CheckSensor>(protocol::kSensorCmd,
                                                                           RecordKind::kSensorCommand),

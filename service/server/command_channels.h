@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "service/model/model_paths.h"
 #include "service/physics/status.h"
 #include "service/server/command.h"
 #include "service/server/journal.h"
@@ -36,6 +37,8 @@ struct DecodeLimits {
   int max_rays_per_sensor = 4096;       // a 4,096-ray lidar's reading is 233 kB a step
   int max_ray_cast_bytes = 8 << 20;     // 100,000 rays are 5.6 MB
   int max_sensor_cmd_bytes = 128 << 10; // 4,096 directions are 98 kB
+  int max_model_cmd_bytes = 16 << 20;   // a model in its resolved form carries its mesh vertices
+  int max_model_text_bytes = 1 << 20;   // the inline text of one model file
 };
 
 struct DecodeContext {
@@ -44,6 +47,8 @@ struct DecodeContext {
   // Asked once the sender's client id is read and before the command's own
   // checks; a refusal is the decoder's answer. Empty: everyone is admitted.
   std::function<Status(const std::string& client_id)> admit;
+  // Where model files and their meshes are looked for (docs/models.md).
+  model::ModelPaths model_paths;
 };
 
 struct CommandChannel {

@@ -7,11 +7,13 @@
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
 #include <contactsim/ray_cast_t.hpp>
+#include <contactsim/model_cmd_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 #include <contactsim/sensor_cmd_t.hpp>
 
 #include "service/physics/status.h"
 #include "service/server/command.h"
+#include "service/server/command_channels.h"
 
 namespace contactsim {
 
@@ -29,5 +31,10 @@ Status DecodeJointCommand(const joint_cmd_t& msg, Command* cmd);
 Status DecodeSensorCommand(const sensor_cmd_t& msg, int max_rays, Command* cmd);
 // A batch of rays: 1 to `max_rays` rays, each checked by MakeRay.
 Status DecodeRayCast(const ray_cast_t& msg, int max_rays, Command* cmd);
+// Model commands (model_decoder.cpp): a LOAD reads the file or text and its
+// meshes here, on the LCM thread, and stores the command in its resolved
+// form (the model as read), so that the journal replays the same model
+// whatever happens to the files later.
+Status DecodeModelCommand(const model_cmd_t& msg, const DecodeContext& context, Command* cmd);
 
 }  // namespace contactsim

@@ -14,6 +14,8 @@ CommandIntake::CommandIntake(const ServerOptions& options, CommandBatch* batch)
     auth_ = std::make_unique<CommandAuthenticator>(options.auth_key, options.auth_window_s);
   }
   decode_context_.limits = options.decode_limits;
+  decode_context_.model_paths =
+      model::MakeModelPaths(options.model_path_flags, options.model_paths, model::ModelPathEnvironment());
 }
 
 std::vector<std::string> CommandIntake::ChannelNames() const {

@@ -37,6 +37,7 @@ enum class RecordKind : uint8_t {
   kJointCommand = 5,  // joint_cmd_t
   kSensorCommand = 6, // sensor_cmd_t
   kNotJournaled = 7,  // a query (ray_cast_t): never written
+  kModelCommand = 8,  // model_cmd_t, a LOAD always in its resolved form (the model as read)
 };
 
 struct JournalRecord {

@@ -68,4 +68,37 @@ reply_t MakeReply(const std::string& client_id, int64_t request_id, const Status
   return r;
 }
 
+model_info_t MakeModelInfoMessage(const World& world) {
+  model_info_t msg;
+  msg.step = world.step;
+  msg.num_models = static_cast<int32_t>(world.models.size());
+  for (const ModelRecord& m : world.models) {
+    model_entry_t e;
+    e.model_id = m.id;
+    e.name = m.name;
+    e.source = m.source;
+    e.fixed_base = m.fixed_base;
+    e.self_collide = m.self_collide;
+    e.num_links = static_cast<int32_t>(m.links.size());
+    for (const ModelLinkEntry& l : m.links) {
+      e.link_names.push_back(l.name);
+      e.link_bodies.push_back(l.body);
+      e.link_positions.push_back({l.position.x(), l.position.y(), l.position.z()});
+      e.link_orientations.push_back({l.orientation.w(), l.orientation.x(), l.orientation.y(), l.orientation.z()});
+    }
+    e.num_joints = static_cast<int32_t>(m.joints.size());
+    for (const ModelJointEntry& j : m.joints) {
+      e.joint_names.push_back(j.name);
+      e.joint_types.push_back(j.type);
+      e.joint_ids.push_back(j.joint);
+      e.joint_damping.push_back(j.damping);
+      e.joint_friction.push_back(j.friction);
+      e.joint_effort_limits.push_back(j.effort_limit);
+      e.joint_velocity_limits.push_back(j.velocity_limit);
+    }
+    msg.models.push_back(std::move(e));
+  }
+  return msg;
+}
+
 }  // namespace contactsim

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <contactsim/contacts_t.hpp>
+#include <contactsim/model_info_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/state_t.hpp>
 
@@ -13,6 +14,8 @@ namespace contactsim {
 
 state_t MakeStateMessage(const World& world);
 contacts_t MakeContactsMessage(const World& world, const ContactSet& contacts, const ContactMethod& method);
+// The world's models with their link and joint names and ids (MODEL_INFO).
+model_info_t MakeModelInfoMessage(const World& world);
 // reply_t codes equal StatusCode values by design.
 reply_t MakeReply(const std::string& client_id, int64_t request_id, const Status& status, const World& world);
 

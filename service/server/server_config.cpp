@@ -72,6 +72,9 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
     s.options.journal_dir =
         config.journal_dir()[0] == '/' ? config.journal_dir() : Folder(config_path) + "/" + config.journal_dir();
   }
+  for (const std::string& p : config.model_path()) {
+    s.options.model_paths.push_back(!p.empty() && p[0] == '/' ? p : Folder(config_path) + "/" + p);
+  }
   s.lcm_url = config.lcm_url();
   s.log_level = config.log_level();
 

@@ -42,6 +42,8 @@ struct ServerOptions {
   std::string auth_key;        // read from the config's auth_key_file; "" = no signatures
   double auth_window_s = 30.0;
   bool live_line = true;
+  std::vector<std::string> model_paths;       // the config's model_path, from the config's folder
+  std::vector<std::string> model_path_flags;  // not in the config: --model-path's, searched first
   std::string journal_dir;     // the config's journal_dir, from the config's folder; "" = none on disk
   FsyncPolicy journal_fsync = FsyncPolicy::kAlways;
   int64_t snapshot_every = 2400;

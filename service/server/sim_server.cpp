@@ -41,6 +41,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   publisher_.UpdateRates(world_.dt);
   PublishStatus(Clock::now());
   PublishState();
+  PublishModelInfo();
   return Status::Ok();
 }
 
@@ -53,6 +54,8 @@ Outcome SimServer::Apply(Command& cmd) {
       return ApplyBodyCommand(cmd);
     case K::kSnapshot: case K::kRestore: case K::kRewind:
       return ApplySnapshotCommand(cmd);
+    case K::kLoadModel: case K::kRemoveModel: case K::kModelInfo:
+      return ApplyModelCommand(cmd);
     case K::kRegisterController: case K::kReleaseController: case K::kInput:
       return lockstep_.Apply(cmd, world_.step);
     case K::kAddRangeSensor: case K::kAddContactSensor: case K::kRemoveSensor:
@@ -202,6 +205,7 @@ void SimServer::PublishStatus(Clock::time_point now) {
 bool SimServer::Tick() {
   const bool changed = batch_.Drain();
   if (changed) runaway_.Rebase(world_);
+  PublishModelInfo();
   if (Halted()) {
     if (changed) PublishState();
     return false;
@@ -225,6 +229,7 @@ void SimServer::Run(const std::atomic<bool>& stop) {
     publisher_.LiveLine(false, world_, contacts_.size(), method_->Name(), Halted());
     const bool changed = batch_.Drain();
     if (changed) runaway_.Rebase(world_);
+    PublishModelInfo();
     const bool stepping = steps_.owed();
     if (paused_ && !stepping) {
       if (changed) PublishState();

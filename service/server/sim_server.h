@@ -84,6 +84,11 @@ class SimServer {
   Outcome ApplySnapshotCommand(Command& cmd);  // snapshot, restore, rewind (snapshot_commands.cpp)
   Outcome ApplySensorCommand(Command& cmd);    // add and remove sensors (sensor_commands.cpp)
   Outcome ApplyRayCast(Command& cmd);          // a batch of rays, answered on RAY_HITS
+  Outcome ApplyModelCommand(Command& cmd);  // load, remove, info (model_commands.cpp)
+  Outcome LoadModel(Command& cmd);
+  Status CheckNotInModel(BodyId body, JointId joint) const;
+  // MODEL_INFO, when the models changed since the last one or it was asked for
+  void PublishModelInfo();
   // the timeline: recovery, snapshots and rewind (timeline.cpp)
   Status Recover();
   proto::Snapshot SaveDurableSnapshot();
@@ -125,6 +130,8 @@ class SimServer {
   ContactSet contacts_;
   StepStats last_stats_;
   RunawayWatch runaway_;
+  uint64_t models_published_ = 0;  // signature of the model list MODEL_INFO last carried
+  bool model_info_due_ = true;      // at start, and on INFO
   std::string fault_;  // "" while the world is sound; STATUS.fault
   bool paused_;
   RunMode mode_;

@@ -41,6 +41,8 @@ const DecodeContext& RecordContext() {
   static const DecodeContext context = [] {
     DecodeContext c;
     c.limits = {INT_MAX, INT_MAX, INT_MAX, INT_MAX, INT_MAX};
+    c.limits.max_model_cmd_bytes = INT_MAX;  // a journaled LOAD was admitted once already
+    c.limits.max_model_text_bytes = INT_MAX;
     return c;
   }();
   return context;

@@ -166,6 +166,7 @@ def seed_messages(missing_body=123456789, missing_joint=987654321):
     NOT_FOUND rather than applied; ADD, RESET and the like are world
     changing by nature (see world_changing)."""
     from contactsim import body_cmd_t as B, joint_cmd_t as J, scene_cmd_t as S, input_t as I  # noqa: N817
+    from contactsim import model_cmd_t as M  # noqa: N817
 
     out = []
 
@@ -235,6 +236,18 @@ def seed_messages(missing_body=123456789, missing_joint=987654321):
             setattr(m, k, v)
         out.append(("JOINT_CMD", m, "joint " + op_name))
 
+    for op_name, fields in (("LOAD", dict(path="/nonexistent/garbage-model.urdf", orientation=[1.0, 0.0, 0.0, 0.0])),
+                            ("LOAD", dict(text="<robot name='garbage'><link name='a'/></robot>", name="seed",
+                                          orientation=[1.0, 0.0, 0.0, 0.0])),
+                            ("REMOVE", dict(model_id=missing_joint)),
+                            ("INFO", dict())):
+        m = M()
+        m.client_id, m.request_id, m.op = "garbage-seed", 1, getattr(M, op_name)
+        m.resolved_size, m.resolved = 0, b""
+        for k, v in fields.items():
+            setattr(m, k, v)
+        out.append(("MODEL_CMD", m, "model " + op_name))
+
     for n in (0, 1, 3):
         m = I()
         m.client_id, m.request_id, m.step, m.num_bodies = "garbage-seed", 1, 1, n
@@ -265,6 +278,8 @@ def world_changing(type_name, values, world):
         if op == 1:
             return values["body_a"] in world["bodies"] and (values["body_b"] == 0 or values["body_b"] in world["bodies"])
         return False
+    if type_name == "model_cmd_t":
+        return op == 1                                   # LOAD (REMOVE finds no model in a test world)
     if type_name == "scene_cmd_t":
         if op not in range(1, 15):
             return False

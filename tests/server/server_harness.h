@@ -7,6 +7,7 @@
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/model_cmd_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
 
@@ -83,6 +84,12 @@ class ServerHarness {
     m.request_id = ++request_id;
     const auto bytes = Encode(m);
     server.OnMessage(server.Channel("JOINT_CMD"), bytes.data(), static_cast<int>(bytes.size()));
+  }
+  void Post(model_cmd_t& m) {
+    m.request_id = ++request_id;
+    m.resolved_size = static_cast<int32_t>(m.resolved.size());
+    const auto bytes = Encode(m);
+    server.OnMessage(server.Channel("MODEL_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   }
   void Post(input_t& m) {
     m.request_id = ++request_id;

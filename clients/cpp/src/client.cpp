@@ -88,6 +88,16 @@ void Client::OnStatus(const lcm::ReceiveBuffer* rb, const std::string& ch, Clien
   status_t m;
   if (c->Unwrap(rb, ch, &m)) c->HandleStatus(rb, ch, &m);
 }
+// MODEL_INFO (client_models.cpp): kept for LoadModel and Models
+void Client::OnModelInfo(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  model_info_t m;
+  if (!c->Unwrap(rb, ch, &m)) return;
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  c->latest_model_info_ = std::move(m);
+  ++c->model_infos_received_;
+  c->changed_.notify_all();
+}
+
 void Client::OnProgress(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
   progress_t m;
   if (c->Unwrap(rb, ch, &m)) c->HandleProgress(&m);
@@ -150,6 +160,7 @@ Client::Client(ClientOptions options)
   lcm_->subscribeFunction(Channel(protocol::kStatus), &OnStatus, this)->setQueueCapacity(kQueueCapacity);
   lcm_->subscribeFunction(Channel(protocol::kProgress), &OnProgress, this)->setQueueCapacity(kQueueCapacity);
   SubscribeSensors(kQueueCapacity);
+  lcm_->subscribeFunction(Channel(protocol::kModelInfo), &OnModelInfo, this)->setQueueCapacity(kQueueCapacity);
   thread_ = std::thread(&Client::Run, this);
 }
 

@@ -7,6 +7,7 @@
 //   contactsim-ctl step 10
 //   contactsim-ctl joint add hinge 3 0 --anchor 0 0 1 --axis 0 1 0 --limits -0.5 0.5
 //   contactsim-ctl ray 0 0 5 0 0 -1 --max-distance 10
+//   contactsim-ctl model load /path/to/kuka_iiwa/model.urdf --name iiwa --fixed-base
 //
 // Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout), LCM unusable
 // or an unusable auth key file; CLI11's own codes for a bad command line.
@@ -52,6 +53,17 @@ using contactsim::ReplyCode;
 
 constexpr int kExitErrorReply = 1;
 constexpr int kExitNoReply = 2;
+
+// A model's links and joints with their ids, as contactsim-py prints them.
+void PrintModel(const contactsim::Model& m) {
+  std::printf("model %lld %s\n", static_cast<long long>(m.id), m.name.c_str());
+  for (size_t i = 0; i < m.links.size(); ++i) {
+    std::printf("  link %-32s body %lld\n", m.links[i].c_str(), static_cast<long long>(m.link_bodies[i]));
+  }
+  for (size_t i = 0; i < m.joints.size(); ++i) {
+    std::printf("  joint %-31s id %lld\n", m.joints[i].c_str(), static_cast<long long>(m.joint_ids[i]));
+  }
+}
 
 int ExitCode(const CommandResult& result) {
   if (result.ok()) {
@@ -306,6 +318,43 @@ int main(int argc, char** argv) {
       })
       ->add_option("name", sensor_name, "sensor name")
       ->required();
+
+  CLI::App* model = app.add_subcommand("model", "load, remove or list robot models");
+  model->require_subcommand(1);
+  std::string model_path;
+  contactsim::ModelOptions model_options;
+  std::array<double, 3> model_position{0, 0, 0};
+  CLI::App* model_load =
+      model->add_subcommand("load", "load a URDF or SDF model; prints its links and joints with their ids");
+  model_load->add_option("path", model_path, "model file (on the server's host, or among its model paths)")
+      ->required();
+  model_load->add_option("--name", model_options.name, "the model's name in the world (default: the file's)");
+  model_load->add_option("--position", model_position, "m, world: the root link's origin");
+  model_load->add_option("--orientation", model_options.orientation, "(w, x, y, z): the root link's orientation");
+  model_load->add_flag("--fixed-base", model_options.fixed_base, "the root link is static");
+  model_load->add_flag("--self-collide", model_options.self_collide, "the model's links collide with each other");
+  model_load->callback([&] {
+    run = [&](Client& client) {
+      model_options.position = ToVector(model_position);
+      const contactsim::Result<contactsim::Model> r = client.LoadModel(model_path, model_options);
+      if (r.ok()) PrintModel(r.value);
+      return ExitCode(r.status);
+    };
+  });
+  int64_t model_id = 0;
+  model->add_subcommand("remove", "remove a model with its bodies and joints")
+      ->callback([&] {
+        run = [&](Client& client) { return ExitCode(client.RemoveModel(model_id)); };
+      })
+      ->add_option("id", model_id, "model id")
+      ->required();
+  model->add_subcommand("list", "list the loaded models")->callback([&] {
+    run = [&](Client& client) {
+      const contactsim::Result<std::vector<contactsim::Model>> r = client.Models();
+      for (const contactsim::Model& m : r.value) PrintModel(m);
+      return ExitCode(r.status);
+    };
+  });
 
   std::string method;
   std::vector<std::string> params;

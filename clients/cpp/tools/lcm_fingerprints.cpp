@@ -16,6 +16,9 @@
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/model_cmd_t.hpp>
+#include <contactsim/model_entry_t.hpp>
+#include <contactsim/model_info_t.hpp>
 #include <contactsim/progress_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
@@ -39,6 +42,9 @@ int main() {
   Print<contactsim::contacts_t>();
   Print<contactsim::input_t>();
   Print<contactsim::joint_cmd_t>();
+  Print<contactsim::model_cmd_t>();
+  Print<contactsim::model_entry_t>();
+  Print<contactsim::model_info_t>();
   Print<contactsim::progress_t>();
   Print<contactsim::reply_t>();
   Print<contactsim::scene_cmd_t>();

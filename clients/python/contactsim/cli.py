@@ -3,6 +3,8 @@
     contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] [--auth-key-file FILE] COMMAND ...
       status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET
       remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
+      model load PATH [--name N] [--position X Y Z] [--orientation W X Y Z] [--fixed-base] [--self-collide]
+      model remove ID | model list
       method NAME [key=value ...] | pause | resume | step [N] | reset
       compare METHOD[:key=value,...] ... [--steps N] [--workers W] [--address A] [--plot FILE] [--csv FILE]
 
@@ -50,6 +52,7 @@ def _parser():
     a.add_argument("--friction", type=float)
     sub.add_parser("remove").add_argument("id", type=int)
     _joint_parser(sub)
+    _model_parser(sub)
     m = sub.add_parser("method", help="switch the contact method")
     m.add_argument("name")
     m.add_argument("params", nargs="*", metavar="key=value")
@@ -97,6 +100,43 @@ def _joint_parser(sub):
     sc.add_argument("body", type=int)
     sc.add_argument("name")
     sn.add_parser("remove", help="remove a sensor").add_argument("name")
+
+
+def _model_parser(sub):
+    """model load PATH [...] | model remove ID | model list, as contactsim-ctl (docs/models.md)."""
+    m = sub.add_parser("model", help="load, remove or list robot models").add_subparsers(
+        dest="model_cmd", required=True)
+    a = m.add_parser("load", help="load a URDF or SDF model; prints its links and joints with their ids")
+    a.add_argument("path", help="model file (on the server's host, or found among its model paths)")
+    a.add_argument("--name", default="", help="the model's name in the world (default: the file's)")
+    a.add_argument("--position", type=float, nargs=3, default=(0, 0, 0), metavar=("X", "Y", "Z"),
+                   help="m, world: the root link's origin")
+    a.add_argument("--orientation", type=float, nargs=4, default=(1, 0, 0, 0), metavar=("W", "X", "Y", "Z"),
+                   help="the root link's orientation")
+    a.add_argument("--fixed-base", action="store_true", help="the root link is static")
+    a.add_argument("--self-collide", action="store_true", help="the model's links collide with each other")
+    m.add_parser("remove", help="remove a model with its bodies and joints").add_argument("id", type=int)
+    m.add_parser("list", help="list the loaded models")
+
+
+def _print_model(model):
+    print("model %d %s (%s)" % (model.id, model.name, model.source))
+    for link in model.links:
+        print("  link %-32s body %d" % (link, model.body_id(link)))
+    for joint in model.joints:
+        print("  joint %-31s %-10s id %d" % (joint, model.joint_types[joint], model.joint_id(joint)))
+
+
+def _run_model(c, a):
+    if a.model_cmd == "load":
+        _print_model(c.load_model(a.path, name=a.name, position=a.position, orientation=a.orientation,
+                                  fixed_base=a.fixed_base, self_collide=a.self_collide))
+        return None
+    if a.model_cmd == "list":
+        for model in c.models().values():
+            _print_model(model)
+        return None
+    return c.remove_model(a.id)
 
 
 def _run_joint(c, a):
@@ -157,6 +197,10 @@ def _run(c, a):
             return
     elif a.cmd == "sensor":
         r = c.add_contact_sensor(a.body, a.name) if a.sensor_cmd == "contact" else c.remove_sensor(a.name)
+    elif a.cmd == "model":
+        r = _run_model(c, a)
+        if r is None:
+            return
     elif a.cmd == "remove":
         r = c.remove_body(a.id)
     elif a.cmd == "method":

@@ -22,7 +22,7 @@ import warnings
 import lcm
 import numpy as np
 
-from . import body_cmd_t, contacts_t, progress_t, protocol, reply_t, scene_cmd_t, state_t, status_t
+from . import body_cmd_t, contacts_t, model_info_t, progress_t, protocol, reply_t, scene_cmd_t, state_t, status_t
 from .auth import DEFAULT_WINDOW_S, Authenticator, unsigned_size
 from ._fields import vector as _vec
 from .errors import CommandError, TimeoutError
@@ -31,6 +31,7 @@ from .snapshots import SnapshotCommands
 from .filters import FilterCommands, fill_filter
 from .joints import JointCommands
 from .sensors import SensorCommands
+from .models import ModelCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -110,7 +111,8 @@ class _Waiter:
 SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
-class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, SensorCommands):
+class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, SensorCommands,
+             ModelCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -144,6 +146,8 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, 
         self._contacts_seq = 0
         self._status = None
         self._status_seq = 0
+        self._model_info = None       # latest MODEL_INFO (models.py)
+        self._model_info_seq = 0
         self._callbacks = {"state": [], "contacts": [], "status": [], "reply": []}
         self._state_waiters = []
         self._status_waiters = []
@@ -154,6 +158,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, 
             self._lc.subscribe(self.channels["CONTACTS"], self._on_contacts_msg),
             self._lc.subscribe(self.channels["STATUS"], self._on_status_msg),
             self._lc.subscribe(self.channels["PROGRESS"], self._on_progress_msg),
+            self._lc.subscribe(self.channels["MODEL_INFO"], self._on_model_info_msg),
         ]
         self._subs += self._init_sensors()
         # LCM keeps at most 30 undelivered messages per subscription and drops
@@ -325,6 +330,15 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, 
             self._cond.notify_all()
         self._call("status", st)
         self._resolve(waiters, self._status_waiters, st)
+
+    def _on_model_info_msg(self, channel, data):
+        msg = self._decode(channel, data, model_info_t)
+        if msg is None:
+            return
+        with self._cond:
+            self._model_info = msg
+            self._model_info_seq += 1
+            self._cond.notify_all()
 
     def _resolve(self, waiters, registry, obj):
         for w in waiters:

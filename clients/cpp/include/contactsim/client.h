@@ -36,6 +36,8 @@
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/model_cmd_t.hpp>
+#include <contactsim/model_info_t.hpp>
 #include <contactsim/progress_t.hpp>
 #include <contactsim/ray_cast_t.hpp>
 #include <contactsim/ray_hits_t.hpp>
@@ -147,6 +149,32 @@ struct JointOptions {
   std::optional<double> damping;   // N m s/rad (hinge) or N s/m (prismatic), >= 0; unset: 0
   std::optional<double> friction;  // N m (hinge) or N (prismatic), >= 0, Coulomb; unset: 0
   bool collide_connected = false;  // may the two bodies touch each other (default: never)
+};
+
+// How a robot model is placed (docs/models.md). The root link's frame in
+// the world; SI.
+struct ModelOptions {
+  std::string name;                                       // unique; "": the file's
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();     // m
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z)
+  bool fixed_base = false;                                // the root link is static
+  bool self_collide = false;  // the model's links collide (two joined by a joint never do)
+  int8_t format = model_cmd_t::FORMAT_AUTO;               // or FORMAT_URDF, FORMAT_SDF
+};
+
+// A loaded model: the file's link and joint names, in its order, and their
+// ids in the world. BodyId of a link welded to its parent by a fixed joint
+// is its parent's body; JointId of a fixed (merged) or floating joint is 0;
+// both are -1 for a name the model does not have.
+struct Model {
+  int64_t id = 0;
+  std::string name;
+  std::vector<std::string> links, joints;
+  std::vector<int64_t> link_bodies, joint_ids;
+
+  int64_t BodyId(const std::string& link) const;
+  int64_t JointId(const std::string& joint) const;
+  static Model FromInfo(const model_entry_t& entry);
 };
 
 class Client {
@@ -287,6 +315,13 @@ class Client {
   // The contact wrench `body` receives each step, read on SENSORS.
   CommandResult AddContactSensor(int64_t body, const std::string& name);
   CommandResult RemoveSensor(const std::string& name);
+  // --- robot models (docs/models.md) ---
+  // Loads a URDF or SDF model: a file path on the server's host (resolved
+  // against its model paths) or the file's text (it starts with '<').
+  Result<Model> LoadModel(const std::string& path_or_text, const ModelOptions& options = {});
+  CommandResult RemoveModel(int64_t id);
+  // Every model in the world now (asks the server for MODEL_INFO).
+  Result<std::vector<Model>> Models();
 
   // Raw commands: client_id and request_id are filled in here. For fields
   // the typed methods do not cover, and for tests of the server's checks.
@@ -295,6 +330,7 @@ class Client {
   CommandResult Send(scene_cmd_t command, ProgressCallback progress = {});
   CommandResult Send(joint_cmd_t command);
   CommandResult Send(sensor_cmd_t command);
+  CommandResult Send(model_cmd_t command);
 
   // --- subscriptions ---
   // Each returns an id for RemoveCallback. Callbacks run on the LCM thread,
@@ -354,6 +390,9 @@ class Client {
   static void OnRayHits(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnSensors(const lcm::ReceiveBuffer*, const std::string&, Client*);
   void SubscribeSensors(int queue_capacity);
+  static void OnModelInfo(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  // The latest MODEL_INFO received after the `after`-th, within the reply timeout.
+  std::optional<model_info_t> WaitForModelInfo(uint64_t after, const std::function<bool(const model_info_t&)>& predicate);
   void HandleProgress(const progress_t* progress);
 
   ClientOptions options_;
@@ -375,6 +414,8 @@ class Client {
   std::optional<status_t> latest_status_;
   std::optional<sensors_t> latest_sensors_;
   std::map<int64_t, ray_hits_t> ray_hits_;  // request id -> answer, until RayCast takes it
+  std::optional<model_info_t> latest_model_info_;
+  uint64_t model_infos_received_ = 0;
   std::unique_ptr<Callbacks> callbacks_;
   std::atomic<bool> running_{true};
   std::thread thread_;  // last: starts after every member is ready

@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Robot models beside PyBullet (DIRECT mode, the same URDFs, the same dt):
+load time of each model, and ms per step of one free-swinging iiwa, ten
+iiwas on a table, and R2D2 on the ground. contactsim runs as a server
+(free_run, paused, driven by STEP over LCM on this host), so its load time
+includes reading the files, building the hulls and one command round trip,
+and its step time is a STEP of many steps divided by their count. Prints a
+markdown table; docs/models.md and BENCHMARKS.md, "Robot models", say how it
+was run.
+
+Usage: bench/scripts/bench_models.py [--build-dir build] [--method impulse] [--steps 2000]
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DT = 1.0 / 240.0
+
+
+def _models(data):
+    return {"iiwa": os.path.join(data, "kuka_iiwa", "model.urdf"),
+            "r2d2": os.path.join(data, "r2d2.urdf"),
+            "panda": os.path.join(data, "franka_panda", "panda.urdf")}
+
+
+# The scenes: (name, [(model, position, fixed_base, bent)], ground)
+IIWA_BENT = [0.3, 0.8, -0.4, -1.2, 0.5, 0.7, -0.3]
+SCENES = [
+    ("one free-swinging iiwa", [("iiwa", (0, 0, 0), True, True)], False),
+    ("ten bent iiwas, bases 0.6 m above the ground", [("iiwa", (0.8 * (i % 5), 0.8 * (i // 5), 0.6), True, True) for i in range(10)], True),
+    ("R2D2 on the ground", [("r2d2", (0, 0, 0.5), False, False)], True),
+]
+
+
+def _bent_iiwa_poses(path, base):
+    """{link: (p, R)} of the iiwa at IIWA_BENT with its base at `base`, by pinocchio."""
+    import numpy as np  # noqa: PLC0415
+    import pinocchio as pin  # noqa: PLC0415
+    model = pin.buildModelFromUrdf(path)
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, np.array(IIWA_BENT))
+    return {f.name: (np.asarray(base) + data.oMf[i].translation, data.oMf[i].rotation)
+            for i, f in enumerate(model.frames) if f.type == pin.FrameType.BODY}
+
+
+def bench_pybullet(models, steps):
+    import pybullet as p  # noqa: PLC0415
+    out = {"load": {}, "step": {}}
+    cid = p.connect(p.DIRECT)
+    for name, path in models.items():
+        p.resetSimulation(physicsClientId=cid)
+        t = time.perf_counter()
+        p.loadURDF(path, useFixedBase=name != "r2d2", physicsClientId=cid)
+        out["load"][name] = 1e3 * (time.perf_counter() - t)
+    for title, placed, ground in SCENES:
+        p.resetSimulation(physicsClientId=cid)
+        p.setGravity(0, 0, -9.81, physicsClientId=cid)
+        p.setTimeStep(DT, physicsClientId=cid)
+        if ground:
+            p.loadURDF(os.path.join(os.path.dirname(models["iiwa"]), "..", "plane.urdf"), physicsClientId=cid)
+        for name, pos, fixed, bent in placed:
+            uid = p.loadURDF(models[name], pos, useFixedBase=fixed, physicsClientId=cid)
+            for j in range(p.getNumJoints(uid, physicsClientId=cid)):
+                # passive joints: PyBullet's default velocity motors off
+                p.setJointMotorControl2(uid, j, p.VELOCITY_CONTROL, force=0, physicsClientId=cid)
+                if bent:
+                    p.resetJointState(uid, j, IIWA_BENT[j], physicsClientId=cid)
+        t = time.perf_counter()
+        for _ in range(steps):
+            p.stepSimulation(physicsClientId=cid)
+        out["step"][title] = 1e3 * (time.perf_counter() - t) / steps
+    p.disconnect(cid)
+    return out
+
+
+def bench_contactsim(models, steps, build, method):
+    sys.path.insert(0, os.path.join(ROOT, "clients", "python"))
+    os.environ["CONTACTSIM_BUILD_DIR"] = build
+    import contactsim  # noqa: PLC0415
+    from contactsim.process import interrupt  # noqa: PLC0415
+    out = {"load": {}, "step": {}}
+    prefix = "BENCHMODELS%d" % os.getpid()
+    url = "udpm://239.255.76.67:%d?ttl=0&recv_buf_size=8388608" % (9900 + os.getpid() % 90)
+    with tempfile.NamedTemporaryFile("w", suffix=".pbtxt", delete=False) as f:
+        f.write("gravity { z: -9.81 }\n")
+        scene = f.name
+    server = subprocess.Popen([os.path.join(build, "bin", "contactsim-server"), "--config",
+                               os.path.join(ROOT, "config", "server.pbtxt"), "--scene", scene, "--lcm-url", url,
+                               "--prefix", prefix, "--mode", "free_run", "--paused", "--no-live-line",
+                               "--log-level", "warn"])
+    try:
+        with contactsim.Client(url=url, prefix=prefix, timeout=30) as c:
+            c.wait_for_server(timeout=15)
+            c.set_contact_method(method)
+            for name, path in models.items():
+                c.reset()
+                t = time.perf_counter()
+                c.load_model(path, name=name, fixed_base=name != "r2d2")
+                out["load"][name] = 1e3 * (time.perf_counter() - t)
+            for title, placed, ground in SCENES:
+                c.reset()
+                c.set_timestep(DT)
+                if ground:
+                    c.add_plane((0, 0, 1), 0.0)
+                for k, (name, pos, fixed, bent) in enumerate(placed):
+                    m = c.load_model(models[name], name="%s%d" % (name, k), position=pos, fixed_base=fixed)
+                    if bent:
+                        m.set_link_poses(_bent_iiwa_poses(models["iiwa"], pos))
+                c.step(10, timeout=60)  # warm: caches and first contacts
+                t = time.perf_counter()
+                c.step(steps, timeout=600)
+                out["step"][title] = 1e3 * (time.perf_counter() - t) / steps
+    finally:
+        interrupt(server, 10)
+        os.unlink(scene)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--method", default="impulse")
+    ap.add_argument("--steps", type=int, default=2000)
+    a = ap.parse_args()
+    import pybullet_data  # noqa: PLC0415
+    models = _models(pybullet_data.getDataPath())
+    pb = bench_pybullet(models, a.steps)
+    cs = bench_contactsim(models, a.steps, os.path.abspath(a.build_dir), a.method)
+    print("| what | contactsim (%s), ms | PyBullet DIRECT, ms | ratio |" % a.method)
+    print("|---|---:|---:|---:|")
+    for name in models:
+        print("| load %s | %.1f | %.1f | %.2f |" % (name, cs["load"][name], pb["load"][name],
+                                                   cs["load"][name] / pb["load"][name]))
+    for title, _, _ in SCENES:
+        print("| step: %s | %.3f | %.3f | %.2f |" % (title, cs["step"][title], pb["step"][title],
+                                                      cs["step"][title] / pb["step"][title]))
+
+
+if __name__ == "__main__":
+    main()
