@@ -12,6 +12,7 @@
 
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/body_state_t.hpp>
+#include <contactsim/contact_reading_t.hpp>
 #include <contactsim/contact_t.hpp>
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
@@ -20,8 +21,13 @@
 #include <contactsim/model_entry_t.hpp>
 #include <contactsim/model_info_t.hpp>
 #include <contactsim/progress_t.hpp>
+#include <contactsim/range_reading_t.hpp>
+#include <contactsim/ray_cast_t.hpp>
+#include <contactsim/ray_hits_t.hpp>
 #include <contactsim/reply_t.hpp>
 #include <contactsim/scene_cmd_t.hpp>
+#include <contactsim/sensor_cmd_t.hpp>
+#include <contactsim/sensors_t.hpp>
 #include <contactsim/state_t.hpp>
 #include <contactsim/status_t.hpp>
 
@@ -38,6 +44,7 @@ void Print() {
 int main() {
   Print<contactsim::body_cmd_t>();
   Print<contactsim::body_state_t>();
+  Print<contactsim::contact_reading_t>();
   Print<contactsim::contact_t>();
   Print<contactsim::contacts_t>();
   Print<contactsim::input_t>();
@@ -46,8 +53,13 @@ int main() {
   Print<contactsim::model_entry_t>();
   Print<contactsim::model_info_t>();
   Print<contactsim::progress_t>();
+  Print<contactsim::range_reading_t>();
+  Print<contactsim::ray_cast_t>();
+  Print<contactsim::ray_hits_t>();
   Print<contactsim::reply_t>();
   Print<contactsim::scene_cmd_t>();
+  Print<contactsim::sensor_cmd_t>();
+  Print<contactsim::sensors_t>();
   Print<contactsim::state_t>();
   Print<contactsim::status_t>();
   return 0;
