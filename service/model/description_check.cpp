@@ -150,6 +150,14 @@ bool HasAxis(JointType type) {
          type == JointType::kPlanar;
 }
 
+Status CheckFileSize(const std::string& text, const std::string& source_path, const ReadLimits& limits,
+                     SourceMap* where) {
+  where->file = source_path.empty() ? "<inline>" : source_path;
+  if (text.size() <= limits.max_file_bytes) return Status::Ok();
+  return Status::ResourceExhausted(where->File() + std::to_string(text.size()) + " bytes, over the limit of " +
+                                   std::to_string(limits.max_file_bytes) + " (max_file_bytes)");
+}
+
 Status CheckCounts(size_t links, size_t joints, const ReadLimits& limits, const SourceMap& where) {
   if (links > limits.max_links) {
     return Status::ResourceExhausted(where.File() + std::to_string(links) + " links, over the limit of " +

@@ -34,6 +34,11 @@ Status CheckCounts(size_t links, size_t joints, const ReadLimits& limits, const 
 Status CheckTree(const SourceMap& where, ModelDescription* model);
 Status CheckValues(const SourceMap& where, ModelDescription* model);
 
+// The opening of every reader: names the source ("<inline>" for text
+// without a path) in `where` and refuses text over limits.max_file_bytes.
+Status CheckFileSize(const std::string& text, const std::string& source_path, const ReadLimits& limits,
+                     SourceMap* where);
+
 // Whether a joint type moves along or about an axis (revolute, continuous,
 // prismatic, planar's normal); fixed and floating have none.
 bool HasAxis(JointType type);

@@ -178,11 +178,7 @@ Status Convert(const urdf::ModelInterface& in, const UrdfStructure& structure, c
 Status ReadUrdf(const std::string& text, const std::string& source_path, const ModelPaths& paths,
                 const ReadLimits& limits, ModelDescription* model) {
   SourceMap where;
-  where.file = source_path.empty() ? "<inline>" : source_path;
-  if (text.size() > limits.max_file_bytes) {
-    return Status::ResourceExhausted(where.File() + std::to_string(text.size()) + " bytes, over the limit of " +
-                                     std::to_string(limits.max_file_bytes) + " (max_file_bytes)");
-  }
+  if (Status s = CheckFileSize(text, source_path, limits, &where); !s.ok()) return s;
   UrdfStructure structure;
   Status st = ReadUrdfStructure(text, limits, &where, &structure);
   if (!st.ok()) return st;
