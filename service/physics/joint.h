@@ -38,6 +38,7 @@
 #include <string>
 #include <utility>
 
+#include "service/physics/joint_actuator.h"
 #include "service/physics/rigid_body.h"
 #include "service/physics/status.h"
 
@@ -71,6 +72,8 @@ struct Joint {
   double damping = 0.0;          // N m s/rad (hinge) or N s/m (prismatic), >= 0
   double friction = 0.0;         // N m (hinge) or N (prismatic), >= 0
   bool collide_connected = false;  // may A and B touch each other (collision_filter.h)
+  JointActuator actuator;        // hinge and prismatic (joint_actuator.h); none by default
+  double effort = 0.0;           // N m or N: the actuator's effort u in the last step (output)
 };
 
 // True for the kinds with one joint coordinate (hinge, prismatic): the kinds

@@ -98,6 +98,21 @@ Status World::RemoveJoint(JointId id) {
   return Status::Ok();
 }
 
+Status World::SetJointActuator(JointId id, const JointActuator& actuator) {
+  const auto it = std::find_if(joints_.begin(), joints_.end(), [id](const Joint& j) { return j.id == id; });
+  if (it == joints_.end()) return Status::NotFound("unknown joint id " + std::to_string(id));
+  if (!HasJointCoordinate(it->kind)) {
+    return Status::FailedPrecondition("joint " + std::to_string(id) + " is a " + JointKindName(it->kind) +
+                                      " joint: only hinge and prismatic joints take an actuator");
+  }
+  Status st = CheckJointActuator(actuator);
+  if (!st.ok()) return st.Prefixed("joint " + std::to_string(id) + ": ");
+  it->actuator = actuator;
+  WakeBody(it->body_a);
+  if (it->body_b != kWorldBody) WakeBody(it->body_b);
+  return Status::Ok();
+}
+
 Status World::SetCollisionFilter(BodyId id, uint32_t category, uint32_t mask, int32_t group) {
   RigidBody* b = Find(id);
   if (b == nullptr) {

@@ -47,6 +47,11 @@ class World {
   Status AddJoint(const JointSettings& settings, JointId* id);
   Status RemoveJoint(JointId id);
   const Joint* FindJoint(JointId id) const;
+  // Replaces a joint's actuator (joint_actuator.h) and wakes its bodies.
+  // NotFound for an unknown id, InvalidArgument for a bad value, and
+  // FailedPrecondition for a kind without a joint coordinate (distance,
+  // ball, fixed); on error the joint is unchanged.
+  Status SetJointActuator(JointId id, const JointActuator& actuator);
   const std::vector<Joint>& joints() const { return joints_; }
   // The body pairs whose joints exclude their contacts (collide_connected
   // false), kept in step with the joints: ShouldCollide's third argument.
