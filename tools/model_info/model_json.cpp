@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "tools/json_text.h"
+
 #include "service/model/model_kinematics.h"
 
 namespace contactsim::tools {
@@ -12,22 +14,6 @@ using model::Geometry;
 using model::GeometryType;
 using model::JointType;
 
-std::string Quote(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 std::string Num(double v) {
   char buf[32];
@@ -72,14 +58,15 @@ const char* TypeName(JointType t) {
 
 std::string GeometryJson(const std::string& name, const model::Pose& origin, const Geometry& g) {
   std::ostringstream o;
-  o << "{\"name\": " << Quote(name) << ", \"type\": " << Quote(TypeName(g.type)) << ", \"origin\": " << PoseJson(origin);
+  o << "{\"name\": " << JsonQuote(name) << ", \"type\": " << JsonQuote(TypeName(g.type))
+    << ", \"origin\": " << PoseJson(origin);
   switch (g.type) {
     case GeometryType::kBox: o << ", \"size\": " << Array({g.box_size.x(), g.box_size.y(), g.box_size.z()}); break;
     case GeometryType::kSphere: o << ", \"radius\": " << Num(g.radius); break;
     case GeometryType::kCylinder:
     case GeometryType::kCapsule: o << ", \"radius\": " << Num(g.radius) << ", \"length\": " << Num(g.length); break;
     case GeometryType::kMesh:
-      o << ", \"mesh_path\": " << Quote(g.mesh_path)
+      o << ", \"mesh_path\": " << JsonQuote(g.mesh_path)
         << ", \"mesh_scale\": " << Array({g.mesh_scale.x(), g.mesh_scale.y(), g.mesh_scale.z()})
         << ", \"vertex_count\": " << g.mesh_vertices.size();
       break;
@@ -89,7 +76,7 @@ std::string GeometryJson(const std::string& name, const model::Pose& origin, con
 
 std::string LinkJson(const model::Link& l) {
   std::ostringstream o;
-  o << "{\"name\": " << Quote(l.name) << ", \"massless\": " << (l.inertial ? "false" : "true");
+  o << "{\"name\": " << JsonQuote(l.name) << ", \"massless\": " << (l.inertial ? "false" : "true");
   if (l.inertial) {
     const Mat3& I = l.inertial->inertia;
     o << ", \"mass\": " << Num(l.inertial->mass) << ", \"inertial_origin\": " << PoseJson(l.inertial->origin)
@@ -112,8 +99,9 @@ std::string LinkJson(const model::Link& l) {
 
 std::string JointJson(const model::ModelJoint& j) {
   std::ostringstream o;
-  o << "{\"name\": " << Quote(j.name) << ", \"type\": " << Quote(TypeName(j.type)) << ", \"parent\": " << Quote(j.parent)
-    << ", \"child\": " << Quote(j.child) << ", \"origin\": " << PoseJson(j.origin)
+  o << "{\"name\": " << JsonQuote(j.name) << ", \"type\": " << JsonQuote(TypeName(j.type))
+    << ", \"parent\": " << JsonQuote(j.parent)
+    << ", \"child\": " << JsonQuote(j.child) << ", \"origin\": " << PoseJson(j.origin)
     << ", \"axis\": " << Array({j.axis.x(), j.axis.y(), j.axis.z()})
     << ", \"coordinates\": " << model::JointCoordinateCount(j.type) << ", \"limits\": ";
   if (j.limits) {
@@ -130,7 +118,8 @@ std::string JointJson(const model::ModelJoint& j) {
 
 std::string DescriptionJson(const model::ModelDescription& m) {
   std::ostringstream o;
-  o << "{\"name\": " << Quote(m.name) << ", \"source\": " << Quote(m.source) << ", \"root_link\": " << Quote(m.root_link)
+  o << "{\"name\": " << JsonQuote(m.name) << ", \"source\": " << JsonQuote(m.source)
+    << ", \"root_link\": " << JsonQuote(m.root_link)
     << ", \"self_collide\": " << (m.self_collide ? "true" : "false") << ",\n \"links\": [";
   for (size_t i = 0; i < m.links.size(); ++i) o << (i ? ",\n  " : "\n  ") << LinkJson(m.links[i]);
   o << "],\n \"joints\": [";
@@ -147,7 +136,7 @@ std::string PosesJson(const model::ModelDescription& m, const std::vector<std::v
     for (size_t i = 0; i < poses[c].size(); ++i) {
       const model::Pose& p = poses[c][i];
       const std::string pose = PoseJson(p);
-      o << (i ? ", " : "") << "{\"link\": " << Quote(m.links[i].name) << ", " << pose.substr(1);
+      o << (i ? ", " : "") << "{\"link\": " << JsonQuote(m.links[i].name) << ", " << pose.substr(1);
     }
     o << "]";
   }

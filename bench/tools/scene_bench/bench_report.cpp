@@ -4,25 +4,12 @@
 #include <cstdio>
 #include <sstream>
 
+#include "tools/json_text.h"
+
 namespace contactsim::bench {
 namespace {
 
-std::string Quote(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+using tools::JsonQuote;
 
 // 9 significant digits: far below timing noise; dt is written exactly.
 std::string Number(double v, int digits = 9) {
@@ -43,12 +30,13 @@ std::string Text(const std::optional<double>& v, const char* unit) {
 
 std::string ToJson(const BenchResult& r) {
   std::ostringstream o;
-  o << "{\"engine\": " << Quote(r.engine) << ", \"scene\": " << Quote(r.scene) << ", \"method\": " << Quote(r.method)
+  o << "{\"engine\": " << JsonQuote(r.engine) << ", \"scene\": " << JsonQuote(r.scene)
+    << ", \"method\": " << JsonQuote(r.method)
     << ", \"threads\": " << r.threads << ", \"sleep\": " << (r.sleep ? "true" : "false")
     << ", \"sleeping\": " << r.sleeping << ", \"params\": {";
   bool first = true;
   for (const auto& [key, value] : r.params) {
-    o << (first ? "" : ", ") << Quote(key) << ": " << Quote(value);
+    o << (first ? "" : ", ") << JsonQuote(key) << ": " << JsonQuote(value);
     first = false;
   }
   o << "}, \"bodies\": " << r.bodies << ", \"steps\": " << r.steps << ", \"steps_done\": " << r.steps_done
@@ -59,7 +47,7 @@ std::string ToJson(const BenchResult& r) {
     << ", \"top_displacement\": " << Number(r.top_displacement) << ", \"rebound_height\": " << Number(r.rebound_height)
     << ", \"iterations_mean\": " << Number(r.iterations_mean) << ", \"iterations_max\": " << Number(r.iterations_max)
     << ", \"residual_min\": " << Number(r.residual_min) << ", \"stiffness_max\": " << Number(r.stiffness_max)
-    << ", \"peak_rss_mb\": " << Number(r.peak_rss_mb) << ", \"status\": " << Quote(r.status) << "}";
+    << ", \"peak_rss_mb\": " << Number(r.peak_rss_mb) << ", \"status\": " << JsonQuote(r.status) << "}";
   return o.str();
 }
 
