@@ -66,6 +66,14 @@ Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_stati
   return Status::Ok();
 }
 
+JointActuator MakeJointActuator(const ModelJoint& j) {
+  JointActuator a;
+  if (!j.limits) return a;
+  if (j.limits->effort > 0.0) a.effort_limit = j.limits->effort;
+  if (j.limits->velocity > 0.0) a.velocity_limit = j.limits->velocity;
+  return a;
+}
+
 Status MakeJointSettings(const ModelJoint& j, const Pose& child_W, const std::string& where, JointSettings* settings) {
   JointSettings s;
   s.anchor = child_W.position;

@@ -1,7 +1,8 @@
 // The builder's plans (body_plan.h) as the engine's body and joint
 // settings: a body is a compound of its links' collision elements with the
 // file's mass properties (body_settings.h), a moving joint a hinge or a
-// slider with its limits, damping and friction, and self-collision off a
+// slider with its limits, damping and friction (and an actuator with the
+// file's effort and velocity limits), and self-collision off a
 // negative collision group (collision_filter.h). What the engine cannot
 // take (a planar joint, a body without a shape) is refused here with an
 // error that names the model, the link or joint.
@@ -27,6 +28,13 @@ Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_stati
 // merged and floating joints add nothing, so neither comes here.
 Status MakeJointSettings(const ModelJoint& joint, const Pose& child_W, const std::string& where,
                          JointSettings* settings);
+
+// The actuator a moving joint gets: the file's effort and velocity limits
+// (URDF <limit effort velocity>, SDF <limit><effort><velocity>; 0 or none
+// given: no limit) and no torque or gains, so that it moves nothing until a
+// command drives it (World::SetJointActuator keeps the limits then only if
+// the command repeats them).
+JointActuator MakeJointActuator(const ModelJoint& joint);
 
 // Self-collision off: every body of the model in one group that never
 // collides with itself (`group` < 0, as Box2D's negative groups).

@@ -45,7 +45,9 @@ Status PrepareModel(ModelBuild build, const World& world, const Material& defaul
     s.body_a = p.bodies[bj.body_a].id;
     s.body_b = p.bodies[bj.body_b].id;
     Joint check;
-    if (Status st = CreateJoint(s, p.bodies[bj.body_a], &p.bodies[bj.body_b], &check); !st.ok()) {
+    Status st = CreateJoint(s, p.bodies[bj.body_a], &p.bodies[bj.body_b], &check);
+    if (st.ok()) st = CheckJointActuator(bj.actuator);
+    if (!st.ok()) {
       return Status::InvalidArgument("model \"" + name + "\", joint \"" + build.record.joints[bj.joint].name +
                                      "\": " + st.message());
     }
@@ -67,6 +69,10 @@ Status CommitModel(PreparedModel p, World* world, ModelRecord* record) {
     JointId id = 0;
     if (Status st = world->AddJoint(p.joints[i], &id); !st.ok()) {
       for (BodyId b : ids) world->RemoveBody(b);  // cannot happen after PrepareModel; never leave half a model
+      return Status::Internal("model \"" + r.name + "\": " + st.message());
+    }
+    if (Status st = world->SetJointActuator(id, p.build.joints[i].actuator); !st.ok()) {
+      for (BodyId b : ids) world->RemoveBody(b);  // checked in PrepareModel: cannot happen
       return Status::Internal("model \"" + r.name + "\": " + st.message());
     }
     r.joints[p.build.joints[i].joint].joint = id;

@@ -98,6 +98,7 @@ Status BuildModel(ModelDescription d, const ModelOptions& options, ModelBuild* b
     bj.body_a = b.link_body[parent];
     bj.body_b = b.link_body[child];
     if (Status st = MakeJointSettings(j, b.link_pose_W[child], where, &bj.settings); !st.ok()) return st;
+    bj.actuator = MakeJointActuator(j);
     b.joints.push_back(std::move(bj));
   }
   b.record = MakeRecord(d, options);

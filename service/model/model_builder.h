@@ -15,7 +15,9 @@
 //     diagonal inertia at the link origin, unless it is merged into a body
 //     with mass or is the fixed base;
 //   * revolute -> hinge (with its limits), continuous -> hinge, prismatic ->
-//     prismatic, floating -> no joint, planar -> refused;
+//     prismatic, floating -> no joint, planar -> refused; a hinge's or
+//     slider's actuator takes the file's effort and velocity limits (gains
+//     0: it drives nothing until a command sets them);
 //   * every pose at q = 0 from the joint origins (forward kinematics from the
 //     root, placed at the base pose); links joined by a joint never collide,
 //     and self-collision off puts the model's bodies in one collision group
@@ -51,6 +53,7 @@ struct BuiltJoint {
   int joint = -1;                   // index in the description's joints
   int body_a = -1, body_b = -1;     // indices into ModelBuild::bodies (parent, child)
   JointSettings settings;           // body ids left 0 until the bodies exist
+  JointActuator actuator;           // the file's effort and velocity limits, no gains (MakeJointActuator)
 };
 
 struct ModelBuild {

@@ -194,6 +194,31 @@ void World::AccumulateForces() {
     b->force += fraction * w.force;
     b->torque += fraction * w.torque;
   }
+  for (Joint& j : joints_) ApplyFeedForward(j);
+}
+
+void World::ApplyFeedForward(Joint& j) {
+  // an actuator with gains is a drive row of the contact method, which
+  // records its effort; one without applies its torque here
+  j.effort = 0.0;
+  if (!IsActuated(j.actuator) || HasDriveGains(j.actuator)) return;
+  RigidBody* a = Find(j.body_a);
+  RigidBody* b = j.body_b == kWorldBody ? nullptr : Find(j.body_b);
+  if (a == nullptr || (!a->IsDynamic() && (b == nullptr || !b->IsDynamic()))) return;
+  j.effort = ClampEffort(j.actuator, j.actuator.torque);
+  // J^T u of the coordinate's row (joint_rows.h): a hinge turns B by +a u
+  // and A by -a u; a slider pushes B's anchor along +a and A, at that same
+  // point, along -a (s = a . (p_B - p_A), the lever arm of A reaching p_B)
+  const Vec3 axis = a->q * j.axis_a;
+  if (j.kind == JointKind::kHinge) {
+    if (a->IsDynamic()) a->torque -= j.effort * axis;
+    if (b != nullptr && b->IsDynamic()) b->torque += j.effort * axis;
+    return;
+  }
+  const Vec3 p_b = AnchorWorld(j.anchor_b, b);
+  const Vec3 f = j.effort * axis;
+  if (a->IsDynamic()) a->force -= f, a->torque -= (p_b - a->x).cross(f);
+  if (b != nullptr && b->IsDynamic()) b->force += f, b->torque += (p_b - b->x).cross(f);
 }
 
 void World::FinishStep() {
@@ -270,6 +295,17 @@ uint64_t HashWorldState(const World& world) {
       f.Double(j.friction);
     }
     if (j.collide_connected) f.Bytes(&j.collide_connected, sizeof j.collide_connected);
+    // only for an actuated joint (IsActuated: a torque or a gain), so that
+    // the hash of a world without actuators is unchanged, and a model's
+    // limits on a joint nobody drives (which move nothing) add nothing; the
+    // effort is an output of the step, not state
+    const JointActuator& act = j.actuator;
+    if (IsActuated(act)) {
+      for (double v : {act.torque, act.target_position, act.target_velocity, act.kp, act.kd, act.effort_limit,
+                       act.velocity_limit}) {
+        f.Double(v);
+      }
+    }
   }
   return f.h;
 }

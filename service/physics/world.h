@@ -53,6 +53,9 @@ class World {
   // ball, fixed); on error the joint is unchanged.
   Status SetJointActuator(JointId id, const JointActuator& actuator);
   const std::vector<Joint>& joints() const { return joints_; }
+  // Records the effort the actuator of joints()[index] applied in the step
+  // (Joint::effort): the contact method writes it, clamped as applied.
+  void SetJointEffort(size_t index, double effort) { joints_[index].effort = effort; }
   // The body pairs whose joints exclude their contacts (collide_connected
   // false), kept in step with the joints: ShouldCollide's third argument.
   const JointPairSet& joined_pairs() const { return joined_; }
@@ -71,7 +74,11 @@ class World {
   // Replaces the joints with saved ones (ids ascending, each < next, bodies
   // present), as a snapshot holds them; on error nothing changes.
   Status AssignJoints(std::vector<Joint> joints, JointId next);
-  // Sets each body's force and torque to gravity plus the active wrenches.
+  // Sets each body's force and torque to gravity plus the active wrenches,
+  // plus the feed-forward effort of every actuator without gains (kp = kd =
+  // 0, ActuatorFeedForward in joint_actuator.h), clamped to its effort limit
+  // and recorded as the joint's effort; an actuator with gains is a drive
+  // row of the contact method, which records its effort after the step.
   void AccumulateForces();
   // Advances the clock by dt, ages the wrenches and drops expired ones.
   void FinishStep();
@@ -107,6 +114,8 @@ class World {
 
  private:
   void Reindex();
+  // The feed-forward effort of an actuator without gains (AccumulateForces).
+  void ApplyFeedForward(Joint& joint);
   void IndexJointPairs();
   std::vector<RigidBody> bodies_;
   std::map<BodyId, int> index_;
@@ -121,7 +130,8 @@ class World {
 // hashes as it did before joints existed; with sleep enabled each body's
 // rest timer and island label follow its state bits (with sleep off they
 // are never set, and the hash is what it was before sleeping existed). A
-// joint that lets its bodies touch adds that flag; the default adds nothing.
+// joint that lets its bodies touch adds that flag, and an actuated joint
+// (IsActuated) its actuator's fields; the defaults add nothing.
 uint64_t HashWorldState(const World& world);
 
 // Total kinetic energy of the dynamic bodies (J): sum of |P|^2 / 2m + L.w / 2.

@@ -337,8 +337,9 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
   SolveMassRatios(rows, nullptr);
   // the last joint solve with its velocity products taken at the velocities
   // the sweeps leave: the contacts of a fast-folding chain change them too
-  // much for the products taken before (a 100-link chain blew up)
-  joints_.Build(world, solver_, h);
+  // much for the products taken before (a 100-link chain blew up); the
+  // damping and drive rows keep what the sweeps' joint solves applied
+  joints_.Rebuild(world, solver_, h);
   joints_.Solve(solver_);
   warm_forces_.resize(rows.size());
   for (size_t k = 0; k < rows.size(); ++k) {
@@ -497,6 +498,9 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     ++stats.substeps;
     contacts_out->clear();
   }
+  std::vector<double> drive_impulses;  // the last contact phase's, over `remaining`
+  joints_.AddDriveImpulses(&drive_impulses);
+  AddDriveEfforts(drive_impulses, remaining, world);
   ProjectJointPositions(world);
   stats.contacts = static_cast<int>(contacts_out->size());
   for (const Contact& c : *contacts_out) stats.max_penetration = std::max(stats.max_penetration, c.depth);

@@ -41,6 +41,20 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   }
 }
 
+void JointVelocityBlock::Rebuild(const World& world, const std::vector<SolverBody>& bodies, double h) {
+  const std::vector<ConstraintRow> old_rows = rows_;
+  const Eigen::VectorXd old_total = total_;
+  Build(world, bodies, h, solver_);
+  if (old_rows.size() != rows_.size()) return;  // a limit came or went: no row to row match
+  for (size_t k = 0; k < rows_.size(); ++k) {
+    if (rows_[k].cfm > 0.0 && old_rows[k].cfm > 0.0) total_[k] = old_total[k];
+  }
+}
+
+void JointVelocityBlock::AddDriveImpulses(std::vector<double>* impulses) const {
+  contactsim::AddDriveImpulses(blocks_, std::vector<double>(total_.data(), total_.data() + total_.size()), impulses);
+}
+
 bool JointVelocityBlock::SelfContact(int a, int b) const {
   if (component_.empty() || a < 0 || b < 0) return false;
   return component_[a] >= 0 && component_[a] == component_[b];

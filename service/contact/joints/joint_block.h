@@ -33,6 +33,14 @@ class JointVelocityBlock {
   // products taken from `bodies` (BuildJointVelocityRows); h (s) is the step.
   void Build(const World& world, const std::vector<SolverBody>& bodies, double h,
              JointSolverKind solver = JointSolverKind::kTree);
+  // Build again at the bodies' current velocities, keeping the impulse each
+  // compliant row (damping, drive) has carried so far this step: its target
+  // counts that impulse (J v + cfm lambda = rhs), so a row built afresh, at
+  // zero, would apply its damper or drive a second time.
+  void Rebuild(const World& world, const std::vector<SolverBody>& bodies, double h);
+  // Adds the drive rows' impulses this step to `impulses` per joint
+  // (AddDriveImpulses, joint_rows.h).
+  void AddDriveImpulses(std::vector<double>* impulses) const;
   bool empty() const { return rows_.empty(); }
   // True when a contact joins two bodies (solver indices a, b) of one
   // jointed component: an articulated body touching itself, whose contact

@@ -183,6 +183,21 @@ class RowWriter {
     }
   }
 
+  // The actuator's drive row (joint_rows.h); returns its row index, -1 for
+  // none. A hinge without limits drives the wrapped error.
+  int Drive(const Joint& j, const Coordinate& c) {
+    const JointActuator& act = j.actuator;
+    if (mode_ != JointRowMode::kVelocity || h_ <= 0.0 || !HasDriveGains(act)) return -1;
+    const bool wrap = j.kind == JointKind::kHinge && !j.limited;
+    const DriveTarget d = MakeDriveTarget(act, ActuatorPositionError(act, c.value, wrap), h_);
+    ConstraintRow& row = Push(c.row, 0.0);
+    row.rhs = d.rate;
+    row.cfm = d.cfm;
+    row.lo = -d.max_impulse;
+    row.hi = d.max_impulse;
+    return static_cast<int>(rows_->size()) - 1;
+  }
+
   // prismatic: two line rows across the axis, then the weld
   void Slider(const Vec3& axis, const Quat& q_a, const Quat& rest, const Quat& q_b) {
     Vec3 t[2];
@@ -208,15 +223,33 @@ class RowWriter {
 
 bool HasJointDynamics(const World& world) {
   for (const Joint& j : world.joints()) {
-    if (j.damping > 0.0 || j.friction > 0.0) return true;
+    if (j.damping > 0.0 || j.friction > 0.0 || HasDriveGains(j.actuator)) return true;
   }
   return false;
+}
+
+void AddDriveImpulses(const std::vector<JointBlock>& blocks, const std::vector<double>& lambda,
+                      std::vector<double>* impulses) {
+  for (const JointBlock& blk : blocks) {
+    if (blk.drive < 0) continue;
+    if (static_cast<int>(impulses->size()) <= blk.joint) impulses->resize(blk.joint + 1, 0.0);
+    (*impulses)[blk.joint] += lambda[blk.drive];
+  }
+}
+
+void AddDriveEfforts(const std::vector<double>& impulses, double duration, World& world) {
+  const auto& joints = world.joints();
+  for (size_t k = 0; k < impulses.size() && k < joints.size(); ++k) {
+    if (impulses[k] != 0.0) world.SetJointEffort(k, joints[k].effort + impulses[k] / duration);
+  }
 }
 
 void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks,
                      std::vector<double>* errors) {
-  for (const Joint& j : world.joints()) {
+  const auto& joints = world.joints();
+  for (size_t index = 0; index < joints.size(); ++index) {
+    const Joint& j = joints[index];
     const End a = MakeEnd(world, bodies, j.body_a, j.anchor_a);
     const End b = MakeEnd(world, bodies, j.body_b, j.anchor_b);
     if (!a.dynamic && !b.dynamic) continue;  // nothing can move
@@ -224,6 +257,7 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
     RowWriter writer(a, b, h, mode, rows, errors);
     const Quat q_a = a.body->q;
     const Quat q_b = BodyOrientation(b.body);
+    int drive = -1;
     switch (j.kind) {
       case JointKind::kDistance: writer.Distance(j.length); break;
       case JointKind::kBall: writer.Point(); break;
@@ -233,6 +267,7 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
         writer.HingeAxis(axis_a, q_b * j.axis_b);
         const auto coordinate = writer.HingeCoordinate(j, axis_a);
         writer.Dynamics(j, coordinate);
+        drive = writer.Drive(j, coordinate);
         writer.Limits(j, coordinate);
         break;
       }
@@ -245,11 +280,15 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
         writer.Slider(axis_a, q_a, j.rest, q_b);
         const auto coordinate = writer.SlideCoordinate(axis_a);
         writer.Dynamics(j, coordinate);
+        drive = writer.Drive(j, coordinate);
         writer.Limits(j, coordinate);
         break;
       }
     }
-    if (blocks != nullptr) blocks->push_back({j.id, first, static_cast<int>(rows->size()) - first, a.index, b.index});
+    if (blocks != nullptr) {
+      blocks->push_back(
+          {j.id, first, static_cast<int>(rows->size()) - first, a.index, b.index, static_cast<int>(index), drive});
+    }
   }
 }
 

@@ -44,15 +44,31 @@
 //   joint coordinate q (hinge angle: J = (0, -a | 0, a); prismatic slide
 //     s = a . (p_B - p_A): the line row of u = -a), J qdot = its rate:
 //     damping (cfm = 1/(c h), rhs 0: the implicit damper), friction
-//     (|lambda| <= f h, rhs 0; left out while a limit row is active), then
-//     the limits: lower: lambda >= 0, active when q would pass it within
+//     (|lambda| <= f h, rhs 0; left out while a limit row is active), the
+//     actuator's drive (below), then the limits: lower: lambda >= 0, active when q would pass it within
 //     the step; rhs = min(0, (lower - q) / h), so the joint may still reach
 //     the limit but not cross it (speculative, as the contact methods'
 //     margins). Upper: mirrored, lambda <= 0. Limits are unilateral and
 //     plastic (no bounce), as a contact with restitution 0.
+// The drive of an actuator with gains (physics/joint_actuator.h): the
+// coordinate row's J qdot is the coordinate's rate v (J = (0, -a | 0, a):
+// torque -a lambda on A, +a lambda on B, so a positive lambda is a positive
+// generalized impulse along q, lambda = u h). The solver meets
+// J qdot' + cfm lambda = rhs, i.e. v' + lambda / (h (h kp + kd)) = rhs; the
+// implicit PD u = torque + kp (q* - q - h v') + kd (v* - v') multiplied by
+// h and divided by h (h kp + kd) is exactly that with
+//   cfm = 1 / (h (h kp + kd)),
+//   rhs = clamp((kp (q* - q) + kd v*) / (h kp + kd), +-velocity_limit)
+//         + torque / (h kp + kd)
+// (MakeDriveTarget), the target rate of a damper of gain h kp + kd plus the
+// feed-forward, and bounds |lambda| <= effort_limit h, a boxed compliant
+// row: the clamp of u is the clamp of the impulse. The damping row's
+// velocity product is left out of it as of the damping row (a rate target,
+// not a geometric constraint). An actuator without gains applies its torque
+// as a force (World::AccumulateForces), no row.
 // The rows of a joint come in that order: equality rows, then damping and
-// friction, then limits, so that a joint's equality rows have the same
-// places whatever its limits do.
+// friction, then the drive, then limits, so that a joint's equality rows
+// have the same places whatever its limits do.
 // Position rows (for the projection, joint_solver.h) have the same Jacobians
 // with the errors C; a limit row only when the limit is violated, C = angle -
 // limit.
@@ -82,6 +98,8 @@ struct JointBlock {
   int first = 0;
   int count = 0;
   int a = -1, b = -1;  // solver body indices; -1: the world
+  int joint = -1;      // index of the joint in world.joints()
+  int drive = -1;      // row index of the actuator's drive row; -1: none
 };
 
 enum class JointRowMode {
@@ -99,15 +117,27 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks = nullptr,
                      std::vector<double>* errors = nullptr);
 
-// True when the row has a finite bound: a joint limit (one-sided) or a
-// joint's friction (boxed). A solver holds such a row at the bound it
-// would pass.
+// True when the row has a finite bound: a joint limit (one-sided), a
+// joint's friction or an actuator's drive with an effort limit (boxed). A
+// solver holds such a row at the bound it would pass.
 inline bool IsLimitRow(const ConstraintRow& row) { return row.lo > -ConstraintRow::kInf || row.hi < ConstraintRow::kInf; }
 
-// True when some joint of the world has damping or friction.
+// True when some joint of the world has damping, friction or an actuator
+// with gains (a drive row).
 bool HasJointDynamics(const World& world);
 
-// True for a joint's damping or friction row: rows of the joint's dynamics,
+// Adds each drive row's impulse lambda[k] (N m s or N s) to impulses[joint]
+// (resized to the world's joints when shorter).
+void AddDriveImpulses(const std::vector<JointBlock>& blocks, const std::vector<double>& lambda,
+                      std::vector<double>* impulses);
+
+// Adds impulses[joint] / duration to each driven joint's effort
+// (Joint::effort, which World::AccumulateForces zeroed at the step's start):
+// the mean effort of the drive rows over the `duration` (s) their impulses
+// span (the step, or the part of it the method solved last).
+void AddDriveEfforts(const std::vector<double>& impulses, double duration, World& world);
+
+// True for a joint's damping, friction or drive row: rows of the joint's dynamics,
 // not of its geometry, which the projection of BuildJointVelocityRows
 // leaves out.
 inline bool IsJointDynamicsRow(const ConstraintRow& row) {

@@ -109,7 +109,8 @@ void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& b
     (*rows)[k].lambda = std::clamp(lambda0[k], (*rows)[k].lo, (*rows)[k].hi);
   }
   // the velocity products there, for the equality rows (the first rows of
-  // each block; the same joints in the same order)
+  // each block; the same joints in the same order); a damping or drive row
+  // keeps its rate target
   std::vector<ConstraintRow> at_tangent;
   std::vector<JointBlock> tangent_blocks;
   AppendJointRows(world, tangent, h, mode, &at_tangent, &tangent_blocks);
@@ -117,7 +118,7 @@ void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& b
     const JointBlock& blk = (*blocks)[i];
     for (int r = 0; r < blk.count; ++r) {
       ConstraintRow& row = (*rows)[blk.first + r];
-      if (!IsLimitRow(row)) row.rhs = at_tangent[tangent_blocks[i].first + r].rhs;
+      if (!IsLimitRow(row) && !IsJointDynamicsRow(row)) row.rhs = at_tangent[tangent_blocks[i].first + r].rhs;
     }
   }
 }
@@ -175,21 +176,29 @@ void GuessJointImpulses(const std::vector<SolverBody>& bodies, JointSolverKind s
 }
 
 JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
-                              const JointSolveOptions& options) {
+                              const JointSolveOptions& options, std::vector<double>* drive_impulses) {
   std::vector<ConstraintRow> rows;
   std::vector<JointBlock> blocks;
   BuildJointVelocityRows(world, bodies, h, options.solver, &rows, &blocks,
                          options.joint_dynamics ? JointRowMode::kVelocity : JointRowMode::kVelocityGeometry);
   if (rows.empty()) return {};
-  return SolveActiveSet(rows, blocks, bodies, options.solver, options.max_limit_passes);
+  const JointStats stats = SolveActiveSet(rows, blocks, bodies, options.solver, options.max_limit_passes);
+  if (drive_impulses != nullptr) {
+    std::vector<double> lambda(rows.size());
+    for (size_t k = 0; k < rows.size(); ++k) lambda[k] = rows[k].lambda;
+    AddDriveImpulses(blocks, lambda, drive_impulses);
+  }
+  return stats;
 }
 
 JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions& options) {
   if (world.joints().empty()) return {};
   std::vector<SolverBody> bodies;
   LoadSolverBodies(world, &bodies);
-  const JointStats stats = ApplyJointImpulses(world, h, bodies, options);
+  std::vector<double> drive_impulses;
+  const JointStats stats = ApplyJointImpulses(world, h, bodies, options, &drive_impulses);
   StoreSolverBodies(bodies, world);
+  AddDriveEfforts(drive_impulses, world.dt, world);
   return stats;
 }
 

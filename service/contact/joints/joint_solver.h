@@ -9,9 +9,10 @@
 // and add M^-1 J^T lambda (Lagrange multipliers as impulses). Limit rows
 // (hinge and prismatic) are one-sided: a limit row whose lambda comes out on
 // the wrong side (pulling) is dropped and the system solved again; a
-// friction row whose lambda passes +-f h is held there and the others
-// solved again (active set, at most max_limit_passes solves). A damping row
-// carries its compliance 1/(c h) on the diagonal (joint_rows.h).
+// friction or drive row whose lambda passes its bound (+-f h, +-effort_limit
+// h) is held there and the others solved again (active set, at most
+// max_limit_passes solves). A damping or drive row carries its compliance on
+// the diagonal (joint_rows.h).
 //
 // Drift: the velocity solve keeps C constant only to O(h^2) per step, so C
 // drifts. Post-stabilisation (Cline and Pai, "Post-stabilization for rigid
@@ -93,10 +94,16 @@ void GuessJointImpulses(const std::vector<SolverBody>& bodies, JointSolverKind s
 // The velocity solve on solver bodies (LoadSolverBodies of `world`, with the
 // step's forces and contact impulses already in v and w); h (s) is the step.
 // The impulses are added through ConstraintRow::Apply, so dP and dL hold them.
+// The drive rows' impulses are added to `drive_impulses` per joint
+// (AddDriveImpulses, joint_rows.h) when given.
 JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBody>& bodies,
-                              const JointSolveOptions& options = {});
+                              const JointSolveOptions& options = {},
+                              std::vector<double>* drive_impulses = nullptr);
 
-// The same on the world's momenta P and L.
+// The same on the world's momenta P and L; adds the drive rows' impulses
+// over world.dt to the joints' efforts (AddDriveEfforts): called once a
+// step, or once a sub-step of a step in sub-steps, which then add up to the
+// step's mean.
 JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions& options = {});
 
 // Post-stabilisation of the positions and orientations (see above).

@@ -169,6 +169,10 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
   StoreSolverBodies(bodies_, world);
   warm_start_.Store(contacts_, rows_);
   warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);
+  std::vector<double> lambda(joint_rows_.size()), drive_impulses;
+  for (size_t k = 0; k < joint_rows_.size(); ++k) lambda[k] = rows_[first_joint_row + k].lambda;
+  AddDriveImpulses(joint_blocks_, lambda, &drive_impulses);
+  AddDriveEfforts(drive_impulses, h, world);
 
   // positions: untouched bodies ballistically (x0 + v0 h + F/(2m) h^2 =
   // x0 + (v1 - F/(2m) h) h), the others with their end velocity

@@ -22,6 +22,7 @@ void SoftJoints::Load(const std::vector<SoftBody>& bodies) {
 }
 
 void SoftJoints::Begin(const World& world, double h, const std::vector<SoftBody>& bodies) {
+  if (dynamics_) block_.AddDriveImpulses(&drive_impulses_);  // the previous sub-step's
   dynamics_ = HasJointDynamics(world);
   if (!dynamics_) return;
   LoadSolverBodies(world, &solver_);
@@ -39,13 +40,20 @@ void SoftJoints::SolveVelocities(const World& world, double h, std::vector<SoftB
   } else {
     JointSolveOptions options;
     options.joint_dynamics = !dynamics;
-    ApplyJointImpulses(world, h, solver_, options);
+    ApplyJointImpulses(world, h, solver_, options, &drive_impulses_);
   }
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (solver_[i].dP.squaredNorm() + solver_[i].dL.squaredNorm() == 0.0) continue;
     bodies[i].v = solver_[i].v;
     bodies[i].w = solver_[i].w;
   }
+}
+
+void SoftJoints::StoreEfforts(World& world) {
+  if (dynamics_) block_.AddDriveImpulses(&drive_impulses_);
+  dynamics_ = false;
+  AddDriveEfforts(drive_impulses_, world.dt, world);
+  drive_impulses_.clear();
 }
 
 }  // namespace contactsim

@@ -34,12 +34,18 @@ class SoftJoints {
   // stage (`relax`), whose velocities only take back the positions' bias.
   void SolveVelocities(const World& world, double h, std::vector<SoftBody>& bodies, bool relax = false);
 
+  // After the step's last sub-step: adds the impulses the drive rows
+  // applied over the step, divided by world.dt, to the joints' efforts
+  // (AddDriveEfforts, joints/joint_rows.h), and starts the next step's sum.
+  void StoreEfforts(World& world);
+
  private:
   void Load(const std::vector<SoftBody>& bodies);
 
   std::vector<SolverBody> solver_;
   JointVelocityBlock block_;
-  bool dynamics_ = false;  // Begin built block_
+  bool dynamics_ = false;  // Begin built block_, whose drive impulses are not yet in drive_impulses_
+  std::vector<double> drive_impulses_;  // N m s or N s per joint, this step's so far
 };
 
 }  // namespace contactsim

@@ -72,6 +72,7 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
     }
   });
   RunSubsteps(world, detector.runner());
+  joints_.StoreEfforts(world);
   StoreSoftBodies(bodies_, detector.runner(), world);
   if (!world.joints().empty()) ProjectJointPositions(world);
 

@@ -94,8 +94,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn project = [&](int, int) { ProjectJointPositions(world, projection); };
   const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
   const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
-  // joints with damping or friction: their velocity rows (joints/joint_rows.h)
-  // solved with the joints' geometry on the derived velocities
+  // joints with damping, friction or a drive: their velocity rows
+  // (joints/joint_rows.h) solved with the joints' geometry on the derived
+  // velocities, the implicit damper and drive at the sub-step h (the drive's
+  // position error taken at the sub-step's solved poses, so that the next
+  // sub-step's positions move by h v' as the model's q' = q + h v' has it)
   SoftJoints joint_velocities;
   const Fn solve_joint_dynamics = [&](int, int) { joint_velocities.SolveVelocities(world, h, bodies_); };
   const bool joint_dynamics = HasJointDynamics(world);
@@ -135,6 +138,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     if (restitution) list.AddSerial(solve_impacts);
   }
   runner.Stages(stages_);
+  joint_velocities.StoreEfforts(world);
 }
 
 }  // namespace contactsim
