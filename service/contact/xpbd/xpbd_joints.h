@@ -27,8 +27,10 @@
 // corrections; coupled joints are met to the Gauss-Seidel residual, which
 // shrinks as h^2 with the sub-steps (the paper's argument) but grows with a
 // chain's length, so rigid joints are then projected together by a Newton
-// step after the sweeps (xpbd_method.h, 2b). No velocity rows: the
-// sub-step's velocities come from the positions (xpbd_method.h).
+// step after the sweeps (xpbd_method.h, 2b). The joints' geometry has no
+// velocity rows: the sub-step's velocities come from the positions
+// (xpbd_method.h). Damping, friction and the actuators' drives act on those
+// velocities, as velocity rows before the positions move (xpbd_method.h, 2a).
 #pragma once
 
 #include <array>

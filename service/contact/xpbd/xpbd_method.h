@@ -15,8 +15,15 @@
 //     or more where a contact joins bodies of mass ratio r: one sweep a
 //     sub-step leaves the heavy one about r g h^2 deep, so h is chosen to
 //     keep that within kMassRatioOverlap (SubstepsFor):
-//     a. predict: v += h F / m, w += h I^-1 tau, then x, q from them
-//        (soft_bodies.h: L held across the turn);
+//     a. predict: v += h F / m, w += h I^-1 tau; where joints have
+//        damping, friction or actuator drives, their velocity rows
+//        (joints/joint_rows.h, with the joints' geometry) at the sub-step
+//        h on those velocities, so that the positions move by what the
+//        implicit damper, the joint's friction and the drive leave (the
+//        actuator model's q' = q + h v', joint_actuator.h; a velocity row
+//        rather than a compliant positional constraint, so that velocity
+//        control and the exact effort clamp on the impulse come alike);
+//        then x, q from them (soft_bodies.h: L held across the turn);
 //     b. solve positions, `iterations` times: joints (xpbd_joints.h, with
 //        joint_compliance), then contacts (non-penetration, static
 //        friction; xpbd_contact.h), the pairs from the highest down

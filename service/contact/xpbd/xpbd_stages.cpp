@@ -58,10 +58,14 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
 
   using Fn = ParallelRunner::StageFn;
-  const Fn predict = [&](int i, int j) {
-    IntegrateSoftVelocities(world, h, i, j, bodies_);
+  const Fn predict_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_); };
+  const Fn predict_positions = [&](int i, int j) {
     IntegrateSoftPositions(h, i, j, world, bodies_, /*track_motion=*/false);
     for (int k = i; k < j; ++k) predicted_[k] = {bodies[k].x, bodies[k].q, bodies_[k].v, bodies_[k].w};
+  };
+  const Fn predict = [&](int i, int j) {
+    predict_velocities(i, j);
+    predict_positions(i, j);
   };
   // the jointed contacts' mobility at the predicted poses (XpbdArticulation::Refresh)
   const Fn refresh_articulation = [&](int, int) {
@@ -95,10 +99,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn solve_ratios = [&](int, int) { ratio_.Solve(solve, bodies_, predicted_, world, points_); };
   const Fn derive_velocities = [&](int i, int j) { DeriveVelocities(world, h, i, j); };
   // joints with damping, friction or a drive: their velocity rows
-  // (joints/joint_rows.h) solved with the joints' geometry on the derived
-  // velocities, the implicit damper and drive at the sub-step h (the drive's
-  // position error taken at the sub-step's solved poses, so that the next
-  // sub-step's positions move by h v' as the model's q' = q + h v' has it)
+  // (joints/joint_rows.h) solved with the joints' geometry on the
+  // velocities the prediction moves the bodies by, after the forces' kick
+  // and before the positions (xpbd_method.h, 2a): an implicit damper, a
+  // friction that stops a joint before it moves, and a drive whose q' =
+  // q + h v' is the actuator model's (joint_actuator.h)
   SoftJoints joint_velocities;
   const Fn solve_joint_dynamics = [&](int, int) { joint_velocities.SolveVelocities(world, h, bodies_); };
   const bool joint_dynamics = HasJointDynamics(world);
@@ -122,7 +127,13 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const bool joints = !world.joints().empty();
   predicted_.resize(bodies.size());
   for (int sub = 0; sub < substeps; ++sub) {
-    list.Add(predict, 0, n, kBodyGrain);
+    if (joint_dynamics) {
+      list.Add(predict_velocities, 0, n, kBodyGrain);
+      list.AddSerial(solve_joint_dynamics);
+      list.Add(predict_positions, 0, n, kBodyGrain);
+    } else {
+      list.Add(predict, 0, n, kBodyGrain);
+    }
     if (articulation_.active()) list.AddSerial(refresh_articulation);
     if (joints) list.AddSerial(begin_joints);
     for (int it = 0; it < params_.iterations; ++it) {
@@ -132,7 +143,6 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);
     list.Add(derive_velocities, 0, n, kBodyGrain);
-    if (joint_dynamics) list.AddSerial(solve_joint_dynamics);
     if (restitution) list.AddSerial(gather_impacts);
     list.AddColours(velocity_pass, colours_, blocks);
     if (restitution) list.AddSerial(solve_impacts);
