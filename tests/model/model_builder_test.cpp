@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "service/model/body_plan.h"
 #include "service/model/model_adder.h"
 #include "service/physics/cylinder_hull.h"
@@ -94,6 +96,37 @@ TEST(ModelBuilderTest, AddsAndRemovesAsAWhole) {
   EXPECT_TRUE(world.joints().empty());
   EXPECT_TRUE(world.models.empty());
   EXPECT_EQ(RemoveModel(r.id, &world, &removed).code(), StatusCode::kNotFound);
+}
+
+// Verifies that each moving joint's actuator takes the file's effort and
+// velocity limits with no torque or gains (it drives nothing), that 0 or
+// no <limit> leaves it unlimited, and that the world's joints get them.
+TEST(ModelBuilderTest, ActuatorsTakeTheFilesEffortAndVelocityLimits) {
+  ModelDescription d = Arm();
+  d.joints[1].limits->effort = 0.0;  // none given
+  ModelBuild b;
+  ASSERT_TRUE(BuildModel(d, ModelOptions(), &b).ok());
+  ASSERT_EQ(b.joints.size(), 2u);
+  EXPECT_EQ(b.joints[0].actuator.effort_limit, 10.0);
+  EXPECT_EQ(b.joints[0].actuator.velocity_limit, 3.0);
+  EXPECT_FALSE(IsActuated(b.joints[0].actuator));
+  EXPECT_TRUE(std::isinf(b.joints[1].actuator.effort_limit));
+  EXPECT_EQ(b.joints[1].actuator.velocity_limit, 3.0);
+  d.joints[1].limits.reset();
+  d.joints[1].type = JointType::kContinuous;
+  ASSERT_TRUE(BuildModel(d, ModelOptions(), &b).ok());
+  EXPECT_TRUE(std::isinf(b.joints[1].actuator.effort_limit));
+  EXPECT_TRUE(std::isinf(b.joints[1].actuator.velocity_limit));
+  World world;
+  PreparedModel p;
+  ASSERT_TRUE(PrepareModel(b, world, Material(), &p).ok());
+  ModelRecord r;
+  ASSERT_TRUE(CommitModel(std::move(p), &world, &r).ok());
+  ASSERT_EQ(world.joints().size(), 2u);
+  EXPECT_EQ(world.joints()[0].actuator.effort_limit, 10.0);
+  EXPECT_EQ(world.joints()[0].actuator.velocity_limit, 3.0);
+  EXPECT_EQ(world.joints()[0].actuator.kp, 0.0);
+  EXPECT_TRUE(std::isinf(world.joints()[1].actuator.velocity_limit));
 }
 
 // Verifies that a bad joint in the middle of the file refuses the whole
