@@ -43,11 +43,23 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
 
 void JointVelocityBlock::Rebuild(const World& world, const std::vector<SolverBody>& bodies, double h) {
   const std::vector<ConstraintRow> old_rows = rows_;
+  const std::vector<JointBlock> old_blocks = blocks_;
   const Eigen::VectorXd old_total = total_;
   Build(world, bodies, h, solver_);
-  if (old_rows.size() != rows_.size()) return;  // a limit came or went: no row to row match
-  for (size_t k = 0; k < rows_.size(); ++k) {
-    if (rows_[k].cfm > 0.0 && old_rows[k].cfm > 0.0) total_[k] = old_total[k];
+  if (old_blocks.size() != blocks_.size()) return;
+  // joint by joint, the compliant rows (damping, then the drive) in order:
+  // a limit coming or going, or the friction row it removes, moves them
+  for (size_t i = 0; i < blocks_.size(); ++i) {
+    const JointBlock& now = blocks_[i];
+    const JointBlock& before = old_blocks[i];
+    if (now.joint != before.joint) return;
+    int k = before.first;
+    for (int r = now.first; r < now.first + now.count; ++r) {
+      if (rows_[r].cfm <= 0.0) continue;
+      while (k < before.first + before.count && old_rows[k].cfm <= 0.0) ++k;
+      if (k == before.first + before.count) break;
+      total_[r] = old_total[k++];
+    }
   }
 }
 

@@ -45,27 +45,31 @@
 //     s = a . (p_B - p_A): the line row of u = -a), J qdot = its rate:
 //     damping (cfm = 1/(c h), rhs 0: the implicit damper), friction
 //     (|lambda| <= f h, rhs 0; left out while a limit row is active), the
-//     actuator's drive (below), then the limits: lower: lambda >= 0, active when q would pass it within
-//     the step; rhs = min(0, (lower - q) / h), so the joint may still reach
-//     the limit but not cross it (speculative, as the contact methods'
-//     margins). Upper: mirrored, lambda <= 0. Limits are unilateral and
-//     plastic (no bounce), as a contact with restitution 0.
-// The drive of an actuator with gains (physics/joint_actuator.h): the
-// coordinate row's J qdot is the coordinate's rate v (J = (0, -a | 0, a):
-// torque -a lambda on A, +a lambda on B, so a positive lambda is a positive
-// generalized impulse along q, lambda = u h). The solver meets
-// J qdot' + cfm lambda = rhs, i.e. v' + lambda / (h (h kp + kd)) = rhs; the
-// implicit PD u = torque + kp (q* - q - h v') + kd (v* - v') multiplied by
-// h and divided by h (h kp + kd) is exactly that with
+//     actuator's drive (below), then the limits: lower: lambda >= 0, active
+//     when q would pass it within the step; rhs = min(0, (lower - q) / h),
+//     so the joint may still reach the limit but not cross it
+//     (speculative, as the contact methods' margins). Upper: mirrored,
+//     lambda <= 0. Limits are unilateral and plastic (no bounce), as a
+//     contact with restitution 0.
+// The drive of an actuator with gains (physics/joint_actuator.h). Signs:
+// the coordinate row's J qdot is the coordinate's rate v, and its impulse
+// J^T lambda acts along the coordinate: a hinge's J = (0, -a | 0, a) turns
+// A by -a lambda and B by +a lambda; a slider's line row of -a pushes B's
+// anchor by +a lambda and A, at that same point, by -a lambda. Either way a
+// positive lambda raises v, so lambda = u h, u the actuator's effort.
+// Multiplying the implicit PD u = torque + kp (q* - q - h v') + kd (v* - v')
+// by h and dividing by h (h kp + kd) gives v' + lambda / (h (h kp + kd)) =
+// (kp (q* - q) + kd v*) / (h kp + kd) + torque / (h kp + kd), which is the
+// solver's J qdot' + cfm lambda = rhs with
 //   cfm = 1 / (h (h kp + kd)),
 //   rhs = clamp((kp (q* - q) + kd v*) / (h kp + kd), +-velocity_limit)
 //         + torque / (h kp + kd)
-// (MakeDriveTarget), the target rate of a damper of gain h kp + kd plus the
-// feed-forward, and bounds |lambda| <= effort_limit h, a boxed compliant
-// row: the clamp of u is the clamp of the impulse. The damping row's
-// velocity product is left out of it as of the damping row (a rate target,
-// not a geometric constraint). An actuator without gains applies its torque
-// as a force (World::AccumulateForces), no row.
+// (MakeDriveTarget): a damper of gain h kp + kd towards the target rate,
+// plus the feed-forward. Bounds |lambda| <= effort_limit h make it a boxed
+// compliant row, so the clamp of u is the clamp of the impulse. Like the
+// damping row it has no velocity product (a rate target, not a geometric
+// constraint). An actuator without gains applies its torque as a force
+// (World::AccumulateForces), no row.
 // The rows of a joint come in that order: equality rows, then damping and
 // friction, then the drive, then limits, so that a joint's equality rows
 // have the same places whatever its limits do.
