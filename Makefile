@@ -117,15 +117,13 @@ test-py:
 # switches under every method, ~22 s of CPU in RelWithDebInfo, lcp_lemke's most of it)
 # and the jointed supports (JointedSupportTest: penalty's 88 s and lcp_lemke's 109 s)
 # and the joint dynamics (JointDynamicsTest: 28 s in RelWithDebInfo, soft's 2.4 s a
-# case of it; PrismaticJointTest: 17 s) and the actuators (ActuatorTest: every method's
-# step responses at h = 0.004 / w and the gripper's 3.5 s, about a minute in
-# RelWithDebInfo on a shared machine);
+# case of it; PrismaticJointTest: 17 s);
 # the collision tests still run the parallel narrowphase here. CI runs this
 # after `make test`.
 ASAN_BUILD = build-asan
 FUZZ_BUILD = $(ASAN_BUILD)
 test-asan: fuzz-build
-	cd $(ASAN_BUILD) && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid|BarrierScenes.BoxPyramid|MechanicsAlignedStack|ThreadDeterminism|MassRatioStackTest|MassRatioBridgeTest|MassRatioLongBridgeTest|PlacementContactTest|JointChainScenarioTest|JointedSupportTest|JointDynamicsTest|PrismaticJointTest|ActuatorTest'
+	cd $(ASAN_BUILD) && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid|BarrierScenes.BoxPyramid|MechanicsAlignedStack|ThreadDeterminism|MassRatioStackTest|MassRatioBridgeTest|MassRatioLongBridgeTest|PlacementContactTest|JointChainScenarioTest|JointedSupportTest|JointDynamicsTest|PrismaticJointTest'
 	@$(MAKE) --no-print-directory test-py BUILD=$(ASAN_BUILD)
 	@$(MAKE) --no-print-directory fuzz-ci
 
