@@ -11,7 +11,10 @@
 namespace contactsim {
 
 struct MethodContract {
-  bool joints = false;            // equality constraints (service/physics/joint.h)
+  // equality constraints (service/physics/joint.h) with their limits,
+  // damping, friction and actuators (joint_actuator.h): every method that
+  // takes joints applies their actuators, so they need no entry of their own
+  bool joints = false;
   bool restitution = false;       // material restitution e > 0 makes bounces
   bool kinematic_bodies = false;  // bodies moved by their set velocity push the others
   // The friction law, in words: "coulomb disk" (|lambda_t| <= mu lambda_n),
