@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "service/model/model_builder.h"
+#include "service/model/model_paths.h"
 #include "service/physics/status.h"
 #include "service/physics/world.h"
 #include "service/proto/scene.pb.h"
@@ -23,6 +24,11 @@ struct SceneModel {
   model::ModelOptions options;
   std::string origin;  // "FILE:LINE: models[i]", for errors
 };
+
+// Reads one model entry, its file looked for along `paths`; errors start
+// with `origin`.
+Status ReadSceneModel(const proto::SceneModel& entry, const model::ModelPaths& paths, const std::string& origin,
+                      SceneModel* out);
 
 // Reads every model the scene lists.
 Status ReadSceneModels(const proto::Scene& scene, const std::string& filename,

@@ -16,6 +16,7 @@
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/scene/scene_spec.h"
+#include "service/server/arm_driver/arm_command.h"
 #include "service/server/journal.h"
 #include "service/server/lockstep.h"
 
@@ -53,7 +54,7 @@ struct Command {
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
     kAddJoint, kRemoveJoint, kSetFilter, kAddRangeSensor, kAddContactSensor, kRemoveSensor, kRayCast,
-    kLoadModel, kRemoveModel, kModelInfo,
+    kLoadModel, kRemoveModel, kModelInfo, kArmCommand,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -99,6 +100,7 @@ struct Command {
   std::string sensor_name;             // ADD_CONTACT, REMOVE sensor
   std::shared_ptr<std::vector<Ray>> rays;  // RAY_CAST (checked, directions unit)
   RayCastOptions ray_options;          // RAY_CAST
+  ArmCommand arm;                      // the arm driver's command (arm_driver/arm_command.h)
 
   // The command as it arrived (LCM-encoded), and how the journal stores it.
   std::string payload;

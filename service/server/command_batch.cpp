@@ -16,7 +16,7 @@ bool Journaled(Command::Kind kind) {
     case K::kAddBody: case K::kRemoveBody: case K::kSetPose: case K::kSetVelocity: case K::kApplyForce:
     case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kSetFilter: case K::kSetGravity:
     case K::kSetTimestep: case K::kSetMethod: case K::kAddJoint: case K::kRemoveJoint: case K::kAddRangeSensor:
-    case K::kAddContactSensor: case K::kRemoveSensor: case K::kLoadModel: case K::kRemoveModel:
+    case K::kAddContactSensor: case K::kRemoveSensor: case K::kLoadModel: case K::kRemoveModel: case K::kArmCommand:
       return true;
     default:
       return false;

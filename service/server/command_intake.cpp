@@ -6,6 +6,7 @@ namespace contactsim {
 
 CommandIntake::CommandIntake(const ServerOptions& options, CommandBatch* batch)
     : prefix_(options.prefix + "_"),
+      arm_channel_(options.arm_driver ? options.arm_driver->command_channel : ""),
       max_commands_per_second_(options.max_commands_per_second),
       command_burst_(options.command_burst),
       rate_limiter_(options.max_commands_per_second, options.command_burst),
@@ -21,6 +22,7 @@ CommandIntake::CommandIntake(const ServerOptions& options, CommandBatch* batch)
 std::vector<std::string> CommandIntake::ChannelNames() const {
   std::vector<std::string> names;
   for (const CommandChannel& c : CommandChannels()) names.push_back(prefix_ + c.suffix);
+  if (!arm_channel_.empty()) names.push_back(arm_channel_);
   return names;
 }
 
@@ -32,7 +34,23 @@ Status CommandIntake::AdmitClient(const CommandChannel& channel, const std::stri
                                    ")");
 }
 
+void CommandIntake::OnArmCommand(const std::string& channel, const void* data, int size) {
+  Command cmd;
+  cmd.kind = Command::Kind::kArmCommand;
+  cmd.client_id = channel;
+  cmd.request_id = -1;
+  cmd.record = RecordKind::kArmCommand;
+  Status st = DecodeIiwaCommand(data, size, &cmd.arm);
+  if (st.ok()) {
+    cmd.request_id = cmd.arm.utime;
+    cmd.payload.assign(static_cast<const char*>(data), size);
+    st = batch_->Enqueue(cmd);
+  }
+  if (!st.ok()) batch_->Reject(cmd.client_id, cmd.request_id, st, channel.c_str());
+}
+
 void CommandIntake::OnMessage(const std::string& channel_name, const void* data, int size) {
+  if (!arm_channel_.empty() && channel_name == arm_channel_) return OnArmCommand(channel_name, data, size);
   if (channel_name.compare(0, prefix_.size(), prefix_) != 0) return;
   const CommandChannel* channel = ChannelOfSuffix(channel_name.substr(prefix_.size()));
   if (channel == nullptr) return;

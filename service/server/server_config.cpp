@@ -1,6 +1,7 @@
 #include "service/server/server_config.h"
 
 #include <contactsim/signature.h>
+#include <glob.h>
 
 #include "service/contact/contact_method_registry.h"
 #include "service/physics/validation.h"
@@ -13,6 +14,21 @@ namespace {
 std::string Folder(const std::string& path) {
   const auto slash = path.find_last_of('/');
   return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+// A model_path entry with shell wildcards (glob(3)) stands for every folder
+// it matches, in sorted order, so that a config can name a folder whose
+// exact path differs between machines (a virtual environment's
+// lib/python3*/site-packages); one that matches nothing is kept as written,
+// for the error that lists the places tried.
+void ExpandModelPath(const std::string& path, std::vector<std::string>* out) {
+  glob_t matches{};
+  if (path.find_first_of("*?[") != std::string::npos && glob(path.c_str(), GLOB_ONLYDIR, nullptr, &matches) == 0) {
+    for (size_t i = 0; i < matches.gl_pathc; ++i) out->push_back(matches.gl_pathv[i]);
+  } else {
+    out->push_back(path);
+  }
+  globfree(&matches);
 }
 
 }  // namespace
@@ -54,12 +70,18 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
 
 Status MakeServerSetup(const proto::ServerConfig& config, const std::string& config_path,
                        const std::string& scene_override, ServerSetup* setup) {
-  if (config.has_arm_driver()) {  // checked by LoadServerConfig; nothing serves it in this release
-    return Status::FailedPrecondition(config_path + ": arm_driver: this contactsim-server does not serve Drake's "
-                                      "arm-driver protocol in this release; remove the arm_driver block to start it");
-  }
   ServerSetup s;
   ReadServerOptions(config, &s.options);  // checked by LoadServerConfig
+  if (config.has_arm_driver()) {
+    ArmDriverConfig arm;
+    std::string field;
+    Status st = ReadArmDriverConfig(config.arm_driver(), s.options.prefix, &arm, &field);
+    if (st.ok() && arm.protocol != "iiwa") {
+      st = Status::FailedPrecondition("protocol \"" + arm.protocol + "\" is not served in this release (\"iiwa\" is)");
+    }
+    if (!st.ok()) return st.Prefixed(config_path + ": arm_driver: ");
+    s.options.arm_driver = std::move(arm);
+  }
   if (!config.auth_key_file().empty()) {
     const std::string path = config.auth_key_file()[0] == '/' ? config.auth_key_file()
                                                               : Folder(config_path) + "/" + config.auth_key_file();
@@ -73,7 +95,7 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
         config.journal_dir()[0] == '/' ? config.journal_dir() : Folder(config_path) + "/" + config.journal_dir();
   }
   for (const std::string& p : config.model_path()) {
-    s.options.model_paths.push_back(!p.empty() && p[0] == '/' ? p : Folder(config_path) + "/" + p);
+    ExpandModelPath(!p.empty() && p[0] == '/' ? p : Folder(config_path) + "/" + p, &s.options.model_paths);
   }
   s.lcm_url = config.lcm_url();
   s.log_level = config.log_level();

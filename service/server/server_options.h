@@ -9,12 +9,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "service/collision/parallel_runner.h"
 #include "service/proto/config.pb.h"
+#include "service/server/arm_driver/arm_driver_config.h"
 #include "service/server/command.h"
 #include "service/server/command_channels.h"
 #include "service/server/journal.h"
@@ -50,6 +52,7 @@ struct ServerOptions {
   int max_snapshots = 32;
   LatePolicy late_policy = LatePolicy::kWait;
   double late_timeout = 0.1;
+  std::optional<ArmDriverConfig> arm_driver;  // the config's arm_driver block, checked
   bool write_files = true;     // not in the config: false (a replay) makes SNAPSHOT to a file write nothing
 };
 

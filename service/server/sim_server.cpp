@@ -24,7 +24,9 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
                 publisher_.UpdateRates(world_.dt);
               }}),
       lockstep_(options_, &batch_),
-      intake_(options_, &batch_) {}
+      intake_(options_, &batch_) {
+  if (options_.arm_driver) arm_ = std::make_unique<ArmDriver>(*options_.arm_driver);
+}
 
 Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> method) {
   Status st = detector_.SetBroadphase(options_.broadphase);
@@ -33,6 +35,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   if (scene != nullptr) {
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }
+  if (!(st = StartArmDriver()).ok()) return st;
   world_.sleep.enabled = options_.sleep;  // a recovered snapshot brings its own
   // a configured method that cannot honour the configured scene (method_support.h)
   if (!(st = CheckMethodSupports(method->Name(), world_)).ok()) return st;
@@ -41,6 +44,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   publisher_.UpdateRates(world_.dt);
   PublishStatus(Clock::now());
   PublishState();
+  PublishArmStatus();
   PublishModelInfo();
   return Status::Ok();
 }
@@ -62,6 +66,8 @@ Outcome SimServer::Apply(Command& cmd) {
       return ApplySensorCommand(cmd);
     case K::kRayCast:
       return ApplyRayCast(cmd);
+    case K::kArmCommand:
+      return ApplyArmCommand(cmd);
     default:
       return ApplyWorldCommand(cmd);
   }
@@ -84,6 +90,7 @@ void SimServer::StartOver() {
 // ---- the loop ---------------------------------------------------------------
 
 void SimServer::SimulateStep() {
+  if (arm_) arm_->BeforeStep(&world_);
   last_stats_ = sleep_.Step(world_, *method_, detector_, &contacts_);
   steps_.ReportRewindProgress(world_.step);
 }
@@ -99,6 +106,7 @@ void SimServer::StepWorld() {
   // controllers need every STATE
   if (publisher_.StateDue(world_.step) || (mode_ == RunMode::kLockstep && lockstep_.active())) PublishState();
   if (publisher_.ContactsDue(world_.step)) publisher_.Contacts(world_, contacts_, *method_);
+  PublishArmStatus();
   FinishStepCommands();
   steps_.ReportProgress(world_.step, false);
 }

@@ -28,6 +28,7 @@
 #include "service/physics/world.h"
 #include "service/proto/snapshot.pb.h"
 #include "service/scene/scene_spec.h"
+#include "service/server/arm_driver/arm_driver.h"
 #include "service/server/command.h"
 #include "service/server/command_batch.h"
 #include "service/server/command_intake.h"
@@ -86,6 +87,11 @@ class SimServer {
   Outcome ApplyRayCast(Command& cmd);          // a batch of rays, answered on RAY_HITS
   Outcome ApplyModelCommand(Command& cmd);  // load, remove, info (model_commands.cpp)
   Outcome LoadModel(Command& cmd);
+  // Drake's arm driver (arm_driver/sim_server_arm.cpp): at start, loads its
+  // model when configured and holds the arm; then its commands and status.
+  Status StartArmDriver();
+  Outcome ApplyArmCommand(Command& cmd);
+  void PublishArmStatus();
   Status CheckNotInModel(BodyId body, JointId joint) const;
   // MODEL_INFO, when the models changed since the last one or it was asked for
   void PublishModelInfo();
@@ -137,6 +143,8 @@ class SimServer {
   RunMode mode_;
   double real_time_factor_;
   bool reanchor_ = true;  // REALTIME pacing starts again from now
+
+  std::unique_ptr<ArmDriver> arm_;  // null without an arm_driver block
 
   Publisher publisher_;
   StepRequests steps_;

@@ -60,9 +60,13 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
   if (r.kind == RecordKind::kStepTo) return Status::Ok();
   const CommandChannel* channel = ChannelOfRecord(r.kind);
   Command cmd;
-  Status st = channel == nullptr ? Status::DecodeError("unknown record kind")
-                                 : channel->decode(r.payload.data(), static_cast<int>(r.payload.size()),
-                                                   RecordContext(), &cmd);
+  Status st = Status::DecodeError("unknown record kind");
+  if (channel != nullptr) {
+    st = channel->decode(r.payload.data(), static_cast<int>(r.payload.size()), RecordContext(), &cmd);
+  } else if (r.kind == RecordKind::kArmCommand) {  // the arm driver's channel is the config's, not the table's
+    cmd.kind = Command::Kind::kArmCommand;
+    st = DecodeIiwaCommand(r.payload.data(), static_cast<int>(r.payload.size()), &cmd.arm);
+  }
   if (st.ok() && cmd.kind == Command::Kind::kInput) {
     ApplyInput(cmd.input, false);
   } else if (st.ok() && !(st = Apply(cmd).status).ok()) {

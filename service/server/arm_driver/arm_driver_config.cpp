@@ -34,6 +34,26 @@ Status CheckChannel(const std::string& name, const std::string& server_prefix, c
   return Status::Ok();
 }
 
+// kp or kd: none (the default), one for every joint, or one per joint; each
+// finite and >= 0.
+Status ReadGains(const google::protobuf::RepeatedField<double>& given, double fallback, const char* name,
+                 std::vector<double>* out) {
+  if (given.size() != 0 && given.size() != 1 && given.size() != kArmJoints) {
+    return Status::InvalidArgument(std::string(name) + " has " + std::to_string(given.size()) +
+                                   " values; give none, one for every joint, or one per joint (" +
+                                   std::to_string(kArmJoints) + ")");
+  }
+  for (int i = 0; i < given.size(); ++i) {
+    if (!std::isfinite(given[i]) || given[i] < 0) {
+      return Status::InvalidArgument(std::string(name) + "[" + std::to_string(i) + "] must be finite and >= 0, got " +
+                                     std::to_string(given[i]));
+    }
+  }
+  out->assign(kArmJoints, given.empty() ? fallback : given[0]);
+  if (given.size() == kArmJoints) out->assign(given.begin(), given.end());
+  return Status::Ok();
+}
+
 }  // namespace
 
 std::string DefaultArmCommandChannel(const std::string& protocol) { return ProtocolPrefix(protocol) + "_COMMAND"; }
@@ -72,6 +92,28 @@ Status ReadArmDriverConfig(const proto::ArmDriver& block, const std::string& ser
   if (!std::isfinite(c.status_rate_hz) || c.status_rate_hz <= 0 || c.status_rate_hz > kMaxStatusRateHz) {
     *field = "status_rate_hz";
     return Status::InvalidArgument("status_rate_hz must be in (0, 1000] Hz, got " + std::to_string(c.status_rate_hz));
+  }
+  if (!(st = ReadGains(block.kp(), kDefaultArmKp, "kp", &c.kp)).ok()) {
+    *field = "kp";
+    return st;
+  }
+  if (!(st = ReadGains(block.kd(), kDefaultArmKd, "kd", &c.kd)).ok()) {
+    *field = "kd";
+    return st;
+  }
+  c.gravity_compensation = !block.has_gravity_compensation() || block.gravity_compensation();
+  if (block.has_load()) {
+    if (block.load().path().empty()) {
+      *field = "load";
+      return Status::InvalidArgument("load.path must name the model file to load");
+    }
+    if (!block.load().name().empty() && block.load().name() != c.model) {
+      *field = "load";
+      return Status::InvalidArgument("load.name \"" + block.load().name() + "\" differs from model \"" + c.model +
+                                     "\"; leave it out or give the same name");
+    }
+    c.load = block.load();
+    c.load->set_name(c.model);
   }
   *out = c;
   return Status::Ok();

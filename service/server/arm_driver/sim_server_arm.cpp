@@ -1,0 +1,59 @@
+// SimServer's side of Drake's arm driver (arm_driver.h): the model loaded
+// and held at start, the commands applied at a step boundary like every
+// other command (journaled, so recovery and REWIND replay them), and the
+// status published at the driver's rate of simulated time.
+#include <spdlog/spdlog.h>
+
+#include "service/scene/scene_models.h"
+#include "service/server/sim_server.h"
+
+namespace contactsim {
+
+Status SimServer::StartArmDriver() {
+  if (!arm_) return Status::Ok();
+  const ArmDriverConfig& c = arm_->config();
+  if (!options_.auth_key.empty()) {
+    return Status::FailedPrecondition("arm_driver: Drake's arm-driver messages carry no signature, so a server "
+                                      "with an auth key cannot accept them; remove auth_key_file or arm_driver");
+  }
+  bool loaded = false;
+  for (const ModelRecord& m : world_.models) loaded |= m.name == c.model;
+  if (c.load && !loaded) {
+    SceneModel model;
+    const model::ModelPaths paths =
+        model::MakeModelPaths(options_.model_path_flags, options_.model_paths, model::ModelPathEnvironment());
+    Status st = ReadSceneModel(*c.load, paths, "arm_driver: load", &model);
+    if (st.ok()) st = AddSceneModels({model}, Material{}, &world_);
+    if (!st.ok()) return st;
+  }
+  const Status st = arm_->Hold(&world_);
+  if (!st.ok()) return st.Prefixed("arm_driver: ");
+  spdlog::info("arm driver: model \"{}\" on {} (commands) and {} (status at {} Hz of simulated time)", c.model,
+               c.command_channel, c.status_channel, c.status_rate_hz);
+  return Status::Ok();
+}
+
+// An accepted command is not answered, as Drake's driver answers none; a
+// refused one is answered on REPLY (named by the channel and its utime),
+// logged and counted in STATUS's last_error, as a refused lockstep INPUT is.
+Outcome SimServer::ApplyArmCommand(Command& cmd) {
+  if (!arm_) return Outcome::Failed(Status::FailedPrecondition("this server has no arm driver"));
+  const Status st = arm_->Apply(cmd.arm, &world_);
+  if (!st.ok()) return Outcome::Failed(st);
+  Outcome out = Outcome::Done("", true);
+  out.deferred = true;
+  return out;
+}
+
+void SimServer::PublishArmStatus() {
+  if (!arm_ || !arm_->StatusDue(world_.time)) return;
+  drake::lcmt_iiwa_status status;
+  const Status st = arm_->BuildStatus(world_, &status);
+  if (st.ok()) {
+    publisher_.Publish(arm_->config().status_channel, status);
+  } else {
+    spdlog::debug("arm driver: no status at t = {:.3f} s: {}", world_.time, st.message());
+  }
+}
+
+}  // namespace contactsim
