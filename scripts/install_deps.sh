@@ -2,7 +2,8 @@
 # Installs every dependency of contactsim on Debian bookworm, idempotently:
 # the Debian packages the C++ build needs and a Python virtual environment
 # (.venv) with the lcm bindings, numpy, matplotlib, tqdm, pytest, aiohttp, selenium, ray,
-# gymnasium, pandas, PyBullet and pinocchio (robot-model oracles of the tests), MuJoCo's C library and headers (the mujoco-core wheel, for the
+# gymnasium, pandas, PyBullet and pinocchio (robot-model oracles of the tests), Drake (whose iiwa driver
+# systems drive the simulated arm), MuJoCo's C library and headers (the mujoco-core wheel, for the
 # MuJoCo peer of `make bench`) and the contactsim client installed editable, and three.js for the viewer
 # (npm ci). Works as root and through sudo.
 set -euo pipefail
@@ -51,7 +52,7 @@ if [ ! -x .venv/bin/python ]; then
   echo "deps: creating .venv"
   "$PY" -m venv .venv
 fi
-if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest, aiohttp, selenium, wheel, ray, gymnasium, pandas, mujoco, pybullet, pinocchio" 2>/dev/null \
+if ! .venv/bin/python -c "import lcm, numpy, matplotlib, tqdm, pytest, aiohttp, selenium, wheel, ray, gymnasium, pandas, mujoco, pybullet, pinocchio, pydrake" 2>/dev/null \
    || ! .venv/bin/pip show -q contactsim >/dev/null 2>&1 || [ ! -x .venv/bin/contactsim-viewer ]; then
   echo "deps: installing Python packages into .venv"
   .venv/bin/pip install -q --upgrade pip

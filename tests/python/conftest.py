@@ -1,8 +1,8 @@
 """Fixtures of the Python client tests.
 
-* ``launch(scene=None, args=(), wrapper=())``: starts the REAL contactsim-server
+* ``launch(scene=None, args=(), wrapper=(), config=None)``: starts the REAL contactsim-server
   ($CONTACTSIM_BUILD_DIR/bin/contactsim-server, or $CONTACTSIM_SERVER) with
-  config/server.pbtxt, a scene (default: an empty one with gravity), its own
+  config/server.pbtxt (or ``config``), a scene (default: an empty one with gravity), its own
   multicast port (8800-9799; the C++ integration tests use 7800-8799) and its
   own channel prefix, in free_run mode and paused; waits for its first STATUS
   and returns a Server whose ``client`` is connected. At teardown each server
@@ -83,7 +83,7 @@ def unique_endpoint(tag="PY"):
 class Server:
     """One contactsim-server child process and a Client connected to it."""
 
-    def __init__(self, tmp_path, scene=None, args=(), wrapper=()):
+    def __init__(self, tmp_path, scene=None, args=(), wrapper=(), config=None):
         if not SERVER_BIN.exists():
             pytest.skip("%s is not built (run `make`)" % SERVER_BIN)
         self.url, self.prefix = unique_endpoint()
@@ -93,7 +93,7 @@ class Server:
         self.scene = Path(scene)
         self.log_path = tmp_path / ("server-%s.log" % self.prefix)
         # wrapper: a command that execs the server, e.g. ("prlimit", "--fsize=N", "--")
-        self.cmd = [*wrapper, str(SERVER_BIN), "--config", str(CONFIG), "--scene", str(self.scene),
+        self.cmd = [*wrapper, str(SERVER_BIN), "--config", str(config or CONFIG), "--scene", str(self.scene),
                     "--lcm-url", self.url, "--mode", "free_run", "--paused", "--no-live-line",
                     "--prefix", self.prefix, *args]
         # Subscribe before the server starts, so that its first STATUS is heard.
@@ -140,8 +140,8 @@ class Server:
 def launch(tmp_path):
     servers = []
 
-    def start(scene=None, args=(), wrapper=()):
-        s = Server(tmp_path, scene, args, wrapper)
+    def start(scene=None, args=(), wrapper=(), config=None):
+        s = Server(tmp_path, scene, args, wrapper, config)
         servers.append(s)
         return s
 

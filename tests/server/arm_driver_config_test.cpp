@@ -1,10 +1,11 @@
 // Tests of the server config's arm_driver block: Drake's defaults fill
-// absent fields, each bad field is refused with its name and line, and a
-// valid block is refused at start while the server has no arm driver.
+// absent fields, each bad field is refused with its name and line, the
+// gains and the model paths' wildcards, and which protocol starts.
 #include "service/server/arm_driver/arm_driver_config.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <vector>
@@ -66,6 +67,19 @@ TEST(ArmDriverConfigTest, BadValuesNameTheirField) {
     cases.push_back({Block("iiwa", "arm"), "status_rate_hz", "(0, 1000] Hz"});
     cases.back().block.set_status_rate_hz(rate);
   }
+  for (int n : {2, 8}) {
+    cases.push_back({Block("iiwa", "arm"), "kp", "give none, one for every joint, or one per joint (7)"});
+    for (int i = 0; i < n; ++i) cases.back().block.add_kp(100);
+  }
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    cases.push_back({Block("iiwa", "arm"), "kd", "kd[0] must be finite and >= 0"});
+    cases.back().block.add_kd(bad);
+  }
+  cases.push_back({Block("iiwa", "arm"), "load", "load.path must name"});
+  cases.back().block.mutable_load()->set_name("arm");
+  cases.push_back({Block("iiwa", "arm"), "load", "load.name \"other\" differs from model \"arm\""});
+  cases.back().block.mutable_load()->set_path("arm.urdf");
+  cases.back().block.mutable_load()->set_name("other");
   for (const Case& k : cases) {
     ArmDriverConfig c;
     std::string field;
@@ -90,19 +104,66 @@ TEST(ArmDriverConfigTest, ConfigFileErrorNamesLineAndField) {
       << st.message();
 }
 
-// Verifies that a valid block passes the file's checks but the server does
-// not start with it, saying that this server cannot serve the protocol.
-TEST(ArmDriverConfigTest, ValidBlockIsRefusedAtStart) {
-  const std::string path = WriteTemp("arm_ok.pbtxt", "arm_driver {\n  protocol: \"iiwa\"\n  model: \"iiwa\"\n}\n");
+// Verifies that the gains take their defaults, spread one value over the
+// seven joints or take one per joint, and that gravity compensation is on
+// unless the block turns it off.
+TEST(ArmDriverConfigTest, GainsAndGravityCompensation) {
+  ArmDriverConfig c;
+  std::string field;
+  proto::ArmDriver block = Block("iiwa", "arm");
+  ASSERT_TRUE(ReadArmDriverConfig(block, "CONTACTSIM", &c, &field).ok());
+  EXPECT_EQ(c.kp, std::vector<double>(kArmJoints, kDefaultArmKp));
+  EXPECT_EQ(c.kd, std::vector<double>(kArmJoints, kDefaultArmKd));
+  EXPECT_TRUE(c.gravity_compensation);
+  block.add_kp(500);
+  for (int i = 0; i < kArmJoints; ++i) block.add_kd(i);
+  block.set_gravity_compensation(false);
+  ASSERT_TRUE(ReadArmDriverConfig(block, "CONTACTSIM", &c, &field).ok());
+  EXPECT_EQ(c.kp, std::vector<double>(kArmJoints, 500));
+  EXPECT_EQ(c.kd, (std::vector<double>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_FALSE(c.gravity_compensation);
+}
+
+// Verifies that a valid iiwa block reaches the server's options, and that a
+// Panda block, valid in the file, stops the start with the reason: this
+// release serves the iiwa's messages only.
+TEST(ArmDriverConfigTest, IiwaBlockStartsAndPandaIsRefused) {
+  for (const char* protocol : {"iiwa", "panda"}) {
+    const std::string path = WriteTemp(std::string("arm_") + protocol + ".pbtxt",
+                                       std::string("arm_driver {\n  protocol: \"") + protocol +
+                                           "\"\n  model: \"arm\"\n}\n");
+    proto::ServerConfig config;
+    const Status loaded = LoadServerConfig(path, &config);
+    ASSERT_TRUE(loaded.ok()) << loaded.message();
+    ServerSetup setup;
+    const Status st = MakeServerSetup(config, path, "", &setup);
+    if (std::string(protocol) == "iiwa") {
+      ASSERT_TRUE(st.ok()) << st.message();
+      ASSERT_TRUE(setup.options.arm_driver.has_value());
+      EXPECT_EQ(setup.options.arm_driver->command_channel, "IIWA_COMMAND");
+    } else {
+      ASSERT_FALSE(st.ok());
+      EXPECT_NE(st.message().find("arm_driver: protocol \"panda\" is not served in this release"), std::string::npos)
+          << st.message();
+    }
+  }
+}
+
+// Verifies that a model_path entry with a wildcard stands for every folder
+// it matches, and one that matches nothing is kept as written.
+TEST(ArmDriverConfigTest, ModelPathWildcardsExpand) {
+  const std::string dir = ::testing::TempDir() + "arm_glob";
+  std::filesystem::create_directories(dir + "/lib/python3.11/site-packages/pybullet_data");
+  std::filesystem::create_directories(dir + "/lib/python3.12/site-packages/pybullet_data");
+  const std::string path = dir + "/config.pbtxt";
+  std::ofstream(path) << "model_path: \"lib/python3*/site-packages/pybullet_data\"\nmodel_path: \"none*\"\n";
   proto::ServerConfig config;
-  const Status loaded = LoadServerConfig(path, &config);
-  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  ASSERT_TRUE(LoadServerConfig(path, &config).ok());
   ServerSetup setup;
-  const Status st = MakeServerSetup(config, path, "", &setup);
-  ASSERT_FALSE(st.ok());
-  EXPECT_NE(st.message().find("arm_driver: this contactsim-server does not serve Drake's arm-driver protocol"),
-            std::string::npos)
-      << st.message();
+  ASSERT_TRUE(MakeServerSetup(config, path, "", &setup).ok());
+  EXPECT_EQ(setup.options.model_paths,
+            (std::vector<std::string>{dir + "/lib/python3.11/site-packages/pybullet_data",
+                                      dir + "/lib/python3.12/site-packages/pybullet_data", dir + "/none*"}));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // SimServer's side of Drake's arm driver (arm_driver.h): the model loaded
-// and held at start, the commands applied at a step boundary like every
+// and held at start (a model the world does not hold yet may come later by
+// MODEL_CMD; it is not held then), the commands applied at a step boundary like every
 // other command (journaled, so recovery and REWIND replay them), and the
 // status published at the driver's rate of simulated time.
 #include <spdlog/spdlog.h>
@@ -26,8 +27,14 @@ Status SimServer::StartArmDriver() {
     if (st.ok()) st = AddSceneModels({model}, Material{}, &world_);
     if (!st.ok()) return st;
   }
-  const Status st = arm_->Hold(&world_);
-  if (!st.ok()) return st.Prefixed("arm_driver: ");
+  if (c.load || loaded) {
+    const Status st = arm_->Hold(&world_);
+    if (!st.ok()) return st.Prefixed("arm_driver: ");
+  } else {
+    spdlog::warn("arm driver: the world holds no model named \"{}\" yet; its commands are refused and no status is "
+                 "published until a MODEL_CMD LOAD brings it",
+                 c.model);
+  }
   spdlog::info("arm driver: model \"{}\" on {} (commands) and {} (status at {} Hz of simulated time)", c.model,
                c.command_channel, c.status_channel, c.status_rate_hz);
   return Status::Ok();

@@ -1,0 +1,319 @@
+// Tests of Drake's iiwa driver served by the server (service/server/arm_driver/),
+// through the server logic and a recording transport: a command sets the
+// arm's drives, a bad one is refused and changes nothing, the status comes
+// at the driver's rate of simulated time with each field's reading, gravity
+// compensation holds a horizontal arm, and the journal's replay (REWIND,
+// recovery) repeats the commands.
+#include <gtest/gtest.h>
+
+#include <drake/lcmt_iiwa_command.hpp>
+#include <drake/lcmt_iiwa_status.hpp>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "service/proto/model.pb.h"
+#include "service/scene/model_proto.h"
+#include "tests/model/hand_made_models.h"
+#include "tests/server/server_harness.h"
+#include "tests/server/temp_dir.h"
+
+namespace contactsim {
+namespace {
+
+using testing::ServerHarness;
+
+constexpr double kG = 9.81;             // m/s^2, the world's default gravity
+constexpr double kLinkPitch = 0.2;      // m between two joints of the chain
+constexpr double kComOffset = 0.1;      // m from a link's joint to its centre of mass
+double LinkMass(int k) { return 1.0 + 0.1 * k; }  // kg, link k = 1..7
+
+// A base and seven links in a horizontal line along x, each hinged to the
+// one before about y: every joint carries the weight of the links beyond it.
+model::ModelDescription Chain7() {
+  using model::testing::Revolute;
+  using model::testing::SphereLink;
+  model::ModelDescription d;
+  d.name = "chain";
+  d.source = "<inline>";
+  d.links.push_back(SphereLink("base", 2.0, 0.05, Vec3::Zero()));
+  for (int k = 1; k <= kArmJoints; ++k) {
+    const std::string link = "l" + std::to_string(k);
+    d.links.push_back(SphereLink(link, LinkMass(k), 0.04, Vec3(kComOffset, 0, 0)));
+    d.joints.push_back(Revolute("j" + std::to_string(k), k == 1 ? "base" : "l" + std::to_string(k - 1), link,
+                                Vec3(k == 1 ? 0.0 : kLinkPitch, 0, 0), Vec3::UnitY()));
+  }
+  return d;
+}
+
+model_cmd_t LoadChain() {
+  model_cmd_t m{};
+  m.client_id = "test";
+  m.op = model_cmd_t::LOAD;
+  m.format = model_cmd_t::FORMAT_RESOLVED;
+  proto::ModelDescription p;
+  SaveModelDescription(Chain7(), &p);
+  const std::string bytes = p.SerializeAsString();
+  m.resolved.assign(bytes.begin(), bytes.end());
+  m.name = "arm";
+  m.position[2] = 1.0;
+  m.orientation[0] = 1.0;
+  m.fixed_base = true;
+  return m;
+}
+
+ServerOptions Options(bool gravity_compensation = true) {
+  ServerOptions o;
+  o.prefix = "A";
+  ArmDriverConfig arm;
+  arm.protocol = "iiwa";
+  arm.model = "arm";
+  arm.command_channel = "IIWA_COMMAND";
+  arm.status_channel = "IIWA_STATUS";
+  arm.status_rate_hz = 200;
+  arm.kp.assign(kArmJoints, kDefaultArmKp);
+  arm.kd.assign(kArmJoints, kDefaultArmKd);
+  arm.gravity_compensation = gravity_compensation;
+  o.arm_driver = arm;
+  return o;
+}
+
+drake::lcmt_iiwa_command Command(int64_t utime, std::vector<double> position, std::vector<double> torque) {
+  drake::lcmt_iiwa_command m;
+  m.utime = utime;
+  m.num_joints = static_cast<int32_t>(position.size());
+  m.joint_position = std::move(position);
+  m.num_torques = static_cast<int32_t>(torque.size());
+  m.joint_torque = std::move(torque);
+  return m;
+}
+
+std::vector<double> Targets(double base) {
+  std::vector<double> v;
+  for (int i = 0; i < kArmJoints; ++i) v.push_back(base + 0.01 * i);
+  return v;
+}
+
+struct ArmServer {
+  explicit ArmServer(ServerOptions o = Options()) : h(std::move(o)) {
+    const reply_t r = h.Send(LoadChain());
+    EXPECT_EQ(r.code, reply_t::OK) << r.message;
+    joints.assign(r.ids.end() - kArmJoints, r.ids.end());
+  }
+  void Post(const drake::lcmt_iiwa_command& m) {
+    const auto bytes = testing::Encode(m);
+    h.server.OnMessage("IIWA_COMMAND", bytes.data(), static_cast<int>(bytes.size()));
+  }
+  const Joint& joint(int i) const { return *h.server.world().FindJoint(joints[i]); }
+  std::vector<reply_t> Replies() const { return h.transport.All<reply_t>(h.server.Channel("REPLY")); }
+  std::vector<drake::lcmt_iiwa_status> Statuses() const {
+    return h.transport.All<drake::lcmt_iiwa_status>("IIWA_STATUS");
+  }
+  ServerHarness h;
+  std::vector<int64_t> joints;
+};
+
+// Verifies that a command sets each drive's target, the configured gains and
+// the feed-forward torque, the effort limit from the model file, and is not
+// answered; a command without positions (torque only) turns the gains off
+// and keeps the last targets.
+TEST(ArmDriverTest, CommandSetsTheDrives) {
+  ArmServer a;
+  const size_t replies = a.Replies().size();
+  a.Post(Command(7, Targets(0.1), Targets(2.0)));
+  a.h.server.Tick();
+  for (int i = 0; i < kArmJoints; ++i) {
+    const JointActuator& d = a.joint(i).actuator;
+    EXPECT_EQ(d.target_position, Targets(0.1)[i]);
+    EXPECT_EQ(d.torque, Targets(2.0)[i]);
+    EXPECT_EQ(d.kp, kDefaultArmKp);
+    EXPECT_EQ(d.kd, kDefaultArmKd);
+    EXPECT_EQ(d.target_velocity, 0.0);
+    EXPECT_EQ(d.effort_limit, 10.0);  // the hand-made joints' <limit effort>
+  }
+  EXPECT_EQ(a.Replies().size(), replies);
+  a.Post(Command(8, {}, Targets(-1.0)));
+  a.h.server.Tick();
+  for (int i = 0; i < kArmJoints; ++i) {
+    const JointActuator& d = a.joint(i).actuator;
+    EXPECT_EQ(d.target_position, Targets(0.1)[i]);
+    EXPECT_EQ(d.torque, Targets(-1.0)[i]);
+    EXPECT_EQ(d.kp, 0.0);
+    EXPECT_EQ(d.kd, 0.0);
+  }
+}
+
+// Verifies that each bad command is answered on REPLY, named by the channel
+// and its utime, with the reason, and that none changes a drive: a wrong
+// count of positions or torques, a NaN, bytes that are no lcmt_iiwa_command,
+// and a command while the world holds no arm.
+TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
+  ArmServer a;
+  a.Post(Command(1, Targets(0.1), {}));
+  a.h.server.Tick();
+  struct Case {
+    drake::lcmt_iiwa_command cmd;
+    int32_t code;
+    const char* says;
+  };
+  std::vector<double> nan = Targets(0.5);
+  nan[2] = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Case> cases = {
+      {Command(11, std::vector<double>(6, 0.5), {}), reply_t::INVALID_ARGUMENT,
+       "joint_position has 6 entries; the arm has 7 joints"},
+      {Command(12, Targets(0.5), {1, 2, 3}), reply_t::INVALID_ARGUMENT, "joint_torque has 3 entries"},
+      {Command(13, nan, {}), reply_t::INVALID_ARGUMENT, "joint_position[2] is nan, not a finite number"},
+      {Command(14, Targets(0.5), std::vector<double>(kArmJoints, std::numeric_limits<double>::infinity())),
+       reply_t::INVALID_ARGUMENT, "joint_torque[0] is inf"},
+  };
+  for (const Case& k : cases) {
+    a.Post(k.cmd);
+    a.h.server.Tick();
+    const reply_t r = a.Replies().back();
+    EXPECT_EQ(r.client_id, "IIWA_COMMAND");
+    EXPECT_EQ(r.request_id, k.cmd.utime);
+    EXPECT_EQ(r.code, k.code);
+    EXPECT_NE(r.message.find(k.says), std::string::npos) << r.message;
+  }
+  const uint8_t garbage[5] = {1, 2, 3, 4, 5};
+  a.h.server.OnMessage("IIWA_COMMAND", garbage, 5);
+  EXPECT_EQ(a.Replies().back().code, reply_t::DECODE_ERROR);
+  for (int i = 0; i < kArmJoints; ++i) EXPECT_EQ(a.joint(i).actuator.target_position, Targets(0.1)[i]);
+
+  ServerHarness empty(Options());
+  const auto bytes = testing::Encode(Command(21, Targets(0.5), {}));
+  empty.server.OnMessage("IIWA_COMMAND", bytes.data(), static_cast<int>(bytes.size()));
+  empty.server.Tick();
+  const reply_t r = empty.transport.All<reply_t>(empty.server.Channel("REPLY")).back();
+  EXPECT_EQ(r.code, reply_t::NOT_FOUND);
+  EXPECT_NE(r.message.find("the world holds no model named \"arm\""), std::string::npos) << r.message;
+}
+
+// Verifies that the status comes once per 5 ms of simulated time, stamped
+// with the simulated time in microseconds, both when the step divides the
+// period (1 ms: every 5th step) and when it does not (1/240 s: the first
+// step of each period).
+TEST(ArmDriverTest, StatusAtTheDriversRate) {
+  for (double dt : {0.001, 1.0 / 240}) {
+    ArmServer a;
+    scene_cmd_t set = a.h.Scene(scene_cmd_t::SET_TIMESTEP);
+    set.dt = dt;
+    ASSERT_EQ(a.h.Send(set).code, reply_t::OK);
+    const size_t before = a.Statuses().size();
+    a.h.Step(48);
+    const std::vector<drake::lcmt_iiwa_status> s = a.Statuses();
+    std::vector<int64_t> got;
+    for (size_t i = before; i < s.size(); ++i) got.push_back(s[i].utime);
+    std::vector<int64_t> want;
+    int64_t last_period = 0;
+    for (int k = 1; k <= 48; ++k) {
+      const double t = k * dt;
+      const auto period = static_cast<int64_t>(std::floor(t * 200 + 1e-6));
+      if (period != last_period) want.push_back(std::llround(t * 1e6));
+      last_period = period;
+    }
+    EXPECT_EQ(got, want) << "dt " << dt;
+  }
+}
+
+// The torque joint i's drive needs to hold the horizontal chain (N m): the
+// moment of the links beyond it, -sum m_k g (x_k - x_i) about +y.
+double ChainHoldTorque(int i) {
+  double tau = 0;
+  for (int k = i + 1; k <= kArmJoints; ++k) tau -= LinkMass(k) * kG * ((k - 1 - i) * kLinkPitch + kComOffset);
+  return tau;
+}
+
+// Verifies every field of the status after a command: measured positions
+// and rates are the joints', the commanded and interpolated positions the
+// command's, the commanded torque its feed-forward, the measured torque the
+// drive's effort plus the torque holding the horizontal chain against
+// gravity (analytic), the external torque zero.
+TEST(ArmDriverTest, StatusFieldsAndHoldTorques) {
+  ArmServer a;
+  a.Post(Command(3, Targets(0.2), Targets(5.0)));
+  a.h.Step(5);
+  const drake::lcmt_iiwa_status s = a.Statuses().back();
+  ASSERT_EQ(s.num_joints, kArmJoints);
+  EXPECT_EQ(s.utime, std::llround(a.h.server.world().time * 1e6));
+  const World& w = a.h.server.world();
+  for (int i = 0; i < kArmJoints; ++i) {
+    const Joint& j = a.joint(i);
+    const RigidBody& parent = *w.Find(j.body_a);
+    const RigidBody& child = *w.Find(j.body_b);
+    EXPECT_EQ(s.joint_position_measured[i], JointPosition(j, parent, &child));
+    EXPECT_EQ(s.joint_velocity_estimated[i], JointVelocity(j, parent, &child));
+    EXPECT_EQ(s.joint_position_commanded[i], Targets(0.2)[i]);
+    EXPECT_EQ(s.joint_position_ipo[i], Targets(0.2)[i]);
+    EXPECT_EQ(s.joint_torque_commanded[i], Targets(5.0)[i]);
+    // the chain has not moved: gravity is compensated (the drives' physics aside)
+    EXPECT_NEAR(s.joint_torque_measured[i] - j.effort, ChainHoldTorque(i), 1e-6 * std::abs(ChainHoldTorque(0)));
+    EXPECT_EQ(s.joint_torque_external[i], 0.0);
+  }
+}
+
+// Verifies that gravity compensation keeps a horizontal chain with idle
+// drives where it is, and that without it the chain falls.
+TEST(ArmDriverTest, GravityCompensationHoldsTheArm) {
+  for (bool compensate : {true, false}) {
+    ArmServer a(Options(compensate));
+    a.h.Step(100);
+    double fastest = 0;
+    for (int i = 0; i < kArmJoints; ++i) {
+      const Joint& j = a.joint(i);
+      const World& w = a.h.server.world();
+      fastest = std::max(fastest, std::abs(JointVelocity(j, *w.Find(j.body_a), w.Find(j.body_b))));
+    }
+    if (compensate) {
+      EXPECT_LT(fastest, 1e-6);
+    } else {
+      EXPECT_GT(fastest, 0.1);
+    }
+  }
+}
+
+// Verifies that the arm's commands are journaled: a REWIND to between two
+// commands gives the first one's drives back and repeats the run's states,
+// and a server restarted on the journal recovers the last drives and the
+// same state.
+TEST(ArmDriverTest, RewindAndRecoveryRepeatTheCommands) {
+  testing::TempDir dir;
+  ServerOptions o = Options();
+  o.journal_dir = dir.path();
+  o.snapshot_every = 0;  // recovery from the start's snapshot and every record
+  uint64_t last = 0;
+  std::vector<int64_t> joints;
+  {
+    ArmServer a(o);
+    joints = a.joints;
+    a.h.Step(5);
+    a.Post(Command(1, Targets(0.1), Targets(1.0)));
+    const std::vector<uint64_t> first = a.h.Step(10);
+    a.Post(Command(2, Targets(-0.3), {}));
+    a.h.Step(10);
+    last = HashWorldState(a.h.server.world());
+    scene_cmd_t rewind = a.h.Scene(scene_cmd_t::REWIND);
+    rewind.target_step = 12;
+    ASSERT_EQ(a.h.Send(rewind).code, reply_t::OK);
+    EXPECT_EQ(HashWorldState(a.h.server.world()), first[12 - 6]);
+    for (int i = 0; i < kArmJoints; ++i) {
+      EXPECT_EQ(a.joint(i).actuator.target_position, Targets(0.1)[i]);
+      EXPECT_EQ(a.joint(i).actuator.torque, Targets(1.0)[i]);
+    }
+    a.h.Step(3);
+    a.Post(Command(2, Targets(-0.3), {}));
+    EXPECT_EQ(a.h.Step(10).back(), last);
+  }
+  ServerHarness recovered(o);
+  EXPECT_EQ(HashWorldState(recovered.server.world()), last);
+  for (int i = 0; i < kArmJoints; ++i) {
+    const Joint& j = *recovered.server.world().FindJoint(joints[i]);
+    EXPECT_EQ(j.actuator.target_position, Targets(-0.3)[i]);
+    EXPECT_EQ(j.actuator.torque, 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace contactsim
