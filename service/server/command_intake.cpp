@@ -40,9 +40,10 @@ void CommandIntake::OnArmCommand(const std::string& channel, const void* data, i
   cmd.client_id = channel;
   cmd.request_id = -1;
   cmd.record = RecordKind::kArmCommand;
+  cmd.arm.utime = -1;
   Status st = DecodeIiwaCommand(data, size, &cmd.arm);
+  cmd.request_id = cmd.arm.utime;
   if (st.ok()) {
-    cmd.request_id = cmd.arm.utime;
     cmd.payload.assign(static_cast<const char*>(data), size);
     st = batch_->Enqueue(cmd);
   }

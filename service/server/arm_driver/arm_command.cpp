@@ -34,10 +34,10 @@ Status DecodeIiwaCommand(const void* data, int size, ArmCommand* out) {
   try {
     drake::lcmt_iiwa_command m;
     if (m.decode(data, 0, size) != size) return Status::DecodeError("undecodable " + what);
+    out->utime = m.utime;
     Status st = CheckFinite(m.joint_position, "joint_position");
     if (st.ok()) st = CheckFinite(m.joint_torque, "joint_torque");
     if (!st.ok()) return st;
-    out->utime = m.utime;
     out->position = std::move(m.joint_position);
     out->torque = std::move(m.joint_torque);
     return Status::Ok();

@@ -26,7 +26,8 @@ constexpr int kMaxArmCommandBytes = 4096;
 // Decodes and checks an encoded lcmt_iiwa_command: the size limit, the
 // encoding's bounds (wire_check.hpp), the fingerprint, and finite values.
 // The counts are checked against the arm when it is applied
-// (ArmDriver::Apply). On error *out is untouched and the status says why.
+// (ArmDriver::Apply). On error the status says why, and *out is untouched
+// but for utime, set once the message could be read (to name it in a reply).
 Status DecodeIiwaCommand(const void* data, int size, ArmCommand* out);
 
 }  // namespace contactsim
