@@ -3,7 +3,7 @@
 // arm's drives, a bad one is refused and changes nothing, the status comes
 // at the driver's rate of simulated time with each field's reading, gravity
 // compensation holds a horizontal arm, and the journal's replay (REWIND,
-// recovery) repeats the commands.
+// recovery from the start's snapshot) repeats the commands.
 #include <gtest/gtest.h>
 
 #include <drake/lcmt_iiwa_command.hpp>
@@ -274,11 +274,36 @@ TEST(ArmDriverTest, GravityCompensationHoldsTheArm) {
   }
 }
 
-// Verifies that the arm's commands are journaled: a REWIND to between two
-// commands gives the first one's drives back and repeats the run's states,
-// and a server restarted on the journal recovers the last drives and the
-// same state.
-TEST(ArmDriverTest, RewindAndRecoveryRepeatTheCommands) {
+// Verifies that the arm's commands are journaled and replayed by REWIND: a
+// REWIND to between two commands gives the first one's drives back and
+// repeats the run's states, and the second command sent again at its step
+// ends where the run ended.
+TEST(ArmDriverTest, RewindRepeatsTheCommands) {
+  ServerOptions o = Options();
+  o.snapshot_every = 0;  // REWIND replays from the start's snapshot
+  ArmServer a(o);
+  a.h.Step(5);
+  a.Post(Command(1, Targets(0.1), Targets(1.0)));
+  const std::vector<uint64_t> first = a.h.Step(10);
+  a.Post(Command(2, Targets(-0.3), {}));
+  a.h.Step(10);
+  const uint64_t last = HashWorldState(a.h.server.world());
+  scene_cmd_t rewind = a.h.Scene(scene_cmd_t::REWIND);
+  rewind.target_step = 12;
+  ASSERT_EQ(a.h.Send(rewind).code, reply_t::OK);
+  EXPECT_EQ(HashWorldState(a.h.server.world()), first[12 - 6]);
+  for (int i = 0; i < kArmJoints; ++i) {
+    EXPECT_EQ(a.joint(i).actuator.target_position, Targets(0.1)[i]);
+    EXPECT_EQ(a.joint(i).actuator.torque, Targets(1.0)[i]);
+  }
+  a.h.Step(3);
+  a.Post(Command(2, Targets(-0.3), {}));
+  EXPECT_EQ(a.h.Step(10).back(), last);
+}
+
+// Verifies that a server restarted on the journal replays the arm's
+// commands from the start's snapshot: the same state and the last drives.
+TEST(ArmDriverTest, RecoveryRepeatsTheCommands) {
   testing::TempDir dir;
   ServerOptions o = Options();
   o.journal_dir = dir.path();
@@ -290,28 +315,18 @@ TEST(ArmDriverTest, RewindAndRecoveryRepeatTheCommands) {
     joints = a.joints;
     a.h.Step(5);
     a.Post(Command(1, Targets(0.1), Targets(1.0)));
-    const std::vector<uint64_t> first = a.h.Step(10);
+    a.h.Step(10);
     a.Post(Command(2, Targets(-0.3), {}));
     a.h.Step(10);
     last = HashWorldState(a.h.server.world());
-    scene_cmd_t rewind = a.h.Scene(scene_cmd_t::REWIND);
-    rewind.target_step = 12;
-    ASSERT_EQ(a.h.Send(rewind).code, reply_t::OK);
-    EXPECT_EQ(HashWorldState(a.h.server.world()), first[12 - 6]);
-    for (int i = 0; i < kArmJoints; ++i) {
-      EXPECT_EQ(a.joint(i).actuator.target_position, Targets(0.1)[i]);
-      EXPECT_EQ(a.joint(i).actuator.torque, Targets(1.0)[i]);
-    }
-    a.h.Step(3);
-    a.Post(Command(2, Targets(-0.3), {}));
-    EXPECT_EQ(a.h.Step(10).back(), last);
   }
   ServerHarness recovered(o);
   EXPECT_EQ(HashWorldState(recovered.server.world()), last);
   for (int i = 0; i < kArmJoints; ++i) {
-    const Joint& j = *recovered.server.world().FindJoint(joints[i]);
-    EXPECT_EQ(j.actuator.target_position, Targets(-0.3)[i]);
-    EXPECT_EQ(j.actuator.torque, 0.0);
+    const Joint* j = recovered.server.world().FindJoint(joints[i]);
+    ASSERT_NE(j, nullptr);
+    EXPECT_EQ(j->actuator.target_position, Targets(-0.3)[i]);
+    EXPECT_EQ(j->actuator.torque, 0.0);
   }
 }
 
