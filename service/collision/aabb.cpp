@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/collision/compound_children.h"
+#include "service/collision/triangle_surface.h"
 #include "service/physics/convex_hull.h"
 
 namespace contactsim {
@@ -43,12 +44,30 @@ Aabb CompoundAabb(const RigidBody& body, double margin, double dt) {
   return box;
 }
 
+// The box of a mesh's or heightfield's body-frame bounds at the body's pose:
+// its eight corners, posed (static, so no sweep).
+Aabb SurfaceAabb(const RigidBody& body, double margin) {
+  const Aabb local = SurfaceBounds(body.shape);
+  const Mat3 R = body.Rotation();
+  Aabb box{Vec3::Constant(kHuge), Vec3::Constant(-kHuge)};
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner((i & 1) ? local.max.x() : local.min.x(), (i & 2) ? local.max.y() : local.min.y(),
+                      (i & 4) ? local.max.z() : local.min.z());
+    const Vec3 p = body.x + R * corner;
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  box.Inflate(margin);
+  return box;
+}
+
 }  // namespace
 
 Aabb ComputeAabb(const RigidBody& body, double margin, double dt) {
   const Shape& s = body.shape;
   if (s.type == ShapeType::kPlane) return PlaneAabb(body);
   if (s.type == ShapeType::kCompound) return CompoundAabb(body, margin, dt);
+  if (s.IsTriangleSurface()) return SurfaceAabb(body, margin);
   const Mat3 R = body.Rotation();
   Vec3 half;
   switch (s.type) {

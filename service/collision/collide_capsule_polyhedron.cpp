@@ -159,10 +159,10 @@ bool ClipSegmentToFace(const Vec3& p0, const Vec3& p1, const PosedPolyhedron& b,
   return true;
 }
 
-// Contacts at the ends of S over face f, each at its own height above the
-// face; returns the deepest depth appended (or -inf).
-double AppendFaceContacts(const Vec3& p0, const Vec3& p1, double r, const PosedPolyhedron& b, int f,
-                          double margin, ContactSet* out) {
+}  // namespace
+
+double AppendCapsuleFaceContacts(const Vec3& p0, const Vec3& p1, double r, const PosedPolyhedron& b, int f,
+                                 double margin, ContactSet* out) {
   double t0, t1;
   double deepest = -std::numeric_limits<double>::infinity();
   if (!ClipSegmentToFace(p0, p1, b, f, &t0, &t1)) return deepest;
@@ -180,20 +180,21 @@ double AppendFaceContacts(const Vec3& p0, const Vec3& p1, double r, const PosedP
   return deepest;
 }
 
-}  // namespace
-
 void CollideCapsulePolyhedron(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
                               ContactSet* out) {
   PosedPolyhedron poly;
   if (!PosePolyhedron(b, &poly)) return;
   Vec3 p0, p1;
   CapsuleSegment(a, &p0, &p1);
-  const double r = a.shape.radius;
+  CollideSegmentPolyhedron(p0, p1, a.shape.radius, poly, b.shape.type == ShapeType::kBox ? &b : nullptr,
+                           ctx.margin, out);
+}
 
+void CollideSegmentPolyhedron(const Vec3& p0, const Vec3& p1, double r, const PosedPolyhedron& poly,
+                              const RigidBody* box, double margin, ContactSet* out) {
   const SegmentAxis axis = SegmentSeparatingAxis(p0, p1, poly);
   // the separation of an axis is a lower bound of the distance
-  if (r - axis.separation <= -ctx.margin) return;
-
+  if (r - axis.separation <= -margin) return;
   // the exact contact: a point c of S, its signed distance to B and the unit
   // normal m out of B there; the face of B that m is the normal of, if any
   Vec3 c;
@@ -215,9 +216,8 @@ void CollideCapsulePolyhedron(const RigidBody& a, const RigidBody& b, const Coll
       id = FeatureId({kTagEdge, static_cast<uint32_t>(axis.edge)});
     }
   } else {
-    const bool is_box = b.shape.type == ShapeType::kBox;
     const auto query = [&](const Vec3& p) {
-      return is_box ? BoxSignedDistance(b, p) : PolyhedronSignedDistance(poly, p);
+      return box != nullptr ? BoxSignedDistance(*box, p) : PolyhedronSignedDistance(poly, p);
     };
     const double t = MinimiseConvex([&](double u) { return query(p0 + u * (p1 - p0)).distance; });
     c = p0 + t * (p1 - p0);
@@ -232,13 +232,13 @@ void CollideCapsulePolyhedron(const RigidBody& a, const RigidBody& b, const Coll
     if (poly.normals[best].dot(m) >= 1.0 - kFaceCos) face = best;
   }
   const double depth = r - distance;
-  if (depth <= -ctx.margin) return;
+  if (depth <= -margin) return;
 
   double deepest = -std::numeric_limits<double>::infinity();
-  if (face >= 0) deepest = AppendFaceContacts(p0, p1, r, poly, face, ctx.margin, out);
+  if (face >= 0) deepest = AppendCapsuleFaceContacts(p0, p1, r, poly, face, margin, out);
   // the exact point, unless a face contact already has its depth (it can lie
   // outside the face when S pokes out of a side of B)
-  if (deepest < depth - kDepthTol) AppendSphereContact(c, r, distance, m, id, ctx.margin, out);
+  if (deepest < depth - kDepthTol) AppendSphereContact(c, r, distance, m, id, margin, out);
 }
 
 }  // namespace contactsim

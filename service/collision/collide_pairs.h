@@ -5,6 +5,7 @@
 //   collide_capsule.cpp     capsule-capsule, capsule-plane
 //   collide_capsule_polyhedron.cpp  capsule-box, capsule-convex (segment SAT)
 //   collide_polyhedron.cpp  box/convex-plane, box/convex-box/convex (SAT)
+//   collide_surface.cpp     any of these against a triangle mesh or heightfield
 //
 // Every function collides body `a` (the row shape of the table) with body `b`
 // and appends contacts whose depth > -margin, filling only point, normal
@@ -28,6 +29,7 @@ struct AxisCacheUpdate;
 struct PolyhedronScratch {
   PosedPolyhedron a, b;
   ClipBuffers clip;
+  ContactSet triangle, surface;  // a mesh pair's contacts per triangle and in all
 };
 
 // The cache is only read during a pair; its change goes to `cache_update`
@@ -67,6 +69,20 @@ void CollideCapsuleCapsule(const RigidBody& a, const RigidBody& b, const Collide
 void CollideCapsulePlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
 // capsule-box and capsule-convex
 void CollideCapsulePolyhedron(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
+
+// Segment [p0, p1] grown by r (a capsule) against a posed polyhedron; `box`,
+// when given, is the box body `poly` was posed from (its closed-form distance).
+void CollideSegmentPolyhedron(const Vec3& p0, const Vec3& p1, double r, const PosedPolyhedron& poly,
+                              const RigidBody* box, double margin, ContactSet* out);
+// Contacts at the ends of segment [p0, p1] (radius r) clipped to the prism
+// over face f of `poly`, each at its own height above the face; returns the
+// deepest depth appended (or -inf).
+double AppendCapsuleFaceContacts(const Vec3& p0, const Vec3& p1, double r, const PosedPolyhedron& poly, int f,
+                                 double margin, ContactSet* out);
+
+// sphere, box, capsule or convex (a) - mesh or heightfield (b): triangle by
+// triangle with the surface's edge rule (collide_surface.cpp)
+void CollideSurface(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);
 
 // box-plane and convex-plane
 void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out);

@@ -27,12 +27,18 @@ constexpr int kPairGrain = 16;
 // rows: shape of body a; columns: shape of body b
 const std::array<std::array<PairCollider, kShapeTypes>, kShapeTypes> kCollisionTable = {{
     //  sphere               box                       capsule                 convex                    plane  compound
-    {{CollideSphereSphere, CollideSphereBox, CollideSphereCapsule, CollideSphereConvex, CollideSpherePlane, nullptr}},
-    {{nullptr, CollidePolyhedra, nullptr, CollidePolyhedra, CollidePolyhedronPlane, nullptr}},
-    {{nullptr, CollideCapsulePolyhedron, CollideCapsuleCapsule, CollideCapsulePolyhedron, CollideCapsulePlane, nullptr}},
-    {{nullptr, nullptr, nullptr, CollidePolyhedra, CollidePolyhedronPlane, nullptr}},
-    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // plane-plane: never in contact
-    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // compound: by its children (DispatchCompound)
+    //  mesh            heightfield
+    {{CollideSphereSphere, CollideSphereBox, CollideSphereCapsule, CollideSphereConvex, CollideSpherePlane, nullptr,
+      CollideSurface, CollideSurface}},
+    {{nullptr, CollidePolyhedra, nullptr, CollidePolyhedra, CollidePolyhedronPlane, nullptr, CollideSurface,
+      CollideSurface}},
+    {{nullptr, CollideCapsulePolyhedron, CollideCapsuleCapsule, CollideCapsulePolyhedron, CollideCapsulePlane, nullptr,
+      CollideSurface, CollideSurface}},
+    {{nullptr, nullptr, nullptr, CollidePolyhedra, CollidePolyhedronPlane, nullptr, CollideSurface, CollideSurface}},
+    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // plane: static, touches no static
+    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // compound: by its children
+    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // mesh: static (row of the other)
+    {{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}},  // heightfield: static
 }};
 
 // Canonical order of two bodies of the same shape type, so that (a, b) and

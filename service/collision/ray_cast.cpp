@@ -5,7 +5,7 @@
 #include <string>
 
 #include "service/collision/aabb.h"
-#include "service/collision/ray_bvh.h"
+#include "service/collision/box_tree.h"
 #include "service/collision/ray_shape.h"
 
 namespace contactsim {
@@ -88,7 +88,7 @@ std::vector<RayHit> RayCastWorld(const World& world, const std::vector<Ray>& ray
       boxes.push_back(ComputeAabb(bodies[i], 0.0, 0.0));
     }
   }
-  RayBvh bvh;
+  BoxTree bvh;
   bvh.Build(boxes);
   std::vector<RayHit> hits(rays.size());
   auto cast = [&](int begin, int end, int /*worker*/) {

@@ -3,7 +3,7 @@
 // answered: a hit at distance 0 with the normal against the ray).
 //
 // A batch builds one bounding-volume tree over the bodies' boxes
-// (ray_bvh.h) and walks it per ray, nearest box first, so that 10,000 rays
+// (box_tree.h) and walks it per ray, nearest box first, so that 10,000 rays
 // against 1,000 bodies test a few bodies per ray rather than every pair;
 // planes, whose boxes span the world, are tested apart by every ray. Each
 // ray writes its own slot, and the nearest hit is chosen by (distance, body

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "service/collision/triangle_surface.h"
 #include "service/physics/convex_hull.h"
 
 namespace contactsim {
@@ -137,6 +138,53 @@ RayShapeResult Compound(const CompoundShape& compound, const Vec3& o, const Vec3
   return result;
 }
 
+// The front face of one triangle (Moller and Trumbore 1997, "Fast,
+// minimum storage ray-triangle intersection"): t along u when the ray
+// enters from the front within (0, *best]; a surface has no inside.
+bool RayTriangle(const SurfaceTriangle& tri, const Vec3& o, const Vec3& u, double* best) {
+  if (u.dot(tri.normal) >= 0.0) return false;  // from behind or along it
+  const Vec3 e1 = tri.v[1] - tri.v[0], e2 = tri.v[2] - tri.v[0];
+  const Vec3 p = u.cross(e2);
+  const double det = e1.dot(p);
+  if (det == 0.0) return false;
+  const Vec3 s = o - tri.v[0];
+  const double bu = s.dot(p) / det;
+  if (bu < 0.0 || bu > 1.0) return false;
+  const Vec3 q = s.cross(e1);
+  const double bv = u.dot(q) / det;
+  if (bv < 0.0 || bu + bv > 1.0) return false;
+  const double t = e2.dot(q) / det;
+  if (!(t > 0.0 && t <= *best)) return false;
+  *best = t;
+  return true;
+}
+
+// A mesh by its box tree, a heightfield by the cells under the ray's box;
+// the nearest front face wins.
+RayShapeResult Surface(const Shape& shape, const Vec3& o, const Vec3& u, double max_distance, RayShapeHit* hit) {
+  double best = max_distance;
+  bool found = false;
+  auto visit = [&](const SurfaceTriangle& tri) {
+    if (RayTriangle(tri, o, u, &best)) {
+      found = true;
+      hit->normal = tri.normal;
+    }
+  };
+  if (shape.type == ShapeType::kMesh && shape.mesh != nullptr) {
+    const TriangleMesh& mesh = *shape.mesh;
+    mesh.tree.Walk(o, u, &best, [&](int t, double*) { visit(mesh.Triangle(t)); });
+  } else if (shape.type == ShapeType::kHeightfield && shape.heightfield != nullptr) {
+    // the segment's box, cut to the field's so a long ray stays bounded
+    const Aabb bounds = shape.heightfield->Bounds();
+    const Vec3 end = o + std::min(max_distance, 1e12) * u;
+    Aabb box{o.cwiseMin(end).cwiseMax(bounds.min), o.cwiseMax(end).cwiseMin(bounds.max)};
+    shape.heightfield->ForEachTriangle(box, visit);
+  }
+  if (!found) return RayShapeResult::kMiss;
+  hit->t = best;
+  return RayShapeResult::kHit;
+}
+
 }  // namespace
 
 RayShapeResult RayCastShape(const Shape& shape, const Vec3& origin, const Vec3& direction, double max_distance,
@@ -152,6 +200,8 @@ RayShapeResult RayCastShape(const Shape& shape, const Vec3& origin, const Vec3& 
       return clip.Finish(max_distance, hit);
     }
     case ShapeType::kCompound: return Compound(*shape.compound, origin, direction, max_distance, hit);
+    case ShapeType::kMesh:
+    case ShapeType::kHeightfield: return Surface(shape, origin, direction, max_distance, hit);
     default: return RayShapeResult::kMiss;
   }
 }

@@ -7,7 +7,9 @@
 // against the ray (as PhysX reports an initial overlap), so that a range
 // sensor buried in a wall reads 0 rather than its maximum range. Otherwise
 // the ray hits at t_in when 0 < t_in <= max_distance, with the outward
-// normal of the surface there.
+// normal of the surface there. A triangle mesh or heightfield is a surface,
+// not a solid: a ray hits the front of its nearest triangle and passes
+// through a back face (a static floor seen from below).
 #pragma once
 
 #include "service/physics/math.h"

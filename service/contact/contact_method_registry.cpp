@@ -39,7 +39,7 @@ std::unique_ptr<ContactMethod> Make() {
 // The names are the protocol's (lcmtypes/protocol.toml, `methods`), which the
 // clients and the viewer offer; method_contract_test.cpp checks that they agree.
 const std::vector<ContactMethodEntry>& ContactMethodTable() {
-  //                           joints restitution kinematic friction compound contact_forces
+  //                           joints restitution kinematic friction compound contact_forces triangle_surfaces
   static const std::vector<ContactMethodEntry> table = {
       {"impulse", Make<ImpulseMethod>, {true, true, true, "coulomb disk", true, true}},
       {"penalty", Make<PenaltyMethod>,
@@ -52,9 +52,10 @@ const std::vector<ContactMethodEntry>& ContactMethodTable() {
       // nor the friction: a rising platform passes through what rests on it.
       // Its distances come from one BodyGeometry per body (one rounding
       // radius), not from the narrowphase: it takes no compound bodies; its
-      // contacts carry the barrier force alone, not the friction
+      // contacts carry the barrier force alone, not the friction; for the
+      // same reason it takes no triangle meshes or heightfields
       {"barrier", Make<BarrierMethod>,
-       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false, false}},
+       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false, false, false}},
       {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk", true, true}},
   };
   return table;

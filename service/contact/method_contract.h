@@ -27,6 +27,10 @@ struct MethodContract {
   // Each contact's normal and friction force (or impulse) is reported, so
   // that a contact sensor can sum the wrench a body received (contact_wrench.h).
   bool contact_forces = false;
+  // triangle meshes and heightfields (docs/physics.md, "Triangle meshes and
+  // heightfields"): their contacts come from the narrowphase, triangle by
+  // triangle with the edge rule
+  bool triangle_surfaces = true;
 };
 
 // "joints=yes; restitution=no; kinematic=yes; contact_forces=yes; friction=...", the text

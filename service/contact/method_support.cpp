@@ -74,6 +74,11 @@ Status CheckMethodAcceptsBody(const std::string& method, const RigidBody& body, 
                                       " shape(s); give it one shape centred at its centre of mass or choose " +
                                       MethodsWith(&MethodContract::compound_bodies));
   }
+  if (body.shape.IsTriangleSurface() && !contract.triangle_surfaces) {
+    return Status::FailedPrecondition("contact method " + method + " does not simulate triangle meshes or heightfields: " +
+                                      what + " is a " + ShapeTypeName(body.shape.type) + "; choose " +
+                                      MethodsWith(&MethodContract::triangle_surfaces));
+  }
   if (body.motion == MotionType::kKinematic && !contract.kinematic_bodies) {
     return Status::FailedPrecondition("contact method " + method + " does not simulate kinematic bodies: " + what +
                                       " is kinematic; make it dynamic or fixed, or choose " +

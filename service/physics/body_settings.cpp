@@ -22,12 +22,30 @@ Status MakePlane(const BodySettings& s, Shape* shape) {
   return Status::Ok();
 }
 
+bool IsSurface(ShapeType type) { return type == ShapeType::kMesh || type == ShapeType::kHeightfield; }
+
+// A mesh or heightfield arrives built (its checks are the collision
+// layer's); here only that it is there and is the only geometry given.
+Status MakeSurface(const BodySettings& s, Shape* shape) {
+  const char* name = ShapeTypeName(s.shape);
+  if (!s.parts.empty()) return Status::InvalidArgument(std::string("parts are for a compound shape, got them on a ") + name);
+  if (s.shape == ShapeType::kMesh) {
+    if (s.mesh == nullptr) return Status::InvalidArgument("a mesh body needs its triangles");
+    *shape = Shape::Mesh(s.mesh);
+  } else {
+    if (s.heightfield == nullptr) return Status::InvalidArgument("a heightfield body needs its heights");
+    *shape = Shape::Heightfield(s.heightfield);
+  }
+  return Status::Ok();
+}
+
 // The explicit mass properties' own checks (the inertia needs a mass to
 // go with it; a plane has none).
 Status CheckExplicitMass(const BodySettings& s) {
   Status st;
-  if (s.shape == ShapeType::kPlane && (s.center_of_mass || s.inertia)) {
-    return Status::InvalidArgument("a plane has no mass properties (center_of_mass or inertia given)");
+  if ((s.shape == ShapeType::kPlane || IsSurface(s.shape)) && (s.center_of_mass || s.inertia)) {
+    return Status::InvalidArgument(std::string("a ") + ShapeTypeName(s.shape) +
+                                   " has no mass properties (center_of_mass or inertia given)");
   }
   if (s.center_of_mass) {
     if (!(st = CheckFinite("center_of_mass", *s.center_of_mass)).ok()) return st;
@@ -50,6 +68,10 @@ Status MakeShape(const BodySettings& s, Shape* shape, Vec3* com) {
   if (s.shape == ShapeType::kPlane) {
     if (!s.parts.empty()) return Status::InvalidArgument("parts are for a compound shape, got them on a plane");
     return MakePlane(s, shape);
+  }
+  if (IsSurface(s.shape)) {
+    *com = Vec3::Zero();
+    return MakeSurface(s, shape);
   }
   std::vector<ShapeChild> children;
   Status st = MakeFrameChildren(s, &children);
@@ -90,11 +112,11 @@ Status CreateBody(const BodySettings& s, const Material& default_material, Rigid
   if (s.kinematic && s.fixed) {
     return Status::InvalidArgument("a body is fixed or kinematic, not both (kinematic true, fixed true)");
   }
-  if (s.kinematic && s.shape == ShapeType::kPlane) {
-    return Status::InvalidArgument("a plane is always static (kinematic true)");
+  if (s.kinematic && (s.shape == ShapeType::kPlane || IsSurface(s.shape))) {
+    return Status::InvalidArgument(std::string("a ") + ShapeTypeName(s.shape) + " is always static (kinematic true)");
   }
   // kinematic bodies are infinite-mass like static ones; only their motion differs
-  const bool is_static = s.fixed || s.kinematic || s.shape == ShapeType::kPlane;
+  const bool is_static = s.fixed || s.kinematic || s.shape == ShapeType::kPlane || IsSurface(s.shape);
   if (s.mass && s.density) {
     return Status::InvalidArgument("give mass or density, not both (mass " + FormatValue(*s.mass) + ", density " +
                                    FormatValue(*s.density) + ")");

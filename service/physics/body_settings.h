@@ -3,6 +3,7 @@
 // BodyCreationSettings): invalid settings never reach the world.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,10 @@ struct BodySettings {
   double plane_offset = 0.0;              // m, plane
   std::vector<Vec3> points;               // m, convex, in the body's frame
   std::vector<ShapePart> parts;           // compound: the shapes, 1 to kMaxShapeParts
+  // mesh and heightfield: the surface, built and checked by the collision
+  // layer (BuildTriangleMesh, BuildHeightField); always static
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::shared_ptr<const HeightField> heightfield;
   std::optional<double> mass;             // kg
   // Explicit mass properties, for any shape (a robot link's inertial):
   // the centre of mass (m, in the settings' frame) and the inertia about

@@ -12,6 +12,8 @@ const char* ShapeTypeName(ShapeType type) {
     case ShapeType::kConvex: return "convex";
     case ShapeType::kPlane: return "plane";
     case ShapeType::kCompound: return "compound";
+    case ShapeType::kMesh: return "mesh";
+    case ShapeType::kHeightfield: return "heightfield";
     case ShapeType::kCount: break;
   }
   return "unknown";
@@ -65,6 +67,20 @@ Shape Shape::Compound(std::vector<ShapeChild> children) {
   auto compound = std::make_shared<CompoundShape>();
   compound->children = std::move(children);
   return Compound(std::shared_ptr<const CompoundShape>(std::move(compound)));
+}
+
+Shape Shape::Mesh(std::shared_ptr<const TriangleMesh> mesh) {
+  Shape s;
+  s.type = ShapeType::kMesh;
+  s.mesh = std::move(mesh);
+  return s;
+}
+
+Shape Shape::Heightfield(std::shared_ptr<const HeightField> heightfield) {
+  Shape s;
+  s.type = ShapeType::kHeightfield;
+  s.heightfield = std::move(heightfield);
+  return s;
 }
 
 }  // namespace contactsim

@@ -10,6 +10,12 @@
 // the body's centre of mass): the body collides as the union of its
 // children, each child collided as its own shape (docs/physics.md,
 // "Compound bodies and mass properties").
+//
+// A triangle mesh or a heightfield is a static surface (docs/physics.md,
+// "Triangle meshes and heightfields"). Their geometry and its bounding-volume
+// tree belong to the collision layer (service/collision/triangle_mesh.h,
+// height_field.h), which builds them before the body is created; the
+// physics layer only carries them, as it carries a hull.
 #pragma once
 
 #include <memory>
@@ -21,10 +27,12 @@
 namespace contactsim {
 
 struct ConvexHull;  // service/physics/convex_hull.h
+struct TriangleMesh;  // service/collision/triangle_mesh.h
+struct HeightField;   // service/collision/height_field.h
 struct CompoundShape;
 struct ShapeChild;
 
-enum class ShapeType { kSphere = 0, kBox, kCapsule, kConvex, kPlane, kCompound, kCount };
+enum class ShapeType { kSphere = 0, kBox, kCapsule, kConvex, kPlane, kCompound, kMesh, kHeightfield, kCount };
 
 const char* ShapeTypeName(ShapeType type);
 
@@ -37,6 +45,8 @@ struct Shape {
   double plane_offset = 0.0;        // m, plane: n . p = offset on the surface
   std::shared_ptr<const ConvexHull> hull;  // convex, vertices about the centre of mass
   std::shared_ptr<const CompoundShape> compound;  // compound, children posed in the body frame
+  std::shared_ptr<const TriangleMesh> mesh;        // mesh, triangles in the body frame
+  std::shared_ptr<const HeightField> heightfield;  // heightfield, grid centred on the body origin
 
   static Shape Sphere(double radius);
   static Shape Box(const Vec3& half_extents);
@@ -45,9 +55,13 @@ struct Shape {
   static Shape Convex(std::shared_ptr<const ConvexHull> hull);
   static Shape Compound(std::shared_ptr<const CompoundShape> compound);
   static Shape Compound(std::vector<ShapeChild> children);
+  static Shape Mesh(std::shared_ptr<const TriangleMesh> mesh);
+  static Shape Heightfield(std::shared_ptr<const HeightField> heightfield);
 
   bool IsPlane() const { return type == ShapeType::kPlane; }
   bool IsCompound() const { return type == ShapeType::kCompound; }
+  // a static surface of triangles: a mesh or a heightfield
+  bool IsTriangleSurface() const { return type == ShapeType::kMesh || type == ShapeType::kHeightfield; }
 };
 
 // One shape of a compound: a sphere, box, capsule or convex hull (never a

@@ -2,8 +2,11 @@
 // boxes at the median centre along its longest axis (Wald 2007, "On fast
 // construction of SAH-based bounding volume hierarchies", the median split
 // as the cheap baseline), stored flat with each node's children adjacent.
-// Built once per ray batch; the walk visits the nearer child first and
-// skips a node whose box the ray enters beyond the best hit so far.
+// Two queries: a ray walk (built once per ray batch, ray_cast.h), which
+// visits the nearer child first and skips a node whose box the ray enters
+// beyond the best hit so far; and a box query (built once per triangle mesh,
+// triangle_mesh.h), which visits the items whose boxes overlap a body's box,
+// so that colliding a body with a mesh costs the triangles near the body.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +16,7 @@
 
 namespace contactsim {
 
-class RayBvh {
+class BoxTree {
  public:
   // `boxes[i]` bounds item i; items are reported by that index.
   void Build(const std::vector<Aabb>& boxes);
@@ -24,6 +27,10 @@ class RayBvh {
   // distance is settled by the caller, not by the walk's order.
   template <class Visit>
   void Walk(const Vec3& origin, const Vec3& direction, double* best, Visit&& visit) const;
+
+  // Calls visit(item) for every item whose box overlaps `box`, in tree order.
+  template <class Visit>
+  void Overlap(const Aabb& box, Visit&& visit) const;
 
   bool empty() const { return nodes_.empty(); }
   static constexpr double kNoEntry = 1e300;
@@ -43,7 +50,7 @@ class RayBvh {
 };
 
 template <class Visit>
-void RayBvh::Walk(const Vec3& origin, const Vec3& direction, double* best, Visit&& visit) const {
+void BoxTree::Walk(const Vec3& origin, const Vec3& direction, double* best, Visit&& visit) const {
   if (nodes_.empty()) return;
   const Vec3 inv = direction.cwiseInverse();
   struct Pending {
@@ -73,6 +80,24 @@ void RayBvh::Walk(const Vec3& origin, const Vec3& direction, double* best, Visit
       if (t_l != kNoEntry) stack[top++] = {n.first, t_l};
       if (t_r != kNoEntry) stack[top++] = {n.first + 1, t_r};
     }
+  }
+}
+
+template <class Visit>
+void BoxTree::Overlap(const Aabb& box, Visit&& visit) const {
+  if (nodes_.empty() || !nodes_[0].box.Overlaps(box)) return;
+  int stack[96];  // depth <= log2(items) + 1 for median splits; 2 per level
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (n.count > 0) {
+      for (int i = n.first; i < n.first + n.count; ++i) visit(items_[i]);
+      continue;
+    }
+    // right first, so the left subtree is visited first
+    if (nodes_[n.first + 1].box.Overlaps(box)) stack[top++] = n.first + 1;
+    if (nodes_[n.first].box.Overlaps(box)) stack[top++] = n.first;
   }
 }
 

@@ -1,4 +1,4 @@
-#include "service/collision/ray_bvh.h"
+#include "service/collision/box_tree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +21,7 @@ Aabb Padded(const Aabb& b) {
 
 }  // namespace
 
-void RayBvh::Build(const std::vector<Aabb>& boxes) {
+void BoxTree::Build(const std::vector<Aabb>& boxes) {
   nodes_.clear();
   items_.resize(boxes.size());
   if (boxes.empty()) return;
@@ -37,7 +37,7 @@ void RayBvh::Build(const std::vector<Aabb>& boxes) {
   BuildNode(0, padded, centres, 0, static_cast<int>(boxes.size()));
 }
 
-void RayBvh::BuildNode(int self, const std::vector<Aabb>& boxes, const std::vector<Vec3>& centres, int begin,
+void BoxTree::BuildNode(int self, const std::vector<Aabb>& boxes, const std::vector<Vec3>& centres, int begin,
                        int end) {
   Aabb box = boxes[items_[begin]];
   Vec3 c_min = centres[items_[begin]], c_max = c_min;
@@ -70,7 +70,7 @@ void RayBvh::BuildNode(int self, const std::vector<Aabb>& boxes, const std::vect
   BuildNode(left + 1, boxes, centres, mid, end);
 }
 
-double RayBvh::Enter(const Aabb& box, const Vec3& origin, const Vec3& inv, const Vec3& direction, double best) {
+double BoxTree::Enter(const Aabb& box, const Vec3& origin, const Vec3& inv, const Vec3& direction, double best) {
   double t_in = 0.0, t_out = best;
   for (int axis = 0; axis < 3; ++axis) {
     if (direction[axis] == 0.0) {
