@@ -42,8 +42,14 @@ namespace {
 // or vertex (a ball whose centre is 0.1 mm past an edge sees it 1e-3 rad
 // tilted) and must pass the edge rule.
 constexpr double kFaceNormalCos = 1e-12;
+// A body's face within this of the triangle's (1 - cos, ~0.08 degrees)
+// lies on it: the triangle is taken as the reference face.
+constexpr double kParallelFaceCos = 1e-6;
 // Normals of one manifold group agree to this (1 - cos): coplanar
-// triangles' normals differ by round-off only.
+// triangles' normals differ by round-off only. (Grouping within the
+// active-edge angle instead, to give fewer points on curved surfaces, let
+// a hull fall through a wavy heightfield under xpbd: a group's four points
+// then need not hold each triangle's contact.)
 constexpr double kSameNormalCos = 1e-9;
 // Points of one group closer than this (m) are one point.
 constexpr double kSamePoint = 1e-9;
@@ -161,14 +167,19 @@ void CollideTriangle(const RigidBody& a, const PosedPolyhedron* poly, const Surf
     case ShapeType::kBox:
     case ShapeType::kConvex: {
       SatResult sat;
+      if (!face_only) {
+        sat = FindSeparatingAxis(*poly, prism, margin);
+        // a face of the body lying on the triangle: clip it to the triangle
+        // instead, so that the triangles under a face tile it and give its
+        // corners, as a plane does
+        face_only = sat.axis.kind == SeparatingAxis::Kind::kFaceA && -sat.normal.dot(n) >= 1.0 - kParallelFaceCos;
+      }
       if (face_only) {
         const SeparatingAxis axis{SeparatingAxis::Kind::kFaceB, -1, 0};
         Vec3 normal;
         double separation;
         if (!AxisSeparation(*poly, prism, axis, &normal, &separation)) return;
         sat = MakeSatResult(axis, normal, separation);
-      } else {
-        sat = FindSeparatingAxis(*poly, prism, margin);
       }
       if (sat.separation > margin) return;
       PolyhedronManifold(*poly, prism, sat, margin, out, clip);

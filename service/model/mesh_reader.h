@@ -28,4 +28,10 @@ namespace contactsim::model {
 Status ReadMeshVertices(const std::string& path, const Vec3& scale, const ReadLimits& limits,
                         std::vector<Vec3>* vertices);
 
+// The triangles of a mesh file, for a static triangle mesh (its faces as
+// triangles, three indices into `vertices` each; the same node walk, scale
+// and units as above, corners shared between faces once).
+Status ReadMeshTriangles(const std::string& path, const Vec3& scale, const ReadLimits& limits,
+                         std::vector<Vec3>* vertices, std::vector<int>* indices);
+
 }  // namespace contactsim::model

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <random>
 
 #include "service/collision/aabb.h"
+#include "service/collision/height_field.h"
+#include "service/collision/triangle_mesh.h"
 #include "service/collision/narrowphase.h"
+#include "service/model/mesh_reader.h"
 #include "service/physics/portable_math.h"
 #include "service/physics/validation.h"
 #include "service/proto/scene.pb.h"
@@ -70,6 +74,38 @@ void ToMassProperties(const proto::Body& b, BodySettings* s) {
   }
 }
 
+// A mesh's or heightfield's surface, built by the collision layer's
+// builders (their messages name the problem); a mesh file's path is
+// relative to the scene file's folder.
+Status ToSurface(const proto::Body& b, const std::string& filename, BodySettings* s) {
+  if (b.has_mesh()) {
+    const proto::Mesh& m = b.mesh();
+    std::vector<Vec3> vertices;
+    std::vector<int> indices(m.indices().begin(), m.indices().end());
+    if (!m.path().empty()) {
+      std::filesystem::path path(m.path());
+      if (path.is_relative()) path = std::filesystem::path(filename).parent_path() / path;
+      Status st = model::ReadMeshTriangles(path.string(), Vec3::Ones(), model::ReadLimits(), &vertices, &indices);
+      if (!st.ok()) return st;
+    } else {
+      for (int i = 0; i + 2 < m.vertices_size(); i += 3) {
+        vertices.emplace_back(m.vertices(i), m.vertices(i + 1), m.vertices(i + 2));
+      }
+      if (m.vertices_size() % 3 != 0) {
+        return Status::InvalidArgument("mesh vertices must be x y z per vertex, got " +
+                                       std::to_string(m.vertices_size()) + " values");
+      }
+    }
+    return BuildTriangleMesh(vertices, indices, m.scale(), &s->mesh);
+  }
+  if (b.has_heightfield()) {
+    const proto::Heightfield& h = b.heightfield();
+    const std::vector<double> heights(h.heights().begin(), h.heights().end());
+    return BuildHeightField(h.rows(), h.cols(), heights, h.spacing_x(), h.spacing_y(), &s->heightfield);
+  }
+  return Status::Ok();
+}
+
 BodySettings ToBodySettings(const proto::Body& b, const Material& default_material) {
   BodySettings s;
   s.name = b.name();
@@ -100,6 +136,8 @@ BodySettings ToBodySettings(const proto::Body& b, const Material& default_materi
       s.shape = ShapeType::kCompound;
       for (const proto::Part& p : b.compound().parts()) s.parts.push_back(ToShapePart(p));
       break;
+    case proto::Body::kMesh: s.shape = ShapeType::kMesh; break;              // ToSurface builds it
+    case proto::Body::kHeightfield: s.shape = ShapeType::kHeightfield; break;
     case proto::Body::SHAPE_NOT_SET:
       s.shape = ShapeType::kCount;  // rejected by CreateBody
       break;
@@ -291,6 +329,9 @@ Status Convert(const proto::Scene& p, const std::string& filename, const TextFor
     scene.bodies.push_back(ToBodySettings(p.bodies(i), scene.default_material));
     std::string where = FieldLocation(filename, tree, p, "bodies", i) + ": bodies[" + std::to_string(i) + "]";
     if (!p.bodies(i).name().empty()) where += " \"" + p.bodies(i).name() + "\"";
+    if (!(st = ToSurface(p.bodies(i), filename, &scene.bodies.back())).ok()) {
+      return st.Prefixed(where + ": ");
+    }
     scene.origins.push_back(where);
   }
   for (int i = 0; i < p.grids_size(); ++i) {

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <utility>
 
+#include "service/collision/height_field.h"
+#include "service/collision/triangle_mesh.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/convex_hull.h"
 #include "service/scene/proto_text.h"
@@ -97,6 +99,46 @@ Status LoadSleep(const proto::SnapshotSleep& in, SleepSettings* out) {
   return Status::Ok();
 }
 
+// A mesh's vertices and triangles as built, or a heightfield's grid.
+void SaveSurface(const Shape& shape, proto::SnapshotShape* s) {
+  if (shape.mesh) {
+    for (const Vec3& v : shape.mesh->vertices) PutAll(v, s->mutable_mesh_vertices());
+    for (const auto& t : shape.mesh->triangles) {
+      for (int k : t) s->add_mesh_indices(k);
+    }
+  }
+  if (shape.heightfield) {
+    const HeightField& f = *shape.heightfield;
+    s->set_height_rows(f.rows);
+    s->set_height_cols(f.cols);
+    for (double h : f.heights) s->add_heights(h);
+    s->set_height_spacing_x(f.spacing_x);
+    s->set_height_spacing_y(f.spacing_y);
+  }
+}
+
+// The inverse of SaveSurface, through the same builders and checks as a command's.
+Status LoadSurface(const proto::SnapshotShape& s, const std::string& where, Shape* out) {
+  Status st;
+  if (out->type == ShapeType::kMesh) {
+    if (s.mesh_vertices_size() % 3 != 0) {
+      return Status::InvalidArgument("snapshot: " + where + " mesh_vertices must be x y z per vertex, got " +
+                                     std::to_string(s.mesh_vertices_size()) + " values");
+    }
+    std::vector<Vec3> vertices;
+    for (int i = 0; i + 2 < s.mesh_vertices_size(); i += 3) {
+      vertices.emplace_back(s.mesh_vertices(i), s.mesh_vertices(i + 1), s.mesh_vertices(i + 2));
+    }
+    const std::vector<int> indices(s.mesh_indices().begin(), s.mesh_indices().end());
+    st = BuildTriangleMesh(vertices, indices, 1.0, &out->mesh);
+  } else if (out->type == ShapeType::kHeightfield) {
+    const std::vector<double> heights(s.heights().begin(), s.heights().end());
+    st = BuildHeightField(s.height_rows(), s.height_cols(), heights, s.height_spacing_x(), s.height_spacing_y(),
+                          &out->heightfield);
+  }
+  return st.ok() ? st : Status::InvalidArgument("snapshot: " + where + " " + st.message());
+}
+
 // A shape and, for a compound, its children with their poses as stored.
 void SaveShape(const Shape& shape, proto::SnapshotShape* s) {
   s->set_type(static_cast<int>(shape.type));
@@ -106,6 +148,7 @@ void SaveShape(const Shape& shape, proto::SnapshotShape* s) {
   PutAll(shape.plane_normal, s->mutable_plane_normal());
   s->set_plane_offset(shape.plane_offset);
   if (shape.hull) SaveHull(*shape.hull, s->mutable_hull());
+  SaveSurface(shape, s);
   if (!shape.compound) return;
   for (const ShapeChild& child : shape.compound->children) {
     proto::SnapshotChild* c = s->add_children();
@@ -127,7 +170,7 @@ Status LoadShape(const proto::SnapshotShape& s, const std::string& where, bool c
   }
   Shape out;
   out.type = static_cast<ShapeType>(s.type());
-  if (!compound_ok && (out.type == ShapeType::kCompound || out.type == ShapeType::kPlane)) {
+  if (!compound_ok && (out.type == ShapeType::kCompound || out.type == ShapeType::kPlane || out.IsTriangleSurface())) {
     return Status::InvalidArgument("snapshot: " + where + " must be a sphere, box, capsule or convex, got " +
                                    ShapeTypeName(out.type));
   }
@@ -138,6 +181,7 @@ Status LoadShape(const proto::SnapshotShape& s, const std::string& where, bool c
   if (!(st = GetAll(s.half_extents(), where + " half_extents", &out.half_extents)).ok()) return st;
   if (!(st = GetAll(s.plane_normal(), where + " plane_normal", &out.plane_normal)).ok()) return st;
   if (out.type == ShapeType::kConvex && !(st = LoadHull(s.hull(), where, &out.hull)).ok()) return st;
+  if (out.IsTriangleSurface() && !(st = LoadSurface(s, where, &out)).ok()) return st;
   if (out.type == ShapeType::kCompound) {
     if (s.children_size() < 1 || s.children_size() > kMaxShapeParts) {
       return Status::InvalidArgument("snapshot: " + where + " compound must hold 1 to " +

@@ -37,7 +37,9 @@ Outcome SimServer::ApplyBodyCommand(Command& cmd) {
       const BodyId id = world_.AddBody(std::move(cmd.new_body));
       WakeTouching(world_, id);  // a body added into a sleeping pile, or under it
       detector_.Reset();
-      Outcome o = Outcome::Done(std::string("added ") + shape + " " + std::to_string(id), true);
+      std::string text = std::string("added ") + shape + " " + std::to_string(id);
+      if (!cmd.reply_note.empty()) text += " (" + cmd.reply_note + ")";
+      Outcome o = Outcome::Done(text, true);
       o.ids = {id};
       return o;
     }

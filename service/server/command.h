@@ -102,6 +102,9 @@ struct Command {
   RayCastOptions ray_options;          // RAY_CAST
   ArmCommand arm;                      // the arm driver's command (arm_driver/arm_command.h)
 
+  // ADD: said after the reply's text (a mesh's dropped triangles)
+  std::string reply_note;
+
   // The command as it arrived (LCM-encoded), and how the journal stores it.
   std::string payload;
   RecordKind record = RecordKind::kStepTo;

@@ -15,14 +15,53 @@
 #include <exception>
 #include <new>
 #include <string_view>
+#include <vector>
 
+#include "service/model/mesh_reader.h"
+#include "service/model/model_paths.h"
 #include "service/physics/body_settings.h"
 #include "service/server/command_decoder.h"
 
 namespace contactsim {
 namespace {
 
+// A MESH given by path: the file read (service/model/mesh_reader.h) into
+// the command's points and indices, the path cleared, and that resolved
+// form kept as the payload the journal records, so that a replay or a
+// recovery builds the same mesh whatever happens to the file.
+Status ResolveMeshPath(const body_cmd_t& m, const DecodeContext& context, body_cmd_t* kept, Command* cmd) {
+  if (m.num_points != 0 || m.num_mesh_indices != 0) {
+    return Status::InvalidArgument("a MESH gives mesh_path or points and mesh_indices, not both");
+  }
+  if (m.mesh_path.size() > 4096) {
+    return Status::InvalidArgument("mesh_path of " + std::to_string(m.mesh_path.size()) + " bytes is longer than 4096");
+  }
+  std::string path;
+  Status st = model::ResolveModelFile(m.mesh_path, context.model_paths, &path);
+  std::vector<Vec3> vertices;
+  std::vector<int> indices;
+  if (st.ok()) st = model::ReadMeshTriangles(path, Vec3::Ones(), model::ReadLimits(), &vertices, &indices);
+  if (!st.ok()) return st;
+  *kept = m;
+  kept->mesh_path.clear();
+  kept->num_points = static_cast<int32_t>(vertices.size());
+  kept->points.clear();
+  for (const Vec3& v : vertices) kept->points.push_back({v.x(), v.y(), v.z()});
+  kept->num_mesh_indices = static_cast<int32_t>(indices.size());
+  kept->mesh_indices.assign(indices.begin(), indices.end());
+  cmd->payload.resize(kept->getEncodedSize());
+  kept->encode(cmd->payload.data(), 0, static_cast<int>(cmd->payload.size()));
+  return Status::Ok();
+}
+
 Status CheckBody(const body_cmd_t& m, const DecodeContext& context, Command* cmd) {
+  if (m.shape == body_cmd_t::MESH) {
+    // a mesh's points are its vertices, bounded by the message size and the mesh's triangle limit
+    if (m.mesh_path.empty()) return DecodeBodyCommand(m, context.default_material, cmd);
+    body_cmd_t kept;
+    Status st = ResolveMeshPath(m, context, &kept, cmd);
+    return st.ok() ? DecodeBodyCommand(kept, context.default_material, cmd) : st;
+  }
   if (m.num_points > context.limits.max_convex_points) {
     return Status::ResourceExhausted("num_points " + std::to_string(m.num_points) + " exceeds max_convex_points = " +
                                      std::to_string(context.limits.max_convex_points));

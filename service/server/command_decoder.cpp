@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "service/collision/height_field.h"
+#include "service/collision/triangle_mesh.h"
 #include "service/contact/contact_method_registry.h"
 #include "service/physics/body_settings.h"
 #include "service/physics/validation.h"
@@ -22,6 +24,8 @@ bool ShapeOfCode(int8_t code, ShapeType* type) {
     case body_cmd_t::CAPSULE: *type = ShapeType::kCapsule; return true;
     case body_cmd_t::CONVEX: *type = ShapeType::kConvex; return true;
     case body_cmd_t::COMPOUND: *type = ShapeType::kCompound; return true;
+    case body_cmd_t::MESH: *type = ShapeType::kMesh; return true;
+    case body_cmd_t::HEIGHTFIELD: *type = ShapeType::kHeightfield; return true;
     default: return false;
   }
 }
@@ -69,6 +73,45 @@ Status DecodeParts(const body_cmd_t& m, BodySettings* s) {
   return Status::Ok();
 }
 
+// A MESH's or HEIGHTFIELD's surface, built and checked by the collision
+// layer (a mesh given by path was read into points and indices before,
+// CheckBody); the fields of the other one must be empty.
+Status DecodeSurface(const body_cmd_t& m, BodySettings* s, std::string* note) {
+  const bool mesh = m.shape == body_cmd_t::MESH, field = m.shape == body_cmd_t::HEIGHTFIELD;
+  if (!mesh && (m.num_mesh_indices != 0 || !m.mesh_path.empty())) {
+    return Status::InvalidArgument("mesh_indices and mesh_path are for shape MESH=7, got shape " +
+                                   std::to_string(m.shape));
+  }
+  if (!field && m.num_heights != 0) {
+    return Status::InvalidArgument("heights are for shape HEIGHTFIELD=8, got shape " + std::to_string(m.shape));
+  }
+  if (mesh) {
+    if (m.num_mesh_indices < 0 || static_cast<size_t>(m.num_mesh_indices) != m.mesh_indices.size()) {
+      return Status::InvalidArgument("num_mesh_indices must equal the number of indices, got " +
+                                     std::to_string(m.num_mesh_indices));
+    }
+    std::vector<Vec3> vertices;
+    for (const auto& p : m.points) vertices.emplace_back(p[0], p[1], p[2]);
+    const std::vector<int> indices(m.mesh_indices.begin(), m.mesh_indices.end());
+    MeshBuildReport report;
+    Status st = BuildTriangleMesh(vertices, indices, m.mesh_scale == 0.0 ? 1.0 : m.mesh_scale, &s->mesh, &report);
+    if (!st.ok()) return st;
+    if (report.dropped_degenerate > 0) {
+      *note = std::to_string(report.dropped_degenerate) + " triangle(s) of zero area dropped";
+    }
+    return Status::Ok();
+  }
+  if (field) {
+    if (m.num_heights < 0 || static_cast<size_t>(m.num_heights) != m.heights.size()) {
+      return Status::InvalidArgument("num_heights must equal the number of heights, got " +
+                                     std::to_string(m.num_heights));
+    }
+    return BuildHeightField(m.height_rows, m.height_cols, m.heights, m.height_spacing[0], m.height_spacing[1],
+                            &s->heightfield);
+  }
+  return Status::Ok();
+}
+
 // The explicit mass properties: the inertia's six unique entries.
 void DecodeMassProperties(const body_cmd_t& m, BodySettings* s) {
   if (m.has_center_of_mass) s->center_of_mass = V3(m.center_of_mass);
@@ -85,10 +128,12 @@ Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command*
   s.name = m.name;
   if (!ShapeOfCode(m.shape, &s.shape)) {
     return Status::InvalidArgument("shape must be one of SPHERE=1, BOX=2, PLANE=3, CAPSULE=4, CONVEX=5, COMPOUND=6, "
-                                   "got " + std::to_string(m.shape));
+                                   "MESH=7, HEIGHTFIELD=8, got " + std::to_string(m.shape));
   }
   Status parts = DecodeParts(m, &s);
   if (!parts.ok()) return parts;
+  Status surface = DecodeSurface(m, &s, &cmd->reply_note);
+  if (!surface.ok()) return surface;
   DecodeMassProperties(m, &s);
   s.radius = m.radius;
   s.half_extents = V3(m.half_extents);
@@ -98,7 +143,10 @@ Status DecodeAdd(const body_cmd_t& m, const Material& default_material, Command*
   if (m.num_points < 0 || static_cast<size_t>(m.num_points) != m.points.size()) {
     return Status::InvalidArgument("num_points must equal the number of points, got " + std::to_string(m.num_points));
   }
-  for (const auto& p : m.points) s.points.emplace_back(p[0], p[1], p[2]);
+  // a mesh's points are its vertices (DecodeSurface)
+  if (m.shape != body_cmd_t::MESH) {
+    for (const auto& p : m.points) s.points.emplace_back(p[0], p[1], p[2]);
+  }
   // 0 means "not given" for mass and density; anything else is checked
   if (m.mass != 0.0) s.mass = m.mass;
   if (m.density != 0.0) s.density = m.density;

@@ -76,6 +76,11 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // -0.02%, docs/physics.md, "Friction against spin"); not traced yet
     {"barrier", "spin plate30cm_100g_100rads_mu1", "275.9 rad/s^2 against the corners' 138.7 (+99%): stops at once"},
     {"barrier", "spin cube40cm_100g_20rads_mu1", "200.0 rad/s^2 against the corners' 104.1 (+92%): stops at once"},
+    // lcp lemke: hulls settling on a wavy heightfield hold a contact per
+    // triangle under them, each its own manifold; 3 s of four hulls took
+    // 54 s (pgs 0.4 s) in one run, so the scene is not run for it; the
+    // pivoting has not been profiled on these manifolds yet
+    {"lcp_lemke", "heightfield drops", "54 s for 3 s of four hulls (pgs 0.4 s): not profiled yet"},
     // penalty: its stacks rest on springs (penalty_stiffness.h)
     {"penalty", "stack n=8 height",
      "sinks 0.57 mm: its compliance, sum over the layers of k m g / kp, kp = m pi^2 / contact_time^2 (4 ms)"},

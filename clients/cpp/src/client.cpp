@@ -270,6 +270,8 @@ CommandResult Client::Send(body_cmd_t command) {
   for (std::vector<double>& point : command.points) point.resize(3);
   command.num_parts = static_cast<int32_t>(command.part_shape.size());
   command.num_part_points = static_cast<int32_t>(command.part_points.size());
+  command.num_mesh_indices = static_cast<int32_t>(command.mesh_indices.size());
+  command.num_heights = static_cast<int32_t>(command.heights.size());
   std::vector<uint8_t> buffer(command.getEncodedSize());
   command.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
   return Publish(Channel(protocol::kBodyCmd), command.request_id, buffer.data(),

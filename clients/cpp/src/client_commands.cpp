@@ -245,6 +245,54 @@ Result<int64_t> Client::AddPlane(const Eigen::Vector3d& normal, double offset,
   return WithNewId(AddBody(command, plane));
 }
 
+namespace {
+
+// A static surface's options: its pose, material, name and filter; no
+// mass or velocity of its own.
+BodyOptions SurfaceOptions(const BodyOptions& options) {
+  BodyOptions surface;
+  surface.position = options.position;
+  surface.orientation = options.orientation;
+  surface.restitution = options.restitution;
+  surface.friction = options.friction;
+  surface.name = options.name;
+  surface.filter = options.filter;
+  surface.fixed = true;
+  return surface;
+}
+
+}  // namespace
+
+Result<int64_t> Client::AddMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int32_t>& indices,
+                                double scale, const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::MESH;
+  for (const Eigen::Vector3d& v : vertices) command.points.push_back({v.x(), v.y(), v.z()});
+  command.mesh_indices = indices;
+  command.mesh_scale = scale;
+  return WithNewId(AddBody(command, SurfaceOptions(options)));
+}
+
+Result<int64_t> Client::AddMeshFile(const std::string& path, double scale, const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::MESH;
+  command.mesh_path = path;
+  command.mesh_scale = scale;
+  return WithNewId(AddBody(command, SurfaceOptions(options)));
+}
+
+Result<int64_t> Client::AddHeightfield(int rows, int cols, const std::vector<double>& heights, double spacing_x,
+                                       double spacing_y, const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::HEIGHTFIELD;
+  command.height_rows = rows;
+  command.height_cols = cols;
+  command.heights = heights;
+  command.height_spacing[0] = spacing_x;
+  command.height_spacing[1] = spacing_y;
+  return WithNewId(AddBody(command, SurfaceOptions(options)));
+}
+
 CommandResult Client::RemoveBody(int64_t id) {
   return Send(NewBodyCommand(body_cmd_t::REMOVE, id));
 }

@@ -206,6 +206,17 @@ int main(int argc, char** argv) {
           client.AddBox(ToVector(half_extents), add_flags.ToOptions()).status);
     };
   });
+  std::string mesh_path;
+  double mesh_scale = 1.0;
+  CLI::App* mesh = add->add_subcommand("mesh", "add a static triangle mesh from a file the server reads (OBJ, STL, PLY, DAE)");
+  mesh->add_option("path", mesh_path, "mesh file")->required();
+  mesh->add_option("--scale", mesh_scale, "times the file's vertices")->capture_default_str();
+  AddBodyFlags(mesh, &add_flags);
+  mesh->callback([&] {
+    run = [&](Client& client) {
+      return ExitCode(client.AddMeshFile(mesh_path, mesh_scale, add_flags.ToOptions()).status);
+    };
+  });
   CLI::App* plane = add->add_subcommand("plane", "add a static plane n.p = offset");
   plane->add_option("--normal", normal, "outward normal")->capture_default_str();
   plane->add_option("--offset", offset, "m")->capture_default_str();

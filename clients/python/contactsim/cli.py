@@ -1,7 +1,7 @@
 """contactsim-py: one command to a running contactsim server.
 
     contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] [--auth-key-file FILE] COMMAND ...
-      status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET
+      status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET | add mesh PATH [--scale S]
       remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
       model load PATH [--name N] [--position X Y Z] [--orientation W X Y Z] [--fixed-base] [--self-collide]
       model remove ID | model list
@@ -45,6 +45,13 @@ def _parser():
         a.add_argument("--friction", type=float)
         a.add_argument("--fixed", action="store_true")
         a.add_argument("--name", default="")
+    a = add.add_parser("mesh", help="a static triangle mesh from a file the server reads (OBJ, STL, PLY, DAE)")
+    a.add_argument("path")
+    a.add_argument("--scale", type=float, default=1.0)
+    a.add_argument("--position", type=float, nargs=3, default=(0, 0, 0), metavar=("X", "Y", "Z"))
+    a.add_argument("--restitution", type=float)
+    a.add_argument("--friction", type=float)
+    a.add_argument("--name", default="")
     a = add.add_parser("plane")
     for s in ("nx", "ny", "nz", "offset"):
         a.add_argument(s, type=float)
@@ -178,6 +185,9 @@ def _run(c, a):
     if a.cmd == "add":
         if a.shape == "plane":
             bid = c.add_plane((a.nx, a.ny, a.nz), a.offset, restitution=a.restitution, friction=a.friction)
+        elif a.shape == "mesh":
+            bid = c.add_mesh(a.path, scale=a.scale, position=a.position, restitution=a.restitution,
+                             friction=a.friction, name=a.name)
         else:
             kw = dict(position=a.position, velocity=a.velocity, mass=a.mass, density=a.density,
                       restitution=a.restitution, friction=a.friction, fixed=a.fixed, name=a.name)

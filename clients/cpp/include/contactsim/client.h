@@ -268,6 +268,20 @@ class Client {
   // and name of `options` are used.
   Result<int64_t> AddPlane(const Eigen::Vector3d& normal, double offset = 0.0,
                            const BodyOptions& options = {});
+  // A static triangle mesh (docs/physics.md, "Triangle meshes and
+  // heightfields"): vertices (m, body frame, times `scale`) and three
+  // indices per triangle, counter-clockwise seen from the front; or a mesh
+  // file (OBJ, STL, PLY, DAE, ...) the server reads. options.position and
+  // orientation place the body frame; its material, name and filter are
+  // used. Triangles of zero area are dropped; the reply says how many.
+  Result<int64_t> AddMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int32_t>& indices,
+                          double scale = 1.0, const BodyOptions& options = {});
+  Result<int64_t> AddMeshFile(const std::string& path, double scale = 1.0, const BodyOptions& options = {});
+  // A static heightfield: `heights` row-major, rows along body y and
+  // columns along body x, spacing_x and spacing_y apart (m), centred on
+  // options.position.
+  Result<int64_t> AddHeightfield(int rows, int cols, const std::vector<double>& heights, double spacing_x,
+                                 double spacing_y, const BodyOptions& options = {});
   CommandResult RemoveBody(int64_t id);
   CommandResult SetPose(int64_t id, const Eigen::Vector3d& position,
                         const std::array<double, 4>& orientation = {1, 0, 0, 0});

@@ -3,7 +3,7 @@ joints, read from a snapshot file of the server (service/proto/snapshot.proto)
 into plain dicts the page can draw (docs/viewer.md, "catalog")."""
 from .protowire import parse
 
-SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane"}
+SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane", 6: "mesh", 7: "heightfield"}
 MOTIONS = {0: "dynamic", 1: "static", 2: "kinematic"}
 JOINT_KINDS = {0: "distance", 1: "ball", 2: "hinge", 3: "fixed", 4: "prismatic"}
 
@@ -11,7 +11,10 @@ _FACE = {1: ("normal", "double", True), 3: ("vertices", "int", True)}
 _HULL = {1: ("vertices", "double", True), 2: ("faces", _FACE, True)}
 _SHAPE = {1: ("type", "int", False), 2: ("radius", "double", False), 3: ("half_extents", "double", True),
           4: ("half_length", "double", False), 5: ("plane_normal", "double", True),
-          6: ("plane_offset", "double", False), 7: ("hull", _HULL, False)}
+          6: ("plane_offset", "double", False), 7: ("hull", _HULL, False),
+          9: ("mesh_vertices", "double", True), 10: ("mesh_indices", "int", True),
+          11: ("height_rows", "int", False), 12: ("height_cols", "int", False), 13: ("heights", "double", True),
+          14: ("height_spacing_x", "double", False), 15: ("height_spacing_y", "double", False)}
 _BODY = {1: ("id", "int", False), 2: ("name", "string", False), 3: ("shape", _SHAPE, False),
          6: ("motion", "int", False), 7: ("mass", "double", False), 11: ("x", "double", True),
          12: ("q", "double", True)}
@@ -37,6 +40,17 @@ def _shape(s):
         hull = s.get("hull", {})
         out["vertices"] = hull.get("vertices", [])
         out["faces"] = [f.get("vertices", []) for f in hull.get("faces", [])]
+    if kind == "mesh":
+        # body frame; triangles counter-clockwise seen from the front
+        out["vertices"] = s.get("mesh_vertices", [])
+        out["triangles"] = s.get("mesh_indices", [])
+    if kind == "heightfield":
+        # heights row-major, rows along body y, centred on the body origin
+        # (service/collision/height_field.h); each cell two triangles
+        out["rows"] = s.get("height_rows", 0)
+        out["cols"] = s.get("height_cols", 0)
+        out["heights"] = s.get("heights", [])
+        out["spacing"] = [s.get("height_spacing_x", 0.0), s.get("height_spacing_y", 0.0)]
     return out
 
 
