@@ -37,7 +37,7 @@ def test_box_rests_on_a_mesh_and_rays_hit_it(client):
 def test_mesh_from_an_obj_file_is_kept_by_a_snapshot(client, tmp_path):
     vertices, tris = grid(4, 0.5)
     obj = tmp_path / "floor.obj"
-    obj.write_text("".join("v %r %r %r\n" % tuple(v) for v in vertices) +
+    obj.write_text("".join("v %.17g %.17g %.17g\n" % tuple(v) for v in vertices) +
                    "".join("f %d %d %d\n" % tuple(t + 1) for t in tris))
     client.add_mesh(str(obj), scale=2.0)
     ball = client.add_sphere(0.1, position=(0.3, 0.2, 0.3), restitution=0.0)
@@ -86,3 +86,36 @@ def test_barrier_refuses_a_mesh(client):
     with pytest.raises(contactsim.CommandError) as err:
         client.set_contact_method("barrier")
     assert "triangle meshes" in str(err.value)
+
+
+def test_scene_file_with_a_heightfield_and_a_mesh_file(client, tmp_path):
+    vertices, tris = grid(2, 1.0)
+    (tmp_path / "pad.obj").write_text("".join("v %.17g %.17g %.17g\n" % tuple(v) for v in vertices) +
+                                      "".join("f %d %d %d\n" % tuple(t + 1) for t in tris))
+    scene = tmp_path / "terrain.pbtxt"
+    scene.write_text("""
+gravity { z: -9.81 }
+bodies { name: "terrain" heightfield { rows: 3 cols: 3 heights: [0, 0, 0, 0, 0, 0, 0, 0, 0]
+                                        spacing_x: 1 spacing_y: 1 } }
+bodies { name: "pad" mesh { path: "pad.obj" } position { x: 5 z: 0.5 } }
+bodies { name: "ball" sphere { radius: 0.1 } position { x: 0.2 y: 0.1 z: 0.5 } material { restitution: 0 } }
+bodies { name: "puck" sphere { radius: 0.1 } position { x: 5.1 z: 1.0 } material { restitution: 0 } }
+""")
+    client.load_scene(scene)
+    client.step(480)
+    z = sorted(b.position[2] for b in client.state().bodies.values())
+    assert z == pytest.approx([0.0, 0.1, 0.5, 0.6], abs=2e-3)
+
+
+def test_the_viewer_catalog_carries_mesh_and_heightfield_geometry(client, tmp_path):
+    from contactsim.viewer.catalog import read_catalog
+    vertices, tris = grid(1, 1.0)
+    mesh = client.add_mesh(vertices, tris)
+    field = client.add_heightfield([[0.0, 0.1, 0.2], [0.3, 0.4, 0.5]], (0.5, 0.25))
+    client.snapshot(path=str(tmp_path / "s.snap"))
+    shapes = {b["id"]: b["shape"] for b in read_catalog(tmp_path / "s.snap")["bodies"]}
+    assert shapes[mesh]["kind"] == "mesh"
+    assert shapes[mesh]["vertices"] == pytest.approx(vertices.reshape(-1).tolist())
+    assert shapes[mesh]["triangles"] == tris.reshape(-1).tolist()
+    assert shapes[field] == {"kind": "heightfield", "rows": 2, "cols": 3, "heights": [0.0, 0.1, 0.2, 0.3, 0.4, 0.5],
+                             "spacing": [0.5, 0.25]}
