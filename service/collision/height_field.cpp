@@ -5,6 +5,7 @@
 #include <string>
 
 #include "service/collision/triangle_surface.h"
+#include "service/physics/validation.h"
 
 namespace contactsim {
 namespace {
@@ -65,7 +66,7 @@ Status BuildHeightField(int rows, int cols, const std::vector<double>& heights, 
   }
   for (double s : {spacing_x, spacing_y}) {
     if (!(std::isfinite(s) && s > 0.0 && s < 1e6)) {
-      return Status::InvalidArgument("heightfield spacing must be finite and in (0, 1e6) m, got " + std::to_string(s));
+      return Status::InvalidArgument("heightfield spacing must be finite and in (0, 1e6) m, got " + FormatValue(s));
     }
   }
   for (size_t i = 0; i < heights.size(); ++i) {

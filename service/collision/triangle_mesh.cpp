@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "service/collision/triangle_surface.h"
+#include "service/physics/validation.h"
 
 namespace contactsim {
 namespace {
@@ -58,7 +59,7 @@ void ClassifyEdges(TriangleMesh* mesh) {
 
 Status CheckInput(const std::vector<Vec3>& vertices, const std::vector<int>& indices, double scale) {
   if (!(std::isfinite(scale) && scale > 0.0)) {
-    return Status::InvalidArgument("mesh scale must be finite and > 0, got " + std::to_string(scale));
+    return Status::InvalidArgument("mesh scale must be finite and > 0, got " + FormatValue(scale));
   }
   if (vertices.empty() || indices.empty()) {
     return Status::InvalidArgument("a mesh needs vertices and indices, got " + std::to_string(vertices.size()) +
