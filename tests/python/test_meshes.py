@@ -119,3 +119,23 @@ def test_the_viewer_catalog_carries_mesh_and_heightfield_geometry(client, tmp_pa
     assert shapes[mesh]["triangles"] == tris.reshape(-1).tolist()
     assert shapes[field] == {"kind": "heightfield", "rows": 2, "cols": 3, "heights": [0.0, 0.1, 0.2, 0.3, 0.4, 0.5],
                              "spacing": [0.5, 0.25]}
+
+
+def test_journal_recovers_a_mesh_read_from_a_file_that_is_gone(launch, tmp_path):
+    vertices, tris = grid(4, 0.5)
+    obj = tmp_path / "floor.obj"
+    obj.write_text("".join("v %.17g %.17g %.17g\n" % tuple(v) for v in vertices) +
+                   "".join("f %d %d %d\n" % tuple(t + 1) for t in tris))
+    journal = tmp_path / "journal"
+    first = launch(args=("--journal", str(journal)))
+    floor = first.client.add_mesh(str(obj))
+    ball = first.client.add_sphere(0.1, position=(0.3, 0.2, 0.3), restitution=0.0)
+    first.client.step(240)
+    rested = first.client.state().bodies[ball].position
+    first.kill()
+    obj.unlink()  # recovery builds the mesh from the journal's vertices
+    second = launch(args=("--journal", str(journal)))
+    second.client.step(240)
+    bodies = second.client.state().bodies
+    assert floor in bodies
+    assert bodies[ball].position[2] == pytest.approx(rested[2], abs=1e-6)
