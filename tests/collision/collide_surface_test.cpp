@@ -13,6 +13,7 @@
 #include "service/collision/ray_shape.h"
 #include "service/collision/triangle_mesh.h"
 #include "service/collision/triangle_surface.h"
+#include "service/physics/cylinder_hull.h"
 #include "tests/collision/grid_mesh.h"
 #include "tests/collision/narrowphase_test_util.h"
 
@@ -150,6 +151,30 @@ TEST(CollideSurfaceTest, FlatGridGivesThePlaneContactAcrossEdgesAndVertices) {
       for (const Contact& c : flat) deepest_plane = std::max(deepest_plane, c.depth);
       EXPECT_NEAR(deepest, deepest_plane, 1e-9) << ShapeTypeName(b->shape.type) << " at " << at.transpose();
     }
+  }
+}
+
+// Verifies the other pieces: a cylinder (a hull) lying on its side and a
+// compound of a box and two spheres, sunk 1 mm into the grid across its
+// edges, get only the face normal, and the plane's deepest depth.
+TEST(CollideSurfaceTest, HullsAndCompoundsGetThePlaneContact) {
+  const RigidBody floor = MeshBody(BuildGrid(20, 0.1));
+  std::shared_ptr<const ConvexHull> cylinder;
+  ASSERT_TRUE(BuildCylinderHull(0.05, 0.3, &cylinder).ok());
+  const Quat side(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));
+  const RigidBody lying = testing_util::Convex(1, cylinder, Vec3(0.013, 0.0, 0.05 - 1e-3), side);
+  const RigidBody dumbbell = MakeBody(2, Shape::Compound({{Shape::Box(Vec3(0.2, 0.02, 0.02)), Vec3::Zero(), Quat::Identity()},
+                                                          {Shape::Sphere(0.05), Vec3(-0.2, 0, 0), Quat::Identity()},
+                                                          {Shape::Sphere(0.05), Vec3(0.2, 0, 0), Quat::Identity()}}),
+                                      Vec3(0.0, 0.1, 0.05 - 1e-3));
+  for (const RigidBody* b : {&lying, &dumbbell}) {
+    const ContactSet out = Contacts(*b, floor);
+    ASSERT_FALSE(out.empty()) << ShapeTypeName(b->shape.type);
+    ExpectAllNormalsDown(out, ShapeTypeName(b->shape.type));
+    double deepest = -1, deepest_plane = -1;
+    for (const Contact& c : out) deepest = std::max(deepest, c.depth);
+    for (const Contact& c : Contacts(*b, Ground(101))) deepest_plane = std::max(deepest_plane, c.depth);
+    EXPECT_NEAR(deepest, deepest_plane, 1e-9) << ShapeTypeName(b->shape.type);
   }
 }
 
