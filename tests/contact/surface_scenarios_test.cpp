@@ -74,14 +74,13 @@ class SurfaceTest : public ::testing::TestWithParam<MethodConfig> {
 // after settling, measured between 0.1 s and 0.6 of the time to stop (or
 // 0.5 s), away from the launch and the stop.
 double BoxAcceleration(const MethodConfig& config, Ground ground, double angle, double mass, double mu,
-                       const Vec3& dir_local, double v0, bool* refused) {
+                       const Vec3& dir_local, double v0, bool* refused, double half = 0.1) {
   Sim sim(config.method, config.params);
   const Quat tilt = AddGround(sim.world, ground, angle, mu);
   *refused = ground == Ground::kMesh && testing::RefusedByContract(config, sim.world,
                                                                    testing::ContractOf(config).triangle_surfaces,
                                                                    "triangle meshes");
   if (*refused) return 0.0;
-  const double half = 0.1;
   BodySettings box;
   box.shape = ShapeType::kBox;
   box.half_extents = Vec3::Constant(half);
@@ -110,7 +109,8 @@ double BoxAcceleration(const MethodConfig& config, Ground ground, double angle, 
 // Verifies no ghost collisions while sliding: a box launched at 4 m/s over
 // the 20,000-triangle floor along x, along y and at 30 degrees (across
 // edges, diagonals and vertices) decelerates at mu g as on the plane, to
-// 0.5% of mu g, for masses 0.1, 1 and 10 kg.
+// 0.5% of mu g, for masses 0.1, 1 and 10 kg, and cubes of 5 cm (smaller
+// than a cell) and 0.6 m (36 cells) along x.
 TEST_P(SurfaceTest, BoxSlidesOverFloorMeshAsOverPlane) {
   const double mu = 0.5, v0 = 4.0;
   for (double mass : {0.1, 1.0, 10.0}) {
@@ -124,6 +124,15 @@ TEST_P(SurfaceTest, BoxSlidesOverFloorMeshAsOverPlane) {
       EXPECT_NEAR(on_mesh, on_plane, 0.005 * mu * kG) << Label() << " m " << mass;
       EXPECT_NEAR(-on_mesh, mu * kG, 0.005 * mu * kG) << Label() << " m " << mass;
     }
+  }
+  for (double half : {0.025, 0.3}) {
+    bool refused = false;
+    const double on_mesh = BoxAcceleration(GetParam(), Ground::kMesh, 0.0, 1.0, mu, Vec3::UnitX(), v0, &refused, half);
+    const double on_plane = BoxAcceleration(GetParam(), Ground::kPlane, 0.0, 1.0, mu, Vec3::UnitX(), v0, &refused, half);
+    std::printf("%s: cube %.2f m mesh %.4f plane %.4f mu g %.4f m/s^2\n", Label(), 2 * half, -on_mesh, -on_plane,
+                mu * kG);
+    EXPECT_NEAR(on_mesh, on_plane, 0.005 * mu * kG) << Label() << " half " << half;
+    EXPECT_NEAR(-on_mesh, mu * kG, 0.005 * mu * kG) << Label() << " half " << half;
   }
 }
 
