@@ -179,11 +179,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"xpbd", "table * kg speed",
      "0.59 m/s: the table of four legs spins up about z (0.07 rad/s 0.2 s after landing, 1.17 at 2 s) at every "
      "mass while its tilt and height stay right; the L's two legs rest at 1e-14 m/s; not traced further"},
-    {"penalty", "L * kg speed", "0.032 m/s: still rocks at 0.03 rad/s after 2 s on its two legs' 8 points; not traced"},
-    {"penalty", "table * kg *",
-     "bounces higher at each landing (0.10 to 0.94 m in 2 s) or flips over on its four legs' 16 points: the "
-     "explicit sub-steps gain energy with more than one manifold on a body pair (two legs already do, one does "
-     "not); not traced further"},
     // xpbd's sliders and joint friction (prismatic_joint_test.cpp,
     // joint_dynamics_test.cpp; docs/methods/xpbd.md)
     {"xpbd", "slider m=* axis=* rate",
