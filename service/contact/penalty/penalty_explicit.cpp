@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/penalty/penalty_pair_damping.h"
 #include "service/contact/penalty/penalty_stiffness.h"
 #include "service/physics/integrator.h"
 
@@ -101,6 +102,7 @@ class ExplicitStepper {
     for (const PenaltyRow& row : rows) {
       if (row.engaged && row.depth > 0.0) pair_touching_[row.pair] = 1;
     }
+    pair_damping_.Prepare(world, rows);
   }
 
   void Substep(ExplicitStats* stats) {
@@ -161,6 +163,7 @@ class ExplicitStepper {
       if (rows_[k].engaged) MeasureRow(k, stats);
     }
     if (!apply) return;
+    if (pair_damping_.active()) SolvePairDamping();
     for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force_[i], bodies[i].torque = torque_[i];
     std::fill(pushed_.begin(), pushed_.end(), false);
     for (size_t k = 0; k < rows_.size(); ++k) {
@@ -228,6 +231,19 @@ class ExplicitStepper {
     pair_touching_[row.pair] = 1;
   }
 
+  // the coupled dashpots of this pass's touching points, by pair
+  // (penalty_pair_damping.h)
+  void SolvePairDamping() {
+    touching_.resize(rows_.size());
+    shared_.resize(rows_.size());
+    for (size_t k = 0; k < rows_.size(); ++k) {
+      const PenaltyRow& row = rows_[k];
+      touching_[k] = row.engaged && frames_[k].touching;
+      shared_[k] = std::max(1.0, std::max(pairs_[row.a], pairs_[row.b]));
+    }
+    pair_damping_.Solve(rows_, touching_, shared_, h_);
+  }
+
   // stages 2-4: normal force with its onset, friction, into the bodies
   void ApplyRow(size_t k) {
     auto& bodies = world_.bodies();
@@ -242,8 +258,16 @@ class ExplicitStepper {
       return;
     }
     const double shared = std::max(1.0, std::max(pairs_[row.a], pairs_[row.b]));
-    const double cn = row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
+    const bool coupled = pair_damping_.Coupled(k);
+    double cn = row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
     double lambda = row.law.lambda0 + (row.law.c - cn) * row.vn0;
+    if (coupled) {
+      // the pair's dashpots solved together: the force in place of c vn0,
+      // and for the onset's room an equivalent dashpot at the approach
+      const double f = pair_damping_.NormalForce(k);
+      lambda = row.law.lambda0 + row.law.c * row.vn0 + f;
+      cn = row.vn0 < 0.0 ? std::max(0.0, f / -row.vn0) : cn;
+    }
     // the onset (penalty_row.h) belongs to a pair's impact: only when none
     // of its points touched in the last sub-step. Given to each corner of
     // a rocking box as it came down again, m_eff / nc each, it reversed
@@ -265,7 +289,12 @@ class ExplicitStepper {
     row.ft.setZero();
     row.sliding = false;
     if (row.mu > 0.0) {
-      const double ct = row.ct / (1.0 + h_ * shared * row.ct * row.inv_mass_t);
+      // a coupled pair's friction dashpots take the larger of the point's own
+      // response and its pair's (penalty_pair_damping.h)
+      const double own = row.ct * row.inv_mass_t;
+      const double pair = coupled ? pair_damping_.Tangent(k) : 0.0;
+      const double ct = pair > own ? row.ct / (1.0 + h_ * shared * pair)
+                                   : row.ct / (1.0 + h_ * shared * row.ct * row.inv_mass_t);
       const Vec3 trial = -row.kt * row.anchor.stretch - ct * row.vt0;
       row.ft = CoulombLimit(trial, row.mu * row.lambda, &row.sliding);
       if (row.sliding) row.anchor.stretch = -row.ft / row.kt;
@@ -297,6 +326,9 @@ class ExplicitStepper {
   std::vector<RowFrame> frames_;
   // per body pair: a point of it touched in the last pass, and in this one
   std::vector<char> pair_touched_, pair_touching_;
+  PenaltyPairDamping pair_damping_;  // the pairs with a compound body
+  std::vector<char> touching_;       // per row, for pair_damping_
+  std::vector<double> shared_;       // per row: n_b, for pair_damping_
   std::vector<bool> pushed_;  // per body: a contact force acted in this sub-step
   std::vector<double> reach_;   // m, per body: how far any of its points may have moved since the step's start
   std::vector<double> radius_;  // m, per body: BoundingRadius

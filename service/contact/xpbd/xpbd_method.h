@@ -105,8 +105,8 @@ class XpbdMethod : public ContactMethod {
 
   // The slips static friction left at the last step's end, by body pair
   // (ids, in the contact's order) and the patch's place among the pair's
-  // patches (0 but for a compound body, whose child pairs each have one):
-  // XpbdPatchSlip.
+  // patches: 0 for a plain pair's one patch, 1 + its points' smallest
+  // feature id for a compound's child pairs (PatchKeys): XpbdPatchSlip.
   using PairKey = std::tuple<BodyId, BodyId, int64_t>;
   std::map<PairKey, XpbdPatchSlip> slips_;
   // patch k's PairKey

@@ -212,8 +212,23 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, c
     patch.origin_pending = false;
   }
   const Vec3 offset = PatchOffset(patch, A.x, A.q, B.x, B.q);
-  const Vec3 dl = patch.inv_k * (offset - patch.origin);
+  const Vec3 r = offset - patch.origin;
+  Vec3 dl = patch.inv_k * r;
   const double mu = patch.friction;
+  if (patch.compound && patch.twist_radius > 0.0 &&
+      std::abs(patch.lambda_twist + dl[2]) > mu * pushed * patch.twist_radius) {
+    // The twist is let go below (it spins), so the tangent rows are solved
+    // without it, by the inverse of K's tangent block: the Schur complement
+    // G_tt - G_tw G_wt / G_ww of G = K^-1. The joint solution's tangent part
+    // counts on the twist's turn to move the patch centre, which matters
+    // where the patch lies off the centre of mass's vertical (a table's
+    // leg): applied without the twist it turned the body instead, and a
+    // resting table kept rocking among its legs at 1.4e-3 m/s.
+    const Eigen::Matrix3d& g = patch.inv_k;
+    const Eigen::Vector2d tw = g.block<2, 1>(0, 2);
+    const Eigen::Matrix2d g_tt = g.topLeftCorner<2, 2>() - tw * tw.transpose() / g(2, 2);
+    dl.head<2>() = g_tt * r.head<2>();
+  }
   Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
   double twist_step = dl[2];
   if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
@@ -270,6 +285,24 @@ Vec3 PointsSlidingImpulse(double h, const XpbdPatch& patch, const std::vector<Xp
   return total;
 }
 
+// The sliding brake's change dl (t1, t2, twist) of a patch whose centre
+// lies off its bodies' centres of mass, scaled into [0, 1] so that it
+// stops no more than the slip (generalised, with the twist) along dl:
+// alpha = -(dl . slip) / (dl^T K dl), 0 when dl does not oppose the slip.
+// Taking the force and the torque each from whichever of the sliding and
+// the stopping impulse is smaller, as for a patch under the centre of
+// mass, mixes two impulses whose parts are coupled through K there (the
+// twist of the stopping one carries the turn its force needs): on the legs
+// of a table that sum pushed along the spin, and a resting table spun up
+// about the vertical to 1.17 rad/s in 2 s.
+Vec3 SlidingWithinStop(const XpbdPatch& patch, const Vec3& dl, const Vec3& slip) {
+  const double power = dl.dot(slip);
+  if (!(power < 0.0)) return Vec3::Zero();
+  const Eigen::Matrix3d k = patch.inv_k.inverse();
+  const double stiff = dl.dot(k * dl);
+  return stiff > -power ? Vec3((-power / stiff) * dl) : dl;
+}
+
 }  // namespace
 
 void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
@@ -294,9 +327,13 @@ void BrakeXpbdPatch(double h, double pushed, const XpbdPatch& patch, const std::
     // with the whole mu N r), stopping neither the slide nor the spin
     // beyond what the free brake above would
     const Vec3 sliding = PointsSlidingImpulse(h, patch, points, slip[0], slip[1], slip[2]);
-    const double sliding_along = std::sqrt(sliding[0] * sliding[0] + sliding[1] * sliding[1]);
-    if (sliding_along < along) total.head<2>() = sliding.head<2>();
-    if (std::abs(sliding[2]) < std::abs(total[2])) total[2] = sliding[2];
+    if (patch.compound) {
+      total = *spent + SlidingWithinStop(patch, sliding - *spent, slip);
+    } else {
+      const double sliding_along = std::sqrt(sliding[0] * sliding[0] + sliding[1] * sliding[1]);
+      if (sliding_along < along) total.head<2>() = sliding.head<2>();
+      if (std::abs(sliding[2]) < std::abs(total[2])) total[2] = sliding[2];
+    }
   } else if (along > limit) {
     total[0] *= limit / along;
     total[1] *= limit / along;

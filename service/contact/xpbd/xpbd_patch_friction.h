@@ -51,6 +51,7 @@ struct XpbdPatch {
   double lever_scale = 1.0;            // the points' friction acts at lever_scale d_i (patch_torsion.h)
   bool valid = false;
   bool jointed = false;                // its pushes go through XpbdArticulation (XpbdPoint::jointed)
+  bool compound = false;               // a body of the pair is a compound (BrakeXpbdPatch)
   int first = 0, count = 0;            // the points [first, first + count)
   double spread = 0.0;                 // m^2, sum of the points' squared distances from the centre
   // The offset is linear in the points' material points m_i, so the patch
