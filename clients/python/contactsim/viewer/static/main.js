@@ -103,7 +103,8 @@ function animate(now) {
 requestAnimationFrame(animate);
 
 world.renderer.domElement.addEventListener('click', (ev) => {
-  const id = bodies.pick(world.ray(ev));
+  const ray = world.ray(ev);
+  const id = models.pick(ray) ?? bodies.pick(ray);
   if (id === null) return;
   state.selected = id;
   if (state.hello && state.hello.mode === 'live') socket.send({ cmd: 'body', id });

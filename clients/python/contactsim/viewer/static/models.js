@@ -43,6 +43,7 @@ export class Models {
     if (!this.groups.has(link.body)) {
       const g = new THREE.Group();
       g.visible = false;   // until the body's first pose
+      g.userData.id = link.body;
       this.groups.set(link.body, g);
       this.root.add(g);
     }
@@ -74,6 +75,15 @@ export class Models {
       g.visible = pose !== null;
       if (pose) { g.position.copy(pose.p); g.quaternion.copy(pose.q); }
     }
+  }
+
+  // the body id of the visual under a ray, or null
+  pick(raycaster) {
+    if (!this.visible) return null;
+    for (const h of raycaster.intersectObjects([...this.groups.values()].filter((g) => g.visible), true)) {
+      for (let o = h.object; o; o = o.parent) if (o.userData.id !== undefined) return o.userData.id;
+    }
+    return null;
   }
 
   // what the scene graph holds: groups (bodies), three.js meshes in them, of which from files
