@@ -12,7 +12,7 @@ import threading
 
 import numpy as np
 
-from .. import ray_cast_t, ray_hits_t
+from .. import ray_cast_t
 
 KEEP_CASTS = 64   # casts whose answers have not come yet
 
@@ -23,8 +23,8 @@ class RayWatch:
         self._casts = {}          # (client_id, request_id) -> origins (n, 3), directions (n, 3), max (n,)
         self.latest = None        # (step, origins (n, 3), ends (n, 3), hit (n,)) of the newest answered cast
         self.count = 0            # answered casts seen
-        self._removers = [client.on_message("RAY_CAST", ray_cast_t, self._on_cast),
-                          client.on_message("RAY_HITS", ray_hits_t, self._on_hits)]
+        self._removers = [client.on_command("RAY_CAST", ray_cast_t, self._on_cast),
+                          client.on_ray_hits(self._on_hits)]
 
     def close(self):
         for remove in self._removers:
