@@ -1,12 +1,14 @@
 """contactsim-viewer drawing robot models in a real browser (headless
 chromium, Selenium) against a real server: the iiwa's mesh files loaded and
 placed at its links' frames, the collision toggle, the joint panel against
-pinocchio, ray casts and range-sensor fans, and R2D2's primitives and meshes
-(docs/viewer.md, "Robot models"). Skipped without chromium, chromedriver,
-selenium or pybullet_data."""
+pinocchio, ray casts and range-sensor fans, R2D2's primitives and meshes,
+and a Collada visual in the server's axes and unit (docs/viewer.md, "Robot
+models"). Skipped without chromium, chromedriver, selenium or pybullet_data."""
 import os
+import shutil
 import time
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -23,6 +25,7 @@ IIWA = os.path.join(DATA, "kuka_iiwa", "model.urdf")
 R2D2 = os.path.join(DATA, "r2d2.urdf")
 BENT = np.array([0.3, 0.8, -0.4, -1.2, 0.5, 0.7, -0.3])  # rad
 ARTIFACTS = BUILD / "test-artifacts"
+MODEL_DATA = Path(__file__).resolve().parents[1] / "model" / "data"   # the model readers' test files
 
 
 @pytest.fixture
@@ -165,3 +168,29 @@ def test_r2d2_renders(models_server, browser):  # noqa: F811
                 assert np.abs(drawn - p).max() < 1e-6, link
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         browser.save_screenshot(str(ARTIFACTS / "viewer_r2d2.png"))
+
+
+# Verifies that a Collada visual is drawn as the server reads the same file
+# (docs/models.md, "Meshes"): its <unit> applied (centimetres to metres),
+# its node's transform kept and its Z_UP axis not turned to three.js's y up,
+# so the drawn tetrahedron spans what the collision hull of the file does.
+def test_collada_visual_keeps_the_files_axes_and_unit(server, browser, tmp_path):  # noqa: F811
+    shutil.copy(MODEL_DATA / "tetra_cm.dae", tmp_path / "tetra_cm.dae")
+    (tmp_path / "tetra.urdf").write_text("""<robot name="tetra"><link name="body">
+      <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+      <collision><geometry><mesh filename="tetra_cm.dae"/></geometry></collision>
+      <visual><geometry><mesh filename="tetra_cm.dae"/></geometry></visual></link></robot>""")
+    c = server.client
+    c.load_model(str(tmp_path / "tetra.urdf"), name="tetra", position=(0, 0, 1), fixed_base=True)
+    c.step(1)
+    with _viewer(server) as viewer:
+        open_page(browser, viewer.url, c.state().step)
+        assert _wait_for_meshes(browser, 1)["failed"] == 0
+        box = browser.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "import('three').then((THREE) => {"
+            "  const o = %s.internals.models.root.getObjectByName('body'); o.updateWorldMatrix(true, true);"
+            "  const b = new THREE.Box3().setFromObject(o, true); done([b.min.toArray(), b.max.toArray()]); });"
+            % VIEWER)
+    # corners at 0 and 100, 200, 300 cm, moved 50 cm along x by the node, the link at z = 1 m
+    np.testing.assert_allclose(box, [[0.5, 0.0, 1.0], [1.5, 2.0, 4.0]], atol=1e-6)
