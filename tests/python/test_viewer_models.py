@@ -141,6 +141,8 @@ def test_ray_casts_and_range_fans_are_drawn(server, browser):  # noqa: F811
             "return Array.from(%s.internals.rays.lines.geometry.getAttribute('position').array.slice(18, 21))"
             % VIEWER)
         assert np.abs(np.array(start) - [0.1, 0, 0]).max() < 1e-6, start
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        browser.save_screenshot(str(ARTIFACTS / "viewer_rays.png"))
         browser.find_element("id", "show-rays").click()
         assert browser.execute_script("return %s.internals.rays.lines.visible" % VIEWER) is False
 

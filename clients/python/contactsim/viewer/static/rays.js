@@ -4,27 +4,18 @@
 // start at its origin in its body's frame, placed with the body's pose of
 // the frame drawn (rays.py says where the bridge finds them).
 import * as THREE from 'three';
+import { fill, growable } from './overlays.js';
 import { RAY_WIDTH } from './socket.js';
 
 const HIT = { 0: new THREE.Color(0x7cfc00), 1: new THREE.Color(0x40e0ff) };
 const MISS = new THREE.Color(0x6a6f78);
 
-function overlay(kind) {
-  const g = new THREE.BufferGeometry();
-  const material = kind === 'points'
-    ? new THREE.PointsMaterial({ size: 6, sizeAttenuation: false, vertexColors: true, depthTest: false })
-    : new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false });
-  const obj = kind === 'points' ? new THREE.Points(g, material) : new THREE.LineSegments(g, material);
-  obj.frustumCulled = false;
-  obj.renderOrder = 2;
-  return obj;
-}
-
 export class Rays {
   constructor(scene) {
     this.frames = { 0: null, 1: null };   // the newest RAYS frame of each kind
-    this.lines = overlay('lines');
-    this.hits = overlay('points');
+    // white materials: the vertex colours carry hit and miss
+    this.lines = growable('lines', 0xffffff, { vertexColors: true, depthTest: false });
+    this.hits = growable('points', 0xffffff, { vertexColors: true, depthTest: false, size: 6 });
     this.counts = { cast: { rays: 0, hits: 0 }, sensors: { rays: 0, hits: 0 } };
     this.changed = false;
     scene.add(this.lines, this.hits);
@@ -34,8 +25,9 @@ export class Rays {
 
   setVisible(v) { this.lines.visible = this.hits.visible = v; }
 
-  // rebuilds both overlays (tens to thousands of rays: cheap beside the bodies)
+  // rewrites both overlays (tens to thousands of rays: cheap beside the bodies)
   update(bodies) {
+    if (!this.frames[0] && !this.frames[1]) return;
     const line = [], lineColor = [], hit = [], hitColor = [];
     const o = new THREE.Vector3(), e = new THREE.Vector3();
     for (const kind of [0, 1]) {
@@ -59,8 +51,8 @@ export class Rays {
       this.counts[kind ? 'sensors' : 'cast'] = count;
     }
     for (const [obj, pos, col] of [[this.lines, line, lineColor], [this.hits, hit, hitColor]]) {
-      obj.geometry.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
-      obj.geometry.setAttribute('color', new THREE.Float32BufferAttribute(col, 3));
+      fill(obj, pos.length / 3, (a) => a.set(pos), 'position');
+      fill(obj, col.length / 3, (a) => a.set(col), 'color');
     }
     this.changed = false;
   }
