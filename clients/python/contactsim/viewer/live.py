@@ -99,7 +99,7 @@ class LiveSource:
 
     def cast_frame(self):
         """(count, RAYS frame) of the newest answered ray cast, or (0, None)."""
-        latest, count = self.rays.latest, self.rays.count
+        count, latest = self.rays.newest()
         if latest is None:
             return 0, None
         step, origins, ends, hit = latest

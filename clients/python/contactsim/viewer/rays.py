@@ -30,6 +30,11 @@ class RayWatch:
         for remove in self._removers:
             remove()
 
+    def newest(self):
+        """(answered casts seen, the newest one's (step, origins, ends, hit) or None), read together."""
+        with self._lock:
+            return self.count, self.latest
+
     def _on_cast(self, msg):
         n = msg.num_rays
         d = np.array(msg.directions, dtype=np.float64).reshape(n, 3)
