@@ -97,7 +97,6 @@ def test_iiwa_draws_its_meshes_and_joint_angles(models_server, browser):  # noqa
         panel = browser.execute_script("return document.getElementById('joints').textContent")
         assert "iiwa/lbr_iiwa_joint_4" in panel and "%.1f°" % np.degrees(BENT[3]) in panel, panel
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
-        browser.save_screenshot(str(ARTIFACTS / "viewer_iiwa.png"))
         pictures = {}
         for mode, shown, models_visible in [("visual", {"solid": 0, "overlay": 0}, True),
                                             ("both", {"solid": 0, "overlay": 8}, True),
@@ -106,6 +105,7 @@ def test_iiwa_draws_its_meshes_and_joint_angles(models_server, browser):  # noqa
             assert browser.execute_script("return %s.internals.models.root.visible" % VIEWER) is models_visible
             wait_for(browser, "!%s.internals.world.dirty" % VIEWER)
             pictures[mode] = browser.get_screenshot_as_png()
+            (ARTIFACTS / ("viewer_iiwa_%s.png" % mode)).write_bytes(pictures[mode])
         assert len(set(pictures.values())) == 3, "each collision mode draws another picture"
 
 
