@@ -2,7 +2,7 @@
 chromium, Selenium) against a real server: the iiwa's mesh files loaded and
 placed at its links' frames, the collision toggle, the joint panel against
 pinocchio, ray casts and range-sensor fans, R2D2's primitives and meshes,
-and a Collada visual in the server's axes and unit (docs/viewer.md, "Robot
+a Collada visual in the server's axes and unit, and a replay's robot (docs/viewer.md, "Robot
 models"). Skipped without chromium, chromedriver, selenium or pybullet_data."""
 import os
 import shutil
@@ -196,3 +196,29 @@ def test_collada_visual_keeps_the_files_axes_and_unit(server, browser, tmp_path)
             % VIEWER)
     # corners at 0 and 100, 200, 300 cm, moved 50 cm along x by the node, the link at z = 1 m
     np.testing.assert_allclose(box, [[0.5, 0.0, 1.0], [1.5, 2.0, 4.0]], atol=1e-6)
+
+
+# Verifies that a replay with the run's snapshot draws the robot too: its
+# meshes served from the snapshot's mesh folders, each link where the
+# recorded STATE puts it.
+def test_replay_draws_the_model_from_the_snapshot(models_server, browser, tmp_path):  # noqa: F811
+    from lcm_recorder import LcmRecorder
+    c = models_server.client
+    iiwa = c.load_model(IIWA, name="iiwa", fixed_base=True)
+    snapshot = tmp_path / "iiwa.snapshot"
+    c.snapshot(path=str(snapshot))
+    log_path = tmp_path / "run.lcmlog"
+    states = []
+    with LcmRecorder(models_server.url, models_server.prefix + "_.*", log_path):
+        for _ in range(3):
+            c.step(20)
+            states.append(c.state())
+    with ViewerProcess(["--log", str(log_path), "--snapshot", str(snapshot)]) as viewer:
+        open_page(browser, viewer.url)
+        assert _wait_for_meshes(browser, 8)["failed"] == 0
+        k = browser.execute_script("return %s.timelineSteps()" % VIEWER).index(states[2].step)
+        browser.execute_script("%s.seek(arguments[0])" % VIEWER, k)
+        wait_for(browser, "%s.step() === %d" % (VIEWER, states[2].step))
+        for link in iiwa.links:
+            p, _ = iiwa.link_pose(link, states[2])
+            assert np.abs(_link_world(browser, link) - p).max() < 1e-6, link
