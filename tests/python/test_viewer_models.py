@@ -67,8 +67,9 @@ def _set_mode(driver, mode):
 # Verifies that the iiwa's eight OBJ visuals load from the bridge and sit at
 # the link frames STATE puts them (within 1 um), that the collision toggle
 # swaps what is drawn (visuals alone, collision hulls as a wire overlay, the
-# hulls alone: the scene graph and the picture change), and that the joint
-# panel reads pinocchio's configuration back from the poses.
+# hulls alone: the scene graph and the picture change), that the joint
+# panel reads pinocchio's configuration back from the poses, and that a
+# click on a visual selects its link's body.
 def test_iiwa_draws_its_meshes_and_joint_angles(models_server, browser):  # noqa: F811
     pin = pytest.importorskip("pinocchio")
     c = models_server.client
@@ -96,6 +97,19 @@ def test_iiwa_draws_its_meshes_and_joint_angles(models_server, browser):  # noqa
         assert np.abs(np.array(got) - BENT).max() < 1e-6, got
         panel = browser.execute_script("return document.getElementById('joints').textContent")
         assert "iiwa/lbr_iiwa_joint_4" in panel and "%.1f°" % np.degrees(BENT[3]) in panel, panel
+        # a click on link 4's visual selects its body
+        browser.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "import('three').then((THREE) => {"
+            "  const v = %s.internals, o = v.models.root.getObjectByName('lbr_iiwa_link_4');"
+            "  const c = new THREE.Box3().setFromObject(o).getCenter(new THREE.Vector3()).project(v.world.camera);"
+            "  const canvas = v.world.renderer.domElement, r = canvas.getBoundingClientRect();"
+            "  canvas.dispatchEvent(new MouseEvent('click', { clientX: r.left + (c.x + 1) / 2 * r.width,"
+            "                                                  clientY: r.top + (1 - c.y) / 2 * r.height }));"
+            "  done(); });" % VIEWER)
+        selected = wait_for(browser, "document.getElementById('selection').textContent.startsWith('id ') && "
+                            "document.getElementById('selection').textContent")
+        assert selected.startswith("id %d " % iiwa.body_id("lbr_iiwa_link_4")), selected
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         pictures = {}
         for mode, shown, models_visible in [("visual", {"solid": 0, "overlay": 0}, True),

@@ -163,12 +163,13 @@ export class Bodies {
     return out;
   }
 
-  // the body id under a ray, or null
+  // {id, distance} of the nearest body under a ray, or null
   pick(raycaster) {
     const hits = raycaster.intersectObjects(this.meshes.filter((m) => m.isInstancedMesh || m.userData.solid), true);
     for (const h of hits) {
-      if (h.instanceId !== undefined) return h.object.userData.ids[h.instanceId];
-      if (h.object.parent && h.object.parent.visible && h.object.parent.userData.solid) return h.object.parent.userData.id;
+      if (h.instanceId !== undefined) return { id: h.object.userData.ids[h.instanceId], distance: h.distance };
+      const object = h.object.parent;
+      if (object && object.visible && object.userData.solid) return { id: object.userData.id, distance: h.distance };
     }
     return null;
   }

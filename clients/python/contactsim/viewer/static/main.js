@@ -104,8 +104,9 @@ requestAnimationFrame(animate);
 
 world.renderer.domElement.addEventListener('click', (ev) => {
   const ray = world.ray(ev);
-  const id = models.pick(ray) ?? bodies.pick(ray);
-  if (id === null) return;
+  const hits = [models.pick(ray), bodies.pick(ray)].filter((h) => h !== null);
+  if (!hits.length) return;
+  const id = hits.reduce((a, b) => (b.distance < a.distance ? b : a)).id;   // the nearer of a visual and a shape
   state.selected = id;
   if (state.hello && state.hello.mode === 'live') socket.send({ cmd: 'body', id });
   else $('selection').textContent = describe({ id, ...(bodies.catalog.get(id) || {}) });

@@ -77,11 +77,11 @@ export class Models {
     }
   }
 
-  // the body id of the visual under a ray, or null
+  // {id, distance} of the nearest visual's body under a ray, or null
   pick(raycaster) {
     if (!this.visible) return null;
     for (const h of raycaster.intersectObjects([...this.groups.values()].filter((g) => g.visible), true)) {
-      for (let o = h.object; o; o = o.parent) if (o.userData.id !== undefined) return o.userData.id;
+      for (let o = h.object; o; o = o.parent) if (o.userData.id !== undefined) return { id: o.userData.id, distance: h.distance };
     }
     return null;
   }
