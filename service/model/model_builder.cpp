@@ -3,6 +3,7 @@
 #include "service/model/body_plan.h"
 #include "service/model/engine_settings.h"
 #include "service/model/model_check.h"
+#include "service/model/visual_entry.h"
 
 namespace contactsim::model {
 namespace {
@@ -39,7 +40,11 @@ ModelRecord MakeRecord(const ModelDescription& d, const ModelOptions& o) {
   r.source = d.source;
   r.fixed_base = o.fixed_base;
   r.self_collide = o.self_collide;
-  for (const Link& l : d.links) r.links.push_back({l.name, 0, Vec3::Zero(), Quat::Identity()});
+  for (const Link& l : d.links) {
+    ModelLinkEntry e{l.name, 0, Vec3::Zero(), Quat::Identity(), {}};
+    for (const VisualElement& v : l.visuals) e.visuals.push_back(ToVisualEntry(v));
+    r.links.push_back(std::move(e));
+  }
   for (const ModelJoint& j : d.joints) {
     ModelJointEntry e;
     e.name = j.name;

@@ -22,11 +22,28 @@ namespace contactsim {
 
 using ModelId = int64_t;
 
+// One visual element of a link as the file gives it, kept for viewers (the
+// physics never reads it): a box, sphere, cylinder, capsule or mesh posed in
+// the link frame, with the mesh file's resolved path and the colour of the
+// element's material.
+struct ModelVisualEntry {
+  int geometry = 0;                     // model::GeometryType: 0 box, 1 sphere, 2 cylinder, 3 capsule, 4 mesh
+  Vec3 position = Vec3::Zero();         // m: the visual's frame in the link frame
+  Quat orientation = Quat::Identity();  // the visual's axes in the link frame
+  Vec3 box_size = Vec3::Zero();         // m, full edge lengths
+  double radius = 0.0;                  // m: sphere, cylinder, capsule
+  double length = 0.0;                  // m: cylinder and capsule, along the visual's z
+  std::string mesh_path;                // mesh: the resolved file (absolute)
+  Vec3 mesh_scale = Vec3::Ones();       // mesh: per-axis scale from the file
+  Eigen::Vector4d rgba{0.7, 0.7, 0.7, 1.0};
+};
+
 struct ModelLinkEntry {
   std::string name;                     // the file's link name
   BodyId body = 0;                      // the body that carries the link
   Vec3 position = Vec3::Zero();         // m: the link frame's origin in the body frame
   Quat orientation = Quat::Identity();  // the link frame's axes in the body frame
+  std::vector<ModelVisualEntry> visuals;  // none: a viewer draws the link's collision shapes
 };
 
 struct ModelJointEntry {

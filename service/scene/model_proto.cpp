@@ -2,6 +2,8 @@
 
 #include <google/protobuf/repeated_field.h>
 
+#include "service/model/visual_entry.h"
+
 namespace contactsim {
 namespace {
 
@@ -67,6 +69,23 @@ Status LoadGeometry(const std::string& where, const proto::ModelGeometry& in, Ge
   return Status::Ok();
 }
 
+void SaveVisual(const model::VisualElement& v, proto::ModelVisual* out) {
+  out->set_name(v.name);
+  SavePose(v.origin, out->mutable_origin());
+  SaveGeometry(v.geometry, out->mutable_geometry());
+  out->mutable_rgba()->Add(v.rgba.data(), v.rgba.data() + 4);
+}
+
+Status LoadVisual(const std::string& where, const proto::ModelVisual& in, model::VisualElement* v) {
+  v->name = in.name();
+  Status st = LoadPose(where + " visual", in.origin(), &v->origin);
+  if (st.ok()) st = LoadGeometry(where + " visual", in.geometry(), &v->geometry);
+  if (st.ok()) st = Size(where + " visual rgba", in.rgba(), 4);
+  if (!st.ok()) return st;
+  v->rgba = Eigen::Vector4d(in.rgba(0), in.rgba(1), in.rgba(2), in.rgba(3));
+  return Status::Ok();
+}
+
 void SaveLink(const model::Link& l, proto::ModelLink* out) {
   out->set_name(l.name);
   if (l.inertial) {
@@ -83,13 +102,7 @@ void SaveLink(const model::Link& l, proto::ModelLink* out) {
     SavePose(c.origin, pc->mutable_origin());
     SaveGeometry(c.geometry, pc->mutable_geometry());
   }
-  for (const model::VisualElement& v : l.visuals) {
-    proto::ModelVisual* pv = out->add_visuals();
-    pv->set_name(v.name);
-    SavePose(v.origin, pv->mutable_origin());
-    SaveGeometry(v.geometry, pv->mutable_geometry());
-    pv->mutable_rgba()->Add(v.rgba.data(), v.rgba.data() + 4);
-  }
+  for (const model::VisualElement& v : l.visuals) SaveVisual(v, out->add_visuals());
 }
 
 Status LoadLink(const proto::ModelLink& in, model::Link* l) {
@@ -112,13 +125,8 @@ Status LoadLink(const proto::ModelLink& in, model::Link* l) {
     l->collisions.push_back(std::move(c));
   }
   for (const proto::ModelVisual& pv : in.visuals()) {
-    model::VisualElement v;
-    v.name = pv.name();
-    if (!(st = LoadPose(where + " visual", pv.origin(), &v.origin)).ok()) return st;
-    if (!(st = LoadGeometry(where + " visual", pv.geometry(), &v.geometry)).ok()) return st;
-    if (!(st = Size(where + " visual rgba", pv.rgba(), 4)).ok()) return st;
-    v.rgba = Eigen::Vector4d(pv.rgba(0), pv.rgba(1), pv.rgba(2), pv.rgba(3));
-    l->visuals.push_back(std::move(v));
+    l->visuals.emplace_back();
+    if (!(st = LoadVisual(where, pv, &l->visuals.back())).ok()) return st;
   }
   return Status::Ok();
 }
@@ -205,6 +213,8 @@ void SaveModelRecord(const ModelRecord& r, proto::ModelRecord* out) {
     pl->set_body(l.body);
     Put(l.position, pl->mutable_position());
     Put(l.orientation, pl->mutable_orientation());
+    // the record keeps no mesh vertices: a viewer reads the mesh file
+    for (const ModelVisualEntry& v : l.visuals) SaveVisual(model::FromVisualEntry(v), pl->add_visuals());
   }
   for (const ModelJointEntry& j : r.joints) {
     proto::ModelJointEntry* pj = out->add_joints();
@@ -230,7 +240,12 @@ Status LoadModelRecord(const proto::ModelRecord& in, ModelRecord* r) {
     const std::string where = "model \"" + m.name + "\" link \"" + pl.name() + "\"";
     if (!(st = Size(where + " position", pl.position(), 3)).ok()) return st;
     if (!(st = Size(where + " orientation", pl.orientation(), 4)).ok()) return st;
-    m.links.push_back({pl.name(), pl.body(), V3(pl.position()), Q(pl.orientation())});
+    m.links.push_back({pl.name(), pl.body(), V3(pl.position()), Q(pl.orientation()), {}});
+    for (const proto::ModelVisual& pv : pl.visuals()) {
+      model::VisualElement v;
+      if (!(st = LoadVisual(where, pv, &v)).ok()) return st;
+      m.links.back().visuals.push_back(model::ToVisualEntry(v));
+    }
   }
   for (const proto::ModelJointEntry& pj : in.joints()) {
     m.joints.push_back({pj.name(), pj.type(), pj.joint(), pj.damping(), pj.friction(), pj.effort_limit(),

@@ -189,3 +189,37 @@ def test_cli_takes_the_key_file_and_reports_a_bad_one(signing_server, key_file, 
     bad = subprocess.run(base + ["--auth-key-file", str(tmp_path / "nope.key"), "pause"], capture_output=True,
                          text=True, timeout=60)
     assert bad.returncode == 2 and "nope.key" in bad.stderr
+
+
+# Verifies that with a key an observer sees another client's RAY_CAST (by
+# its mac; a forged one is dropped) and every RAY_HITS through the client's
+# own check, once, without counting a failure: two subscriptions checking
+# the same signed message would see its seq twice.
+def test_observers_see_signed_ray_casts_and_hits(signing_server, key_file):
+    def cast_msg(request_id):
+        m = contactsim.ray_cast_t()
+        m.client_id, m.request_id, m.num_rays = "other", request_id, 1
+        m.origins, m.directions, m.max_distances = [[0.0, 0.0, 0.0]], [[1.0, 0.0, 0.0]], [1.0]
+        return m.encode()
+
+    with connect(signing_server, auth_key_file=key_file) as c:
+        casts, hits = [], []
+        c.on_command("RAY_CAST", contactsim.ray_cast_t, casts.append)
+        c.on_ray_hits(hits.append)
+        channel = signing_server.prefix + "_RAY_CAST"
+        raw = signing_server.lc._lc   # unsigned: the other client signs for itself
+        raw.publish(channel, auth.Signer(b"another key, not the server's!!" * 2).sign(channel, cast_msg(6)))
+        raw.publish(channel, auth.Signer(KEY).sign(channel, cast_msg(7)))
+        answer = contactsim.ray_hits_t()
+        answer.client_id, answer.request_id, answer.num_rays = "other", 7, 1
+        answer.hit, answer.body_ids, answer.distances = [True], [1], [0.5]
+        answer.points, answer.normals = [[0.5, 0.0, 0.0]], [[-1.0, 0.0, 0.0]]
+        signing_server.lc.publish(signing_server.prefix + "_RAY_HITS", answer.encode())
+        deadline = time.monotonic() + REPLY_TIMEOUT
+        while (not casts or not hits) and time.monotonic() < deadline:
+            time.sleep(0.01)
+        time.sleep(0.1)   # a forged cast, or a second delivery, would have come by now
+        assert [m.request_id for m in casts] == [7] and [m.request_id for m in hits] == [7]
+        assert c.auth_failures == 0, c.last_auth_failure
+        with pytest.raises(ValueError):
+            c.on_command("STATE", contactsim.state_t, casts.append)

@@ -178,6 +178,21 @@ def test_authenticator_drops_and_counts_what_fails():
     assert a.failures == 2 and a.last_failure.startswith("P_STATE: unsigned:")
 
 
+# Verifies that an observer (the viewer watching every client's RAY_CAST)
+# takes another client's command by its mac alone: the same seq from two
+# senders, or twice, is the server's to judge, while a forged or unsigned
+# one is dropped.
+def test_observed_commands_are_checked_by_their_mac_alone():
+    a = auth.Authenticator(KEY, clock=lambda: SEQ)
+    command = signed_at(SEQ, channel="P_RAY_CAST")
+    assert a.observe("P_RAY_CAST", command) == PAYLOAD
+    assert a.observe("P_RAY_CAST", command) == PAYLOAD
+    assert a.observe("P_RAY_CAST", signed_at(SEQ, key=b"x" * 64, channel="P_RAY_CAST")) is None
+    assert a.observe("P_BODY_CMD", command) is None
+    assert a.observe("P_RAY_CAST", PAYLOAD) is None
+    assert a.failures == 0
+
+
 # ------------------------------------------------ agreement with the C++ library
 def cpp_tool(args, data, key_file):
     if not TOOL.exists():

@@ -103,3 +103,111 @@ def test_websocket_refuses_other_origins():
             async with tc.ws_connect("/ws", headers={"Origin": own}) as ws:
                 assert (await ws.receive_json())["type"] == "hello"
     asyncio.run(run())
+
+
+def _urdf_visuals(path):
+    """{link: [(mesh file or None, rgba)]} of a URDF's visual elements, read with ElementTree."""
+    import os
+    import xml.etree.ElementTree as ET
+    root = ET.parse(path).getroot()
+    colours = {m.get("name"): [float(x) for x in m.find("color").get("rgba").split()]
+               for m in root.findall("material") if m.find("color") is not None}
+    out = {}
+    for link in root.findall("link"):
+        out[link.get("name")] = []
+        for v in link.findall("visual"):
+            mesh = v.find("geometry/mesh")
+            file = os.path.join(os.path.dirname(path), mesh.get("filename")) if mesh is not None else None
+            m = v.find("material")
+            out[link.get("name")].append((file, colours.get(m.get("name")) if m is not None else None))
+    return out
+
+
+# Verifies that a real server's snapshot keeps every link's visual elements
+# (the resolved mesh file, the material's colour) and the compound bodies'
+# children, and that each mesh gets a URL of its folder.
+def test_catalog_keeps_the_models_visuals(launch, tmp_path):
+    import os
+    pybullet_data = pytest.importorskip("pybullet_data")
+    from contactsim.viewer.meshes import MeshFiles
+    iiwa_path = os.path.join(pybullet_data.getDataPath(), "kuka_iiwa", "model.urdf")
+    c = launch(args=("--model-path", pybullet_data.getDataPath())).client
+    iiwa = c.load_model(iiwa_path, name="iiwa", fixed_base=True)
+    path = tmp_path / "models.snapshot"
+    c.snapshot(path=str(path))
+    cat = read_catalog(path)
+    (model,) = cat["models"]
+    assert model["name"] == "iiwa" and [l["name"] for l in model["links"]] == iiwa.links
+    expected = _urdf_visuals(iiwa_path)
+    for link in model["links"]:
+        want = expected[link["name"]]
+        assert [os.path.realpath(v["mesh_path"]) for v in link["visuals"]] == \
+            [os.path.realpath(f) for f, _ in want], link["name"]
+        # urdfdom keeps colours as floats
+        np.testing.assert_allclose([v["rgba"] for v in link["visuals"]], [rgba for _, rgba in want], atol=1e-7)
+        assert link["body"] == iiwa.body_id(link["name"])
+    kinds = {b["id"]: b["shape"]["kind"] for b in cat["bodies"]}
+    assert {kinds[l["body"]] for l in model["links"]} == {"compound"}
+    children = next(b for b in cat["bodies"] if b["id"] == model["links"][1]["body"])["shape"]["children"]
+    assert children and children[0]["shape"]["kind"] == "convex" and len(children[0]["orientation"]) == 4
+    hinges = {j["id"]: j for j in cat["joints"]}
+    assert [hinges[j["joint"]]["kind"] for j in model["joints"]] == ["hinge"] * 7
+    meshes = MeshFiles()
+    meshes.add_urls(cat)
+    urls = [v["url"] for l in model["links"] for v in l["visuals"]]
+    assert urls == ["/meshes/0/link_%d.obj" % i for i in range(8)]
+    assert meshes.resolve("0", "link_3.obj") == os.path.realpath(model["links"][3]["visuals"][0]["mesh_path"])
+
+
+def _mesh_folder(tmp_path):
+    """A model folder with a served mesh, and beside it what must not be served."""
+    meshes = tmp_path / "robot" / "meshes"
+    meshes.mkdir(parents=True)
+    (meshes / "arm.stl").write_bytes(b"solid arm\nendsolid arm\n")
+    (meshes / "notes.txt").write_text("not a mesh")
+    (tmp_path / "robot" / "secret.stl").write_text("outside the mesh folder")
+    (meshes / "escape.stl").symlink_to(tmp_path / "robot" / "secret.stl")
+    catalog = {"models": [{"links": [{"visuals": [{"kind": "mesh", "mesh_path": str(meshes / "arm.stl")}]}]}]}
+    return catalog
+
+
+# Verifies that the bridge serves a model's mesh file and refuses every
+# request that leaves the mesh's folder (.., encoded or not, an absolute
+# path, a symbolic link out of it), names no model's folder, or asks for a
+# file that is not a mesh, material or texture.
+def test_mesh_requests_outside_the_models_folders_are_refused(tmp_path):
+    import asyncio
+
+    from aiohttp.test_utils import TestClient, TestServer
+
+    from contactsim.viewer.meshes import MeshFiles
+    from contactsim.viewer.server import make_app
+
+    class Source:
+        mode, catalog_version = "replay", 1
+
+        def __init__(self):
+            self.catalog = _mesh_folder(tmp_path)
+            self.meshes = MeshFiles()
+            self.meshes.add_urls(self.catalog)
+
+    source = Source()
+    url = source.catalog["models"][0]["links"][0]["visuals"][0]["url"]
+    assert url == "/meshes/0/arm.stl"
+    refused = ["/meshes/0/..%2Fsecret.stl", "/meshes/0/%2E%2E/secret.stl", "/meshes/0/%2E%2E%2Fsecret.stl",
+               "/meshes/0/escape.stl", "/meshes/0/notes.txt", "/meshes/0/%2Fetc%2Fpasswd",
+               "/meshes/0/..%2F..%2F..%2F..%2F..%2F..%2Fetc%2Fpasswd", "/meshes/1/arm.stl", "/meshes/x/arm.stl",
+               "/meshes/-1/arm.stl", "/meshes/0/", "/meshes/0/arm.stl%00.stl"]
+
+    async def run():
+        async with TestClient(TestServer(make_app(source))) as tc:
+            ok = await tc.get(url)
+            assert ok.status == 200 and await ok.read() == b"solid arm\nendsolid arm\n"
+            for bad in refused:
+                r = await tc.get(bad)
+                assert r.status in (403, 404), (bad, r.status)
+                assert b"outside" not in await r.read(), bad
+    asyncio.run(run())
+    for folder, relative in [("0", "../secret.stl"), ("0", str(tmp_path / "robot" / "secret.stl")),
+                             ("0", "escape.stl"), ("0", "notes.txt"), ("1", "arm.stl")]:
+        assert source.meshes.resolve(folder, relative) is None, relative

@@ -179,6 +179,13 @@ class Authenticator:
     def sign(self, channel, payload):
         return self.signer.sign(channel, payload)
 
+    def observe(self, channel, data):
+        """The payload of another client's command that carries this key's
+        mac, or None. Its freshness and replay are the server's to judge:
+        every sender counts its own seq."""
+        v = verify(self._key, channel, data)
+        return bytes(data[:v.payload_size]) if v.ok else None
+
     def unwrap(self, channel, data):
         """The payload of a verified message from the server, or None (counted)."""
         v = verify(self._key, channel, data)

@@ -418,6 +418,34 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, 
         """Calls callback(reply_t) for every reply on the channel, any client's; returns a remover."""
         return self._add_callback("reply", callback)
 
+    def on_command(self, name, msg_type, callback):
+        """Calls callback(msg) on the LCM thread for every command of type
+        ``msg_type`` that any client sends on the protocol channel ``name``
+        (an incoming channel of protocol.toml, e.g. "RAY_CAST"), checked by
+        its mac alone when the client has a key (its freshness and replay
+        are the server's to judge). Returns a function that removes it. For
+        observers such as the viewer, which draws every client's ray casts."""
+        if name not in protocol.INCOMING:
+            raise ValueError("%r is not a command channel; the commands: %s" % (name, ", ".join(protocol.INCOMING)))
+
+        def handle(channel, data):
+            data = self._auth.observe(channel, data) if self._auth else data[:unsigned_size(data)]
+            try:
+                msg = None if data is None else msg_type.decode(data)
+            except Exception:  # noqa: BLE001 - not ours to judge
+                msg = None
+            if msg is not None:
+                callback(msg)
+        sub = self._lc.subscribe(self.channels[name], handle)
+        sub.set_queue_capacity(SUBSCRIPTION_QUEUE_CAPACITY)
+
+        def remove():
+            try:
+                self._lc.unsubscribe(sub)
+            except Exception:  # noqa: BLE001 - already closed
+                pass
+        return remove
+
     def _wait(self, registry, predicate, timeout, what, latest):
         self._check_thread()
         w = _Waiter(predicate)

@@ -89,12 +89,16 @@ class SensorCommands:
         self._sensors_seq = 0
         self._sensors_cond = threading.Condition(self._lock)
         self._callbacks["sensors"] = []
+        self._callbacks["ray_hits"] = []
         return [self._lc.subscribe(self.channels["RAY_HITS"], self._on_ray_hits_msg),
                 self._lc.subscribe(self.channels["SENSORS"], self._on_sensors_msg)]
 
     def _on_ray_hits_msg(self, channel, data):
         msg = self._decode(channel, data, ray_hits_t)
-        if msg is None or msg.client_id != self.client_id:
+        if msg is None:
+            return
+        self._call("ray_hits", msg)
+        if msg.client_id != self.client_id:
             return
         with self._ray_cond:
             self._ray_hits[msg.request_id] = msg
@@ -192,6 +196,10 @@ class SensorCommands:
             if not self._sensors_cond.wait_for(ready, timeout=timeout):
                 raise TimeoutError("no SENSORS reading within %gs" % timeout)
             return self._sensors_msg
+
+    def on_ray_hits(self, callback):
+        """Calls callback(ray_hits_t) for every RAY_HITS, any client's; returns a remover."""
+        return self._add_callback("ray_hits", callback)
 
     def on_sensors(self, callback):
         """Calls callback(Sensors) with each reading; returns a remover."""

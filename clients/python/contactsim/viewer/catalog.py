@@ -1,9 +1,12 @@
-"""What STATE does not carry: each body's shape, name and mass, and the
-joints, read from a snapshot file of the server (service/proto/snapshot.proto)
-into plain dicts the page can draw (docs/viewer.md, "catalog")."""
+"""What STATE does not carry: each body's shape, name and mass, the joints,
+the range sensors and the robot models, read from a snapshot file of the
+server (service/proto/snapshot.proto) into plain dicts the page can draw
+(docs/viewer.md, "catalog")."""
+from .model_catalog import MODEL, model_entry
 from .protowire import parse
 
-SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane", 6: "mesh", 7: "heightfield"}
+SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane", 5: "compound", 6: "mesh",
+               7: "heightfield"}
 MOTIONS = {0: "dynamic", 1: "static", 2: "kinematic"}
 JOINT_KINDS = {0: "distance", 1: "ball", 2: "hinge", 3: "fixed", 4: "prismatic"}
 
@@ -15,13 +18,19 @@ _SHAPE = {1: ("type", "int", False), 2: ("radius", "double", False), 3: ("half_e
           9: ("mesh_vertices", "double", True), 10: ("mesh_indices", "int", True),
           11: ("height_rows", "int", False), 12: ("height_cols", "int", False), 13: ("heights", "double", True),
           14: ("height_spacing_x", "double", False), 15: ("height_spacing_y", "double", False)}
+_CHILD = {1: ("shape", _SHAPE, False), 2: ("position", "double", True), 3: ("orientation", "double", True)}
+_SHAPE[8] = ("children", _CHILD, True)   # a compound's shapes (never compounds themselves)
 _BODY = {1: ("id", "int", False), 2: ("name", "string", False), 3: ("shape", _SHAPE, False),
          6: ("motion", "int", False), 7: ("mass", "double", False), 11: ("x", "double", True),
          12: ("q", "double", True)}
 _JOINT = {1: ("id", "int", False), 2: ("kind", "int", False), 3: ("body_a", "int", False),
-          4: ("body_b", "int", False), 5: ("anchor_a", "double", True), 6: ("anchor_b", "double", True)}
+          4: ("body_b", "int", False), 5: ("anchor_a", "double", True), 6: ("anchor_b", "double", True),
+          7: ("axis_a", "double", True), 9: ("rest", "double", True), 11: ("limited", "bool", False),
+          12: ("lower", "double", False), 13: ("upper", "double", False)}
+_RANGE = {1: ("name", "string", False), 2: ("body", "int", False), 3: ("origin", "double", True),
+          5: ("max_distance", "double", False)}
 _SNAPSHOT = {2: ("step", "int", False), 3: ("time", "double", False), 7: ("bodies", _BODY, True), 9: ("contact_method", "string", False),
-             14: ("joints", _JOINT, True)}
+             14: ("joints", _JOINT, True), 17: ("range_sensors", _RANGE, True), 40: ("models", MODEL, True)}
 
 
 def _shape(s):
@@ -51,21 +60,32 @@ def _shape(s):
         out["cols"] = s.get("height_cols", 0)
         out["heights"] = s.get("heights", [])
         out["spacing"] = [s.get("height_spacing_x", 0.0), s.get("height_spacing_y", 0.0)]
+    if kind == "compound":
+        out["children"] = [{"shape": _shape(c.get("shape", {})), "position": c.get("position", [0.0] * 3),
+                            "orientation": c.get("orientation", [1.0, 0.0, 0.0, 0.0])}
+                           for c in s.get("children", [])]
     return out
 
 
 def catalog_from_snapshot(data):
     """{"step", "time", "bodies": [{id, name, motion, mass, shape, x, q}], "joints":
-    [{id, kind, body_a, body_b, anchor_a, anchor_b}]} from a snapshot's bytes.
-    Anchors are in the bodies' frames (anchor_b in the world's for body_b 0)."""
+    [{id, kind, body_a, body_b, anchor_a, anchor_b, axis_a, rest, limited, lower, upper}],
+    "range_sensors": [{name, body, origin, max_distance}], "models": [model_catalog.model_entry]}
+    from a snapshot's bytes. Anchors, axes and sensor origins are in the bodies'
+    frames (anchor_b in the world's for body_b 0)."""
     snap = parse(data, _SNAPSHOT)
     bodies = [{"id": b.get("id", 0), "name": b.get("name", ""), "motion": MOTIONS.get(b.get("motion", 0), "?"),
                "mass": b.get("mass", 0.0), "shape": _shape(b.get("shape", {})),
                "x": b.get("x", [0.0] * 3), "q": b.get("q", [1.0, 0.0, 0.0, 0.0])} for b in snap.get("bodies", [])]
     joints = [{"id": j.get("id", 0), "kind": JOINT_KINDS.get(j.get("kind", 0), "?"), "body_a": j.get("body_a", 0),
                "body_b": j.get("body_b", 0), "anchor_a": j.get("anchor_a", [0.0] * 3),
-               "anchor_b": j.get("anchor_b", [0.0] * 3)} for j in snap.get("joints", [])]
-    return {"step": snap.get("step", 0), "time": snap.get("time", 0.0), "bodies": bodies, "joints": joints}
+               "anchor_b": j.get("anchor_b", [0.0] * 3), "axis_a": j.get("axis_a", [0.0, 0.0, 1.0]),
+               "rest": j.get("rest", [1.0, 0.0, 0.0, 0.0]), "limited": j.get("limited", False),
+               "lower": j.get("lower", 0.0), "upper": j.get("upper", 0.0)} for j in snap.get("joints", [])]
+    ranges = [{"name": r.get("name", ""), "body": r.get("body", 0), "origin": r.get("origin", [0.0] * 3),
+               "max_distance": r.get("max_distance", 0.0)} for r in snap.get("range_sensors", [])]
+    return {"step": snap.get("step", 0), "time": snap.get("time", 0.0), "bodies": bodies, "joints": joints,
+            "range_sensors": ranges, "models": [model_entry(m) for m in snap.get("models", [])]}
 
 
 def read_catalog(path):

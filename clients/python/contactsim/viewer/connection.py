@@ -35,18 +35,26 @@ class Connection:
             await self.send_json({"type": "catalog", **self.source.catalog})
 
     async def push_live(self):
-        """Sends STATUS when it changes, the catalog when it changes and the
-        latest STATE (with the latest CONTACTS) whenever the page is ready."""
+        """Sends STATUS when it changes, the catalog when it changes, each new
+        ray cast, and the latest STATE (with the latest CONTACTS and range
+        sensor fans) whenever the page is ready."""
         client = self.source.client
         last_count = last_status = last_contacts = None
+        last_cast, last_sensors = 0, None
         while not self.ws.closed:
             await asyncio.sleep(POLL_S)
             status = client.status()
             if status is not None and status is not last_status:
                 last_status = status
                 await self.send_json(status_message(status))
+            # a ray cast comes whenever a client casts, paused or not
+            last_cast = await self._send_cast(last_cast)
             if not self.ready:
                 continue
+            reading = client.sensors()   # published with STATE: thinned like it, by the page's ack
+            if reading is not None and reading is not last_sensors:
+                last_sensors = reading
+                await self.send_bytes(self.source.sensors_frame(reading))
             payload, count = client.state_payload()
             if payload is None:
                 await self._first_from_snapshot()
@@ -67,6 +75,14 @@ class Connection:
                     await self.send_bytes(frame)
             self.ready = False
             await self.send_bytes(poses_from_records(head, bodies))
+
+    async def _send_cast(self, last_cast):
+        """Sends the newest ray cast when it is new; returns the count sent."""
+        count, frame = self.source.cast_frame()
+        if frame is not None and count != last_cast:
+            await self.send_bytes(frame)
+            return count
+        return last_cast
 
     async def _first_from_snapshot(self):
         """A paused server publishes no STATE until something changes: show

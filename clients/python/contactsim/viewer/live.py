@@ -6,7 +6,10 @@ ready for one, docs/viewer.md), and reads their bodies with numpy
 (frames.read_state). Shapes, masses and joints are not in STATE:
 the bridge asks the server for a snapshot file (SNAPSHOT with a path, which
 changes nothing in the world) whenever the set of body ids changes, the
-clock goes back, or a reply tells of a joint added or removed.
+clock goes back, a reply tells of a joint added or removed, or a sensor
+reading names a sensor it has not seen. The models' mesh files are served
+from their folders only (meshes.py); ray casts and sensor fans come from
+rays.py.
 """
 import os
 import tempfile
@@ -19,6 +22,9 @@ import numpy as np
 from ..protocol import METHODS  # the contact methods the server registers; STATUS adds the active one
 from .catalog import read_catalog
 from .commands import run_command
+from .frames import rays_frame
+from .meshes import MeshFiles
+from .rays import RayWatch, range_rays, unknown_sensors
 
 RETRY_S = 2.0   # s between snapshot attempts after one failed
 
@@ -31,6 +37,8 @@ class LiveSource:
         self.scenes_dir = scenes_dir
         self._tmp = tempfile.TemporaryDirectory(prefix="contactsim-viewer-")
         self.catalog = {"bodies": [], "joints": []}
+        self.meshes = MeshFiles()
+        self.rays = RayWatch(client)
         self.catalog_version = 0
         self._catalog_ids = None
         self._last_step = None
@@ -42,6 +50,7 @@ class LiveSource:
 
     def close(self):
         self._remove_reply_cb()
+        self.rays.close()
         self._tmp.cleanup()
 
     def hello(self):
@@ -80,12 +89,27 @@ class LiveSource:
                 self._retry_at = time.monotonic() + RETRY_S   # a busy server may answer later
                 self._dirty.set()
                 return False
+            self.meshes.add_urls(catalog)
             self.catalog = catalog
             self._catalog_ids = np.array([b["id"] for b in catalog["bodies"]], dtype=np.int64)
             self.catalog_version += 1
             return True
         finally:
             self._refresh_lock.release()
+
+    def cast_frame(self):
+        """(count, RAYS frame) of the newest answered ray cast, or (0, None)."""
+        count, latest = self.rays.newest()
+        if latest is None:
+            return 0, None
+        step, origins, ends, hit = latest
+        return count, rays_frame(step, 0, np.zeros(len(hit)), origins, ends, hit)
+
+    def sensors_frame(self, reading):
+        """The RAYS frame of a SENSORS reading's range fans."""
+        if unknown_sensors(reading, self.catalog):
+            self._dirty.set()   # its origin is in the next snapshot
+        return rays_frame(reading.step, 1, *range_rays(reading, self.catalog))
 
     def body_info(self, body_id):
         """Catalog entry of a body plus its latest velocities (page clicks)."""

@@ -8,6 +8,7 @@ import numpy as np
 from ..logread import read_log
 from .catalog import read_catalog
 from .frames import contacts_frame, poses_frame
+from .meshes import MeshFiles
 
 
 class ReplaySource:
@@ -16,6 +17,8 @@ class ReplaySource:
     def __init__(self, log_path, snapshot_path=None, prefix=None):
         self.log = read_log(log_path, prefix=prefix)
         self.catalog = read_catalog(snapshot_path) if snapshot_path else {"bodies": [], "joints": []}
+        self.meshes = MeshFiles()
+        self.meshes.add_urls(self.catalog)
         self.catalog_version = 1
         c = self.log.contacts
         # contact points are stored in message order: message m owns points [start[m], start[m + 1])

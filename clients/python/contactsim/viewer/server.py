@@ -1,5 +1,6 @@
 """The viewer's web server (aiohttp): the page, its scripts, three.js from
-the local npm install, and the WebSocket at /ws."""
+the local npm install, the models' mesh files (meshes.py), and the WebSocket
+at /ws."""
 import asyncio
 import json
 import logging
@@ -17,6 +18,14 @@ THREE_DIR = os.path.join(HERE, "vendor", "node_modules", "three")
 log = logging.getLogger("contactsim.viewer")
 SOURCE = web.AppKey("source", object)     # the live or replay source
 SOCKETS = web.AppKey("sockets", set)      # open WebSockets, closed at shutdown
+
+
+async def _mesh(request):
+    """A mesh file of a model's visual (meshes.py says what is refused)."""
+    path = request.app[SOURCE].meshes.resolve(request.match_info["folder"], request.match_info["path"])
+    if path is None:
+        raise web.HTTPNotFound(text="contactsim-viewer: not a mesh file of a loaded model")
+    return web.FileResponse(path)
 
 
 async def _index(request):
@@ -75,6 +84,7 @@ def make_app(source):
     app.router.add_get("/", _index)
     app.router.add_get("/ws", _websocket)
     app.router.add_static("/static/", STATIC_DIR)
+    app.router.add_get("/meshes/{folder}/{path:.+}", _mesh)
     if os.path.isdir(THREE_DIR):
         app.router.add_static("/vendor/three/", THREE_DIR)
     return app

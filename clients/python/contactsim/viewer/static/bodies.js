@@ -1,11 +1,16 @@
 // Every body at its pose: one InstancedMesh per shape group (shapes.js),
 // rebuilt when the catalog or the set of body ids changes, updated in place
-// from each POSES frame.
+// from each POSES frame. Compound bodies and the bodies of robot models are
+// one object each (their collision shapes at real size), since a model's
+// collision shapes are shown, overlaid or hidden beside its visuals
+// (models.js) per body.
 import * as THREE from 'three';
 import { POSE_WIDTH } from './socket.js';
-import { planeObject, shapeGroup } from './shapes.js';
+import { collisionObject, planeObject, shapeGroup } from './shapes.js';
 
-const COLORS = { sphere: 0xd9a441, box: 0x5b8fd9, capsule: 0x6fbf73, convex: 0xb07cd9, marker: 0xaaaaaa };
+const COLORS = { sphere: 0xd9a441, box: 0x5b8fd9, capsule: 0x6fbf73, convex: 0xb07cd9, marker: 0xaaaaaa,
+                 compound: 0xd97b5b };
+const OVERLAY = new THREE.MeshBasicMaterial({ color: 0xffa040, wireframe: true, transparent: true, opacity: 0.6 });
 const STATIC_COLOR = 0x7a7f88;
 
 // neighbours of one kind differ a little in lightness, so that a stack reads as bodies
@@ -19,7 +24,10 @@ export class Bodies {
     this.root = new THREE.Group();
     scene.add(this.root);
     this.catalog = new Map();   // id -> catalog body
-    this.slots = new Map();     // id -> {mesh, index, scale} (planes: {plane: true})
+    this.slots = new Map();     // id -> {mesh, index, scale} (planes: {plane: true}; objects: {object})
+    this.modelBodies = new Set();  // bodies drawn as objects: they carry a model's links
+    this.visualBodies = new Set(); // those of them whose links have visuals
+    this.collision = 'visual';     // 'visual': hidden where visuals are, 'both': overlaid, 'collision': solid
     this.meshes = [];
     this.rowOf = new Map();     // id -> row of the latest POSES frame
     this.frame = null;
@@ -27,14 +35,43 @@ export class Bodies {
     this._s = new THREE.Vector3();
   }
 
-  setCatalog(bodies) {
+  // bodies: the catalog's; modelBodies and visualBodies: Sets of ids (models.js)
+  setCatalog(bodies, modelBodies = new Set(), visualBodies = new Set()) {
     this.catalog = new Map(bodies.map((b) => [b.id, b]));
+    this.modelBodies = modelBodies;
+    this.visualBodies = visualBodies;
     this.slots.clear();   // rebuilt at the next frame
+  }
+
+  // how the collision shapes of bodies with visuals are drawn
+  setCollisionMode(mode) {
+    this.collision = mode;
+    for (const [id, slot] of this.slots) if (slot.object) this._style(id, slot.object);
+  }
+
+  _style(id, object) {
+    const covered = this.visualBodies.has(id);
+    object.visible = !covered || this.collision !== 'visual';
+    const overlay = covered && this.collision === 'both';
+    object.traverse((m) => { if (m.isMesh) m.material = overlay ? OVERLAY : object.userData.solid; });
+  }
+
+  _object(id, body) {
+    const color = body.motion !== 'dynamic' ? STATIC_COLOR : shade(COLORS.compound, id);
+    const solid = new THREE.MeshLambertMaterial({ color });
+    const object = collisionObject(body.shape, solid);
+    object.userData = { id, solid };
+    this._style(id, object);
+    this.root.add(object); this.meshes.push(object);
+    this.slots.set(id, { object });
   }
 
   // lays out the ids of a frame into instanced groups (only when they change)
   _layout(ids) {
-    for (const m of this.meshes) { this.root.remove(m); if (m.geometry) m.geometry.dispose(); }
+    for (const m of this.meshes) {
+      this.root.remove(m);
+      m.traverse((o) => { if (o.geometry) o.geometry.dispose(); });
+    }
     this.meshes = [];
     this.slots.clear();
     const groups = new Map();
@@ -46,6 +83,7 @@ export class Bodies {
         this.slots.set(id, { plane: true });
         continue;
       }
+      if (body && (body.shape.kind === 'compound' || this.modelBodies.has(id))) { this._object(id, body); continue; }
       const g = shapeGroup(body && body.shape);
       const still = body && body.motion !== 'dynamic';
       const key = g.key + (still ? ':static' : '');
@@ -80,6 +118,7 @@ export class Bodies {
       if (slot.plane) continue;
       this._p.set(r[o + 1], r[o + 2], r[o + 3]);
       this._q.set(r[o + 5], r[o + 6], r[o + 7], r[o + 4]);   // ours (w, x, y, z); three's (x, y, z, w)
+      if (slot.object) { slot.object.position.copy(this._p); slot.object.quaternion.copy(this._q); continue; }
       this._s.set(...slot.scale);
       slot.mesh.setMatrixAt(slot.index, this._m.compose(this._p, this._q, this._s));
     }
@@ -104,6 +143,7 @@ export class Bodies {
     const out = {};
     for (const [id, slot] of this.slots) {
       if (slot.plane) continue;
+      if (slot.object) { out[id] = slot.object.position.toArray(); continue; }
       slot.mesh.getMatrixAt(slot.index, this._m);
       this._p.setFromMatrixPosition(this._m);
       out[id] = [this._p.x, this._p.y, this._p.z];
@@ -111,10 +151,26 @@ export class Bodies {
     return out;
   }
 
-  // the body id under a ray, or null
+  // how many collision objects (compounds, model bodies) are drawn solid and as an overlay
+  shownObjects() {
+    const out = { solid: 0, overlay: 0 };
+    for (const slot of this.slots.values()) {
+      if (!slot.object || !slot.object.visible) continue;
+      let overlay = false;
+      slot.object.traverse((m) => { if (m.isMesh && m.material === OVERLAY) overlay = true; });
+      out[overlay ? 'overlay' : 'solid'] += 1;
+    }
+    return out;
+  }
+
+  // {id, distance} of the nearest body under a ray, or null
   pick(raycaster) {
-    const hits = raycaster.intersectObjects(this.meshes.filter((m) => m.isInstancedMesh), false);
-    for (const h of hits) if (h.instanceId !== undefined) return h.object.userData.ids[h.instanceId];
+    const hits = raycaster.intersectObjects(this.meshes.filter((m) => m.isInstancedMesh || m.userData.solid), true);
+    for (const h of hits) {
+      if (h.instanceId !== undefined) return { id: h.object.userData.ids[h.instanceId], distance: h.distance };
+      const object = h.object.parent;
+      if (object && object.visible && object.userData.solid) return { id: object.userData.id, distance: h.distance };
+    }
     return null;
   }
 

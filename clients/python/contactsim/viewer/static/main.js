@@ -2,8 +2,11 @@
 // window.contactsimViewer exposes the scene state to tests and scripts.
 import { Bodies } from './bodies.js';
 import { showMethod, setOptions, wireLiveControls } from './controls.js';
+import { JointPanel } from './joint_panel.js';
+import { Models } from './models.js';
 import { Contacts, Joints } from './overlays.js';
 import { Panel } from './panel.js';
+import { Rays } from './rays.js';
 import { connect } from './socket.js';
 import { Timeline } from './timeline.js';
 import { World } from './world.js';
@@ -13,6 +16,9 @@ const world = new World($('view'));
 const bodies = new Bodies(world.scene);
 const contacts = new Contacts(world.scene);
 const joints = new Joints(world.scene);
+const models = new Models(world.scene, () => { world.dirty = true; });
+const rays = new Rays(world.scene);
+const jointPanel = new JointPanel($('joints'));
 const panel = new Panel();
 const state = { hello: null, status: null, pending: null, drawn: 0, step: null, selected: null,
                 framed: false, renders: 0, updateMs: [], frameLog: [], timeline: null, replies: [] };
@@ -28,7 +34,9 @@ const socket = connect({
   catalog(msg) {
     // ids restart with a new scene: a selection survives only if its body is the same one
     const before = state.selected !== null ? bodies.catalog.get(state.selected) : null;
-    bodies.setCatalog(msg.bodies); joints.setCatalog(msg.joints); state.framed = false;
+    const { modelBodies, visualBodies } = models.setCatalog(msg.models);
+    bodies.setCatalog(msg.bodies, modelBodies, visualBodies); joints.setCatalog(msg.joints); state.framed = false;
+    jointPanel.setCatalog(msg.models, msg.joints);
     const after = state.selected !== null ? bodies.catalog.get(state.selected) : null;
     if (!before || !after || before.name !== after.name) state.selected = null;
   },
@@ -38,6 +46,7 @@ const socket = connect({
   },
   poses(frame) { state.pending = frame; },   // drawn at the next animation frame
   contacts(frame) { contacts.apply(frame); panel.contacts(frame.n); },
+  rays(frame) { rays.apply(frame); },
   reply(msg) { state.replies.push(msg); panel.message(`${msg.cmd}: ${msg.message}`, msg.ok); },
   error(msg) { panel.message(msg.message, false); },
   body(msg) { $('selection').textContent = describe(msg); },
@@ -79,6 +88,8 @@ function animate(now) {
   }
   if (state.timeline) state.timeline.tick(now);
   if (frame || contacts.changed) { joints.update(bodies); contacts.changed = false; world.dirty = true; }
+  if (frame) { models.update(bodies); jointPanel.update(bodies); }
+  if (frame || rays.changed) { rays.update(bodies); world.dirty = true; }
   const sel = state.selected !== null && $('follow').checked ? bodies.pose(state.selected) : null;
   if (sel && frame) world.follow(sel.p);
   if (world.render()) state.renders += 1;
@@ -92,8 +103,10 @@ function animate(now) {
 requestAnimationFrame(animate);
 
 world.renderer.domElement.addEventListener('click', (ev) => {
-  const id = bodies.pick(world.ray(ev));
-  if (id === null) return;
+  const ray = world.ray(ev);
+  const hits = [models.pick(ray), bodies.pick(ray)].filter((h) => h !== null);
+  if (!hits.length) return;
+  const id = hits.reduce((a, b) => (b.distance < a.distance ? b : a)).id;   // the nearer of a visual and a shape
   state.selected = id;
   if (state.hello && state.hello.mode === 'live') socket.send({ cmd: 'body', id });
   else $('selection').textContent = describe({ id, ...(bodies.catalog.get(id) || {}) });
@@ -101,6 +114,12 @@ world.renderer.domElement.addEventListener('click', (ev) => {
 $('show-contacts').addEventListener('change', (ev) => { contacts.setVisible(ev.target.checked); world.dirty = true; });
 $('btn-fit').addEventListener('click', () => { const b = bodies.bounds(); world.fit(b.centre, b.radius); });
 $('follow').addEventListener('change', () => { world.dirty = true; });
+$('show-rays').addEventListener('change', (ev) => { rays.setVisible(ev.target.checked); world.dirty = true; });
+$('collision-mode').addEventListener('change', (ev) => {
+  bodies.setCollisionMode(ev.target.value);
+  models.setVisible(ev.target.value !== 'collision');
+  world.dirty = true;
+});
 
 window.contactsimViewer = {
   bodies: () => bodies.positions(),          // id -> [x, y, z] from the instance matrices
@@ -116,5 +135,9 @@ window.contactsimViewer = {
   seek: (i) => state.timeline && state.timeline.seek(i),
   timelineSteps: () => (state.timeline ? state.timeline.steps : []),
   select: (id) => { state.selected = id; },
-  internals: { world, bodies, contacts, joints },
+  models: () => models.counts(),             // bodies with visuals, three.js meshes drawn, mesh files loaded / failed
+  collisionShown: () => bodies.shownObjects(),  // {solid, overlay}: collision objects of model and compound bodies drawn
+  rays: () => rays.counts,                   // {cast, sensors}: {rays, hits} drawn
+  jointValues: () => jointPanel.values,      // "model/joint" -> rad or m at the drawn poses
+  internals: { world, bodies, contacts, joints, models, rays },
 };

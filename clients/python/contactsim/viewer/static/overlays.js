@@ -3,7 +3,7 @@ import * as THREE from 'three';
 import { CONTACT_WIDTH } from './socket.js';
 
 // a LineSegments or Points whose buffer grows to the largest count seen
-function growable(kind, color, extra = {}) {
+export function growable(kind, color, extra = {}) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3), 3));
   g.setDrawRange(0, 0);
@@ -15,11 +15,12 @@ function growable(kind, color, extra = {}) {
   return obj;
 }
 
-function fill(obj, count, write) {
-  let attr = obj.geometry.getAttribute('position');
-  if (attr.count < count) {
-    attr = new THREE.BufferAttribute(new Float32Array(3 * Math.max(count, 2 * attr.count)), 3);
-    obj.geometry.setAttribute('position', attr);
+// writes count vertices' x y z into an attribute (position, or color), growing it when short
+export function fill(obj, count, write, name = 'position') {
+  let attr = obj.geometry.getAttribute(name);
+  if (!attr || attr.count < count) {
+    attr = new THREE.BufferAttribute(new Float32Array(3 * Math.max(count, 2 * (attr ? attr.count : 1))), 3);
+    obj.geometry.setAttribute(name, attr);
   }
   write(attr.array);
   attr.needsUpdate = true;

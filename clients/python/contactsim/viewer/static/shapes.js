@@ -67,3 +67,24 @@ export function planeObject(shape, size) {
   group.position.copy(n.multiplyScalar(shape.offset));
   return group;
 }
+
+// A body's collision shape as one object at its real size, for the bodies
+// not drawn instanced (compounds, and the links of robot models, whose
+// visuals they may replace or overlay): a compound's children (hulls,
+// spheres, boxes, capsules) posed in the body frame.
+export function collisionObject(shape, material) {
+  const group = new THREE.Group();
+  const parts = shape && shape.kind === 'compound' ? shape.children
+    : [{ shape, position: [0, 0, 0], orientation: [1, 0, 0, 0] }];
+  for (const part of parts) {
+    const g = shapeGroup(part.shape);
+    const geometry = g.make(1);
+    geometry.scale(...g.scale);
+    const mesh = new THREE.Mesh(geometry, material);
+    const q = part.orientation;
+    mesh.position.set(...part.position);
+    mesh.quaternion.set(q[1], q[2], q[3], q[0]);   // ours (w, x, y, z)
+    group.add(mesh);
+  }
+  return group;
+}

@@ -1,7 +1,7 @@
 // The WebSocket to the bridge: JSON messages and binary frames (docs/viewer.md).
 // Binary frames are little-endian Float64Arrays whose first value names them.
-export const POSES = 1, CONTACTS = 2;
-export const POSE_WIDTH = 8, CONTACT_WIDTH = 6;
+export const POSES = 1, CONTACTS = 2, RAYS = 3;
+export const POSE_WIDTH = 8, CONTACT_WIDTH = 6, RAY_WIDTH = 8;
 
 export function connect(handlers) {
   const ws = new WebSocket(`ws://${location.host}/ws`);
@@ -16,6 +16,7 @@ export function connect(handlers) {
     const a = new Float64Array(ev.data);
     if (a[0] === POSES) handlers.poses(decodePoses(a));
     else if (a[0] === CONTACTS) handlers.contacts(decodeContacts(a));
+    else if (a[0] === RAYS) handlers.rays(decodeRays(a));
   };
   ws.onclose = () => (handlers.closed || (() => {}))();
   return {
@@ -32,4 +33,9 @@ function decodePoses(a) {
 
 function decodeContacts(a) {
   return { step: a[1], n: a[2], rows: a.subarray(3) };
+}
+
+// kind 0: a ray cast (origins in the world), 1: range sensors (origins in their bodies' frames)
+function decodeRays(a) {
+  return { step: a[1], kind: a[2], n: a[3], rows: a.subarray(4) };
 }
