@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "service/collision/contact.h"
+#include "service/collision/minkowski_edge_pairs.h"
 #include "service/collision/polyhedron_manifold.h"
 #include "service/physics/rigid_body.h"
 
@@ -28,6 +29,7 @@ struct AxisCacheUpdate;
 struct PolyhedronScratch {
   PosedPolyhedron a, b;
   ClipBuffers clip;
+  EdgePairScratch edge_pairs;
 };
 
 // The cache is only read during a pair; its change goes to `cache_update`
