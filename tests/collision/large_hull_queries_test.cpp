@@ -23,7 +23,7 @@ using testing_util::Hull;
 using testing_util::RandomRotation;
 using testing_util::RandomVector;
 
-constexpr int kTrials = 40;
+constexpr int kTrials = 20;
 
 // `count` points on an ellipsoid of semi-axes `axes` (m), jittered inwards,
 // as a tessellated link or wheel gives.
@@ -65,9 +65,11 @@ TEST(LargeHullQueries, GridFindsExactlyTheMinkowskiFacePairsInLoopOrder) {
   EdgePairScratch scratch;
   for (int trial = 0; trial < kTrials; ++trial) {
     for (const int count : {8, 60, 400}) {
+      // the bodies own the hulls the posed polyhedra point at
+      const RigidBody body_a = RandomHullBody(rng, 1, count), body_b = RandomHullBody(rng, 2, 500 - count);
       PosedPolyhedron a, b;
-      ASSERT_TRUE(PosePolyhedron(RandomHullBody(rng, 1, count), &a));
-      ASSERT_TRUE(PosePolyhedron(RandomHullBody(rng, 2, 500 - count), &b));
+      ASSERT_TRUE(PosePolyhedron(body_a, &a));
+      ASSERT_TRUE(PosePolyhedron(body_b, &b));
       ASSERT_TRUE(HasClosedTopology(a) && HasClosedTopology(b));
       MinkowskiEdgePairs(a, b, &scratch);
       const std::vector<int64_t> expected = LoopPairs(a, b);
@@ -82,9 +84,10 @@ TEST(LargeHullQueries, BoxesPairWithHullsAsTheLoopPairsThem) {
   std::mt19937_64 rng(11);
   EdgePairScratch scratch;
   for (int trial = 0; trial < kTrials; ++trial) {
+    const RigidBody hull = RandomHullBody(rng, 2, 300);
     PosedPolyhedron a, b;
     ASSERT_TRUE(PosePolyhedron(testing_util::Box(1, Vec3(0.3, 0.1, 0.05), Vec3::Zero(), RandomRotation(rng)), &a));
-    ASSERT_TRUE(PosePolyhedron(RandomHullBody(rng, 2, 300), &b));
+    ASSERT_TRUE(PosePolyhedron(hull, &b));
     MinkowskiEdgePairs(a, b, &scratch);
     EXPECT_EQ(scratch.pairs, LoopPairs(a, b));
     MinkowskiEdgePairs(b, a, &scratch);
@@ -95,8 +98,9 @@ TEST(LargeHullQueries, BoxesPairWithHullsAsTheLoopPairsThem) {
 TEST(LargeHullQueries, DescentFindsTheScannedMinimumFromAnyStart) {
   std::mt19937_64 rng(3);
   for (int trial = 0; trial < kTrials; ++trial) {
+    const RigidBody body = RandomHullBody(rng, 1, 300);
     PosedPolyhedron poly;
-    ASSERT_TRUE(PosePolyhedron(RandomHullBody(rng, 1, 300), &poly));
+    ASSERT_TRUE(PosePolyhedron(body, &poly));
     ASSERT_GE(static_cast<int>(poly.vertices.size()), kDescentMinVertices);
     for (int k = 0; k < 20; ++k) {
       const Vec3 n = RandomVector(rng, 1.0).normalized();
@@ -133,9 +137,10 @@ TEST(LargeHullQueries, SeparatingAxisOfLargeHullsMatchesBruteForce) {
   EdgePairScratch scratch;
   int overlaps = 0;
   for (int trial = 0; trial < kTrials; ++trial) {
+    const RigidBody body_a = RandomHullBody(rng, 1, 200), body_b = RandomHullBody(rng, 2, 200);
     PosedPolyhedron a, b;
-    ASSERT_TRUE(PosePolyhedron(RandomHullBody(rng, 1, 200), &a));
-    ASSERT_TRUE(PosePolyhedron(RandomHullBody(rng, 2, 200), &b));
+    ASSERT_TRUE(PosePolyhedron(body_a, &a));
+    ASSERT_TRUE(PosePolyhedron(body_b, &b));
     const SatResult sat = FindSeparatingAxis(a, b, 1e300, &scratch);
     double brute = -1e300;
     const auto separation = [&](const Vec3& u) {
