@@ -22,6 +22,7 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   blocks_.clear();
   solver_ = solver;
   component_.clear();
+  factored_ = false;
   if (world.joints().empty()) return;
   BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
   total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
