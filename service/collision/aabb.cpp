@@ -29,11 +29,13 @@ Aabb PlaneAabb(const RigidBody& body) {
 }
 
 // The union of the children's boxes, then the margin and the sweep of the
-// body's own velocity.
-Aabb CompoundAabb(const RigidBody& body, double margin, double dt) {
+// body's own velocity. The body's support vertices serve its child when it
+// has one (a link of a model with one collision mesh).
+Aabb CompoundAabb(const RigidBody& body, double margin, double dt, AabbSupport* support) {
   Aabb box{Vec3::Constant(kHuge), Vec3::Constant(-kHuge)};
-  for (const ShapeChild& child : body.shape.compound->children) {
-    const Aabb c = ComputeAabb(ChildBody(body, child), 0.0, 0.0);
+  const auto& children = body.shape.compound->children;
+  for (const ShapeChild& child : children) {
+    const Aabb c = ComputeAabb(ChildBody(body, child), 0.0, 0.0, children.size() == 1 ? support : nullptr);
     box.min = box.min.cwiseMin(c.min);
     box.max = box.max.cwiseMax(c.max);
   }
@@ -61,12 +63,46 @@ Aabb SurfaceAabb(const RigidBody& body, double margin) {
   return box;
 }
 
+// The box of the hull's vertices x + R v, over every vertex.
+Aabb HullBoxByScan(const ConvexHull& hull, const Vec3& x, const Mat3& R) {
+  Aabb box{Vec3::Constant(kHuge), Vec3::Constant(-kHuge)};
+  for (const Vec3& v : hull.vertices) {
+    const Vec3 p = x + R * v;
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+bool HasVertexGraph(const ConvexHull& hull) {
+  return static_cast<int>(hull.vertices.size()) >= kDescentMinVertices &&
+         hull.neighbour_start.size() == hull.vertices.size() + 1;
+}
+
+// The same box by six descents; each vertex's x + R v is evaluated as the
+// scan evaluates it, so the extremes are the scan's values.
+Aabb HullBoxByDescent(const ConvexHull& hull, const Vec3& x, const Mat3& R, AabbSupport* support) {
+  Aabb box;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low, high;
+    (*support)[2 * axis] =
+        DescendVertexGraph(hull, (*support)[2 * axis], [&](int i) { return Vec3(x + R * hull.vertices[i])[axis]; }, &low);
+    (*support)[2 * axis + 1] = DescendVertexGraph(
+        hull, (*support)[2 * axis + 1], [&](int i) { return -Vec3(x + R * hull.vertices[i])[axis]; }, &high);
+    box.min[axis] = low;
+    box.max[axis] = -high;
+  }
+  return box;
+}
+
 }  // namespace
 
-Aabb ComputeAabb(const RigidBody& body, double margin, double dt) {
+Aabb ComputeAabb(const RigidBody& body, double margin, double dt) { return ComputeAabb(body, margin, dt, nullptr); }
+
+Aabb ComputeAabb(const RigidBody& body, double margin, double dt, AabbSupport* support) {
   const Shape& s = body.shape;
   if (s.type == ShapeType::kPlane) return PlaneAabb(body);
-  if (s.type == ShapeType::kCompound) return CompoundAabb(body, margin, dt);
+  if (s.type == ShapeType::kCompound) return CompoundAabb(body, margin, dt, support);
   if (s.IsTriangleSurface()) return SurfaceAabb(body, margin);
   const Mat3 R = body.Rotation();
   Vec3 half;
@@ -75,12 +111,8 @@ Aabb ComputeAabb(const RigidBody& body, double margin, double dt) {
     case ShapeType::kBox: half = R.cwiseAbs() * s.half_extents; break;
     case ShapeType::kCapsule: half = (R.col(2) * s.half_length).cwiseAbs() + Vec3::Constant(s.radius); break;
     case ShapeType::kConvex: {
-      Aabb box{Vec3::Constant(kHuge), Vec3::Constant(-kHuge)};
-      for (const Vec3& v : s.hull->vertices) {
-        const Vec3 p = body.x + R * v;
-        box.min = box.min.cwiseMin(p);
-        box.max = box.max.cwiseMax(p);
-      }
+      Aabb box = support != nullptr && HasVertexGraph(*s.hull) ? HullBoxByDescent(*s.hull, body.x, R, support)
+                                                                : HullBoxByScan(*s.hull, body.x, R);
       box.Inflate(margin);
       const Vec3 d = body.LinearVelocity() * dt;
       box.min += d.cwiseMin(Vec3::Zero());

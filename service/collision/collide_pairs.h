@@ -16,6 +16,7 @@
 #include <cstdint>
 
 #include "service/collision/contact.h"
+#include "service/collision/minkowski_edge_pairs.h"
 #include "service/collision/polyhedron_manifold.h"
 #include "service/physics/rigid_body.h"
 
@@ -30,6 +31,7 @@ struct PolyhedronScratch {
   PosedPolyhedron a, b;
   ClipBuffers clip;
   ContactSet triangle, surface;  // a mesh pair's contacts per triangle and in all
+  EdgePairScratch edge_pairs;
 };
 
 // The cache is only read during a pair; its change goes to `cache_update`

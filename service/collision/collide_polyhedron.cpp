@@ -62,7 +62,7 @@ void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideConte
     sat = FindBoxBoxSeparatingAxis(a, b, ctx.margin);
   } else {
     if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
-    sat = FindSeparatingAxis(pa, pb, ctx.margin);
+    sat = FindSeparatingAxis(pa, pb, ctx.margin, &scratch.edge_pairs);
   }
   if (sat.separation > ctx.margin) {
     if (cache != nullptr) update->Store(a.id, b.id, sat.axis);

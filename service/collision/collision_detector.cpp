@@ -49,10 +49,11 @@ void CollisionDetector::ComputeBoxes(const World& world, double margin, double s
   const int n = static_cast<int>(bodies.size());
   boxes_.resize(n);
   movable_.resize(n);
+  supports_.resize(n);
   // each body writes its own box; movable_ is a vector<bool>, whose bits
   // share words, so it is filled on this thread
   runner_->For(n, kBodyGrain, [&](int begin, int end, int /*worker*/) {
-    for (int i = begin; i < end; ++i) boxes_[i] = ComputeAabb(bodies[i], margin, sweep_dt);
+    for (int i = begin; i < end; ++i) boxes_[i] = ComputeAabb(bodies[i], margin, sweep_dt, &supports_[i]);
   });
   for (int i = 0; i < n; ++i) movable_[i] = bodies[i].IsDynamic();
 }

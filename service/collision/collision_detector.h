@@ -61,6 +61,9 @@ class CollisionDetector {
   Narrowphase narrowphase_;
   std::vector<Aabb> boxes_;
   std::vector<bool> movable_;
+  // per body index: the hull vertices that bounded its last box, where the
+  // next box's descents start (ComputeAabb); any start gives the same box
+  std::vector<AabbSupport> supports_;
   void ComputeBoxes(const World& world, double margin, double sweep_dt);
   void DropFilteredPairs(const World& world);
 

@@ -101,17 +101,20 @@ int Dispatch(const RigidBody& a, int ia, const RigidBody& b, int ib, const Colli
 // the same points; each point's feature id also hashes the two children's
 // indices, so warm starts and manifolds stay per child pair. The
 // separating-axis cache holds one axis per body pair, not per child pair:
-// children run without it.
+// children run without it, unless each side has one piece (a model's link
+// of one collision mesh), whose child pair is the body pair.
 int DispatchCompound(const RigidBody& a, int ia, const RigidBody& b, int ib, const CollideContext& ctx,
                      ContactSet* out) {
   const bool swapped = !Precedes(a, b);
   const RigidBody& first = swapped ? b : a;
   const RigidBody& second = swapped ? a : b;
   CollideContext child_ctx = ctx;
-  child_ctx.cache = nullptr;
-  child_ctx.cache_update = nullptr;
-  const size_t begin = out->size();
   const int n1 = PieceCount(first), n2 = PieceCount(second);
+  if (n1 != 1 || n2 != 1) {
+    child_ctx.cache = nullptr;
+    child_ctx.cache_update = nullptr;
+  }
+  const size_t begin = out->size();
   for (int k1 = 0; k1 < n1; ++k1) {
     const RigidBody p1 = PieceBody(first, k1);
     for (int k2 = 0; k2 < n2; ++k2) {

@@ -1,18 +1,29 @@
 // Separating-axis test between convex polyhedra (see polyhedron_sat.h).
 #include "service/collision/polyhedron_sat.h"
 
+#include "service/collision/minkowski_edge_pairs.h"
+
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 
 namespace contactsim {
 namespace {
 
+// Edge pairs at least this many take the Gauss-map grid
+// (minkowski_edge_pairs.h); fewer are cheaper tested one by one.
+constexpr int kEdgeGridMinPairs = 1024;
+
 // min over B of n.v - offset: the separation along outward face normal n of
-// the other body whose support value is `offset`.
+// the other body whose support value is `offset`; *start is the descent's
+// first vertex (MinProjection).
+double FaceSeparation(const Vec3& n, double offset, const PosedPolyhedron& other, int* start) {
+  return MinProjection(other, n, start) - offset;
+}
+
 double FaceSeparation(const Vec3& n, double offset, const PosedPolyhedron& other) {
-  double min_p = std::numeric_limits<double>::infinity();
-  for (const Vec3& v : other.vertices) min_p = std::min(min_p, n.dot(v));
-  return min_p - offset;
+  int start = 0;
+  return FaceSeparation(n, offset, other, &start);
 }
 
 // Any edge axis dA x dB by projection, oriented from A to B by whichever sign
@@ -36,21 +47,6 @@ bool EdgeSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, 
     *separation = sep_minus;
   }
   return true;
-}
-
-// Gauss-map test: edges of A (adjacent face normals a, b) and of B (c, d)
-// form a face of the Minkowski difference A - B iff the arcs a-b and -c..-d
-// cross on the unit sphere (Gregorius, "The Separating Axis Test between
-// Convex Polyhedra", GDC 2013). Only those edge pairs can define the
-// penetration depth or be needed to separate; the others are skipped.
-bool IsMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 b_x_a = b.cross(a);
-  const Vec3 d_x_c = d.cross(c);
-  const double cba = c.dot(b_x_a);
-  const double dba = d.dot(b_x_a);
-  const double adc = a.dot(d_x_c);
-  const double bdc = b.dot(d_x_c);
-  return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
 }
 
 // Separation along the axis of a Minkowski-face edge pair: the axis is the
@@ -119,45 +115,87 @@ bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const Se
   return false;
 }
 
-SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out) {
-  const double kNoAxis = -std::numeric_limits<double>::infinity();
-  SatResult face_a, face_b, edges;
-  face_a.separation = face_b.separation = edges.separation = kNoAxis;
+namespace {
 
+// The best face of A (into *face_a) and of B (into *face_b), in face order;
+// true, with *early the result, at the first face that separates by more
+// than early_out.
+bool FaceQueries(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out, SatResult* face_a,
+                 SatResult* face_b, SatResult* early) {
   // faces of A: outward normals point from A to B
+  int start = 0;  // consecutive faces' minimisers are near: each descent starts at the last
   for (int f = 0; f < static_cast<int>(a.normals.size()); ++f) {
-    const double sep = FaceSeparation(a.normals[f], a.offsets[f], b);
-    if (sep > face_a.separation) face_a = MakeSatResult({SeparatingAxis::Kind::kFaceA, f, -1}, a.normals[f], sep);
-    if (sep > early_out) return EarlyOutResult(face_a);
+    const double sep = FaceSeparation(a.normals[f], a.offsets[f], b, &start);
+    if (sep > face_a->separation) *face_a = MakeSatResult({SeparatingAxis::Kind::kFaceA, f, -1}, a.normals[f], sep);
+    if (sep > early_out) return *early = EarlyOutResult(*face_a), true;
   }
   // faces of B: outward normals point from B to A
+  start = 0;
   for (int f = 0; f < static_cast<int>(b.normals.size()); ++f) {
-    const double sep = FaceSeparation(b.normals[f], b.offsets[f], a);
-    if (sep > face_b.separation) face_b = MakeSatResult({SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep);
-    if (sep > early_out) return EarlyOutResult(face_b);
+    const double sep = FaceSeparation(b.normals[f], b.offsets[f], a, &start);
+    if (sep > face_b->separation) *face_b = MakeSatResult({SeparatingAxis::Kind::kFaceB, -1, f}, -b.normals[f], sep);
+    if (sep > early_out) return *early = EarlyOutResult(*face_b), true;
   }
-  // one edge of each, where they form a Minkowski face; parallel pairs skipped
+  return false;
+}
+
+// One edge pair's candidate: the Minkowski-face test on closed topologies
+// (`tested`: already known to pass), projection on open ones.
+bool EdgePairSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, int ea, int eb, bool tested,
+                        Vec3* n, double* sep) {
+  const std::array<int, 2>* fa = EdgeFaces(a, ea);
+  const std::array<int, 2>* fb = EdgeFaces(b, eb);
+  if (fa == nullptr || fb == nullptr) return EdgeSeparation(a, b, ea, eb, n, sep);  // open topology: project
+  const auto& na = a.normals;
+  const auto& nb = b.normals;
+  if (!tested && !IsMinkowskiFace(na[(*fa)[0]], na[(*fa)[1]], -nb[(*fb)[0]], -nb[(*fb)[1]])) return false;
+  return MinkowskiEdgeSeparation(a, b, ea, eb, n, sep);
+}
+
+// The best edge pair (into *edges), in (edge of A, edge of B) order; true,
+// with *early the result, at the first that separates by more than early_out.
+// Large closed pairs visit only the pairs that form Minkowski faces
+// (MinkowskiEdgePairs: the same pairs in the same order as the double loop).
+bool EdgeQuery(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out, EdgePairScratch* scratch,
+               SatResult* edges, SatResult* early) {
   const int edges_a = static_cast<int>(a.edge_dirs.size());
   const int edges_b = static_cast<int>(b.edge_dirs.size());
+  const auto visit = [&](int ea, int eb, bool tested) {
+    Vec3 n;
+    double sep;
+    if (!EdgePairSeparation(a, b, ea, eb, tested, &n, &sep)) return false;
+    if (sep > edges->separation) *edges = MakeSatResult({SeparatingAxis::Kind::kEdges, ea, eb}, n, sep);
+    if (sep > early_out) return *early = EarlyOutResult(*edges), true;
+    return false;
+  };
+  if (static_cast<int64_t>(edges_a) * edges_b >= kEdgeGridMinPairs && HasClosedTopology(a) &&
+      HasClosedTopology(b)) {
+    EdgePairScratch local;
+    EdgePairScratch& s = scratch != nullptr ? *scratch : local;
+    MinkowskiEdgePairs(a, b, &s);
+    for (const int64_t key : s.pairs) {
+      if (visit(static_cast<int>(key / edges_b), static_cast<int>(key % edges_b), true)) return true;
+    }
+    return false;
+  }
   for (int ea = 0; ea < edges_a; ++ea) {
-    const std::array<int, 2>* fa = EdgeFaces(a, ea);
     for (int eb = 0; eb < edges_b; ++eb) {
-      const std::array<int, 2>* fb = EdgeFaces(b, eb);
-      Vec3 n;
-      double sep;
-      if (fa != nullptr && fb != nullptr) {
-        const auto& na = a.normals;
-        const auto& nb = b.normals;
-        if (!IsMinkowskiFace(na[(*fa)[0]], na[(*fa)[1]], -nb[(*fb)[0]], -nb[(*fb)[1]])) continue;
-        if (!MinkowskiEdgeSeparation(a, b, ea, eb, &n, &sep)) continue;
-      } else if (!EdgeSeparation(a, b, ea, eb, &n, &sep)) {  // open topology: project
-        continue;
-      }
-      if (sep > edges.separation) edges = MakeSatResult({SeparatingAxis::Kind::kEdges, ea, eb}, n, sep);
-      if (sep > early_out) return EarlyOutResult(edges);
+      if (visit(ea, eb, false)) return true;
     }
   }
+  return false;
+}
 
+}  // namespace
+
+SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out,
+                             EdgePairScratch* scratch) {
+  const double kNoAxis = -std::numeric_limits<double>::infinity();
+  SatResult face_a, face_b, edges, early;
+  face_a.separation = face_b.separation = edges.separation = kNoAxis;
+  if (FaceQueries(a, b, early_out, &face_a, &face_b, &early)) return early;
+  // one edge of each, where they form a Minkowski face; parallel pairs skipped
+  if (EdgeQuery(a, b, early_out, scratch, &edges, &early)) return early;
   return ChooseSeparatingAxis(face_a, face_b, edges);
 }
 

@@ -24,6 +24,7 @@
 
 #include <cstdint>
 
+#include "service/collision/minkowski_edge_pairs.h"
 #include "service/collision/posed_polyhedron.h"
 
 namespace contactsim {
@@ -78,7 +79,12 @@ bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const Se
 // Best axis over all candidates, with the preferences above. Returns at the
 // first axis whose separation exceeds `early_out` (m): then no contact within
 // that margin exists and the result need not be the best axis.
-SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out);
+// Large hulls' face queries descend the vertex graph (MinProjection) and
+// their edge queries visit only the edge pairs that form Minkowski faces
+// (minkowski_edge_pairs.h), which give the same result as the scans; the
+// pair search keeps its buffers in `scratch` (optional).
+SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out,
+                             EdgePairScratch* scratch = nullptr);
 
 // The steps of a separating-axis test, shared by FindSeparatingAxis and the
 // closed-form box-box test (box_box_sat.h):

@@ -102,6 +102,19 @@ void ProjectPolyhedron(const PosedPolyhedron& poly, const Vec3& axis, double* lo
   *hi = max_v;
 }
 
+double MinProjection(const PosedPolyhedron& poly, const Vec3& n, int* start) {
+  const int count = static_cast<int>(poly.vertices.size());
+  const std::vector<int>& first = poly.topology->neighbour_start;
+  if (count < kDescentMinVertices || static_cast<int>(first.size()) != count + 1) {
+    double min_p = std::numeric_limits<double>::infinity();
+    for (const Vec3& v : poly.vertices) min_p = std::min(min_p, n.dot(v));
+    return min_p;
+  }
+  double min_p;
+  *start = DescendVertexGraph(*poly.topology, *start, [&](int i) { return n.dot(poly.vertices[i]); }, &min_p);
+  return min_p;
+}
+
 int SupportVertex(const PosedPolyhedron& poly, const Vec3& direction) {
   int best = 0;
   double best_p = -std::numeric_limits<double>::infinity();

@@ -40,6 +40,13 @@ bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out);
 // Interval [lo, hi] of the vertices projected on `axis`.
 void ProjectPolyhedron(const PosedPolyhedron& poly, const Vec3& axis, double* lo, double* hi);
 
+// min over the vertices of n . v. Hulls of kDescentMinVertices vertices or
+// more descend their vertex graph (DescendVertexGraph) from vertex *start,
+// which is set to the minimiser: a hull of hundreds of vertices takes a few
+// dozen dot products where a scan takes them all, for the same vertex value.
+// Smaller ones, and topologies without the graph, are scanned.
+double MinProjection(const PosedPolyhedron& poly, const Vec3& n, int* start);
+
 // Index of the vertex with the largest projection on `direction`.
 int SupportVertex(const PosedPolyhedron& poly, const Vec3& direction);
 

@@ -219,6 +219,17 @@ void ConnectEdgeFaces(ConvexHull* hull) {
     const int u = hull->edges[e][0], v = hull->edges[e][1];
     hull->edge_faces[e] = {face_of(u, v), face_of(v, u)};
   }
+  // the vertex graph: each edge counted at both ends, then placed
+  const int n = static_cast<int>(hull->vertices.size());
+  hull->neighbour_start.assign(n + 1, 0);
+  for (const auto& e : hull->edges) ++hull->neighbour_start[e[0] + 1], ++hull->neighbour_start[e[1] + 1];
+  for (int v = 0; v < n; ++v) hull->neighbour_start[v + 1] += hull->neighbour_start[v];
+  hull->neighbours.resize(hull->neighbour_start[n]);
+  std::vector<int> fill(hull->neighbour_start.begin(), hull->neighbour_start.end() - 1);
+  for (const auto& e : hull->edges) {
+    hull->neighbours[fill[e[0]]++] = e[1];
+    hull->neighbours[fill[e[1]]++] = e[0];
+  }
 }
 
 double ConvexHullVolume(const ConvexHull& hull) { return ComputePolyhedronIntegrals(hull).volume; }

@@ -27,10 +27,44 @@ struct ConvexHull {
   // their normals are the ends of the edge's arc on the Gauss map, which the
   // separating-axis test uses to skip edge pairs.
   std::vector<std::array<int, 2>> edge_faces;
+  // The vertex graph along the edges, as compressed rows: the neighbours of
+  // vertex v are neighbours[neighbour_start[v]] up to neighbours[neighbour_start[v + 1]].
+  // A linear function over a convex polyhedron has no local minimum on this
+  // graph but the global one, so the separating-axis test finds a support
+  // vertex by descent over it instead of a scan of every vertex. Empty on a
+  // topology built without ConnectEdgeFaces (then the vertices are scanned).
+  std::vector<int> neighbour_start;
+  std::vector<int> neighbours;
 };
 
-// Fills hull->edge_faces from the face loops and edges (BuildConvexHull does;
-// call it after building a hull's topology by hand).
+// Hulls with fewer vertices than this are scanned rather than descended: the
+// descent's bookkeeping outweighs a scan of a few dozen vertices, and boxes
+// and small hulls keep the scans' exact order of operations.
+constexpr int kDescentMinVertices = 32;
+
+// The vertex of least value(i) (a function linear in vertex i's position,
+// evaluated as the caller's scan would), by descent over the vertex graph
+// from vertex `start`: each step moves to the neighbour of least value, until
+// none is less. Sets *min_value to that value. The hull must have its graph
+// (neighbour_start.size() == vertices.size() + 1).
+template <typename Value>
+int DescendVertexGraph(const ConvexHull& hull, int start, const Value& value, double* min_value) {
+  int v = start >= 0 && start < static_cast<int>(hull.vertices.size()) ? start : 0;
+  double best = value(v);
+  for (int from = -1; from != v;) {
+    from = v;
+    for (int k = hull.neighbour_start[from]; k < hull.neighbour_start[from + 1]; ++k) {
+      const double p = value(hull.neighbours[k]);
+      if (p < best) best = p, v = hull.neighbours[k];
+    }
+  }
+  *min_value = best;
+  return v;
+}
+
+// Fills hull->edge_faces from the face loops and edges, and the vertex graph
+// from the edges (BuildConvexHull does; call it after building a hull's
+// topology by hand).
 void ConnectEdgeFaces(ConvexHull* hull);
 
 // Builds the hull of a point cloud, merging coplanar faces. Fails with a

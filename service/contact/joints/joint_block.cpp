@@ -22,9 +22,11 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   blocks_.clear();
   solver_ = solver;
   component_.clear();
+  factored_ = false;
   if (world.joints().empty()) return;
   BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
   total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
+  factored_ = solver == JointSolverKind::kTree && !rows_.empty() && factor_.Factor(rows_, blocks_, bodies);
   const int n = static_cast<int>(bodies.size());
   UnionFind sets(n);
   for (const Joint& j : world.joints()) {
@@ -75,13 +77,20 @@ bool JointVelocityBlock::SelfContact(int a, int b) const {
 double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_passes) {
   const int n = static_cast<int>(rows_.size());
   if (n == 0) return 0.0;
-  std::vector<char> keep(n, 1);
-  Eigen::VectorXd b(n);
+  std::vector<char>& keep = keep_;
+  keep.assign(n, 1);
+  Eigen::VectorXd& b = b_;
+  Eigen::VectorXd& x = x_;
+  b.resize(n);
   double worst = 0.0;
   for (int k = 0; k < n; ++k) worst = std::max(worst, std::abs(RowError(rows_[k], bodies, total_[k])));
   for (int pass = 0;; ++pass) {
     for (int k = 0; k < n; ++k) b[k] = RowError(rows_[k], bodies, total_[k]);
-    const Eigen::VectorXd x = SolveJointRows(rows_, blocks_, bodies, b, keep, solver_);
+    if (pass == 0 && factored_) {
+      factor_.Solve(blocks_, b, &x);  // every row kept: the system factored at Build
+    } else {
+      x = SolveJointRows(rows_, blocks_, bodies, b, keep, solver_);
+    }
     // a limit row whose total would leave its bounds is held at the bound
     bool held = false;
     for (int k = 0; k < n; ++k) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/joints/joint_tree_solver.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -61,6 +62,13 @@ class JointVelocityBlock {
   Eigen::VectorXd total_;  // accumulated impulse per row this step
   std::vector<int> component_;  // per solver body: its jointed component, -1 if unjointed
   JointSolverKind solver_ = JointSolverKind::kTree;
+  // The rows' system factored once per Build (kTree, loop-free): every
+  // Solve that keeps all rows, one per sweep, reuses it (the masses and
+  // Jacobians do not change within a step, only the right-hand side).
+  JointTreeFactor factor_;
+  bool factored_ = false;
+  Eigen::VectorXd b_, x_;
+  std::vector<char> keep_;
 };
 
 }  // namespace contactsim

@@ -1,6 +1,5 @@
 #include "service/contact/joints/joint_tree_solver.h"
 
-#include <Eigen/LU>
 #include <utility>
 
 #include "service/contact/union_find.h"
@@ -8,26 +7,14 @@
 namespace contactsim {
 namespace {
 
-using Eigen::MatrixXd;
-using Eigen::VectorXd;
+using NodeMatrix = JointTreeFactor::NodeMatrix;
+using NodeVector = JointTreeFactor::NodeVector;
+using Node = JointTreeFactor::Node;
+constexpr int kMaxNodeRows = JointTreeFactor::kMaxNodeRows;
 
 bool Dynamic(int index, const std::vector<SolverBody>& bodies) {
   return index >= 0 && bodies[index].inv_mass > 0.0;
 }
-
-// A node of Baraff's graph: a dynamic body with its joints to the world, or
-// a joint between two dynamic bodies.
-struct Node {
-  int body = -1;             // solver body index; -1 for a joint node
-  std::vector<int> blocks;   // body: its world joints; joint: the one block
-  int dim = 0;               // 6 + world-joint rows, or the joint's rows
-  std::vector<int> links;    // neighbouring nodes
-  int parent = -1;
-  MatrixXd H_parent;         // H(i, parent): dim x dim(parent)
-  MatrixXd J;                // D^-1 H(i, parent)
-  Eigen::PartialPivLU<MatrixXd> D;
-  VectorXd x;
-};
 
 // J of `row` on the side that is `body`, as (lin, ang)
 Eigen::Matrix<double, 1, 6> RowOn(const ConstraintRow& row, int body) {
@@ -40,33 +27,9 @@ Eigen::Matrix<double, 1, 6> RowOn(const ConstraintRow& row, int body) {
   return j;
 }
 
-class TreeSystem {
- public:
-  TreeSystem(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
-             const std::vector<SolverBody>& bodies)
-      : rows_(rows), blocks_(blocks), bodies_(bodies) {}
+}  // namespace
 
-  // Builds the graph; false when it has a loop.
-  bool Build();
-  void Factor();
-  VectorXd Solve(const VectorXd& b);
-
- private:
-  int BodyNode(int body);
-  MatrixXd Diagonal(const Node& n) const;
-  // H(joint node, body node): the joint's rows on the body's velocity block
-  MatrixXd Coupling(const Node& joint, const Node& body) const;
-  void Order();
-
-  const std::vector<ConstraintRow>& rows_;
-  const std::vector<JointBlock>& blocks_;
-  const std::vector<SolverBody>& bodies_;
-  std::vector<Node> nodes_;
-  std::vector<int> node_of_body_;
-  std::vector<int> preorder_;  // parents before children
-};
-
-int TreeSystem::BodyNode(int body) {
+int JointTreeFactor::BodyNode(int body) {
   if (node_of_body_[body] < 0) {
     node_of_body_[body] = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
@@ -76,12 +39,15 @@ int TreeSystem::BodyNode(int body) {
   return node_of_body_[body];
 }
 
-bool TreeSystem::Build() {
-  node_of_body_.assign(bodies_.size(), -1);
-  UnionFind sets(static_cast<int>(bodies_.size()));
-  for (int k = 0; k < static_cast<int>(blocks_.size()); ++k) {
-    const JointBlock& blk = blocks_[k];
-    const bool da = Dynamic(blk.a, bodies_), db = Dynamic(blk.b, bodies_);
+bool JointTreeFactor::Build(const std::vector<SolverBody>& bodies) {
+  nodes_.clear();
+  preorder_.clear();
+  node_of_body_.assign(bodies.size(), -1);
+  nodes_.reserve(bodies.size() + blocks_->size());  // at most one per body and one per joint: never moved
+  UnionFind sets(static_cast<int>(bodies.size()));
+  for (int k = 0; k < static_cast<int>(blocks_->size()); ++k) {
+    const JointBlock& blk = (*blocks_)[k];
+    const bool da = Dynamic(blk.a, bodies), db = Dynamic(blk.b, bodies);
     if (da && db) {
       if (!sets.Join(blk.a, blk.b)) return false;  // already connected: a loop
       const int na = BodyNode(blk.a), nb = BodyNode(blk.b);
@@ -98,18 +64,22 @@ bool TreeSystem::Build() {
       n.dim += blk.count;
     }
   }
-  Order();
+  for (const Node& n : nodes_) {
+    if (n.dim > kMaxNodeRows) return false;  // too large for the fixed-size blocks
+  }
+  Order(bodies);
   return true;
 }
 
 // Roots each tree at its first body (solver order) that holds the world,
 // else at its first body, and lists the nodes parents first (iterative DFS).
-void TreeSystem::Order() {
+void JointTreeFactor::Order(const std::vector<SolverBody>& bodies) {
   std::vector<bool> seen(nodes_.size(), false);
-  for (int body = 0; body < static_cast<int>(bodies_.size()); ++body) {
+  std::vector<int> members, stack;
+  for (int body = 0; body < static_cast<int>(bodies.size()); ++body) {
     const int start = node_of_body_[body];
     if (start < 0 || seen[start]) continue;
-    std::vector<int> members = {start};
+    members.assign(1, start);
     seen[start] = true;
     for (size_t m = 0; m < members.size(); ++m) {
       for (int l : nodes_[members[m]].links) {
@@ -121,7 +91,7 @@ void TreeSystem::Order() {
     for (int i : members) {
       if (nodes_[i].body >= 0 && key(i) < key(root)) root = i;
     }
-    std::vector<int> stack = {root};
+    stack.assign(1, root);
     while (!stack.empty()) {
       const int i = stack.back();
       stack.pop_back();
@@ -135,60 +105,73 @@ void TreeSystem::Order() {
   }
 }
 
-MatrixXd TreeSystem::Diagonal(const Node& n) const {
-  MatrixXd H = MatrixXd::Zero(n.dim, n.dim);
+void JointTreeFactor::Diagonal(const Node& n, const std::vector<SolverBody>& bodies, NodeMatrix* H) const {
+  const std::vector<ConstraintRow>& rows = *rows_;
+  H->setZero(n.dim, n.dim);
   int r = 0;
   if (n.body >= 0) {
-    const SolverBody& s = bodies_[n.body];
-    H.topLeftCorner<3, 3>() = Mat3::Identity() / s.inv_mass;
-    H.block<3, 3>(3, 3) = s.inv_inertia.inverse();
+    const SolverBody& s = bodies[n.body];
+    H->topLeftCorner<3, 3>() = Mat3::Identity() / s.inv_mass;
+    H->block<3, 3>(3, 3) = s.inv_inertia.inverse();
     r = 6;
   }
   for (int k : n.blocks) {
-    const JointBlock& blk = blocks_[k];
+    const JointBlock& blk = (*blocks_)[k];
     for (int i = 0; i < blk.count; ++i, ++r) {
-      const ConstraintRow& row = rows_[blk.first + i];
+      const ConstraintRow& row = rows[blk.first + i];
       if (n.body >= 0) {
         const auto j = RowOn(row, n.body);
-        H.block<1, 6>(r, 0) = j;
-        H.block<6, 1>(0, r) = j.transpose();
+        H->block<1, 6>(r, 0) = j;
+        H->block<6, 1>(0, r) = j.transpose();
       }
-      H(r, r) = -kJointRegularisation * row.Diagonal(bodies_) - row.cfm;  // R: regularisation and compliance
+      (*H)(r, r) = -kJointRegularisation * row.Diagonal(bodies) - row.cfm;  // R: regularisation and compliance
     }
   }
-  return H;
 }
 
-MatrixXd TreeSystem::Coupling(const Node& joint, const Node& body) const {
-  const JointBlock& blk = blocks_[joint.blocks[0]];
-  MatrixXd H = MatrixXd::Zero(joint.dim, body.dim);
-  for (int i = 0; i < blk.count; ++i) H.block<1, 6>(i, 0) = RowOn(rows_[blk.first + i], body.body);
-  return H;
+// H(joint node, body node): the joint's rows on the body's velocity block
+void JointTreeFactor::Coupling(const Node& joint, const Node& body, NodeMatrix* H) const {
+  const JointBlock& blk = (*blocks_)[joint.blocks[0]];
+  H->setZero(joint.dim, body.dim);
+  for (int i = 0; i < blk.count; ++i) H->block<1, 6>(i, 0) = RowOn((*rows_)[blk.first + i], body.body);
 }
 
-void TreeSystem::Factor() {
-  std::vector<MatrixXd> D(nodes_.size());
-  for (size_t i = 0; i < nodes_.size(); ++i) D[i] = Diagonal(nodes_[i]);
+bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                             const std::vector<SolverBody>& bodies) {
+  rows_ = &rows;
+  blocks_ = &blocks;
+  row_count_ = static_cast<int>(rows.size());
+  if (!Build(bodies)) return false;
+  for (Node& n : nodes_) Diagonal(n, bodies, &n.D_matrix);
   // children before parents: D_p -= H(i,p)^T D_i^-1 H(i,p)
+  NodeMatrix coupling;
   for (auto it = preorder_.rbegin(); it != preorder_.rend(); ++it) {
     Node& n = nodes_[*it];
-    n.D.compute(D[*it]);
+    n.D.compute(n.D_matrix);
     if (n.parent < 0) continue;
-    const Node& p = nodes_[n.parent];
-    n.H_parent = n.body >= 0 ? MatrixXd(Coupling(p, n).transpose()) : Coupling(n, p);
+    Node& p = nodes_[n.parent];
+    if (n.body >= 0) {
+      Coupling(p, n, &coupling);
+      n.H_parent = coupling.transpose();
+    } else {
+      Coupling(n, p, &n.H_parent);
+    }
     n.J = n.D.solve(n.H_parent);
-    D[n.parent].noalias() -= n.H_parent.transpose() * n.J;
+    p.D_matrix.noalias() -= n.H_parent.transpose() * n.J;
   }
+  rows_ = nullptr;  // read while factoring only
+  blocks_ = nullptr;
+  return true;
 }
 
-VectorXd TreeSystem::Solve(const VectorXd& b) {
+void JointTreeFactor::Solve(const std::vector<JointBlock>& blocks, const Eigen::VectorXd& b,
+                            Eigen::VectorXd* lambda) {
   for (Node& n : nodes_) {
-    n.x = VectorXd::Zero(n.dim);
+    n.x.setZero(n.dim);
     int r = n.body >= 0 ? 6 : 0;
     for (int k : n.blocks) {
-      const JointBlock& blk = blocks_[k];
-      n.x.segment(r, blk.count) = b.segment(blk.first, blk.count);
-      r += blk.count;
+      n.x.segment(r, blocks[k].count) = b.segment(blocks[k].first, blocks[k].count);
+      r += blocks[k].count;
     }
   }
   // forward (children first), diagonal, backward (parents first)
@@ -201,19 +184,15 @@ VectorXd TreeSystem::Solve(const VectorXd& b) {
     Node& n = nodes_[i];
     if (n.parent >= 0) n.x.noalias() -= n.J * nodes_[n.parent].x;
   }
-  VectorXd lambda = VectorXd::Zero(b.size());
+  lambda->setZero(row_count_);
   for (const Node& n : nodes_) {
     int r = n.body >= 0 ? 6 : 0;
     for (int k : n.blocks) {
-      const JointBlock& blk = blocks_[k];
-      lambda.segment(blk.first, blk.count) = -n.x.segment(r, blk.count);
-      r += blk.count;
+      lambda->segment(blocks[k].first, blocks[k].count) = -n.x.segment(r, blocks[k].count);
+      r += blocks[k].count;
     }
   }
-  return lambda;
 }
-
-}  // namespace
 
 bool JointGraphIsTree(const std::vector<JointBlock>& blocks, const std::vector<SolverBody>& bodies) {
   UnionFind sets(static_cast<int>(bodies.size()));
@@ -225,10 +204,11 @@ bool JointGraphIsTree(const std::vector<JointBlock>& blocks, const std::vector<S
 
 bool SolveJointsTree(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
                      const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b, Eigen::VectorXd* lambda) {
-  TreeSystem system(rows, blocks, bodies);
-  if (!system.Build()) return false;
-  system.Factor();
-  *lambda = system.Solve(b);
+  // one per thread, kept so that its nodes' storage is reused by the next
+  // system instead of allocated again; nothing of one system reaches the next
+  thread_local JointTreeFactor factor;
+  if (!factor.Factor(rows, blocks, bodies)) return false;
+  factor.Solve(blocks, b, lambda);
   return true;
 }
 

@@ -23,18 +23,68 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <vector>
 
 #include "service/contact/joints/joint_rows.h"
 
 namespace contactsim {
 
+// The factored system, solved for any number of right-hand sides. Every node's
+// blocks are fixed-size Eigen matrices of at most kMaxNodeRows rows, so
+// factoring and solving allocate nothing on the heap for them.
+class JointTreeFactor {
+ public:
+  // A body's 6 plus the rows of its joints to the world, or one joint's
+  // rows: 24 holds a body with two joints of every row kind. A larger node
+  // is refused (Factor returns false) and its system solved densely.
+  static constexpr int kMaxNodeRows = 24;
+  using NodeMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxNodeRows, kMaxNodeRows>;
+  using NodeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxNodeRows, 1>;
+  // A node of Baraff's graph: a dynamic body with its joints to the world,
+  // or a joint between two dynamic bodies.
+  struct Node {
+    int body = -1;            // solver body index; -1 for a joint node
+    std::vector<int> blocks;  // body: its world joints; joint: the one block
+    int dim = 0;              // 6 + world-joint rows, or the joint's rows
+    std::vector<int> links;   // neighbouring nodes
+    int parent = -1;
+    NodeMatrix D_matrix;      // H_ii, then the pivot D_i
+    NodeMatrix H_parent;      // H(i, parent): dim x dim(parent)
+    NodeMatrix J;             // D^-1 H(i, parent)
+    Eigen::PartialPivLU<NodeMatrix> D;
+    NodeVector x;
+  };
+
+  // Factors (J M^-1 J^T + R) of the rows grouped by `blocks`; false when the
+  // joints make a loop or a node has more than kMaxNodeRows rows.
+  bool Factor(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+              const std::vector<SolverBody>& bodies);
+  // lambda for the right-hand side b (one entry per row), after Factor with
+  // the same blocks.
+  void Solve(const std::vector<JointBlock>& blocks, const Eigen::VectorXd& b, Eigen::VectorXd* lambda);
+
+ private:
+  bool Build(const std::vector<SolverBody>& bodies);
+  int BodyNode(int body);
+  void Order(const std::vector<SolverBody>& bodies);
+  void Diagonal(const Node& n, const std::vector<SolverBody>& bodies, NodeMatrix* H) const;
+  void Coupling(const Node& joint, const Node& body, NodeMatrix* H) const;
+
+  const std::vector<ConstraintRow>* rows_ = nullptr;  // while factoring
+  const std::vector<JointBlock>* blocks_ = nullptr;
+  int row_count_ = 0;
+  std::vector<Node> nodes_;
+  std::vector<int> node_of_body_;
+  std::vector<int> preorder_;  // parents before children
+};
+
 // True when the joints of `blocks` make no loop through dynamic bodies.
 bool JointGraphIsTree(const std::vector<JointBlock>& blocks, const std::vector<SolverBody>& bodies);
 
 // Solves (J M^-1 J^T + R) lambda = b for the rows grouped by `blocks` (which
 // cover every row). Returns false, lambda untouched, when the joints make a
-// loop.
+// loop or a node is too large (JointTreeFactor).
 bool SolveJointsTree(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
                      const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b, Eigen::VectorXd* lambda);
 
