@@ -1,5 +1,6 @@
 #include "service/server/command_channels.h"
 
+#include <contactsim/actuator_cmd_t.hpp>
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
@@ -43,6 +44,9 @@ Status CheckScene(const scene_cmd_t& m, const DecodeContext&, Command* cmd) { re
 Status CheckJoint(const joint_cmd_t& m, const DecodeContext&, Command* cmd) { return DecodeJointCommand(m, cmd); }
 Status CheckModel(const model_cmd_t& m, const DecodeContext& context, Command* cmd) {
   return DecodeModelCommand(m, context, cmd);
+}
+Status CheckActuator(const actuator_cmd_t& m, const DecodeContext&, Command* cmd) {
+  return DecodeActuatorCommand(m, cmd);
 }
 Status CheckInput(const input_t& m, const DecodeContext&, Command* cmd) { return DecodeInput(m, cmd); }
 Status CheckSensor(const sensor_cmd_t& m, const DecodeContext& context, Command* cmd) {
@@ -109,6 +113,8 @@ const std::vector<CommandChannel>& CommandChannels() {
                                                                        RecordKind::kJointCommand),
       Row<model_cmd_t, &DecodeLimits::max_model_cmd_bytes, CheckModel>(protocol::kModelCmd,
                                                                        RecordKind::kModelCommand),
+      Row<actuator_cmd_t, &DecodeLimits::max_actuator_cmd_bytes, CheckActuator>(protocol::kActuatorCmd,
+                                                                                 RecordKind::kActuatorCommand),
       Row<input_t, &DecodeLimits::max_input_bytes, CheckInput>(protocol::kInput, RecordKind::kInput),
       Row<sensor_cmd_t, &DecodeLimits::max_sensor_cmd_bytes, CheckSensor>(protocol::kSensorCmd,
                                                                           RecordKind::kSensorCommand),

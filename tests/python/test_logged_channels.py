@@ -18,7 +18,8 @@ from lcm_recorder import LcmRecorder, lcm_tool
 
 G = 9.81
 DT = 1.0 / 240.0
-CHANNELS = ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "REPLY", "STATE", "CONTACTS", "STATUS")
+CHANNELS = ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "REPLY", "STATE", "CONTACTS", "STATUS", "ACTUATOR_CMD",
+            "JOINT_STATE")
 
 
 def record_every_channel(server, path):
@@ -34,6 +35,9 @@ def record_every_channel(server, path):
         ball = c.add_sphere(0.1, position=(0, 0, 0.1), mass=mass, restitution=0.0)
         bob = c.add_box((0.05, 0.05, 0.05), position=(1, 0, 1.5), mass=1.0)
         c.add_joint("distance", bob, None, anchor=(1, 0, 2))
+        arm = c.add_box((0.05, 0.05, 0.2), position=(-1, 0, 1.3), mass=1.0)
+        hinge = c.add_joint("hinge", arm, None, anchor=(-1, 0, 1.5), axis=(0, 1, 0))
+        c.set_joint_actuator(hinge, target_position=0.3, kp=50.0, kd=5.0)
         c.step(240)
         with contactsim.Controller(c, lambda s: {ball: (0.0, 0.0, 0.0)}) as ctl:
             c.set_mode("lockstep")
