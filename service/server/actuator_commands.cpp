@@ -13,6 +13,10 @@ namespace contactsim {
 // Checked in full before anything changes: a refused command leaves every
 // joint as it was.
 Outcome SimServer::ApplyActuatorCommand(Command& cmd) {
+  if (cmd.kind == Command::Kind::kJointStateQuery) {
+    publisher_.Publish(publisher_.Channel(protocol::kJointState), MakeJointStateMessage(world_));
+    return Outcome::Done("joint state on " + publisher_.Channel(protocol::kJointState), false);
+  }
   ActuatorUpdate& u = cmd.actuators;
   Status st = ResolveActuatorUpdate(world_, &u);
   if (!st.ok()) return Outcome::Failed(st);

@@ -55,7 +55,7 @@ struct Command {
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
     kAddJoint, kRemoveJoint, kSetFilter, kAddRangeSensor, kAddContactSensor, kRemoveSensor, kRayCast,
-    kLoadModel, kRemoveModel, kModelInfo, kArmCommand, kSetActuators, kClearActuators,
+    kLoadModel, kRemoveModel, kModelInfo, kArmCommand, kSetActuators, kClearActuators, kJointStateQuery,
   };
   Kind kind = Kind::kPause;
   std::string client_id;

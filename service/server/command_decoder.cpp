@@ -333,8 +333,12 @@ Status DecodeInput(const input_t& m, Command* cmd) {
 Status DecodeActuatorCommand(const actuator_cmd_t& m, Command* cmd) {
   cmd->client_id = m.client_id;
   cmd->request_id = m.request_id;
+  if (m.op == actuator_cmd_t::STATE) {
+    cmd->kind = Command::Kind::kJointStateQuery;
+    return Status::Ok();
+  }
   if (m.op != actuator_cmd_t::SET && m.op != actuator_cmd_t::CLEAR) {
-    return Status::InvalidArgument("op must be SET=1 or CLEAR=2, got " + std::to_string(m.op));
+    return Status::InvalidArgument("op must be SET=1, CLEAR=2 or STATE=3, got " + std::to_string(m.op));
   }
   cmd->kind = m.op == actuator_cmd_t::SET ? Command::Kind::kSetActuators : Command::Kind::kClearActuators;
   const Status st = DecodeActuatorUpdate(m.joints, &cmd->actuators);

@@ -38,7 +38,7 @@ Status DecodeRayCast(const ray_cast_t& msg, int max_rays, Command* cmd);
 // whatever happens to the files later.
 Status DecodeModelCommand(const model_cmd_t& msg, const DecodeContext& context, Command* cmd);
 // SET or CLEAR of joints' actuators: DecodeActuatorUpdate's checks, and a
-// SET names at least one field and one joint.
+// SET names at least one field and one joint; STATE asks for JOINT_STATE.
 Status DecodeActuatorCommand(const actuator_cmd_t& msg, Command* cmd);
 
 }  // namespace contactsim

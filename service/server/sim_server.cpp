@@ -60,7 +60,7 @@ Outcome SimServer::Apply(Command& cmd) {
       return ApplySnapshotCommand(cmd);
     case K::kLoadModel: case K::kRemoveModel: case K::kModelInfo:
       return ApplyModelCommand(cmd);
-    case K::kSetActuators: case K::kClearActuators:
+    case K::kSetActuators: case K::kClearActuators: case K::kJointStateQuery:
       return ApplyActuatorCommand(cmd);
     case K::kInput: {
       const Status st = CheckInputJoints(&cmd.input);

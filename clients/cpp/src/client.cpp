@@ -128,6 +128,7 @@ void Client::OnJointState(const lcm::ReceiveBuffer* rb, const std::string& ch, C
   for (const auto& callback : Snapshot(c->mutex_, c->callbacks_->joint_state)) callback(m);
   std::lock_guard<std::mutex> lock(c->mutex_);
   c->latest_joint_state_ = std::move(m);
+  c->changed_.notify_all();
 }
 
 void Client::SubscribeSensors(int queue_capacity) {
@@ -144,6 +145,15 @@ int Client::OnJointState(JointStateCallback callback) {
 
 std::optional<joint_state_t> Client::LatestJointState() const {
   std::lock_guard<std::mutex> lock(mutex_);
+  return latest_joint_state_;
+}
+
+std::optional<joint_state_t> Client::WaitForJointState(const std::function<bool(const joint_state_t&)>& predicate,
+                                                       std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!changed_.wait_for(lock, timeout, [&] { return latest_joint_state_ && predicate(*latest_joint_state_); })) {
+    return std::nullopt;
+  }
   return latest_joint_state_;
 }
 

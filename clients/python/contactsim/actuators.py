@@ -115,6 +115,9 @@ class JointState:
             raise KeyError("joint %s has no coordinate in JOINT_STATE" % e.args[0]) from None
         return self.positions[sel], self.velocities[sel], self.efforts[sel]
 
+    def __iter__(self):  # positions, velocities, efforts = sim.joint_state()
+        return iter((self.positions, self.velocities, self.efforts))
+
 
 class ActuatorCommands:
     """Mixin of Client: needs its ``_send``, ``_lock`` and ``_callbacks``."""
@@ -164,6 +167,22 @@ class ActuatorCommands:
         for _, column in FIELDS.values():
             setattr(m.joints, column, [0.0] * len(cmd.joints))
         return self._send("ACTUATOR_CMD", m)
+
+    def request_joint_state(self, timeout=None):
+        """Asks the server for a JOINT_STATE now (it publishes one with each
+        STATE; a paused server publishes none) and returns it."""
+        m = actuator_cmd_t()
+        m.op = actuator_cmd_t.STATE
+        m.joints = encode_joint_command(None)
+        with self._lock:
+            seq = self._joint_state_seq
+        reply = self._send("ACTUATOR_CMD", m, timeout=timeout)
+        timeout = self.timeout if timeout is None else timeout
+        with self._joint_state_cond:
+            if not self._joint_state_cond.wait_for(
+                    lambda: self._joint_state_seq > seq and self._joint_state.step >= reply.step, timeout=timeout):
+                raise TimeoutError("no JOINT_STATE within %gs of the request" % timeout)
+            return self._joint_state
 
     def joint_state(self):
         """The latest JOINT_STATE as a JointState, or None before any."""

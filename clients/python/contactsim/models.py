@@ -120,7 +120,7 @@ class Model:
         none has come yet)."""
         js = self._client.joint_state()
         if js is None:
-            js = self._client.wait_for_joint_state(timeout=timeout)
+            js = self._client.request_joint_state(timeout=timeout)
         return js.of_model(self.id)
 
     def joint_command(self, **fields):

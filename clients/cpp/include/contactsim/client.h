@@ -383,6 +383,11 @@ class Client {
   std::optional<sensors_t> LatestSensors() const;
   // JOINT_STATE is published just before the STATE of the same step.
   std::optional<joint_state_t> LatestJointState() const;
+  // The first JOINT_STATE (the latest one, or one arriving later) for which
+  // `predicate` holds; nullopt after `timeout`. An actuator_cmd_t STATE
+  // asks the server for one now.
+  std::optional<joint_state_t> WaitForJointState(const std::function<bool(const joint_state_t&)>& predicate,
+                                                 std::chrono::milliseconds timeout);
 
   // True once a STATUS has arrived (the server publishes one at start and
   // then at status_rate_hz), false after `timeout`.
