@@ -22,7 +22,7 @@ from test_cli import cli
 
 pybullet_data = pytest.importorskip("pybullet_data")
 IIWA = os.path.join(pybullet_data.getDataPath(), "kuka_iiwa", "model.urdf")
-IIWA_JOINTS = ["J%d" % i for i in range(7)]
+IIWA_JOINTS = ["lbr_iiwa_joint_%d" % i for i in range(1, 8)]
 CTL = BUILD / "bin" / "contactsim-ctl"
 
 
@@ -74,9 +74,9 @@ def test_joint_state_names_the_models_joints_in_order_then_loose_ones(arm_server
     q, v, u = arm.joint_state()
     assert q.shape == v.shape == u.shape == (7,)
     assert np.all(np.isfinite(q)) and np.all(u == 0.0)
-    # published with every STATE, just before it
-    seen = c.wait_for_joint_state(timeout=10) if c.step(1) else None
-    assert seen.step == c.state().step == 5
+    # published with every STATE, just before it: the STEP's reply waits for its STATE
+    c.step(1)
+    assert c.joint_state().step == c.state().step == 5
 
 
 def test_actuator_commands_round_trip_and_refusals_change_nothing(arm_server):
@@ -98,8 +98,8 @@ def test_actuator_commands_round_trip_and_refusals_change_nothing(arm_server):
         arm.set_effort_limits(np.zeros(7))
     with pytest.raises(contactsim.CommandError, match=r"unknown joint id 999"):
         c.set_joint_actuators(joints=[ids[0], 999], kp=[1.0, 1.0])
+    _, hinge = _pendulum(c, x=2.0)
     with pytest.raises(contactsim.CommandError, match=r"is not a joint of model"):
-        _, hinge = _pendulum(c, x=2.0)
         c.set_joint_actuators(joints=[hinge], model=arm, kp=[1.0])
     with pytest.raises(contactsim.CommandError, match=r"unknown model id 77"):
         c.set_joint_actuators(model=77, kp=[1.0])
@@ -139,8 +139,8 @@ def test_lockstep_input_with_a_bad_joint_is_refused_and_the_step_waits(server):
 def test_joint_state_read_back_from_a_log_equals_what_was_published(server, tmp_path):
     c = server.client
     _pendulum(c)
-    c.add_box((0.05, 0.05, 0.05), position=(1, 0, 1.5), mass=1.0)
-    slider = c.add_joint("prismatic", 2, None, anchor=(1, 0, 1.5), axis=(0, 0, 1), limits=(-0.2, 0.2))
+    box = c.add_box((0.05, 0.05, 0.05), position=(1, 0, 1.5), mass=1.0)
+    slider = c.add_joint("prismatic", box, None, anchor=(1, 0, 1.5), axis=(0, 0, 1), limits=(-0.2, 0.2))
     c.set_joint_actuator(slider, target_position=0.1, kp=100.0, kd=10.0)
     published = {}
     c.on_joint_state(lambda js: published.setdefault(js.step, js))

@@ -19,12 +19,14 @@ from .state import MODE_NAMES
 
 
 def _detect_prefix(path):
-    """The prefix of the first ``<P>_STATE`` channel in the log."""
+    """The prefix of the first ``<P>_STATE`` channel in the log (not a
+    channel whose own name ends in _STATE, as JOINT_STATE does)."""
     suffix = protocol.channel("", "STATE")
+    longer = tuple(protocol.channel("", n) for n in protocol.CHANNELS if n != "STATE" and n.endswith("_STATE"))
     log = lcm.EventLog(path, "r")
     try:
         for event in log:
-            if event.channel.endswith(suffix):
+            if event.channel.endswith(suffix) and not event.channel.endswith(longer):
                 return event.channel[:-len(suffix)]
     finally:
         log.close()
