@@ -85,7 +85,8 @@ def test_every_channel_is_recorded_read_back_and_played_back(server, tmp_path):
     for ch in expected:
         assert log.channels.get(ch, 0) > 0, "%s missing from the log: %s" % (ch, log.channels)
     assert len(log.time) > 0 and np.all(np.diff(log.step) >= 0)
-    assert log.position.shape == (len(log.time), 3, 3) and log.orientation.shape[2] == 4
+    assert log.position.shape == (len(log.time), 4, 3) and log.orientation.shape[2] == 4
+    assert log.joints.names == ["2"] and log.joints.position.shape == (len(log.joints.time), 1)
     assert len(log.status.step) >= 2 and log.status.mode[-1] == "lockstep"
 
     # the sphere rests on the plane: the contact carries its weight (impulse
