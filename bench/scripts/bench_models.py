@@ -10,7 +10,7 @@ and its step time is a STEP of many steps divided by their count. Prints a
 markdown table; docs/models.md and BENCHMARKS.md, "Robot models", say how it
 was run.
 
-Usage: bench/scripts/bench_models.py [--build-dir build] [--method impulse] [--steps 2000]
+Usage: bench/scripts/bench_models.py [--build-dir build] [--method impulse] [--steps 2000] [--scene WORD]
 """
 import argparse
 import os
@@ -138,7 +138,9 @@ def main():
     ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
     ap.add_argument("--method", default="impulse")
     ap.add_argument("--steps", type=int, default=2000)
+    ap.add_argument("--scene", default="", help="only the scenes whose title contains this word")
     a = ap.parse_args()
+    SCENES[:] = [s for s in SCENES if a.scene in s[0]]
     import pybullet_data  # noqa: PLC0415
     models = _models(pybullet_data.getDataPath())
     pb = bench_pybullet(models, a.steps)

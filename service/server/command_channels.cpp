@@ -113,13 +113,13 @@ const std::vector<CommandChannel>& CommandChannels() {
                                                                        RecordKind::kJointCommand),
       Row<model_cmd_t, &DecodeLimits::max_model_cmd_bytes, CheckModel>(protocol::kModelCmd,
                                                                        RecordKind::kModelCommand),
-      Row<actuator_cmd_t, &DecodeLimits::max_actuator_cmd_bytes, CheckActuator>(protocol::kActuatorCmd,
-                                                                                 RecordKind::kActuatorCommand),
       Row<input_t, &DecodeLimits::max_input_bytes, CheckInput>(protocol::kInput, RecordKind::kInput),
       Row<sensor_cmd_t, &DecodeLimits::max_sensor_cmd_bytes, CheckSensor>(protocol::kSensorCmd,
                                                                           RecordKind::kSensorCommand),
       Row<ray_cast_t, &DecodeLimits::max_ray_cast_bytes, CheckRayCast>(protocol::kRayCast,
                                                                        RecordKind::kNotJournaled),
+      Row<actuator_cmd_t, &DecodeLimits::max_actuator_cmd_bytes, CheckActuator>(protocol::kActuatorCmd,
+                                                                                 RecordKind::kActuatorCommand),
   };
   return kChannels;
 }
