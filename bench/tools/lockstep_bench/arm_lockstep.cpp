@@ -6,9 +6,9 @@
 
 #include "contactsim/controller.h"
 
-namespace bench {
+namespace contactsim::bench {
 
-using namespace contactsim;
+
 
 ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, double seconds) {
   ArmLockstepResult r;
@@ -68,4 +68,4 @@ ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, do
   return r;
 }
 
-}  // namespace bench
+}  // namespace contactsim::bench

@@ -8,7 +8,7 @@
 
 #include "contactsim/client.h"
 
-namespace bench {
+namespace contactsim::bench {
 
 struct ArmLockstepResult {
   double cycles_per_second = 0.0;
@@ -20,6 +20,6 @@ struct ArmLockstepResult {
 
 // Loads `urdf` with its base fixed and standing gains on its joints, then
 // for `seconds` answers every STATE with targets along a slow sine.
-ArmLockstepResult MeasureArmLockstep(contactsim::Client& client, const std::string& urdf, double seconds);
+ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, double seconds);
 
-}  // namespace bench
+}  // namespace contactsim::bench
