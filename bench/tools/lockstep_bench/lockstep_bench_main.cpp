@@ -221,7 +221,11 @@ int main(int argc, char** argv) {
       if (pp.resends > 0) std::printf("(%lld ping(s) resent after 1 s: lost on UDP)\n", static_cast<long long>(pp.resends));
       std::fflush(stdout);
     }
-    if (rc == 0 && !arm.empty()) rc = MeasureArmRow(client, self, url, prefix, arm, seconds);
+    if (rc == 0 && !arm.empty() && access(arm.c_str(), R_OK) != 0) {
+      std::printf("(no arm row: %s is not readable; pip install pybullet, or pass --arm)\n", arm.c_str());
+    } else if (rc == 0 && !arm.empty()) {
+      rc = MeasureArmRow(client, self, url, prefix, arm, seconds);
+    }
   }
   Reap(server, true);
   return rc;
