@@ -1,7 +1,6 @@
 #include "service/server/actuator_update.h"
 
 #include <algorithm>
-#include <cmath>
 #include <set>
 
 namespace contactsim {
@@ -26,11 +25,6 @@ constexpr FieldColumn kColumns[] = {
     {kActuatorVelocityLimit, "velocity_limits", &joint_command_t::velocity_limits,
      &JointActuator::velocity_limit},
 };
-
-std::string Num(double v) {
-  std::string s = std::to_string(v);
-  return std::isfinite(v) ? s : (std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"));
-}
 
 }  // namespace
 
@@ -58,20 +52,10 @@ Status DecodeActuatorUpdate(const joint_command_t& m, ActuatorUpdate* u) {
     if ((u->fields & c.bit) == 0) continue;
     for (size_t i = 0; i < n; ++i) u->values[i].*c.member = col[i];
   }
+  // the fields given over an actuator of none (valid), checked as any actuator is
   for (size_t i = 0; i < n; ++i) {
-    const JointActuator& v = u->values[i];
-    for (const FieldColumn& c : kColumns) {
-      if ((u->fields & c.bit) == 0) continue;
-      const double x = v.*c.member;
-      const bool limit = c.bit == kActuatorEffortLimit || c.bit == kActuatorVelocityLimit;
-      const bool gain = c.bit == kActuatorKp || c.bit == kActuatorKd;
-      const bool bad = std::isnan(x) || (limit ? x <= 0.0 : !std::isfinite(x)) || (gain && x < 0.0);
-      if (bad) {
-        const char* want = limit ? " must be > 0 (inf: none)" : gain ? " must be finite and >= 0" : " must be finite";
-        return Status::InvalidArgument(std::string("joints.") + c.name + "[" + std::to_string(i) + "]" + want +
-                                       ", got " + Num(x));
-      }
-    }
+    const Status st = CheckJointActuator(MergeActuator(JointActuator(), u->fields, u->values[i]));
+    if (!st.ok()) return st.Prefixed("joints[" + std::to_string(i) + "].");
   }
   return Status::Ok();
 }

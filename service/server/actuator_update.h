@@ -39,9 +39,9 @@ struct ActuatorUpdate {
 };
 
 // The checks that need no world: known field bits, as many ids as values
-// (or none with a model), finite torques and targets, gains finite and
-// >= 0, limits > 0. A message without joints decodes to an empty update.
-// The message names the field, the index and the value.
+// (or none with a model), and each joint's fields as CheckJointActuator
+// checks an actuator. A message without joints decodes to an empty update.
+// The message names the joint's index, the field and the value.
 Status DecodeActuatorUpdate(const joint_command_t& msg, ActuatorUpdate* update);
 // The update as a message (a resolved one carries its joint ids).
 joint_command_t EncodeActuatorUpdate(const ActuatorUpdate& update);

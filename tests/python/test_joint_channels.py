@@ -90,11 +90,11 @@ def test_actuator_commands_round_trip_and_refusals_change_nothing(arm_server):
     assert list(arm.set_joint_torques(np.ones(7)).ids) == ids
     with pytest.raises(contactsim.CommandError, match=r"has 7 joints with a coordinate, got 6 values"):
         arm.set_joint_targets(np.zeros(6))
-    with pytest.raises(contactsim.CommandError, match=r"target_positions\[3\] must be finite, got nan"):
+    with pytest.raises(contactsim.CommandError, match=r"joints\[3\]\.target_position must be a finite number, got nan"):
         arm.set_joint_targets([0, 0, 0, math.nan, 0, 0, 0])
-    with pytest.raises(contactsim.CommandError, match=r"kp\[0\] must be finite and >= 0"):
+    with pytest.raises(contactsim.CommandError, match=r"joints\[0\]\.kp must be finite and >= 0"):
         arm.set_joint_targets(np.zeros(7), kp=-1.0)
-    with pytest.raises(contactsim.CommandError, match=r"effort_limits\[0\] must be > 0"):
+    with pytest.raises(contactsim.CommandError, match=r"joints\[0\]\.effort_limit must be > 0"):
         arm.set_effort_limits(np.zeros(7))
     with pytest.raises(contactsim.CommandError, match=r"unknown joint id 999"):
         c.set_joint_actuators(joints=[ids[0], 999], kp=[1.0, 1.0])
@@ -122,7 +122,7 @@ def test_lockstep_input_with_a_bad_joint_is_refused_and_the_step_waits(server):
     step = c.state().step
     for joints, says in ((contactsim.JointCommand([rod], torque=1.0), "distance"),
                          (contactsim.JointCommand([12345], torque=1.0), "unknown joint id 12345"),
-                         (contactsim.JointCommand([hinge], kp=-2.0), "kp[0]")):
+                         (contactsim.JointCommand([hinge], kp=-2.0), "joints[0].kp")):
         n = len(replies)
         c.send_input(step + 1, joints=joints)
         deadline = time.monotonic() + 5
@@ -181,7 +181,7 @@ def test_both_command_lines_set_and_read_joints(server):
     r = _ctl(server, "joint", "set", str(hinge), "--kd", "2")
     assert r.returncode == 0, r.stdout + r.stderr
     r = cli(server, "joint", "set", str(hinge), "--kp", "-1")
-    assert r.returncode == 1 and "kp[0]" in r.stderr, r.stdout + r.stderr
+    assert r.returncode == 1 and "joints[0].kp" in r.stderr, r.stdout + r.stderr
     r = _ctl(server, "joint", "set", "999", "--kp", "1")
     assert r.returncode == 1 and "unknown joint id 999" in r.stderr, r.stdout + r.stderr
     py = cli(server, "joint", "state")

@@ -119,9 +119,9 @@ TEST(SimServerActuatorsTest, ARefusedCommandChangesNoJoint) {
       {Actuator(actuator_cmd_t::SET, {1, 3}, Fields(kActuatorKp, v, 2)), reply_t::FAILED_PRECONDITION,
        "joint 3 is a distance joint"},
       {Actuator(actuator_cmd_t::SET, {1, 2}, Fields(kActuatorKp, bad, 2)), reply_t::INVALID_ARGUMENT,
-       "joints.kp[0] must be finite and >= 0, got -1"},
+       "joints[0].kp must be finite and >= 0, got -1"},
       {Actuator(actuator_cmd_t::SET, {2}, Fields(kActuatorTargetPosition, nan)), reply_t::INVALID_ARGUMENT,
-       "joints.target_positions[0] must be finite, got nan"},
+       "joints[0].target_position must be a finite number, got nan"},
       {Actuator(actuator_cmd_t::SET, {2, 2}, Fields(kActuatorKp, v, 2)), reply_t::INVALID_ARGUMENT, "named twice"},
   };
   for (const Case& c : cases) {
