@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 """Robot models beside PyBullet (DIRECT mode, the same URDFs, the same dt):
 load time of each model, and ms per step of one free-swinging iiwa, ten
-iiwas on a table, and R2D2 on the ground. contactsim runs as a server
+iiwas on a table, R2D2 on the ground, and one iiwa held at a bent pose by
+seven position actuators (contactsim's joint actuators; PyBullet's
+POSITION_CONTROL motors at their default gains with the same effort limit). contactsim runs as a server
 (free_run, paused, driven by STEP over LCM on this host), so its load time
 includes reading the files, building the hulls and one command round trip,
 and its step time is a STEP of many steps divided by their count. Prints a
 markdown table; docs/models.md and BENCHMARKS.md, "Robot models", say how it
 was run.
 
-Usage: bench/scripts/bench_models.py [--build-dir build] [--method impulse] [--steps 2000]
+Usage: bench/scripts/bench_models.py [--build-dir build] [--method impulse] [--steps 2000] [--scene WORD]
 """
 import argparse
 import os
@@ -27,13 +29,18 @@ def _models(data):
             "panda": os.path.join(data, "franka_panda", "panda.urdf")}
 
 
-# The scenes: (name, [(model, position, fixed_base, bent)], ground)
+# The scenes: (name, [(model, position, fixed_base, bent)], ground, held by position actuators)
 IIWA_BENT = [0.3, 0.8, -0.4, -1.2, 0.5, 0.7, -0.3]
 SCENES = [
-    ("one free-swinging iiwa", [("iiwa", (0, 0, 0), True, True)], False),
-    ("ten bent iiwas, bases 0.6 m above the ground", [("iiwa", (0.8 * (i % 5), 0.8 * (i // 5), 0.6), True, True) for i in range(10)], True),
-    ("R2D2 on the ground", [("r2d2", (0, 0, 0.5), False, False)], True),
+    ("one free-swinging iiwa", [("iiwa", (0, 0, 0), True, True)], False, False),
+    ("ten bent iiwas, bases 0.6 m above the ground", [("iiwa", (0.8 * (i % 5), 0.8 * (i // 5), 0.6), True, True) for i in range(10)], True, False),
+    ("R2D2 on the ground", [("r2d2", (0, 0, 0.5), False, False)], True, False),
+    ("one iiwa held by seven position actuators", [("iiwa", (0, 0, 0), True, True)], False, True),
 ]
+# The held iiwa's gains and effort limit: N m/rad, N m s/rad, N m. PyBullet's
+# motors are velocity rows of its solver with their own gain scale, so only
+# the effort limit is shared; both hold the pose, and the row is a step's cost.
+HOLD_KP, HOLD_KD, HOLD_EFFORT = 2000.0, 100.0, 300.0
 
 
 def _bent_iiwa_poses(path, base):
@@ -56,7 +63,7 @@ def bench_pybullet(models, steps):
         t = time.perf_counter()
         p.loadURDF(path, useFixedBase=name != "r2d2", physicsClientId=cid)
         out["load"][name] = 1e3 * (time.perf_counter() - t)
-    for title, placed, ground in SCENES:
+    for title, placed, ground, held in SCENES:
         p.resetSimulation(physicsClientId=cid)
         p.setGravity(0, 0, -9.81, physicsClientId=cid)
         p.setTimeStep(DT, physicsClientId=cid)
@@ -69,6 +76,9 @@ def bench_pybullet(models, steps):
                 p.setJointMotorControl2(uid, j, p.VELOCITY_CONTROL, force=0, physicsClientId=cid)
                 if bent:
                     p.resetJointState(uid, j, IIWA_BENT[j], physicsClientId=cid)
+                if held:
+                    p.setJointMotorControl2(uid, j, p.POSITION_CONTROL, targetPosition=IIWA_BENT[j],
+                                            force=HOLD_EFFORT, physicsClientId=cid)
         t = time.perf_counter()
         for _ in range(steps):
             p.stepSimulation(physicsClientId=cid)
@@ -101,7 +111,7 @@ def bench_contactsim(models, steps, build, method):
                 t = time.perf_counter()
                 c.load_model(path, name=name, fixed_base=name != "r2d2")
                 out["load"][name] = 1e3 * (time.perf_counter() - t)
-            for title, placed, ground in SCENES:
+            for title, placed, ground, held in SCENES:
                 c.reset()
                 c.set_timestep(DT)
                 if ground:
@@ -110,6 +120,9 @@ def bench_contactsim(models, steps, build, method):
                     m = c.load_model(models[name], name="%s%d" % (name, k), position=pos, fixed_base=fixed)
                     if bent:
                         m.set_link_poses(_bent_iiwa_poses(models["iiwa"], pos))
+                    if held:
+                        m.set_joint_targets(IIWA_BENT, kp=HOLD_KP, kd=HOLD_KD)
+                        m.set_effort_limits([HOLD_EFFORT] * 7)
                 c.step(10, timeout=60)  # warm: caches and first contacts
                 t = time.perf_counter()
                 c.step(steps, timeout=600)
@@ -125,7 +138,9 @@ def main():
     ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
     ap.add_argument("--method", default="impulse")
     ap.add_argument("--steps", type=int, default=2000)
+    ap.add_argument("--scene", default="", help="only the scenes whose title contains this word")
     a = ap.parse_args()
+    SCENES[:] = [s for s in SCENES if a.scene in s[0]]
     import pybullet_data  # noqa: PLC0415
     models = _models(pybullet_data.getDataPath())
     pb = bench_pybullet(models, a.steps)
@@ -135,7 +150,7 @@ def main():
     for name in models:
         print("| load %s | %.1f | %.1f | %.2f |" % (name, cs["load"][name], pb["load"][name],
                                                    cs["load"][name] / pb["load"][name]))
-    for title, _, _ in SCENES:
+    for title, _, _, _ in SCENES:
         print("| step: %s | %.3f | %.3f | %.2f |" % (title, cs["step"][title], pb["step"][title],
                                                       cs["step"][title] / pb["step"][title]))
 

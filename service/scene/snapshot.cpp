@@ -276,6 +276,45 @@ Status LoadBody(const proto::SnapshotBody& in, RigidBody* b) {
   return Status::Ok();
 }
 
+// Written only when the joint has settings other than none, so that a
+// snapshot of a world without actuators keeps its bytes.
+void SaveJointActuator(const JointActuator& a, proto::SnapshotJoint* joint) {
+  const JointActuator none;
+  if (a.torque == none.torque && a.target_position == none.target_position &&
+      a.target_velocity == none.target_velocity && a.kp == none.kp && a.kd == none.kd &&
+      a.effort_limit == none.effort_limit && a.velocity_limit == none.velocity_limit) {
+    return;
+  }
+  proto::SnapshotJointActuator* out = joint->mutable_actuator();
+  out->set_torque(a.torque);
+  out->set_target_position(a.target_position);
+  out->set_target_velocity(a.target_velocity);
+  out->set_kp(a.kp);
+  out->set_kd(a.kd);
+  if (std::isfinite(a.effort_limit)) out->set_effort_limit(a.effort_limit);
+  if (std::isfinite(a.velocity_limit)) out->set_velocity_limit(a.velocity_limit);
+}
+
+Status LoadJointActuator(const proto::SnapshotJoint& p, Joint* j) {
+  j->actuator = JointActuator();
+  if (!p.has_actuator()) return Status::Ok();
+  if (!HasJointCoordinate(j->kind)) {
+    return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) + " is a " + JointKindName(j->kind) +
+                                   " joint, which takes no actuator");
+  }
+  const proto::SnapshotJointActuator& in = p.actuator();
+  JointActuator& a = j->actuator;
+  a.torque = in.torque();
+  a.target_position = in.target_position();
+  a.target_velocity = in.target_velocity();
+  a.kp = in.kp();
+  a.kd = in.kd();
+  if (in.has_effort_limit()) a.effort_limit = in.effort_limit();
+  if (in.has_velocity_limit()) a.velocity_limit = in.velocity_limit();
+  const Status st = CheckJointActuator(a);
+  return st.ok() ? st : st.Prefixed("snapshot: joint " + std::to_string(p.id()) + ": ");
+}
+
 }  // namespace
 
 void SaveJoint(const Joint& j, proto::SnapshotJoint* out) {
@@ -296,6 +335,8 @@ void SaveJoint(const Joint& j, proto::SnapshotJoint* out) {
   if (j.damping != 0.0) out->set_damping(j.damping);
   if (j.friction != 0.0) out->set_friction(j.friction);
   if (j.collide_connected) out->set_collide_connected(true);
+  SaveJointActuator(j.actuator, out);
+  if (j.effort != 0.0) out->set_effort(j.effort);
 }
 
 Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
@@ -326,7 +367,11 @@ Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
   j->damping = p.damping();
   j->friction = p.friction();
   j->collide_connected = p.collide_connected();
-  return Status::Ok();
+  if (!std::isfinite(p.effort())) {
+    return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) + " effort must be finite");
+  }
+  j->effort = p.effort();
+  return LoadJointActuator(p, j);
 }
 
 void SaveSnapshot(const World& world, const ContactMethod& method, proto::Snapshot* out) {

@@ -16,6 +16,7 @@
 #include "service/physics/joint.h"
 #include "service/physics/rigid_body.h"
 #include "service/scene/scene_spec.h"
+#include "service/server/actuator_update.h"
 #include "service/server/arm_driver/arm_command.h"
 #include "service/server/journal.h"
 #include "service/server/lockstep.h"
@@ -54,7 +55,7 @@ struct Command {
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
     kAddJoint, kRemoveJoint, kSetFilter, kAddRangeSensor, kAddContactSensor, kRemoveSensor, kRayCast,
-    kLoadModel, kRemoveModel, kModelInfo, kArmCommand,
+    kLoadModel, kRemoveModel, kModelInfo, kArmCommand, kSetActuators, kClearActuators, kJointStateQuery,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -80,6 +81,7 @@ struct Command {
   model::ModelOptions model_options;
   Material model_material;
   ModelId model_id = 0;
+  ActuatorUpdate actuators;            // SET / CLEAR actuators (checked but against the world)
 
   std::shared_ptr<SceneSpec> scene;    // LOAD_SCENE
   std::string scene_path;

@@ -1,5 +1,6 @@
 #include "service/server/command_channels.h"
 
+#include <contactsim/actuator_cmd_t.hpp>
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
@@ -83,6 +84,9 @@ Status CheckJoint(const joint_cmd_t& m, const DecodeContext&, Command* cmd) { re
 Status CheckModel(const model_cmd_t& m, const DecodeContext& context, Command* cmd) {
   return DecodeModelCommand(m, context, cmd);
 }
+Status CheckActuator(const actuator_cmd_t& m, const DecodeContext&, Command* cmd) {
+  return DecodeActuatorCommand(m, cmd);
+}
 Status CheckInput(const input_t& m, const DecodeContext&, Command* cmd) { return DecodeInput(m, cmd); }
 Status CheckSensor(const sensor_cmd_t& m, const DecodeContext& context, Command* cmd) {
   return DecodeSensorCommand(m, context.limits.max_rays_per_sensor, cmd);
@@ -153,6 +157,8 @@ const std::vector<CommandChannel>& CommandChannels() {
                                                                           RecordKind::kSensorCommand),
       Row<ray_cast_t, &DecodeLimits::max_ray_cast_bytes, CheckRayCast>(protocol::kRayCast,
                                                                        RecordKind::kNotJournaled),
+      Row<actuator_cmd_t, &DecodeLimits::max_actuator_cmd_bytes, CheckActuator>(protocol::kActuatorCmd,
+                                                                                 RecordKind::kActuatorCommand),
   };
   return kChannels;
 }

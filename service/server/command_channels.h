@@ -39,6 +39,7 @@ struct DecodeLimits {
   int max_sensor_cmd_bytes = 128 << 10; // 4,096 directions are 98 kB
   int max_model_cmd_bytes = 16 << 20;   // a model in its resolved form carries its mesh vertices
   int max_model_text_bytes = 1 << 20;   // the inline text of one model file
+  int max_actuator_cmd_bytes = 1 << 20; // 7 values of 10,000 joints are 560 kB
 };
 
 struct DecodeContext {

@@ -370,6 +370,33 @@ Status DecodeInput(const input_t& m, Command* cmd) {
     if (!(st = CheckFinite("torques" + at, b.torque)).ok()) return st;
     in.bodies.push_back(b);
   }
+  if (!(st = DecodeActuatorUpdate(m.joints, &in.joints)).ok()) return st;
+  if (!in.joints.empty() && in.joints.fields == 0) {
+    return Status::InvalidArgument("joints.fields names no field for " + std::to_string(in.joints.values.size()) +
+                                   " joints");
+  }
+  return Status::Ok();
+}
+
+Status DecodeActuatorCommand(const actuator_cmd_t& m, Command* cmd) {
+  cmd->client_id = m.client_id;
+  cmd->request_id = m.request_id;
+  if (m.op == actuator_cmd_t::STATE) {
+    cmd->kind = Command::Kind::kJointStateQuery;
+    return Status::Ok();
+  }
+  if (m.op != actuator_cmd_t::SET && m.op != actuator_cmd_t::CLEAR) {
+    return Status::InvalidArgument("op must be SET=1, CLEAR=2 or STATE=3, got " + std::to_string(m.op));
+  }
+  cmd->kind = m.op == actuator_cmd_t::SET ? Command::Kind::kSetActuators : Command::Kind::kClearActuators;
+  const Status st = DecodeActuatorUpdate(m.joints, &cmd->actuators);
+  if (!st.ok()) return st;
+  if (cmd->actuators.empty() && cmd->actuators.model == 0) {
+    return Status::InvalidArgument("names no joint: give joints.joint_ids, or a joints.model_id");
+  }
+  if (m.op == actuator_cmd_t::SET && (cmd->actuators.fields == 0 || cmd->actuators.empty())) {
+    return Status::InvalidArgument("SET: joints.fields names no field, or num_joints is 0");
+  }
   return Status::Ok();
 }
 

@@ -3,6 +3,7 @@
 // reaches the simulation thread.
 #pragma once
 
+#include <contactsim/actuator_cmd_t.hpp>
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
@@ -36,5 +37,8 @@ Status DecodeRayCast(const ray_cast_t& msg, int max_rays, Command* cmd);
 // form (the model as read), so that the journal replays the same model
 // whatever happens to the files later.
 Status DecodeModelCommand(const model_cmd_t& msg, const DecodeContext& context, Command* cmd);
+// SET or CLEAR of joints' actuators: DecodeActuatorUpdate's checks, and a
+// SET names at least one field and one joint; STATE asks for JOINT_STATE.
+Status DecodeActuatorCommand(const actuator_cmd_t& msg, Command* cmd);
 
 }  // namespace contactsim

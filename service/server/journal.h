@@ -38,6 +38,7 @@ enum class RecordKind : uint8_t {
   kSensorCommand = 6, // sensor_cmd_t
   kNotJournaled = 7,  // a query (ray_cast_t): never written
   kModelCommand = 8,  // model_cmd_t, a LOAD always in its resolved form (the model as read)
+  kActuatorCommand = 9,  // actuator_cmd_t
   kArmCommand = 10,   // drake::lcmt_iiwa_command on the arm driver's channel (arm_driver/)
 };
 

@@ -138,6 +138,16 @@ uint64_t DigestInputs(const std::vector<ControllerInput>& inputs) {
       f.Vector(b.force);
       f.Vector(b.torque);
     }
+    const ActuatorUpdate& u = in.joints;
+    if (u.empty()) continue;
+    f.Bytes(&u.fields, sizeof u.fields);
+    for (size_t i = 0; i < u.values.size(); ++i) {
+      const JointActuator& a = u.values[i];
+      if (i < u.joints.size()) f.Bytes(&u.joints[i], sizeof u.joints[i]);
+      for (double v : {a.torque, a.target_position, a.target_velocity, a.kp, a.kd, a.effort_limit, a.velocity_limit}) {
+        f.Double(v);
+      }
+    }
   }
   return f.h;
 }

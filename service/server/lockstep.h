@@ -20,6 +20,7 @@
 #include "service/physics/math.h"
 #include "service/physics/rigid_body.h"
 #include "service/physics/status.h"
+#include "service/server/actuator_update.h"
 
 namespace contactsim {
 
@@ -39,6 +40,7 @@ struct ControllerInput {
   int64_t request_id = 0;
   int64_t step = 0;            // the step it is for
   std::vector<BodyInput> bodies;  // empty: no input
+  ActuatorUpdate joints;          // for this step only; empty: none
 };
 
 class Lockstep {

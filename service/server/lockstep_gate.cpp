@@ -23,6 +23,7 @@ std::string EncodeInput(const ControllerInput& in) {
     m.forces.push_back({b.force.x(), b.force.y(), b.force.z()});
     m.torques.push_back({b.torque.x(), b.torque.y(), b.torque.z()});
   }
+  m.joints = EncodeActuatorUpdate(in.joints);
   std::string bytes(m.getEncodedSize(), '\0');
   m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   return bytes;

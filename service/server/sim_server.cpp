@@ -60,7 +60,14 @@ Outcome SimServer::Apply(Command& cmd) {
       return ApplySnapshotCommand(cmd);
     case K::kLoadModel: case K::kRemoveModel: case K::kModelInfo:
       return ApplyModelCommand(cmd);
-    case K::kRegisterController: case K::kReleaseController: case K::kInput:
+    case K::kSetActuators: case K::kClearActuators: case K::kJointStateQuery:
+      return ApplyActuatorCommand(cmd);
+    case K::kInput: {
+      const Status st = CheckInputJoints(&cmd.input);
+      if (!st.ok()) return Outcome::Failed(st);
+      return lockstep_.Apply(cmd, world_.step);
+    }
+    case K::kRegisterController: case K::kReleaseController:
       return lockstep_.Apply(cmd, world_.step);
     case K::kAddRangeSensor: case K::kAddContactSensor: case K::kRemoveSensor:
       return ApplySensorCommand(cmd);
@@ -78,6 +85,7 @@ void SimServer::ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> metho
   method_ = std::move(method);
   detector_.Reset();
   sleep_.Reset();
+  standing_actuators_.clear();
 }
 
 void SimServer::StartOver() {
@@ -92,6 +100,7 @@ void SimServer::StartOver() {
 void SimServer::SimulateStep() {
   if (arm_) arm_->BeforeStep(&world_);
   last_stats_ = sleep_.Step(world_, *method_, detector_, &contacts_);
+  RestoreStandingActuators();
   steps_.ReportRewindProgress(world_.step);
 }
 
@@ -156,6 +165,7 @@ void SimServer::ApplyInput(const ControllerInput& in, bool live) {
     }
     world_.AddWrench({b.body, b.force, b.torque, 0.0});
   }
+  ApplyInputJoints(in, live);
 }
 
 bool SimServer::LockstepReady(const std::atomic<bool>* stop) {
@@ -181,6 +191,7 @@ void SimServer::CancelStepCommands(const std::string& why) {
 }
 
 void SimServer::PublishState() {
+  PublishJointState();  // first: a client holding STATE k holds JOINT_STATE k
   publisher_.State(world_, lockstep_.input_digest());
   PublishSensors();
 }

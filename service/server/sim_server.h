@@ -19,6 +19,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "service/collision/collision_detector.h"
@@ -95,6 +96,14 @@ class SimServer {
   Status CheckNotInModel(BodyId body, JointId joint) const;
   // MODEL_INFO, when the models changed since the last one or it was asked for
   void PublishModelInfo();
+  // joints' actuators (actuator_commands.cpp): SET and CLEAR of the standing
+  // settings; a lockstep input's joints checked against the world and, at
+  // its step, applied over the standing settings, which return after it
+  Outcome ApplyActuatorCommand(Command& cmd);
+  Status CheckInputJoints(ControllerInput* input) const;
+  void ApplyInputJoints(const ControllerInput& input, bool live);
+  void RestoreStandingActuators();
+  void PublishJointState();
   // the timeline: recovery, snapshots and rewind (timeline.cpp)
   Status Recover();
   proto::Snapshot SaveDurableSnapshot();
@@ -136,6 +145,9 @@ class SimServer {
   ContactSet contacts_;
   StepStats last_stats_;
   RunawayWatch runaway_;
+  // the standing settings of the joints a lockstep input overrides for the
+  // step about to be taken, put back after it (RestoreStandingActuators)
+  std::vector<std::pair<JointId, JointActuator>> standing_actuators_;
   uint64_t models_published_ = 0;  // signature of the model list MODEL_INFO last carried
   bool model_info_due_ = true;      // at start, and on INFO
   std::string fault_;  // "" while the world is sound; STATUS.fault

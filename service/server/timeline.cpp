@@ -43,6 +43,7 @@ const DecodeContext& RecordContext() {
     c.limits = {INT_MAX, INT_MAX, INT_MAX, INT_MAX, INT_MAX};
     c.limits.max_model_cmd_bytes = INT_MAX;  // a journaled LOAD was admitted once already
     c.limits.max_model_text_bytes = INT_MAX;
+    c.limits.max_actuator_cmd_bytes = INT_MAX;
     return c;
   }();
   return context;
@@ -96,6 +97,7 @@ Status SimServer::Recover() {
     for (const JournalRecord& r : journal.recovered_records()) {
       if (!(st = ReplayRecord(r)).ok()) break;
     }
+    RestoreStandingActuators();  // a last input whose step was not taken; its controller sends it again
     batch_.set_replaying(false);
     if (!st.ok()) return Status::FailedPrecondition(options_.journal_dir + ": " + st.message());
     spdlog::info("recovered from {}: snapshot at step {} + {} journal records -> step {}, {} bodies",
@@ -124,6 +126,7 @@ Status SimServer::Rewind(int64_t step, const Command* cmd) {
     if (!(st = ReplayRecord(*r)).ok()) break;
   }
   while (st.ok() && world_.step < step) SimulateStep();
+  RestoreStandingActuators();  // an input recorded for the step after `step` is not taken
   batch_.set_replaying(false);
   steps_.EndRewind();
   if (!st.ok()) {

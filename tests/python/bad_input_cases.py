@@ -177,6 +177,43 @@ def inp(step=1, bodies=(), forces=None, torques=None, num=None):
     return m
 
 
+def actuator(joints=(), op=None, **fields):
+    """An ACTUATOR_CMD SET (or op) of the fields on the joints."""
+    m = contactsim.actuator_cmd_t()
+    m.op = contactsim.actuator_cmd_t.SET if op is None else op
+    m.joints = joint_command(joints, **fields)
+    return m
+
+
+def joint_command(joints=(), model=0, num_ids=None, fields=None, **values):
+    """A joint_command_t: one value per joint of each field given."""
+    from contactsim.actuators import FIELDS
+    m = contactsim.joint_command_t()
+    m.model_id, m.joint_ids = model, list(joints)
+    m.num_ids = len(m.joint_ids) if num_ids is None else num_ids
+    n = max([len(m.joint_ids)] + [len(v) for v in values.values()])
+    m.num_joints = n
+    m.fields = 0
+    for name, (bit, column) in FIELDS.items():
+        if name in values:
+            m.fields |= bit
+        setattr(m, column, list(values.get(name, [0.0] * n)))
+    if fields is not None:
+        m.fields = fields
+    return m
+
+
+def actuatorcmd(factory):
+    return send("ACTUATOR_CMD", factory)
+
+
+def inp_joints(c, joints, **values):
+    """An input for the next step with a joint command."""
+    m = inp(c.state().step + 1)
+    m.joints = joint_command(joints, **values)
+    return m
+
+
 def corrupt(msg, cut=None, patch=None):
     """msg encoded with the raw request id; cut to `cut` bytes or with bytes
     at (offset, bytes) in `patch`, the offset counted from the end when < 0."""
@@ -578,6 +615,49 @@ def cases(tmp):
                                                                                 torques=[[0.0, INF, 0.0]])), IA,
              ["torques[0]", "inf"]),
         Case("input_past_step", "INPUT", "input", as_controller(lambda c: inp(0, [ball])), FP, ["step 0"]),
+        # ---- ACTUATOR_CMD (door is hinge joint 1, bob hangs on distance joint 2)
+        Case("actuator_unknown_joint", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([MISSING], kp=[10.0])), NF, ["unknown joint", str(MISSING)]),
+        Case("actuator_one_unknown_joint_sets_none", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1, MISSING], kp=[10.0, 10.0])), NF, [str(MISSING)]),
+        Case("actuator_distance_joint", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([2], torque=[1.0])), FP, ["joint 2", "distance", "hinge and prismatic"]),
+        Case("actuator_unknown_model", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator(model=MISSING, num_ids=0, kp=[1.0])), NF, ["model", str(MISSING)]),
+        Case("actuator_nan_target", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], target_position=[NAN])), IA, ["joints[0].target_position", "nan"]),
+        Case("actuator_inf_torque", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], torque=[INF])), IA, ["joints[0].torque", "inf"]),
+        Case("actuator_negative_kp", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], kp=[-1.0])), IA, ["joints[0].kp", "-1"]),
+        Case("actuator_negative_kd", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], kd=[-0.5])), IA, ["joints[0].kd", "-0.5"]),
+        Case("actuator_zero_effort_limit", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], effort_limit=[0.0])), IA, ["joints[0].effort_limit", "> 0"]),
+        Case("actuator_negative_velocity_limit", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], velocity_limit=[-2.0])), IA, ["joints[0].velocity_limit", "-2"]),
+        Case("actuator_ids_and_values_disagree", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], num_ids=1, kp=[1.0, 2.0])), IA, ["num_ids", "num_joints"]),
+        Case("actuator_joint_twice", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1, 1], kp=[1.0, 2.0])), IA, ["joint 1", "twice"]),
+        Case("actuator_no_field", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], fields=0, kp=[1.0])), IA, ["names no field"]),
+        Case("actuator_unknown_field_bit", "ACTUATOR_CMD", "SET",
+             actuatorcmd(lambda: actuator([1], fields=-128, kp=[1.0])), IA, ["fields", "-128"]),
+        Case("actuator_no_joint", "ACTUATOR_CMD", "CLEAR",
+             actuatorcmd(lambda: actuator(op=2)), IA, ["names no joint"]),
+        Case("actuator_bad_op", "ACTUATOR_CMD", "-", actuatorcmd(lambda: actuator([1], op=9, kp=[1.0])), IA,
+             ["op", "9"]),
+        Case("input_joint_unknown", "INPUT", "input", as_controller(lambda c: inp_joints(c, [MISSING], torque=[1.0])),
+             NF, ["input for step", str(MISSING)]),
+        Case("input_joint_distance", "INPUT", "input", as_controller(lambda c: inp_joints(c, [2], torque=[1.0])), FP,
+             ["joint 2", "distance"]),
+        Case("input_joint_nan_torque", "INPUT", "input",
+             as_controller(lambda c: inp_joints(c, [1], torque=[NAN])), IA, ["joints[0].torque", "nan"]),
+        Case("input_joint_negative_kp", "INPUT", "input",
+             as_controller(lambda c: inp_joints(c, [1], kp=[-3.0])), IA, ["joints[0].kp", "-3"]),
+        Case("input_joint_counts_disagree", "INPUT", "input",
+             as_controller(lambda c: inp_joints(c, [1], num_ids=1, kp=[1.0, 1.0])), IA, ["num_ids"]),
         # ---- bytes that are no command
         Case("random_bytes_body", "BODY_CMD", "-", rawcmd("BODY_CMD", lambda c: bytes(range(7, 7 + 64))), DE,
              ["undecodable", "body_cmd_t"]),

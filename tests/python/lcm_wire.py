@@ -255,6 +255,18 @@ def seed_messages(missing_body=123456789, missing_joint=987654321):
         m.forces = [[1.0, 2.0, 3.0]] * n
         m.torques = [[0.0, 0.0, 0.5]] * n
         out.append(("INPUT", m, "input %d bodies" % n))
+
+    from contactsim.actuators import JointCommand, encode_joint_command
+    from contactsim import actuator_cmd_t as A  # noqa: N817
+    for op_name in ("SET", "CLEAR", "STATE"):
+        m = A()
+        m.client_id, m.request_id, m.op = "garbage-seed", 1, getattr(A, op_name)
+        m.joints = encode_joint_command(JointCommand([missing_joint, missing_joint + 1], kp=10.0, target_position=0.5))
+        out.append(("ACTUATOR_CMD", m, "actuator " + op_name))
+    m = I()
+    m.client_id, m.request_id, m.step, m.num_bodies = "garbage-seed", 1, 1, 0
+    m.joints = encode_joint_command(JointCommand([missing_joint], torque=1.0))
+    out.append(("INPUT", m, "input 1 joint"))
     return out
 
 
@@ -292,6 +304,8 @@ def world_changing(type_name, values, world):
             return (values["name"].decode("utf-8", "replace") in world["slots"]
                     or (bool(path) and Path(path).exists()))
         return False
+    if type_name == "actuator_cmd_t":
+        return op in (1, 2) and any(j in world["joints"] for j in values["joints"]["joint_ids"])
     if type_name == "input_t":
         return False  # no controller is registered in a garbage test, so every input is refused
     raise ValueError(type_name)

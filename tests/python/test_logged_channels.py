@@ -18,7 +18,8 @@ from lcm_recorder import LcmRecorder, lcm_tool
 
 G = 9.81
 DT = 1.0 / 240.0
-CHANNELS = ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "REPLY", "STATE", "CONTACTS", "STATUS")
+CHANNELS = ("BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "REPLY", "STATE", "CONTACTS", "STATUS", "ACTUATOR_CMD",
+            "JOINT_STATE")
 
 
 def record_every_channel(server, path):
@@ -34,6 +35,9 @@ def record_every_channel(server, path):
         ball = c.add_sphere(0.1, position=(0, 0, 0.1), mass=mass, restitution=0.0)
         bob = c.add_box((0.05, 0.05, 0.05), position=(1, 0, 1.5), mass=1.0)
         c.add_joint("distance", bob, None, anchor=(1, 0, 2))
+        arm = c.add_box((0.05, 0.05, 0.2), position=(-1, 0, 1.3), mass=1.0)
+        hinge = c.add_joint("hinge", arm, None, anchor=(-1, 0, 1.5), axis=(0, 1, 0))
+        c.set_joint_actuator(hinge, target_position=0.3, kp=50.0, kd=5.0)
         c.step(240)
         with contactsim.Controller(c, lambda s: {ball: (0.0, 0.0, 0.0)}) as ctl:
             c.set_mode("lockstep")
@@ -81,7 +85,8 @@ def test_every_channel_is_recorded_read_back_and_played_back(server, tmp_path):
     for ch in expected:
         assert log.channels.get(ch, 0) > 0, "%s missing from the log: %s" % (ch, log.channels)
     assert len(log.time) > 0 and np.all(np.diff(log.step) >= 0)
-    assert log.position.shape == (len(log.time), 3, 3) and log.orientation.shape[2] == 4
+    assert log.position.shape == (len(log.time), 4, 3) and log.orientation.shape[2] == 4
+    assert log.joints.names == ["2"] and log.joints.position.shape == (len(log.joints.time), 1)
     assert len(log.status.step) >= 2 and log.status.mode[-1] == "lockstep"
 
     # the sphere rests on the plane: the contact carries its weight (impulse

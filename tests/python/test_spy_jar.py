@@ -17,7 +17,8 @@ LCM_JAR = "/usr/share/java/lcm.jar"  # Debian's liblcm-java, the jar's compile c
 JAR = BUILD / "lcmtypes" / "contactsim_lcmtypes.jar"
 TYPES = {"BODY_CMD": "body_cmd_t", "SCENE_CMD": "scene_cmd_t", "JOINT_CMD": "joint_cmd_t",
          "INPUT": "input_t", "REPLY": "reply_t", "STATE": "state_t", "CONTACTS": "contacts_t",
-         "STATUS": "status_t", "MODEL_CMD": "model_cmd_t", "MODEL_INFO": "model_info_t"}
+         "STATUS": "status_t", "MODEL_CMD": "model_cmd_t", "MODEL_INFO": "model_info_t",
+         "ACTUATOR_CMD": "actuator_cmd_t", "JOINT_STATE": "joint_state_t"}
 JAVA_TIMEOUT = 60  # javac and a JVM start on two busy cores
 RECORD_TRIES = 3  # a log that lost a channel's messages on UDP is recorded again
 

@@ -41,7 +41,8 @@ TEST(CommandChannelsTest, EveryChannelIsFoundBySuffixAndRecordKind) {
     EXPECT_EQ(ChannelOfRecord(c.record), &c);
   }
   EXPECT_EQ(suffixes,
-            (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "SENSOR_CMD", "RAY_CAST", "MODEL_CMD"}));
+            (std::set<std::string>{"BODY_CMD", "SCENE_CMD", "JOINT_CMD", "INPUT", "SENSOR_CMD", "RAY_CAST", "MODEL_CMD",
+                                   "ACTUATOR_CMD"}));
   EXPECT_EQ(ChannelOfRecord(RecordKind::kStepTo), nullptr);
   EXPECT_EQ(ChannelOfSuffix("STATE"), nullptr);
 }

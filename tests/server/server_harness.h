@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <contactsim/actuator_cmd_t.hpp>
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
@@ -90,6 +91,11 @@ class ServerHarness {
     m.resolved_size = static_cast<int32_t>(m.resolved.size());
     const auto bytes = Encode(m);
     server.OnMessage(server.Channel("MODEL_CMD"), bytes.data(), static_cast<int>(bytes.size()));
+  }
+  void Post(actuator_cmd_t& m) {
+    m.request_id = ++request_id;
+    const auto bytes = Encode(m);
+    server.OnMessage(server.Channel("ACTUATOR_CMD"), bytes.data(), static_cast<int>(bytes.size()));
   }
   void Post(input_t& m) {
     m.request_id = ++request_id;

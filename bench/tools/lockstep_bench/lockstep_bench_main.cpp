@@ -1,11 +1,12 @@
 // contactsim-bench-lockstep (`make bench-lockstep`): lockstep cycles per
-// second with one controller, for 1 and 100 bodies, beside a raw LCM
+// second with one controller, for 1 and 100 bodies and for a 7-DoF arm
+// driven through joint commands (arm_lockstep.h), beside a raw LCM
 // ping-pong between two processes measured in the same run (the
 // transport's own limit; lcm_ping_pong.h). Every party is its own process:
 // the server (contactsim-server beside this binary), the controller (this
 // process, contactsim::Controller) and the pong (this binary, --pong).
 //
-//   contactsim-bench-lockstep [--config FILE] [--bodies 1,100] [--seconds S] [--lcm-url URL]
+//   contactsim-bench-lockstep [--config FILE] [--bodies 1,100] [--arm URDF] [--seconds S] [--lcm-url URL]
 //
 // A benchmark, not a test: it prints numbers and asserts none.
 #include <CLI/CLI.hpp>
@@ -23,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/tools/lockstep_bench/arm_lockstep.h"
 #include "bench/tools/lockstep_bench/lcm_ping_pong.h"
 #include "contactsim/client.h"
 #include "contactsim/controller.h"
@@ -125,6 +127,31 @@ LockstepResult MeasureLockstep(Client& client, int bodies, double seconds) {
   return r;
 }
 
+// The arm row: its lockstep rate beside a ping-pong of the same sizes
+// (STATE and JOINT_STATE out, the input back); 0, or 1 on failure.
+int MeasureArmRow(Client& client, const std::string& self, const std::string& url, const std::string& prefix,
+                  const std::string& urdf, double seconds) {
+  const bench::ArmLockstepResult arm = bench::MeasureArmLockstep(client, urdf, seconds);
+  if (!arm.error.empty()) {
+    std::fprintf(stderr, "arm %s: %s\n", urdf.c_str(), arm.error.c_str());
+    return 1;
+  }
+  const std::string channel = prefix + "_PPARM";
+  const pid_t pong = Spawn({self, "--lcm-url", url, "--pong", channel, "--pong-bytes", std::to_string(arm.input_bytes)},
+                           false);
+  bench::PingPongResult pp;
+  const bool ok = bench::RunPing(url, channel, arm.state_bytes, seconds, 20.0, &pp);
+  Reap(pong, !ok);
+  if (!ok) {
+    std::fprintf(stderr, "arm: the pong process never answered\n");
+    return 1;
+  }
+  std::printf("| %d-joint arm, joint commands | %d | %.0f | %.0f | %.2f |\n", arm.joints, arm.state_bytes,
+              arm.cycles_per_second, pp.per_second(), arm.cycles_per_second / pp.per_second());
+  std::fflush(stdout);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,6 +163,8 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "server configuration");
   app.add_option("--bodies", body_counts, "body counts to measure")->delimiter(',');
   app.add_option("--seconds", seconds, "measuring time per row and kind (s)");
+  std::string arm = CONTACTSIM_SOURCE_DIR "/.venv/lib/python3.11/site-packages/pybullet_data/kuka_iiwa/model.urdf";
+  app.add_option("--arm", arm, "a fixed-base arm's URDF driven by joint commands (\"\": none)");
   app.add_option("--lcm-url", url, "LCM URL (default: $LCM_DEFAULT_URL, else the project default)");
   app.add_option("--pong", pong_channel, "internal: run as the pong process on this channel");
   app.add_option("--pong-bytes", pong_bytes, "internal: pong payload size");
@@ -148,7 +177,7 @@ int main(int argc, char** argv) {
   const std::string prefix = "LOCKSTEP_BENCH_" + std::to_string(getpid());
   std::printf("lockstep cycles per second, one C++ controller, %g s per measurement, LCM %s\n\n", seconds,
               url.c_str());
-  std::printf("| bodies | STATE bytes | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong |\n");
+  std::printf("| world | STATE bytes | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong |\n");
   std::printf("|---:|---:|---:|---:|---:|\n");
   std::fflush(stdout);
 
@@ -187,10 +216,15 @@ int main(int argc, char** argv) {
         rc = 1;
         break;
       }
-      std::printf("| %d | %d | %.0f | %.0f | %.2f |\n", n, ls.state_bytes, ls.cycles_per_second, pp.per_second(),
-                  ls.cycles_per_second / pp.per_second());
+      std::printf("| %d bodies | %d | %.0f | %.0f | %.2f |\n", n, ls.state_bytes, ls.cycles_per_second,
+                  pp.per_second(), ls.cycles_per_second / pp.per_second());
       if (pp.resends > 0) std::printf("(%lld ping(s) resent after 1 s: lost on UDP)\n", static_cast<long long>(pp.resends));
       std::fflush(stdout);
+    }
+    if (rc == 0 && !arm.empty() && access(arm.c_str(), R_OK) != 0) {
+      std::printf("(no arm row: %s is not readable; pip install pybullet, or pass --arm)\n", arm.c_str());
+    } else if (rc == 0 && !arm.empty()) {
+      rc = MeasureArmRow(client, self, url, prefix, arm, seconds);
     }
   }
   Reap(server, true);

@@ -52,6 +52,7 @@ struct Client::Callbacks {
   std::map<int, StatusCallback> status;
   std::map<int, ReplyCallback> reply;
   std::map<int, SensorsCallback> sensors;
+  std::map<int, JointStateCallback> joint_state;
 };
 
 std::string ResolveLcmUrl(const std::string& url) {
@@ -121,9 +122,39 @@ void Client::OnSensors(const lcm::ReceiveBuffer* rb, const std::string& ch, Clie
   c->latest_sensors_ = std::move(m);
 }
 
+void Client::OnJointState(const lcm::ReceiveBuffer* rb, const std::string& ch, Client* c) {
+  joint_state_t m;
+  if (!c->Unwrap(rb, ch, &m)) return;
+  for (const auto& callback : Snapshot(c->mutex_, c->callbacks_->joint_state)) callback(m);
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  c->latest_joint_state_ = std::move(m);
+  c->changed_.notify_all();
+}
+
 void Client::SubscribeSensors(int queue_capacity) {
   lcm_->subscribeFunction(Channel(protocol::kRayHits), &OnRayHits, this)->setQueueCapacity(queue_capacity);
   lcm_->subscribeFunction(Channel(protocol::kSensors), &OnSensors, this)->setQueueCapacity(queue_capacity);
+  lcm_->subscribeFunction(Channel(protocol::kJointState), &OnJointState, this)->setQueueCapacity(queue_capacity);
+}
+
+int Client::OnJointState(JointStateCallback callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  callbacks_->joint_state[callbacks_->next_id] = std::move(callback);
+  return callbacks_->next_id++;
+}
+
+std::optional<joint_state_t> Client::LatestJointState() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_joint_state_;
+}
+
+std::optional<joint_state_t> Client::WaitForJointState(const std::function<bool(const joint_state_t&)>& predicate,
+                                                       std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!changed_.wait_for(lock, timeout, [&] { return latest_joint_state_ && predicate(*latest_joint_state_); })) {
+    return std::nullopt;
+  }
+  return latest_joint_state_;
 }
 
 int Client::OnSensors(SensorsCallback callback) {
@@ -420,6 +451,7 @@ void Client::RemoveCallback(int id) {
   callbacks_->status.erase(id);
   callbacks_->reply.erase(id);
   callbacks_->sensors.erase(id);
+  callbacks_->joint_state.erase(id);
 }
 
 std::optional<state_t> Client::LatestState() const {

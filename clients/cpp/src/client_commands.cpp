@@ -129,7 +129,12 @@ CommandResult Client::ReleaseController() {
 }
 
 int64_t Client::SendInput(int64_t step, const BodyInputs& inputs, int64_t request_id) {
+  return SendInput(step, inputs, JointCommand{}, request_id);
+}
+
+int64_t Client::SendInput(int64_t step, const BodyInputs& inputs, const JointCommand& joints, int64_t request_id) {
   input_t message{};
+  message.joints = EncodeJointCommand(joints);
   message.client_id = options_.client_id;
   message.request_id = request_id > 0 ? request_id : NextRequestId();
   message.step = step;

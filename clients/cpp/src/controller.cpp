@@ -3,6 +3,7 @@
 namespace contactsim {
 
 Controller::Controller(Client& client, Policy policy) : client_(client), policy_(std::move(policy)) {}
+Controller::Controller(Client& client, JointPolicy policy) : client_(client), joint_policy_(std::move(policy)) {}
 
 Controller::~Controller() {
   if (callback_id_ >= 0) client_.RemoveCallback(callback_id_);
@@ -34,12 +35,20 @@ void Controller::OnState(const state_t& state) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (state.step < answered_) return;
     if (state.step == answered_) {
-      client_.SendInput(state.step + 1, last_inputs_, last_request_id_);
+      client_.SendInput(state.step + 1, last_inputs_.bodies, last_inputs_.joints, last_request_id_);
       return;
     }
   }
-  BodyInputs inputs = policy_(state);
-  const int64_t id = client_.SendInput(state.step + 1, inputs);
+  ControlOutput inputs;
+  if (joint_policy_) {
+    // lost: the server publishes STATE and JOINT_STATE again while it waits
+    const std::optional<joint_state_t> joints = client_.LatestJointState();
+    if (!joints || joints->step != state.step) return;
+    inputs = joint_policy_(state, *joints);
+  } else {
+    inputs.bodies = policy_(state);
+  }
+  const int64_t id = client_.SendInput(state.step + 1, inputs.bodies, inputs.joints);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     answered_ = state.step;

@@ -7,6 +7,7 @@
 //   contactsim-ctl step 10
 //   contactsim-ctl joint add hinge 3 0 --anchor 0 0 1 --axis 0 1 0 --limits -0.5 0.5
 //   contactsim-ctl ray 0 0 5 0 0 -1 --max-distance 10
+//   contactsim-ctl joint set 3 --target-position 0.5 --kp 200 --kd 20
 //   contactsim-ctl model load /path/to/kuka_iiwa/model.urdf --name iiwa --fixed-base
 //
 // Exit status: 0 OK reply, 1 error reply, 2 no reply (timeout), LCM unusable
@@ -29,6 +30,7 @@
 #include "contactsim/client.h"
 #include "contactsim/mode_names.h"
 #include "contactsim/protocol.hpp"
+#include "ctl_joint_actuators.h"
 
 namespace {
 
@@ -287,6 +289,7 @@ int main(int argc, char** argv) {
       })
       ->add_option("id", joint_id, "joint id")
       ->required();
+  AddJointActuatorCommands(joint, &run, &ExitCode);
 
   std::array<double, 3> ray_origin{0, 0, 0}, ray_direction{0, 0, 0};
   double ray_max_distance = 100.0;

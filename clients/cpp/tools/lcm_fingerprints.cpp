@@ -10,6 +10,7 @@
 #include <cinttypes>
 #include <cstdio>
 
+#include <contactsim/actuator_cmd_t.hpp>
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/body_state_t.hpp>
 #include <contactsim/contact_reading_t.hpp>
@@ -17,6 +18,8 @@
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/joint_command_t.hpp>
+#include <contactsim/joint_state_t.hpp>
 #include <contactsim/model_cmd_t.hpp>
 #include <contactsim/model_entry_t.hpp>
 #include <contactsim/model_info_t.hpp>
@@ -49,6 +52,9 @@ int main() {
   Print<contactsim::contacts_t>();
   Print<contactsim::input_t>();
   Print<contactsim::joint_cmd_t>();
+  Print<contactsim::joint_command_t>();
+  Print<contactsim::joint_state_t>();
+  Print<contactsim::actuator_cmd_t>();
   Print<contactsim::model_cmd_t>();
   Print<contactsim::model_entry_t>();
   Print<contactsim::model_info_t>();

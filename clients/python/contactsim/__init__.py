@@ -21,6 +21,7 @@ from .state import BodyState, Contact, Contacts, Reply, State, Status  # noqa: E
 from .client import DEFAULT_URL, Client, default_url  # noqa: E402
 from .lockstep import Controller  # noqa: E402
 from .models import Model  # noqa: E402
+from .actuators import JointCommand, JointState  # noqa: E402
 
 __version__ = "0.1.0"
 __all__ = [
@@ -28,4 +29,5 @@ __all__ = [
     "Contacts", "Status", "Reply", "DEFAULT_URL", "default_url",
     "body_cmd_t", "body_state_t", "contact_t", "contacts_t", "joint_cmd_t", "reply_t", "scene_cmd_t",
     "state_t", "status_t", "input_t", "model_cmd_t", "model_entry_t", "model_info_t", "Model",
+    "joint_command_t", "actuator_cmd_t", "joint_state_t", "JointCommand", "JointState",
 ]

@@ -24,6 +24,7 @@ TYPE_NAMES = (
     "body_state_t",
     "contact_t",
     "body_cmd_t",
+    "joint_command_t",
     "input_t",
     "scene_cmd_t",
     "joint_cmd_t",
@@ -41,6 +42,8 @@ TYPE_NAMES = (
     "sensor_cmd_t",
     "ray_cast_t",
     "ray_hits_t",
+    "actuator_cmd_t",
+    "joint_state_t",
 )
 PROTOCOL_TABLE = "protocol.toml"
 

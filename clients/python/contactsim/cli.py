@@ -3,6 +3,7 @@
     contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] [--auth-key-file FILE] COMMAND ...
       status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET | add mesh PATH [--scale S]
       remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
+      joint state | joint set ID [--torque T] [--target-position Q] [--kp KP] [--kd KD] [...] | joint clear ID
       model load PATH [--name N] [--position X Y Z] [--orientation W X Y Z] [--fixed-base] [--self-collide]
       model remove ID | model list
       method NAME [key=value ...] | pause | resume | step [N] | reset
@@ -96,6 +97,15 @@ def _joint_parser(sub):
     a.add_argument("--damping", type=float, help="N m s/rad (hinge) or N s/m (prismatic)")
     a.add_argument("--friction", type=float, help="N m (hinge) or N (prismatic), Coulomb")
     j.add_parser("remove", help="remove a joint").add_argument("id", type=int)
+    j.add_parser("state", help="print every hinge and prismatic joint's position, velocity and effort")
+    s = j.add_parser("set", help="set fields of a joint's standing actuator; the others stay")
+    s.add_argument("id", type=int)
+    for flag, unit in (("torque", "N m or N, feed-forward"), ("target-position", "rad or m (acts while kp > 0)"),
+                       ("target-velocity", "rad/s or m/s (acts while kd > 0)"), ("kp", "N m/rad or N/m, >= 0"),
+                       ("kd", "N m s/rad or N s/m, >= 0"), ("effort-limit", "N m or N, > 0"),
+                       ("velocity-limit", "rad/s or m/s, > 0")):
+        s.add_argument("--" + flag, type=float, help=unit)
+    j.add_parser("clear", help="remove a joint's actuator").add_argument("id", type=int)
     r = sub.add_parser("ray", help="cast one ray; prints what it hits (docs/protocol.md, Ray casts)")
     r.add_argument("origin", type=float, nargs=3, help="m, world")
     r.add_argument("direction", type=float, nargs=3, help="world, any length")
@@ -151,6 +161,17 @@ def _run_joint(c, a):
         print(c.add_joint(a.kind, a.body_a, a.body_b or None, anchor=a.anchor, axis=a.axis,
                           length=a.length, limits=a.limits, damping=a.damping, friction=a.friction))
         return None
+    if a.joint_cmd == "state":
+        js = c.request_joint_state()
+        for j, m, name, q, v, u in zip(js.joint_ids, js.model_ids, js.names, js.positions, js.velocities, js.efforts):
+            print("joint %d model %d %s position %.9g velocity %.9g effort %.9g" % (j, m, name, q, v, u))
+        return None
+    if a.joint_cmd == "set":
+        fields = {k: getattr(a, k) for k in ("torque", "target_position", "target_velocity", "kp", "kd",
+                                             "effort_limit", "velocity_limit")}
+        return c.set_joint_actuator(a.id, **fields)
+    if a.joint_cmd == "clear":
+        return c.clear_joint_actuators([a.id])
     return c.remove_joint(a.id)
 
 

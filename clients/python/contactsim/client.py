@@ -32,6 +32,7 @@ from .filters import FilterCommands, fill_filter
 from .joints import JointCommands
 from .sensors import SensorCommands
 from .models import ModelCommands
+from .actuators import ActuatorCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -112,7 +113,7 @@ SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
 class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, SensorCommands,
-             ModelCommands):
+             ModelCommands, ActuatorCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -161,6 +162,7 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, 
             self._lc.subscribe(self.channels["MODEL_INFO"], self._on_model_info_msg),
         ]
         self._subs += self._init_sensors()
+        self._subs += self._init_actuators()
         # LCM keeps at most 30 undelivered messages per subscription and drops
         # the rest; a free-running server sends STATE in bursts far larger.
         for sub in self._subs:

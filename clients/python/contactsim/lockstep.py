@@ -1,14 +1,16 @@
 """Lockstep co-simulation from Python (docs/lockstep.md).
 
 ``Client`` inherits ``LockstepCommands``: ``register_controller()``,
-``send_input(step, forces)`` and ``release_controller()``. ``Controller``
-runs a callback state -> forces in lockstep: each STATE k-1 is answered
-with the input for step k from the client's receive thread, so a step
-costs one STATE and one input on the wire.
+``send_input(step, forces, joints)`` and ``release_controller()``.
+``Controller`` runs a callback state -> forces in lockstep: each STATE k-1
+is answered with the input for step k from the client's receive thread, so
+a step costs one STATE and one input on the wire. An input's ``joints`` (a
+JointCommand) set joints' actuator fields for that one step only.
 """
 import threading
 
 from . import input_t, scene_cmd_t
+from .actuators import JointCommand, encode_joint_command
 from .errors import TimeoutError
 
 LATE_POLICIES = {None: scene_cmd_t.LATE_DEFAULT, "wait": scene_cmd_t.LATE_WAIT,
@@ -40,17 +42,20 @@ class LockstepCommands:
     def release_controller(self):
         return self._send("SCENE_CMD", self._scene(scene_cmd_t.RELEASE_CONTROLLER))
 
-    def send_input(self, step, forces=None):
+    def send_input(self, step, forces=None, joints=None):
         """Publishes this controller's input for ``step`` (the last STATE's
         step + 1): ``forces`` maps body id -> force (N, world) or
-        (force, torque); None or {} means no input. Returns at once: the
-        STATE of ``step`` acknowledges it; a refused input gets an error
-        reply (see on_reply). Safe to call from an on_state callback."""
-        request_id, payload = self._encode_input(step, forces)
+        (force, torque); None or {} means no input. ``joints``: a
+        JointCommand acting for this step only (the joints' standing
+        settings return after it). Returns at once: the STATE of ``step``
+        acknowledges it; a refused input gets an error reply (see on_reply)
+        and the server does not take the step until a good input comes.
+        Safe to call from an on_state callback."""
+        request_id, payload = self._encode_input(step, forces, joints)
         self._publish_input(payload)
         return request_id
 
-    def _encode_input(self, step, forces):
+    def _encode_input(self, step, forces, joints=None):
         """-> (request id, encoded input_t); a resend reuses both."""
         m = input_t()
         m.client_id = self.client_id
@@ -64,24 +69,39 @@ class LockstepCommands:
             m.forces.append(f)
             m.torques.append(t)
         m.num_bodies = len(m.body_ids)
+        m.joints = encode_joint_command(joints)
         return m.request_id, m.encode()
 
     def _publish_input(self, payload):
         self._publish(self.channels["INPUT"], payload)
 
 
+def _split(output):
+    """A callback's answer -> (forces, JointCommand or None)."""
+    if isinstance(output, JointCommand):
+        return None, output
+    if isinstance(output, tuple) and len(output) == 2 and isinstance(output[1], JointCommand):
+        return output
+    return output, None
+
+
 class Controller:
     """Runs ``callback(state) -> forces`` in lockstep (forces as in
-    ``send_input``). Use as a context manager or call start() / stop()::
+    ``send_input``). The callback may also return a JointCommand, or
+    (forces, JointCommand). With ``joint_state=True`` it is called as
+    ``callback(state, joint_state)`` with the JOINT_STATE of the same step
+    (published just before STATE). Use as a context manager or call
+    start() / stop()::
 
         with Controller(client, pd) as ctl:
             client.set_mode("lockstep"); client.resume()
             ctl.wait_for_step(720)
     """
 
-    def __init__(self, client, callback, late=None, timeout=None):
+    def __init__(self, client, callback, late=None, timeout=None, joint_state=False):
         self.client = client
         self.callback = callback
+        self.joint_state = joint_state
         self.late = late
         self.timeout = timeout
         self.answered = -1          # step of the last STATE answered
@@ -103,12 +123,17 @@ class Controller:
             # a duplicate of an input already applied is ignored)
             self.client._publish_input(self._last_payload)
             return
+        if self.joint_state:
+            js = self.client.joint_state()
+            if js is None or js.step != state.step:
+                return  # its JOINT_STATE was lost: the server sends STATE again while it waits
         try:
-            forces = self.callback(state)
+            out = self.callback(state, js) if self.joint_state else self.callback(state)
+            forces, joints = _split(out)
         except Exception as e:  # surfaced by wait_for_step
             self.error = e
-            forces = None
-        _, self._last_payload = self.client._encode_input(state.step + 1, forces)
+            forces, joints = None, None
+        _, self._last_payload = self.client._encode_input(state.step + 1, forces, joints)
         self.client._publish_input(self._last_payload)
         with self._cond:
             self.answered = state.step

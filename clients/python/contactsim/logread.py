@@ -14,16 +14,19 @@ import lcm
 import numpy as np
 
 from . import contacts_t, protocol, state_t, status_t
+from .logread_joints import JointTrajectories
 from .state import MODE_NAMES
 
 
 def _detect_prefix(path):
-    """The prefix of the first ``<P>_STATE`` channel in the log."""
+    """The prefix of the first ``<P>_STATE`` channel in the log (not a
+    channel whose own name ends in _STATE, as JOINT_STATE does)."""
     suffix = protocol.channel("", "STATE")
+    longer = tuple(protocol.channel("", n) for n in protocol.CHANNELS if n != "STATE" and n.endswith("_STATE"))
     log = lcm.EventLog(path, "r")
     try:
         for event in log:
-            if event.channel.endswith(suffix):
+            if event.channel.endswith(suffix) and not event.channel.endswith(longer):
                 return event.channel[:-len(suffix)]
     finally:
         log.close()
@@ -79,12 +82,17 @@ def read_log(path, prefix=None, progress=False):
       ``step_rate``, ``real_time_factor``, ``num_bodies``, ``num_sleeping``
       (docs/physics.md, "Sleeping"), ``num_contacts``, ``max_penetration``,
       and lists ``mode`` and ``method``;
+    * ``joints``: per JOINT_STATE message ``time``, ``step``; per joint
+      seen ``joint_ids``, ``joint_index`` (id -> column), ``names``,
+      ``model_ids``; ``position``, ``velocity``, ``effort`` (N, J: rad or m,
+      rad/s or m/s, N m or N), NaN where a joint did not exist;
     * ``channels``: dict channel -> number of events (every channel).
     """
     path = os.fspath(path)
     if prefix is None:
         prefix = _detect_prefix(path)
-    names = {protocol.channel(prefix, c): c.lower() for c in ("STATE", "CONTACTS", "STATUS")}
+    names = {protocol.channel(prefix, c): c.lower() for c in ("STATE", "CONTACTS", "STATUS", "JOINT_STATE")}
+    joints = JointTrajectories()
 
     st = {k: [] for k in ("time", "step", "log_time", "state_hash", "input_digest", "kinetic_energy",
                           "potential_energy")}
@@ -141,6 +149,8 @@ def read_log(path, prefix=None, progress=False):
                     points["normal"].append(tuple(c.normal))
                     points["depth"].append(c.depth)
                     points["normal_value"].append(c.normal_value)
+            elif kind == "joint_state":
+                joints.add(event.data)
             elif kind == "status":
                 m = status_t.decode(event.data)
                 dt = m.dt
@@ -179,4 +189,4 @@ def read_log(path, prefix=None, progress=False):
         body_ids=body_ids, body_index=body_index,
         position=bodies[:, :, 0:3], orientation=bodies[:, :, 3:7],
         linear_velocity=bodies[:, :, 7:10], angular_velocity=bodies[:, :, 10:13],
-        contacts=contacts, status=status)
+        contacts=contacts, status=status, joints=joints.result())

@@ -11,6 +11,7 @@ import time
 
 from . import model_cmd_t
 from ._fields import vector
+from .actuators import COORDINATE_TYPES, JointCommand
 from .errors import CommandError, TimeoutError
 
 FORMATS = {None: model_cmd_t.FORMAT_AUTO, "urdf": model_cmd_t.FORMAT_URDF, "sdf": model_cmd_t.FORMAT_SDF}
@@ -105,6 +106,49 @@ class Model:
     def remove(self):
         """Removes the model's bodies and joints from the world."""
         return self._client.remove_model(self.id)
+
+    @property
+    def actuated_joints(self):
+        """The names of the joints with a coordinate (revolute, continuous,
+        prismatic), in the file's order: the order of ``joint_state()`` and
+        of the arrays the joint setters take."""
+        return [n for n in self.joints if self.joint_types[n] in COORDINATE_TYPES and self._joints[n] != 0]
+
+    def joint_state(self, timeout=None):
+        """(positions, velocities, efforts): numpy arrays over
+        ``actuated_joints`` from the latest JOINT_STATE (waits for one if
+        none has come yet)."""
+        js = self._client.joint_state()
+        if js is None:
+            js = self._client.request_joint_state(timeout=timeout)
+        return js.of_model(self.id)
+
+    def joint_command(self, **fields):
+        """A JointCommand over ``actuated_joints`` (for a lockstep input)."""
+        return JointCommand(model=self, **fields)
+
+    def set_joint_targets(self, positions, velocities=None, kp=None, kd=None):
+        """Position control: targets (rad or m) and, when given, target rates
+        and gains (numbers or one per joint); gains not given keep their
+        standing values."""
+        return self._client.set_joint_actuators(self.joint_command(
+            target_position=positions, target_velocity=velocities, kp=kp, kd=kd))
+
+    def set_joint_torques(self, torques):
+        """Feed-forward efforts (N m or N), one per actuated joint."""
+        return self._client.set_joint_actuators(self.joint_command(torque=torques))
+
+    def set_effort_limits(self, limits):
+        """The largest effort each actuator applies (N m or N, > 0; inf: none)."""
+        return self._client.set_joint_actuators(self.joint_command(effort_limit=limits))
+
+    def set_velocity_limits(self, limits):
+        """The largest target rate of each actuator (rad/s or m/s, > 0; inf: none)."""
+        return self._client.set_joint_actuators(self.joint_command(velocity_limit=limits))
+
+    def clear_actuators(self):
+        """Removes the actuators of every joint of the model."""
+        return self._client.clear_joint_actuators(model=self)
 
 
 def _rotation(wxyz):

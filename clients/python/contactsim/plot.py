@@ -8,6 +8,9 @@ logs) and writes four PNG files into DIR, each over simulated time:
 * contacts.png     number of contact points
 * force.png        total normal contact force (N)
 
+and, when the log holds JOINT_STATE messages, joints.png: each joint's
+position, velocity and actuator effort.
+
 Matplotlib runs on its Agg backend, so no display is needed.
 """
 import argparse
@@ -65,7 +68,24 @@ def plot_log(log, out_dir):
     fig, ax = _figure("Total normal contact force", "force (N)")
     ax.plot(c.time, c.total_normal_force)
     paths.append(_save(fig, out_dir, "force.png"))
+    if len(log.joints.time):
+        paths.append(plot_joints(log.joints, out_dir))
     return paths
+
+
+def plot_joints(joints, out_dir, name="joints.png"):
+    """Position, velocity and effort of every joint over time, one panel each."""
+    fig, axes = plt.subplots(3, 1, figsize=(8, 9), dpi=100, sharex=True)
+    for ax, values, label in zip(axes, (joints.position, joints.velocity, joints.effort),
+                                 ("position (rad or m)", "velocity (rad/s or m/s)", "effort (N m or N)")):
+        for k, joint_name in enumerate(joints.names):
+            ax.plot(joints.time, values[:, k], label=joint_name)
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    axes[0].set_title("Joints")
+    axes[0].legend(fontsize="small", ncol=4)
+    axes[-1].set_xlabel("simulated time (s)")
+    return _save(fig, out_dir, name)
 
 
 def main(argv=None):

@@ -32,10 +32,12 @@
 
 #include <Eigen/Core>
 
+#include <contactsim/actuator_cmd_t.hpp>
 #include <contactsim/body_cmd_t.hpp>
 #include <contactsim/contacts_t.hpp>
 #include <contactsim/input_t.hpp>
 #include <contactsim/joint_cmd_t.hpp>
+#include <contactsim/joint_state_t.hpp>
 #include <contactsim/model_cmd_t.hpp>
 #include <contactsim/model_info_t.hpp>
 #include <contactsim/progress_t.hpp>
@@ -91,6 +93,26 @@ struct BodyWrench {
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N m
 };
 using BodyInputs = std::map<int64_t, BodyWrench>;  // body id -> wrench
+
+// Actuator fields for a list of joints (docs/actuators.md, "Joint
+// channels"): world joint ids, or a model (model_id > 0 with joint_ids
+// empty: its joints with a coordinate, in the model's order). A field left
+// empty is not sent (the joints keep their standing value); a field given
+// has one value per joint. Standing settings on ACTUATOR_CMD
+// (SetJointActuators), or one step's in a lockstep input (SendInput).
+struct JointCommand {
+  int64_t model_id = 0;
+  std::vector<int64_t> joint_ids;
+  std::vector<double> torque;           // N m or N
+  std::vector<double> target_position;  // rad or m (acts while kp > 0)
+  std::vector<double> target_velocity;  // rad/s or m/s (acts while kd > 0)
+  std::vector<double> kp, kd;           // >= 0
+  std::vector<double> effort_limit;     // > 0, inf: none
+  std::vector<double> velocity_limit;   // > 0, inf: none
+  bool empty() const { return model_id == 0 && joint_ids.empty(); }
+};
+// The wire form; an empty command is "no joints".
+joint_command_t EncodeJointCommand(const JointCommand& command);
 
 // Which bodies a body touches (docs/physics.md, "Collision filtering"), as
 // Box2D's b2Filter: two bodies touch when (category_a & mask_b) and
@@ -185,6 +207,7 @@ class Client {
   using ReplyCallback = std::function<void(const reply_t&)>;
   using ProgressCallback = std::function<void(const progress_t&)>;
   using SensorsCallback = std::function<void(const sensors_t&)>;
+  using JointStateCallback = std::function<void(const joint_state_t&)>;
   using Clock = std::chrono::steady_clock;
 
   explicit Client(ClientOptions options = {});
@@ -251,6 +274,16 @@ class Client {
   // `request_id` > 0 resends an input under its first id (the server
   // ignores a resend of the input it has just applied).
   int64_t SendInput(int64_t step, const BodyInputs& inputs, int64_t request_id = 0);
+  // The same with joint commands acting for that step only.
+  int64_t SendInput(int64_t step, const BodyInputs& inputs, const JointCommand& joints, int64_t request_id = 0);
+
+  // --- joint actuators (docs/actuators.md, "Joint channels") ---
+  // Sets the fields given of the joints' standing actuators; the whole
+  // command is refused if any joint or value is. reply.ids: the joints.
+  CommandResult SetJointActuators(const JointCommand& command);
+  // Removes the actuators of the joints, or (ids empty) of the model's joints.
+  CommandResult ClearJointActuators(const std::vector<int64_t>& joint_ids, int64_t model_id = 0);
+  CommandResult Send(actuator_cmd_t command);
 
   // --- body commands; Add* return the new id ---
   Result<int64_t> AddSphere(double radius, const BodyOptions& options = {});
@@ -355,12 +388,20 @@ class Client {
   int OnStatus(StatusCallback callback);
   int OnReply(ReplyCallback callback);  // every reply, any client's
   int OnSensors(SensorsCallback callback);
+  int OnJointState(JointStateCallback callback);
   void RemoveCallback(int id);
 
   std::optional<state_t> LatestState() const;
   std::optional<contacts_t> LatestContacts() const;
   std::optional<status_t> LatestStatus() const;
   std::optional<sensors_t> LatestSensors() const;
+  // JOINT_STATE is published just before the STATE of the same step.
+  std::optional<joint_state_t> LatestJointState() const;
+  // The first JOINT_STATE (the latest one, or one arriving later) for which
+  // `predicate` holds; nullopt after `timeout`. An actuator_cmd_t STATE
+  // asks the server for one now.
+  std::optional<joint_state_t> WaitForJointState(const std::function<bool(const joint_state_t&)>& predicate,
+                                                 std::chrono::milliseconds timeout);
 
   // True once a STATUS has arrived (the server publishes one at start and
   // then at status_rate_hz), false after `timeout`.
@@ -404,6 +445,7 @@ class Client {
   static void OnRayHits(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnSensors(const lcm::ReceiveBuffer*, const std::string&, Client*);
   void SubscribeSensors(int queue_capacity);
+  static void OnJointState(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnModelInfo(const lcm::ReceiveBuffer*, const std::string&, Client*);
   // The latest MODEL_INFO received after the `after`-th, within the reply timeout.
   std::optional<model_info_t> WaitForModelInfo(uint64_t after, const std::function<bool(const model_info_t&)>& predicate);
@@ -427,6 +469,7 @@ class Client {
   std::optional<contacts_t> latest_contacts_;
   std::optional<status_t> latest_status_;
   std::optional<sensors_t> latest_sensors_;
+  std::optional<joint_state_t> latest_joint_state_;
   std::map<int64_t, ray_hits_t> ray_hits_;  // request id -> answer, until RayCast takes it
   std::optional<model_info_t> latest_model_info_;
   uint64_t model_infos_received_ = 0;

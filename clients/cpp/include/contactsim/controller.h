@@ -10,6 +10,15 @@
 //   client.Resume();
 //   ctl.WaitForStep(720, std::chrono::seconds(30));
 //   ctl.Stop();                                // releases
+//
+// A JointPolicy also reads the JOINT_STATE of the same step (published just
+// before STATE) and may command joints for that one step:
+//   contactsim::Controller ctl(client, [&](const state_t& s, const joint_state_t& j) {
+//     contactsim::ControlOutput out;
+//     out.joints.model_id = arm.id;
+//     out.joints.torque = Pd(j);
+//     return out;
+//   });
 #pragma once
 
 #include <atomic>
@@ -22,11 +31,19 @@
 
 namespace contactsim {
 
+// One step's input: wrenches on bodies and joint commands.
+struct ControlOutput {
+  BodyInputs bodies;
+  JointCommand joints;
+};
+
 class Controller {
  public:
   using Policy = std::function<BodyInputs(const state_t&)>;
+  using JointPolicy = std::function<ControlOutput(const state_t&, const joint_state_t&)>;
 
   Controller(Client& client, Policy policy);
+  Controller(Client& client, JointPolicy policy);
   ~Controller();  // stops listening (and releases, if still registered)
   Controller(const Controller&) = delete;
   Controller& operator=(const Controller&) = delete;
@@ -42,12 +59,13 @@ class Controller {
 
   Client& client_;
   Policy policy_;
+  JointPolicy joint_policy_;  // set instead of policy_
   int callback_id_ = -1;
   std::atomic<bool> registered_{false};
   mutable std::mutex mutex_;
   std::condition_variable answered_cv_;
   int64_t answered_ = -1;
-  BodyInputs last_inputs_;      // the input that answered `answered_`
+  ControlOutput last_inputs_;   // the input that answered `answered_`
   int64_t last_request_id_ = 0;
 };
 

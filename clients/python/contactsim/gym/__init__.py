@@ -6,7 +6,7 @@
 Needs gymnasium; FleetVectorEnv also ray.
 """
 from .env import ContactsimEnv
-from .tasks import HoverTask
+from .tasks import ArmTask, HoverTask
 from .vector import FleetVectorEnv
 
-__all__ = ["ContactsimEnv", "FleetVectorEnv", "HoverTask"]
+__all__ = ["ArmTask", "ContactsimEnv", "FleetVectorEnv", "HoverTask"]

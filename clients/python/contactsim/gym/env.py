@@ -1,8 +1,8 @@
 """A Gymnasium environment over lockstep (docs/lockstep.md, docs/fleet.md).
 
 The environment is the server's one lockstep controller: each ``step``
-sends the action's forces as the input for the next world step and waits
-for that step's STATE. ``reset`` restores the snapshot taken after the
+sends the action's input (the task's forces on bodies and commands to
+joints) for the next world step and waits for that step's STATE. ``reset`` restores the snapshot taken after the
 task built its world, so every episode starts bit for bit the same.
 """
 import gymnasium
@@ -14,7 +14,6 @@ from ..fleet.run import NextState
 SLOT = "gym_reset"
 RESEND_S = 0.5        # an input lost on UDP is sent again after this long
 STEP_TIMEOUT_S = 30.0
-BODY_DIMS = 13        # position 3, orientation (w, x, y, z) 4, linear 3 and angular 3 velocity
 
 
 class ContactsimEnv(gymnasium.Env):
@@ -31,18 +30,13 @@ class ContactsimEnv(gymnasium.Env):
         client.snapshot(SLOT)
         client.register_controller(late="wait")
         client.set_mode("lockstep")
-        self.observation_space = gymnasium.spaces.Box(
-            -np.inf, np.inf, (BODY_DIMS * len(task.observed),), np.float64)
-        self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (6 * len(task.actuated),), np.float64)
+        self.observation_space = task.observation_space()
+        self.action_space = task.action_space()
         self.state = None
         self.steps = 0
 
     def _obs(self, state):
-        parts = []
-        for name in self.task.observed:
-            b = state.bodies[self.ids[name]]
-            parts += [b.position, b.orientation, b.linear_velocity, b.angular_velocity]
-        return np.concatenate(parts)
+        return self.task.observe(self.client, state, self.ids)
 
     def reset(self, *, seed=None, options=None):
         super().reset(seed=seed)
@@ -54,9 +48,9 @@ class ContactsimEnv(gymnasium.Env):
         self.steps = 0
         return self._obs(self.state), {"step": self.state.step, "state_hash": self.state.state_hash}
 
-    def _advance(self, forces):
+    def _advance(self, forces, joints):
         target = self.state.step + 1
-        _, payload = self.client._encode_input(target, forces)
+        _, payload = self.client._encode_input(target, forces, joints)
         for _ in range(int(STEP_TIMEOUT_S / RESEND_S)):
             self.client._publish_input(payload)   # the same request id: a duplicate is ignored
             try:
@@ -66,9 +60,9 @@ class ContactsimEnv(gymnasium.Env):
         raise TimeoutError("no STATE of step %d within %gs" % (target, STEP_TIMEOUT_S))
 
     def step(self, action):
-        forces = self.task.forces(self.ids, action)
+        forces, joints = self.task.inputs(self.ids, action)
         for _ in range(self.frame_skip):
-            self.state = self._advance(forces)
+            self.state = self._advance(forces, joints)
         self.steps += 1
         obs = self._obs(self.state)
         reward = self.task.reward(self.state, self.ids, action)

@@ -22,10 +22,8 @@ class FleetVectorEnv(gymnasium.vector.VectorEnv):
         self.workers = self.fleet.workers[:num_envs]
         ray.get([w.env_make.remote(task, frame_skip) for w in self.workers])
         self.num_envs = num_envs
-        from .env import BODY_DIMS
-        self.single_observation_space = gymnasium.spaces.Box(
-            -np.inf, np.inf, (BODY_DIMS * len(task.observed),), np.float64)
-        self.single_action_space = gymnasium.spaces.Box(-1.0, 1.0, (6 * len(task.actuated),), np.float64)
+        self.single_observation_space = task.observation_space()
+        self.single_action_space = task.action_space()
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
 
