@@ -69,7 +69,8 @@ void XpbdJointedFriction::Solve(World& world, const std::vector<SoftBody>& bodie
   members_.clear();
   for (int k : jointed_blocks) {
     const XpbdPatch& p = patches[k];
-    if (p.valid && p.sticking && !p.origin_pending) members_.push_back(k);
+    // held at its cone too: the joint answer may bring it back inside
+    if (p.valid && (p.sticking || p.clamped) && !p.origin_pending) members_.push_back(k);
   }
   if (members_.size() < 2 || static_cast<int>(members_.size()) > kMaxPatches) return;
   Eigen::VectorXd dl;

@@ -8,7 +8,8 @@
 // support, which opens the patches solved before it, and the sweep meets
 // the support's share at about 1 - m_support / m_load a sweep (five boxes
 // of 10 kg on a 0.5 kg hinged plank crept 10.9 mm in 3 s). So after each
-// sweep the sticking jointed patches are solved at once:
+// sweep the jointed patches that stick or are held at their cone are
+// solved at once:
 //   K dlambda = e,  K_pq = J_p Z J_q^T,
 // e the offsets their static friction would undo (XpbdPatchError), J_p a
 // patch's rows (t1, t2 at its centre, the twist about n) and Z the bodies'
@@ -32,7 +33,8 @@ class XpbdJointedFriction {
   // solve of three rows a patch).
   static constexpr int kMaxPatches = 32;
 
-  // The sticking patches among `jointed_blocks` (patch indices) solved
+  // The patches among `jointed_blocks` (patch indices) that stick or are
+  // held at their cone (XpbdPatch::clamped) solved
   // together at the world's present poses; their multipliers and bodies
   // move by the answer.
   void Solve(World& world, const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
