@@ -28,10 +28,6 @@ void SoftJointedSolve::Prepare(const World& world, const SubspaceOptions& option
   }
   options_ = options;
   options_.mass_ratio = 0.0;  // the marked components only
-  // from the active set the stage's alternations found, as impulse's and
-  // lcp's sweeps leave one (subspace_solve.h, start_free)
-  options_.start_free = false;
-  options_.passes = 8;
   options_.always = &marked_;
 }
 
