@@ -7,7 +7,7 @@
 namespace contactsim {
 namespace {
 
-struct BodyPair {
+struct JointEnds {
   int a = -1, b = -1;
 };
 
@@ -17,7 +17,7 @@ void SoftJointedSolve::Prepare(const World& world, const SubspaceOptions& option
                                const std::vector<SoftBody>& bodies, const std::vector<SoftPoint>& points) {
   selected_.clear();
   if (world.joints().empty() || points.empty()) return;
-  std::vector<BodyPair> joints;
+  std::vector<JointEnds> joints;
   for (const Joint& j : world.joints()) {
     joints.push_back({world.IndexOf(j.body_a), j.body_b == kWorldBody ? -1 : world.IndexOf(j.body_b)});
   }
