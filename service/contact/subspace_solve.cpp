@@ -56,7 +56,8 @@ bool SubspaceSolver::MassRatioReached(const std::vector<SolverBody>& bodies, dou
 SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
                                      const SubspaceOptions& options) {
   SubspaceReport report;
-  if (rows.empty() || !MassRatioReached(bodies, options.mass_ratio)) return report;
+  const std::vector<char>* always = options.always;
+  if (rows.empty() || (always == nullptr && !MassRatioReached(bodies, options.mass_ratio))) return report;
   // components of dynamic bodies joined by rows, and their mass range
   const int n = static_cast<int>(bodies.size());
   UnionFind sets(n);
@@ -70,6 +71,14 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
     lightest[root] = std::max(lightest[root], bodies[i].inv_mass);
     heaviest[root] = std::min(heaviest[root], bodies[i].inv_mass);
   }
+  // the components that need the solve: a mass ratio, or a marked body
+  std::vector<char> wanted(n, 0);
+  for (int i = 0; i < n; ++i) {
+    if (!Dynamic(i, bodies)) continue;
+    const int root = sets.Root(i);
+    const bool ratio = options.mass_ratio > 0.0 && lightest[root] >= options.mass_ratio * heaviest[root];
+    if (ratio || (always != nullptr && (*always)[i])) wanted[root] = 1;
+  }
   // the rows of each component that needs the solve, in row order
   root_of_row_.assign(rows.size(), -1);
   std::vector<int> count(n, 0);
@@ -78,7 +87,7 @@ SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vect
     const int body = Dynamic(r.a, bodies) ? r.a : Dynamic(r.b, bodies) ? r.b : -1;
     if (body < 0) continue;
     const int root = sets.Root(body);
-    if (lightest[root] < options.mass_ratio * heaviest[root]) continue;
+    if (!wanted[root]) continue;
     root_of_row_[k] = root;
     ++count[root];
   }

@@ -84,6 +84,10 @@ struct SubspaceOptions {
   // nothing.
   bool energy_guard = true;
   int restart_passes = 64;  // active-set passes at most in that re-solve
+  // Per body (optional): a component holding a marked body is solved
+  // whatever its mass ratio. The methods mark the jointed bodies that a
+  // contact touches, with the joint rows among `rows` (jointed_contacts.h).
+  const std::vector<char>* always = nullptr;
 };
 
 struct SubspaceReport {
@@ -103,7 +107,8 @@ class SubspaceSolver {
                        const SubspaceOptions& options);
   // Whether any two dynamic bodies differ in mass by `ratio` or more: when
   // not, no component can, and callers skip building rows (one pass over
-  // the bodies; it kept the pyramid's step time unchanged).
+  // the bodies; it kept the pyramid's step time unchanged). Callers with
+  // SubspaceOptions::always set solve regardless.
   static bool MassRatioReached(const std::vector<SolverBody>& bodies, double ratio);
 
  private:

@@ -8,6 +8,7 @@
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/jointed_contacts.h"
 #include "service/contact/patch_torsion.h"
 #include "service/contact/slip_friction_step.h"
 #include "service/physics/byte_stream.h"
@@ -127,12 +128,15 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
   return pass;
 }
 
-void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target) {
+void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target, bool joints) {
   SubspaceOptions options;
   options.mass_ratio = params_.direct_mass_ratio;
   options.max_rows = params_.direct_max_rows;
   options.energy_guard = target == nullptr;  // targets: the split impulse's pseudo-velocities
-  if (rows.empty() || !SubspaceSolver::MassRatioReached(solver_, options.mass_ratio)) return;
+  joints = joints && MarkJointedContacts(rows, solver_.size(), [this](int i) { return joints_.Jointed(i); },
+                                         &jointed_contacts_);
+  if (joints) options.always = &jointed_contacts_;
+  if (rows.empty() || (!joints && !SubspaceSolver::MassRatioReached(solver_, options.mass_ratio))) return;
   // per contact a row along n with the accumulated impulse the bodies carry,
   // and in the contact phase (no targets) the two friction rows
   const int per = target ? 1 : 3;
@@ -159,7 +163,10 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
       }
     }
   }
+  const size_t first_joint_row = normal_rows_.size();
+  if (joints) joints_.AppendRows(&normal_rows_);
   subspace_.Solve(normal_rows_, solver_, options);
+  if (joints) joints_.ReadImpulses(normal_rows_, first_joint_row);
   for (size_t k = 0; k < rows.size(); ++k) {
     rows[k].lambda_n = normal_rows_[per * k].lambda;
     if (per == 1) continue;
@@ -327,14 +334,17 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
   }
   const bool interleave = touched && !self;
   int it = 0;
+  bool converged = false;
   for (; it < params_.iterations; ++it) {
     const double worst = std::max(Sweep(rows), interleave ? joints_.Solve(solver_) : 0.0);
     if (worst < params_.velocity_tolerance) {
       ++it;
+      converged = true;
       break;
     }
   }
-  SolveMassRatios(rows, nullptr);
+  // jointed components too, where the sweeps stopped short (jointed_contacts.h)
+  SolveMassRatios(rows, nullptr, interleave && !converged);
   // the last joint solve with its velocity products taken at the velocities
   // the sweeps leave: the contacts of a fast-folding chain change them too
   // much for the products taken before (a 100-link chain blew up); the

@@ -85,8 +85,9 @@ class ImpulseMethod : public ContactMethod {
   bool NormalBlockStep(const NormalBlock& m, const std::vector<ContactRow>& rows, Eigen::Vector4d* step) const;
   // The direct solve of the normal rows (target velocity `target[k]`, or 0
   // and the friction rows without targets) in components with a large mass
-  // ratio, after the sweeps.
-  void SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target);
+  // ratio, after the sweeps; with `joints`, also in the components of the
+  // jointed bodies the rows touch, with the joint rows (jointed_contacts.h).
+  void SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target, bool joints = false);
   // A pair whose deepest point went past `depth` in the sub-step: 0 for a
   // pair that was apart, the depth it started at plus half the margin for
   // a pair that was touching (another of its features struck).
@@ -110,6 +111,7 @@ class ImpulseMethod : public ContactMethod {
   std::vector<ContactRow> rows_;
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four
   std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
+  std::vector<char> jointed_contacts_;      // per body: jointed and touched (jointed_contacts.h)
   SubspaceSolver subspace_;
   // Contact-phase force (N: normal, and tangent along the contact frame's
   // PerpendicularBasis) of each contact point of the last sub-step, by pair

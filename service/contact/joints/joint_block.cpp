@@ -69,6 +69,17 @@ void JointVelocityBlock::AddDriveImpulses(std::vector<double>* impulses) const {
   contactsim::AddDriveImpulses(blocks_, std::vector<double>(total_.data(), total_.data() + total_.size()), impulses);
 }
 
+void JointVelocityBlock::AppendRows(std::vector<ConstraintRow>* out) const {
+  for (size_t k = 0; k < rows_.size(); ++k) {
+    out->push_back(rows_[k]);
+    out->back().lambda = total_[static_cast<Eigen::Index>(k)];
+  }
+}
+
+void JointVelocityBlock::ReadImpulses(const std::vector<ConstraintRow>& rows, size_t first) {
+  for (size_t k = 0; k < rows_.size(); ++k) total_[static_cast<Eigen::Index>(k)] = rows[first + k].lambda;
+}
+
 bool JointVelocityBlock::SelfContact(int a, int b) const {
   if (component_.empty() || a < 0 || b < 0) return false;
   return component_[a] >= 0 && component_[a] == component_[b];

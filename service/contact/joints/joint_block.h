@@ -55,6 +55,11 @@ class JointVelocityBlock {
   // Projects the bodies' velocities onto the joint rows; returns the largest
   // row velocity error it removed (m/s or rad/s).
   double Solve(std::vector<SolverBody>& bodies, int max_limit_passes = 8);
+  // The rows with the impulse each has carried so far as its lambda, for a
+  // direct solve of joint and contact rows together (jointed_contacts.h),
+  // and the impulses that solve leaves, read back from rows[first...].
+  void AppendRows(std::vector<ConstraintRow>* out) const;
+  void ReadImpulses(const std::vector<ConstraintRow>& rows, size_t first);
 
  private:
   std::vector<ConstraintRow> rows_;

@@ -4,6 +4,7 @@
 
 #include "service/contact/contact_row.h"
 #include "service/contact/joint_substeps.h"
+#include "service/contact/jointed_contacts.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
 #include "service/contact/lcp/lemke_rows.h"
@@ -112,7 +113,14 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   }
   options.normal_blocks = &normal_blocks_;
   report_ = pgs_.Solve(rows_, bodies, options);
-  subspace_.Solve(rows_, bodies, SubspaceOptionsOf(params_, true));
+  SubspaceOptions direct = SubspaceOptionsOf(params_, true);
+  // the components of contacts on jointed bodies too, where the sweeps
+  // stopped short (jointed_contacts.h)
+  if (!joint_blocks_.empty() && !report_.converged &&
+      MarkJointedContacts(contacts_, JointedComponents(joint_blocks_, bodies), &jointed_contacts_)) {
+    direct.always = &jointed_contacts_;
+  }
+  subspace_.Solve(rows_, bodies, direct);
 }
 
 StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {

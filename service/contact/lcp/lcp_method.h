@@ -100,6 +100,7 @@ class LcpMethod : public ContactMethod {
   std::vector<NormalBlock> pairs_;
   std::vector<PgsNormalBlock> normal_blocks_;
   SubspaceSolver subspace_;
+  std::vector<char> jointed_contacts_;  // per body: jointed and touched (jointed_contacts.h)
   WarmStartCache warm_start_;
   SolveReport report_;
   int lemke_fallbacks_ = 0;

@@ -41,6 +41,8 @@
 // Joints: the exact velocity solve of joint_solver.h after each contact
 // pass, the positions projected onto the joints after the step
 // (soft_joints.h); a body held only by a joint moves sub-step by sub-step.
+// The points on jointed bodies and their joints' rows are solved together
+// after the last contact pass of each stage (soft_jointed_solve.h).
 #pragma once
 
 #include <array>
@@ -53,6 +55,7 @@
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/soft_contact.h"
 #include "service/contact/soft/soft_joints.h"
+#include "service/contact/soft/soft_jointed_solve.h"
 #include "service/contact/soft/soft_manifold.h"
 #include "service/contact/soft/soft_params.h"
 #include "service/contact/soft/soft_ratio_solve.h"
@@ -97,6 +100,7 @@ class SoftMethod : public ContactMethod {
   SoftPointsOfBodies points_of_bodies_;
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
+  SoftJointedSolve jointed_solve_;
   SequentialImpacts impacts_;
   std::vector<std::array<double, 3>> impulses_;
   WarmStartCache warm_start_;

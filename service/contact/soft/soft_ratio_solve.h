@@ -29,6 +29,19 @@
 
 namespace contactsim {
 
+// Point p's three rows (normal, t1, t2) for the subspace solve, between
+// solver bodies a and b, aiming at what `pass` aims at; its friction rows'
+// normal is rows[normal_row] of the caller's list.
+void SoftPointRows(const SoftPass& pass, const SoftPoint& p, const std::vector<SoftBody>& bodies, int a, int b,
+                   int normal_row, ConstraintRow rows[3]);
+// The rows' impulses back into p. Friction that slides here is held at
+// +-mu lambda_n per tangent (the subspace solve's bounds) until the next
+// pass sweeps it onto the disk. Projecting it onto the disk here instead
+// kicked the light body between two heavy ones by the difference: a
+// 0.02 kg box between two 20 kg boxes was squeezed out and the top box
+// fell 100 mm.
+void ReadSoftPointRows(const ConstraintRow rows[3], SoftPoint& p);
+
 class SoftRatioSolve {
  public:
   // Finds the components of `points` that reach `options.mass_ratio` and

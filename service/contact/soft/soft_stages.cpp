@@ -39,6 +39,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // (docs/methods/soft.md, "Heavy on light")
   direct.energy_guard = false;
   ratio_solve_.Prepare(direct, bodies_, points_);
+  jointed_solve_.Prepare(world, direct, bodies_, points_);
   ColourManifolds();
   SoftPass solve;
   solve.inv_h = 1.0 / h;
@@ -61,6 +62,8 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const Fn integrate_positions = [&](int i, int j) { IntegrateSoftPositions(h, i, j, world, bodies_); };
   const Fn relax_blocks = [&](int i, int j) { SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_); };
   const Fn relax_ratio = [&](int, int) { ratio_solve_.Solve(relax, points_, bodies_); };
+  const Fn solve_jointed = [&](int, int) { jointed_solve_.Solve(world, h, solve, points_, bodies_); };
+  const Fn relax_jointed = [&](int, int) { jointed_solve_.Solve(world, h, relax, points_, bodies_); };
   const Fn accumulate = [&](int i, int j) {
     for (int k = i; k < j; ++k) AccumulateSoftTotals(points_[k]);
   };
@@ -85,6 +88,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     for (int pass = 0; pass < joint_passes; ++pass) {
       list.AddColours(solve_blocks, colours_, blocks);
       if (ratio_solve_.active() && pass + 1 == joint_passes) list.AddSerial(solve_ratio);
+      if (jointed_solve_.active() && pass + 1 == joint_passes) list.AddSerial(solve_jointed);
       if (joints) list.AddSerial(solve_joints);
     }
     list.Add(integrate_positions, 0, bodies, kBodyGrain);
@@ -92,6 +96,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
       for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
       const bool last = pass + 1 == joint_passes;
       if (ratio_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_ratio);
+      if (jointed_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_jointed);
       if (joints) list.AddSerial(relax_joints);
     }
     list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);

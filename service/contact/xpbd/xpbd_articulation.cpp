@@ -36,6 +36,19 @@ Vec6 XpbdArticulation::Response(int i, const SoftBody& s, const Vec3& lin, const
   return out;
 }
 
+Vec6 XpbdArticulation::ResponseOf(int k, int i, const SoftBody& s, const Vec6& w) const {
+  if (!mobility_.Jointed(i)) {
+    if (k != i) return Vec6::Zero();
+    Vec6 out;
+    out << s.inv_mass * w.head<3>(), s.inv_inertia * w.tail<3>();
+    return out;
+  }
+  for (const JointMobility::Response* r = mobility_.begin(i); r != mobility_.end(i); ++r) {
+    if (r->body == k) return r->z * w;
+  }
+  return Vec6::Zero();
+}
+
 void XpbdArticulation::Displace(World& world, const std::vector<SoftBody>& bodies, int i, const Vec3& force,
                                 const Vec3& torque) const {
   auto& all = world.bodies();

@@ -78,6 +78,10 @@ class XpbdArticulation {
   // Body i's motion under the wrench (lin; ang): Z_ii (lin; ang) when
   // jointed, M^-1 (lin; ang) otherwise.
   Vec6 Response(int i, const SoftBody& s, const Vec3& lin, const Vec3& ang) const;
+  // Body k's motion under the wrench w on body i: Z_ki w when i is
+  // jointed (0 for k outside i's component), M^-1 w for k = i otherwise,
+  // else 0.
+  Vec6 ResponseOf(int k, int i, const SoftBody& s, const Vec6& w) const;
   // Moves (positions) or kicks (velocities) body i's component by the
   // response to the wrench (force at the centre of mass, torque) on body i.
   void Displace(World& world, const std::vector<SoftBody>& bodies, int i, const Vec3& force,

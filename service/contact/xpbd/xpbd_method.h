@@ -66,6 +66,7 @@
 #include "service/contact/sequential_impacts.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/xpbd/xpbd_contact.h"
+#include "service/contact/xpbd/xpbd_jointed_friction.h"
 #include "service/contact/xpbd/xpbd_joints.h"
 #include "service/contact/xpbd/xpbd_patch_friction.h"
 #include "service/contact/xpbd/xpbd_params.h"
@@ -120,6 +121,7 @@ class XpbdMethod : public ContactMethod {
   std::vector<char> touching_;            // per body: it has a contact this step
   XpbdArticulation articulation_;         // the contacts' view of jointed bodies
   std::vector<int> jointed_blocks_;       // the blocks of jointed points
+  XpbdJointedFriction jointed_friction_;  // their patches' static friction together
   std::vector<SoftBody> bodies_;
   std::vector<XpbdPoint> points_;         // in the blocks' order
   std::vector<XpbdPointFrame> frames_;    // parallel to points_

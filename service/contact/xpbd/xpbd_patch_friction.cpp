@@ -173,6 +173,13 @@ Vec3 PatchOffset(const XpbdPatch& patch, const Vec3& xa, const Quat& q_a, const 
 
 }  // namespace
 
+Vec3 XpbdPatchError(const World& world, const XpbdPatch& patch, const std::vector<XpbdPoint>& points) {
+  const XpbdPoint& p0 = points[patch.first];
+  const RigidBody& A = world.bodies()[p0.a];
+  const RigidBody& B = world.bodies()[p0.b];
+  return PatchOffset(patch, A.x, A.q, B.x, B.q) - patch.origin;
+}
+
 bool XpbdPatchSlipNow(const World& world, const XpbdPatch& patch, const std::vector<XpbdPoint>& points,
                       XpbdPatchSlip* slip) {
   if (!patch.valid || patch.origin_pending || !patch.sticking) return false;

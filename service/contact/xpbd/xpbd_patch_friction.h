@@ -111,6 +111,11 @@ bool XpbdPatchSlipNow(const World& world, const XpbdPatch& patch, const std::vec
 // step: it holds the offset that undoes it, in this step's tangent frame.
 void CarryXpbdPatchSlip(const XpbdPatchSlip& slip, XpbdPatch* patch);
 
+// What the patch's static friction would undo now: its offset at the
+// world's present poses less the offset it holds (t1, t2, twist; m, m, rad).
+// Only for a patch whose origin is known (not origin_pending).
+Vec3 XpbdPatchError(const World& world, const XpbdPatch& patch, const std::vector<XpbdPoint>& points);
+
 // Zeroes the patch's multipliers of the sub-step.
 void BeginXpbdPatch(XpbdPatch* patch);
 

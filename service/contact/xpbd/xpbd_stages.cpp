@@ -93,6 +93,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     }
     solve_blocks(i, j);
   };
+  // the jointed patches' static friction together after each sweep (xpbd_jointed_friction.h)
+  const Fn solve_jointed_friction = [&](int, int) {
+    jointed_friction_.Solve(world, bodies_, articulation_, jointed_blocks_, points_, patches_);
+  };
+  const bool jointed_friction = articulation_.active() && jointed_blocks_.size() >= 2;
   JointSolveOptions projection;
   projection.max_projection_iterations = kProjectionIterations;
   const Fn project = [&](int, int) { ProjectJointPositions(world, projection); };
@@ -139,6 +144,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     for (int it = 0; it < params_.iterations; ++it) {
       if (joints) list.AddSerial(solve_joints);
       list.AddColours(it == 0 ? begin_and_solve_blocks : solve_blocks, colours_, blocks);
+      if (jointed_friction) list.AddSerial(solve_jointed_friction);
     }
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);
