@@ -25,6 +25,7 @@ import numpy as np
 from . import body_cmd_t, contacts_t, model_info_t, progress_t, protocol, reply_t, scene_cmd_t, state_t, status_t
 from .auth import DEFAULT_WINDOW_S, Authenticator, unsigned_size
 from ._fields import vector as _vec
+from ._body_fields import mass_properties as _mass_properties, part as _part
 from .errors import CommandError, TimeoutError
 from .lockstep import LockstepCommands
 from .snapshots import SnapshotCommands
@@ -33,6 +34,7 @@ from .joints import JointCommands
 from .sensors import SensorCommands
 from .models import ModelCommands
 from .actuators import ActuatorCommands
+from .surfaces import SurfaceCommands
 from .state import MODE_NAMES, Contacts, State, Status, reply_from_msg
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
@@ -52,40 +54,6 @@ def _param_text(value):
     if isinstance(value, float):
         return repr(value)
     return str(value)
-
-
-_PART_SHAPES = {"sphere": body_cmd_t.SPHERE, "box": body_cmd_t.BOX,
-                "capsule": body_cmd_t.CAPSULE, "convex": body_cmd_t.CONVEX}
-
-
-def _part(part, k):
-    """One compound part as its wire fields: (shape, radius, half_extents,
-    half_length, points, position, orientation)."""
-    shape = part.get("shape")
-    if shape not in _PART_SHAPES:
-        raise ValueError("parts[%d].shape must be one of %s, got %r" % (k, ", ".join(_PART_SHAPES), shape))
-    points = np.asarray(part.get("points", np.zeros((0, 3))), dtype=np.float64)
-    if points.ndim != 2 or points.shape[1] != 3:
-        raise ValueError("parts[%d].points must be an N x 3 array, got shape %s" % (k, points.shape))
-    return (_PART_SHAPES[shape], float(part.get("radius", 0.0)),
-            _vec(part.get("half_extents", (0, 0, 0)), 3, "parts[%d].half_extents" % k),
-            float(part.get("half_length", 0.0)), [[float(v) for v in p] for p in points],
-            _vec(part.get("position", (0, 0, 0)), 3, "parts[%d].position" % k),
-            _vec(part.get("orientation", (1, 0, 0, 0)), 4, "parts[%d].orientation" % k))
-
-
-def _mass_properties(m, center_of_mass, inertia):
-    """Explicit centre of mass (m, body frame) and inertia (kg m^2: 3 x 3, or
-    ixx, iyy, izz, ixy, ixz, iyz) on an ADD."""
-    m.has_center_of_mass = center_of_mass is not None
-    if center_of_mass is not None:
-        m.center_of_mass = _vec(center_of_mass, 3, "center_of_mass")
-    m.has_inertia = inertia is not None
-    if inertia is not None:
-        a = np.asarray(inertia, dtype=np.float64)
-        if a.shape == (3, 3):
-            a = np.array([a[0, 0], a[1, 1], a[2, 2], a[0, 1], a[0, 2], a[1, 2]])
-        m.inertia = _vec(a, 6, "inertia")
 
 
 class _Pending:
@@ -113,7 +81,7 @@ SUBSCRIPTION_QUEUE_CAPACITY = 100000
 
 
 class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, SensorCommands,
-             ModelCommands, ActuatorCommands):
+             ModelCommands, ActuatorCommands, SurfaceCommands):
     """A connection to one contactsim server (one LCM URL and channel prefix).
 
     ``url`` None: LCM_DEFAULT_URL, else the project default. ``client_id``
@@ -670,75 +638,6 @@ class Client(SnapshotCommands, LockstepCommands, JointCommands, FilterCommands, 
         m.plane_normal = _vec(normal, 3, "normal")
         m.plane_offset = float(offset)
         m.orientation = [1.0, 0.0, 0.0, 0.0]
-        m.fixed = True
-        self._material(m, restitution, friction)
-        m.name = name
-        return self._send("BODY_CMD", m).ids[0]
-
-    def add_mesh(self, path_or_vertices, indices=None, *, scale=1.0, position=(0, 0, 0),
-                 orientation=(1, 0, 0, 0), restitution=None, friction=None, name="",
-                 collision_category=None, collision_mask=None, collision_group=None):
-        """Adds a static triangle mesh; returns its id.
-
-        Either a mesh file's path (OBJ, STL, PLY, DAE, ...: read by the
-        server, relative paths against its model paths) or vertices (N x 3,
-        m, body frame) with indices (M x 3 or 3 M, counter-clockwise seen
-        from the front: bodies are pushed out of the front). scale (> 0)
-        multiplies the vertices. Triangles of zero area are dropped, and the
-        reply's message says how many (docs/physics.md, "Triangle meshes and
-        heightfields")."""
-        m = self._body(body_cmd_t.ADD)
-        fill_filter(m, collision_category, collision_mask, collision_group)
-        m.shape = body_cmd_t.MESH
-        if isinstance(path_or_vertices, (str, os.PathLike)):
-            if indices is not None:
-                raise ValueError("indices are for vertices, not a mesh file")
-            m.mesh_path = os.fspath(path_or_vertices)
-        else:
-            verts = np.asarray(path_or_vertices, dtype=np.float64)
-            if verts.ndim != 2 or verts.shape[1] != 3:
-                raise ValueError("vertices must be an N x 3 array, got shape %s" % (verts.shape,))
-            if indices is None:
-                raise ValueError("vertices need indices (three per triangle)")
-            idx = np.asarray(indices).reshape(-1)
-            if idx.size and not np.issubdtype(idx.dtype, np.integer):
-                raise ValueError("indices must be integers, got %s" % idx.dtype)
-            m.num_points = len(verts)
-            m.points = verts.tolist()
-            m.num_mesh_indices = int(idx.size)
-            m.mesh_indices = [int(i) for i in idx]
-        m.mesh_scale = float(scale)
-        m.position = _vec(position, 3, "position")
-        m.orientation = _vec(orientation, 4, "orientation")
-        m.fixed = True
-        self._material(m, restitution, friction)
-        m.name = name
-        reply = self._send("BODY_CMD", m)
-        if "dropped" in reply.message:
-            warnings.warn(reply.message)
-        return reply.ids[0]
-
-    def add_heightfield(self, heights, spacing, *, position=(0, 0, 0), orientation=(1, 0, 0, 0),
-                        restitution=None, friction=None, name="",
-                        collision_category=None, collision_mask=None, collision_group=None):
-        """Adds a static heightfield; returns its id.
-
-        heights: a 2-D array (rows along body y, columns along body x, m,
-        at least 2 x 2); spacing: one number or (dx, dy), m. The grid is
-        centred on position; each cell is two triangles."""
-        h = np.asarray(heights, dtype=np.float64)
-        if h.ndim != 2:
-            raise ValueError("heights must be a 2-D array, got shape %s" % (h.shape,))
-        sp = np.broadcast_to(np.asarray(spacing, dtype=np.float64), (2,))
-        m = self._body(body_cmd_t.ADD)
-        fill_filter(m, collision_category, collision_mask, collision_group)
-        m.shape = body_cmd_t.HEIGHTFIELD
-        m.height_rows, m.height_cols = int(h.shape[0]), int(h.shape[1])
-        m.num_heights = int(h.size)
-        m.heights = [float(v) for v in h.reshape(-1)]
-        m.height_spacing = [float(sp[0]), float(sp[1])]
-        m.position = _vec(position, 3, "position")
-        m.orientation = _vec(orientation, 4, "orientation")
         m.fixed = True
         self._material(m, restitution, friction)
         m.name = name
