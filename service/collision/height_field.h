@@ -15,12 +15,11 @@
 #include <vector>
 
 #include "service/collision/aabb.h"
+#include "service/collision/surface_triangle.h"
 #include "service/physics/math.h"
 #include "service/physics/status.h"
 
 namespace contactsim {
-
-struct SurfaceTriangle;
 
 // Most samples of one heightfield (a 4,096 x 4,096 grid).
 constexpr int kMaxHeightSamples = 1 << 24;

@@ -19,12 +19,11 @@
 
 #include "service/collision/aabb.h"
 #include "service/collision/box_tree.h"
+#include "service/collision/surface_triangle.h"
 #include "service/physics/math.h"
 #include "service/physics/status.h"
 
 namespace contactsim {
-
-struct SurfaceTriangle;
 
 // Most triangles of one mesh: 2^20 triangles are ~100 MB with the tree.
 constexpr int kMaxMeshTriangles = 1 << 20;

@@ -21,17 +21,13 @@
 #include <cstdint>
 
 #include "service/collision/aabb.h"
+#include "service/collision/height_field.h"
+#include "service/collision/surface_triangle.h"
+#include "service/collision/triangle_mesh.h"
 #include "service/physics/math.h"
 #include "service/physics/shape.h"
 
 namespace contactsim {
-
-struct SurfaceTriangle {
-  std::array<Vec3, 3> v;        // m, counter-clockwise seen from the front
-  Vec3 normal = Vec3::UnitZ();  // unit, out of the front
-  uint8_t active_edges = 7;     // bit k: edge v[k] -> v[k+1] is active
-  uint32_t index = 0;           // mesh triangle, or 2 cell + half of a heightfield
-};
 
 // Edges are active when convex by more than 5 degrees (Jolt's default
 // threshold): a tessellated curve of finer facets is as smooth as its faces.
@@ -58,13 +54,6 @@ void ForEachSurfaceTriangle(const Shape& shape, const Aabb& box, Visit&& visit);
 
 // The triangle moved to the world by the body's pose.
 SurfaceTriangle TriangleInWorld(const SurfaceTriangle& tri, const Mat3& R, const Vec3& x);
-
-}  // namespace contactsim
-
-#include "service/collision/height_field.h"
-#include "service/collision/triangle_mesh.h"
-
-namespace contactsim {
 
 template <class Visit>
 void ForEachSurfaceTriangle(const Shape& shape, const Aabb& box, Visit&& visit) {

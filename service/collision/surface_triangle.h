@@ -1,0 +1,20 @@
+// One triangle of a static surface (a triangle mesh or a heightfield) in
+// the form the narrowphase and the ray cast take it; the edge rule that
+// fills `active_edges` is in triangle_surface.h.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "service/physics/math.h"
+
+namespace contactsim {
+
+struct SurfaceTriangle {
+  std::array<Vec3, 3> v;        // m, counter-clockwise seen from the front
+  Vec3 normal = Vec3::UnitZ();  // unit, out of the front
+  uint8_t active_edges = 7;     // bit k: edge v[k] -> v[k+1] is active
+  uint32_t index = 0;           // mesh triangle, or 2 cell + half of a heightfield
+};
+
+}  // namespace contactsim
