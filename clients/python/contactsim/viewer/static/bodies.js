@@ -3,10 +3,12 @@
 // from each POSES frame. Compound bodies and the bodies of robot models are
 // one object each (their collision shapes at real size), since a model's
 // collision shapes are shown, overlaid or hidden beside its visuals
-// (models.js) per body.
+// (models.js) per body; so are triangle meshes and heightfields, each of
+// its own vertices (surfaces.js).
 import * as THREE from 'three';
 import { POSE_WIDTH } from './socket.js';
 import { collisionObject, planeObject, shapeGroup } from './shapes.js';
+import { isSurface, surfaceMaterial } from './surfaces.js';
 
 const COLORS = { sphere: 0xd9a441, box: 0x5b8fd9, capsule: 0x6fbf73, convex: 0xb07cd9, marker: 0xaaaaaa,
                  compound: 0xd97b5b };
@@ -58,7 +60,7 @@ export class Bodies {
 
   _object(id, body) {
     const color = body.motion !== 'dynamic' ? STATIC_COLOR : shade(COLORS.compound, id);
-    const solid = new THREE.MeshLambertMaterial({ color });
+    const solid = isSurface(body.shape) ? surfaceMaterial(body.shape, color) : new THREE.MeshLambertMaterial({ color });
     const object = collisionObject(body.shape, solid);
     object.userData = { id, solid };
     this._style(id, object);
@@ -83,7 +85,10 @@ export class Bodies {
         this.slots.set(id, { plane: true });
         continue;
       }
-      if (body && (body.shape.kind === 'compound' || this.modelBodies.has(id))) { this._object(id, body); continue; }
+      if (body && (body.shape.kind === 'compound' || isSurface(body.shape) || this.modelBodies.has(id))) {
+        this._object(id, body);
+        continue;
+      }
       const g = shapeGroup(body && body.shape);
       const still = body && body.motion !== 'dynamic';
       const key = g.key + (still ? ':static' : '');

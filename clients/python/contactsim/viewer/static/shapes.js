@@ -3,6 +3,7 @@
 // a handful of draw calls). Capsules and hulls cannot be scaled into one
 // another: each distinct size or hull gets its own instanced group.
 import * as THREE from 'three';
+import { isSurface, surfaceGeometry } from './surfaces.js';
 
 const MARKER_RADIUS = 0.05;  // m, bodies whose shape is unknown (no snapshot, or a replay without one)
 
@@ -69,17 +70,22 @@ export function planeObject(shape, size) {
 }
 
 // A body's collision shape as one object at its real size, for the bodies
-// not drawn instanced (compounds, and the links of robot models, whose
-// visuals they may replace or overlay): a compound's children (hulls,
-// spheres, boxes, capsules) posed in the body frame.
+// not drawn instanced (compounds, meshes, heightfields, and the links of
+// robot models, whose visuals they may replace or overlay): a compound's
+// children (hulls, spheres, boxes, capsules) posed in the body frame.
 export function collisionObject(shape, material) {
   const group = new THREE.Group();
   const parts = shape && shape.kind === 'compound' ? shape.children
     : [{ shape, position: [0, 0, 0], orientation: [1, 0, 0, 0] }];
   for (const part of parts) {
-    const g = shapeGroup(part.shape);
-    const geometry = g.make(1);
-    geometry.scale(...g.scale);
+    let geometry;
+    if (isSurface(part.shape)) {
+      geometry = surfaceGeometry(part.shape);
+    } else {
+      const g = shapeGroup(part.shape);
+      geometry = g.make(1);
+      geometry.scale(...g.scale);
+    }
     const mesh = new THREE.Mesh(geometry, material);
     const q = part.orientation;
     mesh.position.set(...part.position);

@@ -1,0 +1,77 @@
+// Static triangle meshes and heightfields: one BufferGeometry each, built
+// once per catalog from the geometry the snapshot carries (docs/viewer.md,
+// "catalog"), never instanced (few bodies, each its own vertices).
+import * as THREE from 'three';
+
+// a mesh's vertices (flat x y z, body frame) and triangles (three indices,
+// counter-clockwise seen from the front), as the server stores them
+export function meshGeometry(shape) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(shape.vertices, 3));
+  g.setIndex(shape.triangles);
+  g.computeVertexNormals();
+  return g;
+}
+
+// Low to high: water blue, grass green, rock brown, snow white.
+const RAMP = [0x2f5d8a, 0x4f8a3c, 0x8a6a45, 0xe8e4da].map((c) => new THREE.Color(c));
+
+function rampColor(t, out) {
+  const x = Math.min(Math.max(t, 0), 1) * (RAMP.length - 1);
+  const k = Math.min(Math.floor(x), RAMP.length - 2);
+  return out.copy(RAMP[k]).lerp(RAMP[k + 1], x - k);
+}
+
+// A heightfield's grid in its body frame, as service/collision/height_field.h
+// lays it out: sample (r, c) at x = (c - (cols - 1) / 2) spacing_x,
+// y = (r - (rows - 1) / 2) spacing_y, z = heights[r cols + c]; cell (r, c)
+// split along its diagonal from (r, c) to (r + 1, c + 1) into the server's
+// two triangles, counter-clockwise seen from +z. Each vertex is coloured by
+// its height between the lowest and the highest sample.
+export function heightfieldGeometry(shape) {
+  const { rows, cols, heights, spacing } = shape;
+  const n = rows * cols;
+  const pos = new Float32Array(3 * n), col = new Float32Array(3 * n);
+  let lo = Infinity, hi = -Infinity;
+  for (const h of heights) { lo = Math.min(lo, h); hi = Math.max(hi, h); }
+  const span = hi > lo ? hi - lo : 1, c3 = new THREE.Color();
+  for (let r = 0; r < rows; r++) {
+    for (let c = 0; c < cols; c++) {
+      const i = r * cols + c;
+      pos[3 * i] = (c - 0.5 * (cols - 1)) * spacing[0];
+      pos[3 * i + 1] = (r - 0.5 * (rows - 1)) * spacing[1];
+      pos[3 * i + 2] = heights[i];
+      rampColor((heights[i] - lo) / span, c3).toArray(col, 3 * i);
+    }
+  }
+  const index = new (n > 65535 ? Uint32Array : Uint16Array)(6 * (rows - 1) * (cols - 1));
+  let k = 0;
+  for (let r = 0; r + 1 < rows; r++) {
+    for (let c = 0; c + 1 < cols; c++) {
+      const a = r * cols + c, b = a + 1, d = a + cols, e = d + 1;   // (r, c) (r, c+1) (r+1, c) (r+1, c+1)
+      index.set([a, b, e, a, e, d], k);
+      k += 6;
+    }
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
+  g.setIndex(new THREE.BufferAttribute(index, 1));
+  g.computeVertexNormals();
+  return g;
+}
+
+// true for the kinds drawn by this file
+export const isSurface = (shape) => !!shape && (shape.kind === 'mesh' || shape.kind === 'heightfield');
+
+// the solid material of a surface: a heightfield takes its vertices' colours;
+// both are seen from below too (a mesh may be open, a terrain looked under)
+export function surfaceMaterial(shape, color) {
+  return shape.kind === 'heightfield'
+    ? new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide })
+    : new THREE.MeshLambertMaterial({ color, side: THREE.DoubleSide, flatShading: true });
+}
+
+export function surfaceGeometry(shape) {
+  return shape.kind === 'heightfield' ? heightfieldGeometry(shape) : meshGeometry(shape);
+}
