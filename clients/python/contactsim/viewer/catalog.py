@@ -23,10 +23,12 @@ _SHAPE[8] = ("children", _CHILD, True)   # a compound's shapes (never compounds 
 _BODY = {1: ("id", "int", False), 2: ("name", "string", False), 3: ("shape", _SHAPE, False),
          6: ("motion", "int", False), 7: ("mass", "double", False), 11: ("x", "double", True),
          12: ("q", "double", True)}
+_ACTUATOR = {1: ("torque", "double", False), 2: ("target_position", "double", False),
+             3: ("target_velocity", "double", False), 4: ("kp", "double", False), 5: ("kd", "double", False)}
 _JOINT = {1: ("id", "int", False), 2: ("kind", "int", False), 3: ("body_a", "int", False),
           4: ("body_b", "int", False), 5: ("anchor_a", "double", True), 6: ("anchor_b", "double", True),
           7: ("axis_a", "double", True), 9: ("rest", "double", True), 11: ("limited", "bool", False),
-          12: ("lower", "double", False), 13: ("upper", "double", False)}
+          12: ("lower", "double", False), 13: ("upper", "double", False), 21: ("actuator", _ACTUATOR, False)}
 _RANGE = {1: ("name", "string", False), 2: ("body", "int", False), 3: ("origin", "double", True),
           5: ("max_distance", "double", False)}
 _SNAPSHOT = {2: ("step", "int", False), 3: ("time", "double", False), 7: ("bodies", _BODY, True), 9: ("contact_method", "string", False),
@@ -67,9 +69,17 @@ def _shape(s):
     return out
 
 
+def _actuator(joint):
+    """A joint's standing actuator (docs/actuators.md), or None without one."""
+    a = joint.get("actuator")
+    if a is None:
+        return None
+    return {k: a.get(k, 0.0) for k in ("torque", "target_position", "target_velocity", "kp", "kd")}
+
+
 def catalog_from_snapshot(data):
     """{"step", "time", "bodies": [{id, name, motion, mass, shape, x, q}], "joints":
-    [{id, kind, body_a, body_b, anchor_a, anchor_b, axis_a, rest, limited, lower, upper}],
+    [{id, kind, body_a, body_b, anchor_a, anchor_b, axis_a, rest, limited, lower, upper, actuator}],
     "range_sensors": [{name, body, origin, max_distance}], "models": [model_catalog.model_entry]}
     from a snapshot's bytes. Anchors, axes and sensor origins are in the bodies'
     frames (anchor_b in the world's for body_b 0)."""
@@ -81,7 +91,8 @@ def catalog_from_snapshot(data):
                "body_b": j.get("body_b", 0), "anchor_a": j.get("anchor_a", [0.0] * 3),
                "anchor_b": j.get("anchor_b", [0.0] * 3), "axis_a": j.get("axis_a", [0.0, 0.0, 1.0]),
                "rest": j.get("rest", [1.0, 0.0, 0.0, 0.0]), "limited": j.get("limited", False),
-               "lower": j.get("lower", 0.0), "upper": j.get("upper", 0.0)} for j in snap.get("joints", [])]
+               "lower": j.get("lower", 0.0), "upper": j.get("upper", 0.0), "actuator": _actuator(j)}
+              for j in snap.get("joints", [])]
     ranges = [{"name": r.get("name", ""), "body": r.get("body", 0), "origin": r.get("origin", [0.0] * 3),
                "max_distance": r.get("max_distance", 0.0)} for r in snap.get("range_sensors", [])]
     return {"step": snap.get("step", 0), "time": snap.get("time", 0.0), "bodies": bodies, "joints": joints,

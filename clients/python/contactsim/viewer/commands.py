@@ -17,6 +17,11 @@ def _method(c, m):
     return c.set_contact_method(str(m["name"]), **_params(m.get("params", "")))
 
 
+def _joint_target(c, m):
+    """A joint's standing target_position (rad or m); its gains stay (docs/actuators.md)."""
+    return c.set_joint_actuator(int(m["joint"]), target_position=float(m["position"]))
+
+
 COMMANDS = {
     "pause": lambda c, m: c.pause(),
     "resume": lambda c, m: c.resume(),
@@ -27,6 +32,7 @@ COMMANDS = {
     "snapshot": lambda c, m: c.snapshot(str(m.get("name") or "viewer")),
     "restore": lambda c, m: c.restore(str(m.get("name") or "viewer")),
     "rewind": lambda c, m: c.rewind(int(m["step"])),
+    "joint_target": _joint_target,
 }
 
 

@@ -18,7 +18,7 @@ const contacts = new Contacts(world.scene);
 const joints = new Joints(world.scene);
 const models = new Models(world.scene, () => { world.dirty = true; });
 const rays = new Rays(world.scene);
-const jointPanel = new JointPanel($('joints'));
+const jointPanel = new JointPanel($('joints'), (joint, position) => socket.command('joint_target', { joint, position }));
 const panel = new Panel();
 const state = { hello: null, status: null, pending: null, drawn: 0, step: null, selected: null,
                 framed: false, renders: 0, updateMs: [], frameLog: [], timeline: null, replies: [] };
@@ -26,6 +26,7 @@ const state = { hello: null, status: null, pending: null, drawn: 0, step: null, 
 const socket = connect({
   hello(msg) {
     state.hello = msg;
+    jointPanel.live = msg.mode === 'live';
     $('mode').textContent = msg.mode === 'replay' ? `replay: ${msg.log}` : `live: ${msg.prefix}`;
     if (msg.mode === 'replay') { state.timeline = new Timeline(socket, msg, panel); return; }
     showMethod(msg.methods.slice(), null);
@@ -47,7 +48,7 @@ const socket = connect({
   poses(frame) { state.pending = frame; },   // drawn at the next animation frame
   contacts(frame) { contacts.apply(frame); panel.contacts(frame.n); },
   rays(frame) { rays.apply(frame); },
-  reply(msg) { state.replies.push(msg); panel.message(`${msg.cmd}: ${msg.message}`, msg.ok); },
+  reply(msg) { state.replies.push(msg); jointPanel.reply(msg); panel.message(`${msg.cmd}: ${msg.message}`, msg.ok); },
   error(msg) { panel.message(msg.message, false); },
   body(msg) { $('selection').textContent = describe(msg); },
   closed() { panel.message('disconnected from the bridge', false); },
@@ -139,5 +140,6 @@ window.contactsimViewer = {
   collisionShown: () => bodies.shownObjects(),  // {solid, overlay}: collision objects of model and compound bodies drawn
   rays: () => rays.counts,                   // {cast, sensors}: {rays, hits} drawn
   jointValues: () => jointPanel.values,      // "model/joint" -> rad or m at the drawn poses
+  jointTargets: () => jointPanel.targets,    // "model/joint" -> the last slider target the server accepted
   internals: { world, bodies, contacts, joints, models, rays },
 };
