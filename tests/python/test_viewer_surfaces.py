@@ -5,11 +5,13 @@ at its pose, and ray hits on them. Skipped without chromium, chromedriver
 or selenium."""
 import numpy as np
 
+from conftest import BUILD
 from test_viewer import VIEWER, browser, open_page  # noqa: F401 - the browser fixture
 
 from contactsim.viewer.headless import wait_for
 from contactsim.viewer.process import ViewerProcess
 
+ARTIFACTS = BUILD / "test-artifacts"
 FLOAT32 = 1e-5   # m: the page's vertices are float32 (7 digits at coordinates of a few metres)
 
 # a square pyramid: apex over a 1 x 0.6 m base, four sides and the base's two triangles
@@ -63,7 +65,8 @@ def _hit_on_drawn(driver, body, origin, direction):
 # heightfield as a rows x cols grid of two triangles a cell coloured by
 # height, each posed as the server has it (the world box of the drawn
 # object equals that of the posed vertices); and that a ray cast on them
-# is drawn with its hits lying on the drawn surfaces.
+# is drawn with its hits lying on the drawn surfaces (screenshot
+# viewer_surfaces.png).
 def test_meshes_and_heightfields_are_drawn(server, browser):  # noqa: F811
     c = server.client
     c.set_gravity((0, 0, 0))
@@ -97,3 +100,5 @@ def test_meshes_and_heightfields_are_drawn(server, browser):  # noqa: F811
         for k, body in enumerate((mesh, field)):
             on_page = _hit_on_drawn(browser, body, origins[k], down[k])
             np.testing.assert_allclose(on_page, hits.points[k], atol=FLOAT32)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        browser.save_screenshot(str(ARTIFACTS / "viewer_surfaces.png"))
