@@ -15,6 +15,7 @@
 #include "service/physics/portable_math.h"
 #include "service/physics/validation.h"
 #include "service/proto/scene.pb.h"
+#include "service/scene/height_map_file.h"
 #include "service/scene/proto_text.h"
 
 namespace contactsim {
@@ -74,18 +75,24 @@ void ToMassProperties(const proto::Body& b, BodySettings* s) {
   }
 }
 
+// A file a scene names: a relative path is against the scene file's folder.
+std::string SceneRelative(const std::string& name, const std::string& filename) {
+  std::filesystem::path path(name);
+  if (path.is_relative()) path = std::filesystem::path(filename).parent_path() / path;
+  return path.string();
+}
+
 // A mesh's or heightfield's surface, built by the collision layer's
-// builders (their messages name the problem); a mesh file's path is
-// relative to the scene file's folder.
+// builders (their messages name the problem); a mesh file or a height map
+// is read first (SceneRelative).
 Status ToSurface(const proto::Body& b, const std::string& filename, BodySettings* s) {
   if (b.has_mesh()) {
     const proto::Mesh& m = b.mesh();
     std::vector<Vec3> vertices;
     std::vector<int> indices(m.indices().begin(), m.indices().end());
     if (!m.path().empty()) {
-      std::filesystem::path path(m.path());
-      if (path.is_relative()) path = std::filesystem::path(filename).parent_path() / path;
-      Status st = model::ReadMeshTriangles(path.string(), Vec3::Ones(), model::ReadLimits(), &vertices, &indices);
+      Status st = model::ReadMeshTriangles(SceneRelative(m.path(), filename), Vec3::Ones(), model::ReadLimits(),
+                                           &vertices, &indices);
       if (!st.ok()) return st;
     } else {
       for (int i = 0; i + 2 < m.vertices_size(); i += 3) {
@@ -100,8 +107,17 @@ Status ToSurface(const proto::Body& b, const std::string& filename, BodySettings
   }
   if (b.has_heightfield()) {
     const proto::Heightfield& h = b.heightfield();
-    const std::vector<double> heights(h.heights().begin(), h.heights().end());
-    return BuildHeightField(h.rows(), h.cols(), heights, h.spacing_x(), h.spacing_y(), &s->heightfield);
+    if (h.path().empty()) {
+      const std::vector<double> heights(h.heights().begin(), h.heights().end());
+      return BuildHeightField(h.rows(), h.cols(), heights, h.spacing_x(), h.spacing_y(), &s->heightfield);
+    }
+    if (h.heights_size() != 0) {
+      return Status::InvalidArgument("a heightfield gives heights or a path, not both");
+    }
+    HeightMap map;
+    Status st = ReadHeightMap(SceneRelative(h.path(), filename), h.rows(), h.cols(), h.scale(), h.offset(), &map);
+    if (!st.ok()) return st;
+    return BuildHeightField(map.rows, map.cols, map.heights, h.spacing_x(), h.spacing_y(), &s->heightfield);
   }
   return Status::Ok();
 }

@@ -21,6 +21,7 @@
 #include "service/model/mesh_reader.h"
 #include "service/model/model_paths.h"
 #include "service/physics/body_settings.h"
+#include "service/scene/height_map_file.h"
 #include "service/server/command_decoder.h"
 
 namespace contactsim {
@@ -55,7 +56,42 @@ Status ResolveMeshPath(const body_cmd_t& m, const DecodeContext& context, body_c
   return Status::Ok();
 }
 
+// A HEIGHTFIELD given by path: the height map read
+// (service/scene/height_map_file.h) into the command's rows, cols and
+// heights, the path, scale and offset cleared, and that resolved form kept
+// as the journal's payload, as a mesh's is above.
+Status ResolveHeightPath(const body_cmd_t& m, const DecodeContext& context, body_cmd_t* kept, Command* cmd) {
+  if (m.num_heights != 0) return Status::InvalidArgument("a HEIGHTFIELD gives height_path or heights, not both");
+  if (m.height_path.size() > 4096) {
+    return Status::InvalidArgument("height_path of " + std::to_string(m.height_path.size()) +
+                                   " bytes is longer than 4096");
+  }
+  std::string path;
+  Status st = model::ResolveModelFile(m.height_path, context.model_paths, &path);
+  HeightMap map;
+  if (st.ok()) {
+    st = ReadHeightMap(path, m.height_rows, m.height_cols, m.height_scale == 0.0 ? 1.0 : m.height_scale,
+                       m.height_offset, &map);
+  }
+  if (!st.ok()) return st;
+  *kept = m;
+  kept->height_path.clear();
+  kept->height_scale = kept->height_offset = 0.0;
+  kept->height_rows = map.rows;
+  kept->height_cols = map.cols;
+  kept->num_heights = static_cast<int32_t>(map.heights.size());
+  kept->heights = std::move(map.heights);
+  cmd->payload.resize(kept->getEncodedSize());
+  kept->encode(cmd->payload.data(), 0, static_cast<int>(cmd->payload.size()));
+  return Status::Ok();
+}
+
 Status CheckBody(const body_cmd_t& m, const DecodeContext& context, Command* cmd) {
+  if (m.shape == body_cmd_t::HEIGHTFIELD && !m.height_path.empty()) {
+    body_cmd_t kept;
+    Status st = ResolveHeightPath(m, context, &kept, cmd);
+    return st.ok() ? DecodeBodyCommand(kept, context.default_material, cmd) : st;
+  }
   if (m.shape == body_cmd_t::MESH) {
     // a mesh's points are its vertices, bounded by the message size and the mesh's triangle limit
     if (m.mesh_path.empty()) return DecodeBodyCommand(m, context.default_material, cmd);

@@ -82,8 +82,14 @@ Status DecodeSurface(const body_cmd_t& m, BodySettings* s, std::string* note) {
     return Status::InvalidArgument("mesh_indices and mesh_path are for shape MESH=7, got shape " +
                                    std::to_string(m.shape));
   }
-  if (!field && m.num_heights != 0) {
-    return Status::InvalidArgument("heights are for shape HEIGHTFIELD=8, got shape " + std::to_string(m.shape));
+  if (!field && (m.num_heights != 0 || !m.height_path.empty())) {
+    return Status::InvalidArgument("heights and height_path are for shape HEIGHTFIELD=8, got shape " +
+                                   std::to_string(m.shape));
+  }
+  // a height map's scale and offset are applied when it is read (command_channels.cpp)
+  if (m.height_scale != 0.0 || m.height_offset != 0.0) {
+    return Status::InvalidArgument("height_scale and height_offset are for a height_path, got " +
+                                   std::to_string(m.height_scale) + " and " + std::to_string(m.height_offset));
   }
   if (mesh) {
     if (m.num_mesh_indices < 0 || static_cast<size_t>(m.num_mesh_indices) != m.mesh_indices.size()) {

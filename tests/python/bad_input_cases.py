@@ -14,6 +14,7 @@ from pathlib import Path
 import contactsim
 from contactsim import body_cmd_t as B, input_t, joint_cmd_t as J, reply_t as R, scene_cmd_t as S
 
+import height_maps
 import lcm_wire
 
 NAN, INF = math.nan, math.inf
@@ -272,10 +273,23 @@ FILES = {
 }
 
 
+# height maps the heightfield cases name: what a 16-bit greyscale PNG or a
+# raw uint16 file must not be
+_SAMPLES = [[0, 1000, 2000], [3000, 4000, 5000]]
+HEIGHT_MAPS = {
+    "grey8.png": lambda: height_maps.png_bytes(_SAMPLES, bit_depth=8),
+    "rgb16.png": lambda: height_maps.png_bytes([[[v] * 3 for v in row] for row in _SAMPLES], colour=height_maps.RGB),
+    "huge16.png": lambda: height_maps.png_bytes(_SAMPLES, size=(4097, 4097)),   # a header claiming 4097 x 4097
+    "short.raw": lambda: bytes(10),                                               # 5 samples, not 2 x 3
+}
+
+
 def write_files(tmp):
     """Writes the files some cases name into the folder tmp."""
     for name, text in FILES.items():
         (Path(tmp) / name).write_text(text)
+    for name, make in HEIGHT_MAPS.items():
+        (Path(tmp) / name).write_bytes(make())
 
 
 # ---------------------------------------------------------------- cases
@@ -361,6 +375,28 @@ def cases(tmp):
         Case("add_heightfield_zero_spacing", "BODY_CMD", "ADD",
              bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_rows=2, height_cols=2, num_heights=4,
                                  heights=[0.0] * 4, height_spacing=[0.0, 0.1])), IA, ["spacing", "0"]),
+        Case("add_heightfield_missing_file", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path="/nonexistent/terrain.png",
+                                 height_spacing=[0.1, 0.1])), NF, ["terrain.png"]),
+        Case("add_heightfield_8bit_png", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "grey8.png"),
+                                 height_spacing=[0.1, 0.1])), IA, ["grey8.png", "8-bit greyscale", "16-bit greyscale"]),
+        Case("add_heightfield_colour_png", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "rgb16.png"),
+                                 height_spacing=[0.1, 0.1])), IA, ["rgb16.png", "16-bit RGB", "16-bit greyscale"]),
+        Case("add_heightfield_png_too_large", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "huge16.png"),
+                                 height_spacing=[0.1, 0.1])), RE, ["4097 x 4097", "kMaxHeightSamples"]),
+        Case("add_heightfield_raw_wrong_size", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "short.raw"), height_rows=2,
+                                 height_cols=3, height_spacing=[0.1, 0.1])), IA, ["short.raw", "10 bytes", "2 x 3"]),
+        Case("add_heightfield_raw_too_large", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "short.raw"), height_rows=5000,
+                                 height_cols=5000, height_spacing=[0.1, 0.1])), RE, ["5000 x 5000", "kMaxHeightSamples"]),
+        Case("add_heightfield_path_and_heights", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "short.raw"), height_rows=2,
+                                 height_cols=2, num_heights=4, heights=[0.0] * 4, height_spacing=[0.1, 0.1])), IA,
+             ["height_path or heights"]),
         Case("add_inertia_triangle_inequality", "BODY_CMD", "ADD",
              bodycmd(lambda: add(B.SPHERE, mass=1.0, has_inertia=True, inertia=[1.0, 1.0, 3.0, 0.0, 0.0, 0.0])), IA,
              ["inertia", "triangle inequality"]),

@@ -298,6 +298,20 @@ Result<int64_t> Client::AddHeightfield(int rows, int cols, const std::vector<dou
   return WithNewId(AddBody(command, SurfaceOptions(options)));
 }
 
+Result<int64_t> Client::AddHeightfieldFile(const std::string& path, double spacing_x, double spacing_y,
+                                           const HeightMapOptions& map, const BodyOptions& options) {
+  body_cmd_t command = NewBodyCommand(body_cmd_t::ADD, 0);
+  command.shape = body_cmd_t::HEIGHTFIELD;
+  command.height_path = path;
+  command.height_rows = map.rows;
+  command.height_cols = map.cols;
+  command.height_scale = map.scale;
+  command.height_offset = map.offset;
+  command.height_spacing[0] = spacing_x;
+  command.height_spacing[1] = spacing_y;
+  return WithNewId(AddBody(command, SurfaceOptions(options)));
+}
+
 CommandResult Client::RemoveBody(int64_t id) {
   return Send(NewBodyCommand(body_cmd_t::REMOVE, id));
 }

@@ -219,6 +219,25 @@ int main(int argc, char** argv) {
       return ExitCode(client.AddMeshFile(mesh_path, mesh_scale, add_flags.ToOptions()).status);
     };
   });
+  std::string map_path;
+  std::vector<double> map_spacing{1.0, 1.0};
+  contactsim::HeightMapOptions map;
+  CLI::App* field = add->add_subcommand(
+      "heightfield", "add a static heightfield from a height map the server reads (16-bit greyscale PNG, or raw "
+                     "little-endian uint16 with --rows and --cols)");
+  field->add_option("path", map_path, "height map file")->required();
+  field->add_option("--spacing", map_spacing, "m between samples along x and y")->expected(2)->capture_default_str();
+  field->add_option("--rows", map.rows, "a raw file's rows (along y)");
+  field->add_option("--cols", map.cols, "a raw file's columns (along x)");
+  field->add_option("--scale", map.scale, "m at the largest sample, 65535")->capture_default_str();
+  field->add_option("--offset", map.offset, "m at sample 0")->capture_default_str();
+  AddBodyFlags(field, &add_flags);
+  field->callback([&] {
+    run = [&](Client& client) {
+      return ExitCode(
+          client.AddHeightfieldFile(map_path, map_spacing[0], map_spacing[1], map, add_flags.ToOptions()).status);
+    };
+  });
   CLI::App* plane = add->add_subcommand("plane", "add a static plane n.p = offset");
   plane->add_option("--normal", normal, "outward normal")->capture_default_str();
   plane->add_option("--offset", offset, "m")->capture_default_str();

@@ -2,6 +2,7 @@
 
     contactsim-py [--lcm-url URL] [--prefix P] [--timeout S] [--auth-key-file FILE] COMMAND ...
       status | add sphere R [opts] | add box HX HY HZ [opts] | add plane NX NY NZ OFFSET | add mesh PATH [--scale S]
+      | add heightfield PATH [--spacing DX DY] [--rows R --cols C] [--scale S] [--offset O]
       remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
       joint state | joint set ID [--torque T] [--target-position Q] [--kp KP] [--kd KD] [...] | joint clear ID
       model load PATH [--name N] [--position X Y Z] [--orientation W X Y Z] [--fixed-base] [--self-collide]
@@ -49,6 +50,18 @@ def _parser():
     a = add.add_parser("mesh", help="a static triangle mesh from a file the server reads (OBJ, STL, PLY, DAE)")
     a.add_argument("path")
     a.add_argument("--scale", type=float, default=1.0)
+    a.add_argument("--position", type=float, nargs=3, default=(0, 0, 0), metavar=("X", "Y", "Z"))
+    a.add_argument("--restitution", type=float)
+    a.add_argument("--friction", type=float)
+    a.add_argument("--name", default="")
+    a = add.add_parser("heightfield", help="a static heightfield from a height map the server reads "
+                                           "(16-bit greyscale PNG, or raw little-endian uint16 with --rows --cols)")
+    a.add_argument("path")
+    a.add_argument("--spacing", type=float, nargs=2, default=(1.0, 1.0), metavar=("DX", "DY"), help="m")
+    a.add_argument("--rows", type=int, default=0, help="a raw file's rows (along y)")
+    a.add_argument("--cols", type=int, default=0, help="a raw file's columns (along x)")
+    a.add_argument("--scale", type=float, default=1.0, help="m at the largest sample, 65535")
+    a.add_argument("--offset", type=float, default=0.0, help="m at sample 0")
     a.add_argument("--position", type=float, nargs=3, default=(0, 0, 0), metavar=("X", "Y", "Z"))
     a.add_argument("--restitution", type=float)
     a.add_argument("--friction", type=float)
@@ -206,6 +219,10 @@ def _run(c, a):
     if a.cmd == "add":
         if a.shape == "plane":
             bid = c.add_plane((a.nx, a.ny, a.nz), a.offset, restitution=a.restitution, friction=a.friction)
+        elif a.shape == "heightfield":
+            bid = c.add_heightfield(a.path, a.spacing, rows=a.rows, cols=a.cols, scale=a.scale, offset=a.offset,
+                                    position=a.position, restitution=a.restitution, friction=a.friction,
+                                    name=a.name)
         elif a.shape == "mesh":
             bid = c.add_mesh(a.path, scale=a.scale, position=a.position, restitution=a.restitution,
                              friction=a.friction, name=a.name)

@@ -59,24 +59,37 @@ class SurfaceCommands:
             warnings.warn(reply.message)
         return reply.ids[0]
 
-    def add_heightfield(self, heights, spacing, *, position=(0, 0, 0), orientation=(1, 0, 0, 0),
-                        restitution=None, friction=None, name="",
+    def add_heightfield(self, path_or_heights, spacing, *, rows=0, cols=0, scale=1.0, offset=0.0,
+                        position=(0, 0, 0), orientation=(1, 0, 0, 0), restitution=None, friction=None, name="",
                         collision_category=None, collision_mask=None, collision_group=None):
         """Adds a static heightfield; returns its id.
 
-        heights: a 2-D array (rows along body y, columns along body x, m,
-        at least 2 x 2); spacing: one number or (dx, dy), m. The grid is
-        centred on position; each cell is two triangles."""
-        h = np.asarray(heights, dtype=np.float64)
-        if h.ndim != 2:
-            raise ValueError("heights must be a 2-D array, got shape %s" % (h.shape,))
+        Either heights, a 2-D array (rows along body y, columns along body
+        x, m, at least 2 x 2), or a height map file's path, which the server
+        reads (a relative path against its model paths): a 16-bit greyscale
+        PNG, or a raw file of ``rows`` x ``cols`` little-endian uint16
+        samples. A file's first row is the grid's last (largest y, an image
+        seen from above), and its sample s (0 to 65535) is the height
+        ``offset + scale * s / 65535`` (m). spacing: one number or (dx, dy),
+        m. The grid is centred on position; each cell is two triangles
+        (docs/physics.md, "Triangle meshes and heightfields")."""
         sp = np.broadcast_to(np.asarray(spacing, dtype=np.float64), (2,))
         m = self._body(body_cmd_t.ADD)
         fill_filter(m, collision_category, collision_mask, collision_group)
         m.shape = body_cmd_t.HEIGHTFIELD
-        m.height_rows, m.height_cols = int(h.shape[0]), int(h.shape[1])
-        m.num_heights = int(h.size)
-        m.heights = [float(v) for v in h.reshape(-1)]
+        if isinstance(path_or_heights, (str, os.PathLike)):
+            m.height_path = os.fspath(path_or_heights)
+            m.height_rows, m.height_cols = int(rows), int(cols)
+            m.height_scale, m.height_offset = float(scale), float(offset)
+        else:
+            if (rows, cols, scale, offset) != (0, 0, 1.0, 0.0):
+                raise ValueError("rows, cols, scale and offset are for a height map file, not heights")
+            h = np.asarray(path_or_heights, dtype=np.float64)
+            if h.ndim != 2:
+                raise ValueError("heights must be a 2-D array, got shape %s" % (h.shape,))
+            m.height_rows, m.height_cols = int(h.shape[0]), int(h.shape[1])
+            m.num_heights = int(h.size)
+            m.heights = [float(v) for v in h.reshape(-1)]
         m.height_spacing = [float(sp[0]), float(sp[1])]
         m.position = _vec(position, 3, "position")
         m.orientation = _vec(orientation, 4, "orientation")

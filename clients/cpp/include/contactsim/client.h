@@ -147,6 +147,14 @@ struct BodyOptions {
   std::optional<CollisionFilter> filter;  // unset: touches every body
 };
 
+// How a height map file becomes heights (AddHeightfieldFile).
+struct HeightMapOptions {
+  int rows = 0;          // a raw file's rows (along body y); a PNG: 0 or its height
+  int cols = 0;          // a raw file's columns (along body x); a PNG: 0 or its width
+  double scale = 1.0;    // m at the largest sample, 65535
+  double offset = 0.0;   // m at sample 0
+};
+
 // One shape of a compound body (AddCompound), posed in the body's frame.
 struct ShapePart {
   enum class Type : int8_t { kSphere = 1, kBox = 2, kCapsule = 4, kConvex = 5 };  // body_cmd_t codes
@@ -315,6 +323,13 @@ class Client {
   // options.position.
   Result<int64_t> AddHeightfield(int rows, int cols, const std::vector<double>& heights, double spacing_x,
                                  double spacing_y, const BodyOptions& options = {});
+  // A static heightfield from a height map file the server reads (a
+  // relative path against its model paths): a 16-bit greyscale PNG (rows
+  // and cols 0, or its size) or a raw file of rows x cols little-endian
+  // uint16 samples. The file's first row is the grid's last (largest y),
+  // and sample s is the height offset + scale s / 65535 (m).
+  Result<int64_t> AddHeightfieldFile(const std::string& path, double spacing_x, double spacing_y,
+                                     const HeightMapOptions& map = {}, const BodyOptions& options = {});
   CommandResult RemoveBody(int64_t id);
   CommandResult SetPose(int64_t id, const Eigen::Vector3d& position,
                         const std::array<double, 4>& orientation = {1, 0, 0, 0});
