@@ -41,6 +41,8 @@ def test_png_and_raw_files_give_the_grid_of_their_samples(client, tmp_path):
         rows, cols, heights = _heights(client, body, tmp_path)
         assert (rows, cols) == (3, 4)
         np.testing.assert_allclose(heights, want, rtol=0, atol=1e-15)
+    with pytest.raises(ValueError, match="for a height map file"):
+        client.add_heightfield(want, (0.5, 0.25), scale=SCALE)   # an array's heights are metres already
     client.step(1)   # ray casts see the bodies of the last step
     hits = client.ray_cast([(0.25, 0.0, 5.0), (10.25, 0.0, 5.0)], [(0, 0, -1)] * 2, 10.0)
     assert list(hits.body_ids) == [png, raw]
