@@ -29,7 +29,7 @@ struct PngErrors {
 
 void OnPngError(png_structp png, png_const_charp message) {
   auto* errors = static_cast<PngErrors*>(png_get_error_ptr(png));
-  std::snprintf(errors->message, sizeof(errors->message), "%s", message);
+  std::snprintf(errors->message, sizeof(errors->message), "is not a readable PNG: %s", message);
   std::longjmp(errors->jump, 1);
 }
 
@@ -58,7 +58,7 @@ const char* ColourName(int colour_type) {
 
 // The whole libpng exchange, in one function without C++ objects of its
 // own, since a longjmp out of libpng must skip no destructor. `check` sees
-// the header and may refuse; `rows` is sized by it. Returns false with
+// the header and may refuse; it sizes `bytes`. Returns false with
 // errors->message set when libpng or `check` refused.
 template <class Check>
 bool ReadPngSamples(std::FILE* file, PngErrors* errors, Check&& check, std::vector<uint8_t>* bytes) {
@@ -86,6 +86,7 @@ bool ReadPngSamples(std::FILE* file, PngErrors* errors, Check&& check, std::vect
   for (int pass = 0; pass < passes; ++pass) {
     for (png_uint_32 r = 0; r < h.height; ++r) png_read_row(png, bytes->data() + r * stride, nullptr);
   }
+  png_read_end(png, nullptr);  // the rest of the stream and its checksums: a cut file is refused, not half read
   png_destroy_read_struct(&png, &info, nullptr);
   return true;
 }
@@ -104,6 +105,7 @@ Status CheckCount(const std::string& path, long long rows, long long cols) {
 Status ReadPng(const std::string& path, std::FILE* file, int rows, int cols, int* out_rows, int* out_cols,
                std::vector<uint8_t>* bytes) {
   PngErrors errors;
+  bool too_many = false;
   auto check = [&](const PngHeader& h, char* message, size_t size) {
     if (h.bit_depth != 16 || h.colour_type != PNG_COLOR_TYPE_GRAY) {
       std::snprintf(message, size, "is a PNG of %d-bit %s samples; heights need 16-bit greyscale", h.bit_depth,
@@ -117,6 +119,7 @@ Status ReadPng(const std::string& path, std::FILE* file, int rows, int cols, int
       return false;
     }
     if (static_cast<long long>(h.height) * h.width > kMaxHeightSamples) {
+      too_many = true;
       std::snprintf(message, size, "has %u x %u samples, over the limit of %d (kMaxHeightSamples)", h.height,
                     h.width, kMaxHeightSamples);
       return false;
@@ -127,7 +130,6 @@ Status ReadPng(const std::string& path, std::FILE* file, int rows, int cols, int
     return true;
   };
   if (!ReadPngSamples(file, &errors, check, bytes)) {
-    const bool too_many = std::strstr(errors.message, "kMaxHeightSamples") != nullptr;
     const std::string what = "height map '" + path + "' " + errors.message;
     return too_many ? Status::ResourceExhausted(what) : Status::InvalidArgument(what);
   }

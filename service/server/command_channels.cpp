@@ -23,6 +23,7 @@
 #include "service/physics/body_settings.h"
 #include "service/scene/height_map_file.h"
 #include "service/server/command_decoder.h"
+#include "service/server/journal.h"
 
 namespace contactsim {
 namespace {
@@ -74,6 +75,14 @@ Status ResolveHeightPath(const body_cmd_t& m, const DecodeContext& context, body
                        m.height_offset, &map);
   }
   if (!st.ok()) return st;
+  // the command is journaled with the heights: it must fit one record
+  const uint64_t bytes = m.getEncodedSize() + sizeof(double) * map.heights.size();
+  if (bytes > kMaxJournalPayload) {
+    return Status::ResourceExhausted("height map '" + path + "' of " + std::to_string(map.rows) + " x " +
+                                     std::to_string(map.cols) + " samples makes a command of " +
+                                     std::to_string(bytes) + " bytes, over the journal's record limit of " +
+                                     std::to_string(kMaxJournalPayload) + " (about 8.3 million samples)");
+  }
   *kept = m;
   kept->height_path.clear();
   kept->height_scale = kept->height_offset = 0.0;

@@ -46,7 +46,6 @@ T Get(const std::string& bytes, size_t at) {
 }
 
 constexpr size_t kHeaderBytes = 4 + 1 + 8 + 8;
-constexpr uint32_t kMaxPayload = 64u << 20;
 
 std::string Numbered(const std::string& dir, const char* stem, int64_t n, const char* ext) {
   char name[64];
@@ -103,7 +102,7 @@ bool DecodeRecord(const std::string& bytes, size_t* offset, JournalRecord* r) {
   const size_t at = *offset;
   if (bytes.size() - at < kHeaderBytes + 4) return false;
   const uint32_t n = Get<uint32_t>(bytes, at);
-  if (n > kMaxPayload || bytes.size() - at < kHeaderBytes + n + 4) return false;
+  if (n > kMaxJournalPayload || bytes.size() - at < kHeaderBytes + n + 4) return false;
   if (Crc32(bytes.data() + at + 4, kHeaderBytes - 4 + n) != Get<uint32_t>(bytes, at + kHeaderBytes + n)) return false;
   const uint8_t kind = Get<uint8_t>(bytes, at + 4);
   // 7: queries are never written
@@ -198,6 +197,10 @@ Status Journal::OpenSegment() {
 // or failing disk shows here, before the command is acknowledged.
 Status Journal::Append(RecordKind kind, int64_t step, const std::string& payload, JournalRecord* out) {
   if (failed_) return Status::Internal("the journal in " + dir_ + " failed earlier and takes no more records");
+  if (payload.size() > kMaxJournalPayload) {
+    return Status::ResourceExhausted("a journal record holds at most " + std::to_string(kMaxJournalPayload) +
+                                     " bytes, got " + std::to_string(payload.size()));
+  }
   JournalRecord r;
   r.seq = next_seq_;
   r.step = step;

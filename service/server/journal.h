@@ -29,6 +29,10 @@
 
 namespace contactsim {
 
+// The largest payload of one record: recovery takes a longer length field
+// for damage, so Append refuses what recovery could not read back.
+constexpr uint32_t kMaxJournalPayload = 64u << 20;  // bytes
+
 enum class RecordKind : uint8_t {
   kBodyCommand = 1,   // body_cmd_t
   kSceneCommand = 2,  // scene_cmd_t (gravity, dt, contact method)

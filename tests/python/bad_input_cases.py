@@ -11,6 +11,8 @@ import threading
 from collections import namedtuple
 from pathlib import Path
 
+import numpy as np
+
 import contactsim
 from contactsim import body_cmd_t as B, input_t, joint_cmd_t as J, reply_t as R, scene_cmd_t as S
 
@@ -281,6 +283,8 @@ HEIGHT_MAPS = {
     "rgb16.png": lambda: height_maps.png_bytes([[[v] * 3 for v in row] for row in _SAMPLES], colour=height_maps.RGB),
     "huge16.png": lambda: height_maps.png_bytes(_SAMPLES, size=(4097, 4097)),   # a header claiming 4097 x 4097
     "short.raw": lambda: bytes(10),                                               # 5 samples, not 2 x 3
+    # 9 million samples: within kMaxHeightSamples, but 72 MB of heights, over a journal record
+    "big16.png": lambda: height_maps.png_bytes(np.zeros((3000, 3000), dtype=np.uint16)),
 }
 
 
@@ -393,6 +397,9 @@ def cases(tmp):
         Case("add_heightfield_raw_too_large", "BODY_CMD", "ADD",
              bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "short.raw"), height_rows=5000,
                                  height_cols=5000, height_spacing=[0.1, 0.1])), RE, ["5000 x 5000", "kMaxHeightSamples"]),
+        Case("add_heightfield_over_a_journal_record", "BODY_CMD", "ADD",
+             bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "big16.png"),
+                                 height_spacing=[0.1, 0.1])), RE, ["3000 x 3000", "journal's record limit"]),
         Case("add_heightfield_path_and_heights", "BODY_CMD", "ADD",
              bodycmd(lambda: add(B.HEIGHTFIELD, fixed=True, height_path=str(tmp / "short.raw"), height_rows=2,
                                  height_cols=2, num_heights=4, heights=[0.0] * 4, height_spacing=[0.1, 0.1])), IA,

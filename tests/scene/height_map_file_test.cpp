@@ -122,6 +122,16 @@ TEST_F(HeightMapFile, RefusesEightBitColourAndMismatchedPngs) {
                 StatusCode::kInvalidArgument, {"2 rows x 3 cols", "3 x 2"});
 }
 
+// Verifies that a PNG cut short is refused with libpng's reason, not read
+// as a raw file or half a grid.
+TEST_F(HeightMapFile, RefusesATruncatedPng) {
+  const std::string png = Png("cut.png", PNG_FORMAT_LINEAR_Y, kSamples);
+  fs::resize_file(png, fs::file_size(png) - 20);
+  HeightMap map;
+  ExpectRefused(ReadHeightMap(png, 0, 0, 1, 0, &map), StatusCode::kInvalidArgument,
+                {"cut.png", "is not a readable PNG"});
+}
+
 // Verifies that a raw file must be exactly 2 rows cols bytes, needs its
 // size, and that too many samples are refused before the file is read.
 TEST_F(HeightMapFile, RefusesRawOfWrongSizeOrTooManySamples) {

@@ -99,6 +99,28 @@ TEST(JournalTest, ReopenRecoversSnapshotAndRecordsAndCutsATornTail) {
   EXPECT_EQ(again.recovered_records()[1].seq, 2);
 }
 
+// Verifies that a payload longer than recovery reads back
+// (kMaxJournalPayload) is refused at Append, not written to be cut off with
+// every record after it on the next open, and that appends go on.
+TEST(JournalTest, AppendRefusesARecordRecoveryCouldNotRead) {
+  TempDir dir;
+  {
+    Journal j;
+    ASSERT_TRUE(j.Open(dir.path(), FsyncPolicy::kNone).ok());
+    ASSERT_TRUE(j.Append(RecordKind::kBodyCommand, 1, std::string(kMaxJournalPayload, 'x')).ok());
+    const Status st = j.Append(RecordKind::kBodyCommand, 2, std::string(kMaxJournalPayload + 1, 'y'));
+    EXPECT_EQ(st.code(), StatusCode::kResourceExhausted) << st.message();
+    EXPECT_NE(st.message().find(std::to_string(kMaxJournalPayload + 1)), std::string::npos) << st.message();
+    ASSERT_TRUE(j.Append(RecordKind::kBodyCommand, 3, "after").ok());
+    ASSERT_TRUE(j.Sync().ok());
+  }
+  Journal again;
+  ASSERT_TRUE(again.Open(dir.path(), FsyncPolicy::kNone).ok());
+  ASSERT_EQ(again.recovered_records().size(), 2u);
+  EXPECT_EQ(again.recovered_records()[0].payload.size(), kMaxJournalPayload);
+  EXPECT_EQ(again.recovered_records()[1].payload, "after");
+}
+
 // The same commands for every server below: a periodic snapshot lands at
 // step 50, then gravity, a force, steps and a new body come after it.
 void Drive(ServerHarness& h) {
