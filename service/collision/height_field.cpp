@@ -44,8 +44,10 @@ bool HeightField::CellRange(double min, double max, double spacing, int samples,
   const double origin = -0.5 * (samples - 1) * spacing;
   const double a = std::floor((min - origin) / spacing);
   const double b = std::floor((max - origin) / spacing);
-  if (!(b >= 0.0) || !(a <= samples - 2)) return false;
-  *lo = static_cast<int>(std::max(a, 0.0));
+  // A box whose low side lies exactly on the upper border still touches the
+  // last cell, as one whose high side lies on the lower border touches the first.
+  if (!(b >= 0.0) || !(a <= samples - 1)) return false;
+  *lo = static_cast<int>(std::min(std::max(a, 0.0), static_cast<double>(samples - 2)));
   *hi = static_cast<int>(std::min(b, static_cast<double>(samples - 2)));
   return *lo <= *hi;
 }

@@ -278,5 +278,25 @@ TEST(CollideSurfaceTest, RaysHitTheFrontOfMeshesAndHeightfields) {
   EXPECT_NEAR(hit.t, 2.5, kTol);
 }
 
+
+// Verifies that a vertical ray exactly on any of the grid's four borders, and
+// at its corners, hits the heightfield: a query box whose low side lies on
+// the upper border still touches the last cell, as on the lower border.
+TEST(CollideSurfaceTest, RaysOnTheHeightfieldBorderHit) {
+  std::shared_ptr<const HeightField> field;
+  ASSERT_TRUE(BuildHeightField(3, 4, std::vector<double>(12, 0.25), 0.5, 1.0, &field).ok());
+  const double hx = 0.5 * 3 * 0.5, hy = 0.5 * 2 * 1.0;  // half extents of the grid
+  for (const Vec3 p : {Vec3(hx, 0.1, 2), Vec3(-hx, 0.1, 2), Vec3(0.1, hy, 2), Vec3(0.1, -hy, 2), Vec3(hx, hy, 2),
+                       Vec3(-hx, -hy, 2)}) {
+    RayShapeHit hit;
+    ASSERT_EQ(RayCastShape(Shape::Heightfield(field), p, -Vec3::UnitZ(), 10, &hit), RayShapeResult::kHit)
+        << p.transpose();
+    EXPECT_NEAR(hit.t, 1.75, kTol);
+  }
+  RayShapeHit hit;
+  EXPECT_EQ(RayCastShape(Shape::Heightfield(field), Vec3(hx + 1e-9, 0.1, 2), -Vec3::UnitZ(), 10, &hit),
+            RayShapeResult::kMiss);
+}
+
 }  // namespace
 }  // namespace contactsim
