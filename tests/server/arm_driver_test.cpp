@@ -254,6 +254,38 @@ TEST(ArmDriverTest, StatusFieldsAndHoldTorques) {
   }
 }
 
+// Verifies that a force pushing down on the chain's last link reads in the
+// status as its joint torques: for joint i, a_i . (x_7 - p_i) x F at the
+// poses the status reports, which for the horizontal chain is the push
+// times the lever arm 0.2 (6 - i) + 0.1 m, positive (it turns every joint
+// towards larger angles about +y); with nothing pushing, every one is 0.
+TEST(ArmDriverTest, ExternalTorqueIsThePushTimesEachJointsLeverArm) {
+  constexpr double kPush = 20.0;  // N, down
+  ArmServer a;                    // gravity compensation, gains holding the pose
+  a.h.Step(10);
+  const drake::lcmt_iiwa_status idle = a.Statuses().back();
+  for (double t : idle.joint_torque_external) EXPECT_EQ(t, 0.0);
+  const BodyId hand = a.joint(kArmJoints - 1).body_b;
+  body_cmd_t push = a.h.Body(body_cmd_t::APPLY_FORCE, hand);
+  push.force[2] = -kPush;
+  push.duration = 1.0;
+  ASSERT_EQ(a.h.Send(push).code, reply_t::OK);
+  a.h.Step(5);
+  const drake::lcmt_iiwa_status s = a.Statuses().back();
+  const World& w = a.h.server.world();
+  const Vec3 force(0, 0, -kPush);
+  for (int i = 0; i < kArmJoints; ++i) {
+    const Joint& j = a.joint(i);
+    const RigidBody* child = w.Find(j.body_b);
+    const Vec3 lever = w.Find(hand)->x - AnchorWorld(j.anchor_b, child);
+    const double exact = (BodyOrientation(child) * j.axis_b).dot(lever.cross(force));
+    EXPECT_NEAR(s.joint_torque_external[i], exact, 1e-12 * kPush);
+    // the drives hold the chain within a millimetre of horizontal
+    const double level = kPush * (kLinkPitch * (kArmJoints - 1 - i) + kComOffset);
+    EXPECT_NEAR(s.joint_torque_external[i], level, 1e-2 * level) << "joint " << i;
+  }
+}
+
 // Verifies that gravity compensation keeps a horizontal chain with idle
 // drives where it is, and that without it the chain falls.
 TEST(ArmDriverTest, GravityCompensationHoldsTheArm) {

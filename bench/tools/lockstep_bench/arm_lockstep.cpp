@@ -1,16 +1,17 @@
 #include "bench/tools/lockstep_bench/arm_lockstep.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <thread>
 
+#include "bench/tools/lockstep_bench/process_cpu.h"
 #include "contactsim/controller.h"
 
 namespace contactsim::bench {
 
-
-
-ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, double seconds) {
+ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, double seconds, pid_t server) {
   ArmLockstepResult r;
   auto fail = [&](const char* what, const CommandResult& c) {
     r.error = std::string(what) + ": " + ToString(c);
@@ -56,12 +57,15 @@ ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, do
     r.error = "lockstep did not reach step " + std::to_string(warm);
     return r;
   }
+  const double cpu0 = ProcessCpuSeconds(server) + ProcessCpuSeconds(getpid());
   const int64_t s0 = controller.answered();
   const auto t0 = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   const int64_t s1 = controller.answered();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu1 = ProcessCpuSeconds(server) + ProcessCpuSeconds(getpid());
   r.cycles_per_second = (s1 - s0) / elapsed;
+  r.cpu_per_cycle = s1 > s0 ? (cpu1 - cpu0) / (s1 - s0) : 0.0;
   client.Pause();
   controller.Stop();
   client.SetMode(Mode::kFreeRun);

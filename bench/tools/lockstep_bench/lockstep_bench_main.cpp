@@ -5,6 +5,9 @@
 // transport's own limit; lcm_ping_pong.h). Every party is its own process:
 // the server (contactsim-server beside this binary), the controller (this
 // process, contactsim::Controller) and the pong (this binary, --pong).
+// Each row also gives the CPU time of a cycle (server and controller) and of
+// a round trip (ping and pong), which the machine's load moves far less than
+// the rates (process_cpu.h).
 //
 //   contactsim-bench-lockstep [--config FILE] [--bodies 1,100] [--arm URDF] [--seconds S] [--lcm-url URL]
 //
@@ -26,6 +29,7 @@
 
 #include "bench/tools/lockstep_bench/arm_lockstep.h"
 #include "bench/tools/lockstep_bench/lcm_ping_pong.h"
+#include "bench/tools/lockstep_bench/process_cpu.h"
 #include "contactsim/client.h"
 #include "contactsim/controller.h"
 
@@ -69,6 +73,7 @@ void Reap(pid_t pid, bool interrupt) {
 
 struct LockstepResult {
   double cycles_per_second = 0.0;
+  double cpu_per_cycle = 0.0;  // s on a CPU, the server's and this process's together
   int state_bytes = 0, input_bytes = 0;
   std::string error;
 };
@@ -76,7 +81,7 @@ struct LockstepResult {
 // n spheres resting on a plane in a grid (contacts, no motion to speak of),
 // one controller pushing body 1 with zero force: each cycle is one STATE of
 // n bodies and one input of one body.
-LockstepResult MeasureLockstep(Client& client, int bodies, double seconds) {
+LockstepResult MeasureLockstep(Client& client, int bodies, double seconds, pid_t server) {
   LockstepResult r;
   auto fail = [&](const char* what, const CommandResult& c) {
     r.error = std::string(what) + ": " + ToString(c);
@@ -115,40 +120,61 @@ LockstepResult MeasureLockstep(Client& client, int bodies, double seconds) {
     r.error = "lockstep did not reach step " + std::to_string(warm);
     return r;
   }
+  const double cpu0 = bench::ProcessCpuSeconds(server) + bench::ProcessCpuSeconds(getpid());
   const int64_t s0 = controller.answered();
   const auto t0 = Clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   const int64_t s1 = controller.answered();
   const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double cpu1 = bench::ProcessCpuSeconds(server) + bench::ProcessCpuSeconds(getpid());
   r.cycles_per_second = (s1 - s0) / elapsed;
+  r.cpu_per_cycle = s1 > s0 ? (cpu1 - cpu0) / (s1 - s0) : 0.0;
   client.Pause();
   controller.Stop();
   client.SetMode(Mode::kFreeRun);
   return r;
 }
 
+// The ping-pong of `ping_bytes` pings and `pong_bytes` pongs against a
+// pong process of its own; false if the pong never answered. *cpu: s on a
+// CPU per round trip, both processes together (with the pong's start).
+bool PingPong(const std::string& self, const std::string& url, const std::string& channel, int ping_bytes,
+              int pong_bytes, double seconds, bench::PingPongResult* pp, double* cpu) {
+  const pid_t pong = Spawn({self, "--lcm-url", url, "--pong", channel, "--pong-bytes", std::to_string(pong_bytes)},
+                           false);
+  const double cpu0 = bench::ProcessCpuSeconds(getpid());
+  const bool ok = bench::RunPing(url, channel, ping_bytes, seconds, 20.0, pp);
+  const double spent = bench::ProcessCpuSeconds(getpid()) - cpu0 + bench::ProcessCpuSeconds(pong);
+  Reap(pong, !ok);
+  *cpu = pp->round_trips > 0 ? spent / pp->round_trips : 0.0;
+  return ok;
+}
+
+// One row of the table: the rates, their ratio, and the CPU of a cycle and
+// of a round trip (microseconds) and theirs.
+void PrintRow(const std::string& world, int bytes, double cycles, double cycle_cpu, double trips, double trip_cpu) {
+  std::printf("| %s | %d | %.0f | %.0f | %.2f | %.0f | %.0f | %.2f |\n", world.c_str(), bytes, cycles, trips,
+              cycles / trips, 1e6 * cycle_cpu, 1e6 * trip_cpu, cycle_cpu > 0.0 ? trip_cpu / cycle_cpu : 0.0);
+  std::fflush(stdout);
+}
+
 // The arm row: its lockstep rate beside a ping-pong of the same sizes
 // (STATE and JOINT_STATE out, the input back); 0, or 1 on failure.
 int MeasureArmRow(Client& client, const std::string& self, const std::string& url, const std::string& prefix,
-                  const std::string& urdf, double seconds) {
-  const bench::ArmLockstepResult arm = bench::MeasureArmLockstep(client, urdf, seconds);
+                  const std::string& urdf, double seconds, pid_t server) {
+  const bench::ArmLockstepResult arm = bench::MeasureArmLockstep(client, urdf, seconds, server);
   if (!arm.error.empty()) {
     std::fprintf(stderr, "arm %s: %s\n", urdf.c_str(), arm.error.c_str());
     return 1;
   }
-  const std::string channel = prefix + "_PPARM";
-  const pid_t pong = Spawn({self, "--lcm-url", url, "--pong", channel, "--pong-bytes", std::to_string(arm.input_bytes)},
-                           false);
   bench::PingPongResult pp;
-  const bool ok = bench::RunPing(url, channel, arm.state_bytes, seconds, 20.0, &pp);
-  Reap(pong, !ok);
-  if (!ok) {
+  double trip_cpu = 0.0;
+  if (!PingPong(self, url, prefix + "_PPARM", arm.state_bytes, arm.input_bytes, seconds, &pp, &trip_cpu)) {
     std::fprintf(stderr, "arm: the pong process never answered\n");
     return 1;
   }
-  std::printf("| %d-joint arm, joint commands | %d | %.0f | %.0f | %.2f |\n", arm.joints, arm.state_bytes,
-              arm.cycles_per_second, pp.per_second(), arm.cycles_per_second / pp.per_second());
-  std::fflush(stdout);
+  PrintRow(std::to_string(arm.joints) + "-joint arm, joint commands", arm.state_bytes, arm.cycles_per_second,
+           arm.cpu_per_cycle, pp.per_second(), trip_cpu);
   return 0;
 }
 
@@ -177,8 +203,9 @@ int main(int argc, char** argv) {
   const std::string prefix = "LOCKSTEP_BENCH_" + std::to_string(getpid());
   std::printf("lockstep cycles per second, one C++ controller, %g s per measurement, LCM %s\n\n", seconds,
               url.c_str());
-  std::printf("| world | STATE bytes | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong |\n");
-  std::printf("|---:|---:|---:|---:|---:|\n");
+  std::printf("| world | STATE bytes | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong | "
+              "CPU us/cycle (server + controller) | CPU us/round trip (both ends) | ping-pong / lockstep CPU |\n");
+  std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::fflush(stdout);
 
   const pid_t server = Spawn({server_bin, "--config", config, "--lcm-url", url, "--prefix", prefix, "--mode",
@@ -197,34 +224,30 @@ int main(int argc, char** argv) {
       return 1;
     }
     for (int n : body_counts) {
-      const LockstepResult ls = MeasureLockstep(client, n, seconds);
+      const LockstepResult ls = MeasureLockstep(client, n, seconds, server);
       if (!ls.error.empty()) {
         std::fprintf(stderr, "%d bodies: %s\n", n, ls.error.c_str());
         rc = 1;
         break;
       }
       // the transport alone, between two processes, with the same sizes
-      const std::string channel = prefix + "_PP" + std::to_string(n);
-      const pid_t pong = Spawn({self, "--lcm-url", url, "--pong", channel, "--pong-bytes",
-                                std::to_string(ls.input_bytes)},
-                               false);
       bench::PingPongResult pp;
-      const bool ok = bench::RunPing(url, channel, ls.state_bytes, seconds, 20.0, &pp);
-      Reap(pong, !ok);
-      if (!ok) {
+      double trip_cpu = 0.0;
+      if (!PingPong(self, url, prefix + "_PP" + std::to_string(n), ls.state_bytes, ls.input_bytes, seconds, &pp,
+                    &trip_cpu)) {
         std::fprintf(stderr, "%d bodies: the pong process never answered\n", n);
         rc = 1;
         break;
       }
-      std::printf("| %d bodies | %d | %.0f | %.0f | %.2f |\n", n, ls.state_bytes, ls.cycles_per_second,
-                  pp.per_second(), ls.cycles_per_second / pp.per_second());
+      PrintRow(std::to_string(n) + " bodies", ls.state_bytes, ls.cycles_per_second, ls.cpu_per_cycle,
+               pp.per_second(), trip_cpu);
       if (pp.resends > 0) std::printf("(%lld ping(s) resent after 1 s: lost on UDP)\n", static_cast<long long>(pp.resends));
       std::fflush(stdout);
     }
     if (rc == 0 && !arm.empty() && access(arm.c_str(), R_OK) != 0) {
       std::printf("(no arm row: %s is not readable; pip install pybullet, or pass --arm)\n", arm.c_str());
     } else if (rc == 0 && !arm.empty()) {
-      rc = MeasureArmRow(client, self, url, prefix, arm, seconds);
+      rc = MeasureArmRow(client, self, url, prefix, arm, seconds, server);
     }
   }
   Reap(server, true);

@@ -1,5 +1,7 @@
 #include "service/contact/joints/joint_tree_solver.h"
 
+#include <algorithm>
+#include <cstring>
 #include <utility>
 
 #include "service/contact/union_find.h"
@@ -29,21 +31,27 @@ Eigen::Matrix<double, 1, 6> RowOn(const ConstraintRow& row, int body) {
 
 }  // namespace
 
+// A node in the next slot, reusing its storage when an earlier system had one.
+int JointTreeFactor::NewNode(int body, int dim) {
+  if (count_ == static_cast<int>(nodes_.size())) nodes_.emplace_back();
+  Node& n = nodes_[count_];
+  n.body = body;
+  n.blocks.clear();
+  n.dim = dim;
+  n.links.clear();
+  n.parent = -1;
+  return count_++;
+}
+
 int JointTreeFactor::BodyNode(int body) {
-  if (node_of_body_[body] < 0) {
-    node_of_body_[body] = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    nodes_.back().body = body;
-    nodes_.back().dim = 6;
-  }
+  if (node_of_body_[body] < 0) node_of_body_[body] = NewNode(body, 6);
   return node_of_body_[body];
 }
 
 bool JointTreeFactor::Build(const std::vector<SolverBody>& bodies) {
-  nodes_.clear();
+  count_ = 0;
   preorder_.clear();
   node_of_body_.assign(bodies.size(), -1);
-  nodes_.reserve(bodies.size() + blocks_->size());  // at most one per body and one per joint: never moved
   UnionFind sets(static_cast<int>(bodies.size()));
   for (int k = 0; k < static_cast<int>(blocks_->size()); ++k) {
     const JointBlock& blk = (*blocks_)[k];
@@ -51,21 +59,20 @@ bool JointTreeFactor::Build(const std::vector<SolverBody>& bodies) {
     if (da && db) {
       if (!sets.Join(blk.a, blk.b)) return false;  // already connected: a loop
       const int na = BodyNode(blk.a), nb = BodyNode(blk.b);
-      const int nj = static_cast<int>(nodes_.size());
-      nodes_.emplace_back();
-      nodes_[nj].blocks = {k};
-      nodes_[nj].dim = blk.count;
-      nodes_[nj].links = {na, nb};
+      const int nj = NewNode(-1, blk.count);  // may move the nodes: indices only across it
+      nodes_[nj].blocks.push_back(k);
+      nodes_[nj].links.push_back(na);
+      nodes_[nj].links.push_back(nb);
       nodes_[na].links.push_back(nj);
       nodes_[nb].links.push_back(nj);
     } else {
-      Node& n = nodes_[BodyNode(da ? blk.a : blk.b)];
-      n.blocks.push_back(k);
-      n.dim += blk.count;
+      const int i = BodyNode(da ? blk.a : blk.b);
+      nodes_[i].blocks.push_back(k);
+      nodes_[i].dim += blk.count;
     }
   }
-  for (const Node& n : nodes_) {
-    if (n.dim > kMaxNodeRows) return false;  // too large for the fixed-size blocks
+  for (int i = 0; i < count_; ++i) {
+    if (nodes_[i].dim > kMaxNodeRows) return false;  // too large for the fixed-size blocks
   }
   Order(bodies);
   return true;
@@ -74,16 +81,18 @@ bool JointTreeFactor::Build(const std::vector<SolverBody>& bodies) {
 // Roots each tree at its first body (solver order) that holds the world,
 // else at its first body, and lists the nodes parents first (iterative DFS).
 void JointTreeFactor::Order(const std::vector<SolverBody>& bodies) {
-  std::vector<bool> seen(nodes_.size(), false);
-  std::vector<int> members, stack;
+  std::vector<char>& seen = seen_;
+  std::vector<int>& members = members_;
+  std::vector<int>& stack = stack_;
+  seen.assign(count_, 0);
   for (int body = 0; body < static_cast<int>(bodies.size()); ++body) {
     const int start = node_of_body_[body];
     if (start < 0 || seen[start]) continue;
     members.assign(1, start);
-    seen[start] = true;
+    seen[start] = 1;
     for (size_t m = 0; m < members.size(); ++m) {
       for (int l : nodes_[members[m]].links) {
-        if (!seen[l]) seen[l] = true, members.push_back(l);
+        if (!seen[l]) seen[l] = 1, members.push_back(l);
       }
     }
     auto key = [this](int i) { return std::make_pair(nodes_[i].blocks.empty(), nodes_[i].body); };
@@ -136,13 +145,53 @@ void JointTreeFactor::Coupling(const Node& joint, const Node& body, NodeMatrix* 
   for (int i = 0; i < blk.count; ++i) H->block<1, 6>(i, 0) = RowOn((*rows_)[blk.first + i], body.body);
 }
 
+// Indices are stored as doubles (exact below 2^53); a row stores its
+// bodies' masses and inertias, so that the key needs no body list.
+void JointTreeFactor::Key(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                          const std::vector<SolverBody>& bodies) {
+  constexpr size_t kPerBlock = 4, kPerRow = 3 + 12 + 2 * 10;
+  key_next_.resize(1 + kPerBlock * blocks.size() + kPerRow * rows.size());
+  double* k = key_next_.data();
+  *k++ = static_cast<double>(bodies.size());
+  for (const JointBlock& blk : blocks) {
+    *k++ = blk.first;
+    *k++ = blk.count;
+    *k++ = blk.a;
+    *k++ = blk.b;
+  }
+  auto put = [&k](const double* v, int n) { k = std::copy(v, v + n, k); };
+  auto body = [&](int i) {
+    if (i < 0) {
+      k = std::fill_n(k, 10, 0.0);  // the world
+      return;
+    }
+    *k++ = bodies[i].inv_mass;
+    put(bodies[i].inv_inertia.data(), 9);
+  };
+  for (const ConstraintRow& row : rows) {
+    *k++ = row.a;
+    *k++ = row.b;
+    *k++ = row.cfm;
+    for (const Vec3* v : {&row.lin_a, &row.ang_a, &row.lin_b, &row.ang_b}) put(v->data(), 3);
+    body(row.a);
+    body(row.b);
+  }
+}
+
 bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
                              const std::vector<SolverBody>& bodies) {
+  Key(rows, blocks, bodies);
+  // bitwise, so that -0 and 0 differ as the arithmetic may
+  if (!key_.empty() && key_.size() == key_next_.size() &&
+      std::memcmp(key_.data(), key_next_.data(), key_.size() * sizeof(double)) == 0) {
+    return true;
+  }
+  key_.clear();
   rows_ = &rows;
   blocks_ = &blocks;
   row_count_ = static_cast<int>(rows.size());
   if (!Build(bodies)) return false;
-  for (Node& n : nodes_) Diagonal(n, bodies, &n.D_matrix);
+  for (int i = 0; i < count_; ++i) Diagonal(nodes_[i], bodies, &nodes_[i].D_matrix);
   // children before parents: D_p -= H(i,p)^T D_i^-1 H(i,p)
   NodeMatrix coupling;
   for (auto it = preorder_.rbegin(); it != preorder_.rend(); ++it) {
@@ -161,12 +210,14 @@ bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::
   }
   rows_ = nullptr;  // read while factoring only
   blocks_ = nullptr;
+  key_.swap(key_next_);
   return true;
 }
 
 void JointTreeFactor::Solve(const std::vector<JointBlock>& blocks, const Eigen::VectorXd& b,
                             Eigen::VectorXd* lambda) {
-  for (Node& n : nodes_) {
+  for (int i = 0; i < count_; ++i) {
+    Node& n = nodes_[i];
     n.x.setZero(n.dim);
     int r = n.body >= 0 ? 6 : 0;
     for (int k : n.blocks) {
@@ -179,13 +230,14 @@ void JointTreeFactor::Solve(const std::vector<JointBlock>& blocks, const Eigen::
     const Node& n = nodes_[*it];
     if (n.parent >= 0) nodes_[n.parent].x.noalias() -= n.J.transpose() * n.x;
   }
-  for (Node& n : nodes_) n.x = n.D.solve(n.x);
+  for (int i = 0; i < count_; ++i) nodes_[i].x = nodes_[i].D.solve(nodes_[i].x);
   for (int i : preorder_) {
     Node& n = nodes_[i];
     if (n.parent >= 0) n.x.noalias() -= n.J * nodes_[n.parent].x;
   }
   lambda->setZero(row_count_);
-  for (const Node& n : nodes_) {
+  for (int i = 0; i < count_; ++i) {
+    const Node& n = nodes_[i];
     int r = n.body >= 0 ? 6 : 0;
     for (int k : n.blocks) {
       lambda->segment(blocks[k].first, blocks[k].count) = -n.x.segment(r, blocks[k].count);

@@ -57,7 +57,12 @@ class JointTreeFactor {
   };
 
   // Factors (J M^-1 J^T + R) of the rows grouped by `blocks`; false when the
-  // joints make a loop or a node has more than kMaxNodeRows rows.
+  // joints make a loop or a node has more than kMaxNodeRows rows. A system
+  // equal bit for bit to the one factored last (the same rows' Jacobians and
+  // compliance, the same blocks, their bodies' inverse masses and inertias)
+  // keeps that factorisation: a step builds its joint rows again at new
+  // velocities but the same poses (JointVelocityBlock::Rebuild), which
+  // changes only the right-hand sides.
   bool Factor(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
               const std::vector<SolverBody>& bodies);
   // lambda for the right-hand side b (one entry per row), after Factor with
@@ -66,6 +71,10 @@ class JointTreeFactor {
 
  private:
   bool Build(const std::vector<SolverBody>& bodies);
+  // Writes into key_next_ every input of the factorisation.
+  void Key(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+           const std::vector<SolverBody>& bodies);
+  int NewNode(int body, int dim);
   int BodyNode(int body);
   void Order(const std::vector<SolverBody>& bodies);
   void Diagonal(const Node& n, const std::vector<SolverBody>& bodies, NodeMatrix* H) const;
@@ -74,9 +83,17 @@ class JointTreeFactor {
   const std::vector<ConstraintRow>* rows_ = nullptr;  // while factoring
   const std::vector<JointBlock>* blocks_ = nullptr;
   int row_count_ = 0;
+  // nodes_[0, count_) are this system's. A node's storage (four fixed-size
+  // blocks, some 20 kB) is kept for the next system: constructing one
+  // value-initialises, that is zeroes, all of it, which cost more than the
+  // factorisation itself.
   std::vector<Node> nodes_;
+  int count_ = 0;
   std::vector<int> node_of_body_;
   std::vector<int> preorder_;  // parents before children
+  std::vector<char> seen_;     // Order's scratch, kept for the next system
+  std::vector<int> members_, stack_;
+  std::vector<double> key_, key_next_;  // the factored system's inputs (empty: none)
 };
 
 // True when the joints of `blocks` make no loop through dynamic bodies.

@@ -17,8 +17,10 @@ bool MovingKinematic(const RigidBody& b) {
 
 // The box a body could reach within dt: its bounds grown by kWakeMargin,
 // swept by v dt, and grown by |w| r dt for the turn of its farthest point.
-Aabb WakeBox(const RigidBody& b, double dt) {
-  Aabb box = ComputeAabb(b, kWakeMargin, dt);
+// `support` as the collision detector's: a hull's extreme vertices found by
+// descent from the last ones, the same box as a scan over every vertex.
+Aabb WakeBox(const RigidBody& b, double dt, AabbSupport* support) {
+  Aabb box = ComputeAabb(b, kWakeMargin, dt, support);
   if (b.shape.type == ShapeType::kPlane) return box;
   const double r = 0.5 * (box.max - box.min).norm();
   box.Inflate(b.AngularVelocity().norm() * r * dt);
@@ -62,8 +64,9 @@ void IslandSleep::WakeTouched(World& world) {
   }
   boxes_.resize(n);
   movable_.resize(n);
+  supports_.resize(n);
   for (int i = 0; i < n; ++i) {
-    boxes_[i] = WakeBox(bodies[i], world.dt);
+    boxes_[i] = WakeBox(bodies[i], world.dt, &supports_[i]);
     movable_[i] = Awake(bodies[i]) || MovingKinematic(bodies[i]);
   }
   // the broadphase skips pairs of two non-movable bodies: sleeping or static;

@@ -78,6 +78,7 @@ class IslandSleep {
   };
   std::unique_ptr<Broadphase> broadphase_;
   std::vector<Aabb> boxes_;
+  std::vector<AabbSupport> supports_;  // per body: where its box's descent starts
   std::vector<bool> movable_;
   std::vector<BodyPair> pairs_;
   std::vector<BodyPair> near_;  // awake dynamic pairs whose wake boxes overlap: one island

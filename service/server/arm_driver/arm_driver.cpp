@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "service/server/arm_driver/arm_external_torque.h"
 #include "service/server/arm_driver/iiwa_status_builder.h"
 
 namespace contactsim {
@@ -60,7 +61,8 @@ Status ArmDriver::Apply(const ArmCommand& cmd, World* world) const {
   return Status::Ok();
 }
 
-void ArmDriver::BeforeStep(World* world) const {
+void ArmDriver::BeforeStep(World* world) {
+  step_wrenches_.assign(world->wrenches().begin(), world->wrenches().end());  // before the compensation's own
   ArmJoints arm;
   if (config_.gravity_compensation && Find(*world, &arm).ok()) CompensateGravity(arm, world);
 }
@@ -74,7 +76,8 @@ bool ArmDriver::StatusDue(double time) {
   return true;
 }
 
-Status ArmDriver::BuildStatus(const World& world, drake::lcmt_iiwa_status* out) const {
+Status ArmDriver::BuildStatus(const World& world, const ContactSet& contacts, ContactValueKind kind,
+                              drake::lcmt_iiwa_status* out) const {
   ArmJoints arm;
   Status st = Find(world, &arm);
   if (!st.ok()) return st;
@@ -88,6 +91,7 @@ Status ArmDriver::BuildStatus(const World& world, drake::lcmt_iiwa_status* out) 
     r.torque_commanded.push_back(j.actuator.torque);
     r.torque_applied.push_back(j.effort + hold[i]);
   }
+  r.torque_external = ArmExternalTorques(world, arm, contacts, kind, step_wrenches_);
   return BuildIiwaStatus(world.time, r, out);
 }
 

@@ -6,7 +6,8 @@
 // Everything a command sets lives in the world, on the arm's joints'
 // actuators (physics/joint_actuator.h): the position targets, the gains
 // and the feed-forward torques. The driver keeps no state of its own but
-// the time of its last status, so snapshots, REWIND and the journal's
+// the time of its last status and the external wrenches of the step under
+// way (read again every step), so snapshots, REWIND and the journal's
 // replay carry the arm as they carry any other joint.
 //
 // The simulation thread owns the driver, as it owns the world.
@@ -15,6 +16,10 @@
 #include <drake/lcmt_iiwa_status.hpp>
 
 #include <cstdint>
+#include <vector>
+
+#include "service/collision/contact.h"
+#include "service/contact/contact_method.h"
 
 #include "service/physics/world.h"
 #include "service/server/arm_driver/arm_command.h"
@@ -37,9 +42,10 @@ class ArmDriver {
   // gains are 0); joint_torque one feed-forward torque per joint or none
   // (zeros). A wrong count or a missing arm is refused and nothing changes.
   Status Apply(const ArmCommand& cmd, World* world) const;
-  // Before every step: the arm's weight compensated (CompensateGravity),
+  // Before every step: notes the world's external wrenches for the status's
+  // external torques, then compensates the arm's weight (CompensateGravity)
   // when configured.
-  void BeforeStep(World* world) const;
+  void BeforeStep(World* world);
 
   // True once per status period of simulated time: at the first call, then
   // whenever `time` (s) enters a new period (after a REWIND too).
@@ -47,14 +53,18 @@ class ArmDriver {
   // The status of the arm now (iiwa_status_builder.h): the measured torque
   // is the drives' effort of the last step plus, with gravity compensation,
   // the torque holding the arm's weight, which the real arm's joint torque
-  // sensors would carry.
-  Status BuildStatus(const World& world, drake::lcmt_iiwa_status* out) const;
+  // sensors would carry; the external torque is that of the step's
+  // `contacts` (values of `kind`) and of the wrenches noted before it
+  // (arm_external_torque.h).
+  Status BuildStatus(const World& world, const ContactSet& contacts, ContactValueKind kind,
+                     drake::lcmt_iiwa_status* out) const;
 
  private:
   Status Find(const World& world, ArmJoints* arm) const;
 
   const ArmDriverConfig config_;
   int64_t last_status_period_ = -1;
+  std::vector<TimedWrench> step_wrenches_;  // the world's, as the step under way began
 };
 
 }  // namespace contactsim

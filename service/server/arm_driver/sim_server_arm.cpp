@@ -55,7 +55,7 @@ Outcome SimServer::ApplyArmCommand(Command& cmd) {
 void SimServer::PublishArmStatus() {
   if (!arm_ || !arm_->StatusDue(world_.time)) return;
   drake::lcmt_iiwa_status status;
-  const Status st = arm_->BuildStatus(world_, &status);
+  const Status st = arm_->BuildStatus(world_, contacts_, method_->ValueKind(), &status);
   if (st.ok()) {
     publisher_.Publish(arm_->config().status_channel, status);
   } else {
