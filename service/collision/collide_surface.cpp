@@ -210,21 +210,6 @@ void GroupAndReduce(ContactSet* in, ContactSet* out) {
   }
 }
 
-// The box of `a` (grown by the margin) in the frame of surface body `b`.
-Aabb BoxInSurfaceFrame(const RigidBody& a, const RigidBody& b, double margin) {
-  const Aabb world = ComputeAabb(a, margin, 0.0);
-  const Mat3 Rt = b.Rotation().transpose();
-  Aabb local{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
-  for (int i = 0; i < 8; ++i) {
-    const Vec3 corner((i & 1) ? world.max.x() : world.min.x(), (i & 2) ? world.max.y() : world.min.y(),
-                      (i & 4) ? world.max.z() : world.min.z());
-    const Vec3 p = Rt * (corner - b.x);
-    local.min = local.min.cwiseMin(p);
-    local.max = local.max.cwiseMax(p);
-  }
-  return local;
-}
-
 }  // namespace
 
 void CollideSurface(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, ContactSet* out) {
@@ -237,7 +222,7 @@ void CollideSurface(const RigidBody& a, const RigidBody& b, const CollideContext
   ContactSet& all = scratch.surface;
   ContactSet& found = scratch.triangle;
   all.clear();
-  ForEachSurfaceTriangle(b.shape, BoxInSurfaceFrame(a, b, ctx.margin), [&](const SurfaceTriangle& local_tri) {
+  ForEachSurfaceTriangle(b.shape, BoxInBodyFrame(ComputeAabb(a, ctx.margin, 0.0), b.Rotation(), b.x), [&](const SurfaceTriangle& local_tri) {
     const SurfaceTriangle tri = TriangleInWorld(local_tri, R, b.x);
     // one-sided: a body whose centre is behind the face does not touch it
     if (tri.normal.dot(a.x - tri.v[0]) < 0.0) return;

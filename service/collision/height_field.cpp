@@ -25,11 +25,15 @@ SurfaceTriangle HeightField::Triangle(int r, int c, int half) const {
   tri.normal = n.normalized();  // never degenerate: the x-y projection has area dx dy / 2
   tri.index = static_cast<uint32_t>(2 * (r * (cols - 1) + c) + half);
   tri.active_edges = 0;
+  tri.convex_edges = 0;
   for (int k = 0; k < 3; ++k) {
     const int rr = r + kAcross[half][k][0], cc = c + kAcross[half][k][1];
     const bool open = rr < 0 || rr >= rows || cc < 0 || cc >= cols;
     if (open || EdgeIsActive(tri.normal, tri.v[k], tri.v[(k + 1) % 3], Sample(rr, cc))) {
       tri.active_edges |= 1u << k;
+    }
+    if (open || EdgeIsActive(tri.normal, tri.v[k], tri.v[(k + 1) % 3], Sample(rr, cc), kConvexEdgeAngle)) {
+      tri.convex_edges |= 1u << k;
     }
   }
   return tri;

@@ -32,7 +32,8 @@ int WeldVertices(std::vector<Vec3>* vertices, std::vector<int>* indices) {
 }
 
 // Each edge's activity from its neighbours: an edge shared by exactly two
-// triangles is active when convex (EdgeIsActive); others are active.
+// triangles is active when convex (EdgeIsActive), and convex by any angle
+// beyond round-off (kConvexEdgeAngle); others are both.
 void ClassifyEdges(TriangleMesh* mesh) {
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edges;  // (lo, hi) -> (triangle, edge)
   const int n = static_cast<int>(mesh->triangles.size());
@@ -43,6 +44,7 @@ void ClassifyEdges(TriangleMesh* mesh) {
     }
   }
   mesh->active_edges.assign(n, 7);
+  mesh->convex_edges.assign(n, 7);
   for (const auto& [key, sides] : edges) {
     if (sides.size() != 2) continue;  // open or non-manifold: active
     for (int s = 0; s < 2; ++s) {
@@ -53,6 +55,7 @@ void ClassifyEdges(TriangleMesh* mesh) {
       const Vec3& b = mesh->vertices[tri[(k + 1) % 3]];
       const Vec3& w = mesh->vertices[mesh->triangles[u][(j + 2) % 3]];
       if (!EdgeIsActive(mesh->normals[t], a, b, w)) mesh->active_edges[t] &= ~(1u << k);
+      if (!EdgeIsActive(mesh->normals[t], a, b, w, kConvexEdgeAngle)) mesh->convex_edges[t] &= ~(1u << k);
     }
   }
 }
@@ -94,6 +97,7 @@ SurfaceTriangle TriangleMesh::Triangle(int t) const {
   tri.v = {vertices[idx[0]], vertices[idx[1]], vertices[idx[2]]};
   tri.normal = normals[t];
   tri.active_edges = active_edges[t];
+  tri.convex_edges = convex_edges[t];
   tri.index = static_cast<uint32_t>(t);
   return tri;
 }

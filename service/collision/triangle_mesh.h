@@ -33,6 +33,7 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from the front
   std::vector<Vec3> normals;                  // unit, one per triangle
   std::vector<uint8_t> active_edges;          // per triangle, bit k: edge k -> k + 1
+  std::vector<uint8_t> convex_edges;          // per triangle, the same bits for SurfaceTriangle::convex_edges
   std::vector<Aabb> boxes;                    // m, body frame, one per triangle
   Aabb bounds;                                // m, body frame, every triangle
   BoxTree tree;

@@ -11,13 +11,13 @@ constexpr double kDegenerateRatio = 1e-12;
 
 }  // namespace
 
-bool EdgeIsActive(const Vec3& n, const Vec3& a, const Vec3& b, const Vec3& w) {
+bool EdgeIsActive(const Vec3& n, const Vec3& a, const Vec3& b, const Vec3& w, double angle) {
   // the neighbour wound as this triangle: edge b -> a, then w
   const Vec3 m = (a - b).cross(w - b);
   const double len = m.norm();
   if (!(len > 0.0)) return true;  // a degenerate neighbour: keep the edge
   const bool convex = n.dot(w - a) < 0.0;
-  return convex && n.dot(m / len) < std::cos(kActiveEdgeAngle);
+  return convex && n.dot(m / len) < std::cos(angle);
 }
 
 bool MakeSurfaceTriangle(const Vec3& a, const Vec3& b, const Vec3& c, SurfaceTriangle* tri) {
@@ -41,6 +41,19 @@ SurfaceTriangle TriangleInWorld(const SurfaceTriangle& tri, const Mat3& R, const
   for (int k = 0; k < 3; ++k) w.v[k] = R * tri.v[k] + x;
   w.normal = R * tri.normal;
   return w;
+}
+
+Aabb BoxInBodyFrame(const Aabb& world, const Mat3& R, const Vec3& x) {
+  const Mat3 Rt = R.transpose();
+  Aabb local{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner((i & 1) ? world.max.x() : world.min.x(), (i & 2) ? world.max.y() : world.min.y(),
+                      (i & 4) ? world.max.z() : world.min.z());
+    const Vec3 p = Rt * (corner - x);
+    local.min = local.min.cwiseMin(p);
+    local.max = local.max.cwiseMax(p);
+  }
+  return local;
 }
 
 }  // namespace contactsim

@@ -33,12 +33,16 @@ namespace contactsim {
 // threshold): a tessellated curve of finer facets is as smooth as its faces.
 constexpr double kActiveEdgeAngle = 5.0 * M_PI / 180.0;  // rad
 
+// Convex beyond round-off: the smallest dihedral turn that makes an edge
+// convex for the barrier's distances (surface_triangle.h, convex_edges).
+constexpr double kConvexEdgeAngle = 1e-6;  // rad
+
 // Whether edge a -> b of a triangle with unit normal `n` is active, given
 // the vertex `w` of the neighbour across it (the neighbour taken as wound
 // consistently with this triangle, so that a file's inconsistent winding
 // does not matter): convex (w below this triangle's plane) by more than
-// kActiveEdgeAngle.
-bool EdgeIsActive(const Vec3& n, const Vec3& a, const Vec3& b, const Vec3& w);
+// `angle`.
+bool EdgeIsActive(const Vec3& n, const Vec3& a, const Vec3& b, const Vec3& w, double angle = kActiveEdgeAngle);
 
 // The triangle a, b, c with its unit normal; false when its area is zero
 // (to round-off of its longest edge).
@@ -51,6 +55,10 @@ Aabb SurfaceBounds(const Shape& shape);
 // mesh or heightfield shape whose box overlaps `box` (body frame).
 template <class Visit>
 void ForEachSurfaceTriangle(const Shape& shape, const Aabb& box, Visit&& visit);
+
+// The box, in the frame of a body at rotation R and position x, that holds
+// the world box `world`.
+Aabb BoxInBodyFrame(const Aabb& world, const Mat3& R, const Vec3& x);
 
 // The triangle moved to the world by the body's pose.
 SurfaceTriangle TriangleInWorld(const SurfaceTriangle& tri, const Mat3& R, const Vec3& x);

@@ -52,10 +52,11 @@ const std::vector<ContactMethodEntry>& ContactMethodTable() {
       // nor the friction: a rising platform passes through what rests on it.
       // Its distances come from one BodyGeometry per body (one rounding
       // radius), not from the narrowphase: it takes no compound bodies; its
-      // contacts carry the barrier force alone, not the friction; for the
-      // same reason it takes no triangle meshes or heightfields
+      // contacts carry the barrier force alone, not the friction. A
+      // triangle mesh or heightfield is a static body whose triangles it
+      // looks up near each primitive (barrier/surface_primitives.h)
       {"barrier", Make<BarrierMethod>,
-       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false, false, false}},
+       {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false, false, true}},
       {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk", true, true}},
   };
   return table;

@@ -90,6 +90,36 @@ TEST(TriangleMeshTest, EdgeIsActiveOnlyWhenConvex) {
   EXPECT_TRUE(EdgeIsActive(n, a, b, Vec3(0.5, 0, -1)));                         // a right-angled ridge
 }
 
+// Verifies the convex edges the barrier pairs with (surface_triangle.h,
+// convex_edges): convex by any angle beyond round-off, so the ridge convex
+// by 2.3 degrees that the edge rule leaves inactive is convex, while flat
+// and concave edges are not; a flat grid's only convex edges are its
+// border, as a mesh and as a heightfield.
+TEST(TriangleMeshTest, ConvexEdgesAreConvexBeyondRoundOff) {
+  const Vec3 n = Vec3::UnitZ(), a(0, 0, 0), b(1, 0, 0);
+  EXPECT_FALSE(EdgeIsActive(n, a, b, Vec3(0.5, -1, 0), kConvexEdgeAngle));                // flat
+  EXPECT_FALSE(EdgeIsActive(n, a, b, Vec3(0.5, -1, 1e-3), kConvexEdgeAngle));             // concave
+  EXPECT_TRUE(EdgeIsActive(n, a, b, Vec3(0.5, -1, -std::tan(0.04)), kConvexEdgeAngle));   // 2.3 degrees
+  EXPECT_TRUE(EdgeIsActive(n, a, b, Vec3(0.5, -1, -1e-5), kConvexEdgeAngle));             // 1e-5 rad
+  const auto mesh = BuildGrid(4, 0.5);
+  std::shared_ptr<const HeightField> field;
+  ASSERT_TRUE(BuildHeightField(5, 5, std::vector<double>(25, 0.0), 0.5, 0.5, &field).ok());
+  const Aabb all{Vec3::Constant(-2.0), Vec3::Constant(2.0)};
+  for (const Shape& shape : {Shape::Mesh(mesh), Shape::Heightfield(field)}) {
+    int convex = 0;
+    ForEachSurfaceTriangle(shape, all, [&](const SurfaceTriangle& t) {
+      for (int k = 0; k < 3; ++k) {
+        if (!(t.convex_edges & (1u << k))) continue;
+        ++convex;
+        // on the border: both ends on the grid's edge
+        const Vec3 m = 0.5 * (t.v[k] + t.v[(k + 1) % 3]);
+        EXPECT_NEAR(std::max(std::abs(m.x()), std::abs(m.y())), 1.0, 1e-12) << ShapeTypeName(shape.type);
+      }
+    });
+    EXPECT_EQ(convex, 16) << ShapeTypeName(shape.type);
+  }
+}
+
 // Verifies the box tree's query: the triangles it visits for random boxes
 // are exactly those whose boxes overlap, over a 20,000-triangle grid.
 TEST(TriangleMeshTest, TreeQueryMatchesBruteForce) {

@@ -71,11 +71,18 @@ struct KnownMiss {
 };
 
 inline constexpr KnownMiss kKnownMisses[] = {
-    // barrier: 0.1 kg boxes with mu 1 stop spinning within a step or two
-    // since main's barrier changes after 8a03b60 (before them +1.2% and
-    // -0.02%, docs/physics.md, "Friction against spin"); not traced yet
-    {"barrier", "spin plate30cm_100g_100rads_mu1", "275.9 rad/s^2 against the corners' 138.7 (+99%): stops at once"},
-    {"barrier", "spin cube40cm_100g_20rads_mu1", "200.0 rad/s^2 against the corners' 104.1 (+92%): stops at once"},
+    // barrier: 0.1 kg boxes with mu 1 lose most of their spin in the first
+    // steps: Newton stops at max_iterations (50) unconverged at every step
+    // and the unconverged rotation lags; with max_iterations 400 they take
+    // 100-107 iterations a step and decay at +2.0% and +0.0% of the
+    // corners' rate. The orthogonality stiffness k = kappa_ortho vol against
+    // the affine inertia S decides: h^2 k / S is 4e5 (plate) and 8e6 (cube)
+    // here, 4e4 for the 1 kg plate that converges (docs/methods/barrier.md,
+    // "Light bodies")
+    {"barrier", "spin plate30cm_100g_100rads_mu1",
+     "275.9 rad/s^2 against the corners' 138.7 (+99%): Newton at max_iterations, h^2 k_ortho / S = 4e5"},
+    {"barrier", "spin cube40cm_100g_20rads_mu1",
+     "200.0 rad/s^2 against the corners' 104.1 (+92%): Newton at max_iterations, h^2 k_ortho / S = 8e6"},
     // lcp lemke: hulls settling on a wavy heightfield hold a contact per
     // triangle under them, each its own manifold; 3 s of four hulls took
     // 54 s (pgs 0.4 s) in one run, so the scene is not run for it; the
@@ -128,9 +135,17 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"barrier", "slide m=*",
      "1.7-1.8% short (mechanics), 0.6-1.7% short and 0.6-1.0% off the run along x (friction scenes), 10 kg with "
      "mu 0.8 along a face 6.0% short and 4.7% off: placed pairs, above; 0.57% short from a resting gap"},
+    // barrier on the triangle surfaces (surface_scenarios_test.cpp): the
+    // mesh gives the plane's answer to 4 digits in every case, so these are
+    // the plane's misses, with the same causes as above
+    {"barrier", "surface slide *",
+     "4.913-4.945 m/s^2 against mu g 4.905 (+0.17 to +0.82%), the same on its plane: placed pairs, as slide m=*"},
+    {"barrier", "surface ramp 20 deg down", "1.487 against 1.512 m/s^2 (-1.6%), the same on its plane"},
+    {"barrier", "surface roll m=0.1",
+     "0.999 m of 2 in 1 s, the same on its plane: as roll m=0.1 (max_iterations 400: 1.997 m/s kept)"},
     {"barrier", "roll m=0.1",
      "18.6% short for 0.1 kg (1 and 10 kg within 0.4%): on its placed pair Newton stops at max_iterations from "
-     "1 m/s on and the speed stalls at 1.06 m/s; why it costs these iterations is not traced"},
+     "1 m/s on and the speed stalls at 1.06 m/s; its h^2 k_ortho / S is 3.6e6 (1 kg: 3.6e5), as the light spins' (rolling on the flat, surface roll m=0.1, it keeps 1.997 of 2 m/s with max_iterations 400)"},
     // bodies placed touching or overlapping (placement_contact_test.cpp):
     // moved from the placement, fastest point at any step
     {"penalty", "* overlap=0mm speed",

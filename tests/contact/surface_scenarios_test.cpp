@@ -8,12 +8,17 @@
 //  * a box on a tessellated ramp slides down at g (sin - mu cos) and, pushed
 //    up it, slows at g (sin + mu cos) without catching on an edge;
 //  * a box resting with a corner on a vertex where triangles meet, a stack
-//    of boxes on the mesh, and rocks dropped on a heightfield come to rest.
-// A method whose contract lacks triangle surfaces refuses the world.
+//    of boxes on the mesh, and rocks dropped on a heightfield come to rest
+//    (under barrier with its distance above zero at every step).
+// A method whose contract lacks triangle surfaces refuses the world. The
+// comparisons with the plane hold for every method; a method that misses
+// an analytic answer on its plane as well lists it in kKnownMisses.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include "service/collision/height_field.h"
@@ -112,6 +117,7 @@ double BoxAcceleration(const MethodConfig& config, Ground ground, double angle, 
 // 0.5% of mu g, for masses 0.1, 1 and 10 kg, and cubes of 5 cm (smaller
 // than a cell) and 0.6 m (36 cells) along x.
 TEST_P(SurfaceTest, BoxSlidesOverFloorMeshAsOverPlane) {
+  testing::MechanicsChecks checks(GetParam().label);
   const double mu = 0.5, v0 = 4.0;
   for (double mass : {0.1, 1.0, 10.0}) {
     for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(std::cos(0.52), std::sin(0.52), 0)}) {
@@ -122,7 +128,8 @@ TEST_P(SurfaceTest, BoxSlidesOverFloorMeshAsOverPlane) {
       std::printf("%s: m %4.1f kg dir (%.2f, %.2f) mesh %.4f plane %.4f mu g %.4f m/s^2\n", Label(), mass, dir.x(),
                   dir.y(), -on_mesh, -on_plane, mu * kG);
       EXPECT_NEAR(on_mesh, on_plane, 0.005 * mu * kG) << Label() << " m " << mass;
-      EXPECT_NEAR(-on_mesh, mu * kG, 0.005 * mu * kG) << Label() << " m " << mass;
+      checks.Expect(testing::CaseId("surface slide m=%g dir=%.2f", mass, dir.y()), -on_mesh, mu * kG,
+                    0.005 * mu * kG);
     }
   }
   for (double half : {0.025, 0.3}) {
@@ -132,14 +139,16 @@ TEST_P(SurfaceTest, BoxSlidesOverFloorMeshAsOverPlane) {
     std::printf("%s: cube %.2f m mesh %.4f plane %.4f mu g %.4f m/s^2\n", Label(), 2 * half, -on_mesh, -on_plane,
                 mu * kG);
     EXPECT_NEAR(on_mesh, on_plane, 0.005 * mu * kG) << Label() << " half " << half;
-    EXPECT_NEAR(-on_mesh, mu * kG, 0.005 * mu * kG) << Label() << " half " << half;
+    checks.Expect(testing::CaseId("surface slide cube=%g", 2 * half), -on_mesh, mu * kG, 0.005 * mu * kG);
   }
+  SKIP_KNOWN_MISSES(checks);
 }
 
 // Verifies rolling without lift: a ball of radius 0.1 m rolling at 2 m/s
 // across the floor mesh (across edges and vertices) never rises more than
 // 0.1 mm above where it rested.
 TEST_P(SurfaceTest, BallRollsOverFloorMeshWithoutLifting) {
+  testing::MechanicsChecks checks(GetParam().label);
   for (double mass : {0.1, 1.0, 10.0}) {
     Sim sim(GetParam().method, GetParam().params);
     AddFloorMesh(sim.world, 0.0, 0.5);
@@ -165,14 +174,47 @@ TEST_P(SurfaceTest, BallRollsOverFloorMeshWithoutLifting) {
     const double travelled = (sim.world.Find(id)->x - Vec3(0.013, 0.027, rest)).head<2>().norm();
     std::printf("%s: m %4.1f kg rolled %.3f m, largest lift %.3g m\n", Label(), mass, travelled, lift);
     EXPECT_LT(lift, 1e-4) << Label() << " m " << mass;
-    EXPECT_GT(travelled, 1.5) << Label() << " m " << mass;
+    // (rolling freely it travels 2 m; 1.5 m bounds any slowing by an edge)
+    checks.Expect(testing::CaseId("surface roll m=%g", mass), std::min(travelled, 2.0), 2.0, 0.5);
   }
+  SKIP_KNOWN_MISSES(checks);
+}
+
+// Prints the cost of the floor mesh (not asserted: wall-clock time): ms a
+// step of a 1 kg box sliding at 4 m/s over the 20,000-triangle floor for
+// 0.5 s, and over the plane, after it settled; verifies it stayed on the
+// floor.
+TEST_P(SurfaceTest, PrintsTheCostOfABoxSlidingOverTheFloorMesh) {
+  double ms[2] = {0.0, 0.0};
+  for (Ground ground : {Ground::kPlane, Ground::kMesh}) {
+    Sim sim(GetParam().method, GetParam().params);
+    AddGround(sim.world, ground, 0.0, 0.5);
+    if (ground == Ground::kMesh && Refused(sim.world)) return;
+    BodySettings box;
+    box.shape = ShapeType::kBox;
+    box.half_extents = Vec3::Constant(0.1);
+    box.position = Vec3(0.013, 0.027, 0.1);
+    box.mass = 1.0;
+    box.restitution = 0.0;
+    const BodyId id = AddValidBody(sim.world, box);
+    for (int i = 0; i < 48; ++i) sim.Step();
+    sim.world.Find(id)->SetVelocity(Vec3(4.0, 0.0, 0.0), Vec3::Zero());
+    const int steps = static_cast<int>(0.5 / sim.world.dt);
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < steps; ++i) sim.Step();
+    const std::chrono::duration<double, std::milli> spent = std::chrono::steady_clock::now() - start;
+    ms[ground == Ground::kMesh] = spent.count() / steps;
+    EXPECT_NEAR(sim.world.Find(id)->x.z(), 0.1, 2e-3) << Label();
+  }
+  std::printf("%s: box sliding over the floor mesh %.3f ms/step, over the plane %.3f ms/step\n", Label(), ms[1],
+              ms[0]);
 }
 
 // Verifies the tessellated ramp: a box released on a ramp of 20 and 30
 // degrees (mu 0.2) slides down at g (sin - mu cos), and launched up a ramp
 // of 10 and 20 degrees slows at g (sin + mu cos), as on a plane, to 1%.
 TEST_P(SurfaceTest, BoxOnTessellatedRampSlidesAtAnalyticAcceleration) {
+  testing::MechanicsChecks checks(GetParam().label);
   const double mu = 0.2;
   for (double deg : {10.0, 20.0, 30.0}) {
     const double a = deg * M_PI / 180.0;
@@ -183,14 +225,15 @@ TEST_P(SurfaceTest, BoxOnTessellatedRampSlidesAtAnalyticAcceleration) {
       if (refused) return;
       const double analytic = kG * (std::sin(a) - mu * std::cos(a));
       std::printf("%s: %2.0f deg down %.4f, g (sin - mu cos) %.4f m/s^2\n", Label(), deg, down, analytic);
-      EXPECT_NEAR(down, analytic, 0.01 * analytic) << Label() << " " << deg << " deg";
+      checks.Expect(testing::CaseId("surface ramp %g deg down", deg), down, analytic, 0.01 * analytic);
     }
     const double up = BoxAcceleration(GetParam(), Ground::kMesh, a, 1.0, mu, -Vec3::UnitX(), 5.0, &refused);
     if (refused) return;
     const double analytic = -kG * (std::sin(a) + mu * std::cos(a));
     std::printf("%s: %2.0f deg up %.4f, -g (sin + mu cos) %.4f m/s^2\n", Label(), deg, up, analytic);
-    EXPECT_NEAR(up, analytic, 0.01 * std::abs(analytic)) << Label() << " " << deg << " deg";
+    checks.Expect(testing::CaseId("surface ramp %g deg up", deg), up, analytic, 0.01 * std::abs(analytic));
   }
+  SKIP_KNOWN_MISSES(checks);
 }
 
 // Verifies degenerate placements at rest: a box with its centre on a
@@ -232,7 +275,8 @@ TEST_P(SurfaceTest, BoxesRestOnVerticesAndEdgesAndInStacks) {
 
 // Verifies random drops: four hulls and boxes of 0.1 to 10 kg dropped from
 // random poses onto a wavy heightfield come to rest on it (below 5 cm/s,
-// none fallen through) within 3 s.
+// none fallen through) within 3 s; under barrier the smallest distance of
+// any pair (its residual) stays above zero at every step, its guarantee.
 TEST_P(SurfaceTest, RandomDropsComeToRestOnHeightfield) {
   if (const testing::KnownMiss* miss = testing::FindKnownMiss(GetParam().label, "heightfield drops")) {
     GTEST_SKIP() << "known miss: " << miss->why;
@@ -268,7 +312,16 @@ TEST_P(SurfaceTest, RandomDropsComeToRestOnHeightfield) {
     b.restitution = 0.0;
     ids.push_back(AddValidBody(sim.world, b));
   }
-  for (int i = 0; i < static_cast<int>(3.0 / sim.world.dt); ++i) sim.Step();
+  const bool intersection_free = GetParam().method == "barrier";
+  double closest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(3.0 / sim.world.dt); ++i) {
+    const StepStats stats = sim.Step();
+    if (intersection_free) closest = std::min(closest, stats.residual);
+  }
+  if (intersection_free) {
+    std::printf("%s: smallest distance over the drops %.3g m\n", Label(), closest);
+    EXPECT_GT(closest, 0.0) << Label();
+  }
   for (BodyId id : ids) {
     const RigidBody& b = *sim.world.Find(id);
     std::printf("%s: body %lld at z %.3f speed %.3g m/s\n", Label(), static_cast<long long>(id), b.x.z(),

@@ -1,6 +1,6 @@
 """Triangle meshes and heightfields through the real server: added from
 vertices, from a file and from a 2-D array, simulated, hit by rays, kept by
-snapshots, refused by the barrier method and on bad input
+snapshots, stepped by the barrier method and refused on bad input
 (docs/physics.md, "Triangle meshes and heightfields")."""
 import numpy as np
 import pytest
@@ -80,12 +80,20 @@ def test_bad_meshes_add_nothing(client, vertices, indices, says):
     assert len(client.state().bodies) == 0
 
 
-def test_barrier_refuses_a_mesh(client):
-    vertices, tris = grid(2, 0.5)
-    client.add_mesh(vertices, tris)
-    with pytest.raises(contactsim.CommandError) as err:
-        client.set_contact_method("barrier")
-    assert "triangle meshes" in str(err.value)
+def test_barrier_rests_a_box_and_a_ball_on_a_mesh(client):
+    # Verifies that the barrier method takes a mesh (its contract's
+    # triangle_surfaces) and rests a box and a ball dropped on it, above it
+    # by less than its activation distance d_hat = 1 mm.
+    vertices, tris = grid(20, 0.1)
+    client.add_mesh(vertices, tris, friction=0.5)
+    client.set_contact_method("barrier")
+    box = client.add_box((0.1, 0.1, 0.1), position=(0.03, 0.01, 0.15), restitution=0.0)
+    ball = client.add_sphere(0.1, position=(-0.5, 0.3, 0.2), restitution=0.0)
+    client.step(240)
+    bodies = client.state().bodies
+    for body in (bodies[box], bodies[ball]):
+        assert 0.1 < body.position[2] < 0.101
+        assert np.linalg.norm(body.linear_velocity) < 1e-2
 
 
 def test_scene_file_with_a_heightfield_and_a_mesh_file(client, tmp_path):

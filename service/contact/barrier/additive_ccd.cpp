@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "service/contact/barrier/surface_primitives.h"
+
 namespace contactsim {
 namespace {
 
@@ -10,7 +12,8 @@ constexpr double kClose = 0.05;    // stop when the gap to the target is this pa
 
 double DistanceAt(const CcdPair& p, double t) {
   const Vec12 qa = p.qa + t * p.dqa, qb = p.qb + t * p.dqb;
-  return EvaluatePair(*p.a, AffinePosition(qa), AffineMatrix(qa), *p.b, AffinePosition(qb), AffineMatrix(qb), p.pair, p.signed_depth).d -
+  return EvaluatePair(*p.a, AffinePosition(qa), AffineMatrix(qa), *p.b, AffinePosition(qb), AffineMatrix(qb), p.pair, p.signed_depth,
+                      {p.shift, p.width}).d -
          p.shift;
 }
 
@@ -52,6 +55,15 @@ double AdditiveCcd(const CcdPair& p, double fraction, double limit) {
     // against a static plane the signed distance is linear in alpha: exact
     const double approach = d0 - DistanceAt(p, 1.0);
     return approach > 0.0 ? std::min(limit, (d0 - target) / approach) : limit;
+  }
+  if (IsSurfaceKind(p.pair.kind)) {
+    // over a flat part of a surface: the plane's bound (surface_primitives.h)
+    const bool body_is_a = !p.pair.swapped;
+    double alpha = limit;
+    if (FlatSurfaceCcd(body_is_a ? *p.a : *p.b, body_is_a ? p.qa : p.qb, body_is_a ? p.dqa : p.dqb,
+                       body_is_a ? *p.b : *p.a, body_is_a ? p.qb : p.qa, p.pair, target + p.shift, limit, &alpha)) {
+      return alpha;
+    }
   }
   const double l = RelativeMotionBound(p);
   if (l <= 0.0) return limit;

@@ -27,6 +27,7 @@ struct CcdPair {
   Vec12 dqa, dqb;     // the step (zero for a body that does not move)
   PrimitivePair pair;
   double shift = 0.0; // m, subtracted from the distance (barrier_solver.h)
+  double width = 0.0; // m, the pair's barrier width (a surface pair's choice of edge: surface_primitives.h)
   double signed_depth = 0.0;  // m, EvaluatePair's
   bool placed = false;  // a placed pair (barrier_solver.h): only its shifted distance counts
 };

@@ -170,11 +170,12 @@ double BarrierSolver::IslandEnergy(const Island& island, const std::vector<Entry
     const Body& B = bodies_[e.b];
     const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
     const PairDistance d =
-        EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e.pair, e.depth);
+        EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e.pair, e.depth,
+                     {e.shift, e.width});
     const double b = Barrier(d.d - e.shift, e.width);
     if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
     if (b == 0.0) continue;
-    potential += kappa_ * e.scale * MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e.pair).m * b;
+    potential += kappa_ * e.scale * MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e.pair, d).m * b;
   }
   const double eps = params_.eps_v * h_;
   for (int k : island.friction) {

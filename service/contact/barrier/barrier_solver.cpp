@@ -49,6 +49,7 @@ void BarrierSolver::Setup(World& world, const BarrierParams& params) {
     Body b;
     b.index = static_cast<int>(i);
     b.geometry = MakeBodyGeometry(r.shape);
+    b.geometry.surface.reach = kSurfaceReach * params.d_hat;
     b.radius = BoundingRadius(b.geometry);
     b.material = r.material;
     if (r.motion == MotionType::kKinematic) AdvanceBallistic(r, h_);  // prescribed: moved first, then fixed
@@ -135,6 +136,7 @@ CcdPair BarrierSolver::CcdPairOf(const Entry& e, const std::vector<Vec12>& step)
   p.dqb = B.active ? step[B.dof] : Vec12::Zero();
   p.pair = e.pair;
   p.shift = e.shift;
+  p.width = e.width;
   p.signed_depth = e.depth;
   p.placed = e.placed;
   return p;
@@ -144,8 +146,9 @@ void BarrierSolver::Evaluate(Entry* e) const {
   const Body& A = bodies_[e->a];
   const Body& B = bodies_[e->b];
   const Mat3 Aa = AffineMatrix(A.q), Ab = AffineMatrix(B.q);
-  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair, e->depth);
-  e->mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e->pair);
+  e->dist = EvaluatePair(A.geometry, AffinePosition(A.q), Aa, B.geometry, AffinePosition(B.q), Ab, e->pair, e->depth,
+                         {e->shift, e->width});
+  e->mollifier = MollifyEdgeEdge(A.geometry, Aa, B.geometry, Ab, e->pair, e->dist);
 }
 
 void BarrierSolver::Refresh(const std::vector<Entry>& line, std::vector<Entry>* out) const {

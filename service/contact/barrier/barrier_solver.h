@@ -295,6 +295,10 @@ class BarrierSolver {
   static constexpr double kTouch = 1e-6;  // of d_hat: a shifted pair farther apart at the start was not touching
   static constexpr double kPlacedWidth = 2e-2;  // of d_hat: a placed pair's activation width, and its zero below its start
   static constexpr double kPlacedDepth = 2.0;   // of d_hat: the deepest overlap a placed pair is measured from
+  // of d_hat: how far a triangle surface is searched around a primitive
+  // (surface_primitives.h); beyond, the distance is reported as this, which
+  // the additive CCD of a body falling 12 mm a step crosses in a few advances
+  static constexpr double kSurfaceReach = 10.0;
 
   BarrierParams params_;
   const World* world_ = nullptr;  // the stepped world, from Setup: its bodies' filters

@@ -2,6 +2,7 @@
 
 #include "service/collision/closest_points.h"
 #include "service/collision/posed_polyhedron.h"
+#include "service/contact/barrier/surface_primitives.h"
 #include "service/physics/convex_hull.h"
 
 namespace contactsim {
@@ -16,9 +17,14 @@ void AddHull(const ConvexHull& hull, const std::vector<Vec3>& points, BodyGeomet
   }
 }
 
-// The distance d and the unit normal n12 from the point side's closest point
-// to the other's, in a's and b's terms.
-PairDistance Finish(double d, const Vec3& n12, const Vec3& X1, const Vec3& X2, bool swapped) {
+}  // namespace
+
+bool IsSurfaceKind(PrimitiveKind kind) {
+  return kind == PrimitiveKind::kPointSurface || kind == PrimitiveKind::kEdgeSurface ||
+         kind == PrimitiveKind::kTriangleSurface;
+}
+
+PairDistance OrientPair(double d, const Vec3& n12, const Vec3& X1, const Vec3& X2, bool swapped) {
   PairDistance out;
   out.d = d;
   out.n = swapped ? -n12 : n12;
@@ -27,7 +33,39 @@ PairDistance Finish(double d, const Vec3& n12, const Vec3& X1, const Vec3& X2, b
   return out;
 }
 
-}  // namespace
+TriangleGap PointTriangleGap(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, double signed_depth) {
+  TriangleGap g;
+  g.c = ClosestPointOnTriangle(p, v0, v1, v2, &g.w);
+  // on the face's side or just behind it, with the foot inside the
+  // triangle: the signed distance along the outward normal (faces are
+  // counter-clockwise seen from outside)
+  g.n_out = (v1 - v0).cross(v2 - v0).normalized();
+  g.s = g.n_out.dot(p - v0);
+  g.is_signed = g.s >= -signed_depth && (p - g.s * g.n_out - g.c).squaredNorm() <= 1e-24 + 1e-20 * (p - g.c).squaredNorm();
+  return g;
+}
+
+EdgeGap EdgeEdgeGap(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const Vec3& toward,
+                    double signed_depth) {
+  EdgeGap g;
+  const SegmentClosestPoints sc = ClosestPointsOfSegments(a0, a1, b0, b1);
+  g.c1 = sc.c1;
+  g.c2 = sc.c2;
+  g.s1 = sc.s;
+  g.s2 = sc.t;
+  // crossing edges, closest points inside both: the signed distance along
+  // e_a x e_b turned towards the second body (the separating plane of two
+  // convex bodies touching edge on edge contains both edges)
+  const Vec3 cross = (a1 - a0).cross(b1 - b0);
+  const double sin2 = cross.squaredNorm() / ((a1 - a0).squaredNorm() * (b1 - b0).squaredNorm());
+  if (sin2 > 1e-6 && sc.s > 0.0 && sc.s < 1.0 && sc.t > 0.0 && sc.t < 1.0) {
+    g.n = cross.normalized();
+    if (g.n.dot(toward) < 0.0) g.n = -g.n;
+    g.s = g.n.dot(sc.c2 - sc.c1);
+    g.is_signed = g.s >= -signed_depth;
+  }
+  return g;
+}
 
 BodyGeometry MakeBodyGeometry(const Shape& shape) {
   BodyGeometry g;
@@ -56,6 +94,10 @@ BodyGeometry MakeBodyGeometry(const Shape& shape) {
       g.plane_normal = shape.plane_normal;
       g.plane_offset = shape.plane_offset;
       break;
+    case ShapeType::kMesh:
+    case ShapeType::kHeightfield:
+      g.surface.shape = &shape;
+      break;
     default: break;
   }
   return g;
@@ -63,7 +105,17 @@ BodyGeometry MakeBodyGeometry(const Shape& shape) {
 
 void EnumeratePrimitivePairs(const BodyGeometry& a, const BodyGeometry& b, std::vector<PrimitivePair>* out) {
   out->clear();
-  if (a.plane && b.plane) return;
+  if ((a.plane || a.surface.shape) && (b.plane || b.surface.shape)) return;
+  if (a.surface.shape || b.surface.shape) {
+    const BodyGeometry& solid = a.surface.shape ? b : a;
+    const bool swapped = a.surface.shape != nullptr;
+    for (int i = 0; i < static_cast<int>(solid.points.size()); ++i) out->push_back({PrimitiveKind::kPointSurface, i, 0, swapped});
+    for (int i = 0; i < static_cast<int>(solid.edges.size()); ++i) out->push_back({PrimitiveKind::kEdgeSurface, i, 0, swapped});
+    for (int i = 0; i < static_cast<int>(solid.triangles.size()); ++i) {
+      out->push_back({PrimitiveKind::kTriangleSurface, i, 0, swapped});
+    }
+    return;
+  }
   if (a.plane || b.plane) {
     const BodyGeometry& solid = a.plane ? b : a;
     for (int i = 0; i < static_cast<int>(solid.points.size()); ++i) out->push_back({PrimitiveKind::kPointPlane, i, 0, a.plane});
@@ -120,8 +172,15 @@ PairVertices PrimitiveVertices(const BodyGeometry& a, const BodyGeometry& b, con
       o[no++] = other.points[pair.ib];
       break;
     case PrimitiveKind::kPointPlane:
+    case PrimitiveKind::kPointSurface:
       p[np++] = point_side.points[pair.ia];
-      break;  // the plane is static: no vertices move
+      break;  // the plane or surface is static: no vertices move
+    case PrimitiveKind::kEdgeSurface:
+      for (int k = 0; k < 2; ++k) p[np++] = point_side.points[point_side.edges[pair.ia][k]];
+      break;
+    case PrimitiveKind::kTriangleSurface:
+      for (int k = 0; k < 3; ++k) p[np++] = point_side.points[point_side.triangles[pair.ia][k]];
+      break;
   }
   const bool point_is_a = !pair.swapped || pair.kind == PrimitiveKind::kEdgeEdge;
   if (point_is_a) {
@@ -133,7 +192,8 @@ PairVertices PrimitiveVertices(const BodyGeometry& a, const BodyGeometry& b, con
 }
 
 PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa, const BodyGeometry& b,
-                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair, double signed_depth) {
+                          const Vec3& pb, const Mat3& Ab, const PrimitivePair& pair, double signed_depth,
+                          const PairBarrier& barrier) {
   PairDistance out;
   const bool swapped = pair.swapped && pair.kind != PrimitiveKind::kEdgeEdge;
   // the point side's and the other side's geometry and maps
@@ -166,19 +226,13 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
     }
     case PrimitiveKind::kPointTriangle: {
       const auto& t = g2.triangles[pair.ib];
-      const Vec3 v0 = world2(t[0]), v1 = world2(t[1]), v2 = world2(t[2]);
-      Vec3 w;
       c1 = world1(pair.ia);
-      c2 = ClosestPointOnTriangle(c1, v0, v1, v2, &w);
+      const TriangleGap g = PointTriangleGap(c1, world2(t[0]), world2(t[1]), world2(t[2]), signed_depth);
+      c2 = g.c;
       X1 = g1.points[pair.ia];
-      X2 = w(0) * g2.points[t[0]] + w(1) * g2.points[t[1]] + w(2) * g2.points[t[2]];
-      // on the face's side or just behind it, with the foot inside the
-      // triangle: the signed distance along the outward normal (faces are
-      // counter-clockwise seen from outside)
-      const Vec3 n_out = (v1 - v0).cross(v2 - v0).normalized();
-      const double s = n_out.dot(c1 - v0);
-      if (s >= -signed_depth && (c1 - s * n_out - c2).squaredNorm() <= 1e-24 + 1e-20 * (c1 - c2).squaredNorm()) {
-        PairDistance signed_out = Finish(s - g1.radius - g2.radius, -n_out, X1, X2, swapped);
+      X2 = g.w(0) * g2.points[t[0]] + g.w(1) * g2.points[t[1]] + g.w(2) * g2.points[t[2]];
+      if (g.is_signed) {
+        PairDistance signed_out = OrientPair(g.s - g1.radius - g2.radius, -g.n_out, X1, X2, swapped);
         signed_out.is_signed = true;
         return signed_out;
       }
@@ -187,29 +241,22 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
     case PrimitiveKind::kEdgeEdge: {
       const auto& e = g1.edges[pair.ia];
       const auto& f = g2.edges[pair.ib];
-      const Vec3 a0 = world1(e[0]), a1 = world1(e[1]), b0 = world2(f[0]), b1 = world2(f[1]);
-      const SegmentClosestPoints sc = ClosestPointsOfSegments(a0, a1, b0, b1);
-      c1 = sc.c1;
-      c2 = sc.c2;
-      X1 = (1 - sc.s) * g1.points[e[0]] + sc.s * g1.points[e[1]];
-      X2 = (1 - sc.t) * g2.points[f[0]] + sc.t * g2.points[f[1]];
-      // crossing edges, closest points inside both: the signed distance along
-      // e_a x e_b turned from a's centre towards b's (the separating plane of
-      // two convex bodies touching edge on edge contains both edges)
-      const Vec3 cross = (a1 - a0).cross(b1 - b0);
-      const double sin2 = cross.squaredNorm() / ((a1 - a0).squaredNorm() * (b1 - b0).squaredNorm());
-      if (sin2 > 1e-6 && sc.s > 0.0 && sc.s < 1.0 && sc.t > 0.0 && sc.t < 1.0) {
-        Vec3 n = cross.normalized();
-        if (n.dot(p2 - p1) < 0.0) n = -n;
-        const double s = n.dot(c2 - c1);
-        if (s >= -signed_depth) {
-          PairDistance signed_out = Finish(s - g1.radius - g2.radius, n, X1, X2, false);
-          signed_out.is_signed = true;
-          return signed_out;
-        }
+      const EdgeGap g = EdgeEdgeGap(world1(e[0]), world1(e[1]), world2(f[0]), world2(f[1]), p2 - p1, signed_depth);
+      c1 = g.c1;
+      c2 = g.c2;
+      X1 = (1 - g.s1) * g1.points[e[0]] + g.s1 * g1.points[e[1]];
+      X2 = (1 - g.s2) * g2.points[f[0]] + g.s2 * g2.points[f[1]];
+      if (g.is_signed) {
+        PairDistance signed_out = OrientPair(g.s - g1.radius - g2.radius, g.n, X1, X2, false);
+        signed_out.is_signed = true;
+        return signed_out;
       }
       break;
     }
+    case PrimitiveKind::kPointSurface:
+    case PrimitiveKind::kEdgeSurface:
+    case PrimitiveKind::kTriangleSurface:
+      return EvaluateSurfacePair(g1, p1, A1, g2, p2, A2, pair, signed_depth, barrier);
     case PrimitiveKind::kPointEdge: {
       const auto& e = g2.edges[pair.ib];
       double t = 0.0;
@@ -231,7 +278,7 @@ PairDistance EvaluatePair(const BodyGeometry& a, const Vec3& pa, const Mat3& Aa,
   // touching (no direction between the closest points): from centre to centre
   const Vec3 centres = p2 - p1;
   const Vec3 n12 = len > 0.0 ? Vec3(gap / len) : centres.norm() > 0.0 ? Vec3(centres.normalized()) : Vec3::UnitZ();
-  return Finish(len - g1.radius - g2.radius, n12, X1, X2, swapped);
+  return OrientPair(len - g1.radius - g2.radius, n12, X1, X2, swapped);
 }
 
 }  // namespace contactsim

@@ -23,8 +23,13 @@ struct EdgeMollifier {
 };
 
 // The mollifier of an edge-edge pair of bodies a and b with the linear parts
-// Aa, Ab of their affine maps; m = 1 with zero gradients for other kinds.
+// Aa, Ab of their affine maps, and of an edge against a triangle surface
+// with the surface edge `dist` chose (surface_primitives.h); m = 1 with zero
+// gradients for other kinds.
 EdgeMollifier MollifyEdgeEdge(const BodyGeometry& a, const Mat3& Aa, const BodyGeometry& b, const Mat3& Ab,
-                              const PrimitivePair& pair);
+                              const PrimitivePair& pair, const PairDistance& dist);
+
+// m of rest edges Ua, Ub that are now u, v.
+double EdgeMollifierValue(const Vec3& Ua, const Vec3& Ub, const Vec3& u, const Vec3& v);
 
 }  // namespace contactsim

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "service/collision/triangle_surface.h"
+
 namespace contactsim {
 namespace {
 
@@ -55,6 +57,37 @@ void PrimitivePairSearch::AddPlanePairs(const std::vector<SearchBody>& bodies, i
   }
 }
 
+void PrimitivePairSearch::AddSurfacePairs(const std::vector<SearchBody>& bodies, int surface, int solid, double half,
+                                          std::vector<CandidatePair>* out) {
+  const SearchBody& F = bodies[surface];
+  const Shape& shape = *F.geometry->surface.shape;
+  const Mat3 R = AffineMatrix(F.q);
+  const Vec3 x = AffinePosition(F.q);
+  // whether a world box grown by the other half of the reach (the
+  // triangles' boxes are not grown) holds part of a triangle
+  // (`convex`: only triangles with a convex edge, the only ones an edge or
+  // a triangle of the body is paired with: surface_primitives.h)
+  auto near = [&](Aabb box, bool convex) {
+    box.Inflate(half);
+    bool any = false;
+    ForEachSurfaceTriangle(shape, BoxInBodyFrame(box, R, x),
+                           [&](const SurfaceTriangle& t) { any = any || !convex || t.convex_edges != 0; });
+    return any;
+  };
+  if (!near(body_boxes_[solid], false)) return;
+  const Boxes& B = PrimitiveBoxes(bodies, solid, half);
+  const int a = std::min(surface, solid), b = std::max(surface, solid);
+  const bool swapped = surface == a;
+  const std::vector<Aabb>* boxes[3] = {&B.points, &B.edges, &B.triangles};
+  const PrimitiveKind kinds[3] = {PrimitiveKind::kPointSurface, PrimitiveKind::kEdgeSurface,
+                                  PrimitiveKind::kTriangleSurface};
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < static_cast<int>(boxes[k]->size()); ++i) {
+      if (near((*boxes[k])[i], k > 0)) out->push_back({a, b, {kinds[k], i, 0, swapped}});
+    }
+  }
+}
+
 void PrimitivePairSearch::AddSolidPairs(const std::vector<SearchBody>& bodies, int a, int b, double half,
                                         std::vector<CandidatePair>* out) {
   const BodyGeometry& ga = *bodies[a].geometry;
@@ -103,11 +136,15 @@ void PrimitivePairSearch::Find(const std::vector<SearchBody>& bodies, double rea
   std::vector<Aabb> solid_boxes;
   movable_.clear();
   solid_index_.clear();
-  std::vector<int> planes;
+  std::vector<int> planes, surfaces;
   for (int i = 0; i < n; ++i) {
     const SearchBody& b = bodies[i];
     if (b.geometry->plane) {
       planes.push_back(i);
+      continue;
+    }
+    if (b.geometry->surface.shape != nullptr) {
+      surfaces.push_back(i);
       continue;
     }
     if (b.geometry->points.empty()) continue;
@@ -120,9 +157,11 @@ void PrimitivePairSearch::Find(const std::vector<SearchBody>& bodies, double rea
   }
   sap_.FindPairs(solid_boxes, movable_, &body_pairs_);
   for (BodyPair& p : body_pairs_) p = {solid_index_[p.first], solid_index_[p.second]};
-  for (int p : planes) {
-    for (int s : solid_index_) {
-      if (bodies[s].movable) body_pairs_.emplace_back(std::min(p, s), std::max(p, s));
+  for (const std::vector<int>* statics : {&planes, &surfaces}) {
+    for (int p : *statics) {
+      for (int s : solid_index_) {
+        if (bodies[s].movable) body_pairs_.emplace_back(std::min(p, s), std::max(p, s));
+      }
     }
   }
   body_pairs_.erase(std::remove_if(body_pairs_.begin(), body_pairs_.end(),
@@ -135,7 +174,11 @@ void PrimitivePairSearch::Find(const std::vector<SearchBody>& bodies, double rea
   std::sort(body_pairs_.begin(), body_pairs_.end());
   for (const BodyPair& p : body_pairs_) {
     const bool a_plane = bodies[p.first].geometry->plane, b_plane = bodies[p.second].geometry->plane;
-    if (a_plane || b_plane) {
+    const bool a_surface = bodies[p.first].geometry->surface.shape != nullptr;
+    const bool b_surface = bodies[p.second].geometry->surface.shape != nullptr;
+    if (a_surface || b_surface) {
+      AddSurfacePairs(bodies, a_surface ? p.first : p.second, a_surface ? p.second : p.first, half, out);
+    } else if (a_plane || b_plane) {
       AddPlanePairs(bodies, a_plane ? p.first : p.second, a_plane ? p.second : p.first, reach, out);
     } else {
       AddSolidPairs(bodies, p.first, p.second, half, out);

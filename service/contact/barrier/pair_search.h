@@ -10,7 +10,12 @@
 //  * bodies: sweep and prune (sweep_and_prune.h) over the bodies' swept
 //    boxes; a plane is tested against every body directly (a point's
 //    distance to a static plane is linear in the motion, so its smallest
-//    value is at an end);
+//    value is at an end); a triangle mesh or heightfield too, each point,
+//    edge and triangle of the body whose box, grown by reach, reaches one
+//    of the surface's triangles (for an edge or triangle, one with a
+//    convex edge) through the surface's own search
+//    (ForEachSurfaceTriangle) becoming a pair with the whole surface
+//    (surface_primitives.h);
 //  * primitives of a body pair: only the points, edges and triangles whose
 //    own boxes overlap the other body's box, then the pairs of those whose
 //    boxes overlap (of the kinds contact_primitives.h enumerates).
@@ -60,13 +65,15 @@ class PrimitivePairSearch {
   const Boxes& PrimitiveBoxes(const std::vector<SearchBody>& bodies, int i, double half);
   void AddPlanePairs(const std::vector<SearchBody>& bodies, int plane, int solid, double reach,
                      std::vector<CandidatePair>* out) const;
+  void AddSurfacePairs(const std::vector<SearchBody>& bodies, int surface, int solid, double half,
+                       std::vector<CandidatePair>* out);
   void AddSolidPairs(const std::vector<SearchBody>& bodies, int a, int b, double half,
                      std::vector<CandidatePair>* out);
 
   SweepAndPrune sap_;
   std::vector<Aabb> body_boxes_;
   std::vector<bool> movable_;
-  std::vector<int> solid_index_;   // bodies that are not planes, in the order given to the sweep
+  std::vector<int> solid_index_;   // bodies that are neither planes nor surfaces, in the order given to the sweep
   std::vector<BodyPair> body_pairs_;
   std::vector<Boxes> boxes_;
   std::vector<int> kept_a_[3], kept_b_[3];  // points, edges, triangles near the other body
