@@ -27,6 +27,7 @@ Status ReadSceneModel(const proto::SceneModel& m, const model::ModelPaths& paths
   out.options.base.orientation = q;
   out.options.fixed_base = m.fixed_base();
   out.options.self_collide = m.self_collide();
+  out.options.max_hull_vertices = m.max_hull_vertices();
   *model_out = std::move(out);
   return Status::Ok();
 }
