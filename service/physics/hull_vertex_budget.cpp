@@ -13,6 +13,16 @@ Status CheckMaxHullVertices(int max_vertices) {
                                  std::to_string(kMinHullVertices) + ", got " + std::to_string(max_vertices));
 }
 
+Status ResolveMaxHullVertices(int requested, int* max_vertices) {
+  if (requested == -1 || requested == 0 || requested >= kMinHullVertices) {
+    *max_vertices = requested == -1 ? 0 : requested == 0 ? kDefaultMaxHullVertices : requested;
+    return Status::Ok();
+  }
+  return Status::InvalidArgument("max_hull_vertices must be -1 (every vertex), 0 (the default, " +
+                                 std::to_string(kDefaultMaxHullVertices) + ") or at least " +
+                                 std::to_string(kMinHullVertices) + ", got " + std::to_string(requested));
+}
+
 Status BudgetedHullPoints(const std::vector<Vec3>& points, int max_vertices, std::vector<Vec3>* kept) {
   if (Status st = CheckMaxHullVertices(max_vertices); !st.ok()) return st;
   if (points.size() < 4) {

@@ -33,6 +33,12 @@ constexpr int kMinHullVertices = 4;
 // error naming the field and the value otherwise.
 Status CheckMaxHullVertices(int max_vertices);
 
+// A budget as the protocol and the scene files give it (0: the default,
+// kDefaultMaxHullVertices; -1: every vertex; at least kMinHullVertices:
+// itself) as BudgetedHullPoints takes it (0: every vertex); an error naming
+// the field and the value for anything else.
+Status ResolveMaxHullVertices(int requested, int* max_vertices);
+
 // The points (a subset of `points`, in their order) whose hull is the
 // budgeted hull of `points`; all the hull's vertices when it has no more
 // than `max_vertices`. `max_vertices` 0 keeps every vertex of the full hull;

@@ -6,8 +6,6 @@
 // bytes, not from files that may have changed or gone since.
 #include <contactsim/model_cmd_t.hpp>
 
-#include <algorithm>
-
 #include "service/model/model_file.h"
 #include "service/physics/hull_vertex_budget.h"
 #include "service/physics/validation.h"
@@ -99,12 +97,7 @@ Status DecodeLoad(const model_cmd_t& m, const DecodeContext& context, Command* c
   if (!st.ok()) return st;
   o.fixed_base = m.fixed_base;
   o.self_collide = m.self_collide;
-  if (m.max_hull_vertices < -1 || (m.max_hull_vertices > 0 && m.max_hull_vertices < kMinHullVertices)) {
-    return Status::InvalidArgument("max_hull_vertices must be -1 (every vertex), 0 (the default, " +
-                                   std::to_string(kDefaultMaxHullVertices) + ") or at least " +
-                                   std::to_string(kMinHullVertices) + ", got " + std::to_string(m.max_hull_vertices));
-  }
-  o.max_hull_vertices = m.max_hull_vertices == 0 ? kDefaultMaxHullVertices : std::max(m.max_hull_vertices, 0);
+  if (!(st = ResolveMaxHullVertices(m.max_hull_vertices, &o.max_hull_vertices)).ok()) return st;
   auto d = std::make_shared<model::ModelDescription>();
   std::string resolved;
   if (!(st = ReadLoadedModel(m, context, d.get(), &resolved)).ok()) return st;

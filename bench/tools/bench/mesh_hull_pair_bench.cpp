@@ -4,12 +4,13 @@
 // each; the URDF's path in $CONTACTSIM_IIWA_URDF, skipped without it), each
 // a compound of one hull as the model builder makes it. 64 pairs of random
 // links at random orientations, each placed 1 mm into the other along a
-// random direction (by the supports of the hulls at that budget), collided
+// random direction (the deepest contact at that budget 1 mm), collided
 // through the narrowphase's table; and the same pairs 2 mm apart with the
 // separating-axis cache (separating_axis_cache.h), whose hits cost one axis.
 // Arg: the budget (0: the full hulls).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <random>
 
@@ -66,6 +67,31 @@ double Support(const RigidBody& b, const Vec3& u) {
   return best;
 }
 
+// The deepest contact of the pair within kSearchMargin (-kSearchMargin when
+// there is none).
+constexpr double kSearchMargin = 0.01;  // m
+double Depth(const RigidBody& a, const RigidBody& b) {
+  ContactSet contacts;
+  Collide(a, 0, b, 1, kSearchMargin, &contacts);
+  double depth = -kSearchMargin;
+  for (const Contact& c : contacts) depth = std::max(depth, c.depth);
+  return depth;
+}
+
+// Moves B (centred on A) along u until the pair's deepest contact is
+// `depth` (m; negative: a gap), by bisection: the depth only falls as B
+// moves out along a fixed direction, as both are convex.
+void PlaceAtDepth(const RigidBody& a, const Vec3& u, double depth, RigidBody* b) {
+  const Vec3 start = b->x;
+  double in = 0.0, out = Support(a, u) + Support(*b, -u) + kSearchMargin;
+  for (int k = 0; k < 50; ++k) {
+    const double mid = 0.5 * (in + out);
+    b->x = start + mid * u;
+    (Depth(a, *b) > depth ? in : out) = mid;
+  }
+  b->x = start + in * u;
+}
+
 // kPairs random pairs of links, B moved along u until the two overlap by
 // `overlap` (m; negative: a gap).
 std::vector<std::pair<RigidBody, RigidBody>> Pairs(int budget, double overlap) {
@@ -82,7 +108,7 @@ std::vector<std::pair<RigidBody, RigidBody>> Pairs(int budget, double overlap) {
     // ids of their own, so that each pair has its own cache entry
     RigidBody a = LinkBody(meshes[i], budget, 2 * k + 1, qa);
     RigidBody b = LinkBody(meshes[j], budget, 2 * k + 2, qb);
-    b.x += u * (Support(a, u) + Support(b, -u) - overlap);
+    PlaceAtDepth(a, u, overlap, &b);
     out.emplace_back(std::move(a), std::move(b));
   }
   return out;
