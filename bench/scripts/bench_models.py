@@ -7,13 +7,18 @@ POSITION_CONTROL motors at their default gains with the same effort limit). cont
 (free_run, paused, driven by STEP over LCM on this host), so its load time
 includes reading the files, building the hulls and one command round trip,
 and its step time is a STEP of many steps divided by their count. Prints a
-markdown table; docs/models.md and BENCHMARKS.md, "Robot models", say how it
-was run.
+markdown table of the medians of --repeat runs (each run a fresh PyBullet
+process and a fresh server), with each process's peak resident memory
+(VmHWM: the server's, and the PyBullet process's, Python included);
+docs/models.md and BENCHMARKS.md, "Robot models", say how it was run.
 
 Usage: bench/scripts/bench_models.py [--build-dir build] [--method impulse] [--steps 2000] [--scene WORD]
+                                     [--repeat 3] [--max-hull-vertices N]
 """
 import argparse
+import json
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -54,6 +59,22 @@ def _bent_iiwa_poses(path, base):
             for i, f in enumerate(model.frames) if f.type == pin.FrameType.BODY}
 
 
+def _peak_rss_mb(pid="self"):
+    """A process's peak resident set (VmHWM), MB."""
+    with open("/proc/%s/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
+def bench_pybullet_child(steps, scene):
+    """bench_pybullet in a process of its own, so that its memory is its own."""
+    out = subprocess.run([sys.executable, os.path.abspath(__file__), "--pybullet-child", "--steps", str(steps),
+                          "--scene", scene], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def bench_pybullet(models, steps):
     import pybullet as p  # noqa: PLC0415
     out = {"load": {}, "step": {}}
@@ -84,10 +105,11 @@ def bench_pybullet(models, steps):
             p.stepSimulation(physicsClientId=cid)
         out["step"][title] = 1e3 * (time.perf_counter() - t) / steps
     p.disconnect(cid)
+    out["rss_mb"] = _peak_rss_mb()
     return out
 
 
-def bench_contactsim(models, steps, build, method):
+def bench_contactsim(models, steps, build, method, max_hull_vertices):
     sys.path.insert(0, os.path.join(ROOT, "clients", "python"))
     os.environ["CONTACTSIM_BUILD_DIR"] = build
     import contactsim  # noqa: PLC0415
@@ -109,7 +131,7 @@ def bench_contactsim(models, steps, build, method):
             for name, path in models.items():
                 c.reset()
                 t = time.perf_counter()
-                c.load_model(path, name=name, fixed_base=name != "r2d2")
+                c.load_model(path, name=name, fixed_base=name != "r2d2", max_hull_vertices=max_hull_vertices)
                 out["load"][name] = 1e3 * (time.perf_counter() - t)
             for title, placed, ground, held in SCENES:
                 c.reset()
@@ -117,7 +139,8 @@ def bench_contactsim(models, steps, build, method):
                 if ground:
                     c.add_plane((0, 0, 1), 0.0)
                 for k, (name, pos, fixed, bent) in enumerate(placed):
-                    m = c.load_model(models[name], name="%s%d" % (name, k), position=pos, fixed_base=fixed)
+                    m = c.load_model(models[name], name="%s%d" % (name, k), position=pos, fixed_base=fixed,
+                                     max_hull_vertices=max_hull_vertices)
                     if bent:
                         m.set_link_poses(_bent_iiwa_poses(models["iiwa"], pos))
                     if held:
@@ -127,10 +150,20 @@ def bench_contactsim(models, steps, build, method):
                 t = time.perf_counter()
                 c.step(steps, timeout=600)
                 out["step"][title] = 1e3 * (time.perf_counter() - t) / steps
+            out["rss_mb"] = _peak_rss_mb(server.pid)
     finally:
         interrupt(server, 10)
         os.unlink(scene)
     return out
+
+
+def _median(runs, *keys):
+    vals = []
+    for r in runs:
+        for k in keys:
+            r = r[k]
+        vals.append(r)
+    return statistics.median(vals)
 
 
 def main():
@@ -139,20 +172,30 @@ def main():
     ap.add_argument("--method", default="impulse")
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--scene", default="", help="only the scenes whose title contains this word")
+    ap.add_argument("--repeat", type=int, default=3, help="runs of each; the table gives their medians")
+    ap.add_argument("--max-hull-vertices", type=int, default=0,
+                    help="contactsim's hull budget per mesh (0: the server's default, -1: full hulls)")
+    ap.add_argument("--pybullet-child", action="store_true", help=argparse.SUPPRESS)
     a = ap.parse_args()
     SCENES[:] = [s for s in SCENES if a.scene in s[0]]
     import pybullet_data  # noqa: PLC0415
     models = _models(pybullet_data.getDataPath())
-    pb = bench_pybullet(models, a.steps)
-    cs = bench_contactsim(models, a.steps, os.path.abspath(a.build_dir), a.method)
+    if a.pybullet_child:
+        print(json.dumps(bench_pybullet(models, a.steps)))
+        return
+    pb, cs = [], []
+    for _ in range(a.repeat):
+        pb.append(bench_pybullet_child(a.steps, a.scene))
+        cs.append(bench_contactsim(models, a.steps, os.path.abspath(a.build_dir), a.method, a.max_hull_vertices))
     print("| what | contactsim (%s), ms | PyBullet DIRECT, ms | ratio |" % a.method)
     print("|---|---:|---:|---:|")
-    for name in models:
-        print("| load %s | %.1f | %.1f | %.2f |" % (name, cs["load"][name], pb["load"][name],
-                                                   cs["load"][name] / pb["load"][name]))
-    for title, _, _, _ in SCENES:
-        print("| step: %s | %.3f | %.3f | %.2f |" % (title, cs["step"][title], pb["step"][title],
-                                                      cs["step"][title] / pb["step"][title]))
+    for kind, rows in (("load", list(models)), ("step", [t for t, _, _, _ in SCENES])):
+        for row in rows:
+            c, p = _median(cs, kind, row), _median(pb, kind, row)
+            label = "load %s" % row if kind == "load" else "step: %s" % row
+            print("| %s | %.3f | %.3f | %.2f |" % (label, c, p, c / p))
+    c, p = _median(cs, "rss_mb"), _median(pb, "rss_mb")
+    print("| peak resident memory, MB (server; PyBullet's Python process) | %.1f | %.1f | %.2f |" % (c, p, c / p))
 
 
 if __name__ == "__main__":

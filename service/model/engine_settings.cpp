@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "service/physics/cylinder_hull.h"
+#include "service/physics/hull_vertex_budget.h"
 #include "service/physics/validation.h"
 
 namespace contactsim::model {
@@ -14,8 +15,11 @@ Eigen::Vector4d Wxyz(const Quat& q) { return Eigen::Vector4d(q.w(), q.x(), q.y()
 
 // One collision element as a part of the body's compound shape, in the
 // owner link's frame: a cylinder as the convex hull of two regular
-// polygons (cylinder_hull.h), a mesh as the hull of its vertices.
-ShapePart PartOf(const PartPlan& part) {
+// polygons (cylinder_hull.h), a mesh as the hull of its vertices, at most
+// `max_hull_vertices` of them (hull_vertex_budget.h; 0: all). A mesh with
+// no hull keeps its vertices, so that building the shape names the part
+// and the reason, as for any other hull.
+ShapePart PartOf(const PartPlan& part, int max_hull_vertices) {
   const Geometry& g = *part.geometry;
   ShapePart p;
   p.position = part.origin.position;
@@ -32,15 +36,18 @@ ShapePart PartOf(const PartPlan& part) {
       p.type = ShapeType::kConvex;
       p.points = CylinderPoints(g.radius, g.length, CylinderSides());
       break;
-    case GeometryType::kMesh: p.type = ShapeType::kConvex; p.points = g.mesh_vertices; break;
+    case GeometryType::kMesh:
+      p.type = ShapeType::kConvex;
+      if (!BudgetedHullPoints(g.mesh_vertices, max_hull_vertices, &p.points).ok()) p.points = g.mesh_vertices;
+      break;
   }
   return p;
 }
 
 }  // namespace
 
-Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_static, const std::string& where,
-                        BodySettings* settings) {
+Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_static, int max_hull_vertices,
+                        const std::string& where, BodySettings* settings) {
   if (plan.parts.empty()) {
     return Status::InvalidArgument(where + " has no collision element (with the links merged into it); a body "
                                    "needs at least one shape");
@@ -52,7 +59,7 @@ Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_stati
   }
   BodySettings s;
   s.shape = ShapeType::kCompound;
-  for (const PartPlan& part : plan.parts) s.parts.push_back(PartOf(part));
+  for (const PartPlan& part : plan.parts) s.parts.push_back(PartOf(part, max_hull_vertices));
   s.position = owner_W.position;
   s.orientation = Wxyz(owner_W.orientation);
   s.fixed = is_static;

@@ -19,9 +19,11 @@
 namespace contactsim::model {
 
 // A body's settings from its plan, with its owner link's frame at `owner_W`
-// in the world. A static body (the fixed base) gets no mass.
-Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_static, const std::string& where,
-                        BodySettings* settings);
+// in the world. A static body (the fixed base) gets no mass. A mesh becomes
+// the hull of at most `max_hull_vertices` of its vertices (0: the full hull;
+// hull_vertex_budget.h).
+Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_static, int max_hull_vertices,
+                        const std::string& where, BodySettings* settings);
 
 // A moving joint's settings with the child link's frame at `child_W` in the
 // world at q = 0; the body ids are left for the caller. Fixed joints are

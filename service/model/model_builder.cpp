@@ -70,6 +70,7 @@ Status BuildModel(ModelDescription d, const ModelOptions& options, ModelBuild* b
       std::abs(options.base.orientation.norm() - 1.0) > 1e-6) {
     return Status::InvalidArgument(model + ": the base pose must be finite with a unit orientation");
   }
+  if (Status st = CheckMaxHullVertices(options.max_hull_vertices); !st.ok()) return st.Prefixed(model + ": ");
   ModelBuild b;
   std::vector<BodyPlan> plans;
   std::vector<Pose> link_in_body;
@@ -83,7 +84,9 @@ Status BuildModel(ModelDescription d, const ModelOptions& options, ModelBuild* b
     const bool is_static = options.fixed_base && plan.owner == tree.root;
     BuiltBody body;
     body.link = plan.owner;
-    if (Status st = MakeBodySettings(plan, b.link_pose_W[plan.owner], is_static, where, &body.settings); !st.ok()) {
+    if (Status st = MakeBodySettings(plan, b.link_pose_W[plan.owner], is_static, options.max_hull_vertices, where,
+                                     &body.settings);
+        !st.ok()) {
       return st;
     }
     body.settings.name = (options.name.empty() ? d.name : options.name) + "/" + d.links[plan.owner].name;

@@ -29,6 +29,7 @@
 
 #include "service/model/model_description.h"
 #include "service/physics/body_settings.h"
+#include "service/physics/hull_vertex_budget.h"
 #include "service/physics/joint.h"
 #include "service/physics/model_record.h"
 #include "service/physics/status.h"
@@ -40,6 +41,10 @@ struct ModelOptions {
   Pose base;                        // the root link's frame in the world
   bool fixed_base = false;          // the root link is static
   bool self_collide = false;        // the model's links not joined by a joint collide with each other
+  // Each collision mesh becomes the convex hull of at most this many of its
+  // vertices (at least 4; hull_vertex_budget.h, docs/models.md "Hull vertex
+  // budget"); 0: the full hull of every vertex.
+  int max_hull_vertices = kDefaultMaxHullVertices;
 };
 
 // One body of the built model: a link, with any links merged into it.

@@ -21,12 +21,6 @@
 namespace contactsim {
 namespace {
 
-// Relative distance tolerance: a point within kRelativeTolerance times the
-// size of the cloud from a face plane counts as on it. 1e-9 is far above the
-// round-off of a plane through three points (~1e-15 relative) and far below
-// any geometric feature a contact simulation resolves.
-constexpr double kRelativeTolerance = 1e-9;
-
 using Triangle = std::array<int, 3>;
 
 int64_t EdgeKey(int a, int b) { return (static_cast<int64_t>(a) << 32) | static_cast<uint32_t>(b); }
@@ -116,7 +110,6 @@ Status BuildConvexHull(const std::vector<Vec3>& points, std::shared_ptr<const Co
   if (points.size() < 4) {
     return Status::InvalidArgument("convex hull needs at least 4 points, got " + std::to_string(points.size()));
   }
-  Vec3 lo = points[0], hi = points[0];
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!IsFinite(points[i])) {
       std::ostringstream msg;
@@ -124,13 +117,8 @@ Status BuildConvexHull(const std::vector<Vec3>& points, std::shared_ptr<const Co
           << points[i].z() << ")";
       return Status::InvalidArgument(msg.str());
     }
-    lo = lo.cwiseMin(points[i]);
-    hi = hi.cwiseMax(points[i]);
   }
-  // size of the cloud plus its distance from the origin, whose round-off
-  // the plane offsets carry
-  const double scale = (hi - lo).norm() + 1e-3 * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-  const double tol = kRelativeTolerance * std::max(scale, std::numeric_limits<double>::min());
+  const double tol = HullTolerance(points);
 
   std::vector<Triangle> tris;
   Status status = Quickhull(points, tol, &tris);

@@ -5,12 +5,19 @@
 //   3. while a face has an outside set: take its furthest point (the eye),
 //      flood the faces the eye sees, replace them by a cone of triangles from
 //      the horizon to the eye, and redistribute their outside points.
+// With a vertex budget the faces are not taken in stack order: each round
+// takes the eye furthest above the current hull over all faces, and the
+// build stops once it has added as many vertices as the budget (qhull's
+// "TA" option, which MuJoCo's maxhullvert uses): the hull so far is a
+// greedy inner approximation, spanned by points of the cloud.
 // Faces are found across edges by a map from directed edge to face; each
 // edge (a, b) of a counter-clockwise face has its twin (b, a) in the
 // neighbour.
 #include "service/physics/quickhull.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <sstream>
 #include <string>
@@ -19,6 +26,9 @@
 
 namespace contactsim {
 namespace {
+
+// Relative distance tolerance of HullTolerance (quickhull.h).
+constexpr double kRelativeTolerance = 1e-9;
 
 struct Face {
   std::array<int, 3> v;
@@ -34,7 +44,7 @@ class Builder {
  public:
   Builder(const std::vector<Vec3>& points, double tolerance) : p_(points), tol_(tolerance) {}
 
-  Status Run(std::vector<std::array<int, 3>>* triangles) {
+  Status Run(int max_vertices, std::vector<std::array<int, 3>>* triangles) {
     int simplex[4] = {0, 0, 0, 0};
     Status status = InitialSimplex(simplex);
     if (!status.ok()) return status;
@@ -45,14 +55,18 @@ class Builder {
     std::vector<int> first_faces;
     for (int f = 0; f < static_cast<int>(faces_.size()); ++f) first_faces.push_back(f);
     Distribute(rest, first_faces);
-    std::vector<int> stack = first_faces;
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      if (!faces_[f].alive || faces_[f].outside.empty()) continue;
-      status = AddEye(f, &stack);
-      if (!status.ok()) return status;
+    if (max_vertices > 0) {
+      status = RunToBudget(max_vertices);
+    } else {
+      std::vector<int> stack = first_faces;
+      while (status.ok() && !stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        if (!faces_[f].alive || faces_[f].outside.empty()) continue;
+        status = AddEye(f, &stack);
+      }
     }
+    if (!status.ok()) return status;
     triangles->clear();
     for (const Face& face : faces_) {
       if (face.alive) triangles->push_back(face.v);
@@ -62,6 +76,36 @@ class Builder {
 
  private:
   double Distance(int f, int i) const { return faces_[f].normal.dot(p_[i]) - faces_[f].offset; }
+
+  // The alive face whose furthest outside point is highest above it; -1
+  // when no point is outside.
+  int HighestOutside() const {
+    int best_face = -1;
+    double height = 0.0;
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      if (!faces_[f].alive) continue;
+      for (int i : faces_[f].outside) {
+        const double d = Distance(f, i);
+        if (d > height) height = d, best_face = f;
+      }
+    }
+    return best_face;
+  }
+
+  // Adds the globally highest eye while fewer than `max_vertices` points
+  // have been added (the simplex's four, then one per eye), so the hull has
+  // at most that many vertices.
+  Status RunToBudget(int max_vertices) {
+    std::vector<int> cone;
+    for (int added = 4; added < max_vertices; ++added) {
+      const int f = HighestOutside();
+      if (f < 0) break;
+      Status status = AddEye(f, &cone);
+      if (!status.ok()) return status;
+      cone.clear();
+    }
+    return Status::Ok();
+  }
 
   // The two furthest apart of the six axis extremes, the point furthest from
   // their line, and the point furthest from the plane of those three.
@@ -221,10 +265,18 @@ class Builder {
 
 }  // namespace
 
+double HullTolerance(const std::vector<Vec3>& points) {
+  if (points.empty()) return 0.0;
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double scale = (hi - lo).norm() + 1e-3 * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  return kRelativeTolerance * std::max(scale, std::numeric_limits<double>::min());
+}
+
 Status Quickhull(const std::vector<Vec3>& points, double tolerance,
-                 std::vector<std::array<int, 3>>* triangles) {
+                 std::vector<std::array<int, 3>>* triangles, int max_vertices) {
   Builder builder(points, tolerance);
-  return builder.Run(triangles);
+  return builder.Run(max_vertices, triangles);
 }
 
 }  // namespace contactsim

@@ -3,6 +3,7 @@
 #include "service/model/model_adder.h"
 #include "service/model/model_file.h"
 #include "service/model/model_paths.h"
+#include "service/physics/hull_vertex_budget.h"
 #include "service/physics/validation.h"
 #include "service/scene/proto_text.h"
 
@@ -27,6 +28,9 @@ Status ReadSceneModel(const proto::SceneModel& m, const model::ModelPaths& paths
   out.options.base.orientation = q;
   out.options.fixed_base = m.fixed_base();
   out.options.self_collide = m.self_collide();
+  if (!(st = ResolveMaxHullVertices(m.max_hull_vertices(), &out.options.max_hull_vertices)).ok()) {
+    return st.Prefixed(out.origin + ": ");
+  }
   *model_out = std::move(out);
   return Status::Ok();
 }

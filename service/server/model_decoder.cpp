@@ -7,6 +7,7 @@
 #include <contactsim/model_cmd_t.hpp>
 
 #include "service/model/model_file.h"
+#include "service/physics/hull_vertex_budget.h"
 #include "service/physics/validation.h"
 #include "service/proto/model.pb.h"
 #include "service/scene/model_proto.h"
@@ -96,6 +97,7 @@ Status DecodeLoad(const model_cmd_t& m, const DecodeContext& context, Command* c
   if (!st.ok()) return st;
   o.fixed_base = m.fixed_base;
   o.self_collide = m.self_collide;
+  if (!(st = ResolveMaxHullVertices(m.max_hull_vertices, &o.max_hull_vertices)).ok()) return st;
   auto d = std::make_shared<model::ModelDescription>();
   std::string resolved;
   if (!(st = ReadLoadedModel(m, context, d.get(), &resolved)).ok()) return st;

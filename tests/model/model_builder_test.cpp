@@ -320,5 +320,33 @@ TEST(ModelBuilderTest, MasslessLinks) {
   EXPECT_EQ(b.link_body[3], 1);
 }
 
+// Verifies that a mesh link's hull takes at most the options' vertex budget
+// of the mesh's points (the default 64, or another), that 0 keeps every
+// hull vertex, and that a budget below four is refused naming the model.
+TEST(ModelBuilderTest, MeshHullsKeepTheVertexBudget) {
+  ModelDescription d = Arm();
+  Geometry& g = d.links[2].collisions[0].geometry;
+  g.type = GeometryType::kMesh;
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < 300; ++i) {  // 300 points on a sphere of 4 cm: every one a hull vertex
+    const double z = 1.0 - 2.0 * (i + 0.5) / 300;
+    const double r = std::sqrt(1.0 - z * z);
+    g.mesh_vertices.push_back(0.04 * Vec3(r * std::cos(golden * i), r * std::sin(golden * i), z));
+  }
+  for (int budget : {kDefaultMaxHullVertices, 16, 0}) {
+    ModelOptions o;
+    o.max_hull_vertices = budget;
+    ModelBuild b;
+    ASSERT_TRUE(BuildModel(d, o, &b).ok()) << budget;
+    const std::vector<Vec3>& points = b.bodies[2].settings.parts[0].points;
+    EXPECT_EQ(static_cast<int>(points.size()), budget == 0 ? 300 : budget) << budget;
+  }
+  ModelOptions bad;
+  bad.max_hull_vertices = 3;
+  ModelBuild b;
+  const Status st = BuildModel(d, bad, &b);
+  EXPECT_EQ(st.message(), "model \"arm\" (<inline>): max_hull_vertices must be 0 (every vertex) or at least 4, got 3");
+}
+
 }  // namespace
 }  // namespace contactsim::model

@@ -352,3 +352,89 @@ def test_the_clis_load_list_and_remove_a_model(models_server):
     assert cli(models_server, "model", "remove", "1").returncode == 0
     r = cli(models_server, "model", "list")
     assert r.returncode == 0 and r.stdout.strip() == "", r.stdout + r.stderr
+
+
+def _sphere_directions(n):
+    """n unit vectors spread evenly over the sphere (a Fibonacci lattice)."""
+    i = np.arange(n) + 0.5
+    z = 1.0 - 2.0 * i / n
+    s = np.sqrt(1.0 - z * z)
+    a = math.pi * (3.0 - math.sqrt(5.0)) * i
+    return np.stack([s * np.cos(a), s * np.sin(a), z], axis=1)
+
+
+def _link_radii(c, iiwa, centres, directions):
+    """{link: distance from its centre to its hull along each direction}, by
+    rays cast at the centre from 1 m out, every other body ignored (nan
+    where a ray misses)."""
+    bodies = {iiwa.body_id(l) for l in iiwa.links}
+    out = {}
+    for link in iiwa.links:
+        b = iiwa.body_id(link)
+        centre = centres[link]
+        hit, _, _, _, dist = c.ray_cast(centre + directions, -directions, 2.0, ignore=sorted(bodies - {b}))
+        out[link] = np.where(hit, 1.0 - np.asarray(dist), np.nan)
+    return out
+
+
+# The default hull budget's shape error on the iiwa's links (hulls of 296 to
+# 576 vertices cut to 64): the simplified hull is inside the full one, and
+# its surface is within HULL_RADIAL_GAP of the full hull's along 400
+# directions from each link's centre (measured: at most 1.4 to 5.8 mm per
+# link, 0.2 to 1.2 mm on average; a ray meeting the surface at a slant
+# measures more than the distance between the surfaces); a box set 1 mm
+# into the top of the hand reports the same contact, within
+# HULL_CONTACT_TOL, as with the full hulls (the hand's flat top keeps its
+# plane: its extreme points are the first the budget keeps).
+HULL_RADIAL_GAP = 7e-3  # m
+HULL_CONTACT_TOL = 1e-4  # m and rad
+
+
+def _iiwa_hull_probe(c, budget, centres=None):
+    """The iiwa's link radii (_link_radii, from `centres`, or from each
+    body's position, returned) and the contacts of a 0.2 m box set 1 mm into
+    the top of its hand, with each mesh's hull cut to `budget` vertices (-1:
+    the full hulls, 0: the default). No gravity: nothing moves before the
+    contacts are found; a step of 1/30 s, so that CONTACTS (30 Hz) has that
+    first step's contacts."""
+    c.reset()
+    c.set_gravity((0, 0, 0))
+    c.set_timestep(1.0 / 30.0)
+    iiwa = c.load_model(IIWA, name="iiwa", fixed_base=True, max_hull_vertices=budget)
+    state = c.wait_for_state(lambda s: iiwa.body_id("lbr_iiwa_link_7") in s.bodies, timeout=5)
+    # a static base's body sits at its hull's centroid, which the budget moves
+    if centres is None:
+        centres = {l: np.asarray(state.bodies[iiwa.body_id(l)].position) for l in iiwa.links}
+    radii = _link_radii(c, iiwa, centres, _sphere_directions(400))
+    hand = iiwa.body_id("lbr_iiwa_link_7")
+    hit, ids, points, _, _ = c.ray_cast([(0, 0, 3)], [(0, 0, -1)], 5.0)
+    assert hit[0] and ids[0] == hand, "the ray down the upright arm hits body %d" % ids[0]
+    box = c.add_box((0.1, 0.1, 0.1), position=(0, 0, points[0][2] + 0.1 - 1e-3), mass=1.0)
+    c.step(1)
+    contacts = [x for x in c.contacts() if {x.body_a, x.body_b} == {hand, box}]
+    return radii, contacts, centres
+
+
+# Verifies that the iiwa's meshes cut to the default hull budget keep the
+# links' shape (HULL_RADIAL_GAP, inside the full hulls) and their contacts
+# (HULL_CONTACT_TOL), and that a budget below 4 is refused.
+def test_simplified_hulls_keep_the_links_shape_and_contacts(models_server):
+    c = models_server.client
+    full, full_contacts, centres = _iiwa_hull_probe(c, -1)
+    cut, cut_contacts, _ = _iiwa_hull_probe(c, 0, centres)
+    gaps = {}
+    for link in full:
+        both = ~np.isnan(full[link]) & ~np.isnan(cut[link])
+        assert both.sum() > 300, link
+        gaps[link] = full[link][both] - cut[link][both]
+    for link, gap in gaps.items():
+        assert gap.min() > -1e-9, (link, gap.min())
+        assert gap.max() < HULL_RADIAL_GAP, (link, gap.max())
+    assert full_contacts and len(cut_contacts) == len(full_contacts), (full_contacts, cut_contacts)
+    for a, b in zip(full_contacts, cut_contacts):
+        assert abs(a.depth - b.depth) < HULL_CONTACT_TOL, (a, b)
+        assert abs(a.depth - 1e-3) < HULL_CONTACT_TOL, a
+        assert np.abs(a.normal - b.normal).max() < HULL_CONTACT_TOL, (a, b)
+    with pytest.raises(contactsim.CommandError) as e:
+        c.load_model(IIWA, name="tiny", fixed_base=True, max_hull_vertices=3)
+    assert "max_hull_vertices must be -1 (every vertex), 0 (the default, 64) or at least 4, got 3" in str(e.value)

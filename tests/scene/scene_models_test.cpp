@@ -74,5 +74,18 @@ TEST_F(SceneModelsTest, AMissingModelNamesTheSceneLine) {
   EXPECT_NE(st.message().find("nowhere.urdf"), std::string::npos) << st.message();
 }
 
+// Verifies that a model's hull budget below four is an error of the
+// scene's, naming the line, the entry and the value.
+TEST_F(SceneModelsTest, AHullBudgetBelowFourNamesTheSceneLine) {
+  SceneSpec scene;
+  const Status st = ParseSceneText("models { path: \"pendulum.urdf\" max_hull_vertices: 2 }\n", Scene(), &scene);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("scene.pbtxt:1: models[0]: max_hull_vertices must be -1 (every vertex), 0 (the "
+                              "default, 64) or at least 4, got 2"),
+            std::string::npos)
+      << st.message();
+  ASSERT_TRUE(ParseSceneText("models { path: \"pendulum.urdf\" max_hull_vertices: -1 }\n", Scene(), &scene).ok());
+}
+
 }  // namespace
 }  // namespace contactsim

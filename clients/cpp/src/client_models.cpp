@@ -55,6 +55,7 @@ Result<Model> Client::LoadModel(const std::string& path_or_text, const ModelOpti
   std::copy(options.orientation.begin(), options.orientation.end(), command.orientation);
   command.fixed_base = options.fixed_base;
   command.self_collide = options.self_collide;
+  command.max_hull_vertices = options.max_hull_vertices;
   Result<Model> out;
   out.status = Send(command);
   if (!out.ok()) return out;

@@ -6,6 +6,7 @@
       remove ID | joint add KIND A B --anchor X Y Z [opts] | joint remove ID
       joint state | joint set ID [--torque T] [--target-position Q] [--kp KP] [--kd KD] [...] | joint clear ID
       model load PATH [--name N] [--position X Y Z] [--orientation W X Y Z] [--fixed-base] [--self-collide]
+                 [--max-hull-vertices N]
       model remove ID | model list
       method NAME [key=value ...] | pause | resume | step [N] | reset
       compare METHOD[:key=value,...] ... [--steps N] [--workers W] [--address A] [--plot FILE] [--csv FILE]
@@ -145,6 +146,8 @@ def _model_parser(sub):
                    help="the root link's orientation")
     a.add_argument("--fixed-base", action="store_true", help="the root link is static")
     a.add_argument("--self-collide", action="store_true", help="the model's links collide with each other")
+    a.add_argument("--max-hull-vertices", type=int, default=0,
+                   help="each collision mesh's hull keeps at most N vertices (0: the server's default, 64; -1: all)")
     m.add_parser("remove", help="remove a model with its bodies and joints").add_argument("id", type=int)
     m.add_parser("list", help="list the loaded models")
 
@@ -160,7 +163,8 @@ def _print_model(model):
 def _run_model(c, a):
     if a.model_cmd == "load":
         _print_model(c.load_model(a.path, name=a.name, position=a.position, orientation=a.orientation,
-                                  fixed_base=a.fixed_base, self_collide=a.self_collide))
+                                  fixed_base=a.fixed_base, self_collide=a.self_collide,
+                                  max_hull_vertices=a.max_hull_vertices))
         return None
     if a.model_cmd == "list":
         for model in c.models().values():

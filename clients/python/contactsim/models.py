@@ -197,7 +197,7 @@ class ModelCommands:
     """Mixin of Client: needs its ``_send(channel, msg)`` and the MODEL_INFO it keeps."""
 
     def load_model(self, path_or_text, *, name="", position=(0, 0, 0), orientation=(1, 0, 0, 0),
-                   fixed_base=False, self_collide=False, format=None, timeout=None):
+                   fixed_base=False, self_collide=False, max_hull_vertices=0, format=None, timeout=None):
         """Loads a URDF or SDF model and returns its :class:`Model`.
 
         path_or_text: a file path (a file on this host is sent as its absolute
@@ -206,7 +206,10 @@ class ModelCommands:
         in the world (unique; "" = the file's). position (m) and orientation
         (w, x, y, z): the root link's frame in the world. fixed_base: the root
         link is static. self_collide: the model's links collide with each
-        other (two joined by a joint never do). format: "urdf", "sdf" or None
+        other (two joined by a joint never do). max_hull_vertices: each
+        collision mesh becomes the convex hull of at most this many of its
+        vertices (>= 4; 0: the server's default, 64; -1: every vertex, the
+        full hull; docs/models.md, "Hull vertex budget"). format: "urdf", "sdf" or None
         (from the extension or the text). Bad input raises CommandError with
         the server's message, and nothing is added.
         """
@@ -223,6 +226,7 @@ class ModelCommands:
         m.orientation = vector(orientation, 4, "orientation")
         m.fixed_base = bool(fixed_base)
         m.self_collide = bool(self_collide)
+        m.max_hull_vertices = int(max_hull_vertices)
         reply = self._send("MODEL_CMD", m, timeout=timeout)
         return self._model_with_id(reply.ids[0], timeout)
 

@@ -189,6 +189,9 @@ struct ModelOptions {
   std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z)
   bool fixed_base = false;                                // the root link is static
   bool self_collide = false;  // the model's links collide (two joined by a joint never do)
+  // each collision mesh: the convex hull of at most this many of its vertices
+  // (>= 4); 0: the server's default (64); -1: every vertex (docs/models.md)
+  int32_t max_hull_vertices = 0;
   int8_t format = model_cmd_t::FORMAT_AUTO;               // or FORMAT_URDF, FORMAT_SDF
 };
 
