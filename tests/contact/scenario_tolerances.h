@@ -109,13 +109,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
                                    "(energy kept to 0.3% with e = 1); the impacts take turns only when a gap takes "
                                    "longer to close than a contact lasts (the 2 mm cradle)"},
     {"penalty", "row * gap=0.0001 e=*", "0.11-0.31 v0: 0.1 mm closes in 0.02-0.2 ms, within the 4 ms contacts"},
-    {"lcp_pgs", "row * e=1", "0.66-0.72 v0: one LCP of all the step's contacts with v_n+ >= -e v_n- per contact is "
-                             "a simultaneous impact law, which spreads the strike"},
-    {"lcp_pgs", "row * e=1 energy", "0.84-0.99 with 0.1 mm gaps (kept at gap 0): not traced further"},
-    {"lcp_pgs", "row * e=0.5", "0.38-0.41 v0: the simultaneous impact law, as for e = 1"},
-    {"lcp_lemke", "row * e=1", "0.66-0.71 v0: the simultaneous impact law, as lcp_pgs"},
-    {"lcp_lemke", "row * e=1 energy", "0.85-0.99 with 0.1 mm gaps: as lcp_pgs"},
-    {"lcp_lemke", "row * e=0.5", "0.39-0.41 v0: as lcp_pgs"},
     {"lcp_lemke", "row cube n=[56] gap=0 e=0", "0.017-0.035 v0: Lemke's basic solution among a face's four "
                                                "dependent corners turns the cubes; not traced further"},
     {"barrier", "row sphere n=6 gap=0.0001 e=0 momentum", "-9.7e-6 relative: not traced further"},
