@@ -7,6 +7,7 @@
 #include "service/contact/jointed_contacts.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
+#include "service/contact/lcp/lemke_components.h"
 #include "service/contact/lcp/lemke_rows.h"
 #include "service/contact/patch_torsion.h"
 #include "service/physics/integrator.h"
@@ -79,11 +80,12 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   if (use_lemke) {
     LemkeOptions options;
     options.max_pivots = params_.max_pivots;
+    options.regularization = kLemkeRegularization;
     // Lemke's pyramid is exact along t1: turn t1 to the predicted slip
     // (lcp_contact_rows.h); a fallback solves the rows as built, as pgs does
     lemke_rows_ = rows_;
     AlignFrictionRows(contacts_, world, free_, FrictionPoints(), &lemke_rows_);
-    const Status st = SolveRowsLemke(lemke_rows_, bodies, options, &report_);
+    const Status st = SolveRowsLemkeByComponent(lemke_rows_, bodies, options, &report_);
     if (st.ok() && report_.converged) {
       rows_.swap(lemke_rows_);
       return;
