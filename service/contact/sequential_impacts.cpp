@@ -9,13 +9,13 @@
 namespace contactsim {
 namespace {
 
-// Step 1's passes over the pairs, as the impulse method's
-// collision_passes: a row of six touching bodies needs a few under e = 1
-// (the rows come colour by colour, so a strike moves two pairs a pass), and
-// e < 1 makes the pairs meet again, each time e times slower, until they
-// approach slower than the threshold. A phase still running after this many
-// passes leaves its targets at least 0 (no point approaches).
-constexpr int kMaxPasses = 20;
+// Step 1's passes over the pairs (ImpactCascade::max_passes, 20 by
+// default), as the impulse method's collision_passes: a row of six touching
+// bodies needs a few under e = 1 (the rows come colour by colour, so a
+// strike moves two pairs a pass), and e < 1 makes the pairs meet again,
+// each time e times slower, until they approach slower than the threshold.
+// A phase still running after them leaves its targets at least 0 (no point
+// approaches).
 // Gauss-Seidel iterations over the points of one pair in one collision
 // (a face's four share an impact within them).
 constexpr int kPairIterations = 32;
@@ -93,6 +93,7 @@ bool SequentialImpacts::Collide(int begin, int end, double threshold) {
     }
     if (worst <= kTolerance * scale) break;
   }
+  for (int k = begin; k < end; ++k) rows_[k].phase += j_[k];
   return true;
 }
 
@@ -121,7 +122,7 @@ void SequentialImpacts::KeepRestitutionComponents() {
   gain_.resize(kept);
 }
 
-bool SequentialImpacts::FindTargets(double threshold) {
+bool SequentialImpacts::FindTargets(double threshold, const ImpactCascade& cascade) {
   threshold_ = threshold;
   scratch_ = start_;
   gain_.assign(rows_.size(), 0.0);
@@ -129,7 +130,10 @@ bool SequentialImpacts::FindTargets(double threshold) {
   KeepRestitutionComponents();
   if (rows_.empty()) return false;
   j_.assign(rows_.size(), 0.0);
-  for (int pass = 0; pass < kMaxPasses; ++pass) {
+  double fastest = 0.0;  // m/s
+  for (size_t k = 0; k < rows_.size(); ++k) fastest = std::max(fastest, -Approach(static_cast<int>(k)));
+  for (int pass = 0; pass < cascade.max_passes; ++pass) {
+    if (pass == 1 && cascade.relative > 0.0) threshold = std::min(threshold, cascade.relative * fastest);
     bool any = false;
     for (int begin = 0; begin < static_cast<int>(rows_.size());) {
       int end = begin + 1;

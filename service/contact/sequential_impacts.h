@@ -61,6 +61,20 @@ struct ImpactRow {
   double impact = 0.0;
   double lambda = 0.0;  // N s: in, the method's accumulated impulse; out, after step 3
   double target = 0.0;  // m/s, out (step 2)
+  double phase = 0.0;   // N s, out: the impulse step 1 gave the row, summed over its collisions
+};
+
+// How far step 1 follows a cascade of impacts; the defaults are soft's and
+// xpbd's.
+struct ImpactCascade {
+  // > 0: after the first pass, pairs keep colliding while they approach
+  // faster than this share of the phase's fastest approach (if that is
+  // below the threshold): with e < 1 a struck row meets again and again,
+  // each time e times slower, and pairs stopped at the threshold move on
+  // together (0.5 m/s into six touching spheres with e = 0.5 and a
+  // 0.01 m/s threshold: 0.017 v0 off the one-at-a-time answer)
+  double relative = 0.0;
+  int max_passes = 20;
 };
 
 class SequentialImpacts {
@@ -73,7 +87,7 @@ class SequentialImpacts {
   void AddRow(const ImpactRow& row) { rows_.push_back(row); }
   // Steps 1 and 2 (threshold in m/s); keeps only the rows of components
   // with restitution and returns whether any is left.
-  bool FindTargets(double threshold);
+  bool FindTargets(double threshold, const ImpactCascade& cascade = ImpactCascade());
   // Step 3 on the method's bodies.
   void Solve(std::vector<SoftBody>& bodies);
   const std::vector<ImpactRow>& rows() const { return rows_; }

@@ -130,6 +130,32 @@ TEST(Lemke, NonNegativeQGivesZeroWithoutPivots) {
   EXPECT_EQ(sol.z.norm(), 0.0);
 }
 
+// Verifies the regularised pivots on dependent rows: the four corners
+// (+-1, +-1) of a face of a body of unit mass and inertia approaching at
+// 1 m/s, M = J J^T with J_i = (1, y_i, -x_i) (rank three): z solves it
+// when J^T z = (1, 0, 0), a line along the corners' dependency (+ - + -),
+// whose least-norm point loads each corner with 1/4, which the
+// regularised path and its least-norm polish give to round-off, with
+// w = M z + q = 0. Lemke without it also solves (w = 0) at some vertex.
+TEST(Lemke, RegularisedPivotsGiveTheLeastNormSplitOfDependentRows) {
+  MatX J(4, 3);
+  const double corners[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (int i = 0; i < 4; ++i) J.row(i) << 1.0, corners[i][1], -corners[i][0];
+  const MatX M = J * J.transpose();
+  const VecX q = VecX::Constant(4, -1.0);
+  for (const double eps : {0.0, 1e-9}) {
+    LemkeOptions options;
+    options.regularization = eps;
+    const LcpSolution sol = SolveLemke(M, q, options);
+    ASSERT_EQ(sol.outcome, LcpOutcome::kSolved) << "eps " << eps;
+    EXPECT_LT((M * sol.z + q).cwiseAbs().maxCoeff(), 1e-12) << "eps " << eps;
+    std::printf("eps %g: z %.6f %.6f %.6f %.6f\n", eps, sol.z[0], sol.z[1], sol.z[2], sol.z[3]);
+    if (eps > 0.0) {
+      for (int i = 0; i < 4; ++i) EXPECT_NEAR(sol.z[i], 0.25, 1e-12) << "corner " << i;
+    }
+  }
+}
+
 // Verifies the failure status: M = -I, q = -1 has no solution (w = -z - 1 < 0)
 // and Lemke ends on a secondary ray.
 TEST(Lemke, InfeasibleProblemEndsOnARay) {

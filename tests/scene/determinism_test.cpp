@@ -39,8 +39,8 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
       {"xpbd", {}, 0x4de916201833cc1dull},
-      {"lcp", {{"solver", "pgs"}}, 0x1ccbedbe757a7971ull},
-      {"lcp", {{"solver", "lemke"}}, 0xbae5271c2ffe5f26ull},
+      {"lcp", {{"solver", "pgs"}}, 0xb789a59987f95e86ull},
+      {"lcp", {{"solver", "lemke"}}, 0x17bfed063c21bc4full},
       {"barrier", {}, 0xa9d684da5b50ecf2ull},
       {"soft", {}, 0x0172ddec7b574a4full},
   };

@@ -7,6 +7,7 @@
 #include "service/contact/jointed_contacts.h"
 #include "service/contact/joints/joint_solver.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
+#include "service/contact/lcp/lemke_components.h"
 #include "service/contact/lcp/lemke_rows.h"
 #include "service/contact/patch_torsion.h"
 #include "service/physics/integrator.h"
@@ -79,11 +80,12 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
   if (use_lemke) {
     LemkeOptions options;
     options.max_pivots = params_.max_pivots;
+    options.regularization = kLemkeRegularization;
     // Lemke's pyramid is exact along t1: turn t1 to the predicted slip
     // (lcp_contact_rows.h); a fallback solves the rows as built, as pgs does
     lemke_rows_ = rows_;
     AlignFrictionRows(contacts_, world, free_, FrictionPoints(), &lemke_rows_);
-    const Status st = SolveRowsLemke(lemke_rows_, bodies, options, &report_);
+    const Status st = SolveRowsLemkeByComponent(lemke_rows_, bodies, options, &report_);
     if (st.ok() && report_.converged) {
       rows_.swap(lemke_rows_);
       return;
@@ -99,6 +101,11 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
     if (!HasJointDynamics(world)) warm_start_.LoadJoints(joint_blocks_, 3 * contacts_.size(), &rows_);
   } else {
     for (size_t k = 3 * contacts_.size(); k < rows_.size(); ++k) rows_[k].lambda = 0.0;
+  }
+  // an impact row starts from the impulse of the sequential impacts, whose
+  // targets it solves for (lcp_impacts.h)
+  for (size_t k = 0; k < impact_impulses_.size(); ++k) {
+    if (impact_impulses_[k] >= 0.0) rows_[3 * k].lambda = impact_impulses_[k];
   }
   PgsOptions options;
   options.iterations = params_.iterations;
@@ -121,6 +128,25 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
     direct.always = &jointed_contacts_;
   }
   subspace_.Solve(rows_, bodies, direct);
+}
+
+void LcpMethod::StoreWarmStart() {
+  // an impact's impulse is no start for the next step, which sees the
+  // bodies after it: a row of touching cubes struck at one end started the
+  // next step from the strike's impulses, and 20 sweeps left its bodies
+  // moving at 0.02 v0; the cache keeps what a row carried beyond its impact
+  // (the rows keep their whole impulse for the report)
+  std::vector<double>& solved = impact_impulses_;  // no longer needed: holds the solved impulses meanwhile
+  for (size_t k = 0; k < solved.size(); ++k) {
+    if (solved[k] < 0.0) continue;
+    const double impact = solved[k];
+    solved[k] = rows_[3 * k].lambda;
+    rows_[3 * k].lambda = std::max(solved[k] - impact, 0.0);
+  }
+  warm_start_.Store(contacts_, rows_);
+  for (size_t k = 0; k < solved.size(); ++k) {
+    if (solved[k] >= 0.0) rows_[3 * k].lambda = solved[k];
+  }
 }
 
 StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
@@ -159,6 +185,11 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
     friction_points_.clear();
   }
   AppendContactRows(contacts_, world, before_, impacts_, row_options, FrictionPoints(), &rows_);
+  impact_impulses_.clear();
+  if (params_.impacts == "sequential") {
+    SequenceImpacts(contacts_, world, before_, impacts_, params_.restitution_threshold, &sequence_, &rows_,
+                    &impact_impulses_);
+  }
 
   IntegrateMomenta(world, h);
   LoadSolverBodies(world, &bodies_);
@@ -175,7 +206,7 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
   report_ = SolveReport();
   if (!rows_.empty()) Solve(world, bodies_);
   StoreSolverBodies(bodies_, world);
-  warm_start_.Store(contacts_, rows_);
+  StoreWarmStart();
   warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);
   std::vector<double> lambda(joint_rows_.size()), drive_impulses;
   for (size_t k = 0; k < joint_rows_.size(); ++k) lambda[k] = rows_[first_joint_row + k].lambda;

@@ -18,6 +18,9 @@
 //  3. v* = v + h M^-1 f_ext (IntegrateMomenta);
 //  4. rows: per contact a normal row with Newton restitution above
 //     restitution_threshold and two friction rows (lcp_contact_rows.h);
+//     with impacts = sequential the normal rows of contacts that meet in
+//     components with restitution target the velocities of their impacts
+//     taken one at a time (lcp_impacts.h);
 //     then the joints' rows (BuildJointVelocityRows, joint_solver.h: the
 //     same Jacobians and velocity products as under impulse and penalty),
 //     bilateral (lo = -inf, hi = +inf) except hinge limits, so that joints
@@ -51,6 +54,7 @@
 #include "service/contact/contact_method.h"
 #include "service/contact/joints/joint_rows.h"
 #include "service/contact/lcp/lcp_contact_rows.h"
+#include "service/contact/lcp/lcp_impacts.h"
 #include "service/contact/lcp/lcp_params.h"
 #include "service/contact/lcp/pgs.h"
 #include "service/contact/warm_start_cache.h"
@@ -83,6 +87,8 @@ class LcpMethod : public ContactMethod {
   StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts);
   void Solve(const World& world, std::vector<SolverBody>& bodies);
+  // warm_start_ from the rows, less the impacts' impulses
+  void StoreWarmStart();
   // where the contacts' friction acts with patch_torsion, else null (the contact points)
   const std::vector<Vec3>* FrictionPoints() const {
     return friction_points_.empty() ? nullptr : &friction_points_;
@@ -93,6 +99,8 @@ class LcpMethod : public ContactMethod {
   std::vector<Vec3> friction_points_;  // patch_torsion.h
   std::vector<SolverBody> before_, free_, bodies_;
   std::vector<Impact> impacts_;
+  SequentialImpacts sequence_;           // impacts = sequential (lcp_impacts.h)
+  std::vector<double> impact_impulses_;  // per contact, N s, the impacts' warm start (-1: none)
   std::vector<ConstraintRow> rows_, split_rows_, joint_rows_, lemke_rows_;
   std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;

@@ -28,6 +28,10 @@ const ParamTable<LcpParams>& LcpParamTable() {
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),
       PatchTorsionParam(&P::patch_torsion),
+      ChoiceParam("impacts", &P::impacts, {"sequential", "simultaneous"},
+                  "restitution across contacts that meet in one step: sequential = the impacts one pair at a time "
+                  "(Newton's cradle passes its strike on; lcp_impacts.h), simultaneous = one LCP with "
+                  "v_n+ >= -e v_n- per contact"),
   };
   return table;
 }

@@ -26,6 +26,7 @@ struct LcpParams {
   double joint_substep_ratio = 100.0;
   int joint_substeps = 4;
   std::string patch_torsion = "off";     // patch_torsion.h
+  std::string impacts = "sequential";    // lcp_impacts.h
 };
 
 const ParamTable<LcpParams>& LcpParamTable();

@@ -1,6 +1,7 @@
 #include "service/contact/lcp/lemke.h"
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -76,7 +77,7 @@ class Tableau {
 
 // z from the final basis: the basic z solve M_SS z_S = -q_S (the basis is
 // nonsingular, hence so is M_SS, since det B = +-det M_SS).
-void Polish(const MatX& M, const VecX& q, const std::vector<int>& basic_z, VecX* z) {
+void Polish(const MatX& M, const VecX& q, const std::vector<int>& basic_z, bool least_norm, VecX* z) {
   const int m = static_cast<int>(basic_z.size());
   if (m == 0) return;
   MatX Mss(m, m);
@@ -85,8 +86,9 @@ void Polish(const MatX& M, const VecX& q, const std::vector<int>& basic_z, VecX*
     qs[i] = q[basic_z[i]];
     for (int j = 0; j < m; ++j) Mss(i, j) = M(basic_z[i], basic_z[j]);
   }
-  const Eigen::PartialPivLU<MatX> lu(Mss);
-  const VecX zs = lu.solve(-qs);
+  // a regularised path ends with dependent rows basic: M_SS singular
+  const VecX zs = least_norm ? VecX(Eigen::CompleteOrthogonalDecomposition<MatX>(Mss).solve(-qs))
+                             : VecX(Eigen::PartialPivLU<MatX>(Mss).solve(-qs));
   if (!zs.allFinite()) return;
   VecX polished = VecX::Zero(z->size());
   for (int i = 0; i < m; ++i) polished[basic_z[i]] = zs[i];
@@ -107,7 +109,7 @@ LcpSolution SolveLemke(const MatX& M, const VecX& q, const LemkeOptions& options
   const double eps = options.pivot_tolerance * scale;
   const double tie = 1e-12;
   const int max_pivots = options.max_pivots > 0 ? options.max_pivots : 50 * (n + 1);
-  Tableau t(M, q);
+  Tableau t(options.regularization > 0.0 ? MatX(M + options.regularization * MatX::Identity(n, n)) : M, q);
 
   // first pivot: z0 enters in the row of the most negative q_i / d_i, which
   // makes every w_i >= 0 (lexicographic among ties, as in the main loop)
@@ -154,7 +156,7 @@ LcpSolution SolveLemke(const MatX& M, const VecX& q, const LemkeOptions& options
     }
   }
   std::sort(basic_z.begin(), basic_z.end());
-  Polish(M, q, basic_z, &sol.z);
+  Polish(M, q, basic_z, options.regularization > 0.0, &sol.z);
   sol.z = sol.z.cwiseMax(0.0);
   sol.w = M * sol.z + q;
   return sol;

@@ -19,6 +19,17 @@
 // once more by LU, so that round-off accumulated over the pivots does not
 // reach the answer.
 //
+// Dependent rows (the four coplanar corners of a face, whose M_SS has rank
+// three) make M singular and the LCP's solutions a set: Lemke's path ends at
+// one of its vertices, which loads some corners and not others. With
+// `regularization` eps > 0 the pivots solve LCP(M + eps I, q) instead, whose
+// matrix is positive definite where M is semi-definite, so its one solution
+// lies near the least-norm solution of the set (Tikhonov; ODE's constraint
+// force mixing serves the same end), every dependent corner in the basis;
+// the polish then solves M_SS z_S = -q_S for the least-norm z_S by a
+// complete orthogonal decomposition, which removes the eps bias, and is
+// kept when its complementarity error on M is no larger.
+//
 // Cost: O(n^2) per pivot on the dense tableau, typically O(n) pivots: meant
 // for small and medium problems (up to a few hundred variables).
 #pragma once
@@ -30,6 +41,9 @@ namespace contactsim {
 struct LemkeOptions {
   int max_pivots = 0;            // 0: 50 (n + 1)
   double pivot_tolerance = 1e-12;// relative to the largest |M_ij| (and 1): smaller entries count as zero
+  // > 0: the pivots run on M + regularization I, and the final basis is
+  // polished on M itself by a minimum-norm solve (see above)
+  double regularization = 0.0;
 };
 
 // Solves LCP(M, q) with the covering vector d = (1, ..., 1). Fills z, w,
