@@ -118,8 +118,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"lcp_lemke", "row * e=0.5", "0.39-0.41 v0: as lcp_pgs"},
     {"lcp_lemke", "row cube n=[56] gap=0 e=0", "0.017-0.035 v0: Lemke's basic solution among a face's four "
                                                "dependent corners turns the cubes; not traced further"},
-    {"barrier", "row sphere n=6 gap=0.0001 e=0 momentum", "-9.7e-6 relative: not traced further"},
-    {"barrier", "rack e=0 momentum", "-2.5e-5 relative: not traced further"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's
     // forces over w = d_hat / 50, so 50 times stiffer than a resting gap),
