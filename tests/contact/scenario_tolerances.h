@@ -118,8 +118,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
                                    "(energy kept to 0.3% with e = 1); the impacts take turns only when a gap takes "
                                    "longer to close than a contact lasts (the 2 mm cradle)"},
     {"penalty", "row * gap=0.0001 e=*", "0.11-0.31 v0: 0.1 mm closes in 0.02-0.2 ms, within the 4 ms contacts"},
-    {"barrier", "row sphere n=6 gap=0.0001 e=0 momentum", "-9.7e-6 relative: not traced further"},
-    {"barrier", "rack e=0 momentum", "-2.5e-5 relative: not traced further"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's
     // forces over w = d_hat / 50, so 50 times stiffer than a resting gap),

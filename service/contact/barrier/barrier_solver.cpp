@@ -358,6 +358,8 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   std::vector<Entry> entries;
   Collect(nullptr, &entries);
   InitialKappa(world, entries);
+  std::vector<std::pair<int, int>> start_pairs;
+  for (const Entry& e : entries) start_pairs.emplace_back(e.a, e.b);
 
   // friction lagged from the end of the last step (IPC sec. 5), or from now
   // when a body restarted from its rigid state
@@ -392,6 +394,7 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   // every pair within d_hat at the end, for the contacts and the lag
   ActivateAll();
   Collect(nullptr, &entries);
+  if (BalanceMomentum(std::move(start_pairs), entries)) Collect(nullptr, &entries);
   WriteBack(world, entries, contacts, &result);
   result.kappa = kappa_;
   Remember(world, entries);

@@ -124,6 +124,7 @@
 #include <algorithm>
 #include <map>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "service/collision/contact.h"
@@ -271,6 +272,11 @@ class BarrierSolver {
   void Minimise(std::vector<Entry>* entries, double* last_min, BarrierStepResult* result);
   // Makes every dynamic body active again.
   void ActivateAll();
+  // Translates each cluster of dynamic bodies joined by `pairs` (of bodies_
+  // indices), `entries` or the friction pairs, and touching no fixed body,
+  // so that its momentum is the implicit step's: sum m (p - p_pred) = 0
+  // (barrier_momentum.cpp); true when it moved a body.
+  bool BalanceMomentum(std::vector<std::pair<int, int>> pairs, const std::vector<Entry>& entries);
 
   // Writes q back to the rigid bodies, and the contacts within d_hat.
   void WriteBack(World& world, const std::vector<Entry>& entries, ContactSet* contacts,
