@@ -10,9 +10,24 @@ namespace wide {
 
 const WideKernels& BaseKernels() { return Lanes<xsimd::default_arch>::Table(); }
 
+namespace {
+
+// Whether the processor and the system run AVX. Not xsimd 8's
+// available_architectures(), which reads AVX's bit from the wrong CPUID
+// leaf and reports none on processors that have it.
+bool ProcessorRunsAvx() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_supports("avx");
+#else
+  return false;
+#endif
+}
+
+}  // namespace
+
 const WideKernels& ChooseKernels(int lanes) {
   const WideKernels* avx = AvxKernels();
-  const bool avx_runs = avx != nullptr && xsimd::available_architectures().avx;
+  const bool avx_runs = avx != nullptr && ProcessorRunsAvx();
   if (avx_runs && avx->width > BaseKernels().width && (lanes == 0 || lanes == avx->width)) return *avx;
   return BaseKernels();
 }
