@@ -15,21 +15,38 @@ const float* WideBundles::Aligned() const {
   return data_.data() + (wide::kAlign - address % wide::kAlign) % wide::kAlign / sizeof(float);
 }
 
-void WideBundles::Allocate(int bundles) {
-  const size_t lanes = static_cast<size_t>(bundles) * width_;
-  data_.assign(lanes * wide::kBundleFields + kPad, 0.0f);
+void WideBundles::Allocate(const std::vector<SoftManifold>& manifolds, const BlockColours& colours) {
+  // bundle by bundle, the manifolds each takes (a colour's `width_` at a
+  // time, then the overflow's one at a time)
+  slots_.clear();
+  for (int c = 0; c < colours.colours(); ++c) {
+    for (int k = colours.starts[c]; k < colours.starts[c + 1]; ++k) {
+      if ((k - colours.starts[c]) % width_ == 0) slots_.push_back(0);
+      slots_.back() = static_cast<unsigned char>(std::max<int>(slots_.back(), manifolds[k].count));
+    }
+  }
+  for (int k = colours.starts.back(); k < static_cast<int>(manifolds.size()); ++k) {
+    slots_.push_back(static_cast<unsigned char>(manifolds[k].count));
+  }
+  offsets_.resize(slots_.size());
+  size_t floats = 0;
+  for (size_t b = 0; b < slots_.size(); ++b) {
+    offsets_[b] = static_cast<int>(floats);
+    floats += static_cast<size_t>(wide::BundleFields(slots_[b])) * width_;
+  }
+  const size_t lanes = slots_.size() * width_;
+  data_.assign(floats + kPad, 0.0f);
   body_a_.assign(lanes, dummy_);
   body_b_.assign(lanes, dummy_);
   write_a_.assign(lanes, 0);
   write_b_.assign(lanes, 0);
   points_.assign(lanes * wide::kSlots, -1);
-  slots_.assign(bundles, 0);
 }
 
 void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m,
                            const std::vector<SoftBody>& bodies, int bundle, int lane) {
   using namespace wide;
-  float* base = Aligned() + static_cast<size_t>(bundle) * kBundleFields * width_ + lane;
+  float* base = Aligned() + offsets_[bundle] + lane;
   const auto put = [&](int field, double x) { base[field * width_] = static_cast<float>(x); };
   const auto put3 = [&](int field, const Vec3& v) {
     for (int k = 0; k < 3; ++k) put(field + k, v[k]);
@@ -40,12 +57,12 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   body_b_[index] = p0.b;
   write_a_[index] = bodies[p0.a].inv_mass > 0.0 ? 1 : 0;
   write_b_[index] = bodies[p0.b].inv_mass > 0.0 ? 1 : 0;
-  slots_[bundle] = static_cast<unsigned char>(std::max<int>(slots_[bundle], m.count));
   put3(kN, p0.n), put3(kT1, p0.t1), put3(kT2, p0.t2);
   put(kInvMassA, bodies[p0.a].inv_mass), put(kInvMassB, bodies[p0.b].inv_mass);
   put(kBlock, m.block ? 1.0 : 0.0);
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) put(kInvK + 4 * i + j, m.inv_k(i, j));
+  // K^-1's rows and columns past the block's points stay zero
+  for (int i = 0; m.block && i < m.count; ++i) {
+    for (int j = 0; j < m.count; ++j) put(kInvK + 4 * i + j, m.inv_k(i, j));
   }
   for (int s = 0; s < m.count; ++s) {
     const SoftPoint& p = points[m.first + s];
@@ -74,7 +91,7 @@ void WideBundles::Pack(const std::vector<SoftPoint>& points, const std::vector<S
     const int size = colours.starts[c + 1] - colours.starts[c];
     colours_.starts.push_back(colours_.starts.back() + (size + width_ - 1) / width_);
   }
-  Allocate(colours_.starts.back() + overflow);
+  Allocate(manifolds, colours);
   for (int c = 0; c < colours.colours(); ++c) {
     for (int k = colours.starts[c]; k < colours.starts[c + 1]; ++k) {
       const int offset = k - colours.starts[c];
@@ -94,7 +111,7 @@ void WideBundles::Unpack(std::vector<SoftPoint>& points) const {
     const size_t index = entry / kSlots;
     const int s = static_cast<int>(entry % kSlots);
     const size_t bundle = index / width_, lane = index % width_;
-    const float* base = Aligned() + bundle * kBundleFields * width_ + lane;
+    const float* base = Aligned() + offsets_[bundle] + lane;
     const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width_]); };
     SoftPoint& p = points[k];
     p.lambda_n = get(kLambdaN), p.lambda_t1 = get(kLambdaT1), p.lambda_t2 = get(kLambdaT2);
@@ -111,6 +128,7 @@ wide::WideView WideBundles::View(wide::WideBody* bodies) {
   view.write_a = write_a_.data();
   view.write_b = write_b_.data();
   view.slots = slots_.data();
+  view.offsets = offsets_.data();
   view.bodies = bodies;
   view.width = width_;
   return view;

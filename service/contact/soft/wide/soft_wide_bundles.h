@@ -31,7 +31,8 @@ class WideBundles {
   wide::WideView View(wide::WideBody* bodies);
 
  private:
-  void Allocate(int bundles);
+  // Counts each bundle's slots, places the bundles and clears their fields.
+  void Allocate(const std::vector<SoftManifold>& manifolds, const BlockColours& colours);
   const float* Aligned() const;
   float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
   void PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m, const std::vector<SoftBody>& bodies,
@@ -43,6 +44,7 @@ class WideBundles {
   std::vector<int> body_a_, body_b_;            // per lane
   std::vector<unsigned char> write_a_, write_b_;  // per lane
   std::vector<unsigned char> slots_;            // per bundle
+  std::vector<int> offsets_;                    // per bundle: its first float after Aligned()
   std::vector<int> points_;                     // per lane and slot: the point, or -1
   BlockColours colours_;
 };

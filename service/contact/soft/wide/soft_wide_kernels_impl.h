@@ -44,7 +44,7 @@ struct Lanes {
     void Set(int f, const B& x) const { x.store_aligned(base + f * W); }
   };
   static Fields Of(const WideView& view, int bundle) {
-    return {view.data + static_cast<long>(bundle) * kBundleFields * W};
+    return {view.data + view.offsets[bundle]};
   }
 
   // The two bodies' velocities, lane by lane.

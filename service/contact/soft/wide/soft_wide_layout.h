@@ -64,7 +64,8 @@ enum SlotField : int {
   kSlotFields,
 };
 
-constexpr int kBundleFields = kLaneFields + kSlots * kSlotFields;
+// fields of a bundle whose lanes hold at most `slots` points
+constexpr int BundleFields(int slots) { return kLaneFields + slots * kSlotFields; }
 // field index of slot s's field f
 constexpr int SlotAt(int s, int f) { return kLaneFields + s * kSlotFields + f; }
 
@@ -78,7 +79,8 @@ struct WideBody {
 
 // What a kernel call sees of the bundles and the bodies.
 struct WideView {
-  float* data = nullptr;           // bundle b's field f: data + (b * kBundleFields + f) * width
+  float* data = nullptr;           // bundle b's field f: data + offsets[b] + f * width
+  const int* offsets = nullptr;    // per bundle, floats (a bundle holds BundleFields(slots[b]) fields)
   const int* body_a = nullptr;     // per bundle lane: WideBody index (padding: the resting dummy)
   const int* body_b = nullptr;
   const unsigned char* write_a = nullptr;  // per bundle lane: 1 when the body is dynamic
