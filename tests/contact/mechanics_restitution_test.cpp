@@ -150,7 +150,7 @@ double MomentumX(const World& world, const std::vector<BodyId>& ids) {
 }
 
 // Strikes the row and checks the outcome against StruckLineVelocities
-// (line_impacts.h): momentum to 1e-9 relative (equal and opposite
+// (line_impacts.h): momentum to round-off (scenario_tolerances.h; equal and opposite
 // impulses), each body's velocity within the method's cradle tolerance of
 // v0, and with e = 1 the kinetic energy within 1%. A method whose contract
 // lacks restitution must refuse e > 0; with e = 0 only its momentum is
@@ -182,7 +182,7 @@ void StrikeRow(const MethodConfig& config, const RowCase& c) {
   std::printf("%-10s %s m %g v0 %g: v / v0 (analytic)%s; worst %.2e, momentum %+.1e, energy %.4f\n",
               config.label.c_str(), id.c_str(), c.mass, c.v0, velocities.c_str(), worst, (p - p0) / p0, ke);
   testing::MechanicsChecks checks(config.label);
-  checks.Expect(id + " momentum", (p - p0) / p0, 0.0, 1e-9);
+  checks.Expect(id + " momentum", (p - p0) / p0, 0.0, testing::TolerancesOf(config.label).momentum);
   if (c.e == 1.0) checks.Expect(id + " energy", ke, 1.0, 0.01);
   // a method without restitution in its contract (barrier) promises no
   // impact law, not even e = 0's: only what every impact keeps is checked
@@ -312,7 +312,7 @@ TEST_P(MechanicsRackTest, BreakKeepsMomentumAndEnergy) {
               (p.x() - p0) / p0, p.tail<2>().norm() / p0, ke);
   const std::string id = testing::CaseId("rack e=%g", e);
   testing::MechanicsChecks checks(config.label);
-  checks.Expect(id + " momentum", (p - Vec3(p0, 0, 0)).norm() / p0, 0.0, 1e-9);
+  checks.Expect(id + " momentum", (p - Vec3(p0, 0, 0)).norm() / p0, 0.0, testing::TolerancesOf(config.label).momentum);
   if (e == 1.0) {
     checks.Expect(id + " energy", ke, 1.0, 0.01);
   } else {

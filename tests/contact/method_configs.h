@@ -1,7 +1,8 @@
 // Every registered contact method as a test parameter, taken from the
 // registry (ContactMethodNames()) rather than a hand list, so a method added
 // to the registry joins every suite built on it; lcp runs once per solver
-// (pgs and lemke), since its two solvers answer differently.
+// (pgs and lemke), since its two solvers answer differently, and soft once
+// per precision (double, and float over SIMD lanes).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -35,6 +36,11 @@ inline std::vector<MethodConfig> EveryMethodConfig() {
     if (name == "lcp") {
       configs.push_back({name, {{"solver", "pgs"}}, "lcp_pgs"});
       configs.push_back({name, {{"solver", "lemke"}}, "lcp_lemke"});
+    } else if (name == "soft") {
+      // the float path (precision=float) is a configuration of its own: it
+      // answers in single precision, with its own bundles' order
+      configs.push_back({name, {}, name});
+      configs.push_back({name, {{"precision", "float"}}, "soft_float"});
     } else {
       configs.push_back({name, {}, name});
     }

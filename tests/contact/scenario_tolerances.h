@@ -36,6 +36,7 @@ struct ScenarioTolerances {
   double cradle;           // |v_last / v0 - 1| and |v_other| / v0 after the strike
   double rotation;         // relative drift of |L| and of the kinetic energy, 10 s torque free
   double resting_force;    // relative error of the reported normal force against m g (mean and every step)
+  double momentum;         // relative change of a struck row's or rack's linear momentum through its impacts
 };
 
 // The common aims: bounce 0.01 h, slide, incline and roll 1.5%, 1%, 1%
@@ -49,16 +50,21 @@ struct ScenarioTolerances {
 // at every mass) come with its smooth barrier and were not traced further. lcp_lemke's stacks run shorter: 10 s of the
 // 8-stack took 71 s, 0.2 s of the 20-stack 54 s (about 1 s a step; RelWithDebInfo,
 // one core shared), so 3 s and 0.1 s; its drift is reached within them.
+// Momentum through impacts is kept to round-off: 1e-9 in double.
+// soft_float (soft's float path) reports its forces and moves its bodies
+// with single-precision impulses, so to float's round-off: 2.2e-7 m g and
+// 7.6e-8 of a rack's momentum measured, 1e-6 the bounds.
 // clang-format off
 inline constexpr ScenarioTolerances kScenarioTolerances[] = {
-  // label       bounce slide  hold  inc.sl roll  tip   st.h  st.drift st8  st20 pend   cradle rot   force
-  {"impulse",   1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
-  {"penalty",   0.01,  0.015, 1e-6, 0.01,  0.01, 1e-3, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
-  {"xpbd",      2e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
-  {"lcp_pgs",   1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
-  {"lcp_lemke", 1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    3,   0.1, 1e-3,  0.01,  1e-9, 1e-9},
-  {"barrier",   2e-3,  0.015, 1e-6, 0.01,  0.01, 0.02, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 2e-3},
-  {"soft",      0.01,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9},
+  // label       bounce slide  hold  inc.sl roll  tip   st.h  st.drift st8  st20 pend   cradle rot   force   mom
+  {"impulse",   1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9, 1e-9},
+  {"penalty",   0.01,  0.015, 1e-6, 0.01,  0.01, 1e-3, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9, 1e-9},
+  {"xpbd",      2e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9, 1e-9},
+  {"lcp_pgs",   1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9, 1e-9},
+  {"lcp_lemke", 1e-3,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    3,   0.1, 1e-3,  0.01,  1e-9, 1e-9, 1e-9},
+  {"barrier",   2e-3,  0.015, 1e-6, 0.01,  0.01, 0.02, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 2e-3, 1e-9},
+  {"soft",      0.01,  0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-9, 1e-9},
+  {"soft_float", 0.01, 0.015, 1e-6, 0.01,  0.01, 1e-4, 5e-4, 1e-4,    10,  10,  1e-3,  0.01,  1e-9, 1e-6, 1e-6},
 };
 // clang-format on
 
@@ -192,6 +198,21 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"xpbd", "two-body slider ma=0.1 mb=10 momentum",
      "3.1e-9 relative (1e-10 kg m/s of 0.03): velocities taken from positions, (x - x~) / h, lose eps |x| / h a "
      "sub-step on the 10 kg body"},
+    // soft's float path (precision=float) misses where soft does, by its measurements
+    {"soft_float", "stack n=8 height", "1.00 mm lower: the springs of the lower layers carry k m g, sum k g / omega^2"},
+    {"soft_float", "stack n=20 height", "6.6 mm lower: its springs, as for 8"},
+    {"soft_float", "stack n=8 size=* height", "1.0 mm lower at every size and mass: its springs, as above"},
+    {"soft_float", "row * e=0", "0.03-0.094 v0: without restitution no stage drives the rows to v_n = 0, and one relax "
+                          "pass a sub-step leaves the springs' push-out in a row (relax_iterations = 8: 4e-5 v0)"},
+    {"soft_float", "* overlap=0.5mm speed", "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
+    {"soft_float", "hull of * speed",
+     "rocks on 12 of the 15 hull cases at 1.2e-6 to 8.4e-5 m/s after 2.5 s: soft's model, as under double"},
+    {"soft_float", "weld * creep",
+     "0.78-18.9 mm in 3 s on 8 of 12 welded slopes: with the points on jointed bodies and their joints solved "
+     "together after each stage (soft_jointed_solve.h) the balance holds, the weld does not; not traced further"},
+    {"soft_float", "swing n=5 m=10 * creep",
+     "3.5 (2 kg plank) and 7.8 mm (0.5 kg) in 3 s with 50 kg on the swing; the rest of the swings hold; not traced "
+     "further"},
 };
 
 // The name of a case as kKnownMisses lists it: the scenario and its

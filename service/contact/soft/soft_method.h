@@ -59,6 +59,7 @@
 #include "service/contact/soft/soft_manifold.h"
 #include "service/contact/soft/soft_params.h"
 #include "service/contact/soft/soft_ratio_solve.h"
+#include "service/contact/soft/wide/soft_wide_solver.h"
 #include "service/contact/warm_start_cache.h"
 
 namespace contactsim {
@@ -101,6 +102,7 @@ class SoftMethod : public ContactMethod {
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
   SoftJointedSolve jointed_solve_;
+  SoftWideSolver wide_;  // precision=float
   SequentialImpacts impacts_;
   std::vector<std::array<double, 3>> impulses_;
   WarmStartCache warm_start_;

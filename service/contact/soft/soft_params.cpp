@@ -28,6 +28,13 @@ const ParamTable<SoftParams>& SoftParamTable() {
       DirectMassRatioParam(&P::direct_mass_ratio),
       DirectMaxRowsParam(&P::direct_max_rows),
       PatchTorsionParam(&P::patch_torsion),
+      ChoiceParam("precision", &P::precision, {"double", "float"},
+                  "the sub-steps' contact passes in double, one point at a time, or in single precision over SIMD "
+                  "lanes, a manifold a lane (wide/soft_wide_solver.h); worlds with joints or a heavy-on-light "
+                  "component keep double"),
+      ChoiceParam("float_lanes", &P::float_lanes, {"widest", "4", "8"},
+                  "manifolds a SIMD bundle holds under precision=float: the widest the processor runs, or 4 "
+                  "(SSE2) or 8 (AVX, where the processor has it); the result is the same at either width"),
   };
   return table;
 }

@@ -22,6 +22,8 @@ struct SoftParams {
   double direct_mass_ratio = 10.0;      // soft_ratio_solve.h
   int direct_max_rows = 300;
   std::string patch_torsion = "off";   // patch_torsion.h
+  std::string precision = "double";    // float: the SIMD path (wide/soft_wide_solver.h)
+  std::string float_lanes = "widest";  // its bundle width: widest, 4 or 8
 };
 
 const ParamTable<SoftParams>& SoftParamTable();

@@ -6,6 +6,7 @@
 // joints are serial stages. One thread runs the same stages in the same
 // order, so the state does not depend on the thread count.
 #include <algorithm>
+#include <string>
 
 #include "service/contact/colour_stages.h"
 #include "service/contact/soft/soft_method.h"
@@ -44,6 +45,15 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   SoftPass solve;
   solve.inv_h = 1.0 / h;
   solve.max_push_velocity = params_.max_push_velocity;
+  if (params_.precision == "float" && SoftWideSolver::Applies(world, ratio_solve_.active())) {
+    SoftWideStep wide{h, params_.substeps, params_.relax_iterations, solve, 0};
+    if (params_.float_lanes != "widest") wide.lanes = std::stoi(params_.float_lanes);
+    wide_.Run(wide, manifolds_, colours_, runner, world, points_, bodies_);
+    if (SoftPointsRestitute(points_)) {
+      RestituteSoftPoints(RestitutionThreshold(world), world, manifolds_, points_, bodies_, &impacts_);
+    }
+    return;
+  }
   SoftPass relax = solve;
   relax.use_bias = false;
 

@@ -1,0 +1,52 @@
+// The soft step's contact manifolds packed into the float path's bundles
+// (soft_wide_layout.h) and their impulses unpacked after the step.
+//
+// Colour c's manifolds (block_colours.h) fill its bundles `width` at a
+// time, in their order; the overflow, which the double path sweeps in
+// order on one thread, gets a bundle per manifold, swept in order too.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/block_colours.h"
+#include "service/contact/soft/soft_contact.h"
+#include "service/contact/soft/soft_manifold.h"
+#include "service/contact/soft/wide/soft_wide_layout.h"
+
+namespace contactsim {
+
+class WideBundles {
+ public:
+  // Packs `manifolds` (ordered colour by colour, as `colours` says) of
+  // `points`, whose lambdas hold the warm start, for `width` lanes;
+  // `dummy` is the resting body padding lanes read.
+  void Pack(const std::vector<SoftPoint>& points, const std::vector<SoftManifold>& manifolds,
+            const BlockColours& colours, const std::vector<SoftBody>& bodies, int width, int dummy);
+  // The accumulated impulses, largest pushes and step totals back into `points`.
+  void Unpack(std::vector<SoftPoint>& points) const;
+  // Colour c's bundles are [colours().starts[c], starts[c + 1]); the
+  // overflow's bundles follow, one manifold each.
+  const BlockColours& colours() const { return colours_; }
+  int bundles() const { return static_cast<int>(slots_.size()); }
+  wide::WideView View(wide::WideBody* bodies);
+
+ private:
+  // Counts each bundle's slots, places the bundles and clears their fields.
+  void Allocate(const std::vector<SoftManifold>& manifolds, const BlockColours& colours);
+  const float* Aligned() const;
+  float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
+  void PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m, const std::vector<SoftBody>& bodies,
+                int bundle, int lane);
+
+  int width_ = 0;
+  int dummy_ = 0;
+  std::vector<float> data_;  // from its first kAlign-aligned float (Aligned)
+  std::vector<int> body_a_, body_b_;            // per lane
+  std::vector<unsigned char> write_a_, write_b_;  // per lane
+  std::vector<unsigned char> slots_;            // per bundle
+  std::vector<int> offsets_;                    // per bundle: its first float after Aligned()
+  std::vector<int> points_;                     // per lane and slot: the point, or -1
+  BlockColours colours_;
+};
+
+}  // namespace contactsim

@@ -1,0 +1,101 @@
+// The float path's contact constraints, structure of arrays (Box2D v3 and
+// Box3D's b2ContactConstraintSIMD): a bundle holds `width` manifolds of one
+// colour (block_colours.h), one a lane, so no two lanes share a movable
+// body and a pass updates all of them at once. Each field of a bundle is
+// `width` consecutive floats, aligned for a SIMD load; a manifold's up to
+// kMaxNormalBlock points are its lane's slots.
+//
+// Only plain types here: the kernels (soft_wide_kernels.h) are compiled
+// once per instruction set.
+#pragma once
+
+namespace contactsim {
+namespace wide {
+
+constexpr int kSlots = 4;  // kMaxNormalBlock (normal_block.h; checked where the bundles are packed)
+constexpr int kAlign = 64;  // bytes, a cache line and the widest vector
+
+// Per lane: the pair's normal and tangents (shared by its points), inverse
+// masses, whether the normal rows take the block solve and its K^-1 (row-major).
+enum LaneField : int {
+  kN = 0,
+  kT1 = 3,
+  kT2 = 6,
+  kInvMassA = 9,
+  kInvMassB = 10,
+  kBlock = 11,  // 1 or 0
+  kInvK = 12,
+  kLaneFields = kInvK + 16,
+};
+
+// Per slot (point): the rows' anchors, Jacobians and responses
+// (SoftPoint), effective masses, spring, accumulated impulses and totals.
+enum SlotField : int {
+  kRa = 0,
+  kRb = 3,
+  kRaN = 6,
+  kRbN = 9,
+  kIaN = 12,
+  kIbN = 15,
+  kRaT1 = 18,
+  kRaT2 = 21,
+  kRbT1 = 24,
+  kRbT2 = 27,
+  kIaT1 = 30,
+  kIaT2 = 33,
+  kIbT1 = 36,
+  kIbT2 = 39,
+  kAdjustedSeparation = 42,
+  kMassN,
+  kMassT1,
+  kMassT2,
+  kKT12,
+  kFriction,
+  kBiasRate,
+  kMassScale,
+  kImpulseScale,
+  kLambdaN,
+  kLambdaT1,
+  kLambdaT2,
+  kMaxPush,
+  kTotalN,
+  kTotalT1,
+  kTotalT2,
+  kSlotFields,
+};
+
+// fields of a bundle whose lanes hold at most `slots` points
+constexpr int BundleFields(int slots) { return kLaneFields + slots * kSlotFields; }
+// field index of slot s's field f
+constexpr int SlotAt(int s, int f) { return kLaneFields + s * kSlotFields + f; }
+
+// A body as the contact passes see it (WideBodies, soft_wide_bodies.h).
+struct WideBody {
+  float v[3] = {0, 0, 0};   // m/s
+  float w[3] = {0, 0, 0};   // rad/s, world
+  float dp[3] = {0, 0, 0};  // m, x - x0
+  float dR[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // R(q) R(q0)^T, column-major
+};
+
+// What a kernel call sees of the bundles and the bodies.
+struct WideView {
+  float* data = nullptr;           // bundle b's field f: data + offsets[b] + f * width
+  const int* offsets = nullptr;    // per bundle, floats (a bundle holds BundleFields(slots[b]) fields)
+  const int* body_a = nullptr;     // per bundle lane: WideBody index (padding: the resting dummy)
+  const int* body_b = nullptr;
+  const unsigned char* write_a = nullptr;  // per bundle lane: 1 when the body is dynamic
+  const unsigned char* write_b = nullptr;
+  const unsigned char* slots = nullptr;    // per bundle: most points of its lanes
+  WideBody* bodies = nullptr;
+  int width = 0;
+};
+
+// One pass (SoftPass, in float).
+struct WidePass {
+  float inv_h = 0.0f;
+  bool use_bias = true;
+  float max_push_velocity = 3.0f;
+};
+
+}  // namespace wide
+}  // namespace contactsim

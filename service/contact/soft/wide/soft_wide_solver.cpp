@@ -1,0 +1,53 @@
+#include "service/contact/soft/wide/soft_wide_solver.h"
+
+#include "service/contact/colour_stages.h"
+
+namespace contactsim {
+namespace {
+
+// Indices a thread takes at a time (soft_stages.cpp's grains; a bundle is
+// several manifolds).
+constexpr int kBodyGrain = 128;
+constexpr int kBundleGrain = 64;
+
+}  // namespace
+
+void SoftWideSolver::Run(const SoftWideStep& step, const std::vector<SoftManifold>& manifolds,
+                         const BlockColours& colours, ParallelRunner& runner, World& world,
+                         std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
+  const wide::WideKernels& kernels = wide::ChooseKernels(step.lanes);
+  LoadWideBodies(world, bodies, runner, &bodies_);
+  bundles_.Pack(points, manifolds, colours, bodies, kernels.width, bodies_.dummy());
+  const wide::WideView view = bundles_.View(bodies_.state.data());
+  const float h = static_cast<float>(step.h);
+  wide::WidePass solve;
+  solve.inv_h = static_cast<float>(step.solve.inv_h);
+  solve.max_push_velocity = static_cast<float>(step.solve.max_push_velocity);
+  wide::WidePass relax = solve;
+  relax.use_bias = false;
+
+  using Fn = ParallelRunner::StageFn;
+  const Fn integrate_velocities = [&](int i, int j) { IntegrateWideVelocities(h, i, j, bodies_); };
+  const Fn integrate_positions = [&](int i, int j) { IntegrateWidePositions(h, i, j, bodies_); };
+  const Fn warm_start = [&](int i, int j) { kernels.warm_start(view, i, j); };
+  const Fn solve_bundles = [&](int i, int j) { kernels.solve(view, solve, i, j); };
+  const Fn relax_bundles = [&](int i, int j) { kernels.solve(view, relax, i, j); };
+  const Fn accumulate = [&](int i, int j) { kernels.accumulate(view, i, j); };
+
+  ColourStages list(&stages_, runner.threads());
+  const int count = static_cast<int>(bodies.size());
+  const int bundles = bundles_.bundles();
+  for (int sub = 0; sub < step.substeps; ++sub) {
+    list.Add(integrate_velocities, 0, count, kBodyGrain);
+    list.AddColours(warm_start, bundles_.colours(), bundles);
+    list.AddColours(solve_bundles, bundles_.colours(), bundles);
+    list.Add(integrate_positions, 0, count, kBodyGrain);
+    for (int it = 0; it < step.relax_iterations; ++it) list.AddColours(relax_bundles, bundles_.colours(), bundles);
+    list.Add(accumulate, 0, bundles, kBundleGrain);
+  }
+  runner.Stages(stages_);
+  bundles_.Unpack(points);
+  StoreWideBodies(bodies_, runner, bodies, world);
+}
+
+}  // namespace contactsim
