@@ -470,7 +470,7 @@ TEST(ActuatorRefusalTest, HashCountsOnlyActuatedJoints) {
   EXPECT_NE(HashWorldState(world), with_kd);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryMethod, ActuatorTest, ::testing::ValuesIn(testing::EveryMethodConfig()),
+INSTANTIATE_TEST_SUITE_P(EveryMethod, ActuatorTest, ::testing::ValuesIn(testing::JointedWorldConfigs()),
                          testing::ConfigName);
 
 }  // namespace

@@ -149,7 +149,7 @@ std::string ChainName(const ::testing::TestParamInfo<ChainParam>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, JointChainScenarioTest,
-                         ::testing::Combine(::testing::ValuesIn(testing::EveryMethodConfig()),
+                         ::testing::Combine(::testing::ValuesIn(testing::JointedWorldConfigs()),
                                             ::testing::Values(10, 30, 100)),
                          ChainName);
 

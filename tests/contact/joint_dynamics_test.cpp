@@ -239,7 +239,7 @@ TEST_P(JointDynamicsTest, SliderFrictionAndDampingFollowTheAnalyticMotion) {
   SKIP_KNOWN_MISSES(checks);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryMethod, JointDynamicsTest, ::testing::ValuesIn(testing::EveryMethodConfig()),
+INSTANTIATE_TEST_SUITE_P(EveryMethod, JointDynamicsTest, ::testing::ValuesIn(testing::JointedWorldConfigs()),
                          testing::ConfigName);
 
 }  // namespace

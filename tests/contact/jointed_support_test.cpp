@@ -337,7 +337,7 @@ TEST_P(JointedSupportTest, LoadsSlideOffWithoutBlowingUp) {
   SKIP_KNOWN_MISSES(checks);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryMethod, JointedSupportTest, ::testing::ValuesIn(testing::EveryMethodConfig()),
+INSTANTIATE_TEST_SUITE_P(EveryMethod, JointedSupportTest, ::testing::ValuesIn(testing::JointedWorldConfigs()),
                          testing::ConfigName);
 
 }  // namespace

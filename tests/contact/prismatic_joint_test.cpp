@@ -226,7 +226,7 @@ TEST_P(PrismaticJointTest, TwoBodySliderConservesMomentum) {
   SKIP_KNOWN_MISSES(checks);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryMethod, PrismaticJointTest, ::testing::ValuesIn(testing::EveryMethodConfig()),
+INSTANTIATE_TEST_SUITE_P(EveryMethod, PrismaticJointTest, ::testing::ValuesIn(testing::JointedWorldConfigs()),
                          testing::ConfigName);
 
 }  // namespace

@@ -207,12 +207,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"soft_float", "* overlap=0.5mm speed", "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
     {"soft_float", "hull of * speed",
      "rocks on 12 of the 15 hull cases at 1.2e-6 to 8.4e-5 m/s after 2.5 s: soft's model, as under double"},
-    {"soft_float", "weld * creep",
-     "0.78-18.9 mm in 3 s on 8 of 12 welded slopes: with the points on jointed bodies and their joints solved "
-     "together after each stage (soft_jointed_solve.h) the balance holds, the weld does not; not traced further"},
-    {"soft_float", "swing n=5 m=10 * creep",
-     "3.5 (2 kg plank) and 7.8 mm (0.5 kg) in 3 s with 50 kg on the swing; the rest of the swings hold; not traced "
-     "further"},
 };
 
 // The name of a case as kKnownMisses lists it: the scenario and its
