@@ -176,6 +176,31 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "speed 1.5-2.9% and omega r / v up to 2.3% off the plain hull's, whose own speed varies 0.81-0.90 m/s with "
      "the mass alone (0.92-1.09 under the other methods, alike at every mass): Lemke's basic solution among a "
      "side's dependent points, as for the cube rows; not traced further"},
+    // a cube let fall 0.1 mm onto a slope with mu 0.9 (friction_scenarios_test.cpp,
+    // CubeFallenOntoSlopeHolds), its motion within the slope in 3 s; the
+    // same at every mass and size (0.02 and 0.05 m half sizes)
+    {"xpbd", "slope hold deg=38 *",
+     "6.73 mm in 3 s: after the landing the uphill corners' pushes come and go every other "
+     "sub-step (the box rocks about its downhill edge), and in the sub-steps they are off the patch's held "
+     "friction (xpbd_held_friction.h) asks 0.94 times the pushes; past its cone the patch lets go. Tried: holding at the "
+     "cone with the excess let go 0.155 / 1.48 mm, but a hull dropped on the wavy heightfield fell through it; "
+     "a second normals-and-friction pass where the cone is passed 0.37 / 6.9 mm"},
+    {"xpbd", "slope hold deg=40 *", "7.1 mm in 3 s: as at 38 degrees"},
+    {"penalty", "slope hold deg=38 *", "0.57 mm in 3 s: not traced further"},
+    {"penalty", "slope hold deg=40 *", "1.2 mm in 3 s: not traced further"},
+    {"barrier", "slope hold deg=30 *",
+     "0.56 mm in 3 s: its smoothed static friction creeps at up to eps_v (docs/methods/barrier.md), more "
+     "steeply"},
+    {"barrier", "slope hold deg=34 *", "1.1 mm in 3 s: its smoothed static friction, as at 30 degrees"},
+    {"barrier", "slope hold deg=38 *", "2.5-2.6 mm in 3 s: its smoothed static friction, as at 30 degrees"},
+    {"barrier", "slope hold deg=40 *", "5.6 mm in 3 s: its smoothed static friction, as at 30 degrees"},
+    // the off-axis wheel (compound_sweep_test.cpp) against its plain hull:
+    // the plain hull's face patches solve their friction with their normals
+    // held (xpbd_held_friction.h), a compound's child patches not yet
+    {"xpbd", "wheel m=1 speed",
+     "1.18% faster than the plain hull (1.0586 against 1.0462 m/s; 0.9% at 0.1 and 10 kg, 0.8% before the "
+     "held friction): the compound's child patches keep the friction rows alone; held there too, 0.1 kg "
+     "missed by 1.9%"},
     // xpbd's sliders and joint friction (prismatic_joint_test.cpp,
     // joint_dynamics_test.cpp; docs/methods/xpbd.md)
     {"xpbd", "slider m=* axis=* rate",
