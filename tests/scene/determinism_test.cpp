@@ -38,7 +38,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"impulse", {}, 0x97ad4b6d49e0a696ull},
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
-      {"xpbd", {}, 0x4de916201833cc1dull},
+      {"xpbd", {}, 0x97590969060f2734ull},
       {"lcp", {{"solver", "pgs"}}, 0xb789a59987f95e86ull},
       {"lcp", {{"solver", "lemke"}}, 0x17bfed063c21bc4full},
       {"barrier", {}, 0xa9d684da5b50ecf2ull},

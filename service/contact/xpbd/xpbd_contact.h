@@ -25,7 +25,8 @@
 //     whatever order its corners come in); a block whose solution would
 //     pull is swept point by point;
 //   * static friction (eq. 26-27): the patch of the pair's points holds its
-//     tangential offset (xpbd_patch_friction.h).
+//     tangential offset (xpbd_patch_friction.h), solved with the points
+//     that push held where they are (xpbd_held_friction.h).
 // The velocity pass (restitution, dynamic friction) is xpbd_velocity_pass.h.
 // Effective masses and the blocks' K use the lever arms and inverse
 // inertias of the step's start (first order in the step's turn).

@@ -125,9 +125,8 @@ void PrepareXpbdPatches(const std::vector<NormalBlock>& blocks, const std::vecto
     const SoftBody& A = bodies[p0.a];
     const SoftBody& B = bodies[p0.b];
     patch.jointed = p0.jointed;
-    const Eigen::Matrix3d K =
-        patch.jointed ? JointedPatchK(patch, p0.n, articulation, p0, A, B) : PatchK(patch, p0.n, A, B);
-    patch.valid = patch.friction > 0.0 && InvertPatchK(K, rows, &patch.inv_k);
+    patch.k = patch.jointed ? JointedPatchK(patch, p0.n, articulation, p0, A, B) : PatchK(patch, p0.n, A, B);
+    patch.valid = patch.friction > 0.0 && InvertPatchK(patch.k, rows, &patch.inv_k);
     (*patches)[k] = patch;
   }
 }
@@ -198,7 +197,8 @@ void CarryXpbdPatchSlip(const XpbdPatchSlip& slip, XpbdPatch* patch) {
 }
 
 void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
-                            XpbdPatch& patch, const std::vector<XpbdPoint>& points) {
+                            const NormalBlock& block, XpbdSubsetCache& cache, XpbdPatch& patch,
+                            std::vector<XpbdPoint>& points) {
   if (!patch.valid) return;
   const XpbdPoint& p0 = points[patch.first];
   double pushed = 0.0;
@@ -220,6 +220,10 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, c
   }
   const Vec3 offset = PatchOffset(patch, A.x, A.q, B.x, B.q);
   const Vec3 r = offset - patch.origin;
+  if (!patch.jointed && !patch.compound &&
+      SolveHeldXpbdPatchFriction(world, bodies, block, cache, r, offset, pushed, patch, points)) {
+    return;
+  }
   Vec3 dl = patch.inv_k * r;
   const double mu = patch.friction;
   if (patch.compound && patch.twist_radius > 0.0 &&

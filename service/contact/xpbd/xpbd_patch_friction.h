@@ -36,6 +36,7 @@
 #include "service/contact/normal_block.h"
 #include "service/contact/patch_torsion.h"
 #include "service/contact/xpbd/xpbd_contact.h"
+#include "service/contact/xpbd/xpbd_held_friction.h"
 
 namespace contactsim {
 
@@ -74,6 +75,10 @@ struct XpbdPatch {
   // per sub-step
   Vec3 lambda_t = Vec3::Zero();        // kg m
   double lambda_twist = 0.0;           // kg m^2
+  // per step: K of the rows (t1, t2, twist) alone, and with the pushing
+  // points held (xpbd_held_friction.h), built when a sub-step first needs it
+  Eigen::Matrix3d k = Eigen::Matrix3d::Zero();
+  XpbdHeldRows held;
 };
 
 // One patch per normal block, with its K inverted; `frames` is parallel to
@@ -120,10 +125,13 @@ Vec3 XpbdPatchError(const World& world, const XpbdPatch& patch, const std::vecto
 void BeginXpbdPatch(XpbdPatch* patch);
 
 // The patch's static friction at the world's current poses (after its
-// points' non-penetration), accumulated in lambda_t and lambda_twist (the
-// velocity pass reports lambda_t / h).
+// points' non-penetration, block `block` with its inverses in `cache`),
+// accumulated in lambda_t and lambda_twist (the velocity pass reports
+// lambda_t / h). A patch of free bodies is solved with its pushing points
+// held (xpbd_held_friction.h), whose pushes then change too.
 void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, const XpbdArticulation& articulation,
-                            XpbdPatch& patch, const std::vector<XpbdPoint>& points);
+                            const NormalBlock& block, XpbdSubsetCache& cache, XpbdPatch& patch,
+                            std::vector<XpbdPoint>& points);
 
 // Dynamic friction of the patch in the velocity pass (eq. 30, on the patch
 // as a whole): the impulse and twist that stop its relative motion at the

@@ -80,7 +80,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn solve_blocks = [&](int i, int j) {
     for (int k = i; k < j; ++k) {
       SolveXpbdBlockNormals(world, bodies_, solve, blocks_[k], subsets_[k], points_);
-      SolveXpbdPatchFriction(world, bodies_, articulation_, patches_[k], points_);
+      SolveXpbdPatchFriction(world, bodies_, articulation_, blocks_[k], subsets_[k], patches_[k], points_);
     }
   };
   // the sub-step's multipliers start from zero as each block is first
