@@ -249,9 +249,11 @@ TEST(CollideSurfaceTest, HeightfieldEqualsItsMesh) {
   }
   std::shared_ptr<const HeightField> field;
   ASSERT_TRUE(BuildHeightField(n + 1, n + 1, heights, cell, cell, &field).ok());
+  // the mesh takes the field's own samples, so that both hold the same
+  // vertices to the last bit and only the way the triangles are made differs
   testing::MeshData m = GridMesh(n, cell);
   for (int r = 0; r <= n; ++r) {
-    for (int c = 0; c <= n; ++c) m.vertices[r * (n + 1) + c].z() = h(r, c);
+    for (int c = 0; c <= n; ++c) m.vertices[r * (n + 1) + c] = field->Sample(r, c);
   }
   std::shared_ptr<const TriangleMesh> mesh;
   ASSERT_TRUE(BuildTriangleMesh(m.vertices, m.indices, 1.0, &mesh).ok());
