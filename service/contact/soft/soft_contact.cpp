@@ -130,7 +130,7 @@ SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, double 
   if (s > 0.0) {
     // speculative: may close the gap, not pass it; in the relax pass a point
     // that pushes keeps its gap (see soft_contact.h)
-    t.bias = pass.use_bias || p.lambda_n <= 0.0 ? s * pass.inv_h : 0.0;
+    t.bias = pass.hold_pushing_gaps && p.lambda_n > 0.0 ? 0.0 : s * pass.inv_h;
   } else if (pass.use_bias) {
     t.bias = std::max(p.soft.bias_rate * s, -pass.max_push_velocity);
     t.mass_scale = p.soft.mass_scale;

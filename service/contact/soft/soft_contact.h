@@ -16,7 +16,8 @@
 //                   max_push_velocity;
 //   s <= 0, relax:  rigid, v_n >= 0, no push (removes the spring's velocity,
 //                   so pushing out adds no energy);
-//   s > 0, relax, lambda_n > 0: rigid, v_n >= 0: a point that pushes keeps
+//   s > 0, relax, lambda_n > 0 (SoftPass::hold_pushing_gaps): rigid,
+//                   v_n >= 0: a point that pushes keeps
 //                   the gap it rests at. Where a face's other points sink
 //                   into their springs, the solve pass holds one point a
 //                   hair apart (0.9 um) under load; letting the relax pass
@@ -107,6 +108,8 @@ void WarmStartSoftBody(int i, const SoftPointsOfBodies& list, const std::vector<
 struct SoftPass {
   double inv_h = 0.0;               // 1 / sub-step
   bool use_bias = true;             // false: the relax pass
+  // relax: a separated point with lambda_n > 0 is rigid at v_n >= 0 (keeps its gap)
+  bool hold_pushing_gaps = false;
   double max_push_velocity = 3.0;   // m/s
 };
 
