@@ -56,6 +56,7 @@ bool SubspaceSolver::MassRatioReached(const std::vector<SolverBody>& bodies, dou
 SubspaceReport SubspaceSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
                                      const SubspaceOptions& options) {
   SubspaceReport report;
+  release_friction_ = options.release_friction;
   const std::vector<char>* always = options.always;
   if (rows.empty() || (always == nullptr && !MassRatioReached(bodies, options.mass_ratio))) return report;
   // components of dynamic bodies joined by rows, and their mass range
@@ -322,13 +323,18 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
                                          : ClampPastBounds(members, free_rows, dl, held, rows, bodies);
       if (newly_held) continue;
     }
-    // held rows the solution leaves approaching (at lo) or pulling (at hi) are freed
+    // held rows the solution leaves approaching (at lo) or pulling (at hi)
+    // are freed; held friction too with release_friction (a friction row's
+    // bounds are +-mu times its normal's impulse now)
     bool joined = false;
     for (int i = 0; i < m; ++i) {
       const ConstraintRow& r = rows[members[i]];
-      if (!held[i] || diag_(i) <= 0.0 || r.normal_row >= 0) continue;  // sliding friction stays held
+      if (!held[i] || diag_(i) <= 0.0 || (r.normal_row >= 0 && !release_friction_)) continue;
+      double lo = r.lo, hi = r.hi;
+      if (r.normal_row >= 0) hi = r.mu * std::max(0.0, rows[r.normal_row].lambda), lo = -hi;
       const double gap = r.rhs - r.Velocity(bodies) - r.cfm * r.lambda;  // > 0: wants more impulse
-      if ((r.lambda <= r.lo && gap > kJoinTolerance) || (r.lambda >= r.hi && gap < -kJoinTolerance)) {
+      const bool inside = r.normal_row >= 0 && r.lambda > lo && r.lambda < hi;
+      if (inside || (r.lambda <= lo && gap > kJoinTolerance) || (r.lambda >= hi && gap < -kJoinTolerance)) {
         held[i] = false;
         joined = true;
       }

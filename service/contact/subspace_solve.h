@@ -84,6 +84,14 @@ struct SubspaceOptions {
   // nothing.
   bool energy_guard = true;
   int restart_passes = 64;  // active-set passes at most in that re-solve
+  // Let a held friction row rejoin the free rows when the solution leaves it
+  // inside mu times its normal's impulse or slipping the way it pushes, as
+  // a held normal row rejoins (otherwise sliding friction stays held). With
+  // start_free, the first steps from a sweep that left a point sliding hold
+  // its friction at the bound within a small step, before the normals
+  // settle; kept held, a box on a welded slope slid 0.8-19 mm in 3 s under
+  // the soft step (docs/methods/soft.md, "Jointed supports").
+  bool release_friction = false;
   // Per body (optional): a component holding a marked body is solved
   // whatever its mass ratio. The methods mark the jointed bodies that a
   // contact touches, with the joint rows among `rows` (jointed_contacts.h).
@@ -158,6 +166,7 @@ class SubspaceSolver {
   void ClampHeldFriction(const std::vector<int>& members, const std::vector<char>& held,
                          std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies);
 
+  bool release_friction_ = false;  // this Solve's option
   std::vector<int> root_of_row_;
   std::vector<int> member_of_;  // per row: its index in the component's members, or -1
   std::vector<int> position_;   // per member: its index among the free rows, or -1

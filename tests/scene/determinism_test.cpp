@@ -42,7 +42,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"lcp", {{"solver", "pgs"}}, 0xb789a59987f95e86ull},
       {"lcp", {{"solver", "lemke"}}, 0x17bfed063c21bc4full},
       {"barrier", {}, 0xa9d684da5b50ecf2ull},
-      {"soft", {}, 0x0172ddec7b574a4full},
+      {"soft", {}, 0x7796c5b10334ffd7ull},
   };
   return pinned;
 }

@@ -128,7 +128,9 @@ void WarmStartSoftBody(int i, const SoftPointsOfBodies& list, const std::vector<
 SoftRowTarget SoftNormalTarget(const SoftPass& pass, const SoftPoint& p, double s) {
   SoftRowTarget t;
   if (s > 0.0) {
-    t.bias = s * pass.inv_h;  // speculative: may close the gap, not pass it
+    // speculative: may close the gap, not pass it; in the relax pass a point
+    // that pushes keeps its gap (see soft_contact.h)
+    t.bias = pass.hold_pushing_gaps && p.lambda_n > 0.0 ? 0.0 : s * pass.inv_h;
   } else if (pass.use_bias) {
     t.bias = std::max(p.soft.bias_rate * s, -pass.max_push_velocity);
     t.mass_scale = p.soft.mass_scale;

@@ -15,7 +15,15 @@
 //   s <= 0, bias:   a soft spring (softness.h), pushing out at most
 //                   max_push_velocity;
 //   s <= 0, relax:  rigid, v_n >= 0, no push (removes the spring's velocity,
-//                   so pushing out adds no energy).
+//                   so pushing out adds no energy);
+//   s > 0, relax, lambda_n > 0 (SoftPass::hold_pushing_gaps): rigid,
+//                   v_n >= 0: a point that pushes keeps
+//                   the gap it rests at. Where a face's other points sink
+//                   into their springs, the solve pass holds one point a
+//                   hair apart (0.9 um) under load; letting the relax pass
+//                   close that gap at s / h tipped a resting hull at
+//                   1e-3 m/s, a velocity the next solve took back (the body
+//                   did not move) but the step reported.
 // Accumulated impulses are clamped at 0 (Catto 2005). Friction is Coulomb's
 // disk: both tangent impulses from the same relative velocity, their sum
 // projected onto |lambda_t| <= mu lambda_n. Restitution comes after the
@@ -100,6 +108,8 @@ void WarmStartSoftBody(int i, const SoftPointsOfBodies& list, const std::vector<
 struct SoftPass {
   double inv_h = 0.0;               // 1 / sub-step
   bool use_bias = true;             // false: the relax pass
+  // relax: a separated point with lambda_n > 0 is rigid at v_n >= 0 (keeps its gap)
+  bool hold_pushing_gaps = false;
   double max_push_velocity = 3.0;   // m/s
 };
 

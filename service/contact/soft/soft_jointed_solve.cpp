@@ -29,6 +29,7 @@ void SoftJointedSolve::Prepare(const World& world, const SubspaceOptions& option
   options_ = options;
   options_.mass_ratio = 0.0;  // the marked components only
   options_.always = &marked_;
+  options_.release_friction = true;
 }
 
 void SoftJointedSolve::Solve(const World& world, double h, const SoftPass& pass, std::vector<SoftPoint>& points,
