@@ -318,7 +318,7 @@ TEST(CollideSurfaceTest, RaysOnTheHeightfieldBorderHit) {
   std::shared_ptr<const HeightField> field;
   ASSERT_TRUE(BuildHeightField(3, 4, std::vector<double>(12, 0.25), 0.5, 1.0, &field).ok());
   const double hx = 0.5 * 3 * 0.5, hy = 0.5 * 2 * 1.0;  // half extents of the grid
-  for (const Vec3 p : {Vec3(hx, 0.1, 2), Vec3(-hx, 0.1, 2), Vec3(0.1, hy, 2), Vec3(0.1, -hy, 2), Vec3(hx, hy, 2),
+  for (const Vec3& p : {Vec3(hx, 0.1, 2), Vec3(-hx, 0.1, 2), Vec3(0.1, hy, 2), Vec3(0.1, -hy, 2), Vec3(hx, hy, 2),
                        Vec3(-hx, -hy, 2)}) {
     RayShapeHit hit;
     ASSERT_EQ(RayCastShape(Shape::Heightfield(field), p, -Vec3::UnitZ(), 10, &hit), RayShapeResult::kHit)
