@@ -91,7 +91,8 @@ void ReadArmJoints(const World& world, const ArmJoints& arm, std::vector<double>
   }
 }
 
-std::vector<double> GravityHoldTorques(const World& world, const ArmJoints& arm) {
+std::vector<double> JointAxisTorques(const World& world, const ArmJoints& arm,
+                                     const std::function<BodyLoad(BodyId)>& load) {
   std::vector<double> tau;
   for (size_t i = 0; i < arm.joints.size(); ++i) {
     const Joint& j = *world.FindJoint(arm.joints[i]);
@@ -100,12 +101,19 @@ std::vector<double> GravityHoldTorques(const World& world, const ArmJoints& arm)
     const Vec3 a_W = BodyOrientation(child) * j.axis_b;
     Vec3 moment = Vec3::Zero();
     for (BodyId id : arm.outboard[i]) {
-      const RigidBody& b = *world.Find(id);
-      moment += (b.x - p_W).cross(b.mass * world.gravity);
+      const BodyLoad l = load(id);
+      moment += (world.Find(id)->x - p_W).cross(l.force) + l.torque;
     }
-    tau.push_back(-a_W.dot(moment));
+    tau.push_back(a_W.dot(moment));
   }
   return tau;
+}
+
+std::vector<double> GravityHoldTorques(const World& world, const ArmJoints& arm) {
+  // the drives hold what gravity's loads would turn: the negated axis torques
+  return JointAxisTorques(world, arm, [&](BodyId id) {
+    return BodyLoad{-world.Find(id)->mass * world.gravity, Vec3::Zero()};
+  });
 }
 
 void CompensateGravity(const ArmJoints& arm, World* world) {

@@ -5,6 +5,7 @@
 // replaced by RESET, RESTORE or REWIND is always the one read.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,18 @@ Status FindArmJoints(const World& world, const std::string& model, int count, Ar
 // JointVelocity (physics/joint.h).
 void ReadArmJoints(const World& world, const ArmJoints& arm, std::vector<double>* position,
                    std::vector<double>* velocity);
+
+// A force (N, through the centre of mass) and a torque (N m) on one body.
+struct BodyLoad {
+  Vec3 force = Vec3::Zero();
+  Vec3 torque = Vec3::Zero();
+};
+
+// The torque about each joint's axis of the loads on the bodies it carries
+// (N m): tau_i = a_i . sum_b ((x_b - p_i) x F_b + T_b), with a_i the axis and
+// p_i the anchor in the world and load(b) = (F_b, T_b).
+std::vector<double> JointAxisTorques(const World& world, const ArmJoints& arm,
+                                     const std::function<BodyLoad(BodyId)>& load);
 
 // The torque each drive must apply to hold the arm still against gravity
 // (N m): tau_i = -a_i . sum_b (x_b - p_i) x (m_b g) over the bodies b that
