@@ -121,10 +121,8 @@ test-py:
 # 24 s in RelWithDebInfo, lcp_lemke's 15 s of it) and barrier's triangle-surface
 # scenarios (SurfaceTest.*/barrier: 21 s in RelWithDebInfo, the heightfield drops
 # 9 s of it; its surface distances run here in BarrierSurfacePrimitives),
-# and xpbd's hulls dropped on the wavy heightfield, whose end state differs
-# between this build and the Release one (one hull still rolls after 3 s
-# here; the cause, a rounding difference or a read of unset memory, is not
-# traced yet, docs/methods/xpbd.md);
+# and the hulls dropped on the wavy heightfield (three seeds; soft's relax
+# pass 8 s and barrier's 13 s of them in Release);
 # the collision tests still run the parallel narrowphase here. CI runs this
 # after `make test`.
 ASAN_BUILD = build-asan
@@ -137,7 +135,7 @@ FUZZ_BUILD = $(ASAN_BUILD)
 ASAN_PYTEST_SKIP = --ignore=tests/python/test_iiwa_driver.py --ignore=tests/python/test_viewer_models.py \
 	--deselect=tests/python/test_joint_channels.py::test_iiwa_tracks_a_joint_trajectory_at_1khz_in_lockstep
 test-asan: fuzz-build
-	cd $(ASAN_BUILD) && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid|BarrierScenes.BoxPyramid|MechanicsAlignedStack|ThreadDeterminism|MassRatioStackTest|MassRatioBridgeTest|MassRatioLongBridgeTest|PlacementContactTest|JointChainScenarioTest|JointedSupportTest|JointDynamicsTest|PrismaticJointTest|CompoundSweepTest|SurfaceTest.*/barrier|SurfaceTest.RandomDropsComeToRestOnHeightfield/xpbd'
+	cd $(ASAN_BUILD) && ctest --output-on-failure -j$(JOBS) -E 'LcpPyramid|BarrierScenes.BoxPyramid|MechanicsAlignedStack|ThreadDeterminism|MassRatioStackTest|MassRatioBridgeTest|MassRatioLongBridgeTest|PlacementContactTest|JointChainScenarioTest|JointedSupportTest|JointDynamicsTest|PrismaticJointTest|CompoundSweepTest|SurfaceTest.*/barrier|SurfaceTest.RandomDropsComeToRestOnHeightfield'
 	@$(MAKE) --no-print-directory test-py BUILD=$(ASAN_BUILD) PYTEST_ARGS='$(ASAN_PYTEST_SKIP)'
 	@$(MAKE) --no-print-directory fuzz-ci
 

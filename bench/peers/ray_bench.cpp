@@ -31,7 +31,7 @@ btVector3 Bt(const Vec3& v) { return btVector3(v.x(), v.y(), v.z()); }
 
 Vec3 Uniform(std::mt19937_64& rng, double half) {
   std::uniform_real_distribution<double> u(-half, half);
-  return Vec3(u(rng), u(rng), u(rng));
+  return Vec3{u(rng), u(rng), u(rng)};
 }
 
 std::shared_ptr<const ConvexHull> Rock(std::mt19937_64& rng, double size) {
@@ -56,7 +56,7 @@ World MakeWorld(int bodies, uint64_t seed) {
     RigidBody b;
     switch (kind(rng)) {
       case 0: b.shape = Shape::Sphere(size(rng)); break;
-      case 1: b.shape = Shape::Box(Vec3(size(rng), size(rng), size(rng))); break;
+      case 1: b.shape = Shape::Box(Vec3{size(rng), size(rng), size(rng)}); break;
       case 2: b.shape = Shape::Capsule(size(rng), size(rng)); break;
       default: {
         std::shared_ptr<const ConvexHull> hull = Rock(rng, size(rng));
@@ -64,7 +64,7 @@ World MakeWorld(int bodies, uint64_t seed) {
       }
     }
     b.x = Uniform(rng, 10.0) + Vec3(0, 0, 10.5);
-    b.q = Quat(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
+    b.q = Quat{normal(rng), normal(rng), normal(rng), normal(rng)}.normalized();
     world.AddBody(b);
   }
   return world;

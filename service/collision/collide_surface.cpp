@@ -189,6 +189,23 @@ void CollideTriangle(const RigidBody& a, const PosedPolyhedron* poly, const Surf
   }
 }
 
+// Removes the contacts whose point lies outside the side planes of the
+// triangle's prism. The face-normal test alone does not check that the body
+// is over the triangle: a triangle beside the body (speculative, within the
+// margin) that it lies below the plane of, uphill in a valley, left the
+// manifold's fallback, the body's deepest vertex, as a contact centimetres
+// deep where the body touched nothing, and penalty's springs sent a resting
+// hull off at metres per second.
+void DropPointsBesidePrism(const PosedPolyhedron& prism, ContactSet* found) {
+  const auto beside = [&](const Contact& c) {
+    for (int k = 0; k < 3; ++k) {
+      if (prism.normals[2 + k].dot(c.point) - prism.offsets[2 + k] > kOnEdge) return true;
+    }
+    return false;
+  };
+  found->erase(std::remove_if(found->begin(), found->end(), beside), found->end());
+}
+
 // Appends `in` to `out` grouped by normal, each group without duplicate
 // points and reduced to four.
 void GroupAndReduce(ContactSet* in, ContactSet* out) {
@@ -234,6 +251,7 @@ void CollideSurface(const RigidBody& a, const RigidBody& b, const CollideContext
     if (!keep) {
       found.clear();
       CollideTriangle(a, poly, tri, scratch.b, true, ctx.margin, &scratch.clip, &found);
+      DropPointsBesidePrism(scratch.b, &found);
     }
     for (Contact& c : found) {
       c.feature_id = FeatureId({kTagSurface, tri.index, c.feature_id});

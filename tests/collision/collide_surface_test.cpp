@@ -128,8 +128,8 @@ TEST(TriangleMeshTest, TreeQueryMatchesBruteForce) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-6.0, 6.0), s(0.0, 0.5);
   for (int trial = 0; trial < 200; ++trial) {
-    const Vec3 c(u(rng), u(rng), s(rng) - 0.25);
-    const Vec3 h(s(rng), s(rng), s(rng));
+    const Vec3 c{u(rng), u(rng), s(rng) - 0.25};
+    const Vec3 h{s(rng), s(rng), s(rng)};
     const Aabb box{c - h, c + h};
     std::vector<int> visited;
     mesh->tree.Overlap(box, [&](int t) {
@@ -263,7 +263,7 @@ TEST(CollideSurfaceTest, HeightfieldEqualsItsMesh) {
   std::uniform_real_distribution<double> u(-0.6, 0.6);
   size_t compared = 0;
   for (int trial = 0; trial < 50; ++trial) {
-    const Vec3 at(u(rng), u(rng), 0.1);
+    const Vec3 at{u(rng), u(rng), 0.1};
     for (const RigidBody& b : {Box(1, Vec3(0.1, 0.07, 0.05), at, RandomRotation(rng)), Sphere(1, 0.1, at)}) {
       ContactSet a = Contacts(b, as_field), c = Contacts(b, as_mesh);
       const auto by_point = [](const Contact& x, const Contact& y) {

@@ -32,7 +32,7 @@ std::vector<Vec3> Cloud(std::mt19937_64& rng, int count, const Vec3& axes) {
   std::uniform_real_distribution<double> shrink(0.97, 1.0);
   std::vector<Vec3> points;
   for (int i = 0; i < count; ++i) {
-    const Vec3 u = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    const Vec3 u = Vec3{normal(rng), normal(rng), normal(rng)}.normalized();
     points.push_back(shrink(rng) * u.cwiseProduct(axes));
   }
   return points;
@@ -40,7 +40,7 @@ std::vector<Vec3> Cloud(std::mt19937_64& rng, int count, const Vec3& axes) {
 
 RigidBody RandomHullBody(std::mt19937_64& rng, BodyId id, int count) {
   std::uniform_real_distribution<double> axis(0.02, 0.4);
-  const Vec3 axes(axis(rng), axis(rng), axis(rng));
+  const Vec3 axes{axis(rng), axis(rng), axis(rng)};
   return Convex(id, Hull(Cloud(rng, count, axes)), RandomVector(rng, 0.3), RandomRotation(rng));
 }
 

@@ -118,7 +118,7 @@ std::vector<RigidBody> ShapesUnderTest(std::mt19937_64& rng) {
   const Vec3 x = RandomVector(rng, 3.0);
   return {
       MakeBody(1, Shape::Sphere(size(rng)), x, q),
-      MakeBody(2, Shape::Box(Vec3(size(rng), size(rng), size(rng))), x, q),
+      MakeBody(2, Shape::Box(Vec3{size(rng), size(rng), size(rng)}), x, q),
       MakeBody(3, Shape::Capsule(size(rng), size(rng)), x, q),
       MakeBody(4, Shape::Convex(testing_util::RockHull()), x, q),
       MakeBody(5, Shape::Convex(Hull({{-1, -1, -1}, {2, 0, 0}, {0, 1.5, 0}, {0, 0, 1}, {0.5, 0.5, 0.8}})), x, q),
@@ -250,10 +250,10 @@ World ThousandBodyWorld(std::mt19937_64& rng) {
       case 4:
         shape = Shape::Compound(std::vector<ShapeChild>{
             {Shape::Sphere(size(rng)), Vec3(-0.3, 0, 0), Quat::Identity()},
-            {Shape::Box(Vec3(size(rng), size(rng), size(rng))), Vec3(0.3, 0, 0), RandomRotation(rng)}});
+            {Shape::Box(Vec3{size(rng), size(rng), size(rng)}), Vec3(0.3, 0, 0), RandomRotation(rng)}});
         break;
       case 0: shape = Shape::Sphere(size(rng)); break;
-      case 1: shape = Shape::Box(Vec3(size(rng), size(rng), size(rng))); break;
+      case 1: shape = Shape::Box(Vec3{size(rng), size(rng), size(rng)}); break;
       case 2: shape = Shape::Capsule(size(rng), size(rng)); break;
       default: shape = Shape::Convex(testing_util::RockHull()); break;
     }

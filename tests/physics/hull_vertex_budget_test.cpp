@@ -85,7 +85,7 @@ TEST(HullVertexBudgetTest, AGenerousBudgetKeepsTheFullHull) {
   std::vector<Vec3> cloud = Ellipsoid(40, Vec3(1.0, 2.0, 0.5));
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.3, 0.3);
-  for (int i = 0; i < 50; ++i) cloud.emplace_back(u(rng), u(rng), u(rng));  // inside
+  for (int i = 0; i < 50; ++i) cloud.push_back(Vec3{u(rng), u(rng), u(rng)});  // inside
   for (int budget : {0, 40, 1000}) {
     std::vector<Vec3> kept;
     ASSERT_TRUE(BudgetedHullPoints(cloud, budget, &kept).ok());

@@ -47,10 +47,10 @@ struct BenchScene {
     std::uniform_real_distribution<double> pos(0.0, side), ext(0.05, 0.5), dir(-1.0, 1.0);
     std::bernoulli_distribution is_static(0.2);
     for (int i = 0; i < n; ++i) {
-      const Vec3 c(pos(rng), pos(rng), pos(rng)), h(ext(rng), ext(rng), ext(rng));
+      const Vec3 c{pos(rng), pos(rng), pos(rng)}, h{ext(rng), ext(rng), ext(rng)};
       boxes.push_back({c - h, c + h});
       movable.push_back(!is_static(rng));
-      velocity.push_back(Vec3(dir(rng), dir(rng), dir(rng)).normalized() * kMoveStep);
+      velocity.push_back(Vec3{dir(rng), dir(rng), dir(rng)}.normalized() * kMoveStep);
     }
   }
 

@@ -40,8 +40,8 @@ void BuildChain(int n, Chain* c) {
     s.radius = r;
     s.half_length = hl;
     s.position = top - Vec3(0, 0, (i + 0.5) * pitch);
-    s.linear_velocity = Vec3(u(rng), u(rng), u(rng));
-    s.angular_velocity = Vec3(u(rng), u(rng), u(rng));
+    s.linear_velocity = Vec3{u(rng), u(rng), u(rng)};
+    s.angular_velocity = Vec3{u(rng), u(rng), u(rng)};
     RigidBody body;
     CreateBody(s, Material{}, &body);
     const BodyId id = c->world.AddBody(body);

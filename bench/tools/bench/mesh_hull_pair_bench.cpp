@@ -102,9 +102,9 @@ std::vector<std::pair<RigidBody, RigidBody>> Pairs(int budget, double overlap) {
   std::vector<std::pair<RigidBody, RigidBody>> out;
   for (int k = 0; k < kPairs; ++k) {
     const int i = pick(rng), j = pick(rng);
-    const Quat qa = Quat(Eigen::Vector4d(n(rng), n(rng), n(rng), n(rng))).normalized();
-    const Quat qb = Quat(Eigen::Vector4d(n(rng), n(rng), n(rng), n(rng))).normalized();
-    const Vec3 u = Vec3(n(rng), n(rng), n(rng)).normalized();
+    const Quat qa = Quat(Eigen::Vector4d{n(rng), n(rng), n(rng), n(rng)}).normalized();
+    const Quat qb = Quat(Eigen::Vector4d{n(rng), n(rng), n(rng), n(rng)}).normalized();
+    const Vec3 u = Vec3{n(rng), n(rng), n(rng)}.normalized();
     // ids of their own, so that each pair has its own cache entry
     RigidBody a = LinkBody(meshes[i], budget, 2 * k + 1, qa);
     RigidBody b = LinkBody(meshes[j], budget, 2 * k + 2, qb);

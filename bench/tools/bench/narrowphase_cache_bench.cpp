@@ -37,8 +37,8 @@ const Trajectory& FallingBoxes() {
           s.shape = ShapeType::kBox;
           s.half_extents = Vec3::Constant(0.1);
           s.position = Vec3(0.3 * i, 0.3 * j, 0.5 + 0.3 * k);
-          s.orientation = Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng));
-          s.angular_velocity = Vec3(u(rng), u(rng), u(rng));
+          s.orientation = Eigen::Vector4d{u(rng), u(rng), u(rng), u(rng)};
+          s.angular_velocity = Vec3{u(rng), u(rng), u(rng)};
           RigidBody b;
           CreateBody(s, Material{}, &b);
           world.AddBody(b);
