@@ -46,7 +46,7 @@ using testing::MethodConfig;
 using Sim = testing::MethodSim;
 using testing::Draw;
 
-constexpr int kScenes = 3;         // without RANDOM_SCENES (the sanitizer suite)
+constexpr int kScenes = 3;         // without RANDOM_SCENES (make test sets 10, the sanitizer suite 1)
 constexpr int kSteps = 240;         // 1 s at the default 1/240 s
 constexpr double kCell = 1.2;       // m between the columns' axes
 constexpr double kMaxSize = 0.25;   // m, largest half size or radius
