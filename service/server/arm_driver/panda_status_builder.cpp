@@ -33,7 +33,8 @@ Status BuildPandaStatus(double sim_time_s, const ArmJointReadings& in, drake::lc
   m.joint_torque_external = OrZeros(in.torque_external, n);
   m.control_command_success_rate = 1.0;
   // unary +: the generated constants are declared, not defined, so are read by value
-  m.robot_mode = static_cast<int8_t>(in.inputs != 0 ? +drake::lcmt_panda_status::kMove : +drake::lcmt_panda_status::kIdle);
+  using S = drake::lcmt_panda_status;
+  m.robot_mode = static_cast<int8_t>(in.inputs != 0 ? +S::kMove : +S::kIdle);
   m.robot_utime = m.utime;
   m.control_mode = PandaControlMode(in.inputs);
   *out = std::move(m);
