@@ -7,6 +7,7 @@ namespace contactsim {
 CommandIntake::CommandIntake(const ServerOptions& options, CommandBatch* batch)
     : prefix_(options.prefix + "_"),
       arm_channel_(options.arm_driver ? options.arm_driver->command_channel : ""),
+      arm_protocol_(options.arm_driver ? FindArmProtocol(options.arm_driver->protocol) : nullptr),
       max_commands_per_second_(options.max_commands_per_second),
       command_burst_(options.command_burst),
       rate_limiter_(options.max_commands_per_second, options.command_burst),
@@ -41,7 +42,8 @@ void CommandIntake::OnArmCommand(const std::string& channel, const void* data, i
   cmd.request_id = -1;
   cmd.record = RecordKind::kArmCommand;
   cmd.arm.utime = -1;
-  Status st = DecodeIiwaCommand(data, size, &cmd.arm);
+  Status st = arm_protocol_ != nullptr ? arm_protocol_->decode_command(data, size, &cmd.arm)
+                                      : Status::FailedPrecondition("the arm driver has no protocol");
   cmd.request_id = cmd.arm.utime;
   if (st.ok()) {
     cmd.payload.assign(static_cast<const char*>(data), size);

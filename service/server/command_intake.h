@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "service/server/arm_driver/arm_protocol.h"
 #include "service/server/command_auth.h"
 #include "service/server/command_batch.h"
 #include "service/server/command_channels.h"
@@ -39,6 +40,7 @@ class CommandIntake {
 
   const std::string prefix_;  // "<prefix>_"
   const std::string arm_channel_;  // the arm driver's command channel; "" without one
+  const ArmProtocol* arm_protocol_;  // its protocol; null without one
   const double max_commands_per_second_, command_burst_;
   DecodeContext decode_context_;  // new bodies get the default Material
   RateLimiter rate_limiter_;

@@ -43,7 +43,7 @@ enum class RecordKind : uint8_t {
   kNotJournaled = 7,  // a query (ray_cast_t): never written
   kModelCommand = 8,  // model_cmd_t, a LOAD always in its resolved form (the model as read)
   kActuatorCommand = 9,  // actuator_cmd_t
-  kArmCommand = 10,   // drake::lcmt_iiwa_command on the arm driver's channel (arm_driver/)
+  kArmCommand = 10,   // the arm driver's command (lcmt_iiwa_command or lcmt_panda_command, arm_driver/)
 };
 
 struct JournalRecord {

@@ -76,9 +76,6 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
     ArmDriverConfig arm;
     std::string field;
     Status st = ReadArmDriverConfig(config.arm_driver(), s.options.prefix, &arm, &field);
-    if (st.ok() && arm.protocol != "iiwa") {
-      st = Status::FailedPrecondition("protocol \"" + arm.protocol + "\" is not served in this release (\"iiwa\" is)");
-    }
     if (!st.ok()) return st.Prefixed(config_path + ": arm_driver: ");
     s.options.arm_driver = std::move(arm);
   }

@@ -66,7 +66,9 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
     st = channel->decode(r.payload.data(), static_cast<int>(r.payload.size()), RecordContext(), &cmd);
   } else if (r.kind == RecordKind::kArmCommand) {  // the arm driver's channel is the config's, not the table's
     cmd.kind = Command::Kind::kArmCommand;
-    st = DecodeIiwaCommand(r.payload.data(), static_cast<int>(r.payload.size()), &cmd.arm);
+    st = arm_ && arm_->protocol() ? arm_->protocol()->decode_command(r.payload.data(),
+                                                                     static_cast<int>(r.payload.size()), &cmd.arm)
+                                  : Status::FailedPrecondition("an arm command, but this server has no arm driver");
   }
   if (st.ok() && cmd.kind == Command::Kind::kInput) {
     ApplyInput(cmd.input, false);

@@ -1,17 +1,11 @@
 """Drake's own iiwa driver systems drive contactsim's simulated iiwa.
 
 The server runs config/iiwa_driver.pbtxt (PyPI's pybullet_data iiwa on a
-fixed base); the controller is examples/iiwa_drake_controller.py, a Drake
-diagram of IiwaCommandSender and IiwaStatusReceiver over LCM, in a process
+fixed base); the controller is examples/drake_arm_controller.py --arm iiwa,
+a Drake diagram of IiwaCommandSender and IiwaStatusReceiver over LCM, in a process
 of its own, as a user runs it (docs/actuators.md, "Drake's arm driver").
 Needs the PyPI wheel ``drake`` (requirements.txt); skipped without it.
 """
-import json
-import subprocess
-import sys
-import threading
-import time
-
 import lcm
 import numpy as np
 import pytest
@@ -22,10 +16,10 @@ pytest.importorskip("pydrake", reason="the PyPI wheel drake is not installed (pi
 from drake import lcmt_iiwa_command, lcmt_iiwa_status  # noqa: E402
 
 import contactsim  # noqa: E402
+from drake_arm import Tap, run_controller  # noqa: E402
 
 CONFIG = REPO / "config" / "iiwa_driver.pbtxt"
-SCENE = REPO / "config" / "scenes" / "iiwa_arm.pbtxt"
-CONTROLLER = REPO / "examples" / "iiwa_drake_controller.py"
+SCENE = REPO / "config" / "scenes" / "arm_ground.pbtxt"
 JOINTS = 7
 PERIOD_US = 5000          # Drake's driver: 200 Hz
 HOLD_TOLERANCE = 1e-3     # rad: the arm held at a commanded pose
@@ -40,48 +34,11 @@ def arm(launch):
     return server
 
 
-class Tap:
-    """Every lcmt_iiwa_status and every reply_t heard on the server's LCM URL."""
-
-    def __init__(self, server):
-        self.lc = lcm.LCM(server.url)
-        self.statuses, self.replies = [], []
-        self.lc.subscribe("IIWA_STATUS", lambda c, d: self.statuses.append(lcmt_iiwa_status.decode(d)))
-        self.lc.subscribe(server.prefix + "_REPLY", lambda c, d: self.replies.append(contactsim.reply_t.decode(d)))
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True)
-        self._thread.start()
-
-    def _run(self):
-        while not self._stop.is_set():
-            self.lc.handle_timeout(20)
-
-    def wait(self, what, timeout=10.0):
-        end = time.monotonic() + timeout
-        while time.monotonic() < end:
-            if what():
-                return True
-            time.sleep(0.01)
-        return False
-
-    def close(self):
-        self._stop.set()
-        self._thread.join(2)
-
-
 @pytest.fixture
 def tap(arm):
-    t = Tap(arm)
+    t = Tap(arm, "IIWA_STATUS", lcmt_iiwa_status)
     yield t
     t.close()
-
-
-def run_controller(server, seconds, *args):
-    """Runs the example controller for `seconds` and returns its report."""
-    done = subprocess.run([sys.executable, str(CONTROLLER), "--lcm-url", server.url, "--seconds", str(seconds),
-                           "--report", *map(str, args)], capture_output=True, text=True, timeout=seconds + 60)
-    assert done.returncode == 0, done.stderr + "\nserver log:\n" + server.log()
-    return json.loads(done.stdout.strip().splitlines()[-1])
 
 
 # Verifies that the status comes every 5 ms of simulated time (utime steps
@@ -100,7 +57,7 @@ def test_status_at_the_drivers_rate(arm, tap):
 # come back through IiwaStatusReceiver as the commanded position and torque.
 def test_feedforward_torque_shows_in_commanded_torque(arm):
     torque = [0.5, -1.0, 1.5, -2.0, 2.5, -3.0, 3.5]
-    report = run_controller(arm, 1.0, "--pose", *POSE, "--torque", *torque)
+    report = run_controller(arm, "iiwa", 1.0, "--pose", *POSE, "--torque", *torque)
     assert report["torque_commanded"] == torque
     assert report["position_commanded"] == POSE
     assert report["torque_external"] == [0.0] * JOINTS
@@ -125,8 +82,7 @@ def test_bad_commands_are_refused(arm, tap):
         m.num_torques = 0
         m.joint_torque = []
         pub.publish("IIWA_COMMAND", m.encode())
-        assert tap.wait(lambda: any(r.request_id == utime for r in tap.replies)), arm.log()
-        r = [r for r in tap.replies if r.request_id == utime][0]
+        r = tap.reply_to(utime, arm)
         assert r.client_id == "IIWA_COMMAND"
         assert r.code == contactsim.reply_t.INVALID_ARGUMENT
         assert says in r.message
@@ -143,7 +99,7 @@ def test_bad_commands_are_refused(arm, tap):
 # acting in the contact methods): skipped, with the reason, on a server
 # whose drives do not move the arm at all.
 def test_drake_holds_the_arm_at_a_commanded_pose(arm):
-    report = run_controller(arm, 4.0, "--pose", *POSE)
+    report = run_controller(arm, "iiwa", 4.0, "--pose", *POSE)
     moved = np.max(np.abs(np.subtract(report["position_measured"], report["start_position"])))
     if moved == 0.0:
         pytest.skip("the joint drives did not move the arm at all: this build's contact methods do not apply "

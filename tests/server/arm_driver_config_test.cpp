@@ -29,14 +29,15 @@ proto::ArmDriver Block(const std::string& protocol, const std::string& model) {
 }
 
 // Verifies that each protocol takes the channel names of Drake's driver and
-// the 200 Hz status rate when the block leaves them out.
+// its status rate when the block leaves them out: 200 Hz for the iiwa
+// (Drake's kIiwaLcmStatusPeriod), 1 kHz for the Panda (libfranka's cycle).
 TEST(ArmDriverConfigTest, AbsentFieldsTakeDrakesDefaults) {
   for (const char* protocol : {"iiwa", "panda"}) {
     ArmDriverConfig c;
     std::string field;
     ASSERT_TRUE(ReadArmDriverConfig(Block(protocol, "arm"), "CONTACTSIM", &c, &field).ok()) << protocol;
     EXPECT_EQ(c.model, "arm");
-    EXPECT_DOUBLE_EQ(c.status_rate_hz, 200.0);
+    EXPECT_DOUBLE_EQ(c.status_rate_hz, std::string(protocol) == "iiwa" ? 200.0 : 1000.0);
     const std::string upper = std::string(protocol) == "iiwa" ? "IIWA" : "PANDA";
     EXPECT_EQ(c.command_channel, upper + "_COMMAND");
     EXPECT_EQ(c.status_channel, upper + "_STATUS");
@@ -124,10 +125,9 @@ TEST(ArmDriverConfigTest, GainsAndGravityCompensation) {
   EXPECT_FALSE(c.gravity_compensation);
 }
 
-// Verifies that a valid iiwa block reaches the server's options, and that a
-// Panda block, valid in the file, stops the start with the reason: this
-// release serves the iiwa's messages only.
-TEST(ArmDriverConfigTest, IiwaBlockStartsAndPandaIsRefused) {
+// Verifies that a valid block of either protocol reaches the server's
+// options with the protocol's channels.
+TEST(ArmDriverConfigTest, IiwaAndPandaBlocksStart) {
   for (const char* protocol : {"iiwa", "panda"}) {
     const std::string path = WriteTemp(std::string("arm_") + protocol + ".pbtxt",
                                        std::string("arm_driver {\n  protocol: \"") + protocol +
@@ -137,33 +137,11 @@ TEST(ArmDriverConfigTest, IiwaBlockStartsAndPandaIsRefused) {
     ASSERT_TRUE(loaded.ok()) << loaded.message();
     ServerSetup setup;
     const Status st = MakeServerSetup(config, path, "", &setup);
-    if (std::string(protocol) == "iiwa") {
-      ASSERT_TRUE(st.ok()) << st.message();
-      ASSERT_TRUE(setup.options.arm_driver.has_value());
-      EXPECT_EQ(setup.options.arm_driver->command_channel, "IIWA_COMMAND");
-    } else {
-      ASSERT_FALSE(st.ok());
-      EXPECT_NE(st.message().find("arm_driver: protocol \"panda\" is not served in this release"), std::string::npos)
-          << st.message();
-    }
+    ASSERT_TRUE(st.ok()) << st.message();
+    ASSERT_TRUE(setup.options.arm_driver.has_value());
+    EXPECT_EQ(setup.options.arm_driver->protocol, protocol);
+    EXPECT_EQ(setup.options.arm_driver->command_channel, DefaultArmCommandChannel(protocol));
   }
-}
-
-// Verifies that a model_path entry with a wildcard stands for every folder
-// it matches, and one that matches nothing is kept as written.
-TEST(ArmDriverConfigTest, ModelPathWildcardsExpand) {
-  const std::string dir = ::testing::TempDir() + "arm_glob";
-  std::filesystem::create_directories(dir + "/lib/python3.11/site-packages/pybullet_data");
-  std::filesystem::create_directories(dir + "/lib/python3.12/site-packages/pybullet_data");
-  const std::string path = dir + "/config.pbtxt";
-  std::ofstream(path) << "model_path: \"lib/python3*/site-packages/pybullet_data\"\nmodel_path: \"none*\"\n";
-  proto::ServerConfig config;
-  ASSERT_TRUE(LoadServerConfig(path, &config).ok());
-  ServerSetup setup;
-  ASSERT_TRUE(MakeServerSetup(config, path, "", &setup).ok());
-  EXPECT_EQ(setup.options.model_paths,
-            (std::vector<std::string>{dir + "/lib/python3.11/site-packages/pybullet_data",
-                                      dir + "/lib/python3.12/site-packages/pybullet_data", dir + "/none*"}));
 }
 
 }  // namespace

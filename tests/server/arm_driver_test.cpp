@@ -14,70 +14,21 @@
 #include <string>
 #include <vector>
 
-#include "service/proto/model.pb.h"
-#include "service/scene/model_proto.h"
-#include "tests/model/hand_made_models.h"
-#include "tests/server/server_harness.h"
+#include "tests/server/arm_server.h"
 #include "tests/server/temp_dir.h"
 
 namespace contactsim {
 namespace {
 
+using testing::ArmServer;
+using testing::ChainHoldTorque;
+using testing::kLinkPitch;
+using testing::kComOffset;
 using testing::ServerHarness;
-
-constexpr double kG = 9.81;             // m/s^2, the world's default gravity
-constexpr double kLinkPitch = 0.2;      // m between two joints of the chain
-constexpr double kComOffset = 0.1;      // m from a link's joint to its centre of mass
-double LinkMass(int k) { return 1.0 + 0.1 * k; }  // kg, link k = 1..7
-
-// A base and seven links in a horizontal line along x, each hinged to the
-// one before about y: every joint carries the weight of the links beyond it.
-model::ModelDescription Chain7() {
-  using model::testing::Revolute;
-  using model::testing::SphereLink;
-  model::ModelDescription d;
-  d.name = "chain";
-  d.source = "<inline>";
-  d.links.push_back(SphereLink("base", 2.0, 0.05, Vec3::Zero()));
-  for (int k = 1; k <= kArmJoints; ++k) {
-    const std::string link = "l" + std::to_string(k);
-    d.links.push_back(SphereLink(link, LinkMass(k), 0.04, Vec3(kComOffset, 0, 0)));
-    d.joints.push_back(Revolute("j" + std::to_string(k), k == 1 ? "base" : "l" + std::to_string(k - 1), link,
-                                Vec3(k == 1 ? 0.0 : kLinkPitch, 0, 0), Vec3::UnitY()));
-  }
-  return d;
-}
-
-model_cmd_t LoadChain() {
-  model_cmd_t m{};
-  m.client_id = "test";
-  m.op = model_cmd_t::LOAD;
-  m.format = model_cmd_t::FORMAT_RESOLVED;
-  proto::ModelDescription p;
-  SaveModelDescription(Chain7(), &p);
-  const std::string bytes = p.SerializeAsString();
-  m.resolved.assign(bytes.begin(), bytes.end());
-  m.name = "arm";
-  m.position[2] = 1.0;
-  m.orientation[0] = 1.0;
-  m.fixed_base = true;
-  return m;
-}
+using testing::Targets;
 
 ServerOptions Options(bool gravity_compensation = true, double kp = kDefaultArmKp, double kd = kDefaultArmKd) {
-  ServerOptions o;
-  o.prefix = "A";
-  ArmDriverConfig arm;
-  arm.protocol = "iiwa";
-  arm.model = "arm";
-  arm.command_channel = "IIWA_COMMAND";
-  arm.status_channel = "IIWA_STATUS";
-  arm.status_rate_hz = 200;
-  arm.kp.assign(kArmJoints, kp);
-  arm.kd.assign(kArmJoints, kd);
-  arm.gravity_compensation = gravity_compensation;
-  o.arm_driver = arm;
-  return o;
+  return testing::ArmOptions("iiwa", gravity_compensation, kp, kd);
 }
 
 drake::lcmt_iiwa_command Command(int64_t utime, std::vector<double> position, std::vector<double> torque) {
@@ -90,37 +41,12 @@ drake::lcmt_iiwa_command Command(int64_t utime, std::vector<double> position, st
   return m;
 }
 
-std::vector<double> Targets(double base) {
-  std::vector<double> v;
-  for (int i = 0; i < kArmJoints; ++i) v.push_back(base + 0.01 * i);
-  return v;
-}
-
-struct ArmServer {
-  explicit ArmServer(ServerOptions o = Options()) : h(std::move(o)) {
-    const reply_t r = h.Send(LoadChain());
-    EXPECT_EQ(r.code, reply_t::OK) << r.message;
-    joints.assign(r.ids.end() - kArmJoints, r.ids.end());
-  }
-  void Post(const drake::lcmt_iiwa_command& m) {
-    const auto bytes = testing::Encode(m);
-    h.server.OnMessage("IIWA_COMMAND", bytes.data(), static_cast<int>(bytes.size()));
-  }
-  const Joint& joint(int i) const { return *h.server.world().FindJoint(joints[i]); }
-  std::vector<reply_t> Replies() const { return h.transport.All<reply_t>(h.server.Channel("REPLY")); }
-  std::vector<drake::lcmt_iiwa_status> Statuses() const {
-    return h.transport.All<drake::lcmt_iiwa_status>("IIWA_STATUS");
-  }
-  ServerHarness h;
-  std::vector<int64_t> joints;
-};
-
 // Verifies that a command sets each drive's target, the configured gains and
 // the feed-forward torque, the effort limit from the model file, and is not
 // answered; a command without positions (torque only) turns the gains off
 // and keeps the last targets.
 TEST(ArmDriverTest, CommandSetsTheDrives) {
-  ArmServer a;
+  ArmServer a(Options());
   const size_t replies = a.Replies().size();
   a.Post(Command(7, Targets(0.1), Targets(2.0)));
   a.h.server.Tick();
@@ -150,7 +76,7 @@ TEST(ArmDriverTest, CommandSetsTheDrives) {
 // count of positions or torques, a NaN, bytes that are no lcmt_iiwa_command,
 // and a command while the world holds no arm.
 TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
-  ArmServer a;
+  ArmServer a(Options());
   a.Post(Command(1, Targets(0.1), {}));
   a.h.server.Tick();
   struct Case {
@@ -197,13 +123,13 @@ TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
 // step of each period).
 TEST(ArmDriverTest, StatusAtTheDriversRate) {
   for (double dt : {0.001, 1.0 / 240}) {
-    ArmServer a;
+    ArmServer a(Options());
     scene_cmd_t set = a.h.Scene(scene_cmd_t::SET_TIMESTEP);
     set.dt = dt;
     ASSERT_EQ(a.h.Send(set).code, reply_t::OK);
-    const size_t before = a.Statuses().size();
+    const size_t before = a.Statuses<drake::lcmt_iiwa_status>().size();
     a.h.Step(48);
-    const std::vector<drake::lcmt_iiwa_status> s = a.Statuses();
+    const std::vector<drake::lcmt_iiwa_status> s = a.Statuses<drake::lcmt_iiwa_status>();
     std::vector<int64_t> got;
     for (size_t i = before; i < s.size(); ++i) got.push_back(s[i].utime);
     std::vector<int64_t> want;
@@ -218,14 +144,6 @@ TEST(ArmDriverTest, StatusAtTheDriversRate) {
   }
 }
 
-// The torque joint i's drive needs to hold the horizontal chain (N m): the
-// moment of the links beyond it, -sum m_k g (x_k - x_i) about +y.
-double ChainHoldTorque(int i) {
-  double tau = 0;
-  for (int k = i + 1; k <= kArmJoints; ++k) tau -= LinkMass(k) * kG * ((k - 1 - i) * kLinkPitch + kComOffset);
-  return tau;
-}
-
 // Verifies every field of the status after a command: measured positions
 // and rates are the joints', the commanded and interpolated positions the
 // command's, the commanded torque its feed-forward, the measured torque the
@@ -236,7 +154,7 @@ TEST(ArmDriverTest, StatusFieldsAndHoldTorques) {
   ArmServer a(Options(true, 0.0, 0.0));
   a.Post(Command(3, Targets(0.2), std::vector<double>(kArmJoints, 0.0)));
   a.h.Step(5);
-  const drake::lcmt_iiwa_status s = a.Statuses().back();
+  const drake::lcmt_iiwa_status s = a.Statuses<drake::lcmt_iiwa_status>().back();
   ASSERT_EQ(s.num_joints, kArmJoints);
   EXPECT_EQ(s.utime, std::llround(a.h.server.world().time * 1e6));
   const World& w = a.h.server.world();
@@ -261,9 +179,9 @@ TEST(ArmDriverTest, StatusFieldsAndHoldTorques) {
 // towards larger angles about +y); with nothing pushing, every one is 0.
 TEST(ArmDriverTest, ExternalTorqueIsThePushTimesEachJointsLeverArm) {
   constexpr double kPush = 20.0;  // N, down
-  ArmServer a;                    // gravity compensation, gains holding the pose
+  ArmServer a(Options());                    // gravity compensation, gains holding the pose
   a.h.Step(10);
-  const drake::lcmt_iiwa_status idle = a.Statuses().back();
+  const drake::lcmt_iiwa_status idle = a.Statuses<drake::lcmt_iiwa_status>().back();
   for (double t : idle.joint_torque_external) EXPECT_EQ(t, 0.0);
   const BodyId hand = a.joint(kArmJoints - 1).body_b;
   body_cmd_t push = a.h.Body(body_cmd_t::APPLY_FORCE, hand);
@@ -271,7 +189,7 @@ TEST(ArmDriverTest, ExternalTorqueIsThePushTimesEachJointsLeverArm) {
   push.duration = 1.0;
   ASSERT_EQ(a.h.Send(push).code, reply_t::OK);
   a.h.Step(5);
-  const drake::lcmt_iiwa_status s = a.Statuses().back();
+  const drake::lcmt_iiwa_status s = a.Statuses<drake::lcmt_iiwa_status>().back();
   const World& w = a.h.server.world();
   const Vec3 force(0, 0, -kPush);
   for (int i = 0; i < kArmJoints; ++i) {

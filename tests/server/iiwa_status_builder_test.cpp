@@ -19,8 +19,8 @@ std::vector<double> Values(int n, double base) {
   return v;
 }
 
-IiwaJointReadings Readings(int n) {
-  IiwaJointReadings r;
+ArmJointReadings Readings(int n) {
+  ArmJointReadings r;
   r.position = Values(n, 1.0);
   r.velocity = Values(n, -2.0);
   r.position_commanded = Values(n, 3.0);
@@ -32,7 +32,7 @@ IiwaJointReadings Readings(int n) {
 // left out (measured = commanded, external = 0) and given.
 TEST(IiwaStatusBuilderTest, FieldsCarryTheirReadings) {
   for (int n : {1, 2, 7}) {
-    IiwaJointReadings r = Readings(n);
+    ArmJointReadings r = Readings(n);
     drake::lcmt_iiwa_status m;
     ASSERT_TRUE(BuildIiwaStatus(1.25, r, &m).ok());
     EXPECT_EQ(m.utime, 1250000);
@@ -80,7 +80,7 @@ TEST(IiwaStatusBuilderTest, BadReadingsAreRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   struct Case {
     double t;
-    IiwaJointReadings r;
+    ArmJointReadings r;
     const char* says;
   };
   std::vector<Case> cases;

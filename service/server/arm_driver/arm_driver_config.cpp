@@ -2,16 +2,20 @@
 
 #include <cmath>
 
+#include "service/server/arm_driver/arm_protocol.h"
+
 namespace contactsim {
 namespace {
 
-// Drake's iiwa driver publishes its status at 200 Hz; a faster rate than one
-// message per millisecond is more than any arm interface offers (the
-// KUKA FRI and the Franka control loop both run at 1 kHz at most).
-constexpr double kDefaultStatusRateHz = 200;
+// A faster rate than one message per millisecond is more than any arm
+// interface offers (the KUKA FRI and the Franka control loop both run at
+// 1 kHz at most). The default is each protocol's (arm_protocol.cpp).
 constexpr double kMaxStatusRateHz = 1000;
 
-std::string ProtocolPrefix(const std::string& protocol) { return protocol == "iiwa" ? "IIWA" : "PANDA"; }
+std::string ProtocolPrefix(const std::string& protocol) {
+  const ArmProtocol* p = FindArmProtocol(protocol);
+  return p != nullptr ? p->channel_prefix : "";
+}
 
 // An LCM channel name the shell and lcm-spy show as is: printable, no spaces.
 bool PlainChannelName(const std::string& name) {
@@ -63,9 +67,10 @@ Status ReadArmDriverConfig(const proto::ArmDriver& block, const std::string& ser
                            std::string* field) {
   ArmDriverConfig c;
   c.protocol = block.protocol();
-  if (c.protocol != "iiwa" && c.protocol != "panda") {
+  const ArmProtocol* protocol = FindArmProtocol(c.protocol);
+  if (protocol == nullptr) {
     *field = "protocol";
-    return Status::InvalidArgument("protocol must be \"iiwa\" or \"panda\", got \"" + c.protocol + "\"");
+    return Status::InvalidArgument("protocol must be " + ArmProtocolNames() + ", got \"" + c.protocol + "\"");
   }
   c.model = block.model();
   if (c.model.empty()) {
@@ -88,7 +93,7 @@ Status ReadArmDriverConfig(const proto::ArmDriver& block, const std::string& ser
     return Status::InvalidArgument("status_channel and command_channel are both \"" + c.status_channel +
                                    "\"; the driver's status and its commands need channels of their own");
   }
-  c.status_rate_hz = block.has_status_rate_hz() ? block.status_rate_hz() : kDefaultStatusRateHz;
+  c.status_rate_hz = block.has_status_rate_hz() ? block.status_rate_hz() : protocol->default_status_rate_hz;
   if (!std::isfinite(c.status_rate_hz) || c.status_rate_hz <= 0 || c.status_rate_hz > kMaxStatusRateHz) {
     *field = "status_rate_hz";
     return Status::InvalidArgument("status_rate_hz must be in (0, 1000] Hz, got " + std::to_string(c.status_rate_hz));

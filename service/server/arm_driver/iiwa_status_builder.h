@@ -5,22 +5,10 @@
 
 #include <drake/lcmt_iiwa_status.hpp>
 
-#include <vector>
-
 #include "service/physics/status.h"
+#include "service/server/arm_driver/arm_readings.h"
 
 namespace contactsim {
-
-// One reading of the arm's joints, each array in the arm's joint order with
-// one entry per joint.
-struct IiwaJointReadings {
-  std::vector<double> position;            // rad, the joint angles now
-  std::vector<double> velocity;            // rad/s, the joint rates now
-  std::vector<double> position_commanded;  // rad, the last position target received
-  std::vector<double> torque_commanded;    // N m, the torque the drives were asked for
-  std::vector<double> torque_applied;      // N m, what the drives applied; empty: torque_commanded
-  std::vector<double> torque_external;     // N m, joint torque from contacts; empty: zeros
-};
 
 // Fills *out for simulated time sim_time_s (s, >= 0). The simulation knows
 // its state exactly, so the fields a real driver estimates are exact here:
@@ -37,9 +25,9 @@ struct IiwaJointReadings {
 //   joint_torque_measured     torque_applied, or torque_commanded when it is
 //                             empty, as Drake's simulated sender does
 //   joint_torque_external     torque_external, or zeros
-// Refuses (InvalidArgument, naming the field) an empty arm, arrays of
-// different lengths, a non-finite value and a negative or non-finite time;
-// *out is untouched then.
-Status BuildIiwaStatus(double sim_time_s, const IiwaJointReadings& in, drake::lcmt_iiwa_status* out);
+// The iiwa's protocol has no velocity target: velocity_commanded and inputs
+// are not sent. Refuses what CheckArmReadings refuses; *out is untouched
+// then.
+Status BuildIiwaStatus(double sim_time_s, const ArmJointReadings& in, drake::lcmt_iiwa_status* out);
 
 }  // namespace contactsim

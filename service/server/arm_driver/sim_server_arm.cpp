@@ -13,6 +13,10 @@ namespace contactsim {
 Status SimServer::StartArmDriver() {
   if (!arm_) return Status::Ok();
   const ArmDriverConfig& c = arm_->config();
+  if (arm_->protocol() == nullptr) {
+    return Status::InvalidArgument("arm_driver: protocol must be " + ArmProtocolNames() + ", got \"" + c.protocol +
+                                   "\"");
+  }
   if (!options_.auth_key.empty()) {
     return Status::FailedPrecondition("arm_driver: Drake's arm-driver messages carry no signature, so a server "
                                       "with an auth key cannot accept them; remove auth_key_file or arm_driver");
@@ -35,8 +39,9 @@ Status SimServer::StartArmDriver() {
                  "published until a MODEL_CMD LOAD brings it",
                  c.model);
   }
-  spdlog::info("arm driver: model \"{}\" on {} (commands) and {} (status at {} Hz of simulated time)", c.model,
-               c.command_channel, c.status_channel, c.status_rate_hz);
+  spdlog::info("arm driver: model \"{}\" on {} ({}) and {} ({} at {} Hz of simulated time)", c.model,
+               c.command_channel, arm_->protocol()->command_type, c.status_channel, arm_->protocol()->status_type,
+               c.status_rate_hz);
   return Status::Ok();
 }
 
@@ -54,11 +59,10 @@ Outcome SimServer::ApplyArmCommand(Command& cmd) {
 
 void SimServer::PublishArmStatus() {
   if (!arm_ || !arm_->StatusDue(world_.time)) return;
-  drake::lcmt_iiwa_status status;
-  const Status st = arm_->BuildStatus(world_, contacts_, method_->ValueKind(), &status);
-  if (st.ok()) {
-    publisher_.Publish(arm_->config().status_channel, status);
-  } else {
+  ArmJointReadings readings;
+  Status st = arm_->Read(world_, contacts_, method_->ValueKind(), &readings);
+  if (st.ok()) st = arm_->protocol()->publish_status(publisher_, arm_->config().status_channel, world_.time, readings);
+  if (!st.ok()) {
     spdlog::debug("arm driver: no status at t = {:.3f} s: {}", world_.time, st.message());
   }
 }
