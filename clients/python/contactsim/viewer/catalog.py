@@ -1,22 +1,30 @@
 """What STATE does not carry: each body's shape, name and mass, the joints,
 the range sensors and the robot models, read from a snapshot file of the
 server (service/proto/snapshot.proto) into plain dicts the page can draw
-(docs/viewer.md, "catalog")."""
+(docs/viewer.md, "catalog"). A mesh's vertices and triangles and a
+heightfield's heights are numpy arrays (float64, int64), packed for the
+page by surface_payload.py; a surface that fails its checks there is
+{"kind", "error"} instead."""
+import numpy as np
+
 from .model_catalog import MODEL, model_entry
 from .protowire import parse
+from .surface_payload import surface_error
 
 SHAPE_KINDS = {0: "sphere", 1: "box", 2: "capsule", 3: "convex", 4: "plane", 5: "compound", 6: "mesh",
                7: "heightfield"}
 MOTIONS = {0: "dynamic", 1: "static", 2: "kinematic"}
 JOINT_KINDS = {0: "distance", 1: "ball", 2: "hinge", 3: "fixed", 4: "prismatic"}
 
+_NONE = np.zeros(0)
 _FACE = {1: ("normal", "double", True), 3: ("vertices", "int", True)}
 _HULL = {1: ("vertices", "double", True), 2: ("faces", _FACE, True)}
 _SHAPE = {1: ("type", "int", False), 2: ("radius", "double", False), 3: ("half_extents", "double", True),
           4: ("half_length", "double", False), 5: ("plane_normal", "double", True),
           6: ("plane_offset", "double", False), 7: ("hull", _HULL, False),
-          9: ("mesh_vertices", "double", True), 10: ("mesh_indices", "int", True),
-          11: ("height_rows", "int", False), 12: ("height_cols", "int", False), 13: ("heights", "double", True),
+          9: ("mesh_vertices", "double_array", True), 10: ("mesh_indices", "int_array", True),
+          11: ("height_rows", "int", False), 12: ("height_cols", "int", False),
+          13: ("heights", "double_array", True),
           14: ("height_spacing_x", "double", False), 15: ("height_spacing_y", "double", False)}
 _CHILD = {1: ("shape", _SHAPE, False), 2: ("position", "double", True), 3: ("orientation", "double", True)}
 _SHAPE[8] = ("children", _CHILD, True)   # a compound's shapes (never compounds themselves)
@@ -53,15 +61,19 @@ def _shape(s):
         out["faces"] = [f.get("vertices", []) for f in hull.get("faces", [])]
     if kind == "mesh":
         # body frame; triangles counter-clockwise seen from the front
-        out["vertices"] = s.get("mesh_vertices", [])
-        out["triangles"] = s.get("mesh_indices", [])
+        out["vertices"] = s.get("mesh_vertices", _NONE)
+        out["triangles"] = s.get("mesh_indices", _NONE)
     if kind == "heightfield":
         # heights row-major, rows along body y, centred on the body origin
         # (service/collision/height_field.h); each cell two triangles
         out["rows"] = s.get("height_rows", 0)
         out["cols"] = s.get("height_cols", 0)
-        out["heights"] = s.get("heights", [])
+        out["heights"] = s.get("heights", _NONE)
         out["spacing"] = [s.get("height_spacing_x", 0.0), s.get("height_spacing_y", 0.0)]
+    if kind in ("mesh", "heightfield"):
+        error = surface_error(out)
+        if error is not None:   # drawn as a marker; the page shows why
+            return {"kind": kind, "error": "%s refused: %s" % (kind, error)}
     if kind == "compound":
         out["children"] = [{"shape": _shape(c.get("shape", {})), "position": c.get("position", [0.0] * 3),
                             "orientation": c.get("orientation", [1.0, 0.0, 0.0, 0.0])}

@@ -9,6 +9,7 @@ import asyncio
 import json
 
 from .frames import contacts_from_payload, poses_from_catalog, poses_from_records, read_state
+from .surface_payload import page_shape, shape_summary
 
 POLL_S = 0.002          # how often the live pusher looks for a new STATE or STATUS
 
@@ -32,7 +33,10 @@ class Connection:
     async def send_catalog(self):
         if self.catalog_sent != self.source.catalog_version:
             self.catalog_sent = self.source.catalog_version
-            await self.send_json({"type": "catalog", **self.source.catalog})
+            # tens of ms for a large heightfield: off the event loop
+            text = await asyncio.to_thread(catalog_message, self.source.catalog)
+            if not self.ws.closed:
+                await self.ws.send_str(text)
 
     async def push_live(self):
         """Sends STATUS when it changes, the catalog when it changes, each new
@@ -110,6 +114,8 @@ class Connection:
             await self.send_bytes(self.source.poses(i))
         elif cmd == "body":
             info = await asyncio.to_thread(self.source.body_info, int(msg["id"]))
+            if "shape" in info:
+                info["shape"] = shape_summary(info["shape"])
             await self.send_json({"type": "body", **info})
         else:
             task = asyncio.create_task(self._command(msg))
@@ -127,6 +133,12 @@ class Connection:
                 ok, text = False, str(e) or type(e).__name__
         await self.send_json({"type": "reply", "id": msg.get("id"), "cmd": msg.get("cmd"), "ok": ok,
                               "message": text})
+
+
+def catalog_message(catalog):
+    """The catalog message's JSON text, its surfaces packed (surface_payload.py)."""
+    bodies = [{**b, "shape": page_shape(b["shape"])} for b in catalog["bodies"]]
+    return json.dumps({"type": "catalog", **catalog, "bodies": bodies})
 
 
 def status_message(status):

@@ -7,6 +7,8 @@ to match the generated code.
 """
 import struct
 
+import numpy as np
+
 VARINT, FIXED64, LENGTH, FIXED32 = 0, 1, 2, 5
 
 
@@ -68,15 +70,53 @@ def ints(wire, value):
     return out
 
 
+def varint_array(value):
+    """The varints of a packed field as an int64 array, decoded with numpy: a
+    100,000-triangle mesh's indices take 0.17 s one varint at a time. A
+    varint ends at its first byte below 0x80; its value is the sum of its
+    bytes' low seven bits, each shifted 7 bits more than the last."""
+    b = np.frombuffer(value, dtype=np.uint8)
+    if b.size == 0:
+        return np.zeros(0, dtype=np.int64)
+    ends = np.flatnonzero(b < 0x80)
+    if ends.size == 0 or ends[-1] != b.size - 1:
+        raise ValueError("truncated varint")
+    starts = np.concatenate(([0], ends[:-1] + 1))
+    lengths = ends - starts + 1
+    if lengths.max() > 9:   # a negative int32 takes 10 bytes: past int64, read them one at a time
+        return np.array(ints(LENGTH, value), dtype=np.int64)
+    shift = (7 * (np.arange(b.size) - np.repeat(starts, lengths))).astype(np.int64)
+    return np.add.reduceat((b & 0x7F).astype(np.int64) << shift, starts)
+
+
+def _array(kind, wire, value):
+    """One occurrence of a repeated field read as a numpy array (kinds
+    "double_array", "int_array"): packed, or one unpacked element."""
+    if kind == "double_array":
+        if wire == FIXED64:
+            return np.frombuffer(value, dtype="<f8")
+        if len(value) % 8:
+            raise ValueError("packed doubles of %d bytes" % len(value))
+        return np.frombuffer(value, dtype="<f8")
+    if wire == VARINT:
+        return np.array([signed(value)], dtype=np.int64)
+    return varint_array(value)
+
+
 def parse(data, schema):
     """A dict of one message's fields: ``schema`` maps field number ->
-    (name, kind, repeated) with kind "double", "int", "string", "bool" or a
-    nested schema dict. Repeated scalars are flat lists (packed or not)."""
-    out = {}
+    (name, kind, repeated) with kind "double", "int", "string", "bool",
+    "double_array", "int_array" or a nested schema dict. Repeated scalars
+    are flat lists (packed or not); the array kinds, for the fields that
+    hold large surfaces, are one numpy array (float64, int64)."""
+    out, arrays = {}, {}
     for number, wire, value in fields(data):
         if number not in schema:
             continue
         name, kind, repeated = schema[number]
+        if kind in ("double_array", "int_array"):
+            arrays.setdefault(name, []).append(_array(kind, wire, value))
+            continue
         if kind == "double":
             items = doubles(wire, value)
         elif kind == "int":
@@ -91,4 +131,6 @@ def parse(data, schema):
             out.setdefault(name, []).extend(items)
         else:
             out[name] = items[-1]
+    for name, chunks in arrays.items():
+        out[name] = np.concatenate(chunks)
     return out

@@ -8,6 +8,7 @@ import { Contacts, Joints } from './overlays.js';
 import { Panel } from './panel.js';
 import { Rays } from './rays.js';
 import { connect } from './socket.js';
+import { decodeSurfaces } from './surface_data.js';
 import { Timeline } from './timeline.js';
 import { World } from './world.js';
 
@@ -21,7 +22,8 @@ const rays = new Rays(world.scene);
 const jointPanel = new JointPanel($('joints'), (joint, position) => socket.command('joint_target', { joint, position }));
 const panel = new Panel();
 const state = { hello: null, status: null, pending: null, drawn: 0, step: null, selected: null,
-                framed: false, renders: 0, updateMs: [], frameLog: [], timeline: null, replies: [] };
+                framed: false, renders: 0, updateMs: [], frameLog: [], timeline: null, replies: [],
+                surfaceErrors: [] };
 
 const socket = connect({
   hello(msg) {
@@ -35,6 +37,8 @@ const socket = connect({
   catalog(msg) {
     // ids restart with a new scene: a selection survives only if its body is the same one
     const before = state.selected !== null ? bodies.catalog.get(state.selected) : null;
+    state.surfaceErrors = decodeSurfaces(msg.bodies);   // a refused surface is drawn as a marker
+    if (state.surfaceErrors.length) panel.message(state.surfaceErrors.join('\n'), false);
     const { modelBodies, visualBodies } = models.setCatalog(msg.models);
     bodies.setCatalog(msg.bodies, modelBodies, visualBodies); joints.setCatalog(msg.joints); state.framed = false;
     jointPanel.setCatalog(msg.models, msg.joints);
@@ -58,6 +62,7 @@ if (!state.timeline) wireLiveControls(socket);
 function describe(b) {
   const v = (a) => (a ? a.map((x) => x.toFixed(3)).join(', ') : '-');
   return `id ${b.id} ${b.name ? `"${b.name}"` : ''}\n${b.shape ? b.shape.kind : 'shape unknown'}, ${b.motion || ''}` +
+    `${b.shape && b.shape.error ? `\n${b.shape.error}` : ''}` +
     `\nmass ${b.mass !== undefined ? b.mass.toFixed(4) + ' kg' : '-'}\nposition ${v(b.position)}` +
     `\nvelocity ${v(b.linear_velocity)} m/s\nangular ${v(b.angular_velocity)} rad/s`;
 }
@@ -138,6 +143,7 @@ window.contactsimViewer = {
   select: (id) => { state.selected = id; },
   models: () => models.counts(),             // bodies with visuals, three.js meshes drawn, mesh files loaded / failed
   collisionShown: () => bodies.shownObjects(),  // {solid, overlay}: collision objects of model and compound bodies drawn
+  surfaceErrors: () => state.surfaceErrors,  // "body <id> (<name>): <why>" of each surface drawn as a marker
   rays: () => rays.counts,                   // {cast, sensors}: {rays, hits} drawn
   jointValues: () => jointPanel.values,      // "model/joint" -> rad or m at the drawn poses
   jointTargets: () => jointPanel.targets,    // "model/joint" -> the last slider target the server accepted

@@ -1,14 +1,16 @@
 // Static triangle meshes and heightfields: one BufferGeometry each, built
-// once per catalog from the geometry the snapshot carries (docs/viewer.md,
-// "catalog"), never instanced (few bodies, each its own vertices).
+// from the typed arrays the catalog's surfaces were decoded into
+// (surface_data.js; docs/viewer.md, "catalog"), never instanced (few
+// bodies, each its own vertices).
 import * as THREE from 'three';
 
 // a mesh's vertices (flat x y z, body frame) and triangles (three indices,
 // counter-clockwise seen from the front), as the server stores them
 export function meshGeometry(shape) {
+  const { vertices, triangles } = shape.data;
   const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(shape.vertices, 3));
-  g.setIndex(shape.triangles);
+  g.setAttribute('position', new THREE.BufferAttribute(vertices, 3));
+  g.setIndex(new THREE.BufferAttribute(triangles, 1));
   g.computeVertexNormals();
   return g;
 }
@@ -30,7 +32,7 @@ function rampColor(t, out, at) {
 // two triangles, counter-clockwise seen from +z. Each vertex is coloured by
 // its height between the lowest and the highest sample.
 export function heightfieldGeometry(shape) {
-  const { rows, cols, heights, spacing } = shape;
+  const { rows, cols, spacing } = shape, { heights } = shape.data;
   const n = rows * cols;
   const pos = new Float32Array(3 * n), col = new Float32Array(3 * n);
   let lo = Infinity, hi = -Infinity;
@@ -57,7 +59,7 @@ export function heightfieldGeometry(shape) {
   }
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-  g.setAttribute('normal', new THREE.BufferAttribute(gridNormals(shape), 3));
+  g.setAttribute('normal', new THREE.BufferAttribute(gridNormals(rows, cols, heights, spacing), 3));
   g.setAttribute('color', new THREE.BufferAttribute(col, 3));
   g.setIndex(new THREE.BufferAttribute(index, 1));
   return g;
@@ -67,7 +69,7 @@ export function heightfieldGeometry(shape) {
 // by central differences (one-sided at the border): the same shading as
 // averaging the triangles' normals, at a fraction of three's generic
 // computeVertexNormals, which takes half a second for a 1,024 x 1,024 grid.
-function gridNormals({ rows, cols, heights, spacing }) {
+function gridNormals(rows, cols, heights, spacing) {
   const out = new Float32Array(3 * rows * cols);
   for (let r = 0; r < rows; r++) {
     const r0 = Math.max(r - 1, 0), r1 = Math.min(r + 1, rows - 1);
@@ -82,8 +84,8 @@ function gridNormals({ rows, cols, heights, spacing }) {
   return out;
 }
 
-// true for the kinds drawn by this file
-export const isSurface = (shape) => !!shape && (shape.kind === 'mesh' || shape.kind === 'heightfield');
+// true for the kinds drawn by this file, once decoded (a refused one is a marker)
+export const isSurface = (shape) => !!shape && (shape.kind === 'mesh' || shape.kind === 'heightfield') && !!shape.data;
 
 // the solid material of a surface: a heightfield takes its vertices' colours;
 // both are seen from below too (a mesh may be open, a terrain looked under)
