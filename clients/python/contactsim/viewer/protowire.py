@@ -1,4 +1,5 @@
-"""A minimal reader of the protobuf wire format (proto2 binary encoding).
+"""A minimal reader of the protobuf wire format (proto2 binary encoding),
+and the writer of one field, for tests and benchmarks that make snapshots.
 
 The viewer needs a few fields of the server's snapshot file (shapes, masses,
 joints; service/proto/snapshot.proto). Reading the wire format directly keeps
@@ -134,3 +135,23 @@ def parse(data, schema):
     for name, chunks in arrays.items():
         out[name] = np.concatenate(chunks)
     return out
+
+
+def varint_bytes(value):
+    """A non-negative int as a varint."""
+    out = bytearray()
+    while True:
+        low, value = value & 0x7F, value >> 7
+        out.append(low | (0x80 if value else 0))
+        if not value:
+            return bytes(out)
+
+
+def field(number, wire, value):
+    """One field on the wire: VARINT an int, FIXED64 a double, LENGTH bytes."""
+    key = varint_bytes(number << 3 | wire)
+    if wire == VARINT:
+        return key + varint_bytes(value)
+    if wire == FIXED64:
+        return key + struct.pack("<d", value)
+    return key + varint_bytes(len(value)) + value

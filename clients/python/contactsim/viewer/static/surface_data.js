@@ -36,18 +36,18 @@ export function decodeSurface(shape) {
   if (shape.kind === 'mesh') {
     const vertices = unpack(shape.vertices, 'float32'), triangles = unpack(shape.triangles, 'uint32');
     if (vertices.length % 3 || triangles.length % 3) {
-      throw new Error(`mesh: ${vertices.length} coordinates and ${triangles.length} indices, not three each`);
+      throw new Error(`${vertices.length} coordinates and ${triangles.length} indices, not three each`);
     }
     let top = 0;
     for (let i = 0; i < triangles.length; i++) if (triangles[i] > top) top = triangles[i];
     if (triangles.length && top >= vertices.length / 3) {
-      throw new Error(`mesh: index ${top} out of range for ${vertices.length / 3} vertices`);
+      throw new Error(`index ${top} out of range for ${vertices.length / 3} vertices`);
     }
     return { vertices, triangles };
   }
   const heights = unpack(shape.heights, 'float32');
   if (!(shape.rows >= 2 && shape.cols >= 2) || heights.length !== shape.rows * shape.cols) {
-    throw new Error(`heightfield: ${heights.length} heights for ${shape.rows} x ${shape.cols} samples`);
+    throw new Error(`${heights.length} heights for ${shape.rows} x ${shape.cols} samples`);
   }
   return { heights };
 }
