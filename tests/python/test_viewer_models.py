@@ -125,8 +125,8 @@ def test_iiwa_draws_its_meshes_and_joint_angles(models_server, browser):  # noqa
 
 # Verifies that a ray cast of another client and a range sensor's fan are
 # drawn: every ray as a line, a point at each hit, as many hits as the
-# server reports (rays at a box hit it, the rest miss), and that the rays
-# toggle hides them.
+# server reports (rays at a box hit it, the rest miss), a normal line at
+# each of the cast's hits, and that the rays toggle hides them.
 def test_ray_casts_and_range_fans_are_drawn(server, browser):  # noqa: F811
     c = server.client
     c.set_gravity((0, 0, 0))
@@ -150,6 +150,8 @@ def test_ray_casts_and_range_fans_are_drawn(server, browser):  # noqa: F811
         drawn = wait_for(browser, "%s.rays().cast.rays === 3 && %s.rays().sensors.rays === %d && %s.rays()"
                          % (VIEWER, VIEWER, len(angles), VIEWER))
         assert drawn == {"cast": {"rays": 3, "hits": 2}, "sensors": {"rays": len(angles), "hits": fan_hits}}
+        # a normal line at each of the cast's hits; a range reading carries no normals
+        assert browser.execute_script("return %s.internals.rays.normals.geometry.drawRange.count" % VIEWER) == 4
         # the fan starts at the sensor's origin on its body
         start = browser.execute_script(
             "return Array.from(%s.internals.rays.lines.geometry.getAttribute('position').array.slice(18, 21))"

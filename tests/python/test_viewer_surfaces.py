@@ -70,8 +70,8 @@ def _hit_on_drawn(driver, body, origin, direction):
 # heightfield as a rows x cols grid of two triangles a cell coloured by
 # height, each posed as the server has it (the world box of the drawn
 # object equals that of the posed vertices); and that a ray cast on them
-# is drawn with its hits lying on the drawn surfaces (screenshot
-# viewer_surfaces.png).
+# is drawn with its hits lying on the drawn surfaces and a short line along
+# the surface's normal at each (screenshot viewer_surfaces.png).
 def test_meshes_and_heightfields_are_drawn(server, browser):  # noqa: F811
     c = server.client
     c.set_gravity((0, 0, 0))
@@ -105,6 +105,15 @@ def test_meshes_and_heightfields_are_drawn(server, browser):  # noqa: F811
         for k, body in enumerate((mesh, field)):
             on_page = _hit_on_drawn(browser, body, origins[k], down[k])
             np.testing.assert_allclose(on_page, hits.points[k], atol=FLOAT32)
+        # each hit's normal: a line from the hit, the scene's normal length along the server's normal
+        segments, length = browser.execute_script(
+            "const r = %s.internals.rays, g = r.normals.geometry;"
+            "return [Array.from(g.getAttribute('position').array.slice(0, 3 * g.drawRange.count)), r.normalLength]"
+            % VIEWER)
+        segments = np.array(segments).reshape(-1, 2, 3)
+        assert len(segments) == 2 and length > 0
+        np.testing.assert_allclose(segments[:, 0], hits.points[:2], atol=FLOAT32)
+        np.testing.assert_allclose(segments[:, 1] - segments[:, 0], length * hits.normals[:2], atol=FLOAT32)
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         browser.save_screenshot(str(ARTIFACTS / "viewer_surfaces.png"))
 

@@ -5,7 +5,8 @@ reads a 1,000-body pose frame without parsing text:
 
 * POSES:    [1, step, time, kinetic J, potential J, n, then per body id, px, py, pz, qw, qx, qy, qz]
 * CONTACTS: [2, step, n, then per contact px, py, pz, nx, ny, nz]
-* RAYS:     [3, step, kind (0 ray cast, 1 range sensors), n, then per ray body, ox, oy, oz, ex, ey, ez, hit]
+* RAYS:     [3, step, kind (0 ray cast, 1 range sensors), n, then per ray body, ox, oy, oz, ex, ey, ez, hit,
+            nx, ny, nz]
 
 Doubles keep the positions exact: the page shows what STATE says.
 """
@@ -92,15 +93,18 @@ def poses_from_catalog(catalog):
 
 
 RAYS = 3.0
-RAY_WIDTH = 8        # source body id (0: origin in the world), origin (3), end (3), hit (0 or 1)
+RAY_WIDTH = 11       # source body id (0: origin in the world), origin (3), end (3), hit (0 or 1), normal (3)
 
 
-def rays_frame(step, kind, bodies, origins, ends, hit):
+def rays_frame(step, kind, bodies, origins, ends, hit, normals=None):
     """A RAYS frame: ``kind`` 0 for a ray cast (origins in the world), 1 for
     the range sensors (origins in the frames of ``bodies``); ends in the
-    world, m. -> bytes"""
+    world, m; the surface's unit normal at each hit, world frame, zero for
+    a miss and where the reading has none (range sensors). -> bytes"""
     n = len(hit)
+    normals = np.zeros((n, 3)) if normals is None else np.asarray(normals, np.float64).reshape(n, 3)
     rows = np.hstack([np.asarray(bodies, np.float64).reshape(n, 1), np.asarray(origins, np.float64).reshape(n, 3),
-                      np.asarray(ends, np.float64).reshape(n, 3), np.asarray(hit, np.float64).reshape(n, 1)])
+                      np.asarray(ends, np.float64).reshape(n, 3), np.asarray(hit, np.float64).reshape(n, 1),
+                      np.where(np.asarray(hit, bool).reshape(n, 1), normals, 0.0)])
     head = np.array([RAYS, step, kind, n], dtype=np.float64)
     return head.astype("<f8").tobytes() + rows.astype("<f8").tobytes()

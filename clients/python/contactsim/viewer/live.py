@@ -102,8 +102,8 @@ class LiveSource:
         count, latest = self.rays.newest()
         if latest is None:
             return 0, None
-        step, origins, ends, hit = latest
-        return count, rays_frame(step, 0, np.zeros(len(hit)), origins, ends, hit)
+        step, origins, ends, hit, normals = latest
+        return count, rays_frame(step, 0, np.zeros(len(hit)), origins, ends, hit, normals)
 
     def sensors_frame(self, reading):
         """The RAYS frame of a SENSORS reading's range fans."""

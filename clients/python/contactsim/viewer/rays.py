@@ -1,7 +1,8 @@
 """What the page draws of rays: every client's ray casts (RAY_CAST with its
 answer on RAY_HITS) and the range sensors' fans (SENSORS), as RAYS frames
 (frames.py). A ray is drawn from its origin to its hit point, or to its
-farthest point when it hits nothing.
+farthest point when it hits nothing; a cast's hits carry the surface's
+normal, which the page draws as a short line.
 
 A ray_hits_t carries the hit points but not the rays, so the watch also
 reads every RAY_CAST and pairs the two by (client_id, request_id). A range
@@ -21,7 +22,7 @@ class RayWatch:
     def __init__(self, client):
         self._lock = threading.Lock()
         self._casts = {}          # (client_id, request_id) -> origins (n, 3), directions (n, 3), max (n,)
-        self.latest = None        # (step, origins (n, 3), ends (n, 3), hit (n,)) of the newest answered cast
+        self.latest = None        # (step, origins, ends, hit, normals) of the newest answered cast: (n, 3) each, hit (n,)
         self.count = 0            # answered casts seen
         self._removers = [client.on_command("RAY_CAST", ray_cast_t, self._on_cast),
                           client.on_ray_hits(self._on_hits)]
@@ -31,7 +32,7 @@ class RayWatch:
             remove()
 
     def newest(self):
-        """(answered casts seen, the newest one's (step, origins, ends, hit) or None), read together."""
+        """(answered casts seen, the newest one's (step, origins, ends, hit, normals) or None), read together."""
         with self._lock:
             return self.count, self.latest
 
@@ -55,7 +56,7 @@ class RayWatch:
             hit = np.array(list(msg.hit), dtype=bool)
             ends = np.where(hit[:, None], np.array(msg.points, dtype=np.float64).reshape(-1, 3),
                             origins + directions * far[:, None])
-            self.latest = (msg.step, origins, ends, hit)
+            self.latest = (msg.step, origins, ends, hit, np.array(msg.normals, dtype=np.float64).reshape(-1, 3))
             self.count += 1
 
 

@@ -76,7 +76,7 @@ function draw(frame) {
   if (!state.framed) {
     const { centre, radius } = bodies.bounds();
     world.fit(centre, radius);
-    contacts.normalLength = Math.max(0.05, radius * 0.04);
+    contacts.normalLength = rays.normalLength = Math.max(0.05, radius * 0.04);
     state.framed = true;
   }
 }

@@ -1,6 +1,8 @@
 // Rays over the bodies: the newest ray cast of any client (green to a hit,
 // grey to the farthest point of a miss) and the range sensors' fans (cyan
-// to a hit, grey to the range), with a point at each hit. A sensor's rays
+// to a hit, grey to the range), with a point at each hit and, where the
+// reading has one (a ray cast's hits), the surface's normal as a short
+// yellow line, as long as a contact's. A sensor's rays
 // start at its origin in its body's frame, placed with the body's pose of
 // the frame drawn (rays.py says where the bridge finds them).
 import * as THREE from 'three';
@@ -16,19 +18,21 @@ export class Rays {
     // white materials: the vertex colours carry hit and miss
     this.lines = growable('lines', 0xffffff, { vertexColors: true, depthTest: false });
     this.hits = growable('points', 0xffffff, { vertexColors: true, depthTest: false, size: 6 });
+    this.normals = growable('lines', 0xffe14d, { depthTest: false });
+    this.normalLength = 0.1;   // m; main.js sizes it to the scene
     this.counts = { cast: { rays: 0, hits: 0 }, sensors: { rays: 0, hits: 0 } };
     this.changed = false;
-    scene.add(this.lines, this.hits);
+    scene.add(this.lines, this.hits, this.normals);
   }
 
   apply(frame) { this.frames[frame.kind] = frame; this.changed = true; }
 
-  setVisible(v) { this.lines.visible = this.hits.visible = v; }
+  setVisible(v) { this.lines.visible = this.hits.visible = this.normals.visible = v; }
 
   // rewrites both overlays (tens to thousands of rays: cheap beside the bodies)
   update(bodies) {
     if (!this.frames[0] && !this.frames[1]) return;
-    const line = [], lineColor = [], hit = [], hitColor = [];
+    const line = [], lineColor = [], hit = [], hitColor = [], normal = [], L = this.normalLength;
     const o = new THREE.Vector3(), e = new THREE.Vector3();
     for (const kind of [0, 1]) {
       const f = this.frames[kind];
@@ -47,6 +51,7 @@ export class Rays {
         lineColor.push(c.r, c.g, c.b, c.r, c.g, c.b);
         count.rays += 1;
         if (r[7]) { hit.push(e.x, e.y, e.z); hitColor.push(c.r, c.g, c.b); count.hits += 1; }
+        if (r[7] && (r[8] || r[9] || r[10])) normal.push(e.x, e.y, e.z, e.x + L * r[8], e.y + L * r[9], e.z + L * r[10]);
       }
       this.counts[kind ? 'sensors' : 'cast'] = count;
     }
@@ -54,6 +59,7 @@ export class Rays {
       fill(obj, pos.length / 3, (a) => a.set(pos), 'position');
       fill(obj, col.length / 3, (a) => a.set(col), 'color');
     }
+    fill(this.normals, normal.length / 3, (a) => a.set(normal));
     this.changed = false;
   }
 }

@@ -1,7 +1,7 @@
 // The WebSocket to the bridge: JSON messages and binary frames (docs/viewer.md).
 // Binary frames are little-endian Float64Arrays whose first value names them.
 export const POSES = 1, CONTACTS = 2, RAYS = 3;
-export const POSE_WIDTH = 8, CONTACT_WIDTH = 6, RAY_WIDTH = 8;
+export const POSE_WIDTH = 8, CONTACT_WIDTH = 6, RAY_WIDTH = 11;
 
 export function connect(handlers) {
   const ws = new WebSocket(`ws://${location.host}/ws`);
