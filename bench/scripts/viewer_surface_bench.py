@@ -29,7 +29,8 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "clients" / "python"))
 from contactsim.viewer.catalog import catalog_from_snapshot  # noqa: E402
 from contactsim.viewer.connection import catalog_message  # noqa: E402
-from contactsim.viewer.protowire import FIXED64, LENGTH, VARINT, field, ints, varint_array, varint_bytes  # noqa: E402,E501
+from contactsim.viewer.protowire import (FIXED64, LENGTH, VARINT, field, ints, varint_array,  # noqa: E402
+                                         varint_bytes)
 
 SURFACE_DATA = REPO / "clients" / "python" / "contactsim" / "viewer" / "static" / "surface_data.js"
 
@@ -108,8 +109,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=5)
     a = ap.parse_args()
     mesh, indices = mesh_shape()
-    cases = [("heightfield 257 x 257", heightfield_shape(257, 257)), ("heightfield 513 x 513", heightfield_shape(513, 513)),
-             ("heightfield 1,025 x 1,025", heightfield_shape(1025, 1025)), ("mesh 100,000 triangles", mesh)]
+    cases = [("heightfield %s x %s" % (f"{n:,}", f"{n:,}"), heightfield_shape(n, n)) for n in (257, 513, 1025)]
+    cases.append(("mesh 100,000 triangles", mesh))
     with tempfile.TemporaryDirectory() as tmp:
         script = Path(tmp) / "parse.mjs"
         script.write_text(PARSE_JS % SURFACE_DATA.as_uri())

@@ -22,7 +22,7 @@ class RayWatch:
     def __init__(self, client):
         self._lock = threading.Lock()
         self._casts = {}          # (client_id, request_id) -> origins (n, 3), directions (n, 3), max (n,)
-        self.latest = None        # (step, origins, ends, hit, normals) of the newest answered cast: (n, 3) each, hit (n,)
+        self.latest = None        # the newest answered cast: (step, origins, ends, hit (n,), normals), (n, 3) each
         self.count = 0            # answered casts seen
         self._removers = [client.on_command("RAY_CAST", ray_cast_t, self._on_cast),
                           client.on_ray_hits(self._on_hits)]

@@ -29,7 +29,7 @@ export class Rays {
 
   setVisible(v) { this.lines.visible = this.hits.visible = this.normals.visible = v; }
 
-  // rewrites both overlays (tens to thousands of rays: cheap beside the bodies)
+  // rewrites the overlays (tens to thousands of rays: cheap beside the bodies)
   update(bodies) {
     if (!this.frames[0] && !this.frames[1]) return;
     const line = [], lineColor = [], hit = [], hitColor = [], normal = [], L = this.normalLength;
@@ -51,7 +51,9 @@ export class Rays {
         lineColor.push(c.r, c.g, c.b, c.r, c.g, c.b);
         count.rays += 1;
         if (r[7]) { hit.push(e.x, e.y, e.z); hitColor.push(c.r, c.g, c.b); count.hits += 1; }
-        if (r[7] && (r[8] || r[9] || r[10])) normal.push(e.x, e.y, e.z, e.x + L * r[8], e.y + L * r[9], e.z + L * r[10]);
+        if (r[7] && (r[8] || r[9] || r[10])) {
+          normal.push(e.x, e.y, e.z, e.x + L * r[8], e.y + L * r[9], e.z + L * r[10]);
+        }
       }
       this.counts[kind ? 'sensors' : 'cast'] = count;
     }
