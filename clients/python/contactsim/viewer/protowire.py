@@ -94,8 +94,6 @@ def _array(kind, wire, value):
     """One occurrence of a repeated field read as a numpy array (kinds
     "double_array", "int_array"): packed, or one unpacked element."""
     if kind == "double_array":
-        if wire == FIXED64:
-            return np.frombuffer(value, dtype="<f8")
         if len(value) % 8:
             raise ValueError("packed doubles of %d bytes" % len(value))
         return np.frombuffer(value, dtype="<f8")
