@@ -111,12 +111,12 @@ ASAN_BUILD = build-asan
 ASAN_CTEST_EXCLUDE = $(shell sed -e 's/\#.*//' -e 's/[[:space:]]*$$//' tests/sanitizer_exclusions.txt | grep -v '^$$' | paste -sd'|')
 FUZZ_BUILD = $(ASAN_BUILD)
 # Python suites the sanitizer run leaves to `make test`: they pace a server
-# in real time against another process (Drake's iiwa and Panda drivers), track a
-# trajectory at 1 kHz for seconds of simulated time, or render robots in a
-# browser; what they exercise in the server runs under the sanitizers in
-# the other suites.
+# in real time against another process (Drake's iiwa and Panda drivers),
+# track a trajectory at 1 kHz for seconds of simulated time, or render
+# robots and megabyte surfaces in a browser; what they exercise in the
+# server runs under the sanitizers in the other suites.
 ASAN_PYTEST_SKIP = --ignore=tests/python/test_iiwa_driver.py --ignore=tests/python/test_panda_driver.py \
-	--ignore=tests/python/test_viewer_models.py \
+	--ignore=tests/python/test_viewer_models.py --ignore=tests/python/test_viewer_surfaces.py \
 	--deselect=tests/python/test_joint_channels.py::test_iiwa_tracks_a_joint_trajectory_at_1khz_in_lockstep
 test-asan: fuzz-build
 	cd $(ASAN_BUILD) && RANDOM_SCENES=1 ctest --output-on-failure -j$(JOBS) -E '$(ASAN_CTEST_EXCLUDE)'
