@@ -18,6 +18,7 @@
 #include "service/scene/scene_spec.h"
 #include "service/server/actuator_update.h"
 #include "service/server/arm_driver/arm_command.h"
+#include "service/server/arm_driver/wsg_command.h"
 #include "service/server/journal.h"
 #include "service/server/lockstep.h"
 
@@ -55,7 +56,7 @@ struct Command {
     kReset, kLoadScene, kSetGravity, kSetTimestep, kSetMethod, kPause, kResume, kStep, kSetMode,
     kSnapshot, kRestore, kRewind, kRegisterController, kReleaseController, kInput,
     kAddJoint, kRemoveJoint, kSetFilter, kAddRangeSensor, kAddContactSensor, kRemoveSensor, kRayCast,
-    kLoadModel, kRemoveModel, kModelInfo, kArmCommand, kSetActuators, kClearActuators, kJointStateQuery,
+    kLoadModel, kRemoveModel, kModelInfo, kArmCommand, kWsgCommand, kSetActuators, kClearActuators, kJointStateQuery,
   };
   Kind kind = Kind::kPause;
   std::string client_id;
@@ -103,6 +104,7 @@ struct Command {
   std::shared_ptr<std::vector<Ray>> rays;  // RAY_CAST (checked, directions unit)
   RayCastOptions ray_options;          // RAY_CAST
   ArmCommand arm;                      // the arm driver's command (arm_driver/arm_command.h)
+  WsgCommand wsg;                      // the WSG driver's command (arm_driver/wsg_command.h)
 
   // ADD: said after the reply's text (a mesh's dropped triangles)
   std::string reply_note;

@@ -17,7 +17,7 @@ bool Journaled(Command::Kind kind) {
     case K::kApplyImpulse: case K::kSetMass: case K::kSetMaterial: case K::kSetFilter: case K::kSetGravity:
     case K::kSetTimestep: case K::kSetMethod: case K::kAddJoint: case K::kRemoveJoint: case K::kAddRangeSensor:
     case K::kAddContactSensor: case K::kRemoveSensor: case K::kLoadModel: case K::kRemoveModel: case K::kArmCommand:
-    case K::kSetActuators: case K::kClearActuators:
+    case K::kWsgCommand: case K::kSetActuators: case K::kClearActuators:
       return true;
     default:
       return false;

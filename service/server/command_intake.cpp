@@ -8,6 +8,7 @@ CommandIntake::CommandIntake(const ServerOptions& options, CommandBatch* batch)
     : prefix_(options.prefix + "_"),
       arm_channel_(options.arm_driver ? options.arm_driver->command_channel : ""),
       arm_protocol_(options.arm_driver ? FindArmProtocol(options.arm_driver->protocol) : nullptr),
+      wsg_channel_(options.wsg_driver ? options.wsg_driver->command_channel : ""),
       max_commands_per_second_(options.max_commands_per_second),
       command_burst_(options.command_burst),
       rate_limiter_(options.max_commands_per_second, options.command_burst),
@@ -24,6 +25,7 @@ std::vector<std::string> CommandIntake::ChannelNames() const {
   std::vector<std::string> names;
   for (const CommandChannel& c : CommandChannels()) names.push_back(prefix_ + c.suffix);
   if (!arm_channel_.empty()) names.push_back(arm_channel_);
+  if (!wsg_channel_.empty()) names.push_back(wsg_channel_);
   return names;
 }
 
@@ -35,16 +37,14 @@ Status CommandIntake::AdmitClient(const CommandChannel& channel, const std::stri
                                    ")");
 }
 
-void CommandIntake::OnArmCommand(const std::string& channel, const void* data, int size) {
+void CommandIntake::OnDriverCommand(const std::string& channel, const void* data, int size, Command::Kind kind,
+                                    RecordKind record, const std::function<Status(Command*, int64_t*)>& decode) {
   Command cmd;
-  cmd.kind = Command::Kind::kArmCommand;
+  cmd.kind = kind;
   cmd.client_id = channel;
   cmd.request_id = -1;
-  cmd.record = RecordKind::kArmCommand;
-  cmd.arm.utime = -1;
-  Status st = arm_protocol_ != nullptr ? arm_protocol_->decode_command(data, size, &cmd.arm)
-                                      : Status::FailedPrecondition("the arm driver has no protocol");
-  cmd.request_id = cmd.arm.utime;
+  cmd.record = record;
+  Status st = decode(&cmd, &cmd.request_id);
   if (st.ok()) {
     cmd.payload.assign(static_cast<const char*>(data), size);
     st = batch_->Enqueue(cmd);
@@ -53,7 +53,26 @@ void CommandIntake::OnArmCommand(const std::string& channel, const void* data, i
 }
 
 void CommandIntake::OnMessage(const std::string& channel_name, const void* data, int size) {
-  if (!arm_channel_.empty() && channel_name == arm_channel_) return OnArmCommand(channel_name, data, size);
+  if (!arm_channel_.empty() && channel_name == arm_channel_) {
+    return OnDriverCommand(channel_name, data, size, Command::Kind::kArmCommand, RecordKind::kArmCommand,
+                           [&](Command* cmd, int64_t* utime) {
+                             cmd->arm.utime = -1;
+                             const Status st = arm_protocol_ != nullptr
+                                                   ? arm_protocol_->decode_command(data, size, &cmd->arm)
+                                                   : Status::FailedPrecondition("the arm driver has no protocol");
+                             *utime = cmd->arm.utime;
+                             return st;
+                           });
+  }
+  if (!wsg_channel_.empty() && channel_name == wsg_channel_) {
+    return OnDriverCommand(channel_name, data, size, Command::Kind::kWsgCommand, RecordKind::kWsgCommand,
+                           [&](Command* cmd, int64_t* utime) {
+                             cmd->wsg.utime = -1;
+                             const Status st = DecodeWsgCommand(data, size, &cmd->wsg);
+                             *utime = cmd->wsg.utime;
+                             return st;
+                           });
+  }
   if (channel_name.compare(0, prefix_.size(), prefix_) != 0) return;
   const CommandChannel* channel = ChannelOfSuffix(channel_name.substr(prefix_.size()));
   if (channel == nullptr) return;

@@ -5,6 +5,7 @@
 // Everything here belongs to the LCM thread.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,14 +34,17 @@ class CommandIntake {
   // command's own checks (a LOAD_SCENE reads a file): commands beyond a
   // client's rate are refused unread.
   Status AdmitClient(const CommandChannel& channel, const std::string& client_id);
-  // A command on the arm driver's channel (arm_driver/): Drake's messages
-  // carry no sender, signature or request id, so it is named by the
-  // channel and its utime, and bounded by the inbox rather than a rate.
-  void OnArmCommand(const std::string& channel, const void* data, int size);
+  // A command on a driver's channel (arm_driver/: the arm's or the WSG
+  // gripper's): Drake's messages carry no sender, signature or request id,
+  // so it is named by the channel and its utime, and bounded by the inbox
+  // rather than a rate. `decode` fills the command and its utime.
+  void OnDriverCommand(const std::string& channel, const void* data, int size, Command::Kind kind,
+                       RecordKind record, const std::function<Status(Command*, int64_t*)>& decode);
 
   const std::string prefix_;  // "<prefix>_"
   const std::string arm_channel_;  // the arm driver's command channel; "" without one
   const ArmProtocol* arm_protocol_;  // its protocol; null without one
+  const std::string wsg_channel_;  // the WSG driver's command channel; "" without one
   const double max_commands_per_second_, command_burst_;
   DecodeContext decode_context_;  // new bodies get the default Material
   RateLimiter rate_limiter_;

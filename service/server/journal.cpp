@@ -106,7 +106,7 @@ bool DecodeRecord(const std::string& bytes, size_t* offset, JournalRecord* r) {
   if (Crc32(bytes.data() + at + 4, kHeaderBytes - 4 + n) != Get<uint32_t>(bytes, at + kHeaderBytes + n)) return false;
   const uint8_t kind = Get<uint8_t>(bytes, at + 4);
   // 7: queries are never written
-  if ((kind < 1 || kind > 9 || kind == 7) && kind != static_cast<uint8_t>(RecordKind::kArmCommand)) return false;
+  if (kind < 1 || kind > static_cast<uint8_t>(RecordKind::kWsgCommand) || kind == 7) return false;
   r->kind = static_cast<RecordKind>(kind);
   r->seq = Get<int64_t>(bytes, at + 5);
   r->step = Get<int64_t>(bytes, at + 13);

@@ -44,6 +44,7 @@ enum class RecordKind : uint8_t {
   kModelCommand = 8,  // model_cmd_t, a LOAD always in its resolved form (the model as read)
   kActuatorCommand = 9,  // actuator_cmd_t
   kArmCommand = 10,   // the arm driver's command (lcmt_iiwa_command or lcmt_panda_command, arm_driver/)
+  kWsgCommand = 11,   // the WSG driver's command (lcmt_schunk_wsg_command, arm_driver/)
 };
 
 struct JournalRecord {

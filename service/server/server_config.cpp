@@ -7,6 +7,7 @@
 #include "service/physics/validation.h"
 #include "service/scene/proto_text.h"
 #include "service/server/arm_driver/arm_driver_config.h"
+#include "service/server/arm_driver/wsg_driver_config.h"
 
 namespace contactsim {
 namespace {
@@ -57,11 +58,29 @@ Status LoadServerConfig(const std::string& path, proto::ServerConfig* config) {
   if (!(st = MakeContactMethod(config->contact_method(), params, &method)).ok()) {
     return Status::InvalidArgument(at("contact_method") + st.message());
   }
-  if (config->has_arm_driver()) {
-    ArmDriverConfig arm;
-    if (!(st = ReadArmDriverConfig(config->arm_driver(), options.prefix, &arm, &field)).ok()) {
-      const auto* block = tree.GetTreeForNested(config->GetDescriptor()->FindFieldByName("arm_driver"), -1);
-      return Status::InvalidArgument(FieldLocation(path, block, config->arm_driver(), field) + ": arm_driver: " +
+  ArmDriverConfig arm;
+  if (config->has_arm_driver() &&
+      !(st = ReadArmDriverConfig(config->arm_driver(), options.prefix, &arm, &field)).ok()) {
+    const auto* block = tree.GetTreeForNested(config->GetDescriptor()->FindFieldByName("arm_driver"), -1);
+    return Status::InvalidArgument(FieldLocation(path, block, config->arm_driver(), field) + ": arm_driver: " +
+                                   st.message());
+  }
+  WsgDriverConfig wsg;
+  if (config->has_wsg_driver()) {
+    const auto* block = tree.GetTreeForNested(config->GetDescriptor()->FindFieldByName("wsg_driver"), -1);
+    st = ReadWsgDriverConfig(config->wsg_driver(), options.prefix, &wsg, &field);
+    // one channel serves one driver
+    if (st.ok() && config->has_arm_driver()) {
+      for (const std::string* c : {&wsg.command_channel, &wsg.status_channel}) {
+        if (*c == arm.command_channel || *c == arm.status_channel) {
+          field = c == &wsg.command_channel ? "command_channel" : "status_channel";
+          st = Status::InvalidArgument(field + " \"" + *c + "\" is also one of arm_driver's channels");
+          break;
+        }
+      }
+    }
+    if (!st.ok()) {
+      return Status::InvalidArgument(FieldLocation(path, block, config->wsg_driver(), field) + ": wsg_driver: " +
                                      st.message());
     }
   }
@@ -78,6 +97,13 @@ Status MakeServerSetup(const proto::ServerConfig& config, const std::string& con
     Status st = ReadArmDriverConfig(config.arm_driver(), s.options.prefix, &arm, &field);
     if (!st.ok()) return st.Prefixed(config_path + ": arm_driver: ");
     s.options.arm_driver = std::move(arm);
+  }
+  if (config.has_wsg_driver()) {
+    WsgDriverConfig wsg;
+    std::string field;
+    Status st = ReadWsgDriverConfig(config.wsg_driver(), s.options.prefix, &wsg, &field);
+    if (!st.ok()) return st.Prefixed(config_path + ": wsg_driver: ");
+    s.options.wsg_driver = std::move(wsg);
   }
   if (!config.auth_key_file().empty()) {
     const std::string path = config.auth_key_file()[0] == '/' ? config.auth_key_file()

@@ -17,6 +17,7 @@
 #include "service/collision/parallel_runner.h"
 #include "service/proto/config.pb.h"
 #include "service/server/arm_driver/arm_driver_config.h"
+#include "service/server/arm_driver/wsg_driver_config.h"
 #include "service/server/command.h"
 #include "service/server/command_channels.h"
 #include "service/server/journal.h"
@@ -53,6 +54,7 @@ struct ServerOptions {
   LatePolicy late_policy = LatePolicy::kWait;
   double late_timeout = 0.1;
   std::optional<ArmDriverConfig> arm_driver;  // the config's arm_driver block, checked
+  std::optional<WsgDriverConfig> wsg_driver;  // the config's wsg_driver block, checked
   bool write_files = true;     // not in the config: false (a replay) makes SNAPSHOT to a file write nothing
 };
 

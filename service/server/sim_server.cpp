@@ -26,6 +26,7 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
       lockstep_(options_, &batch_),
       intake_(options_, &batch_) {
   if (options_.arm_driver) arm_ = std::make_unique<ArmDriver>(*options_.arm_driver);
+  if (options_.wsg_driver) wsg_ = std::make_unique<WsgDriver>(*options_.wsg_driver);
 }
 
 Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> method) {
@@ -36,6 +37,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }
   if (!(st = StartArmDriver()).ok()) return st;
+  if (!(st = StartWsgDriver()).ok()) return st;
   world_.sleep.enabled = options_.sleep;  // a recovered snapshot brings its own
   // a configured method that cannot honour the configured scene (method_support.h)
   if (!(st = CheckMethodSupports(method->Name(), world_)).ok()) return st;
@@ -45,6 +47,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   PublishStatus(Clock::now());
   PublishState();
   PublishArmStatus();
+  PublishWsgStatus();
   PublishModelInfo();
   return Status::Ok();
 }
@@ -75,6 +78,8 @@ Outcome SimServer::Apply(Command& cmd) {
       return ApplyRayCast(cmd);
     case K::kArmCommand:
       return ApplyArmCommand(cmd);
+    case K::kWsgCommand:
+      return ApplyWsgCommand(cmd);
     default:
       return ApplyWorldCommand(cmd);
   }
@@ -116,6 +121,7 @@ void SimServer::StepWorld() {
   if (publisher_.StateDue(world_.step) || (mode_ == RunMode::kLockstep && lockstep_.active())) PublishState();
   if (publisher_.ContactsDue(world_.step)) publisher_.Contacts(world_, contacts_, *method_);
   PublishArmStatus();
+  PublishWsgStatus();
   FinishStepCommands();
   steps_.ReportProgress(world_.step, false);
 }

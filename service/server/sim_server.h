@@ -30,6 +30,7 @@
 #include "service/proto/snapshot.pb.h"
 #include "service/scene/scene_spec.h"
 #include "service/server/arm_driver/arm_driver.h"
+#include "service/server/arm_driver/wsg_driver.h"
 #include "service/server/command.h"
 #include "service/server/command_batch.h"
 #include "service/server/command_intake.h"
@@ -93,6 +94,16 @@ class SimServer {
   Status StartArmDriver();
   Outcome ApplyArmCommand(Command& cmd);
   void PublishArmStatus();
+  // What both drivers do at start: refuse a server with an auth key (Drake's
+  // messages carry no signature), and load `load` unless the world holds
+  // `model`; *present says whether the world holds it now. `block` names the
+  // config block in errors.
+  Status StartDriverModel(const char* block, const std::string& model,
+                          const std::optional<proto::SceneModel>& load, bool* present);
+  // Drake's Schunk WSG driver (arm_driver/sim_server_wsg.cpp), alike.
+  Status StartWsgDriver();
+  Outcome ApplyWsgCommand(Command& cmd);
+  void PublishWsgStatus();
   Status CheckNotInModel(BodyId body, JointId joint) const;
   // MODEL_INFO, when the models changed since the last one or it was asked for
   void PublishModelInfo();
@@ -157,6 +168,7 @@ class SimServer {
   bool reanchor_ = true;  // REALTIME pacing starts again from now
 
   std::unique_ptr<ArmDriver> arm_;  // null without an arm_driver block
+  std::unique_ptr<WsgDriver> wsg_;  // null without a wsg_driver block
 
   Publisher publisher_;
   StepRequests steps_;

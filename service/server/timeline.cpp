@@ -69,6 +69,9 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
     st = arm_ && arm_->protocol() ? arm_->protocol()->decode_command(r.payload.data(),
                                                                      static_cast<int>(r.payload.size()), &cmd.arm)
                                   : Status::FailedPrecondition("an arm command, but this server has no arm driver");
+  } else if (r.kind == RecordKind::kWsgCommand) {  // likewise the WSG driver's
+    cmd.kind = Command::Kind::kWsgCommand;
+    st = DecodeWsgCommand(r.payload.data(), static_cast<int>(r.payload.size()), &cmd.wsg);
   }
   if (st.ok() && cmd.kind == Command::Kind::kInput) {
     ApplyInput(cmd.input, false);

@@ -20,6 +20,7 @@ using google::protobuf::FieldDescriptor;
 // The config fields that are not options: where the server finds things.
 const std::set<std::string> kSetupFields = {"scene",       "lcm_url",     "log_level",    "contact_method",
                                             "method_params", "journal_dir", "auth_key_file", "arm_driver",
+                                            "wsg_driver",
                                             "model_path"};
 
 // The protobuf type each kind of member is read from.

@@ -80,15 +80,6 @@ void ArmDriver::BeforeStep(World* world) {
   if (config_.gravity_compensation && Find(*world, &arm).ok()) CompensateGravity(arm, world);
 }
 
-bool ArmDriver::StatusDue(double time) {
-  // a margin of 1e-6 period: a sum of steps that should land on a period
-  // boundary may land a rounding error short of it
-  const auto period = static_cast<int64_t>(std::floor(time * config_.status_rate_hz + 1e-6));
-  if (period == last_status_period_) return false;
-  last_status_period_ = period;
-  return true;
-}
-
 Status ArmDriver::Read(const World& world, const ContactSet& contacts, ContactValueKind kind,
                        ArmJointReadings* out) const {
   ArmJoints arm;

@@ -26,13 +26,14 @@
 #include "service/server/arm_driver/arm_joints.h"
 #include "service/server/arm_driver/arm_protocol.h"
 #include "service/server/arm_driver/arm_readings.h"
+#include "service/server/arm_driver/status_clock.h"
 
 namespace contactsim {
 
 class ArmDriver {
  public:
   explicit ArmDriver(ArmDriverConfig config)
-      : config_(std::move(config)), protocol_(FindArmProtocol(config_.protocol)) {}
+      : config_(std::move(config)), protocol_(FindArmProtocol(config_.protocol)), status_clock_(config_.status_rate_hz) {}
   const ArmDriverConfig& config() const { return config_; }
   // The config's protocol; null when it names none (a config not read by
   // ReadArmDriverConfig), which StartArmDriver refuses.
@@ -54,9 +55,8 @@ class ArmDriver {
   // when configured.
   void BeforeStep(World* world);
 
-  // True once per status period of simulated time: at the first call, then
-  // whenever `time` (s) enters a new period (after a REWIND too).
-  bool StatusDue(double time);
+  // True once per status period of simulated time (status_clock.h).
+  bool StatusDue(double time) { return status_clock_.Due(time); }
   // The reading of the arm now, which the protocol's status reports
   // (arm_readings.h): the commanded values are the drives'; the applied
   // torque is the drives' effort of the last step plus, with gravity
@@ -71,7 +71,7 @@ class ArmDriver {
 
   const ArmDriverConfig config_;
   const ArmProtocol* const protocol_;
-  int64_t last_status_period_ = -1;
+  StatusClock status_clock_;
   std::vector<TimedWrench> step_wrenches_;  // the world's, as the step under way began
 };
 

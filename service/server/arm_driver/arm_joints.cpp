@@ -6,13 +6,6 @@
 namespace contactsim {
 namespace {
 
-const ModelRecord* FindModelNamed(const World& world, const std::string& name) {
-  for (const ModelRecord& m : world.models) {
-    if (m.name == name) return &m;
-  }
-  return nullptr;
-}
-
 // The model's world joints as (parent body, child body) pairs.
 std::vector<std::pair<BodyId, BodyId>> ModelEdges(const World& world, const ModelRecord& model) {
   std::vector<std::pair<BodyId, BodyId>> edges;
@@ -46,9 +39,16 @@ std::vector<BodyId> Outboard(const World& world, const std::vector<std::pair<Bod
   return out;
 }
 
+}  // namespace
+
 double LimitOrInfinity(double limit) { return limit > 0 ? limit : std::numeric_limits<double>::infinity(); }
 
-}  // namespace
+const ModelRecord* FindModelNamed(const World& world, const std::string& name) {
+  for (const ModelRecord& m : world.models) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
 
 Status FindArmJoints(const World& world, const std::string& model, int count, ArmJoints* out) {
   const ModelRecord* record = FindModelNamed(world, model);

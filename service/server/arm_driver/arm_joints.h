@@ -26,6 +26,13 @@ struct ArmJoints {
   std::vector<BodyId> bodies;                // every dynamic body of the model
 };
 
+// A model file's effort or velocity limit (ModelJointEntry: 0 when none
+// was given) as a drive's limit: infinity for none.
+double LimitOrInfinity(double limit);
+
+// The model of that name in the world, or null.
+const ModelRecord* FindModelNamed(const World& world, const std::string& name);
+
 // The first `count` hinge joints of the model named `model`. NotFound when
 // the world holds no such model, FailedPrecondition when it has fewer hinges.
 Status FindArmJoints(const World& world, const std::string& model, int count, ArmJoints* out);
