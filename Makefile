@@ -111,13 +111,14 @@ ASAN_BUILD = build-asan
 ASAN_CTEST_EXCLUDE = $(shell sed -e 's/\#.*//' -e 's/[[:space:]]*$$//' tests/sanitizer_exclusions.txt | grep -v '^$$' | paste -sd'|')
 FUZZ_BUILD = $(ASAN_BUILD)
 # Python suites the sanitizer run leaves to `make test`: they pace a server
-# in real time against another process (Drake's iiwa and Panda drivers),
+# in real time against another process (Drake's iiwa, Panda and WSG drivers),
 # track a trajectory at 1 kHz for seconds of simulated time, or render
 # robots and megabyte surfaces in a browser, or follow pinocchio's passive
 # iiwa for seconds at 1 kHz (soft's 42 s under the sanitizers); what they
 # exercise in the server runs under the sanitizers in the other suites. The
 # soak runs 1,000 steps there (3,000 steps took 253 s).
 ASAN_PYTEST_SKIP = --ignore=tests/python/test_iiwa_driver.py --ignore=tests/python/test_panda_driver.py \
+	--ignore=tests/python/test_wsg_driver.py \
 	--ignore=tests/python/test_viewer_models.py --ignore=tests/python/test_viewer_surfaces.py \
 	--deselect=tests/python/test_joint_channels.py::test_iiwa_tracks_a_joint_trajectory_at_1khz_in_lockstep \
 	--deselect=tests/python/test_models.py::test_passive_iiwa_follows_pinocchio

@@ -17,7 +17,12 @@ from conftest import REPO
 
 pytest.importorskip("pydrake", reason="the PyPI wheel drake is not installed (pip install drake==1.51.1)")
 from drake import lcmt_schunk_wsg_command, lcmt_schunk_wsg_status  # noqa: E402
+from pydrake.lcm import DrakeLcm  # noqa: E402
 from pydrake.manipulation import SchunkWsgCommandSender, SchunkWsgStatusReceiver  # noqa: E402
+from pydrake.systems.analysis import Simulator  # noqa: E402
+from pydrake.systems.framework import DiagramBuilder  # noqa: E402
+from pydrake.systems.lcm import LcmInterfaceSystem, LcmPublisherSystem, LcmSubscriberSystem  # noqa: E402
+from pydrake.systems.primitives import ConstantVectorSource  # noqa: E402
 
 import contactsim  # noqa: E402
 from drake_arm import Tap  # noqa: E402
@@ -43,40 +48,46 @@ def tap(hand):
     t.close()
 
 
-def sender_command(position_m, force_n, time_s):
-    """The lcmt_schunk_wsg_command Drake's SchunkWsgCommandSender makes."""
-    sender = SchunkWsgCommandSender()
-    context = sender.CreateDefaultContext()
-    context.SetTime(time_s)
-    sender.get_position_input_port().FixValue(context, [position_m])
-    sender.get_force_limit_input_port().FixValue(context, [force_n])
-    return sender.get_output_port(0).Eval(context)
-
-
-def received(status):
-    """Drake's SchunkWsgStatusReceiver's reading: (separation m, its rate m/s), force N."""
-    receiver = SchunkWsgStatusReceiver()
-    context = receiver.CreateDefaultContext()
-    receiver.get_input_port(0).FixValue(context, status)
+def run_drake_wsg(url, separation, force, seconds):
+    """Runs a Drake diagram for `seconds` of real time: SchunkWsgCommandSender
+    publishing (separation m, force N) at 20 Hz, and LCM statuses read by
+    SchunkWsgStatusReceiver; returns its last (separation m, its rate m/s)
+    and force N."""
+    lcm_ = DrakeLcm(url)
+    b = DiagramBuilder()
+    b.AddSystem(LcmInterfaceSystem(lcm_))
+    sub = b.AddSystem(LcmSubscriberSystem.Make("SCHUNK_WSG_STATUS", lcmt_schunk_wsg_status, lcm_,
+                                               use_cpp_serializer=True))
+    receiver = b.AddSystem(SchunkWsgStatusReceiver())
+    b.Connect(sub.get_output_port(), receiver.get_input_port(0))
+    sender = b.AddSystem(SchunkWsgCommandSender())
+    b.Connect(b.AddSystem(ConstantVectorSource([separation])).get_output_port(), sender.get_position_input_port())
+    b.Connect(b.AddSystem(ConstantVectorSource([force])).get_output_port(), sender.get_force_limit_input_port())
+    pub = b.AddSystem(LcmPublisherSystem.Make("SCHUNK_WSG_COMMAND", lcmt_schunk_wsg_command, lcm_,
+                                              publish_period=0.05, use_cpp_serializer=True))
+    b.Connect(sender.get_output_port(0), pub.get_input_port())
+    diagram = b.Build()
+    simulator = Simulator(diagram)
+    simulator.set_target_realtime_rate(1.0)
+    simulator.AdvanceTo(seconds)
+    context = receiver.GetMyContextFromRoot(simulator.get_context())
     return receiver.get_state_output_port().Eval(context), receiver.get_force_output_port().Eval(context)[0]
 
 
 # Verifies that the status comes every 50 ms of simulated time, that the hand
-# holds its fingers closed as the model left them, and that a command of
-# Drake's sender opens them to the separation Drake's receiver reads, at rest,
-# and closes them again.
+# holds its fingers closed as the model left them, and that Drake's
+# SchunkWsgCommandSender opens them to the separation Drake's
+# SchunkWsgStatusReceiver reads, at rest, and closes them again.
 def test_drakes_sender_and_receiver_open_and_close_the_hand(hand, tap):
     assert tap.wait(lambda: len(tap.statuses) >= 5), hand.log()
     steps = np.diff([m.utime for m in tap.statuses])
     assert np.all(steps % PERIOD_US == 0) and np.all(steps > 0), steps
     assert abs(tap.statuses[-1].actual_position_mm) < 1e3 * SETTLED
-    pub = lcm.LCM(hand.url)
     for separation in (0.06, 0.02):
-        pub.publish("SCHUNK_WSG_COMMAND", sender_command(separation, 15.0, 1.0).encode())
-        settled = lambda: abs(received(tap.statuses[-1])[0][0] - separation) < SETTLED  # noqa: E731
-        assert tap.wait(settled, timeout=10), (separation, tap.statuses[-1].actual_position_mm, hand.log())
-        state, _ = received(tap.statuses[-1])
+        state, force = run_drake_wsg(hand.url, separation, 15.0, 1.5)
+        assert abs(state[0] - separation) < SETTLED, (separation, state, hand.log())
         assert abs(state[1]) < 1e-3, state
+        assert 0 <= force < 15.0, force
 
 
 # Verifies that a command Drake's driver would not serve is refused with the
