@@ -1,6 +1,7 @@
 #include "service/server/command_intake.h"
 
 #include "service/physics/validation.h"
+#include "service/server/arm_driver/driver_commands.h"
 
 namespace contactsim {
 
@@ -37,14 +38,11 @@ Status CommandIntake::AdmitClient(const CommandChannel& channel, const std::stri
                                    ")");
 }
 
-void CommandIntake::OnDriverCommand(const std::string& channel, const void* data, int size, Command::Kind kind,
-                                    RecordKind record, const std::function<Status(Command*, int64_t*)>& decode) {
+void CommandIntake::OnDriverCommand(const std::string& channel, const void* data, int size, RecordKind record) {
   Command cmd;
-  cmd.kind = kind;
   cmd.client_id = channel;
-  cmd.request_id = -1;
   cmd.record = record;
-  Status st = decode(&cmd, &cmd.request_id);
+  Status st = DecodeDriverCommand(record, arm_protocol_, data, size, &cmd, &cmd.request_id);
   if (st.ok()) {
     cmd.payload.assign(static_cast<const char*>(data), size);
     st = batch_->Enqueue(cmd);
@@ -54,24 +52,10 @@ void CommandIntake::OnDriverCommand(const std::string& channel, const void* data
 
 void CommandIntake::OnMessage(const std::string& channel_name, const void* data, int size) {
   if (!arm_channel_.empty() && channel_name == arm_channel_) {
-    return OnDriverCommand(channel_name, data, size, Command::Kind::kArmCommand, RecordKind::kArmCommand,
-                           [&](Command* cmd, int64_t* utime) {
-                             cmd->arm.utime = -1;
-                             const Status st = arm_protocol_ != nullptr
-                                                   ? arm_protocol_->decode_command(data, size, &cmd->arm)
-                                                   : Status::FailedPrecondition("the arm driver has no protocol");
-                             *utime = cmd->arm.utime;
-                             return st;
-                           });
+    return OnDriverCommand(channel_name, data, size, RecordKind::kArmCommand);
   }
   if (!wsg_channel_.empty() && channel_name == wsg_channel_) {
-    return OnDriverCommand(channel_name, data, size, Command::Kind::kWsgCommand, RecordKind::kWsgCommand,
-                           [&](Command* cmd, int64_t* utime) {
-                             cmd->wsg.utime = -1;
-                             const Status st = DecodeWsgCommand(data, size, &cmd->wsg);
-                             *utime = cmd->wsg.utime;
-                             return st;
-                           });
+    return OnDriverCommand(channel_name, data, size, RecordKind::kWsgCommand);
   }
   if (channel_name.compare(0, prefix_.size(), prefix_) != 0) return;
   const CommandChannel* channel = ChannelOfSuffix(channel_name.substr(prefix_.size()));

@@ -5,7 +5,6 @@
 // Everything here belongs to the LCM thread.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,9 +36,8 @@ class CommandIntake {
   // A command on a driver's channel (arm_driver/: the arm's or the WSG
   // gripper's): Drake's messages carry no sender, signature or request id,
   // so it is named by the channel and its utime, and bounded by the inbox
-  // rather than a rate. `decode` fills the command and its utime.
-  void OnDriverCommand(const std::string& channel, const void* data, int size, Command::Kind kind,
-                       RecordKind record, const std::function<Status(Command*, int64_t*)>& decode);
+  // rather than a rate. `record` says whose (arm_driver/driver_commands.h).
+  void OnDriverCommand(const std::string& channel, const void* data, int size, RecordKind record);
 
   const std::string prefix_;  // "<prefix>_"
   const std::string arm_channel_;  // the arm driver's command channel; "" without one

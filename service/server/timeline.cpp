@@ -7,6 +7,7 @@
 #include <climits>
 
 #include "service/scene/snapshot.h"
+#include "service/server/arm_driver/driver_commands.h"
 #include "service/server/sim_server.h"
 
 namespace contactsim {
@@ -64,14 +65,11 @@ Status SimServer::ReplayRecord(const JournalRecord& r) {
   Status st = Status::DecodeError("unknown record kind");
   if (channel != nullptr) {
     st = channel->decode(r.payload.data(), static_cast<int>(r.payload.size()), RecordContext(), &cmd);
-  } else if (r.kind == RecordKind::kArmCommand) {  // the arm driver's channel is the config's, not the table's
-    cmd.kind = Command::Kind::kArmCommand;
-    st = arm_ && arm_->protocol() ? arm_->protocol()->decode_command(r.payload.data(),
-                                                                     static_cast<int>(r.payload.size()), &cmd.arm)
-                                  : Status::FailedPrecondition("an arm command, but this server has no arm driver");
-  } else if (r.kind == RecordKind::kWsgCommand) {  // likewise the WSG driver's
-    cmd.kind = Command::Kind::kWsgCommand;
-    st = DecodeWsgCommand(r.payload.data(), static_cast<int>(r.payload.size()), &cmd.wsg);
+  } else if (r.kind == RecordKind::kArmCommand || r.kind == RecordKind::kWsgCommand) {
+    // the drivers' channels are the config's, not the table's
+    int64_t utime = 0;
+    st = DecodeDriverCommand(r.kind, arm_ ? arm_->protocol() : nullptr, r.payload.data(),
+                             static_cast<int>(r.payload.size()), &cmd, &utime);
   }
   if (st.ok() && cmd.kind == Command::Kind::kInput) {
     ApplyInput(cmd.input, false);
