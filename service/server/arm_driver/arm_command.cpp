@@ -35,8 +35,8 @@ Status DecodeIiwaCommand(const void* data, int size, ArmCommand* out) {
 }
 
 Status DecodePandaCommand(const void* data, int size, ArmCommand* out) {
-  return DecodeDrakeCommand<drake::lcmt_panda_command>(data, size, kMaxArmCommandBytes, "lcmt_panda_command", &out->utime,
-                                                        [&](auto& m) {
+  return DecodeDrakeCommand<drake::lcmt_panda_command>(data, size, kMaxArmCommandBytes, "lcmt_panda_command",
+                                                        &out->utime, [&](auto& m) {
     const int mode = m.control_mode_expected;
     constexpr int kAll = kPandaPositionMode | kPandaVelocityMode | kPandaTorqueMode;
     if (mode <= 0 || (mode & ~kAll) != 0) {

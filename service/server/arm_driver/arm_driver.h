@@ -33,7 +33,9 @@ namespace contactsim {
 class ArmDriver {
  public:
   explicit ArmDriver(ArmDriverConfig config)
-      : config_(std::move(config)), protocol_(FindArmProtocol(config_.protocol)), status_clock_(config_.status_rate_hz) {}
+      : config_(std::move(config)),
+        protocol_(FindArmProtocol(config_.protocol)),
+        status_clock_(config_.status_rate_hz) {}
   const ArmDriverConfig& config() const { return config_; }
   // The config's protocol; null when it names none (a config not read by
   // ReadArmDriverConfig), which StartArmDriver refuses.

@@ -16,8 +16,8 @@ bool PlainChannelName(const std::string& name) {
 
 Status CheckChannel(const std::string& name, const std::string& server_prefix, const char* which) {
   if (!PlainChannelName(name)) {
-    return Status::InvalidArgument(std::string(which) + " must be 1 to 255 printable characters without spaces, got \"" +
-                                   name + "\"");
+    return Status::InvalidArgument(std::string(which) +
+                                   " must be 1 to 255 printable characters without spaces, got \"" + name + "\"");
   }
   if (name.rfind(server_prefix + "_", 0) == 0) {
     return Status::InvalidArgument(std::string(which) + " \"" + name + "\" is among the server's own channels (" +
