@@ -17,14 +17,15 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 status=0
 for target in "$bin"/fuzz_*; do
   name=$(basename "$target")
+  # a decoder target fuzz_decode_<channel> starts from that channel's seeds
   case $name in
-    fuzz_decode_body_cmd) seeds=BODY_CMD ;;
-    fuzz_decode_scene_cmd) seeds=SCENE_CMD ;;
-    fuzz_decode_joint_cmd) seeds=JOINT_CMD ;;
-    fuzz_decode_input) seeds=INPUT ;;
     fuzz_server_apply) seeds=apply ;;
-    *) echo "fuzz: no seeds for $name" >&2; exit 1 ;;
+    fuzz_decode_*) seeds=$(echo "${name#fuzz_decode_}" | tr '[:lower:]' '[:upper:]') ;;
+    *) seeds= ;;
   esac
+  if [ -z "$seeds" ] || [ ! -d "$work/seeds/$seeds" ]; then
+    echo "fuzz: no seeds for $name" >&2; exit 1
+  fi
   corpus=$work/corpus-$name
   mkdir -p "$corpus"
   log=$work/$name.log
