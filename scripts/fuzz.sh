@@ -31,7 +31,7 @@ for target in "$bin"/fuzz_*; do
   log=$work/$name.log
   if (cd "$work" && "$target" -artifact_prefix="$work/" -max_len=4096 -print_final_stats=1 "$@" \
         "$corpus" "$work/seeds/$seeds" >"$log" 2>&1); then
-    runs=$(grep -m1 'stat::number_of_executed_units' "$log" | awk '{print $2}')
+    runs=$(grep -a -m1 'stat::number_of_executed_units' "$log" | awk '{print $2}')
     echo "fuzz: $name ok, ${runs:-?} executions, corpus $(ls "$corpus" | wc -l) inputs"
   else
     echo "fuzz: $name FAILED (log: $log)"; tail -40 "$log"
