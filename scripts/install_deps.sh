@@ -18,6 +18,7 @@ APT_PACKAGES+=(
   clang libclang-rt-14-dev                   # the sanitizer and libFuzzer build (make test-asan, make fuzz)
   libfcl-dev                                 # oracle tests only (tests/oracle), never in the service
   libbullet-dev libode-dev                   # peer runners of `make bench` only (bench/peers), never in the service
+  valgrind                                   # instructions a step in `make bench` and bench/scripts/*_instructions.py
   python3-venv python3-dev                   # Python client
   chromium chromium-driver                   # the viewer's browser tests (headless, tests/python/test_viewer.py)
 )

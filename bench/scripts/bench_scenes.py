@@ -12,15 +12,27 @@ run is a separate process with --repeat 3 --json; a run that fails (NaN,
 explosion, time limit, crash, memory limit) becomes a row that says so and
 never stops the driver.
 
+Instructions a step beside the times: each row is run twice more under
+valgrind's cachegrind (no cache simulation), for 1 step and for 1 + N steps
+(--instruction-steps, 480 by default), both --repeat 1, and the difference
+over N is the row's instructions a step, so that the setup, the scene's
+loading and the machine's load drop out. The machine's load moves the times
+from run to run; it does not move these counts, the figure to steer by on a
+shared machine (BENCHMARKS.md, "Speed targets"). --no-instructions skips
+them; a row whose counting runs exceed --instruction-timeout shows "-".
+
 Usage: bench/scripts/bench_scenes.py [--build-dir build] [--scenes a b] [--repeat 3]
        [--max-seconds 60] [--steps N] [--output BENCHMARKS.md] [--no-write]
+       [--no-instructions] [--instruction-steps 480] [--instruction-timeout 900]
 """
 import argparse
 import datetime
 import json
 import os
 import platform
+import re
 import resource
+import shutil
 import subprocess
 import sys
 import time
@@ -68,13 +80,41 @@ def limit_memory():
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
 
-def run_one(bin_dir, binary, scene, method, params, args):
+def runner_command(bin_dir, binary, scene, method, params, threads):
     cmd = [os.path.join(bin_dir, binary), "--scene", os.path.join(ROOT, "config", "scenes", scene + ".pbtxt"),
-           "--method", method, "--repeat", str(args.repeat), "--max-seconds", str(args.max_seconds), "--json"]
+           "--method", method, "--json"]
     for p in params:
         cmd += ["--param", p]
     if binary in THREADED:
-        cmd += ["--threads", str(args.threads)]  # Bullet and ODE step on one thread
+        cmd += ["--threads", str(threads)]  # Bullet and ODE step on one thread
+    return cmd
+
+
+def counted_instructions(cmd, timeout):
+    """The instructions valgrind counts for cmd (its "I refs"), or None."""
+    vg = ["valgrind", "--tool=cachegrind", "--cache-sim=no", "--cachegrind-out-file=/dev/null"]
+    try:
+        proc = subprocess.run(vg + cmd, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None
+    m = re.search(r"I\s+refs:\s+([\d,]+)", proc.stderr)
+    return int(m.group(1).replace(",", "")) if m and proc.returncode == 0 else None
+
+
+def instructions_per_step(bin_dir, binary, scene, method, params, args):
+    """(I(1 + N steps) - I(1 step)) / N on one thread, or None when a run failed or took too long."""
+    n = args.instruction_steps
+    cmd = runner_command(bin_dir, binary, scene, method, params, 1) + ["--repeat", "1", "--max-seconds", "0"]
+    one = counted_instructions(cmd + ["--steps", "1"], args.instruction_timeout)
+    if one is None:
+        return None
+    more = counted_instructions(cmd + ["--steps", str(1 + n)], args.instruction_timeout)
+    return None if more is None else (more - one) / n
+
+
+def run_one(bin_dir, binary, scene, method, params, args):
+    cmd = runner_command(bin_dir, binary, scene, method, params, args.threads)
+    cmd += ["--repeat", str(args.repeat), "--max-seconds", str(args.max_seconds)]
     if args.steps:
         cmd += ["--steps", str(args.steps)]
     # each repeat may step max_seconds; allow for building, measuring and a last slow step
@@ -126,7 +166,8 @@ def table(scene, rows):
     # a Bullet run that hit the time limit still has a per-step time to divide by
     bullet = next((r for r in rows if r["engine"] == "bullet" and r.get("steps_done", 0) > 0), None)
     extra = {"box_pyramid": "top displacement", "bounce": "rebound height (analytic 0.225 m)"}.get(scene)
-    head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "max penetration", "min distance", "final KE"]
+    head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "instructions/step (vs Bullet)", "max penetration",
+            "min distance", "final KE"]
     if extra:
         head.append(extra)
     head += ["peak memory", "status"]
@@ -137,6 +178,7 @@ def table(scene, rows):
         cells = [r["engine"], r["label"],
                  "%s (%s-%s)" % (fmt(ms), fmt(r.get("ms_per_step_min")), fmt(r.get("ms_per_step_max"))) if has_time else "-",
                  "%.2fx" % (ms / bullet["ms_per_step"]) if has_time and bullet else "-",
+                 instruction_cell(r, bullet),
                  "%s mm" % fmt(1e3 * r["max_penetration"]) if r.get("max_penetration") is not None else "-",
                  min_distance(r),
                  "%s J" % fmt(r["final_kinetic_energy"]) if r.get("final_kinetic_energy") is not None else "-"]
@@ -149,6 +191,15 @@ def table(scene, rows):
         cells.append(short_status(r))
         out.append("| " + " | ".join(cells) + " |")
     return out
+
+
+def instruction_cell(r, bullet):
+    n = r.get("instructions_per_step")
+    if n is None:
+        return "-"
+    base = (bullet or {}).get("instructions_per_step")
+    count = "%.3gM" % (n / 1e6) if n >= 1e6 else "%.3gk" % (n / 1e3)
+    return count + (" (%.2fx)" % (n / base) if base else "")
 
 
 def machine():
@@ -245,8 +296,12 @@ def render(results, args):
            "--repeat %d --json` (and `--threads %d` for contactsim and MuJoCo; Bullet and ODE step on one); "
            "ms/step is the median of the repeats (stepping loop only), min-max "
            "in brackets; a repeat stops after %g s of stepping (status `timeout`). "
+           "Instructions a step: valgrind's cachegrind count of a run of 1 + N steps less one of 1 step, over N "
+           "(N = %d, one thread, `--repeat 1`; bench/scripts/bench_scenes.py), which includes the bench's own "
+           "collision pass that measures penetration; the machine's load does not move it. "
            "Machine, build and commit: the line at the top of this file." % (
-               args.repeat, args.max_seconds, args.repeat, args.threads, args.max_seconds),
+               args.repeat, args.max_seconds, args.repeat, args.threads, args.max_seconds,
+               args.instruction_steps),
            ""]
     for scene in args.scenes:
         rows = [r for r in results if r["scene_name"] == scene]
@@ -291,6 +346,10 @@ def main():
     ap.add_argument("--max-seconds", type=float, default=60.0, help="stepping time per repeat before giving up")
     ap.add_argument("--threads", type=int, default=1, help="contactsim's and MuJoCo's threads (Bullet and ODE use one)")
     ap.add_argument("--steps", type=int, default=0, help="override the scenes' steps (for a quick look)")
+    ap.add_argument("--no-instructions", dest="instructions", action="store_false",
+                    help="skip the instruction counts (valgrind) beside the times")
+    ap.add_argument("--instruction-steps", type=int, default=480, help="N of the counting runs (1 + N steps less 1)")
+    ap.add_argument("--instruction-timeout", type=float, default=900.0, help="seconds a counting run may take")
     ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
     ap.add_argument("--json-out", default=None, help="also write every run's JSON here (default BUILD/bench_scenes.json)")
     ap.add_argument("--no-write", action="store_true", help="print the tables instead of writing BENCHMARKS.md")
@@ -301,6 +360,9 @@ def main():
     ap.add_argument("--from-json", default=None, help="render the tables from a previous run's JSON, running nothing")
     args = ap.parse_args()
     args.build_dir = os.path.abspath(args.build_dir)
+    if args.instructions and shutil.which("valgrind") is None:
+        print("valgrind not found (make deps installs it): no instruction counts", file=sys.stderr)
+        args.instructions = False
     bin_dir = os.path.join(args.build_dir, "bin")
 
     started = datetime.datetime.now(datetime.timezone.utc)
@@ -312,6 +374,7 @@ def main():
         started = datetime.datetime.fromisoformat(meta["started"])
         load_before, args.repeat, args.max_seconds = meta["load_before"], meta["repeat"], meta["max_seconds"]
         args.threads = meta.get("threads", 1)  # runs saved before threads were recorded used one
+        args.instruction_steps = meta.get("instruction_steps", args.instruction_steps)
         return finish(results, args, started, load_before)
     plan = [(scene,) + r for scene in args.scenes for r in runs(bin_dir)
             if not args.only or r[0] in args.only or "%s:%s" % (r[0], r[2]) in args.only]
@@ -322,6 +385,8 @@ def main():
         print("[%2d/%d] %-12s %-10s %-28s" % (i, len(plan), scene, engine, label), end="", flush=True)
         t0 = time.time()
         r = run_one(bin_dir, binary, scene, method, params, args)
+        if args.instructions and not failed(r):
+            r["instructions_per_step"] = instructions_per_step(bin_dir, binary, scene, method, params, args)
         r.update(engine=engine, label=label, scene_name=scene)
         results.append(r)
         ms = r.get("ms_per_step")
@@ -330,7 +395,8 @@ def main():
     json_out = args.json_out or os.path.join(args.build_dir, "bench_scenes.json")
     with open(json_out, "w") as f:
         json.dump({"meta": {"started": started.isoformat(), "load_before": load_before, "repeat": args.repeat,
-                            "max_seconds": args.max_seconds, "threads": args.threads}, "runs": results}, f, indent=1)
+                            "max_seconds": args.max_seconds, "threads": args.threads,
+                            "instruction_steps": args.instruction_steps}, "runs": results}, f, indent=1)
     print("results: %s" % json_out)
     if args.update_json:
         with open(args.update_json) as f:
