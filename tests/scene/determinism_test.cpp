@@ -41,7 +41,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"xpbd", {}, 0x97590969060f2734ull},
       {"lcp", {{"solver", "pgs"}}, 0xb789a59987f95e86ull},
       {"lcp", {{"solver", "lemke"}}, 0x17bfed063c21bc4full},
-      {"barrier", {}, 0xa9d684da5b50ecf2ull},
+      {"barrier", {}, 0x88fc6486c49e595bull},
       {"soft", {}, 0x7796c5b10334ffd7ull},
   };
   return pinned;

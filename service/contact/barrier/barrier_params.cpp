@@ -8,6 +8,9 @@ const ParamTable<BarrierParams>& BarrierParamTable() {
       DoubleParam("d_hat", &P::d_hat, 1e-6, 0.1, "m", "activation distance of the barrier"),
       DoubleParam("kappa_ortho", &P::kappa_ortho, 1e3, 1e15, "Pa",
                   "orthogonality stiffness of the affine bodies (times the body's volume)"),
+      DoubleParam("ortho_step_ratio", &P::ortho_step_ratio, 0.0, 1e15, "",
+                  "largest h^2 k / lambda_max(S) of a body's orthogonality stiffness k, its affine inertia S; "
+                  "kappa_ortho vol is capped there (0 = no cap)"),
       DoubleParam("eps_v", &P::eps_v, 1e-6, 1.0, "m/s",
                   "friction's static-to-dynamic slip speed; static friction creeps slower than this"),
       DoubleParam("tolerance", &P::tolerance, 1e-9, 1.0, "m/s", "Newton stops when every vertex moves slower"),

@@ -10,6 +10,14 @@ namespace contactsim {
 struct BarrierParams {
   double d_hat = 1e-3;          // m
   double kappa_ortho = 1e10;    // Pa
+  // The largest h^2 k / lambda_max(S) a body's orthogonality stiffness k
+  // may reach (S its affine inertia, affine_body.h): kappa_ortho vol is
+  // capped there. The ratio is the square of the stiff mode's frequency
+  // times the step; above a few 1e4 Newton needs ever more iterations to
+  // turn a body (a 0.1 kg plate at 100 rad/s: 4e5, 100 iterations a step),
+  // while a light body's strain under the cap, (h w)^2 / ratio at spin w,
+  // stays below 1e-5 (docs/methods/barrier.md, "Light bodies")
+  double ortho_step_ratio = 2e4;
   // m/s. Below it the smoothed
   // friction of IPC sec. 5 is a stiff viscous force, so a contact that
   // static friction holds with a fraction r < 1 of mu lambda still slips at

@@ -1,5 +1,6 @@
 #include "service/contact/barrier/barrier_solver.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
@@ -35,6 +36,15 @@ Eigen::Matrix<double, 3, 2> TangentBasis(const Vec3& n) {
   return T;
 }
 
+// kappa_ortho vol, capped at ortho_step_ratio lambda_max(S) / h^2
+// (barrier_params.h).
+double OrthogonalityStiffness(const BarrierParams& params, double volume, const Mat3& S, double h) {
+  const double k = params.kappa_ortho * volume;
+  if (params.ortho_step_ratio <= 0.0) return k;
+  const double s_max = Eigen::SelfAdjointEigenSolver<Mat3>(S, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  return std::min(k, params.ortho_step_ratio * s_max / (h * h));
+}
+
 }  // namespace
 
 void BarrierSolver::Setup(World& world, const BarrierParams& params) {
@@ -56,7 +66,7 @@ void BarrierSolver::Setup(World& world, const BarrierParams& params) {
     if (r.IsDynamic()) {
       b.dof = dofs_++;
       b.mass = AffineMassOf(r);
-      b.k_ortho = params.kappa_ortho * ComputeMassProperties(r.shape, 1.0).mass;  // volume at unit density
+      b.k_ortho = OrthogonalityStiffness(params, ComputeMassProperties(r.shape, 1.0).mass, b.mass.S, h_);
       // the affine state carried from the last step, unless the rigid state
       // was changed from outside since (barrier_state.h)
       Vec12 qdot;

@@ -163,7 +163,7 @@ class BarrierSolver {
     int dof = -1;               // 12-DOF block, -1 when fixed (static, kinematic)
     BodyGeometry geometry;
     AffineMass mass;
-    double k_ortho = 0.0;       // kappa_ortho * volume
+    double k_ortho = 0.0;       // kappa_ortho * volume, capped by ortho_step_ratio (barrier_params.h)
     double radius = 0.0;        // m, bounding radius about X = 0 (planes: 0)
     Material material;
     Vec12 q, q0, q_pred;
