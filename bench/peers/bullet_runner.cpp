@@ -5,7 +5,8 @@
 // Translation: btDiscreteDynamicsWorld with a DBVT broadphase and the
 // btSequentialImpulseConstraintSolver at its defaults (10 iterations, split
 // impulse, restitution velocity threshold 0.2 m/s); spheres, boxes (with
-// Bullet's default 0.04 m margin, inside the box) and static planes;
+// Bullet's default 0.04 m margin, inside the box), static planes, and
+// static triangle meshes and heightfields (bullet_surfaces.h);
 // the same masses, principal inertias, poses, velocities, gravity and
 // dt (one fixed step per call). Pair materials follow contactsim's rule
 // (restitution max, friction sqrt(mu_a mu_b)) through Bullet's combine
@@ -18,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "bench/peers/bullet_surfaces.h"
 #include "bench/peers/peer_mirror.h"
 #include "bench/tools/scene_bench/scene_bench_main.h"
 #include "service/contact/contact_row.h"
@@ -40,6 +42,7 @@ class BulletEngine : public SceneEngine {
   BulletEngine(const World& world, int iterations) : mirror_(world), iterations_(iterations) {
     gCalculateCombinedRestitutionCallback = MaxRestitution;
     gCalculateCombinedFrictionCallback = GeometricFriction;
+    gContactAddedCallback = AdjustInternalEdges;
     dynamics_ = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher_, &broadphase_, &solver_, &configuration_);
     dynamics_->setGravity(Bt(world.gravity));
     dynamics_->getSolverInfo().m_numIterations = iterations;
@@ -78,6 +81,8 @@ class BulletEngine : public SceneEngine {
       double offset;
       WorldPlane(b, &n, &offset);
       shape = std::make_unique<btStaticPlaneShape>(Bt(n), offset);
+    } else if (b.shape.IsTriangleSurface()) {
+      return AddSurface(b);
     } else {
       if (b.shape.type == ShapeType::kSphere) {
         shape = std::make_unique<btSphereShape>(b.shape.radius);
@@ -106,6 +111,26 @@ class BulletEngine : public SceneEngine {
     bodies_.push_back(std::move(body));
   }
 
+  // A static mesh or heightfield: its shape keeps its data (surfaces_), and
+  // its contacts go through the internal-edge correction.
+  void AddSurface(const RigidBody& b) {
+    std::unique_ptr<BulletSurface> surface =
+        b.shape.type == ShapeType::kMesh ? MakeBulletMesh(*b.shape.mesh) : MakeBulletHeightfield(*b.shape.heightfield);
+    btTransform pose;
+    pose.setOrigin(Bt(b.x + b.Rotation() * FromBt(surface->offset)));
+    pose.setRotation(btQuaternion(b.q.x(), b.q.y(), b.q.z(), b.q.w()));
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, surface->shape.get(), btVector3(0, 0, 0));
+    info.m_startWorldTransform = pose;
+    info.m_friction = b.material.friction;
+    info.m_restitution = b.material.restitution;
+    auto body = std::make_unique<btRigidBody>(info);
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    dynamics_->addRigidBody(body.get());
+    index_.push_back(-1);
+    surfaces_.push_back(std::move(surface));
+    bodies_.push_back(std::move(body));
+  }
+
   World mirror_;
   int iterations_;
   btDefaultCollisionConfiguration configuration_;
@@ -114,6 +139,7 @@ class BulletEngine : public SceneEngine {
   btSequentialImpulseConstraintSolver solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<BulletSurface>> surfaces_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   std::vector<int> index_;  // mirror index of each Bullet body, -1 for static ones
 };
@@ -124,7 +150,8 @@ Status CreateBulletEngine(const BenchOptions& options, const SceneSpec&, const W
     return Status::NotFound("unknown Bullet method \"" + options.method + "\" (known: sequential_impulse)");
   }
   int iterations = 10;  // btContactSolverInfo's default
-  const Status st = ReadPeerSettings("Bullet", "sequential_impulse", options.params, true, world, &iterations);
+  const Status st =
+      ReadPeerSettings("Bullet", "sequential_impulse", options.params, true, world, &iterations, kTranslatesSurfaces);
   if (!st.ok()) return st;
   *out = std::make_unique<BulletEngine>(world, iterations);
   return Status::Ok();

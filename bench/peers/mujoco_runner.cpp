@@ -209,7 +209,7 @@ Status CreateMujocoEngine(const BenchOptions& options, const SceneSpec&, const W
   reader.Int("iterations", 1, 100000, &iterations);
   reader.Int("memory_mb", 1, 1 << 20, &arena_mb);
   Status st = reader.Finish();
-  if (st.ok()) st = CheckPeerShapes(world, "MuJoCo");
+  if (st.ok()) st = CheckPeerShapes(world, "MuJoCo", kRefusesSurfaces);
   if (!st.ok()) return st;
 
   mju_setLogHandler(LogToStderr);

@@ -18,14 +18,22 @@ inline void MirrorState(const Vec3& x, const Quat& q, const Vec3& v, const Vec3&
   body->SetVelocity(v, w);
 }
 
+// Whether a runner translates static triangle meshes and heightfields
+// (Bullet does; ODE and MuJoCo refuse them).
+enum SurfaceSupport { kRefusesSurfaces, kTranslatesSurfaces };
+
 // The runners translate spheres, boxes and planes (all the standard scenes
-// use); anything else is refused with the body named, before any stepping.
-inline Status CheckPeerShapes(const World& world, const char* engine) {
+// use), and some static meshes and heightfields; anything else is refused
+// with the body named, before any stepping.
+inline Status CheckPeerShapes(const World& world, const char* engine, SurfaceSupport surfaces) {
   for (const RigidBody& b : world.bodies()) {
     const ShapeType t = b.shape.type;
-    if (t != ShapeType::kSphere && t != ShapeType::kBox && t != ShapeType::kPlane) {
+    const bool surface = surfaces == kTranslatesSurfaces && b.shape.IsTriangleSurface();
+    if (t != ShapeType::kSphere && t != ShapeType::kBox && t != ShapeType::kPlane && !surface) {
       return Status::InvalidArgument(std::string(engine) + " runner: body \"" + b.name + "\" has shape " +
-                                     ShapeTypeName(t) + "; only sphere, box and plane are translated");
+                                     ShapeTypeName(t) + "; only sphere, box" +
+                                     (surfaces == kTranslatesSurfaces ? ", plane, mesh and heightfield" : " and plane") +
+                                     " are translated");
     }
     if (b.motion == MotionType::kKinematic) {
       return Status::InvalidArgument(std::string(engine) + " runner: body \"" + b.name +
@@ -37,13 +45,14 @@ inline Status CheckPeerShapes(const World& world, const char* engine) {
 
 // A runner's settings before its engine is built: the `iterations`
 // parameter of `method` when it takes one (`takes_iterations`; *iterations
-// keeps the engine's default otherwise), nothing else, and the scene's shapes.
+// keeps the engine's default otherwise), nothing else, and the scene's
+// shapes (meshes and heightfields only where `surfaces` says so).
 inline Status ReadPeerSettings(const char* engine, const char* method, const ParamMap& params, bool takes_iterations,
-                               const World& world, int* iterations) {
+                               const World& world, int* iterations, SurfaceSupport surfaces = kRefusesSurfaces) {
   ParamReader reader(method, params);
   if (takes_iterations) reader.Int("iterations", 1, 100000, iterations);
   const Status st = reader.Finish();
-  return st.ok() ? CheckPeerShapes(world, engine) : st;
+  return st.ok() ? CheckPeerShapes(world, engine, surfaces) : st;
 }
 
 // A static plane {p : n_W . p <= offset_W} in the world frame.

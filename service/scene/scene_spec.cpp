@@ -17,6 +17,7 @@
 #include "service/proto/scene.pb.h"
 #include "service/scene/height_map_file.h"
 #include "service/scene/proto_text.h"
+#include "service/scene/terrain_grid.h"
 
 namespace contactsim {
 namespace {
@@ -82,17 +83,46 @@ std::string SceneRelative(const std::string& name, const std::string& filename) 
   return path.string();
 }
 
+TerrainSpec ToTerrainSpec(const proto::Terrain& t) {
+  TerrainSpec s;
+  s.rows = t.rows();
+  s.cols = t.cols();
+  s.spacing_x = t.spacing_x();
+  s.spacing_y = t.spacing_y();
+  s.amplitude = t.amplitude();
+  s.wavelength_x = t.wavelength_x();
+  s.wavelength_y = t.wavelength_y();
+  s.bowl = t.bowl();
+  return s;
+}
+
+// A surface's geometry comes from one source: listed in the file, a file
+// it names or a terrain.
+Status CheckOneSource(const char* listed, int sources) {
+  if (sources <= 1) return Status::Ok();
+  return Status::InvalidArgument(std::string("a ") + listed + ", a path or a terrain, only one of them");
+}
+
 // A mesh's or heightfield's surface, built by the collision layer's
 // builders (their messages name the problem); a mesh file or a height map
-// is read first (SceneRelative).
+// is read first (SceneRelative), a terrain generated (terrain_grid.h).
 Status ToSurface(const proto::Body& b, const std::string& filename, BodySettings* s) {
   if (b.has_mesh()) {
     const proto::Mesh& m = b.mesh();
     std::vector<Vec3> vertices;
     std::vector<int> indices(m.indices().begin(), m.indices().end());
-    if (!m.path().empty()) {
-      Status st = model::ReadMeshTriangles(SceneRelative(m.path(), filename), Vec3::Ones(), model::ReadLimits(),
-                                           &vertices, &indices);
+    const bool listed = m.vertices_size() != 0 || m.indices_size() != 0;
+    Status st = CheckOneSource("mesh gives its vertices and indices", listed + !m.path().empty() + m.has_terrain());
+    if (!st.ok()) return st;
+    if (m.has_terrain()) {
+      const TerrainSpec t = ToTerrainSpec(m.terrain());
+      std::vector<double> heights;
+      st = TerrainHeights(t, &heights);
+      if (!st.ok()) return st;
+      GridTriangles(t.rows, t.cols, t.spacing_x, t.spacing_y, heights, &vertices, &indices);
+    } else if (!m.path().empty()) {
+      st = model::ReadMeshTriangles(SceneRelative(m.path(), filename), Vec3::Ones(), model::ReadLimits(), &vertices,
+                                    &indices);
       if (!st.ok()) return st;
     } else {
       for (int i = 0; i + 2 < m.vertices_size(); i += 3) {
@@ -107,15 +137,21 @@ Status ToSurface(const proto::Body& b, const std::string& filename, BodySettings
   }
   if (b.has_heightfield()) {
     const proto::Heightfield& h = b.heightfield();
+    const int sources = (h.heights_size() != 0) + !h.path().empty() + h.has_terrain();
+    Status st = CheckOneSource("heightfield gives its heights", sources);
+    if (!st.ok()) return st;
+    if (h.has_terrain()) {
+      const TerrainSpec t = ToTerrainSpec(h.terrain());
+      std::vector<double> heights;
+      st = TerrainHeights(t, &heights);
+      return st.ok() ? BuildHeightField(t.rows, t.cols, heights, t.spacing_x, t.spacing_y, &s->heightfield) : st;
+    }
     if (h.path().empty()) {
       const std::vector<double> heights(h.heights().begin(), h.heights().end());
       return BuildHeightField(h.rows(), h.cols(), heights, h.spacing_x(), h.spacing_y(), &s->heightfield);
     }
-    if (h.heights_size() != 0) {
-      return Status::InvalidArgument("a heightfield gives heights or a path, not both");
-    }
     HeightMap map;
-    Status st = ReadHeightMap(SceneRelative(h.path(), filename), h.rows(), h.cols(), h.scale(), h.offset(), &map);
+    st = ReadHeightMap(SceneRelative(h.path(), filename), h.rows(), h.cols(), h.scale(), h.offset(), &map);
     if (!st.ok()) return st;
     return BuildHeightField(map.rows, map.cols, map.heights, h.spacing_x(), h.spacing_y(), &s->heightfield);
   }

@@ -43,6 +43,7 @@ std::string ToJson(const BenchResult& r) {
     << ", \"dt\": " << Number(r.dt, 17) << ", \"ms_per_step\": " << Number(r.ms_per_step)
     << ", \"ms_per_step_min\": " << Number(r.ms_per_step_min) << ", \"ms_per_step_max\": " << Number(r.ms_per_step_max)
     << ", \"max_penetration\": " << Number(r.max_penetration) << ", \"min_distance\": " << Number(r.min_distance)
+    << ", \"fell_through\": " << (r.fell_through ? std::to_string(*r.fell_through) : "null")
     << ", \"final_kinetic_energy\": " << Number(r.final_kinetic_energy)
     << ", \"top_displacement\": " << Number(r.top_displacement) << ", \"rebound_height\": " << Number(r.rebound_height)
     << ", \"iterations_mean\": " << Number(r.iterations_mean) << ", \"iterations_max\": " << Number(r.iterations_max)
@@ -73,6 +74,7 @@ void PrintTable(const BenchResult& r, std::ostream& out) {
   row("iterations", r.iterations_mean ? Number(*r.iterations_mean) + " a step (at most " + Number(r.iterations_max) + ")" : "-");
   row("method residual", Text(r.residual_min, "(smallest)"));
   row("method stiffness", Text(r.stiffness_max, "(largest)"));
+  row("fell through", r.fell_through ? std::to_string(*r.fell_through) + " bodies" : "-");
   row("final kinetic energy", Number(r.final_kinetic_energy) + " J");
   row("top displacement", Text(r.top_displacement, "m"));
   row("rebound height", Text(r.rebound_height, "m"));

@@ -88,6 +88,7 @@ BenchResult RunScene(const BenchOptions& options, const SceneSpec& scene, const 
       r.steps_done = done;
       r.max_penetration = metrics.max_penetration();
       r.min_distance = metrics.min_distance();
+      r.fell_through = metrics.fell_through();
       r.final_kinetic_energy = metrics.final_kinetic_energy();
       r.top_displacement = metrics.top_displacement();
       r.rebound_height = metrics.rebound_height();

@@ -33,6 +33,7 @@ struct BenchResult {
   double ms_per_step_max = 0.0;
   double max_penetration = 0.0;   // m
   std::optional<double> min_distance;      // m, < 0 a penetration; none: never within 1 cm
+  std::optional<int> fell_through;     // bodies once below a mesh or heightfield; none: the scene has none
   double final_kinetic_energy = 0.0;  // J
   std::optional<double> top_displacement;  // m
   std::optional<double> rebound_height;    // m

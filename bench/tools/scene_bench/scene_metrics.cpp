@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "service/collision/aabb.h"
 #include "service/collision/narrowphase.h"
+#include "service/collision/ray_cast.h"
 
 namespace contactsim::bench {
 namespace {
@@ -27,7 +29,9 @@ void SceneMetrics::Start(const World& world) {
     if (bodies[i].name == "top") top_ = i;
     if (bodies[i].name == "ball") ball_ = i;
     if (plane_ < 0 && bodies[i].shape.IsPlane()) plane_ = i;
+    if (bodies[i].shape.IsTriangleSurface()) surfaces_.push_back(i);
   }
+  fell_.assign(bodies.size(), false);
   if (top_ >= 0) top_displacement_ = 0.0;
   final_kinetic_energy_ = KineticEnergy(world);
 }
@@ -52,6 +56,7 @@ void SceneMetrics::Observe(const World& world) {
     max_penetration_ = std::max(max_penetration_, c.depth);
     min_distance_ = std::min(min_distance_.value_or(kGapMargin), -c.depth);
   }
+  FindFallenBodies(world);
   final_kinetic_energy_ = KineticEnergy(world);
   if (top_ >= 0) top_displacement_ = (bodies[top_].x - start_[top_]).norm();
   if (ball_ >= 0 && plane_ >= 0 && bounce_phase_ < 3) {
@@ -70,6 +75,28 @@ void SceneMetrics::Observe(const World& world) {
         bounce_phase_ = 3;
         rebound_height_ = apex_;
       }
+    }
+  }
+}
+
+std::optional<int> SceneMetrics::fell_through() const {
+  if (surfaces_.empty()) return std::nullopt;
+  return static_cast<int>(std::count(fell_.begin(), fell_.end(), true));
+}
+
+void SceneMetrics::FindFallenBodies(const World& world) {
+  const auto& bodies = world.bodies();
+  for (const int s : surfaces_) {
+    const RigidBody& surface = bodies[s];
+    const Aabb box = ComputeAabb(surface, 0.0, 0.0);
+    const double above = box.max.z() + 1.0;  // m: the rays start over the whole surface
+    for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
+      const RigidBody& b = bodies[i];
+      if (!b.IsDynamic() || fell_[i]) continue;
+      Ray down;
+      if (!MakeRay(Vec3(b.x.x(), b.x.y(), above), -Vec3::UnitZ(), above - box.min.z() + 1.0, &down).ok()) continue;
+      const RayHit hit = RayCastBody(surface, down);
+      if (hit.hit && hit.point.z() > b.x.z()) fell_[i] = true;
     }
   }
 }

@@ -7,6 +7,10 @@
 //    steps (negative: the deepest penetration), from contacts found within
 //    kGapMargin, so a method that keeps bodies apart (barrier) shows its
 //    gap; none when no two bodies ever came within kGapMargin;
+//  * fell through: how many dynamic bodies had their centre below a static
+//    triangle mesh or heightfield at some step (below the point of the
+//    surface straight above or under it, found by a ray cast down from
+//    above the surface); none when the scene has no such surface;
 //  * final kinetic energy: sum of m v^2 / 2 + w . L / 2 of dynamic bodies;
 //  * top displacement: |x - x0| of the body named "top";
 //  * rebound height: the first apex of the lowest point of the body named
@@ -44,12 +48,18 @@ class SceneMetrics {
 
   double max_penetration() const { return max_penetration_; }
   std::optional<double> min_distance() const { return min_distance_; }
+  std::optional<int> fell_through() const;
   double final_kinetic_energy() const { return final_kinetic_energy_; }
   std::optional<double> top_displacement() const { return top_displacement_; }
   std::optional<double> rebound_height() const { return rebound_height_; }
 
  private:
+  // Marks the dynamic bodies whose centre is below a surface now.
+  void FindFallenBodies(const World& world);
+
   std::vector<Vec3> start_;
+  std::vector<int> surfaces_;  // the static meshes and heightfields
+  std::vector<bool> fell_;     // per body: was below a surface at some step
   int top_ = -1, ball_ = -1, plane_ = -1;
   CollisionDetector detector_;
   ContactSet contacts_;
