@@ -38,7 +38,9 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENES = ["box_pyramid", "sphere_pile", "box_rain", "bounce"]
+SCENES = ["box_pyramid", "sphere_pile", "box_rain", "bounce", "terrain_rain", "heightfield_rain"]
+# The scenes on a static triangle mesh or heightfield (ODE and MuJoCo refuse those shapes).
+TERRAIN = ("terrain_rain", "heightfield_rain")
 BEGIN, END = "<!-- peers:begin -->", "<!-- peers:end -->"
 RUN_BEGIN, RUN_END = "<!-- run:begin -->", "<!-- run:end -->"
 APEX = 0.5 * 0.5 * 0.9  # m, analytic first apex of the bounce scene (e^2 h)
@@ -165,7 +167,8 @@ def min_distance(r):
 def table(scene, rows):
     # a Bullet run that hit the time limit still has a per-step time to divide by
     bullet = next((r for r in rows if r["engine"] == "bullet" and r.get("steps_done", 0) > 0), None)
-    extra = {"box_pyramid": "top displacement", "bounce": "rebound height (analytic 0.225 m)"}.get(scene)
+    extra = {"box_pyramid": "top displacement", "bounce": "rebound height (analytic 0.225 m)",
+             "terrain_rain": "fell through", "heightfield_rain": "fell through"}.get(scene)
     head = ["engine", "method", "ms/step (min-max)", "vs Bullet", "instructions/step (vs Bullet)", "max penetration",
             "min distance", "final KE"]
     if extra:
@@ -184,6 +187,8 @@ def table(scene, rows):
                  "%s J" % fmt(r["final_kinetic_energy"]) if r.get("final_kinetic_energy") is not None else "-"]
         if scene == "box_pyramid":
             cells.append("%s m" % fmt(r["top_displacement"]) if r.get("top_displacement") is not None else "-")
+        elif scene in TERRAIN:
+            cells.append(fmt(r.get("fell_through")) if r.get("fell_through") is not None else "-")
         elif scene == "bounce":
             h = r.get("rebound_height")
             cells.append("%.4f m (%+.1f%%)" % (h, 100 * (h - APEX) / APEX) if h is not None else "no rebound")
@@ -269,11 +274,37 @@ def targets(results):
             err = (h - APEX) / APEX
             out.append("* bounce, %s: apex %.4f m, %+.1f%% of 0.225 m (%s)." % (
                 label, h, 100 * err, "met" if abs(err) <= 0.02 else "**missed**"))
+    out += terrain_targets(results)
     bad = ["%s on %s (%s)" % (r["label"], r["scene_name"], r.get("status")) for r in results
            if r["engine"] == "contactsim" and failed(r)]
     out.append("* Every contact method completes every scene: %s." % (
         "met" if not bad else "**not met**: " + "; ".join(bad)))
     return out + [""]
+
+
+def terrain_targets(results):
+    """The terrain scenes' targets: contactsim's fastest method at or below Bullet's ms/step, its peak
+    memory within 1.5x Bullet's, and no body through the surface under any engine."""
+    out = []
+    for scene in TERRAIN:
+        rows = [r for r in results if r["scene_name"] == scene and not failed(r)]
+        bullet = next((r for r in rows if r["engine"] == "bullet"), None)
+        ours = [r for r in rows if r["engine"] == "contactsim"]
+        if not rows:
+            continue
+        if not bullet or not ours:
+            out.append("* %s: **not met**, no completed %s row." % (scene, "Bullet" if not bullet else "contactsim"))
+            continue
+        best = min(ours, key=lambda r: r["ms_per_step"])
+        ratio = best["ms_per_step"] / bullet["ms_per_step"]
+        memory = best["peak_rss_mb"] / bullet["peak_rss_mb"]
+        through = ["%s %s (%d)" % (r["engine"], r["label"], r["fell_through"]) for r in rows if r.get("fell_through")]
+        out.append("* %s, fastest method %s: %.2fx Bullet's ms/step (%s), peak memory %.2fx Bullet's (%s); "
+                   "bodies through the surface: %s." % (
+                       scene, best["label"], ratio, "met" if ratio <= 1 else "**missed by %.0f%%**" % (100 * (ratio - 1)),
+                       memory, "met" if memory <= 1.5 else "**missed**",
+                       "none (met)" if not through else "**" + ", ".join(through) + "**"))
+    return out
 
 
 def run_line(args, started, load_before):
