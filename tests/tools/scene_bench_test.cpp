@@ -9,8 +9,10 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "bench/tools/scene_bench/scene_metrics.h"
+#include "service/collision/height_field.h"
 #include "service/physics/body_settings.h"
 
 namespace contactsim::bench {
@@ -62,7 +64,7 @@ TEST(SceneBench, BounceJsonHasEveryFieldAndTheAnalyticApex) {
   ASSERT_EQ(o.exit_code, 0) << o.out;
   for (const char* key : {"scene", "method", "params", "bodies", "steps", "dt", "ms_per_step", "ms_per_step_min",
                           "ms_per_step_max", "max_penetration", "min_distance", "final_kinetic_energy", "top_displacement",
-                          "rebound_height", "peak_rss_mb"}) {
+                          "rebound_height", "fell_through", "peak_rss_mb"}) {
     EXPECT_FALSE(Field(o.out, key).empty()) << key << " missing in " << o.out;
   }
   EXPECT_EQ(Field(o.out, "scene"), "\"bounce\"");
@@ -149,6 +151,50 @@ TEST(SceneBench, MetricsReportNanAndExplosion) {
   EXPECT_EQ(metrics.Check(world).rfind("exploded: \"ball\"", 0), 0u) << metrics.Check(world);
   world.bodies()[0].P.x() = std::nan("");
   EXPECT_EQ(metrics.Check(world).rfind("nan: \"ball\"", 0), 0u) << metrics.Check(world);
+}
+
+// Verifies the fell-through count: none without a surface; a ball whose
+// centre goes below a heightfield (a 1 m grid tilted to z = 0.1 x) is
+// counted once, and stays counted after it comes back up; one beside the
+// surface is not.
+TEST(SceneBench, MetricsCountBodiesBelowASurfaceOnce) {
+  World bare = OneBall();
+  SceneMetrics none;
+  none.Start(bare);
+  none.Observe(bare);
+  EXPECT_FALSE(none.fell_through().has_value());
+
+  World world;
+  BodySettings ground;
+  ground.name = "ground";
+  ground.shape = ShapeType::kHeightfield;
+  std::vector<double> heights;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) heights.push_back(0.1 * (c - 1));
+  }
+  ASSERT_TRUE(BuildHeightField(3, 3, heights, 1.0, 1.0, &ground.heightfield).ok());
+  RigidBody g;
+  ASSERT_TRUE(CreateBody(ground, Material{}, &g).ok());
+  world.AddBody(g);
+  for (const double x : {0.5, 3.0}) {  // over the surface, and beside it
+    BodySettings s;
+    s.radius = 0.1;
+    s.position = Vec3(x, 0.3, 1);  // inside a cell's half, off its edges
+    RigidBody b;
+    ASSERT_TRUE(CreateBody(s, Material{}, &b).ok());
+    world.AddBody(b);
+  }
+  SceneMetrics metrics;
+  metrics.Start(world);
+  metrics.Observe(world);
+  EXPECT_EQ(metrics.fell_through(), 0);
+  world.bodies()[1].x.z() = 0.05 - 1e-6;  // the surface is at 0.1 x = 0.05 under it
+  world.bodies()[2].x.z() = -5.0;
+  metrics.Observe(world);
+  EXPECT_EQ(metrics.fell_through(), 1);
+  world.bodies()[1].x.z() = 0.05 + 1e-6;
+  metrics.Observe(world);
+  EXPECT_EQ(metrics.fell_through(), 1);
 }
 
 // Verifies that --threads reaches the report and that zero, negative and
