@@ -134,6 +134,33 @@ TEST(TerrainScenes, MeshIsTheHeightfieldsTriangulation) {
   EXPECT_FALSE(TerrainHeights(flat, &heights).ok());
 }
 
+// A surface gives its geometry one way: a terrain beside listed geometry or
+// a path is refused, naming the three ways; a terrain's own bad values are
+// refused with the field named.
+TEST(TerrainScenes, RefusesATerrainBesideOtherGeometryOrWithBadValues) {
+  const char* terrain = "terrain { rows: 3 cols: 3 spacing_x: 1 spacing_y: 1 }";
+  const std::string both[] = {
+      std::string("bodies { mesh { vertices: [0, 0, 0] indices: [0, 0, 0] ") + terrain + " } }",
+      std::string("bodies { mesh { path: \"floor.obj\" ") + terrain + " } }",
+      std::string("bodies { heightfield { rows: 2 cols: 2 heights: [0, 0, 0, 0] spacing_x: 1 spacing_y: 1 ") +
+          terrain + " } }",
+      std::string("bodies { heightfield { path: \"map.png\" ") + terrain + " } }"};
+  for (const std::string& text : both) {
+    SceneSpec spec;
+    const Status st = ParseSceneText(text, "scene.pbtxt", &spec);
+    EXPECT_EQ(st.code(), StatusCode::kInvalidArgument) << text;
+    EXPECT_NE(st.message().find("a path or a terrain, only one of them"), std::string::npos) << st.message();
+  }
+  SceneSpec spec;
+  Status st = ParseSceneText("bodies { heightfield { terrain { rows: 3 cols: 3 spacing_x: 1 spacing_y: 1 "
+                             "wavelength_x: 0 } } }",
+                             "scene.pbtxt", &spec);
+  EXPECT_NE(st.message().find("terrain wavelength_x"), std::string::npos) << st.message();
+  st = ParseSceneText("bodies { mesh { terrain { rows: 1 cols: 3 spacing_x: 1 spacing_y: 1 } } }", "scene.pbtxt",
+                      &spec);
+  EXPECT_NE(st.message().find("terrain rows and cols must be >= 2"), std::string::npos) << st.message();
+}
+
 class TerrainRainTest : public ::testing::TestWithParam<MethodConfig> {};
 
 // What is wrong after the middle of the rain's lowest layer (16 boxes, the
