@@ -1,5 +1,6 @@
 #include "service/physics/hull_vertex_budget.h"
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -23,6 +24,65 @@ Status ResolveMaxHullVertices(int requested, int* max_vertices) {
                                  std::to_string(kMinHullVertices) + ", got " + std::to_string(requested));
 }
 
+namespace {
+
+// The indices of the points the triangles use, once each, ascending.
+std::vector<int> CornerIndices(std::size_t points, const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<bool> used(points, false);
+  for (const auto& t : triangles) used[t[0]] = used[t[1]] = used[t[2]] = true;
+  std::vector<int> out;
+  for (std::size_t i = 0; i < points; ++i) {
+    if (used[i]) out.push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+// How far `p` lies above the hull of `hull_points` whose triangles are
+// `triangles`: its largest height over their planes (<= 0 inside).
+double HeightAbove(const Vec3& p, const std::vector<Vec3>& hull_points,
+                   const std::vector<std::array<int, 3>>& triangles) {
+  double height = -1e300;
+  for (const auto& t : triangles) {
+    const Vec3& a = hull_points[t[0]];
+    const Vec3 n = (hull_points[t[1]] - a).cross(hull_points[t[2]] - a);
+    const double len = n.norm();
+    if (len > 0.0) height = std::max(height, n.dot(p - a) / len);
+  }
+  return height;
+}
+
+// Greedy choice among the full hull's `vertices`: from the initial
+// tetrahedron, add the vertex highest above the hull of those kept so far,
+// until `max_vertices` are kept or none lies above it by more than `tol`.
+Status GreedyVertices(const std::vector<Vec3>& vertices, int max_vertices, double tol, std::vector<int>* chosen) {
+  std::array<int, 4> corners;
+  if (Status st = InitialTetrahedron(vertices, tol, &corners); !st.ok()) return st;
+  chosen->assign(corners.begin(), corners.end());
+  std::vector<bool> taken(vertices.size(), false);
+  for (int i : corners) taken[i] = true;
+  std::vector<Vec3> kept;
+  std::vector<std::array<int, 3>> triangles;
+  while (static_cast<int>(chosen->size()) < max_vertices) {
+    kept.clear();
+    for (int i : *chosen) kept.push_back(vertices[i]);
+    if (Status st = Quickhull(kept, tol, &triangles); !st.ok()) return st;
+    int eye = -1;
+    double highest = tol;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      if (taken[i]) continue;
+      const double h = HeightAbove(vertices[i], kept, triangles);
+      if (h > highest) highest = h, eye = static_cast<int>(i);
+    }
+    if (eye < 0) break;
+    taken[eye] = true;
+    chosen->push_back(eye);
+  }
+  std::sort(chosen->begin(), chosen->end());
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status BudgetedHullPoints(const std::vector<Vec3>& points, int max_vertices, std::vector<Vec3>* kept) {
   if (Status st = CheckMaxHullVertices(max_vertices); !st.ok()) return st;
   if (points.size() < 4) {
@@ -31,16 +91,21 @@ Status BudgetedHullPoints(const std::vector<Vec3>& points, int max_vertices, std
   for (const Vec3& p : points) {
     if (!IsFinite(p)) return Status::InvalidArgument("a hull point is not finite");
   }
+  const double tol = HullTolerance(points);
   std::vector<std::array<int, 3>> triangles;
-  Status st = Quickhull(points, HullTolerance(points), &triangles, max_vertices);
-  if (!st.ok()) return st;
-  // the triangles' corners, once each, in the input's order
-  std::vector<bool> used(points.size(), false);
-  for (const auto& t : triangles) used[t[0]] = used[t[1]] = used[t[2]] = true;
+  if (Status st = Quickhull(points, tol, &triangles); !st.ok()) return st;
+  // the full hull's vertices, in the input's order; the greedy choice
+  // among them when there are more than the budget
+  std::vector<Vec3> vertices;
+  for (int i : CornerIndices(points.size(), triangles)) vertices.push_back(points[i]);
   kept->clear();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (used[i]) kept->push_back(points[i]);
+  if (max_vertices == 0 || static_cast<int>(vertices.size()) <= max_vertices) {
+    *kept = vertices;
+    return Status::Ok();
   }
+  std::vector<int> chosen;
+  if (Status st = GreedyVertices(vertices, max_vertices, tol, &chosen); !st.ok()) return st;
+  for (int i : chosen) kept->push_back(vertices[i]);
   return Status::Ok();
 }
 
