@@ -90,17 +90,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // variables (perf), so the scene is not run for it
     {"lcp_lemke", "heightfield drops", 0, "19.5 s for 3 s of four hulls (pgs 0.4 s): Lemke's pivots on a contact per "
                                        "triangle (docs/methods/lcp.md, \"Lemke by components\")"},
-    // soft's float path: boxes landing on the terrain scenes' curved surface
-    // (mesh and heightfield alike) hold a contact group per triangle under
-    // them (collide_surface.cpp groups by equal normal), about 100 contacts
-    // a box; 0.43 s into the landing of 16 boxes
-    // (tests/scene/terrain_scenes_test.cpp) one of them gains 4.8e8 m/s in
-    // one step with 1,653 contacts among the 16, and the rest follow; soft
-    // in double precision lands them (docs/methods/soft.md, "Float path");
-    // the check is whether every box lands, not a number: worst 0
-    {"soft_float", "terrain rain", 0,
-     "a box gains 4.8e8 m/s in one step at 0.43 s on the 100,352-triangle surface, ~100 contacts a box "
-     "(a group per triangle under it); soft in double lands every box"},
     // xpbd: a finger drive stalled against a gripped box
     // (tests/server/wsg_driver_test.cpp) is a velocity row solved in the
     // predict phase against the finger's own inertia, before the contacts'

@@ -28,7 +28,7 @@ struct PinnedFloatRun {
 constexpr PinnedFloatRun kRuns[] = {
     {"box_pyramid.pbtxt", 48, 0x28f8b671cb3bda9eull},
     {"sphere_pile.pbtxt", 120, 0x05b31de1ad4d7771ull},
-    {"box_rain.pbtxt", 120, 0x57e255605c66e0b0ull},
+    {"box_rain.pbtxt", 120, 0xe4b8247b90a23cf3ull},
 };
 
 // Verifies the pinned hash at 4 and 8 lanes on 1, 2 and 4 threads.
