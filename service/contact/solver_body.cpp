@@ -2,10 +2,14 @@
 
 namespace contactsim {
 
-void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies) {
+namespace {
+
+// bodies a thread loads at a time
+constexpr int kLoadGrain = 256;
+
+void LoadRange(const World& world, int begin, int end, std::vector<SolverBody>* bodies) {
   const auto& src = world.bodies();
-  bodies->resize(src.size());
-  for (size_t i = 0; i < src.size(); ++i) {
+  for (int i = begin; i < end; ++i) {
     const RigidBody& b = src[i];
     SolverBody& s = (*bodies)[i];
     s.v = b.LinearVelocity();
@@ -15,6 +19,19 @@ void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies) {
     s.dP.setZero();
     s.dL.setZero();
   }
+}
+
+}  // namespace
+
+void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies) {
+  bodies->resize(world.bodies().size());
+  LoadRange(world, 0, static_cast<int>(bodies->size()), bodies);
+}
+
+void LoadSolverBodies(const World& world, ParallelRunner& runner, std::vector<SolverBody>* bodies) {
+  bodies->resize(world.bodies().size());
+  runner.For(static_cast<int>(bodies->size()), kLoadGrain,
+             [&](int begin, int end, int) { LoadRange(world, begin, end, bodies); });
 }
 
 void StoreSolverBodies(const std::vector<SolverBody>& bodies, World& world) {

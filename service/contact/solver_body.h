@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "service/collision/parallel_runner.h"
 #include "service/physics/world.h"
 
 namespace contactsim {
@@ -31,6 +32,8 @@ struct SolverBody {
 };
 
 void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies);
+// The same with the bodies split over the runner's threads.
+void LoadSolverBodies(const World& world, ParallelRunner& runner, std::vector<SolverBody>* bodies);
 // Adds the summed impulses to each dynamic body's P and L.
 void StoreSolverBodies(const std::vector<SolverBody>& bodies, World& world);
 // Moves each dynamic body by its solver v (m) and rotates it by w (rad,

@@ -51,11 +51,13 @@ void IntegrateMomenta(World& world, double dt) {
 }
 
 void IntegratePositions(World& world, double dt) {
-  for (RigidBody& b : world.bodies()) {
-    if (b.motion == MotionType::kStatic) continue;
-    b.x += b.LinearVelocity() * dt;
-    Rotate(b, dt);
-  }
+  for (RigidBody& b : world.bodies()) IntegratePosition(b, dt);
+}
+
+void IntegratePosition(RigidBody& b, double dt) {
+  if (b.motion == MotionType::kStatic) return;
+  b.x += b.LinearVelocity() * dt;
+  Rotate(b, dt);
 }
 
 void AdvanceBallistic(RigidBody& b, double h) {

@@ -13,6 +13,8 @@ void IntegrateMomenta(World& world, double dt);
 // (energy and |L| conserved for a torque-free body). Static bodies stay;
 // kinematic bodies move with their set velocity.
 void IntegratePositions(World& world, double dt);
+// The same for one body (a solver's parallel loop over the bodies).
+void IntegratePosition(RigidBody& body, double dt);
 
 // The rotation q after time h with the world angular momentum L_W held
 // fixed: the implicit midpoint rule on Euler's equations in the body frame,

@@ -39,8 +39,8 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0x927c5adcbe51e516ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x2292c2bf1c452e69ull},
       {"xpbd", {}, 0x97590969060f2734ull},
-      {"lcp", {{"solver", "pgs"}}, 0xb789a59987f95e86ull},
-      {"lcp", {{"solver", "lemke"}}, 0x17bfed063c21bc4full},
+      {"lcp", {{"solver", "pgs"}}, 0x5404206a2bbfb0c8ull},
+      {"lcp", {{"solver", "lemke"}}, 0x245c20931e03f8baull},
       {"barrier", {}, 0x88fc6486c49e595bull},
       {"soft", {}, 0x7796c5b10334ffd7ull},
   };

@@ -48,15 +48,25 @@ Impact PredictImpact(double depth, double vn_before, double vn_free, double rest
   return impact;
 }
 
+namespace {
+
+// contacts a thread takes at a time
+constexpr int kContactGrain = 128;
+
+}  // namespace
+
 void PredictImpacts(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
-                    const std::vector<SolverBody>& free, const ContactRowOptions& options,
+                    const std::vector<SolverBody>& free, const ContactRowOptions& options, ParallelRunner& runner,
                     std::vector<Impact>* impacts) {
-  impacts->clear();
-  for (const Contact& c : contacts) {
-    const ContactRow basis = MakeContactBasis(c, world);
-    impacts->push_back(PredictImpact(c.depth, basis.NormalVelocity(before), basis.NormalVelocity(free),
-                                     basis.restitution, options));
-  }
+  impacts->resize(contacts.size());
+  runner.For(static_cast<int>(contacts.size()), kContactGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      const Contact& c = contacts[k];
+      const ContactRow basis = MakeContactBasis(c, world);
+      (*impacts)[k] = PredictImpact(c.depth, basis.NormalVelocity(before), basis.NormalVelocity(free),
+                                    basis.restitution, options);
+    }
+  });
 }
 
 namespace {
@@ -87,35 +97,51 @@ void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free
 
 }  // namespace
 
-void AppendContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
-                       const std::vector<Impact>& impacts, const ContactRowOptions& options,
-                       const std::vector<Vec3>* friction_points, std::vector<ConstraintRow>* rows) {
-  for (size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
-    ConstraintRow normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
-    const double vn_before = basis.NormalVelocity(before);
-    if (impacts[k].exact) {
-      normal.rhs = impacts[k].end_velocity;
-    } else if (impacts[k].misses) {
-      normal.rhs = c.depth / options.h;
-    } else if (vn_before < -options.restitution_threshold) {
-      normal.rhs = -basis.restitution * vn_before;
-    } else if (c.depth < 0.0) {
-      normal.rhs = c.depth / options.h;
-    } else if (c.depth > options.slop) {
-      normal.rhs = options.baumgarte_erp * (c.depth - options.slop) / options.h;
-    }
-    const int normal_index = static_cast<int>(rows->size());
-    rows->push_back(normal);
-    for (const Vec3& t : {basis.t1, basis.t2}) {
-      ConstraintRow friction = DirectionRow(c.a, c.b, basis.fa, basis.fb, t);
-      friction.lo = -ConstraintRow::kInf;
-      friction.normal_row = normal_index;
-      friction.mu = basis.friction;
-      rows->push_back(friction);
-    }
+namespace {
+
+// Contact k's three rows: normal, t1, t2, the normal at `first`.
+void ContactRows(const ContactSet& contacts, size_t k, const World& world, const std::vector<SolverBody>& before,
+                 const Impact& impact, const ContactRowOptions& options, const std::vector<Vec3>* friction_points,
+                 int first, ConstraintRow* out) {
+  const Contact& c = contacts[k];
+  const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
+  ConstraintRow& normal = out[0];
+  normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
+  const double vn_before = basis.NormalVelocity(before);
+  if (impact.exact) {
+    normal.rhs = impact.end_velocity;
+  } else if (impact.misses) {
+    normal.rhs = c.depth / options.h;
+  } else if (vn_before < -options.restitution_threshold) {
+    normal.rhs = -basis.restitution * vn_before;
+  } else if (c.depth < 0.0) {
+    normal.rhs = c.depth / options.h;
+  } else if (c.depth > options.slop) {
+    normal.rhs = options.baumgarte_erp * (c.depth - options.slop) / options.h;
   }
+  const Vec3 tangents[2] = {basis.t1, basis.t2};
+  for (int j = 0; j < 2; ++j) {
+    ConstraintRow& friction = out[1 + j];
+    friction = DirectionRow(c.a, c.b, basis.fa, basis.fb, tangents[j]);
+    friction.lo = -ConstraintRow::kInf;
+    friction.normal_row = first;
+    friction.mu = basis.friction;
+  }
+}
+
+}  // namespace
+
+void WriteContactRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& before,
+                       const std::vector<Impact>& impacts, const ContactRowOptions& options,
+                       const std::vector<Vec3>* friction_points, ParallelRunner& runner,
+                       std::vector<ConstraintRow>* rows) {
+  rows->resize(3 * contacts.size());
+  runner.For(static_cast<int>(contacts.size()), kContactGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      const int first = 3 * k;
+      ContactRows(contacts, k, world, before, impacts[k], options, friction_points, first, &(*rows)[first]);
+    }
+  });
 }
 
 void AlignFrictionRows(const ContactSet& contacts, const World& world, const std::vector<SolverBody>& free,

@@ -15,6 +15,9 @@
 namespace contactsim {
 namespace {
 
+// bodies a thread takes at a time
+constexpr int kBodyGrain = 256;
+
 // `velocities`: the rows act on velocities (the energy guard applies), not
 // on the split impulse's pseudo-velocities.
 SubspaceOptions SubspaceOptionsOf(const LcpParams& p, bool velocities) {
@@ -37,10 +40,11 @@ Status LcpMethod::LoadState(const std::string& bytes) {
                                  " bytes)");
 }
 
-void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts) {
+void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts,
+                                 ParallelRunner& runner) {
   const bool split = params_.drift == "split" && params_.erp > 0.0;
   split_rows_.clear();
-  LoadSolverBodies(world, &bodies_);
+  LoadSolverBodies(world, runner, &bodies_);
   for (size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
     // m of separation this step (pseudo-velocity x 1 step): an impact's
@@ -64,17 +68,20 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   PgsOptions options;
   options.iterations = params_.iterations;
   options.tolerance = 1e-9;  // m
+  options.runner = &runner;
   split_pgs_.Solve(split_rows_, bodies_, options);
   subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_, false));
   auto& bodies = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!bodies[i].IsDynamic()) continue;
-    bodies[i].x += bodies_[i].v;
-    bodies[i].q = (QuatFromRotationVector(bodies_[i].w) * bodies[i].q).normalized();
-  }
+  runner.For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      if (!bodies[i].IsDynamic()) continue;
+      bodies[i].x += bodies_[i].v;
+      bodies[i].q = (QuatFromRotationVector(bodies_[i].w) * bodies[i].q).normalized();
+    }
+  });
 }
 
-void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
+void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, ParallelRunner& runner) {
   const bool use_lemke =
       params_.solver == "lemke" && static_cast<int>(rows_.size()) <= params_.max_lemke_rows;
   if (use_lemke) {
@@ -119,6 +126,8 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies) {
     normal_blocks_.push_back(blk);
   }
   options.normal_blocks = &normal_blocks_;
+  options.runner = &runner;
+  options.ordered_from = static_cast<int>(3 * contacts_.size());
   report_ = pgs_.Solve(rows_, bodies, options);
   SubspaceOptions direct = SubspaceOptionsOf(params_, true);
   // the components of contacts on jointed bodies too, where the sweeps
@@ -155,44 +164,68 @@ StepStats LcpMethod::Step(World& world, CollisionDetector& detector, ContactSet*
                         [&](ContactSet* out) { return StepOnce(world, detector, out); }, contacts_out);
 }
 
-StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
-  StepStats stats;
+void LcpMethod::BuildContactRows(World& world, ParallelRunner& runner) {
   const double h = world.dt;
-  world.AccumulateForces();
-  detector.Detect(world, params_.slop, h, &contacts_);
   ContactRowOptions row_options;
   row_options.h = h;
   row_options.restitution_threshold = params_.restitution_threshold;
   row_options.slop = params_.slop;
   row_options.baumgarte_erp = params_.drift == "baumgarte" ? params_.erp : 0.0;
   // impacts from the velocities before and after this step's forces
-  LoadSolverBodies(world, &before_);
-  free_ = before_;
+  LoadSolverBodies(world, runner, &before_);
+  free_.resize(before_.size());
   const auto& forced = world.bodies();
-  for (size_t i = 0; i < forced.size(); ++i) {
-    SolverBody& s = free_[i];
-    s.v += h * s.inv_mass * forced[i].force;
-    s.w += h * (s.inv_inertia * forced[i].torque);
-  }
-  PredictImpacts(contacts_, world, before_, free_, row_options, &impacts_);
-  CorrectPositions(world, contacts_, impacts_);
+  runner.For(static_cast<int>(forced.size()), kBodyGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      SolverBody& s = free_[i];
+      s = before_[i];
+      s.v += h * s.inv_mass * forced[i].force;
+      s.w += h * (s.inv_inertia * forced[i].torque);
+    }
+  });
+  PredictImpacts(contacts_, world, before_, free_, row_options, runner, &impacts_);
+  CorrectPositions(world, contacts_, impacts_, runner);
 
-  LoadSolverBodies(world, &before_);
-  rows_.clear();
+  LoadSolverBodies(world, runner, &before_);
   if (ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform) {
     PatchFrictionPoints(contacts_, &friction_points_);
   } else {
     friction_points_.clear();
   }
-  AppendContactRows(contacts_, world, before_, impacts_, row_options, FrictionPoints(), &rows_);
+  WriteContactRows(contacts_, world, before_, impacts_, row_options, FrictionPoints(), runner, &rows_);
   impact_impulses_.clear();
   if (params_.impacts == "sequential") {
     SequenceImpacts(contacts_, world, before_, impacts_, params_.restitution_threshold, &sequence_, &rows_,
                     &impact_impulses_);
   }
+}
+
+void LcpMethod::AdvancePositions(World& world, ParallelRunner& runner) {
+  // untouched bodies ballistically (x0 + v0 h + F/(2m) h^2 =
+  // x0 + (v1 - F/(2m) h) h), the others with their end velocity
+  const double h = world.dt;
+  auto& bodies = world.bodies();
+  runner.For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      RigidBody& b = bodies[i];
+      const bool touched = bodies_[i].dP.squaredNorm() + bodies_[i].dL.squaredNorm() > 0.0;
+      if (b.IsDynamic() && !touched) b.x -= 0.5 * h * h * b.inv_mass * b.force;
+      IntegratePosition(b, h);
+    }
+  });
+  ProjectJointPositions(world);
+}
+
+StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
+  StepStats stats;
+  const double h = world.dt;
+  ParallelRunner& runner = detector.runner();
+  world.AccumulateForces();
+  detector.Detect(world, params_.slop, h, &contacts_);
+  BuildContactRows(world, runner);
 
   IntegrateMomenta(world, h);
-  LoadSolverBodies(world, &bodies_);
+  LoadSolverBodies(world, runner, &bodies_);
   // the joint rows see v* (their velocity products are taken at the
   // velocity the step ends with, see BuildJointVelocityRows)
   joint_rows_.clear();
@@ -204,7 +237,7 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
   rows_.insert(rows_.end(), joint_rows_.begin(), joint_rows_.end());
 
   report_ = SolveReport();
-  if (!rows_.empty()) Solve(world, bodies_);
+  if (!rows_.empty()) Solve(world, bodies_, runner);
   StoreSolverBodies(bodies_, world);
   StoreWarmStart();
   warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);
@@ -212,17 +245,7 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
   for (size_t k = 0; k < joint_rows_.size(); ++k) lambda[k] = rows_[first_joint_row + k].lambda;
   AddDriveImpulses(joint_blocks_, lambda, &drive_impulses);
   AddDriveEfforts(drive_impulses, h, world);
-
-  // positions: untouched bodies ballistically (x0 + v0 h + F/(2m) h^2 =
-  // x0 + (v1 - F/(2m) h) h), the others with their end velocity
-  auto& bodies = world.bodies();
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    RigidBody& b = bodies[i];
-    const bool touched = bodies_[i].dP.squaredNorm() + bodies_[i].dL.squaredNorm() > 0.0;
-    if (b.IsDynamic() && !touched) b.x -= 0.5 * h * h * b.inv_mass * b.force;
-  }
-  IntegratePositions(world, h);
-  ProjectJointPositions(world);
+  AdvancePositions(world, runner);
 
   contacts_out->clear();
   for (size_t k = 0; k < contacts_.size(); ++k) {

@@ -85,8 +85,15 @@ class LcpMethod : public ContactMethod {
  private:
   // One step over world.dt, without World::FinishStep.
   StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
-  void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts);
-  void Solve(const World& world, std::vector<SolverBody>& bodies);
+  // Steps 2 and 4 above: impacts, the split impulse and the contact rows.
+  // The per-body and per-contact loops and the PGS sweeps (colour by
+  // colour, pgs.h) run on the runner's threads, here and below.
+  void BuildContactRows(World& world, ParallelRunner& runner);
+  void CorrectPositions(World& world, const ContactSet& contacts, const std::vector<Impact>& impacts,
+                        ParallelRunner& runner);
+  // Step 6 and 7 above.
+  void AdvancePositions(World& world, ParallelRunner& runner);
+  void Solve(const World& world, std::vector<SolverBody>& bodies, ParallelRunner& runner);
   // warm_start_ from the rows, less the impacts' impulses
   void StoreWarmStart();
   // where the contacts' friction acts with patch_torsion, else null (the contact points)

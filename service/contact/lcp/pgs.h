@@ -51,14 +51,27 @@
 // A_kk, in the order of RowSchedule (row_schedule.h): consecutive rows
 // touch different bodies, so their updates do not wait on each other's
 // velocity stores. Velocities live in a dense array of (v, w) per body plus
-// one zero-velocity slot for the world and one write-only slot where rows
-// put the (unchanged) velocity of a body without mass, so a sweep is
+// one zero-velocity slot for the world and a write-only slot (one per group
+// of rows, so that no two threads write one) where rows put the
+// (unchanged) velocity of a body without mass, so a sweep is
 // branch-free, allocation-free (the workspace is reused between solves)
 // and carries no false dependency through a static body's velocity.
+//
+// Threads (PgsOptions::runner): the rows are swept colour by colour
+// (row_schedule.h, Colour) as the stages of one ParallelRunner::Stages
+// call, the warm start and every sweep a pass over the colours and a
+// serial stage after each sweep that takes the largest change of the
+// sweep's groups and decides whether to stop; the sweeps after that do
+// nothing. A colour's groups share no moving body and each group writes
+// its own sink, so the result is the same bit for bit on any number of
+// threads (docs/architecture.md, "Threads"); it is not the result of the
+// serial sweep in the caller's order, which a solve without a runner keeps.
 #pragma once
 
 #include <vector>
 
+#include "service/collision/parallel_runner.h"
+#include "service/contact/block_colours.h"
 #include "service/contact/constraint_row.h"
 #include "service/contact/normal_block.h"
 #include "service/contact/lcp/row_schedule.h"
@@ -76,6 +89,10 @@ struct PgsOptions {
   int iterations = 30;        // sweeps at most
   double tolerance = 1e-6;    // m/s: stop when no row velocity changes more in a sweep
   const std::vector<PgsNormalBlock>* normal_blocks = nullptr;  // none: every row alone
+  ParallelRunner* runner = nullptr;  // sweep colour by colour on its threads; none: serially in the caller's order
+  // with a runner: rows from this index on (joints'), and the rows on their
+  // bodies, keep the caller's order after the colours (row_schedule.h); -1: none
+  int ordered_from = -1;
 };
 
 class PgsSolver {
@@ -115,22 +132,45 @@ class PgsSolver {
     vel_[r.write_b] = {B.v + r.mb_lin * d, B.w + r.mb_ang * d};
   }
 
-  // Copies the caller's rows into rows_ in sweep order (see above).
+  // Copies the caller's rows into rows_ in sweep order (see above), the
+  // coloured one with a runner; group g's rows write their bodies without
+  // mass to the sink world_slot + 1 + g.
   void Prepare(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int world_slot,
-               int sink_slot);
-  // Marks the rows of each block that K^+ (or K^-1) exists for.
-  void PrepareBlocks(const std::vector<PgsNormalBlock>& blocks);
+               const PgsOptions& options);
+  void PrepareRow(const ConstraintRow& c, const std::vector<SolverBody>& bodies, int world_slot, int sink_slot,
+                  Row* r) const;
+  // Marks the rows of each block that K^+ (or K^-1) exists for; the
+  // blocks' K on the runner's threads when there is one.
+  void PrepareBlocks(const std::vector<PgsNormalBlock>& blocks, ParallelRunner* runner);
+  // False when no block applies (see InvertNormalBlockK).
+  bool BuildBlock(const PgsNormalBlock& given, Block* blk) const;
   // One projected update of a friction pair; returns its row-velocity change.
   double SolvePair(Row& r1, Row& r2);
   // One update of a row on its own bounds; returns its row-velocity change.
   double SolveRow(Row& r);
   // One update of a normal block (row by row when a point would pull).
   double SolveBlock(const Block& blk);
+  // One sweep over rows_[begin, end); returns the largest row-velocity change.
+  double SweepRows(int begin, int end);
+  // The warm start and the sweeps: serially in rows_ order, or colour by
+  // colour on the runner (pgs_stages.cpp).
+  // Both end with the impulses in `rows` and on `bodies`, and the report.
+  void SweepInOrder(const PgsOptions& options, std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
+                    SolveReport* report);
+  void SweepColoured(const PgsOptions& options, std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,
+                     SolveReport* report);
 
   RowSchedule schedule_;
   std::vector<int> order_, position_;  // sweep order; position_[row] = index in rows_
+  std::vector<int> group_rows_;        // group g: rows_[group_rows_[g], group_rows_[g + 1])
+  BlockColours colours_;               // in groups
+  std::vector<double> group_worst_;    // per group, its largest change in the last sweep
+  std::vector<ParallelRunner::Stage> stages_;
   std::vector<Row> rows_;
   std::vector<Block> blocks_;
+  std::vector<Block> candidates_;      // per given block, valid where built_
+  std::vector<char> built_;
+  std::vector<double> chunk_error_;    // complementarity per chunk of rows
   std::vector<Velocity> vel_;
 };
 

@@ -9,8 +9,13 @@ namespace contactsim {
 
 double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
                             FrictionSet set) {
+  return ComplementarityError(rows, bodies, set, 0, rows.size());
+}
+
+double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                            FrictionSet set, size_t begin, size_t end) {
   double err = 0.0;
-  for (size_t k = 0; k < rows.size(); ++k) {
+  for (size_t k = begin; k < end; ++k) {
     const ConstraintRow& r = rows[k];
     const double w = r.Velocity(bodies) - r.rhs;
     if (set == FrictionSet::kDisk && IsFrictionPairSecond(rows, k)) continue;  // measured with its lead

@@ -22,5 +22,9 @@ enum class FrictionSet { kDisk, kPyramid };
 
 double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
                             FrictionSet set = FrictionSet::kDisk);
+// The maximum over rows [begin, end) (a friction pair counts where its
+// lead is), so that the ranges of a split give the whole's maximum.
+double ComplementarityError(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                            FrictionSet set, size_t begin, size_t end);
 
 }  // namespace contactsim

@@ -17,10 +17,26 @@
 // level, interleaves its runs: row 0 of every run, then row 1 of every
 // run, ... Static and kinematic bodies take no impulse and do not order
 // anything.
+//
+// Colour (the solve of the lcp method's pgs, on the world's threads): the
+// runs are coloured instead (block_colours.h: greedy, each run takes the
+// lowest colour neither of its moving bodies has yet), so that runs of one
+// colour share no moving body and may be swept by any thread in any order
+// with the same result bit for bit (docs/architecture.md, "Threads"). A
+// colour's runs are cut into groups of kRunsPerGroup, interleaved as above
+// within a group; the group is the unit a thread takes. Colours are fewer
+// than levels, but the sweep is no longer the caller's order: a coloured
+// Gauss-Seidel sweep, the same one on any number of threads. The runs of
+// rows the caller marks as ordered (a joint's) and every run on one of
+// their bodies keep the caller's order instead: they are the overflow, one
+// group after the colours, in levels as above. Coloured alternately, the
+// rows of a 100-link chain of growing masses converged too slowly in 20
+// sweeps to hold it together.
 #pragma once
 
 #include <vector>
 
+#include "service/contact/block_colours.h"
 #include "service/contact/constraint_row.h"
 
 namespace contactsim {
@@ -32,14 +48,39 @@ class RowSchedule {
   void Order(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
              std::vector<int>* order);
 
+  // Runs interleaved within a group: enough independent updates to overlap
+  // in the CPU, few enough that a colour splits evenly between threads.
+  static constexpr int kRunsPerGroup = 8;
+  // The coloured order: *order as above; group g's rows are
+  // order[group_rows[g], group_rows[g + 1]); `colours` in groups (a
+  // colour's groups share no moving body; the overflow, at most one group,
+  // keeps the caller's order). Rows from `first_ordered` on are ordered.
+  void Colour(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int first_ordered,
+              std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours);
+
  private:
   struct Run {
     int first, count, level;
   };
+  struct Ends {
+    int a, b;  // bodies, the world as bodies.size()
+  };
+  // runs_ from the rows: consecutive rows on the same body pair
+  void FindRuns(const std::vector<ConstraintRow>& rows);
+  // Appends row s of every run in sorted_[begin, end) for s = 0, 1, ...
+  void Interleave(int begin, int end, std::vector<int>* order) const;
+  // Appends the rows of sorted_[begin, end) (runs in the caller's order)
+  // level by level, each level interleaved.
+  void AppendByLevel(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int begin,
+                     int end, std::vector<int>* order);
   std::vector<int> body_level_;  // per body: level of the last run on it
   std::vector<Run> runs_;
-  std::vector<int> by_level_;    // run indices grouped by level, row order within a level
   std::vector<int> level_start_, cursor_;
+  std::vector<Ends> ends_;             // per row
+  std::vector<ColourRole> roles_;      // per body, and the world
+  std::vector<NormalBlock> coloured_;  // the runs as blocks of rows, colour by colour
+  std::vector<Run> sorted_;            // the runs in sweep order
+  std::vector<Run> level_sorted_;
 };
 
 }  // namespace contactsim
