@@ -24,16 +24,38 @@ void RowOn(const ConstraintRow& row, int body, double* j) {
   std::copy_n((a ? row.ang_a : row.ang_b).data(), 3, j + 3);
 }
 
-// D (stride d) -= H^T J over H's first `rows` rows and `cols` columns (row
-// stride cols)
+// y -= A^T x, A rows x cols (row stride cols)
+template <typename Cols>
+void SubtractTransposedProduct(int rows, Cols col_count, const double* A, const double* x, double* y) {
+  const int cols = col_count;
+  for (int k = 0; k < rows; ++k) {
+#pragma GCC unroll 8
+    for (int c = 0; c < cols; ++c) y[c] -= A[k * cols + c] * x[k];
+  }
+}
+
+// y -= A x, A rows x cols (row stride cols)
+template <typename Cols>
+void SubtractProduct(int rows, Cols col_count, const double* A, const double* x, double* y) {
+  const int cols = col_count;
+  for (int k = 0; k < rows; ++k) {
+    double s = 0.0;
+#pragma GCC unroll 8
+    for (int c = 0; c < cols; ++c) s += A[k * cols + c] * x[c];
+    y[k] -= s;
+  }
+}
+
+// D (stride d) -= J^T H = H^T D_i^-1 H over H's first `rows` rows and
+// `cols` columns (H and J: row stride cols)
 template <typename Rows, typename Cols>
-void SubtractProduct(Rows row_count, Cols col_count, const double* H, const double* J, double* D, int d) {
+void SubtractProductOfTransposed(Rows row_count, Cols col_count, const double* H, const double* J, double* D, int d) {
   const int rows = row_count, cols = col_count;
   for (int r = 0; r < cols; ++r) {
     for (int c = 0; c < cols; ++c) {
       double s = 0.0;
 #pragma GCC unroll 8
-      for (int k = 0; k < rows; ++k) s += H[k * cols + r] * J[k * cols + c];
+      for (int k = 0; k < rows; ++k) s += J[k * cols + r] * H[k * cols + c];
       D[r * d + c] -= s;
     }
   }
@@ -166,7 +188,7 @@ void JointTreeFactor::Coupling(const Node& parent, Node* n) const {
   n->lead_cols = joint ? 6 : parent.dim;
   const int cols = n->lead_cols;
   double* H = n->H.data();
-  std::fill_n(H, n->dim * cols, 0.0);
+  if (!joint) std::fill_n(H + 6 * cols, (n->dim - 6) * cols, 0.0);  // a body's world-joint rows
   for (int i = 0; i < blk.count; ++i) {
     double j[6];
     RowOn((*rows_)[blk.first + i], body, j);
@@ -181,7 +203,9 @@ void JointTreeFactor::Eliminate(Node* n, Node* p) const {
   std::copy_n(n->H.data(), dim * cols, n->J.data());
   LuSolve(dim, n->D.data(), n->pivots.data(), n->J.data(), cols);
   WithSize<5, 6, 7, 8>(rows, [&](auto r) {
-    WithSize<5, 6, 7, 8>(cols, [&](auto c) { SubtractProduct(r, c, n->H.data(), n->J.data(), p->D.data(), pdim); });
+    WithSize<5, 6, 7, 8>(cols, [&](auto c) {
+      SubtractProductOfTransposed(r, c, n->H.data(), n->J.data(), p->D.data(), pdim);
+    });
   });
 }
 
@@ -242,15 +266,24 @@ bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::
                              const std::vector<SolverBody>& bodies) {
   Key(rows, blocks, bodies);
   // bitwise, so that -0 and 0 differ as the arithmetic may
-  if (!key_.empty() && key_.size() == key_next_.size() &&
+  if (keyed_ && key_.size() == key_next_.size() &&
       std::memcmp(key_.data(), key_next_.data(), key_.size() * sizeof(double)) == 0) {
     return true;
   }
-  key_.clear();
+  keyed_ = false;
   rows_ = &rows;
   blocks_ = &blocks;
   row_count_ = static_cast<int>(rows.size());
-  if (!Build(bodies)) return false;
+  // the graph (nodes, their order) depends on the shape alone
+  shape_next_.assign(1, static_cast<int>(bodies.size()));
+  for (const JointBlock& blk : blocks) {
+    shape_next_.insert(shape_next_.end(), {blk.count, blk.a, blk.b, Dynamic(blk.a, bodies), Dynamic(blk.b, bodies)});
+  }
+  if (shape_next_ != shape_) {
+    shape_.swap(shape_next_);
+    shape_ok_ = Build(bodies);
+  }
+  if (!shape_ok_) return false;
   for (int i = 0; i < count_; ++i) Diagonal(bodies, &nodes_[i]);
   // children before parents: D_p -= H(i,p)^T D_i^-1 H(i,p)
   for (auto it = preorder_.rbegin(); it != preorder_.rend(); ++it) {
@@ -260,7 +293,8 @@ bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::
   }
   rows_ = nullptr;  // read while factoring only
   blocks_ = nullptr;
-  key_.swap(key_next_);
+  key_.swap(key_next_);  // key_next_'s storage, the last key, is written over by the next
+  keyed_ = true;
   return true;
 }
 
@@ -275,28 +309,24 @@ void JointTreeFactor::Solve(const std::vector<JointBlock>& blocks, const Eigen::
       r += blocks[k].count;
     }
   }
-  // forward (children first): x_p -= J^T x_i
+  // forward (children first), diagonal, backward (parents first)
   for (auto it = preorder_.rbegin(); it != preorder_.rend(); ++it) {
     const Node& n = nodes_[*it];
     if (n.parent < 0) continue;
-    double* xp = nodes_[n.parent].x.data();
-    for (int k = 0; k < n.dim; ++k) {
-      const double* j = n.J.data() + k * n.lead_cols;
-      for (int c = 0; c < n.lead_cols; ++c) xp[c] -= j[c] * n.x[k];
-    }
+    WithSize<5, 6, 7, 8>(n.lead_cols, [&](auto cols) {
+      SubtractTransposedProduct(n.dim, cols, n.J.data(), n.x.data(), nodes_[n.parent].x.data());
+    });
   }
-  // diagonal, then backward (parents first): x_i -= J x_p
-  for (int i = 0; i < count_; ++i) LuSolve(nodes_[i].dim, nodes_[i].D.data(), nodes_[i].pivots.data(), nodes_[i].x.data(), 1);
+  for (int i = 0; i < count_; ++i) {
+    Node& n = nodes_[i];
+    LuSolve(n.dim, n.D.data(), n.pivots.data(), n.x.data(), 1);
+  }
   for (int i : preorder_) {
     Node& n = nodes_[i];
     if (n.parent < 0) continue;
-    const double* xp = nodes_[n.parent].x.data();
-    for (int k = 0; k < n.dim; ++k) {
-      const double* j = n.J.data() + k * n.lead_cols;
-      double s = 0.0;
-      for (int c = 0; c < n.lead_cols; ++c) s += j[c] * xp[c];
-      n.x[k] -= s;
-    }
+    WithSize<5, 6, 7, 8>(n.lead_cols, [&](auto cols) {
+      SubtractProduct(n.dim, cols, n.J.data(), nodes_[n.parent].x.data(), n.x.data());
+    });
   }
   lambda->setZero(row_count_);
   for (int i = 0; i < count_; ++i) {

@@ -99,7 +99,13 @@ class JointTreeFactor {
   std::vector<int> preorder_;  // parents before children
   std::vector<char> seen_;     // Order's scratch, kept for the next system
   std::vector<int> members_, stack_;
-  std::vector<double> key_, key_next_;  // the factored system's inputs (empty: none)
+  std::vector<double> key_, key_next_;  // the factored system's inputs
+  bool keyed_ = false;                   // key_ holds the factors' inputs
+  // The graph's inputs (the bodies' count, each block's rows and ends and
+  // whether they are dynamic) when Build last ran, and its answer: a system
+  // of the same shape keeps the graph
+  std::vector<int> shape_, shape_next_;
+  bool shape_ok_ = false;
 };
 
 // True when the joints of `blocks` make no loop through dynamic bodies.
