@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "service/contact/union_find.h"
 
@@ -14,6 +15,15 @@ double RowError(const ConstraintRow& row, const std::vector<SolverBody>& bodies,
   return row.rhs - row.Velocity(bodies) - row.cfm * total;
 }
 
+void ReadVelocities(const std::vector<SolverBody>& bodies, std::vector<double>* out) {
+  out->resize(6 * bodies.size());
+  double* v = out->data();
+  for (const SolverBody& s : bodies) {
+    v = std::copy_n(s.v.data(), 3, v);
+    v = std::copy_n(s.w.data(), 3, v);
+  }
+}
+
 }  // namespace
 
 void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>& bodies, double h,
@@ -23,7 +33,10 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   solver_ = solver;
   component_.clear();
   factored_ = false;
+  changed_ = false;
+  built_velocities_.clear();
   if (world.joints().empty()) return;
+  ReadVelocities(bodies, &built_velocities_);
   BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
   total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
   factored_ = solver == JointSolverKind::kTree && !rows_.empty() && factor_.Factor(rows_, blocks_, bodies);
@@ -44,6 +57,12 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
 }
 
 void JointVelocityBlock::Rebuild(const World& world, const std::vector<SolverBody>& bodies, double h) {
+  if (!changed_ && !built_velocities_.empty()) {
+    ReadVelocities(bodies, &now_velocities_);
+    if (std::memcmp(now_velocities_.data(), built_velocities_.data(), now_velocities_.size() * sizeof(double)) == 0) {
+      return;
+    }
+  }
   const std::vector<ConstraintRow> old_rows = rows_;
   const std::vector<JointBlock> old_blocks = blocks_;
   const Eigen::VectorXd old_total = total_;
@@ -77,6 +96,7 @@ void JointVelocityBlock::AppendRows(std::vector<ConstraintRow>* out) const {
 }
 
 void JointVelocityBlock::ReadImpulses(const std::vector<ConstraintRow>& rows, size_t first) {
+  changed_ = true;
   for (size_t k = 0; k < rows_.size(); ++k) total_[static_cast<Eigen::Index>(k)] = rows[first + k].lambda;
 }
 
@@ -88,6 +108,7 @@ bool JointVelocityBlock::SelfContact(int a, int b) const {
 double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_passes) {
   const int n = static_cast<int>(rows_.size());
   if (n == 0) return 0.0;
+  changed_ = true;
   std::vector<char>& keep = keep_;
   keep.assign(n, 1);
   Eigen::VectorXd& b = b_;

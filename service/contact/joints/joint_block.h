@@ -37,7 +37,10 @@ class JointVelocityBlock {
   // Build again at the bodies' current velocities, keeping the impulse each
   // compliant row (damping, drive) has carried so far this step: its target
   // counts that impulse (J v + cfm lambda = rhs), so a row built afresh, at
-  // zero, would apply its damper or drive a second time.
+  // zero, would apply its damper or drive a second time. When nothing has
+  // moved since Build (no Solve or ReadImpulses, every body's v and w the
+  // same bit for bit: no contact touched a jointed body) the rows would come
+  // out as they are, and are kept.
   void Rebuild(const World& world, const std::vector<SolverBody>& bodies, double h);
   // Adds the drive rows' impulses this step to `impulses` per joint
   // (AddDriveImpulses, joint_rows.h).
@@ -74,6 +77,10 @@ class JointVelocityBlock {
   bool factored_ = false;
   Eigen::VectorXd b_, x_;
   std::vector<char> keep_;
+  // Build's velocities (v, w of every body) and whether a Solve or
+  // ReadImpulses has changed the totals since: Rebuild's test
+  std::vector<double> built_velocities_, now_velocities_;
+  bool changed_ = false;
 };
 
 }  // namespace contactsim

@@ -4,13 +4,12 @@
 #include <cstring>
 #include <utility>
 
+#include "service/contact/joints/small_lu.h"
 #include "service/contact/union_find.h"
 
 namespace contactsim {
 namespace {
 
-using NodeMatrix = JointTreeFactor::NodeMatrix;
-using NodeVector = JointTreeFactor::NodeVector;
 using Node = JointTreeFactor::Node;
 constexpr int kMaxNodeRows = JointTreeFactor::kMaxNodeRows;
 
@@ -19,14 +18,47 @@ bool Dynamic(int index, const std::vector<SolverBody>& bodies) {
 }
 
 // J of `row` on the side that is `body`, as (lin, ang)
-Eigen::Matrix<double, 1, 6> RowOn(const ConstraintRow& row, int body) {
-  Eigen::Matrix<double, 1, 6> j;
-  if (row.a == body) {
-    j << row.lin_a.transpose(), row.ang_a.transpose();
-  } else {
-    j << row.lin_b.transpose(), row.ang_b.transpose();
+void RowOn(const ConstraintRow& row, int body, double* j) {
+  const bool a = row.a == body;
+  std::copy_n((a ? row.lin_a : row.lin_b).data(), 3, j);
+  std::copy_n((a ? row.ang_a : row.ang_b).data(), 3, j + 3);
+}
+
+// y -= A^T x, A rows x cols (row stride cols)
+template <typename Cols>
+void SubtractTransposedProduct(int rows, Cols col_count, const double* A, const double* x, double* y) {
+  const int cols = col_count;
+  for (int k = 0; k < rows; ++k) {
+#pragma GCC unroll 8
+    for (int c = 0; c < cols; ++c) y[c] -= A[k * cols + c] * x[k];
   }
-  return j;
+}
+
+// y -= A x, A rows x cols (row stride cols)
+template <typename Cols>
+void SubtractProduct(int rows, Cols col_count, const double* A, const double* x, double* y) {
+  const int cols = col_count;
+  for (int k = 0; k < rows; ++k) {
+    double s = 0.0;
+#pragma GCC unroll 8
+    for (int c = 0; c < cols; ++c) s += A[k * cols + c] * x[c];
+    y[k] -= s;
+  }
+}
+
+// D (stride d) -= J^T H = H^T D_i^-1 H over H's first `rows` rows and
+// `cols` columns (H and J: row stride cols)
+template <typename Rows, typename Cols>
+void SubtractProductOfTransposed(Rows row_count, Cols col_count, const double* H, const double* J, double* D, int d) {
+  const int rows = row_count, cols = col_count;
+  for (int r = 0; r < cols; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      double s = 0.0;
+#pragma GCC unroll 8
+      for (int k = 0; k < rows; ++k) s += J[k * cols + r] * H[k * cols + c];
+      D[r * d + c] -= s;
+    }
+  }
 }
 
 }  // namespace
@@ -114,51 +146,78 @@ void JointTreeFactor::Order(const std::vector<SolverBody>& bodies) {
   }
 }
 
-void JointTreeFactor::Diagonal(const Node& n, const std::vector<SolverBody>& bodies, NodeMatrix* H) const {
+// H_ii of a node, dim x dim: a body's M = diag(m 1, I_world) bordered by the
+// rows of its world joints, and every row's -R on the diagonal
+void JointTreeFactor::Diagonal(const std::vector<SolverBody>& bodies, Node* n) const {
   const std::vector<ConstraintRow>& rows = *rows_;
-  H->setZero(n.dim, n.dim);
+  const int dim = n->dim;
+  double* H = n->D.data();
+  std::fill_n(H, dim * dim, 0.0);
   int r = 0;
-  if (n.body >= 0) {
-    const SolverBody& s = bodies[n.body];
-    H->topLeftCorner<3, 3>() = Mat3::Identity() / s.inv_mass;
-    H->block<3, 3>(3, 3) = s.inv_inertia.inverse();
+  if (n->body >= 0) {
+    const SolverBody& s = bodies[n->body];
+    const Mat3 inertia = s.inv_inertia.inverse();
+    for (int i = 0; i < 3; ++i) {
+      H[i * dim + i] = 1.0 / s.inv_mass;
+      for (int j = 0; j < 3; ++j) H[(3 + i) * dim + 3 + j] = inertia(i, j);
+    }
     r = 6;
   }
-  for (int k : n.blocks) {
+  for (int k : n->blocks) {
     const JointBlock& blk = (*blocks_)[k];
     for (int i = 0; i < blk.count; ++i, ++r) {
       const ConstraintRow& row = rows[blk.first + i];
-      if (n.body >= 0) {
-        const auto j = RowOn(row, n.body);
-        H->block<1, 6>(r, 0) = j;
-        H->block<6, 1>(0, r) = j.transpose();
+      if (n->body >= 0) {
+        double j[6];
+        RowOn(row, n->body, j);
+        for (int c = 0; c < 6; ++c) H[r * dim + c] = H[c * dim + r] = j[c];
       }
-      (*H)(r, r) = -kJointRegularisation * row.Diagonal(bodies) - row.cfm;  // R: regularisation and compliance
+      H[r * dim + r] = -kJointRegularisation * row.Diagonal(bodies) - row.cfm;  // R: regularisation and compliance
     }
   }
 }
 
-// H(joint node, body node): the joint's rows on the body's velocity block
-void JointTreeFactor::Coupling(const Node& joint, const Node& body, NodeMatrix* H) const {
-  const JointBlock& blk = (*blocks_)[joint.blocks[0]];
-  H->setZero(joint.dim, body.dim);
-  for (int i = 0; i < blk.count; ++i) H->block<1, 6>(i, 0) = RowOn((*rows_)[blk.first + i], body.body);
+// H(n, parent): a joint's rows on its body's velocity block, as the joint
+// node's rows (n a joint) or columns (n a body)
+void JointTreeFactor::Coupling(const Node& parent, Node* n) const {
+  const bool joint = n->body < 0;
+  const Node& joint_node = joint ? *n : parent;
+  const int body = joint ? parent.body : n->body;
+  const JointBlock& blk = (*blocks_)[joint_node.blocks[0]];
+  n->lead_rows = joint ? n->dim : 6;
+  n->lead_cols = joint ? 6 : parent.dim;
+  const int cols = n->lead_cols;
+  double* H = n->H.data();
+  if (!joint) std::fill_n(H + 6 * cols, (n->dim - 6) * cols, 0.0);  // a body's world-joint rows
+  for (int i = 0; i < blk.count; ++i) {
+    double j[6];
+    RowOn((*rows_)[blk.first + i], body, j);
+    for (int c = 0; c < 6; ++c) (joint ? H[i * cols + c] : H[c * cols + i]) = j[c];
+  }
 }
 
-// Indices are stored as doubles (exact below 2^53); a row stores its
-// bodies' masses and inertias, so that the key needs no body list.
+// J = D_n^-1 H(n, p) and D_p -= H(n, p)^T J, on H's nonzero rows and columns
+void JointTreeFactor::Eliminate(Node* n, Node* p) const {
+  Coupling(*p, n);
+  const int dim = n->dim, rows = n->lead_rows, cols = n->lead_cols, pdim = p->dim;
+  std::copy_n(n->H.data(), dim * cols, n->J.data());
+  LuSolve(dim, n->D.data(), n->pivots.data(), n->J.data(), cols);
+  WithSize<5, 6, 7, 8>(rows, [&](auto r) {
+    WithSize<5, 6, 7, 8>(cols, [&](auto c) {
+      SubtractProductOfTransposed(r, c, n->H.data(), n->J.data(), p->D.data(), pdim);
+    });
+  });
+}
+
+// Indices are stored as doubles (exact below 2^53); a block stores its
+// bodies' masses and inertias, so that the key needs no body list (a row
+// whose bodies are not its block's stores its own).
 void JointTreeFactor::Key(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
                           const std::vector<SolverBody>& bodies) {
-  constexpr size_t kPerBlock = 4, kPerRow = 3 + 12 + 2 * 10;
+  constexpr size_t kPerBlock = 4 + 2 * 10, kPerRow = 3 + 12;
   key_next_.resize(1 + kPerBlock * blocks.size() + kPerRow * rows.size());
   double* k = key_next_.data();
   *k++ = static_cast<double>(bodies.size());
-  for (const JointBlock& blk : blocks) {
-    *k++ = blk.first;
-    *k++ = blk.count;
-    *k++ = blk.a;
-    *k++ = blk.b;
-  }
   auto put = [&k](const double* v, int n) { k = std::copy(v, v + n, k); };
   auto body = [&](int i) {
     if (i < 0) {
@@ -168,13 +227,38 @@ void JointTreeFactor::Key(const std::vector<ConstraintRow>& rows, const std::vec
     *k++ = bodies[i].inv_mass;
     put(bodies[i].inv_inertia.data(), 9);
   };
+  size_t strays = 0;  // rows whose bodies are not their block's
+  for (const JointBlock& blk : blocks) {
+    *k++ = blk.first;
+    *k++ = blk.count;
+    *k++ = blk.a;
+    *k++ = blk.b;
+    body(blk.a);
+    body(blk.b);
+    for (int r = blk.first; r < blk.first + blk.count; ++r) strays += rows[r].a != blk.a || rows[r].b != blk.b;
+  }
   for (const ConstraintRow& row : rows) {
-    *k++ = row.a;
-    *k++ = row.b;
-    *k++ = row.cfm;
-    for (const Vec3* v : {&row.lin_a, &row.ang_a, &row.lin_b, &row.ang_b}) put(v->data(), 3);
-    body(row.a);
-    body(row.b);
+    k[0] = row.a;
+    k[1] = row.b;
+    k[2] = row.cfm;
+    for (int i = 0; i < 3; ++i) {
+      k[3 + i] = row.lin_a[i];
+      k[6 + i] = row.ang_a[i];
+      k[9 + i] = row.lin_b[i];
+      k[12 + i] = row.ang_b[i];
+    }
+    k += kPerRow;
+  }
+  if (strays == 0) return;
+  const size_t used = static_cast<size_t>(k - key_next_.data());
+  key_next_.resize(used + 20 * strays);
+  k = key_next_.data() + used;
+  for (const JointBlock& blk : blocks) {
+    for (int r = blk.first; r < blk.first + blk.count; ++r) {
+      if (rows[r].a == blk.a && rows[r].b == blk.b) continue;
+      body(rows[r].a);
+      body(rows[r].b);
+    }
   }
 }
 
@@ -182,35 +266,35 @@ bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::
                              const std::vector<SolverBody>& bodies) {
   Key(rows, blocks, bodies);
   // bitwise, so that -0 and 0 differ as the arithmetic may
-  if (!key_.empty() && key_.size() == key_next_.size() &&
+  if (keyed_ && key_.size() == key_next_.size() &&
       std::memcmp(key_.data(), key_next_.data(), key_.size() * sizeof(double)) == 0) {
     return true;
   }
-  key_.clear();
+  keyed_ = false;
   rows_ = &rows;
   blocks_ = &blocks;
   row_count_ = static_cast<int>(rows.size());
-  if (!Build(bodies)) return false;
-  for (int i = 0; i < count_; ++i) Diagonal(nodes_[i], bodies, &nodes_[i].D_matrix);
+  // the graph (nodes, their order) depends on the shape alone
+  shape_next_.assign(1, static_cast<int>(bodies.size()));
+  for (const JointBlock& blk : blocks) {
+    shape_next_.insert(shape_next_.end(), {blk.count, blk.a, blk.b, Dynamic(blk.a, bodies), Dynamic(blk.b, bodies)});
+  }
+  if (shape_next_ != shape_) {
+    shape_.swap(shape_next_);
+    shape_ok_ = Build(bodies);
+  }
+  if (!shape_ok_) return false;
+  for (int i = 0; i < count_; ++i) Diagonal(bodies, &nodes_[i]);
   // children before parents: D_p -= H(i,p)^T D_i^-1 H(i,p)
-  NodeMatrix coupling;
   for (auto it = preorder_.rbegin(); it != preorder_.rend(); ++it) {
     Node& n = nodes_[*it];
-    n.D.compute(n.D_matrix);
-    if (n.parent < 0) continue;
-    Node& p = nodes_[n.parent];
-    if (n.body >= 0) {
-      Coupling(p, n, &coupling);
-      n.H_parent = coupling.transpose();
-    } else {
-      Coupling(n, p, &n.H_parent);
-    }
-    n.J = n.D.solve(n.H_parent);
-    p.D_matrix.noalias() -= n.H_parent.transpose() * n.J;
+    LuFactor(n.dim, n.D.data(), n.pivots.data());
+    if (n.parent >= 0) Eliminate(&n, &nodes_[n.parent]);
   }
   rows_ = nullptr;  // read while factoring only
   blocks_ = nullptr;
-  key_.swap(key_next_);
+  key_.swap(key_next_);  // key_next_'s storage, the last key, is written over by the next
+  keyed_ = true;
   return true;
 }
 
@@ -218,29 +302,38 @@ void JointTreeFactor::Solve(const std::vector<JointBlock>& blocks, const Eigen::
                             Eigen::VectorXd* lambda) {
   for (int i = 0; i < count_; ++i) {
     Node& n = nodes_[i];
-    n.x.setZero(n.dim);
-    int r = n.body >= 0 ? 6 : 0;
+    int r = 0;
+    if (n.body >= 0) r = 6, std::fill_n(n.x.data(), 6, 0.0);
     for (int k : n.blocks) {
-      n.x.segment(r, blocks[k].count) = b.segment(blocks[k].first, blocks[k].count);
+      std::copy_n(b.data() + blocks[k].first, blocks[k].count, n.x.data() + r);
       r += blocks[k].count;
     }
   }
   // forward (children first), diagonal, backward (parents first)
   for (auto it = preorder_.rbegin(); it != preorder_.rend(); ++it) {
     const Node& n = nodes_[*it];
-    if (n.parent >= 0) nodes_[n.parent].x.noalias() -= n.J.transpose() * n.x;
+    if (n.parent < 0) continue;
+    WithSize<5, 6, 7, 8>(n.lead_cols, [&](auto cols) {
+      SubtractTransposedProduct(n.dim, cols, n.J.data(), n.x.data(), nodes_[n.parent].x.data());
+    });
   }
-  for (int i = 0; i < count_; ++i) nodes_[i].x = nodes_[i].D.solve(nodes_[i].x);
+  for (int i = 0; i < count_; ++i) {
+    Node& n = nodes_[i];
+    LuSolve(n.dim, n.D.data(), n.pivots.data(), n.x.data(), 1);
+  }
   for (int i : preorder_) {
     Node& n = nodes_[i];
-    if (n.parent >= 0) n.x.noalias() -= n.J * nodes_[n.parent].x;
+    if (n.parent < 0) continue;
+    WithSize<5, 6, 7, 8>(n.lead_cols, [&](auto cols) {
+      SubtractProduct(n.dim, cols, n.J.data(), nodes_[n.parent].x.data(), n.x.data());
+    });
   }
   lambda->setZero(row_count_);
   for (int i = 0; i < count_; ++i) {
     const Node& n = nodes_[i];
     int r = n.body >= 0 ? 6 : 0;
     for (int k : n.blocks) {
-      lambda->segment(blocks[k].first, blocks[k].count) = -n.x.segment(r, blocks[k].count);
+      for (int q = 0; q < blocks[k].count; ++q) (*lambda)[blocks[k].first + q] = -n.x[r + q];
       r += blocks[k].count;
     }
   }

@@ -23,7 +23,7 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+#include <array>
 #include <vector>
 
 #include "service/contact/joints/joint_rows.h"
@@ -31,16 +31,16 @@
 namespace contactsim {
 
 // The factored system, solved for any number of right-hand sides. Every node's
-// blocks are fixed-size Eigen matrices of at most kMaxNodeRows rows, so
-// factoring and solving allocate nothing on the heap for them.
+// blocks live in fixed-size arrays of at most kMaxNodeRows rows, stored row by
+// row at the node's own size, and are factored by plain loops (small_lu.h),
+// so factoring and solving allocate nothing on the heap for them.
 class JointTreeFactor {
  public:
   // A body's 6 plus the rows of its joints to the world, or one joint's
   // rows: 24 holds a body with two joints of every row kind. A larger node
   // is refused (Factor returns false) and its system solved densely.
   static constexpr int kMaxNodeRows = 24;
-  using NodeMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxNodeRows, kMaxNodeRows>;
-  using NodeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxNodeRows, 1>;
+  using NodeBlock = std::array<double, kMaxNodeRows * kMaxNodeRows>;
   // A node of Baraff's graph: a dynamic body with its joints to the world,
   // or a joint between two dynamic bodies.
   struct Node {
@@ -49,11 +49,16 @@ class JointTreeFactor {
     int dim = 0;              // 6 + world-joint rows, or the joint's rows
     std::vector<int> links;   // neighbouring nodes
     int parent = -1;
-    NodeMatrix D_matrix;      // H_ii, then the pivot D_i
-    NodeMatrix H_parent;      // H(i, parent): dim x dim(parent)
-    NodeMatrix J;             // D^-1 H(i, parent)
-    Eigen::PartialPivLU<NodeMatrix> D;
-    NodeVector x;
+    // H(i, parent) is dim x dim(parent), zero outside its first lead_rows
+    // rows and lead_cols columns: a joint's rows act on a body's velocity
+    // block only (its first 6 entries), never on its world joints' rows.
+    // H and J = D^-1 H hold those columns only (row stride lead_cols).
+    int lead_rows = 0, lead_cols = 0;
+    NodeBlock D;              // H_ii (dim x dim), then the pivot D_i, then its LU factors
+    std::array<int, kMaxNodeRows> pivots;
+    NodeBlock H;              // H(i, parent)
+    NodeBlock J;              // D^-1 H(i, parent)
+    std::array<double, kMaxNodeRows> x;
   };
 
   // Factors (J M^-1 J^T + R) of the rows grouped by `blocks`; false when the
@@ -77,14 +82,15 @@ class JointTreeFactor {
   int NewNode(int body, int dim);
   int BodyNode(int body);
   void Order(const std::vector<SolverBody>& bodies);
-  void Diagonal(const Node& n, const std::vector<SolverBody>& bodies, NodeMatrix* H) const;
-  void Coupling(const Node& joint, const Node& body, NodeMatrix* H) const;
+  void Diagonal(const std::vector<SolverBody>& bodies, Node* n) const;
+  void Coupling(const Node& parent, Node* n) const;
+  void Eliminate(Node* n, Node* parent) const;
 
   const std::vector<ConstraintRow>* rows_ = nullptr;  // while factoring
   const std::vector<JointBlock>* blocks_ = nullptr;
   int row_count_ = 0;
-  // nodes_[0, count_) are this system's. A node's storage (four fixed-size
-  // blocks, some 20 kB) is kept for the next system: constructing one
+  // nodes_[0, count_) are this system's. A node's storage (three fixed-size
+  // blocks, some 14 kB) is kept for the next system: constructing one
   // value-initialises, that is zeroes, all of it, which cost more than the
   // factorisation itself.
   std::vector<Node> nodes_;
@@ -93,7 +99,13 @@ class JointTreeFactor {
   std::vector<int> preorder_;  // parents before children
   std::vector<char> seen_;     // Order's scratch, kept for the next system
   std::vector<int> members_, stack_;
-  std::vector<double> key_, key_next_;  // the factored system's inputs (empty: none)
+  std::vector<double> key_, key_next_;  // the factored system's inputs
+  bool keyed_ = false;                   // key_ holds the factors' inputs
+  // The graph's inputs (the bodies' count, each block's rows and ends and
+  // whether they are dynamic) when Build last ran, and its answer: a system
+  // of the same shape keeps the graph
+  std::vector<int> shape_, shape_next_;
+  bool shape_ok_ = false;
 };
 
 // True when the joints of `blocks` make no loop through dynamic bodies.
