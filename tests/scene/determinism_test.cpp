@@ -39,7 +39,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0xa65dd2489f9f7166ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0xc3f2fe19aa04371eull},
       {"xpbd", {}, 0x14490a9dade13e19ull},
-      {"lcp", {{"solver", "pgs"}}, 0x5404206a2bbfb0c8ull},
+      {"lcp", {{"solver", "pgs"}}, 0xca054dea281b8b10ull},
       {"lcp", {{"solver", "lemke"}}, 0x245c20931e03f8baull},
       {"barrier", {}, 0x88fc6486c49e595bull},
       {"soft", {}, 0xafac1065ad3e0de6ull},
