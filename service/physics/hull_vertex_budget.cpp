@@ -37,17 +37,31 @@ std::vector<int> CornerIndices(std::size_t points, const std::vector<std::array<
   return out;
 }
 
-// How far `p` lies above the hull of `hull_points` whose triangles are
-// `triangles`: its largest height over their planes (<= 0 inside).
-double HeightAbove(const Vec3& p, const std::vector<Vec3>& hull_points,
-                   const std::vector<std::array<int, 3>>& triangles) {
-  double height = -1e300;
+// A triangle's plane: a corner, its (unnormalised) normal and that
+// normal's length.
+struct Plane {
+  Vec3 a, n;
+  double len;
+};
+
+// The planes of the triangles of `hull_points` with a non-zero area.
+std::vector<Plane> TrianglePlanes(const std::vector<Vec3>& hull_points,
+                                  const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<Plane> planes;
   for (const auto& t : triangles) {
     const Vec3& a = hull_points[t[0]];
     const Vec3 n = (hull_points[t[1]] - a).cross(hull_points[t[2]] - a);
     const double len = n.norm();
-    if (len > 0.0) height = std::max(height, n.dot(p - a) / len);
+    if (len > 0.0) planes.push_back({a, n, len});
   }
+  return planes;
+}
+
+// How far `p` lies above a hull with these face planes: its largest height
+// over them (<= 0 inside).
+double HeightAbove(const Vec3& p, const std::vector<Plane>& planes) {
+  double height = -1e300;
+  for (const Plane& f : planes) height = std::max(height, f.n.dot(p - f.a) / f.len);
   return height;
 }
 
@@ -66,11 +80,12 @@ Status GreedyVertices(const std::vector<Vec3>& vertices, int max_vertices, doubl
     kept.clear();
     for (int i : *chosen) kept.push_back(vertices[i]);
     if (Status st = Quickhull(kept, tol, &triangles); !st.ok()) return st;
+    const std::vector<Plane> planes = TrianglePlanes(kept, triangles);
     int eye = -1;
     double highest = tol;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       if (taken[i]) continue;
-      const double h = HeightAbove(vertices[i], kept, triangles);
+      const double h = HeightAbove(vertices[i], planes);
       if (h > highest) highest = h, eye = static_cast<int>(i);
     }
     if (eye < 0) break;
