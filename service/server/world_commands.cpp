@@ -43,6 +43,12 @@ Outcome SimServer::ApplyWorldCommand(Command& cmd) {
       // a switch keeps every body's state and drops only the old method's caches
       const Status st = CheckMethodSupports(cmd.method->Name(), world_);
       if (!st.ok()) return Outcome::Failed(st);
+      // the same method with new parameters keeps its state (warm starts,
+      // friction anchors, placed overlaps), as a snapshot's restore does
+      if (method_ != nullptr && method_->Name() == cmd.method->Name()) {
+        const Status kept = cmd.method->LoadState(method_->SaveState());
+        if (!kept.ok()) spdlog::warn("contact method {}: state not carried over: {}", method_->Name(), kept.message());
+      }
       method_ = cmd.method;
       std::string text = std::string("contact method ") + method_->Name();
       for (const auto& [k, v] : method_->Params()) text += " " + k + "=" + v;

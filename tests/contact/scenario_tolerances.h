@@ -146,9 +146,9 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "2.2 cm/s (stack of three), 1.2 cm/s (wall): its springs start unloaded, so a placed stack falls into them "
      "and rings at pi / contact_time, about g contact_time / pi = 1.25 cm/s per course of load"},
     {"penalty", "* from impulse speed", 0.03, "2.3 cm/s: impulse rests them touching, the same fall into its springs"},
-    {"penalty", "* overlap=0.*mm *", 0.8,
-     "1.6 / 4.3 / 31 cm/s and 6 mm at 0.01 / 0.1 / 0.5 mm overlaps: its springs push an overlap out with kp d, "
-     "unlimited"},
+    {"penalty", "* overlap=0.*mm speed", 0.024,
+     "0.59-1.1 / 1.6-1.8 cm/s (wall / stack) at 0.01-0.5 mm: a placed overlap is its springs' rest depth, pushed out "
+     "at overlap_push_speed (penalty_row.h), so the bodies fall into the springs as when placed touching"},
     {"xpbd", "* overlap=0.[15]mm *", 2.8,
      "24 cm/s and 3.4 mm at 0.1 mm overlaps, 1.3-2.1 m/s and 83-95 mm at 0.5 mm: its position pass removes an "
      "overlap within a step and the velocity it derives carries it on (max_push_velocity 4 m/s). Tried: the "

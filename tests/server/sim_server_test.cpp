@@ -155,5 +155,43 @@ TEST_F(SimServerTest, MethodSwitchKeepsBodyState) {
   EXPECT_EQ(HashWorldState(server_.world()), before);
 }
 
+// Verifies that a switch to the same method with new parameters keeps the
+// method's state (penalty's anchors of a sphere resting on the ground, bit
+// for bit) and takes the new parameters, while a switch through another
+// method starts penalty afresh.
+TEST_F(SimServerTest, SwitchToTheSameMethodKeepsItsState) {
+  scene_cmd_t method = Scene(scene_cmd_t::SET_METHOD);
+  method.method = "penalty";
+  ASSERT_EQ(Send(method).code, reply_t::OK);
+  body_cmd_t ground = Sphere(0.1, Vec3::Zero());
+  ground.shape = body_cmd_t::PLANE;
+  ground.plane_normal[2] = 1.0;
+  ground.plane_offset = 0.0;
+  ASSERT_EQ(Send(ground).code, reply_t::OK);
+  ASSERT_EQ(Send(Sphere(0.1, Vec3(0, 0, 0.1))).code, reply_t::OK);
+  scene_cmd_t step = Scene(scene_cmd_t::STEP);
+  step.steps = 60;
+  ASSERT_EQ(Send(step).code, reply_t::OK);
+  while (server_.Tick()) {
+  }
+  const std::string anchors = server_.method().SaveState();
+  ASSERT_FALSE(anchors.empty());
+
+  method.request_id = ++request_id_;
+  method.num_params = 1;
+  method.param_names = {"friction_damping_ratio"};
+  method.param_values = {"2"};
+  ASSERT_EQ(Send(method).code, reply_t::OK);
+  EXPECT_EQ(server_.method().Params().at("friction_damping_ratio"), "2");
+  EXPECT_EQ(server_.method().SaveState(), anchors);
+
+  scene_cmd_t other = Scene(scene_cmd_t::SET_METHOD);
+  other.method = "impulse";
+  ASSERT_EQ(Send(other).code, reply_t::OK);
+  method.request_id = ++request_id_;
+  ASSERT_EQ(Send(method).code, reply_t::OK);
+  EXPECT_NE(server_.method().SaveState(), anchors);
+}
+
 }  // namespace
 }  // namespace contactsim

@@ -100,7 +100,7 @@ class ExplicitStepper {
     pair_touching_.assign(pairs, 0);
     pair_touched_.assign(pairs, 0);
     for (const PenaltyRow& row : rows) {
-      if (row.engaged && row.depth > 0.0) pair_touching_[row.pair] = 1;
+      if (row.engaged && row.depth > row.anchor.rest_depth) pair_touching_[row.pair] = 1;
     }
     pair_damping_.Prepare(world, rows);
   }
@@ -214,17 +214,19 @@ class ExplicitStepper {
     row.depth = f.depth0 - row.n.dot(dp);
     f.v = v_[row.b] + w_[row.b].cross(f.rb) - v_[row.a] - w_[row.a].cross(f.ra);
     if (f.carried) row.anchor.stretch += h_ * (f.v - row.n * row.n.dot(f.v));
-    f.touching = row.depth > 0.0;
-    if (!f.touching) return;
     stats->max_penetration = std::max(stats->max_penetration, row.depth);
+    // the spring starts at the placed overlap left (penalty_row.h)
+    const double spring_depth = row.depth - row.anchor.rest_depth;
+    f.touching = spring_depth > 0.0;
+    if (!f.touching) return;
     row.vn0 = row.n.dot(f.v);
     row.vt0 = f.v - row.n * row.vn0;
     if (linear_) {  // EvaluateNormalLaw's linear law, without its string compare per point
       row.law.k = row.kp / row.nc;
       row.law.c = row.damping / row.nc;
-      row.law.lambda0 = row.law.k * row.depth - row.law.c * row.vn0;
+      row.law.lambda0 = row.law.k * spring_depth - row.law.c * row.vn0;
     } else {
-      row.law = EvaluateNormalLaw(params_, row.depth, row.vn0, row.nc, row.damping, row.kp);
+      row.law = EvaluateNormalLaw(params_, spring_depth, row.vn0, row.nc, row.damping, row.kp);
     }
     if (bodies[row.a].IsDynamic()) pairs_[row.a] += 1.0 / row.nc;
     if (bodies[row.b].IsDynamic()) pairs_[row.b] += 1.0 / row.nc;
@@ -282,7 +284,7 @@ class ExplicitStepper {
       const double approach = std::max(0.0, -row.vn0);
       const double mass = row.inv_mass_n > 0.0 ? std::min(row.m_share, 1.0 / row.inv_mass_n) : row.m_share;
       const double room = std::max(0.0, mass * approach - cn * approach * h_);
-      lambda += std::min(row.law.c * std::min(row.depth, approach * h_), room) / h_;
+      lambda += std::min(row.law.c * std::min(row.depth - row.anchor.rest_depth, approach * h_), room) / h_;
     }
     row.anchor.penetrating = true;
     row.lambda = std::max(0.0, lambda);

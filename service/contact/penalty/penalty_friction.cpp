@@ -19,6 +19,16 @@ void FrictionAnchors::Keep(const Contact& c, const AnchorState& state) {
   next_[MakeKey(c)] = s;
 }
 
+double FrictionAnchors::PairRestDepth(BodyId a, BodyId b) const {
+  const BodyId lo = std::min(a, b), hi = std::max(a, b);
+  double rest = -1.0;
+  for (auto it = current_.lower_bound(Key{lo, hi, 0});
+       it != current_.end() && std::get<0>(it->first) == lo && std::get<1>(it->first) == hi; ++it) {
+    rest = std::max(rest, it->second.rest_depth);
+  }
+  return rest;
+}
+
 void FrictionAnchors::Commit() {
   current_.swap(next_);
   next_.clear();
@@ -38,6 +48,7 @@ void FrictionAnchors::Save(ByteWriter* out) const {
     out->PutVec3(s.stretch);
     out->Put(static_cast<uint8_t>(s.penetrating));
     out->Put(s.impact_speed);
+    out->Put(s.rest_depth);
   }
 }
 
@@ -51,7 +62,7 @@ bool FrictionAnchors::Load(ByteReader* in) {
     AnchorState s;
     uint8_t penetrating = 0;
     if (!in->Get(&a) || !in->Get(&b) || !in->Get(&feature) || !in->GetVec3(&s.stretch) || !in->Get(&penetrating) ||
-        !in->Get(&s.impact_speed)) {
+        !in->Get(&s.impact_speed) || !in->Get(&s.rest_depth)) {
       return false;
     }
     s.penetrating = penetrating != 0;

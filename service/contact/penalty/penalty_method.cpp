@@ -48,6 +48,7 @@ void PenaltyMethod::ExplicitWorldStep(World& world, CollisionDetector& detector,
   detector.Detect(world, SpeculativeMargin(world, params_.margin, dt), dt, &contacts_);
   RowOptions options;
   options.speculative = true;
+  options.elapsed = dt;
   BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
   const int substeps = ExplicitSubsteps(world, rows_, params_, dt);
   const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps);
@@ -81,7 +82,10 @@ void PenaltyMethod::ImplicitSubstep(World& world, double h, StepStats* stats) {
 void PenaltyMethod::KeepAnchors(const World& world, const ContactSet& contacts, double h) {
   const bool implicit = params_.integrator == "implicit";
   for (const PenaltyRow& row : rows_) {
-    if (!row.engaged || row.lambda <= 0.0) continue;
+    // a placed overlap not yet pushed out is kept while it lasts, even with
+    // its spring slack
+    const bool placed = row.anchor.rest_depth > 0.0 && row.depth > 0.0;
+    if (!row.engaged || (row.lambda <= 0.0 && !placed)) continue;
     AnchorState next = row.anchor;
     if (row.mu <= 0.0) {
       next.stretch.setZero();  // no friction: nothing to anchor
@@ -139,6 +143,7 @@ void PenaltyMethod::ImplicitWorldStep(World& world, CollisionDetector& detector,
   options.h = h;
   options.implicit = true;
   options.theta = params_.theta;
+  options.elapsed = h;
   for (int sub = 0; sub < params_.substeps; ++sub) {
     for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force[i], bodies[i].torque = torque[i];
     detector.Detect(world, params_.margin, h, &contacts_);

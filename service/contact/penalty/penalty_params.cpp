@@ -47,6 +47,9 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
                   "tangential spring kt of a pair when contact_time = 0 (else kt = the normal stiffness)"),
       DoubleParam("friction_damping_ratio", &P::friction_damping_ratio, 0.0, 100.0, "",
                   "zeta_t of the tangential spring, 1 = critical"),
+      DoubleParam("overlap_push_speed", &P::overlap_push_speed, 1e-6, 1e3, "m/s",
+                  "an overlap a pair already had when first seen (deeper than its approach could reach in the "
+                  "step) is the spring's rest depth, which shrinks at this speed (penalty_row.h)"),
       DoubleParam("margin", &P::margin, 0.0, 0.1, "m", "contacts up to this gap are detected (implicit: predicted; explicit: plus what the step can close)"),
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),

@@ -30,6 +30,10 @@ struct PenaltyParams {
   double max_omega_h = 0.15;            // explicit: a rebounding pair's sqrt(kp / m_eff) h per sub-step at most
   int iterations = 20;
   double margin = 0.005;                // m
+  // m/s: the speed at which an overlap a pair already had when it was first
+  // seen (placement, a pose set, a switch from another method) is pushed
+  // out; the spring takes the overlap as its rest depth (penalty_row.h)
+  double overlap_push_speed = 0.005;
   double joint_substep_ratio = 100.0;
   int joint_substeps = 4;
 

@@ -81,6 +81,19 @@ void SetPairStiffnessAndDamping(const World& world, const ContactSet& contacts, 
   }
 }
 
+// The row's rest depth (penalty_row.h) from what its anchor kept.
+double RestDepth(const FrictionAnchors& anchors, const Contact& c, const PenaltyRow& row, const PenaltyParams& params,
+                 const RowOptions& options) {
+  const double overlap = std::max(0.0, c.depth);
+  const double drained = params.overlap_push_speed * options.elapsed;
+  if (row.had_anchor) return std::min(overlap, std::max(0.0, row.anchor.rest_depth - drained));
+  // a new point of a pair in contact shares the pair's rest depth (the
+  // manifold's points change as a placed body settles)
+  const double pair_rest = anchors.PairRestDepth(c.id_a, c.id_b);
+  if (pair_rest >= 0.0) return std::min(overlap, std::max(0.0, pair_rest - drained));
+  return std::max(0.0, overlap - std::max(0.0, -row.vn0) * options.elapsed - drained);
+}
+
 }  // namespace
 
 void BuildPenaltyRows(const World& world, const ContactSet& contacts, const PenaltyParams& params,
@@ -133,7 +146,9 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
       row.anchor = AnchorState();
       row.anchor.impact_speed = std::max(0.0, -row.vn0);
     }
-    row.anchor.penetrating = c.depth > 0.0;
+    row.anchor.rest_depth = RestDepth(anchors, c, row, params, options);
+    const double spring_depth = c.depth - row.anchor.rest_depth;
+    row.anchor.penetrating = spring_depth > 0.0;
 
     double damping = 0.0;  // kd (linear) or alpha (hunt_crossley) of the pair
     if (linear) {
@@ -147,11 +162,11 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     row.m_share = pair.m_eff / row.nc;
     row.rebounds = pair.restitution != 0.0;
     row.m_spring = pair.m_spring / row.nc;
-    row.law = EvaluateNormalLaw(params, c.depth, row.vn0, row.nc, damping, pair.kp);
-    if (linear && c.depth > 0.0 && !was_penetrating && options.h > 0.0) {
+    row.law = EvaluateNormalLaw(params, spring_depth, row.vn0, row.nc, damping, pair.kp);
+    if (linear && spring_depth > 0.0 && !was_penetrating && options.h > 0.0) {
       // the dashpot cannot have removed more than the approach momentum
       const double approach = std::max(0.0, -row.vn0);
-      const double impulse = std::min(damping * std::min(c.depth, approach * options.h), pair.m_eff * approach);
+      const double impulse = std::min(damping * std::min(spring_depth, approach * options.h), pair.m_eff * approach);
       row.law.lambda0 += impulse / (row.nc * options.h);
     }
     row.mu = CombineFriction(bodies[c.a].material, bodies[c.b].material);
