@@ -225,12 +225,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "(penalty_pair_damping.h) gave 0.53 / 1.0 mm and rest the 5-point hull below, at 24% more instructions a "
      "pyramid step"},
     {"penalty", "slope hold deg=40 *", 1.6e-3, "1.2 mm in 3 s: the landing slide, as at 38 degrees"},
-    {"barrier", "slope hold deg=30 *", 7.4e-4,
-     "0.56 mm in 3 s: its smoothed static friction creeps at up to eps_v (docs/methods/barrier.md), more "
-     "steeply"},
-    {"barrier", "slope hold deg=34 *", 1.5e-3, "1.1 mm in 3 s: its smoothed static friction, as at 30 degrees"},
-    {"barrier", "slope hold deg=38 *", 3.4e-3, "2.5-2.6 mm in 3 s: its smoothed static friction, as at 30 degrees"},
-    {"barrier", "slope hold deg=40 *", 7.4e-3, "5.6 mm in 3 s: its smoothed static friction, as at 30 degrees"},
     // the off-axis wheel (compound_sweep_test.cpp) against its plain hull:
     // the plain hull's face patches solve their friction with their normals
     // held (xpbd_held_friction.h), a compound's child patches not yet

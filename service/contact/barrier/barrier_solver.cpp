@@ -344,7 +344,7 @@ void BarrierSolver::TakeShifts(const World& world) {
         // distance behind a face would be, so the pair exerts nothing until
         // it turns signed and deeper
         shift_[key] = {-e.dist.d - kPlacedWidth * d_hat, false, true};
-      } else if (e.dist.d < floor) {
+      } else if (e.dist.d < kPlacedReach * d_hat) {
         shift_[key] = {e.dist.d - kPlacedWidth * d_hat, false, true};
       } else {
         shift_.erase(key);
