@@ -149,14 +149,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"penalty", "* overlap=0.*mm speed", 0.024,
      "0.59-1.1 / 1.6-1.8 cm/s (wall / stack) at 0.01-0.5 mm: a placed overlap is its springs' rest depth, pushed out "
      "at overlap_push_speed (penalty_row.h), so the bodies fall into the springs as when placed touching"},
-    {"xpbd", "* overlap=0.[15]mm *", 2.8,
-     "24 cm/s and 3.4 mm at 0.1 mm overlaps, 1.3-2.1 m/s and 83-95 mm at 0.5 mm: its position pass removes an "
-     "overlap within a step and the velocity it derives carries it on (max_push_velocity 4 m/s). Tried: the "
-     "overlaps found at a step's start pushed out in positions alone before the sub-steps (16 sweeps of the "
-     "rigid blocks, 0.02 mm left) 2.2-2.4 and 2.9-7.8 cm/s, but a hull on the wavy heightfield still rolled at "
-     "7.6 cm/s after 3 s; max_push_velocity 0.01 m/s 1.0-1.7 m/s at 0.5 mm (its floor is 0.45 mm a "
-     "sub-step); iterations 16 4.4 m/s"},
-    {"xpbd", "* from penalty speed", 0.088, "3.3 / 6.7 cm/s (wall / stack): penalty's 40-48 um overlaps pushed out the same way"},
     {"soft", "* overlap=0.5mm speed", 0.05, "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
     // long chains (joint_chain_scenarios_test.cpp): a 100-link chain whose
     // masses grow tenfold to its free end gains energy under lcp at the

@@ -55,10 +55,12 @@ void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, St
 
 // The slips of patches 0 of their pairs in the layout from before compound
 // bodies (count, then a, b, along, twist each), then, when a pair had more
-// patches, the others (count, then a, b, place, along, twist each), so a
-// world without compounds saves the same bytes.
+// patches or pairs are in contact, the others (count, then a, b, place,
+// along, twist each), then, when pairs are in contact, their allowed
+// overlaps (count, then a, b, overlap each), so a world without compounds
+// or contacts saves the same bytes as before either.
 std::string XpbdMethod::SaveState() const {
-  if (slips_.empty()) return {};
+  if (slips_.empty() && allowed_.empty()) return {};
   ByteWriter out;
   uint64_t first = 0;
   for (const auto& entry : slips_) first += std::get<2>(entry.first) == 0;
@@ -70,7 +72,7 @@ std::string XpbdMethod::SaveState() const {
     out.PutVec3(slip.along);
     out.Put(slip.twist);
   }
-  if (first == slips_.size()) return out.bytes();
+  if (first == slips_.size() && allowed_.empty()) return out.bytes();
   out.Put(static_cast<uint64_t>(slips_.size() - first));
   for (const auto& [key, slip] : slips_) {
     if (std::get<2>(key) == 0) continue;
@@ -80,30 +82,46 @@ std::string XpbdMethod::SaveState() const {
     out.PutVec3(slip.along);
     out.Put(slip.twist);
   }
+  if (allowed_.empty()) return out.bytes();
+  out.Put(static_cast<uint64_t>(allowed_.size()));
+  for (const auto& [pair, overlap] : allowed_) {
+    out.Put(pair.first);
+    out.Put(pair.second);
+    out.Put(overlap);
+  }
   return out.bytes();
 }
 
 Status XpbdMethod::LoadState(const std::string& bytes) {
   std::map<PairKey, XpbdPatchSlip> loaded;
+  std::map<std::pair<BodyId, BodyId>, double> allowed;
   ByteReader in(bytes);
   bool ok = true;
-  for (int section = 0; ok && section < 2 && !bytes.empty() && !in.done(); ++section) {
+  for (int section = 0; ok && section < 3 && !bytes.empty() && !in.done(); ++section) {
     uint64_t n = 0;
     ok = in.Get(&n);
     for (uint64_t i = 0; ok && i < n; ++i) {
       BodyId a = 0, b = 0;
+      ok = in.Get(&a) && in.Get(&b);
+      if (ok && section == 2) {
+        double overlap = 0.0;
+        ok = in.Get(&overlap) && std::isfinite(overlap) && overlap >= 0.0;
+        if (ok) allowed[{a, b}] = overlap;
+        continue;
+      }
       int64_t place = 0;
       XpbdPatchSlip slip;
-      ok = in.Get(&a) && in.Get(&b) && (section == 0 || (in.Get(&place) && place > 0)) && in.GetVec3(&slip.along) &&
+      ok = ok && (section == 0 || (in.Get(&place) && place > 0)) && in.GetVec3(&slip.along) &&
            in.Get(&slip.twist) && slip.along.allFinite() && std::isfinite(slip.twist);
       if (ok) loaded[{a, b, place}] = slip;
     }
   }
   if (!ok || !in.done()) {
-    return Status::InvalidArgument("xpbd method state: malformed friction slips (" + std::to_string(bytes.size()) +
-                                   " bytes)");
+    return Status::InvalidArgument("xpbd method state: malformed friction slips or overlaps (" +
+                                   std::to_string(bytes.size()) + " bytes)");
   }
   slips_ = std::move(loaded);
+  allowed_ = std::move(allowed);
   return Status::Ok();
 }
 
@@ -160,6 +178,26 @@ void XpbdMethod::KeepSlips(const World& world) {
   }
 }
 
+void XpbdMethod::AllowStartOverlaps(const World& world, int substeps) {
+  const auto& bodies = world.bodies();
+  std::vector<double> most(contacts_.size());
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const auto it = allowed_.find({bodies[contacts_[k].a].id, bodies[contacts_[k].b].id});
+    most[k] = it == allowed_.end() ? contacts_[k].depth : it->second;
+  }
+  AllowXpbdStartOverlaps(contacts_, point_of_, most, params_.start_overlap_velocity, params_.start_overlap_time,
+                         world.dt / substeps, &points_);
+}
+
+void XpbdMethod::KeepAllowedOverlaps(const World& world) {
+  const auto& bodies = world.bodies();
+  allowed_.clear();
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    double& left = allowed_[{bodies[contacts_[k].a].id, bodies[contacts_[k].b].id}];
+    left = std::max(left, XpbdSlack(points_[point_of_[k]], world.dt));
+  }
+}
+
 StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
@@ -193,8 +231,10 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   // rigid joints are met exactly after every sub-step's sweeps (xpbd_method.h, 2b)
   const bool project_joints = params_.joint_compliance == 0.0 && !world.joints().empty();
   const int substeps = SubstepsFor(world);
+  AllowStartOverlaps(world, substeps);
   RunSubsteps(world, substeps, project_joints, detector.runner());
   KeepSlips(world);
+  KeepAllowedOverlaps(world);
   StoreSoftBodies(bodies_, detector.runner(), world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();
