@@ -139,7 +139,9 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn begin_sweeps = [&](int, int) {
     for (auto& flag : unsettled) flag.store(0, std::memory_order_relaxed);
   };
-  const Fn report = [&](int i, int j) { ReportXpbdSubstepImpulses(h, blocks_, i, j, patches_, pass_blocks_, &points_); };
+  const Fn report = [&](int i, int j) {
+    ReportXpbdSubstepImpulses(h, blocks_, i, j, patches_, pass_blocks_, &points_);
+  };
   pass_blocks_.resize(blocks_.size());
   const Fn solve_impacts = [&](int, int) { SolveXpbdImpacts(h, &impacts_, bodies_, &points_); };
   // components with restitution take their bounce from the impacts one at
