@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -84,17 +85,17 @@ std::string XpbdMethod::SaveState() const {
   }
   if (allowed_.empty()) return out.bytes();
   out.Put(static_cast<uint64_t>(allowed_.size()));
-  for (const auto& [pair, overlap] : allowed_) {
-    out.Put(pair.first);
-    out.Put(pair.second);
-    out.Put(overlap);
+  for (const AllowedOverlap& e : allowed_) {
+    out.Put(e.a);
+    out.Put(e.b);
+    out.Put(e.overlap);
   }
   return out.bytes();
 }
 
 Status XpbdMethod::LoadState(const std::string& bytes) {
   std::map<PairKey, XpbdPatchSlip> loaded;
-  std::map<std::pair<BodyId, BodyId>, double> allowed;
+  std::vector<AllowedOverlap> allowed;
   ByteReader in(bytes);
   bool ok = true;
   for (int section = 0; ok && section < 3 && !bytes.empty() && !in.done(); ++section) {
@@ -106,7 +107,7 @@ Status XpbdMethod::LoadState(const std::string& bytes) {
       if (ok && section == 2) {
         double overlap = 0.0;
         ok = in.Get(&overlap) && std::isfinite(overlap) && overlap >= 0.0;
-        if (ok) allowed[{a, b}] = overlap;
+        if (ok) allowed.push_back({a, b, overlap});
         continue;
       }
       int64_t place = 0;
@@ -121,6 +122,7 @@ Status XpbdMethod::LoadState(const std::string& bytes) {
                                    std::to_string(bytes.size()) + " bytes)");
   }
   slips_ = std::move(loaded);
+  SortAllowed(&allowed);
   allowed_ = std::move(allowed);
   return Status::Ok();
 }
@@ -182,8 +184,15 @@ void XpbdMethod::AllowStartOverlaps(const World& world, int substeps) {
   const auto& bodies = world.bodies();
   std::vector<double> most(contacts_.size());
   for (size_t k = 0; k < contacts_.size(); ++k) {
-    const auto it = allowed_.find({bodies[contacts_[k].a].id, bodies[contacts_[k].b].id});
-    most[k] = it == allowed_.end() ? contacts_[k].depth : it->second;
+    const AllowedOverlap key{bodies[contacts_[k].a].id, bodies[contacts_[k].b].id, 0.0};
+    // a pair's contacts are consecutive: one search a pair
+    if (k > 0 && contacts_[k].a == contacts_[k - 1].a && contacts_[k].b == contacts_[k - 1].b) {
+      most[k] = most[k - 1];
+      continue;
+    }
+    const auto it = std::lower_bound(allowed_.begin(), allowed_.end(), key);
+    const bool known = it != allowed_.end() && it->a == key.a && it->b == key.b;
+    most[k] = known ? it->overlap : std::numeric_limits<double>::infinity();
   }
   AllowXpbdStartOverlaps(contacts_, point_of_, most, params_.start_overlap_velocity, params_.start_overlap_time,
                          world.dt / substeps, &points_);
@@ -191,11 +200,32 @@ void XpbdMethod::AllowStartOverlaps(const World& world, int substeps) {
 
 void XpbdMethod::KeepAllowedOverlaps(const World& world) {
   const auto& bodies = world.bodies();
-  allowed_.clear();
+  kept_.clear();
   for (size_t k = 0; k < contacts_.size(); ++k) {
-    double& left = allowed_[{bodies[contacts_[k].a].id, bodies[contacts_[k].b].id}];
-    left = std::max(left, XpbdSlack(points_[point_of_[k]], world.dt));
+    const AllowedOverlap entry{bodies[contacts_[k].a].id, bodies[contacts_[k].b].id,
+                               XpbdSlack(points_[point_of_[k]], world.dt)};
+    if (!kept_.empty() && kept_.back().a == entry.a && kept_.back().b == entry.b) {
+      kept_.back().overlap = std::max(kept_.back().overlap, entry.overlap);
+    } else {
+      kept_.push_back(entry);
+    }
   }
+  SortAllowed(&kept_);
+  allowed_.swap(kept_);
+}
+
+void XpbdMethod::SortAllowed(std::vector<AllowedOverlap>* allowed) {
+  std::sort(allowed->begin(), allowed->end());
+  size_t out = 0;
+  for (size_t i = 0; i < allowed->size(); ++i) {
+    const AllowedOverlap& e = (*allowed)[i];
+    if (out > 0 && (*allowed)[out - 1].a == e.a && (*allowed)[out - 1].b == e.b) {
+      (*allowed)[out - 1].overlap = std::max((*allowed)[out - 1].overlap, e.overlap);
+    } else {
+      (*allowed)[out++] = e;
+    }
+  }
+  allowed->resize(out);
 }
 
 StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {

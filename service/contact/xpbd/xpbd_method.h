@@ -125,9 +125,17 @@ class XpbdMethod : public ContactMethod {
   // it is new (placed, or the world switched to xpbd), and its overlaps are
   // start overlaps; a pair's allowance only shrinks, so the overlaps its
   // sweeps leave under load are never allowed and pushed out as before.
-  std::map<std::pair<BodyId, BodyId>, double> allowed_;
+  struct AllowedOverlap {
+    BodyId a = 0, b = 0;
+    double overlap = 0.0;  // m
+    bool operator<(const AllowedOverlap& o) const { return a < o.a || (a == o.a && b < o.b); }
+  };
+  std::vector<AllowedOverlap> allowed_;  // sorted by (a, b), one entry a pair
+  std::vector<AllowedOverlap> kept_;     // the next step's, being gathered
   void AllowStartOverlaps(const World& world, int substeps);
   void KeepAllowedOverlaps(const World& world);
+  // sorts by pair, one entry a pair (the largest overlap)
+  static void SortAllowed(std::vector<AllowedOverlap>* allowed);
 
   XpbdParams params_;
   ContactSet contacts_;                   // detected once per step
