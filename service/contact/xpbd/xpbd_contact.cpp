@@ -80,7 +80,7 @@ void Turn(Quat& q, const Vec3& theta) {
 
 // One point's non-penetration update (Gauss-Seidel).
 void SolvePointNormal(World& world, const std::vector<SoftBody>& bodies, const XpbdSolve& solve, XpbdPoint& p) {
-  const double depth = std::min(-XpbdSeparation(p, world), solve.max_push);
+  const double depth = std::min(-XpbdSeparation(p, world) - XpbdSlack(p, solve.elapsed), solve.max_push);
   if (depth <= 0.0 && p.lambda_n == 0.0) return;
   const double alpha_tilde = solve.alpha_tilde;
   const double dl = std::max((depth - alpha_tilde * p.lambda_n) / (p.w_n + alpha_tilde), -p.lambda_n);
@@ -132,7 +132,7 @@ bool SolveBlockNormals(World& world, const std::vector<SoftBody>& bodies, const 
   for (int i = 0; i < m.count; ++i) {
     const XpbdPoint& p = points[m.first + i];
     depth[i] = -(shift + nb.dot(p.anchor_b) - na.dot(p.anchor_a) - p.radius_a - p.radius_b);
-    depth[i] = std::min(depth[i], solve.max_push);
+    depth[i] = std::min(depth[i] - XpbdSlack(p, solve.elapsed), solve.max_push);
     if (depth[i] > -kTouching || p.lambda_n > 0.0) idx[active++] = i;
   }
   Eigen::Vector4d step = Eigen::Vector4d::Zero();
@@ -305,6 +305,21 @@ double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa_out, Vec3
   if (pa_out) *pa_out = ca + p.radius_a * p.n;
   if (pb_out) *pb_out = cb - p.radius_b * p.n;
   return p.n.dot(cb - ca) - p.radius_a - p.radius_b;
+}
+
+void AllowXpbdStartOverlaps(const ContactSet& contacts, const std::vector<int>& point_of,
+                            const std::vector<double>& most, double velocity, double settle_time, double h,
+                            std::vector<XpbdPoint>* points) {
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    XpbdPoint& p = (*points)[point_of[k]];
+    const double depth = std::min(contacts[k].depth, most[k]);
+    const double rate = std::max(velocity, depth / settle_time);
+    // what the first sub-step would remove anyway is no start overlap: a
+    // resting contact's sweeps leave round-off of that order
+    const bool lasts = depth > rate * h;
+    p.slack0 = lasts ? depth : 0.0;
+    p.slack_rate = lasts ? rate : 0.0;
+  }
 }
 
 void BeginXpbdSubstep(const NormalBlock& m, std::vector<XpbdPoint>* points) {

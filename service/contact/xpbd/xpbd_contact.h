@@ -32,6 +32,7 @@
 // inertias of the step's start (first order in the step's turn).
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "service/collision/contact.h"
@@ -60,6 +61,10 @@ struct XpbdPoint {
   double restitution = 0.0;
   // per sub-step
   double lambda_n = 0.0;          // kg m, accumulated normal multiplier
+  // an overlap present at the step's start: tolerated, slack0 - slack_rate t
+  // at the step's time t, while positive (AllowXpbdStartOverlaps)
+  double slack0 = 0.0;            // m
+  double slack_rate = 0.0;        // m/s
   // per step
   Vec3 impulse = Vec3::Zero();    // N s on B (world) over the step
 };
@@ -93,6 +98,24 @@ void PrepareXpbdPoints(const ContactSet& contacts, const World& world, const std
                        const XpbdArticulation& articulation, std::vector<XpbdPoint>* points, std::vector<XpbdPointFrame>* frames,
                        std::vector<NormalBlock>* blocks, BlockColours* colours, std::vector<int>* point_of);
 
+// Overlaps present at the step's start (contact k's depth, point
+// point_of[k], up to most[k]) are removed at `velocity` (m/s), or within
+// `settle_time` (s) where that is faster: until then a point is held at its
+// allowed overlap rather than at s = 0 (XpbdSlack), so such an overlap
+// leaves in position at that speed, and the velocity pass keeps the push
+// out of the velocity (Box2D's soft step likewise pushes overlaps out at a
+// bounded speed and relaxes the push's velocity away, Catto 2024; PhysX's
+// max depenetration velocity bounds it). An overlap the first sub-step (`h`,
+// s) would remove at that rate is left to the sub-steps.
+void AllowXpbdStartOverlaps(const ContactSet& contacts, const std::vector<int>& point_of,
+                            const std::vector<double>& most, double velocity, double settle_time, double h,
+                            std::vector<XpbdPoint>* points);
+
+// The overlap point p is allowed at the step's time t (s; m).
+inline double XpbdSlack(const XpbdPoint& p, double t) {
+  return p.slack0 > 0.0 ? std::max(p.slack0 - p.slack_rate * t, 0.0) : 0.0;
+}
+
 // The point's separation at the world's current poses (m, < 0 penetrating)
 // and, if asked, the surface points of A and B.
 double XpbdSeparation(const XpbdPoint& p, const World& world, Vec3* pa = nullptr, Vec3* pb = nullptr);
@@ -120,6 +143,7 @@ struct XpbdSubsetCache {
 // What a sub-step's position solve needs.
 struct XpbdSolve {
   double h = 0.0;            // s, the sub-step
+  double elapsed = 0.0;      // s, from the step's start to the sub-step's end
   double alpha_tilde = 0.0;  // 1/kg, compliance / h^2
   double max_push = 0.0;     // m, the deepest overlap one sub-step removes
   const XpbdArticulation* articulation = nullptr;  // the jointed points' pushes

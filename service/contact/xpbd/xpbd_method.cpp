@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -55,10 +56,12 @@ void XpbdMethod::ReportContacts(const World& world, ContactSet* contacts_out, St
 
 // The slips of patches 0 of their pairs in the layout from before compound
 // bodies (count, then a, b, along, twist each), then, when a pair had more
-// patches, the others (count, then a, b, place, along, twist each), so a
-// world without compounds saves the same bytes.
+// patches or pairs are in contact, the others (count, then a, b, place,
+// along, twist each), then, when pairs are in contact, their allowed
+// overlaps (count, then a, b, overlap each), so a world without compounds
+// or contacts saves the same bytes as before either.
 std::string XpbdMethod::SaveState() const {
-  if (slips_.empty()) return {};
+  if (slips_.empty() && allowed_.empty()) return {};
   ByteWriter out;
   uint64_t first = 0;
   for (const auto& entry : slips_) first += std::get<2>(entry.first) == 0;
@@ -70,7 +73,7 @@ std::string XpbdMethod::SaveState() const {
     out.PutVec3(slip.along);
     out.Put(slip.twist);
   }
-  if (first == slips_.size()) return out.bytes();
+  if (first == slips_.size() && allowed_.empty()) return out.bytes();
   out.Put(static_cast<uint64_t>(slips_.size() - first));
   for (const auto& [key, slip] : slips_) {
     if (std::get<2>(key) == 0) continue;
@@ -80,30 +83,47 @@ std::string XpbdMethod::SaveState() const {
     out.PutVec3(slip.along);
     out.Put(slip.twist);
   }
+  if (allowed_.empty()) return out.bytes();
+  out.Put(static_cast<uint64_t>(allowed_.size()));
+  for (const AllowedOverlap& e : allowed_) {
+    out.Put(e.a);
+    out.Put(e.b);
+    out.Put(e.overlap);
+  }
   return out.bytes();
 }
 
 Status XpbdMethod::LoadState(const std::string& bytes) {
   std::map<PairKey, XpbdPatchSlip> loaded;
+  std::vector<AllowedOverlap> allowed;
   ByteReader in(bytes);
   bool ok = true;
-  for (int section = 0; ok && section < 2 && !bytes.empty() && !in.done(); ++section) {
+  for (int section = 0; ok && section < 3 && !bytes.empty() && !in.done(); ++section) {
     uint64_t n = 0;
     ok = in.Get(&n);
     for (uint64_t i = 0; ok && i < n; ++i) {
       BodyId a = 0, b = 0;
+      ok = in.Get(&a) && in.Get(&b);
+      if (ok && section == 2) {
+        double overlap = 0.0;
+        ok = in.Get(&overlap) && std::isfinite(overlap) && overlap >= 0.0;
+        if (ok) allowed.push_back({a, b, overlap});
+        continue;
+      }
       int64_t place = 0;
       XpbdPatchSlip slip;
-      ok = in.Get(&a) && in.Get(&b) && (section == 0 || (in.Get(&place) && place > 0)) && in.GetVec3(&slip.along) &&
+      ok = ok && (section == 0 || (in.Get(&place) && place > 0)) && in.GetVec3(&slip.along) &&
            in.Get(&slip.twist) && slip.along.allFinite() && std::isfinite(slip.twist);
       if (ok) loaded[{a, b, place}] = slip;
     }
   }
   if (!ok || !in.done()) {
-    return Status::InvalidArgument("xpbd method state: malformed friction slips (" + std::to_string(bytes.size()) +
-                                   " bytes)");
+    return Status::InvalidArgument("xpbd method state: malformed friction slips or overlaps (" +
+                                   std::to_string(bytes.size()) + " bytes)");
   }
   slips_ = std::move(loaded);
+  SortAllowed(&allowed);
+  allowed_ = std::move(allowed);
   return Status::Ok();
 }
 
@@ -160,6 +180,54 @@ void XpbdMethod::KeepSlips(const World& world) {
   }
 }
 
+void XpbdMethod::AllowStartOverlaps(const World& world, int substeps) {
+  const auto& bodies = world.bodies();
+  std::vector<double> most(contacts_.size());
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const AllowedOverlap key{bodies[contacts_[k].a].id, bodies[contacts_[k].b].id, 0.0};
+    // a pair's contacts are consecutive: one search a pair
+    if (k > 0 && contacts_[k].a == contacts_[k - 1].a && contacts_[k].b == contacts_[k - 1].b) {
+      most[k] = most[k - 1];
+      continue;
+    }
+    const auto it = std::lower_bound(allowed_.begin(), allowed_.end(), key);
+    const bool known = it != allowed_.end() && it->a == key.a && it->b == key.b;
+    most[k] = known ? it->overlap : std::numeric_limits<double>::infinity();
+  }
+  AllowXpbdStartOverlaps(contacts_, point_of_, most, params_.start_overlap_velocity, params_.start_overlap_time,
+                         world.dt / substeps, &points_);
+}
+
+void XpbdMethod::KeepAllowedOverlaps(const World& world) {
+  const auto& bodies = world.bodies();
+  kept_.clear();
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const AllowedOverlap entry{bodies[contacts_[k].a].id, bodies[contacts_[k].b].id,
+                               XpbdSlack(points_[point_of_[k]], world.dt)};
+    if (!kept_.empty() && kept_.back().a == entry.a && kept_.back().b == entry.b) {
+      kept_.back().overlap = std::max(kept_.back().overlap, entry.overlap);
+    } else {
+      kept_.push_back(entry);
+    }
+  }
+  SortAllowed(&kept_);
+  allowed_.swap(kept_);
+}
+
+void XpbdMethod::SortAllowed(std::vector<AllowedOverlap>* allowed) {
+  std::sort(allowed->begin(), allowed->end());
+  size_t out = 0;
+  for (size_t i = 0; i < allowed->size(); ++i) {
+    const AllowedOverlap& e = (*allowed)[i];
+    if (out > 0 && (*allowed)[out - 1].a == e.a && (*allowed)[out - 1].b == e.b) {
+      (*allowed)[out - 1].overlap = std::max((*allowed)[out - 1].overlap, e.overlap);
+    } else {
+      (*allowed)[out++] = e;
+    }
+  }
+  allowed->resize(out);
+}
+
 StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   contacts_out->clear();
@@ -193,8 +261,10 @@ StepStats XpbdMethod::Step(World& world, CollisionDetector& detector, ContactSet
   // rigid joints are met exactly after every sub-step's sweeps (xpbd_method.h, 2b)
   const bool project_joints = params_.joint_compliance == 0.0 && !world.joints().empty();
   const int substeps = SubstepsFor(world);
+  AllowStartOverlaps(world, substeps);
   RunSubsteps(world, substeps, project_joints, detector.runner());
   KeepSlips(world);
+  KeepAllowedOverlaps(world);
   StoreSoftBodies(bodies_, detector.runner(), world);
   ReportContacts(world, contacts_out, &stats);
   world.FinishStep();

@@ -71,6 +71,7 @@
 #include "service/contact/xpbd/xpbd_patch_friction.h"
 #include "service/contact/xpbd/xpbd_params.h"
 #include "service/contact/xpbd/xpbd_ratio_solve.h"
+#include "service/contact/xpbd/xpbd_velocity_pass.h"
 
 namespace contactsim {
 
@@ -84,7 +85,11 @@ class XpbdMethod : public ContactMethod {
   StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) override;
   const XpbdParams& params() const { return params_; }
   // the slips static friction carries into the next step (XpbdPatchSlip)
-  void ResetCaches() override { slips_.clear(); }
+  // and the overlaps still allowed (AllowXpbdStartOverlaps)
+  void ResetCaches() override {
+    slips_.clear();
+    allowed_.clear();
+  }
   std::string SaveState() const override;
   Status LoadState(const std::string& bytes) override;
 
@@ -115,6 +120,23 @@ class XpbdMethod : public ContactMethod {
   void CarrySlips(const World& world);
   void KeepSlips(const World& world);
 
+  // The overlap each body pair in contact at the last step's end was still
+  // allowed (m; 0 for most), by ids in the contact's order. A pair not in
+  // it is new (placed, or the world switched to xpbd), and its overlaps are
+  // start overlaps; a pair's allowance only shrinks, so the overlaps its
+  // sweeps leave under load are never allowed and pushed out as before.
+  struct AllowedOverlap {
+    BodyId a = 0, b = 0;
+    double overlap = 0.0;  // m
+    bool operator<(const AllowedOverlap& o) const { return a < o.a || (a == o.a && b < o.b); }
+  };
+  std::vector<AllowedOverlap> allowed_;  // sorted by (a, b), one entry a pair
+  std::vector<AllowedOverlap> kept_;     // the next step's, being gathered
+  void AllowStartOverlaps(const World& world, int substeps);
+  void KeepAllowedOverlaps(const World& world);
+  // sorts by pair, one entry a pair (the largest overlap)
+  static void SortAllowed(std::vector<AllowedOverlap>* allowed);
+
   XpbdParams params_;
   ContactSet contacts_;                   // detected once per step
   std::vector<char> substepped_;
@@ -136,6 +158,7 @@ class XpbdMethod : public ContactMethod {
   std::vector<ParallelRunner::Stage> stages_;
   SequentialImpacts impacts_;             // a sub-step's restitution rows (xpbd_restitution.h)
   std::vector<char> deferred_;            // per block: restitution left to impacts_
+  std::vector<XpbdPassBlock> pass_blocks_;  // per block: its state over the velocity pass's sweeps
 };
 
 }  // namespace contactsim

@@ -21,6 +21,14 @@ const ParamTable<XpbdParams>& XpbdParamTable() {
                   "exactly after each sub-step's sweeps (xpbd_ratio_solve.h); 0 = off"),
       DoubleParam("max_push_velocity", &P::max_push_velocity, 1e-6, 1e3, "m/s",
                   "an overlap is removed at most this fast (h times it per sub-step)"),
+      IntParam("velocity_iterations", &P::velocity_iterations, 1, 1000, "",
+               "sweeps of the velocity pass per sub-step at most (fewer once a sweep changes no velocity by "
+               "more than 1e-5 m/s)"),
+      DoubleParam("start_overlap_velocity", &P::start_overlap_velocity, 1e-6, 1e3, "m/s",
+                  "an overlap present at a step's start on a pair new to contact is removed at this speed, in "
+                  "position only"),
+      DoubleParam("start_overlap_time", &P::start_overlap_time, 1e-6, 1e3, "s",
+                  "or within this time where that is faster (deep overlaps)"),
       PatchTorsionParam(&P::patch_torsion),
   };
   return table;

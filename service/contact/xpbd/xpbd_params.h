@@ -18,6 +18,9 @@ struct XpbdParams {
   double joint_compliance = 0.0;       // m/N (and rad/(N m))
   double direct_mass_ratio = 10.0;
   double max_push_velocity = 4.0;      // m/s
+  int velocity_iterations = 1;
+  double start_overlap_velocity = 0.002;  // m/s
+  double start_overlap_time = 0.25;       // s
   std::string patch_torsion = "off";   // patch_torsion.h
 };
 

@@ -48,7 +48,7 @@ void XpbdRatioSolve::Solve(const XpbdSolve& solve, const std::vector<SoftBody>& 
     r.lin_a = -p.n, r.ang_a = -p.ra_n;
     r.lin_b = p.n, r.ang_b = p.rb_n;
     r.lambda = p.lambda_n;
-    r.rhs = std::min(-XpbdSeparation(p, world), solve.max_push);
+    r.rhs = std::min(-XpbdSeparation(p, world) - XpbdSlack(p, solve.elapsed), solve.max_push);
     r.cfm = solve.alpha_tilde;
     r.lo = 0.0;
   }

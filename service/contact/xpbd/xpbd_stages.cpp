@@ -7,6 +7,8 @@
 // thread runs the same stages in the same order, so the state does not
 // depend on the thread count.
 #include <algorithm>
+#include <atomic>
+#include <vector>
 
 #include "service/contact/colour_stages.h"
 #include "service/contact/joints/joint_solver.h"
@@ -27,6 +29,9 @@ constexpr int kBodyGrain = 128;
 // second iteration (to round-off) costs a second solve and row build for
 // nothing that shows: 17 ms against 6.3 ms a step of the 100-link chain.
 constexpr int kProjectionIterations = 1;
+// m/s: the velocity pass sweeps again while a sweep changed some block's
+// normal or sliding velocity by more than this
+constexpr double kVelocitySweepTolerance = 1e-5;
 
 }  // namespace
 
@@ -115,10 +120,29 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn gather_impacts = [&](int, int) {
     GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_);
   };
-  const Fn velocity_pass = [&](int i, int j) {
-    SolveXpbdContactVelocities(h, threshold, blocks_, deferred_, i, j, patches_, subsets_, predicted_, articulation_,
-                               bodies_, &points_);
+  const int sweeps = params_.velocity_iterations;
+  std::vector<Fn> velocity_sweeps;
+  velocity_sweeps.reserve(sweeps);
+  // per sweep: some block's velocities changed by more than
+  // kVelocitySweepTolerance, so the next sweep runs
+  std::vector<std::atomic<char>> unsettled(sweeps);
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    const XpbdVelocitySweep which{sweep == 0, sweeps == 1};
+    velocity_sweeps.push_back([&, which, sweep](int i, int j) {
+      if (sweep > 0 && !unsettled[sweep - 1].load(std::memory_order_relaxed)) return;
+      const double largest = SolveXpbdContactVelocities(h, threshold, blocks_, deferred_, i, j, which, patches_,
+                                                        subsets_, predicted_, articulation_, bodies_, &pass_blocks_,
+                                                        &points_);
+      if (largest > kVelocitySweepTolerance) unsettled[sweep].store(1, std::memory_order_relaxed);
+    });
+  }
+  const Fn begin_sweeps = [&](int, int) {
+    for (auto& flag : unsettled) flag.store(0, std::memory_order_relaxed);
   };
+  const Fn report = [&](int i, int j) {
+    ReportXpbdSubstepImpulses(h, blocks_, i, j, patches_, pass_blocks_, &points_);
+  };
+  pass_blocks_.resize(blocks_.size());
   const Fn solve_impacts = [&](int, int) { SolveXpbdImpacts(h, &impacts_, bodies_, &points_); };
   // components with restitution take their bounce from the impacts one at
   // a time (xpbd_restitution.h); the standard scenes' e = 0 have none
@@ -131,7 +155,12 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const int n = static_cast<int>(bodies_.size());
   const bool joints = !world.joints().empty();
   predicted_.resize(bodies.size());
+  // the time the start overlaps' slack is read at (XpbdSlack)
+  const Fn advance_time = [&](int, int) { solve.elapsed += h; };
+  const bool start_overlaps =
+      std::any_of(points_.begin(), points_.end(), [](const XpbdPoint& p) { return p.slack0 > 0.0; });
   for (int sub = 0; sub < substeps; ++sub) {
+    if (start_overlaps) list.AddSerial(advance_time);
     if (joint_dynamics) {
       list.Add(predict_velocities, 0, n, kBodyGrain);
       list.AddSerial(solve_joint_dynamics);
@@ -150,7 +179,9 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     if (project_joints) list.AddSerial(project);
     list.Add(derive_velocities, 0, n, kBodyGrain);
     if (restitution) list.AddSerial(gather_impacts);
-    list.AddColours(velocity_pass, colours_, blocks);
+    if (sweeps > 1) list.AddSerial(begin_sweeps);
+    for (const Fn& sweep : velocity_sweeps) list.AddColours(sweep, colours_, blocks);
+    if (sweeps > 1) list.AddColours(report, colours_, blocks);
     if (restitution) list.AddSerial(solve_impacts);
   }
   runner.Stages(stages_);

@@ -9,13 +9,6 @@
 namespace contactsim {
 namespace {
 
-// The normal impulse dl n on B and -dl n on A.
-// (a static or kinematic body is never written: several threads may hold
-// it at once, block_colours.h)
-void PushNormal(double dl, const XpbdPoint& p, SoftBody& A, SoftBody& B) {
-  PushImpulse(dl, p.n, p.ia_n, p.ib_n, A, B);
-}
-
 double NormalVelocity(const XpbdPoint& p, const SoftBody& A, const SoftBody& B) {
   return XpbdNormalVelocity(p, A.v, A.w, B.v, B.w);
 }
@@ -23,11 +16,14 @@ double NormalVelocity(const XpbdPoint& p, const SoftBody& A, const SoftBody& B) 
 // The normal velocity a point that pushed leaves with: -e v~_n after an
 // impact faster than the threshold, 0 after a slower one; a point already
 // parting before the solve (v~_n > 0: an overlap left from an earlier
-// sub-step) keeps v~_n, so pushing out adds no velocity. v~_n is taken from
-// the predicted velocities here, for the points that pushed only.
+// sub-step) keeps v~_n, so pushing out adds no velocity, except a point
+// that overlapped at the step's start (AllowXpbdStartOverlaps): that overlap
+// leaves in position alone, so its parting is what earlier sub-steps' pushes
+// left and goes to 0. v~_n is taken from the predicted velocities here, for
+// the points that pushed only.
 double TargetNormalVelocity(const XpbdPoint& p, const XpbdPose& a, const XpbdPose& b, double threshold) {
   const double vn_before = XpbdNormalVelocity(p, a.v, a.w, b.v, b.w);
-  if (vn_before >= 0.0) return vn_before;
+  if (vn_before >= 0.0) return p.slack0 > 0.0 ? 0.0 : vn_before;
   const double e = -vn_before > threshold ? p.restitution : 0.0;
   return -e * vn_before;
 }
@@ -51,10 +47,11 @@ struct Pushed {
 // Restitution of a block's points that pushed, all at once through the
 // inverse of their K (K^+ for a face's four), so the corners of a face
 // share it whatever their order (their impulses summed before they reach
-// the bodies); point by point where no block applies.
-void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed& pushed_points,
-                           XpbdSubsetCache& cache, const XpbdArticulation& articulation, std::vector<SoftBody>& all,
-                           const BlockBodies& pair, std::vector<XpbdPoint>& points) {
+// the bodies); point by point where no block applies. Returns the largest
+// change of a point's normal velocity it asked for (m/s).
+double SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed& pushed_points,
+                             XpbdSubsetCache& cache, const XpbdArticulation& articulation,
+                             std::vector<SoftBody>& all, const BlockBodies& pair, std::vector<XpbdPoint>& points) {
   SoftBody& A = pair.A;
   SoftBody& B = pair.B;
   const int* idx = pushed_points.idx;
@@ -64,11 +61,13 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed&
   // a lone point's K^-1 is 1 / w_n: the same number as through the cache
   // and the 4 x 4 product (whose other terms are zeros), at a fraction
   const bool lone = m.count == 1 && p0.w_n > 0.0;
+  double largest = 0.0;
   if (lone || (inv = XpbdSubsetInverse(points, all, m, idx, pushed, cache)) != nullptr) {
     Eigen::Vector4d change = Eigen::Vector4d::Zero();
     for (int k = 0; k < pushed; ++k) {
       const XpbdPoint& p = points[m.first + idx[k]];
       change[k] = TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B);
+      largest = std::max(largest, std::abs(change[k]));
     }
     Eigen::Vector4d dl = Eigen::Vector4d::Zero();
     if (lone) {
@@ -89,7 +88,7 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed&
     if (p0.jointed) {
       articulation.Kick(all, p0.a, -J, -wa);
       articulation.Kick(all, p0.b, J, wb);
-      return;
+      return largest;
     }
     if (A.inv_mass > 0.0) {
       A.v -= A.inv_mass * J;
@@ -99,31 +98,35 @@ void SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed&
       B.v += B.inv_mass * J;
       B.w += wb;
     }
-    return;
+    return largest;
   }
   for (int k = 0; k < pushed; ++k) {
     XpbdPoint& p = points[m.first + idx[k]];
     if (p.w_n <= 0.0) continue;
-    const double dl = (TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B)) / p.w_n;
+    const double change = TargetNormalVelocity(p, pair.a, pair.b, threshold) - NormalVelocity(p, A, B);
+    largest = std::max(largest, std::abs(change));
+    const double dl = change / p.w_n;
     p.impulse += dl * p.n;
     if (p.jointed) {
       articulation.Kick(all, p.a, -dl * p.n, -dl * p.ra_n);
       articulation.Kick(all, p.b, dl * p.n, dl * p.rb_n);
       continue;
     }
-    PushNormal(dl, p, A, B);
+    PushImpulse(dl, p.n, p.ia_n, p.ib_n, A, B);
   }
+  return largest;
 }
 
 }  // namespace
 
-void SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
-                                const std::vector<char>& deferred, int begin, int end,
+double SolveXpbdContactVelocities(double h, double restitution_threshold, const std::vector<NormalBlock>& blocks,
+                                const std::vector<char>& deferred, int begin, int end, XpbdVelocitySweep sweep,
                                 const std::vector<XpbdPatch>& patches,
                                 std::vector<XpbdSubsetCache>& caches, const std::vector<XpbdPose>& predicted,
                                 const XpbdArticulation& articulation, std::vector<SoftBody>& bodies,
-                                std::vector<XpbdPoint>* points) {
+                                std::vector<XpbdPassBlock>* blocks_state, std::vector<XpbdPoint>* points) {
   const double inv_h = 1.0 / h;
+  double largest = 0.0;
   for (int k = begin; k < end; ++k) {
     const NormalBlock& m = blocks[k];
     Pushed pushed;
@@ -136,9 +139,7 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     }
     const XpbdPatch& patch = patches[k];
     if (pushed.count == 0) {
-      // static friction acted while the points pushed, and the direct
-      // solve of a heavy-on-light component has since let them go
-      if (!patch.lambda_t.isZero(0.0)) (*points)[m.first].impulse += patch.lambda_t * inv_h;
+      if (sweep.report) ReportXpbdSubstepImpulses(h, blocks, k, k + 1, patches, *blocks_state, points);
       continue;
     }
     const XpbdPoint& p0 = (*points)[m.first];
@@ -157,25 +158,58 @@ void SolveXpbdContactVelocities(double h, double restitution_threshold, const st
     // again, which a second brake within the same limits stops: braked
     // after the normals only, a box sliding down a slope kept a pitch of
     // 0.010-0.016 rad/s (16 to 10 sub-steps); braked before them only, a
-    // box held on a slope crept 4.3 mm in 2 s
-    Vec3 spent = Vec3::Zero(), braked = Vec3::Zero();
-    // a patch held at its cone in positions has spent that friction already
-    // (XpbdPatch::clamped): the brakes stay within the limit with it
-    if (patch.clamped) spent = Vec3(patch.t1.dot(patch.lambda_t), patch.t2.dot(patch.lambda_t), 0.0) * inv_h;
-    const Vec3 n = p0.n;
-    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &spent, &braked);
-    if (!deferred[k]) {
-      SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], articulation, bodies, pair, *points);
+    // box held on a slope crept 4.3 mm in 2 s. The brakes accumulate over
+    // the pass's sweeps, their sum within the limits (BrakeXpbdPatch).
+    XpbdPassBlock& state = (*blocks_state)[k];
+    if (sweep.first) {
+      state.braked.setZero();
+      state.spent.setZero();
+      // a patch held at its cone in positions has spent that friction
+      // already (XpbdPatch::clamped): the brakes stay within the limit with it
+      if (patch.clamped) {
+        state.spent = Vec3(patch.t1.dot(patch.lambda_t), patch.t2.dot(patch.lambda_t), 0.0) * inv_h;
+      }
     }
-    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &spent, &braked);
-    // the sub-step's impulses for the report, once at its end: a point's
-    // push lambda_n moved the bodies as the velocity impulse lambda_n / h
-    // does, and the patch's friction (its positional multiplier / h and the
-    // brakes) is shared by the points' pushes
-    const Vec3 friction = (patch.lambda_t * inv_h + braked) / pushed.sum;
-    for (int i = 0; i < pushed.count; ++i) {
-      XpbdPoint& p = (*points)[m.first + pushed.idx[i]];
-      p.impulse += (p.lambda_n * inv_h) * n + p.lambda_n * friction;
+    const Vec3 n = p0.n;
+    const Vec3 braked_before = state.braked;
+    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &state.spent, &state.braked);
+    double change = 0.0;
+    if (!deferred[k]) {
+      change = SolveBlockRestitution(restitution_threshold, m, pushed, caches[k], articulation, bodies, pair,
+                                     *points);
+    }
+    BrakeXpbdPatch(h, pushed.sum, patch, *points, n, articulation, bodies, &state.spent, &state.braked);
+    // the brakes' change of the patch's sliding velocity (its linear part)
+    change = std::max(change, (state.braked - braked_before).norm() * p0.k_lin);
+    largest = std::max(largest, change);
+    if (sweep.report) ReportXpbdSubstepImpulses(h, blocks, k, k + 1, patches, *blocks_state, points);
+  }
+  return largest;
+}
+
+void ReportXpbdSubstepImpulses(double h, const std::vector<NormalBlock>& blocks, int begin, int end,
+                               const std::vector<XpbdPatch>& patches, const std::vector<XpbdPassBlock>& brakes,
+                               std::vector<XpbdPoint>* points) {
+  // a point's push lambda_n moved the bodies as the velocity impulse
+  // lambda_n / h does, and the patch's friction (its positional multiplier
+  // / h and the brakes) is shared by the points' pushes
+  const double inv_h = 1.0 / h;
+  for (int k = begin; k < end; ++k) {
+    const NormalBlock& m = blocks[k];
+    const XpbdPatch& patch = patches[k];
+    double sum = 0.0;
+    for (int i = m.first; i < m.first + m.count; ++i) sum += std::max((*points)[i].lambda_n, 0.0);
+    if (sum == 0.0) {
+      // static friction acted while the points pushed, and the direct
+      // solve of a heavy-on-light component has since let them go
+      if (!patch.lambda_t.isZero(0.0)) (*points)[m.first].impulse += patch.lambda_t * inv_h;
+      continue;
+    }
+    const Vec3& n = (*points)[m.first].n;
+    const Vec3 friction = (patch.lambda_t * inv_h + brakes[k].braked) / sum;
+    for (int i = m.first; i < m.first + m.count; ++i) {
+      XpbdPoint& p = (*points)[i];
+      if (p.lambda_n > 0.0) p.impulse += (p.lambda_n * inv_h) * n + p.lambda_n * friction;
     }
   }
 }
