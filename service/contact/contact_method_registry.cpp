@@ -40,10 +40,15 @@ std::unique_ptr<ContactMethod> Make() {
 // clients and the viewer offer; method_contract_test.cpp checks that they agree.
 const std::vector<ContactMethodEntry>& ContactMethodTable() {
   //                           joints restitution kinematic friction compound contact_forces triangle_surfaces
+  //                           joint_couplings
+  // joint_couplings: impulse, penalty and soft solve their joints with the
+  // shared solvers of joints/, which carry the mimics' rows; xpbd's
+  // positional joints and lcp's joint rows inside its complementarity solve
+  // do not, and refuse a mimic
   static const std::vector<ContactMethodEntry> table = {
-      {"impulse", Make<ImpulseMethod>, {true, true, true, "coulomb disk", true, true}},
+      {"impulse", Make<ImpulseMethod>, {true, true, true, "coulomb disk", true, true, true, true}},
       {"penalty", Make<PenaltyMethod>,
-       {true, true, true, "regularized: tangential spring with a coulomb disk limit", true, true}},
+       {true, true, true, "regularized: tangential spring with a coulomb disk limit", true, true, true, true}},
       {"xpbd", Make<XpbdMethod>, {true, true, true, "coulomb disk (positional static, velocity-level dynamic)", true, true}},
       {"lcp", Make<LcpMethod>, {true, true, true, "coulomb disk (solver=pgs) or coulomb pyramid (solver=lemke)", true, true}},
       // barrier: the implicit step is inelastic (no restitution), and a
@@ -57,7 +62,7 @@ const std::vector<ContactMethodEntry>& ContactMethodTable() {
       // looks up near each primitive (barrier/surface_primitives.h)
       {"barrier", Make<BarrierMethod>,
        {false, false, false, "regularized: smoothed coulomb disk, lagged (eps_v)", false, false, true}},
-      {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk", true, true}},
+      {"soft", Make<SoftMethod>, {true, true, true, "coulomb disk", true, true, true, true}},
   };
   return table;
 }

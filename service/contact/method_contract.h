@@ -31,6 +31,9 @@ struct MethodContract {
   // heightfields"): their contacts come from the narrowphase, triangle by
   // triangle with the edge rule
   bool triangle_surfaces = true;
+  // mimic joints (physics/joint.h, JointMimic): the coupling row between
+  // two joint coordinates is solved with the joints (joint_couplings.h)
+  bool joint_couplings = false;
 };
 
 // "joints=yes; restitution=no; kinematic=yes; contact_forces=yes; friction=...", the text

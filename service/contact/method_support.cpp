@@ -33,6 +33,12 @@ Status CheckMethodSupports(const std::string& method, const World& world) {
                                       std::to_string(world.joints().size()) + " joint(s): remove them or choose " +
                                       MethodsWith(&MethodContract::joints));
   }
+  if (contract.joints && !contract.joint_couplings && world.HasJointMimics()) {
+    return Status::FailedPrecondition("contact method " + method +
+                                      " does not simulate mimic joints (joint couplings); the world holds a mimic "
+                                      "joint: remove it or choose " +
+                                      MethodsWith(&MethodContract::joint_couplings));
+  }
   if (!world.sensors.contacts.empty() && !contract.contact_forces) {
     return Status::FailedPrecondition("contact method " + method + " does not report contact forces; the world holds " +
                                       std::to_string(world.sensors.contacts.size()) +
@@ -51,6 +57,13 @@ Status CheckMethodAcceptsJoint(const std::string& method) {
   if (ContractOf(method).joints) return Status::Ok();
   return Status::FailedPrecondition("contact method " + method + " does not simulate joints: choose " +
                                     MethodsWith(&MethodContract::joints) + " before adding one");
+}
+
+Status CheckMethodAcceptsMimic(const std::string& method) {
+  if (ContractOf(method).joint_couplings) return Status::Ok();
+  return Status::FailedPrecondition("contact method " + method +
+                                    " does not simulate mimic joints (joint couplings): choose " +
+                                    MethodsWith(&MethodContract::joint_couplings) + " before loading a model with one");
 }
 
 Status CheckMethodAcceptsContactSensor(const std::string& method) {

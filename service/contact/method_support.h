@@ -25,6 +25,10 @@ Status CheckMethodSupports(const std::string& method, const World& world);
 // Ok when the method can take a joint; else FailedPrecondition.
 Status CheckMethodAcceptsJoint(const std::string& method);
 
+// Ok when the method can take a mimic joint (joint_couplings); else
+// FailedPrecondition.
+Status CheckMethodAcceptsMimic(const std::string& method);
+
 // Ok when the method reports contact forces for a contact sensor to sum;
 // else FailedPrecondition.
 Status CheckMethodAcceptsContactSensor(const std::string& method);

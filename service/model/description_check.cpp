@@ -230,7 +230,7 @@ Status CheckValues(const SourceMap& where, ModelDescription* model) {
     Status st = CheckJoint(&j, where.Joint(j.name));
     if (!st.ok()) return st;
   }
-  return Status::Ok();
+  return CheckMimics(where, *model);
 }
 
 }  // namespace contactsim::model

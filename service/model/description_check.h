@@ -15,7 +15,14 @@
 // kInertiaTolerance of their sum, since files print rounded moments;
 // collision sizes positive (visual sizes not negative); joint axes of non-zero length (normalised here)
 // for joints that have one; limits with lower <= upper and non-negative
-// effort and velocity; non-negative damping and friction.
+// effort and velocity; non-negative damping and friction; mimics as
+// CheckMimics checks them.
+//
+// CheckMimics (mimic_check.cpp): a mimic names another joint of the model,
+// both joints have one coordinate of the same kind (revolute or continuous
+// with revolute or continuous, prismatic with prismatic), the multiplier
+// and offset are finite, and no chain of mimics comes back to where it
+// started.
 #pragma once
 
 #include "service/model/model_description.h"
@@ -33,6 +40,7 @@ inline constexpr double kInertiaTolerance = 1e-4;
 Status CheckCounts(size_t links, size_t joints, const ReadLimits& limits, const SourceMap& where);
 Status CheckTree(const SourceMap& where, ModelDescription* model);
 Status CheckValues(const SourceMap& where, ModelDescription* model);
+Status CheckMimics(const SourceMap& where, const ModelDescription& model);
 
 // The opening of every reader: names the source ("<inline>" for text
 // without a path) in `where` and refuses text over limits.max_file_bytes.

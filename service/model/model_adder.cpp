@@ -77,6 +77,15 @@ Status CommitModel(PreparedModel p, World* world, ModelRecord* record) {
     }
     r.joints[p.build.joints[i].joint].joint = id;
   }
+  for (const BuiltJoint& bj : p.build.joints) {
+    if (bj.mimic_of < 0) continue;
+    JointMimic mimic = bj.mimic;
+    mimic.master = r.joints[p.build.joints[bj.mimic_of].joint].joint;
+    if (Status st = world->SetJointMimic(r.joints[bj.joint].joint, mimic); !st.ok()) {
+      for (BodyId b : ids) world->RemoveBody(b);  // checked by CheckMimics: cannot happen
+      return Status::Internal("model "" + r.name + "": " + st.message());
+    }
+  }
   for (size_t li = 0; li < r.links.size(); ++li) {
     SetLinkFrame(p.build.link_pose_W[li], *world->Find(ids[p.build.link_body[li]]), &r.links[li]);
   }

@@ -109,6 +109,16 @@ Status BuildModel(ModelDescription d, const ModelOptions& options, ModelBuild* b
     bj.actuator = MakeJointActuator(j);
     b.joints.push_back(std::move(bj));
   }
+  // CheckMimics has made every master a joint with a coordinate, so built
+  for (BuiltJoint& bj : b.joints) {
+    const ModelJoint& j = d.joints[bj.joint];
+    if (!j.mimic) continue;
+    for (size_t k = 0; k < b.joints.size(); ++k) {
+      if (d.joints[b.joints[k].joint].name == j.mimic->joint) bj.mimic_of = static_cast<int>(k);
+    }
+    bj.mimic.multiplier = j.mimic->multiplier;
+    bj.mimic.offset = j.mimic->offset;
+  }
   b.record = MakeRecord(d, options);
   *build = std::move(b);
   return Status::Ok();

@@ -17,7 +17,8 @@
 //   * revolute -> hinge (with its limits), continuous -> hinge, prismatic ->
 //     prismatic, floating -> no joint, planar -> refused; a hinge's or
 //     slider's actuator takes the file's effort and velocity limits (gains
-//     0: it drives nothing until a command sets them);
+//     0: it drives nothing until a command sets them); a <mimic> makes the
+//     joint a mimic of its master (physics/joint.h, JointMimic);
 //   * every pose at q = 0 from the joint origins (forward kinematics from the
 //     root, placed at the base pose); links joined by a joint never collide,
 //     and self-collision off puts the model's bodies in one collision group
@@ -59,6 +60,10 @@ struct BuiltJoint {
   int body_a = -1, body_b = -1;     // indices into ModelBuild::bodies (parent, child)
   JointSettings settings;           // body ids left 0 until the bodies exist
   JointActuator actuator;           // the file's effort and velocity limits, no gains (MakeJointActuator)
+  // A mimic: the index into ModelBuild::joints of its master (-1: none), and
+  // the multiplier and offset, set on the world joints once they exist
+  int mimic_of = -1;
+  JointMimic mimic;                 // master left 0 until the joints exist
 };
 
 struct ModelBuild {

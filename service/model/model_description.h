@@ -70,6 +70,14 @@ struct JointLimits {
   double velocity = 0.0;              // rad/s or m/s; 0: none given
 };
 
+// URDF's <mimic joint multiplier offset>: this joint's coordinate is
+// multiplier * q_joint + offset.
+struct ModelMimic {
+  std::string joint;                  // the master joint's name
+  double multiplier = 1.0;
+  double offset = 0.0;                // rad or m
+};
+
 struct ModelJoint {
   std::string name;
   JointType type = JointType::kFixed;
@@ -79,6 +87,7 @@ struct ModelJoint {
   std::optional<JointLimits> limits;
   double damping = 0.0;               // N m s/rad or N s/m (<dynamics>)
   double friction = 0.0;              // N m or N, Coulomb (<dynamics>)
+  std::optional<ModelMimic> mimic;    // URDF <mimic>; SDF gives none
 };
 
 struct ModelDescription {

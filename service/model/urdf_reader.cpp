@@ -133,6 +133,7 @@ ModelJoint ToJoint(const urdf::Joint& in) {
     out.damping = in.dynamics->damping;
     out.friction = in.dynamics->friction;
   }
+  if (in.mimic) out.mimic = ModelMimic{in.mimic->joint_name, in.mimic->multiplier, in.mimic->offset};
   return out;
 }
 

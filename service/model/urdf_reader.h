@@ -5,9 +5,10 @@
 // (origin; box, sphere, cylinder, mesh with scale; a visual's material
 // colour, named at the robot level or inline); each <joint> in the file's
 // order (revolute, continuous, prismatic, fixed, floating, planar; origin,
-// axis normalised, <limit>, <dynamics damping friction>). An explicit mass
-// of zero is a massless link (inertial left empty), as PyBullet reads it.
-// Not read, and not refused: <transmission>, <gazebo>, <mimic>,
+// axis normalised, <limit>, <dynamics damping friction>, <mimic joint
+// multiplier offset>, checked by CheckMimics). An explicit mass of zero is
+// a massless link (inertial left empty), as PyBullet reads it.
+// Not read, and not refused: <transmission>, <gazebo>,
 // <calibration>, <safety_controller>, textures, sensors; URDF has no
 // capsule (urdfdom refuses one). docs/models.md lists them.
 //

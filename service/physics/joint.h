@@ -29,6 +29,13 @@
 // it, and `friction` a Coulomb torque or force of at most that size
 // opposing its motion (docs/physics.md, "Prismatic joints, limits, damping
 // and friction").
+// A mimic (URDF's <mimic>): a hinge or slider whose coordinate is held at
+// q = multiplier * q_master + offset, q_master that of another joint of the
+// same kind, by one equality row between the two coordinates,
+//   C = q - m q_master - o,  J = J_q - m J_q_master,
+// a gear between up to four bodies (Box2D's b2GearJoint couples two joint
+// coordinates the same way). The contact methods that solve it are those
+// whose contract says joint_couplings (docs/physics.md, "Mimic joints").
 // The rows, their solvers and the drift correction live in
 // service/contact/joints/.
 #pragma once
@@ -37,6 +44,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "service/physics/joint_actuator.h"
 #include "service/physics/rigid_body.h"
@@ -56,6 +64,13 @@ const char* JointKindName(JointKind kind);
 // Parses a name as printed by JointKindName; false when unknown.
 bool ParseJointKind(const std::string& name, JointKind* kind);
 
+// A joint's mimic: the master joint it follows, 0 for none.
+struct JointMimic {
+  JointId master = 0;
+  double multiplier = 1.0;  // dimensionless
+  double offset = 0.0;      // rad (hinge) or m (prismatic)
+};
+
 struct Joint {
   JointId id = 0;
   JointKind kind = JointKind::kBall;
@@ -74,6 +89,7 @@ struct Joint {
   bool collide_connected = false;  // may A and B touch each other (collision_filter.h)
   JointActuator actuator;        // hinge and prismatic (joint_actuator.h); none by default
   double effort = 0.0;           // N m or N: the actuator's effort u in the last step (output)
+  JointMimic mimic;              // hinge and prismatic; none by default
 };
 
 // True for the kinds with one joint coordinate (hinge, prismatic): the kinds
@@ -110,6 +126,12 @@ Status CheckJointSettings(const JointSettings& settings);
 // untouched. The caller has looked the ids up; a joint needs at least one
 // dynamic body.
 Status CreateJoint(const JointSettings& settings, const RigidBody& a, const RigidBody* b, Joint* joint);
+
+// The checks of a mimic (World::SetJointMimic) against `joints`: the
+// follower and the master exist, differ, are both hinges or both sliders,
+// the multiplier and offset are finite, and following the masters from
+// the master never comes back to the follower.
+Status CheckJointMimic(const std::vector<Joint>& joints, JointId follower, const JointMimic& mimic);
 
 // World position of an anchor stored in `body`'s frame (nullptr: the world).
 Vec3 AnchorWorld(const Vec3& local, const RigidBody* body);

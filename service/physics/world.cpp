@@ -29,6 +29,7 @@ Status World::RemoveBody(BodyId id) {
   sensors.RemoveBody(id);
   Reindex();
   IndexJointPairs();
+  DropOrphanMimics();
   return Status::Ok();
 }
 
@@ -59,6 +60,10 @@ Status World::AssignJoints(std::vector<Joint> joints, JointId next) {
       return Status::InvalidArgument("joint " + std::to_string(j.id) + " refers to a missing body");
     }
     last = j.id;
+  }
+  for (const Joint& j : joints) {
+    if (j.mimic.master == 0) continue;
+    if (Status st = CheckJointMimic(joints, j.id, j.mimic); !st.ok()) return st;
   }
   joints_ = std::move(joints);
   next_joint_id = next;
@@ -95,7 +100,31 @@ Status World::RemoveJoint(JointId id) {
   if (it->body_b != kWorldBody) WakeBody(it->body_b);
   if (!it->collide_connected && it->body_b != kWorldBody) joined_.Remove(it->body_a, it->body_b);
   joints_.erase(it);
+  DropOrphanMimics();
   return Status::Ok();
+}
+
+Status World::SetJointMimic(JointId follower, const JointMimic& mimic) {
+  const auto it =
+      std::find_if(joints_.begin(), joints_.end(), [follower](const Joint& j) { return j.id == follower; });
+  if (it == joints_.end()) return Status::NotFound("unknown joint id " + std::to_string(follower));
+  if (mimic.master != 0) {
+    if (Status st = CheckJointMimic(joints_, follower, mimic); !st.ok()) return st;
+  }
+  it->mimic = mimic.master != 0 ? mimic : JointMimic();
+  WakeBody(it->body_a);
+  if (it->body_b != kWorldBody) WakeBody(it->body_b);
+  return Status::Ok();
+}
+
+bool World::HasJointMimics() const {
+  return std::any_of(joints_.begin(), joints_.end(), [](const Joint& j) { return j.mimic.master != 0; });
+}
+
+void World::DropOrphanMimics() {
+  for (Joint& j : joints_) {
+    if (j.mimic.master != 0 && FindJoint(j.mimic.master) == nullptr) j.mimic = JointMimic();
+  }
 }
 
 Status World::SetJointActuator(JointId id, const JointActuator& actuator) {
@@ -305,6 +334,11 @@ uint64_t HashWorldState(const World& world) {
                        act.velocity_limit}) {
         f.Double(v);
       }
+    }
+    if (j.mimic.master != 0) {
+      f.Bytes(&j.mimic.master, sizeof j.mimic.master);
+      f.Double(j.mimic.multiplier);
+      f.Double(j.mimic.offset);
     }
   }
   return f.h;

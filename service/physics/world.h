@@ -53,6 +53,15 @@ class World {
   // ball, fixed); on error the joint is unchanged.
   Status SetJointActuator(JointId id, const JointActuator& actuator);
   const std::vector<Joint>& joints() const { return joints_; }
+  // Makes joint `follower` a mimic of mimic.master (joint.h, JointMimic):
+  // both hinges or both sliders, not the same joint, no cycle of mimics,
+  // a finite multiplier and offset; master 0 removes the mimic. NotFound
+  // for an unknown id, InvalidArgument for the rest, the message naming the
+  // joints and the value; on error nothing changes. Removing the master
+  // (or a body under it) removes the mimic.
+  Status SetJointMimic(JointId follower, const JointMimic& mimic);
+  // True when some joint is a mimic.
+  bool HasJointMimics() const;
   // Records the effort the actuator of joints()[index] applied in the step
   // (Joint::effort): the contact method writes it, clamped as applied.
   void SetJointEffort(size_t index, double effort) { joints_[index].effort = effort; }
@@ -72,7 +81,8 @@ class World {
   // and wrenches, as a snapshot holds them; on error nothing changes.
   Status Assign(std::vector<RigidBody> bodies, std::vector<TimedWrench> wrenches, BodyId next_id);
   // Replaces the joints with saved ones (ids ascending, each < next, bodies
-  // present), as a snapshot holds them; on error nothing changes.
+  // present, mimics valid as SetJointMimic checks them), as a snapshot
+  // holds them; on error nothing changes.
   Status AssignJoints(std::vector<Joint> joints, JointId next);
   // Sets each body's force and torque to gravity plus the active wrenches,
   // plus the feed-forward effort of every actuator without gains (kp = kd =
@@ -117,6 +127,8 @@ class World {
   // The feed-forward effort of an actuator without gains (AccumulateForces).
   void ApplyFeedForward(Joint& joint);
   void IndexJointPairs();
+  // Drops the mimics whose master is gone.
+  void DropOrphanMimics();
   std::vector<RigidBody> bodies_;
   std::map<BodyId, int> index_;
   std::vector<TimedWrench> wrenches_;
@@ -131,7 +143,8 @@ class World {
 // rest timer and island label follow its state bits (with sleep off they
 // are never set, and the hash is what it was before sleeping existed). A
 // joint that lets its bodies touch adds that flag, and an actuated joint
-// (IsActuated) its actuator's fields; the defaults add nothing.
+// (IsActuated) its actuator's fields, a mimic its master, multiplier and
+// offset; the defaults add nothing.
 uint64_t HashWorldState(const World& world);
 
 // Total kinetic energy of the dynamic bodies (J): sum of |P|^2 / 2m + L.w / 2.

@@ -147,6 +147,12 @@ void SaveJoint(const model::ModelJoint& j, proto::ModelJointSpec* out) {
   }
   out->set_damping(j.damping);
   out->set_friction(j.friction);
+  if (j.mimic) {
+    proto::ModelMimic* m = out->mutable_mimic();
+    m->set_joint(j.mimic->joint);
+    m->set_multiplier(j.mimic->multiplier);
+    m->set_offset(j.mimic->offset);
+  }
 }
 
 Status LoadJoint(const proto::ModelJointSpec& in, model::ModelJoint* j) {
@@ -168,6 +174,8 @@ Status LoadJoint(const proto::ModelJointSpec& in, model::ModelJoint* j) {
   }
   j->damping = in.damping();
   j->friction = in.friction();
+  // checked with the rest of the description (CheckMimics)
+  if (in.has_mimic()) j->mimic = model::ModelMimic{in.mimic().joint(), in.mimic().multiplier(), in.mimic().offset()};
   return Status::Ok();
 }
 

@@ -337,6 +337,11 @@ void SaveJoint(const Joint& j, proto::SnapshotJoint* out) {
   if (j.collide_connected) out->set_collide_connected(true);
   SaveJointActuator(j.actuator, out);
   if (j.effort != 0.0) out->set_effort(j.effort);
+  if (j.mimic.master != 0) {
+    out->set_mimic_master(j.mimic.master);
+    out->set_mimic_multiplier(j.mimic.multiplier);
+    out->set_mimic_offset(j.mimic.offset);
+  }
 }
 
 Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
@@ -371,6 +376,8 @@ Status LoadJoint(const proto::SnapshotJoint& p, Joint* j) {
     return Status::InvalidArgument("snapshot: joint " + std::to_string(p.id()) + " effort must be finite");
   }
   j->effort = p.effort();
+  // checked against the other joints by World::AssignJoints
+  j->mimic = JointMimic{p.mimic_master(), p.mimic_multiplier(), p.mimic_offset()};
   return LoadJointActuator(p, j);
 }
 

@@ -45,6 +45,9 @@ Outcome SimServer::LoadModel(Command& cmd) {
     st = CheckMethodAcceptsBody(method_->Name(), prepared.bodies[i], what);
   }
   if (st.ok() && !prepared.joints.empty()) st = CheckMethodAcceptsJoint(method_->Name());
+  for (const model::BuiltJoint& bj : prepared.build.joints) {
+    if (st.ok() && bj.mimic_of >= 0) st = CheckMethodAcceptsMimic(method_->Name());
+  }
   ModelRecord record;
   if (st.ok()) st = model::CommitModel(std::move(prepared), &world_, &record);
   if (!st.ok()) return Outcome::Failed(st);

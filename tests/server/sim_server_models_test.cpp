@@ -229,3 +229,38 @@ TEST(SimServerModelsTest, TheRecordKeepsTheVisualsThroughASnapshot) {
 
 }  // namespace
 }  // namespace contactsim
+
+namespace contactsim {
+namespace {
+
+// Verifies the mimic contract through the server: a model whose elbow
+// mimics its shoulder is refused under lcp (FAILED_PRECONDITION naming the
+// methods that take it, nothing added), loads under impulse with the world
+// joint a mimic, and then a switch to xpbd is refused and the method stays.
+TEST(SimServerModelsTest, MimicJointsFollowTheMethodsContract) {
+  ServerHarness h(Options());
+  model::ModelDescription arm = model::testing::Arm();
+  arm.joints[1].mimic = model::ModelMimic{"shoulder", -1.0, 0.0};
+  scene_cmd_t method = h.Scene(scene_cmd_t::SET_METHOD);
+  method.method = "lcp";
+  ASSERT_EQ(h.Send(method).code, reply_t::OK);
+  reply_t r = h.Send(Load(arm));
+  EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
+  EXPECT_EQ(r.message, "contact method lcp does not simulate mimic joints (joint couplings): choose impulse, "
+                       "penalty or soft before loading a model with one");
+  EXPECT_TRUE(h.server.world().bodies().empty());
+  method.method = "impulse";
+  ASSERT_EQ(h.Send(method).code, reply_t::OK);
+  r = h.Send(Load(arm));
+  ASSERT_EQ(r.code, reply_t::OK) << r.message;
+  EXPECT_EQ(h.server.world().FindJoint(2)->mimic.master, 1);
+  EXPECT_EQ(h.server.world().FindJoint(2)->mimic.multiplier, -1.0);
+  method.method = "xpbd";
+  r = h.Send(method);
+  EXPECT_EQ(r.code, reply_t::FAILED_PRECONDITION);
+  EXPECT_NE(r.message.find("xpbd does not simulate mimic joints"), std::string::npos) << r.message;
+  EXPECT_STREQ(h.server.method().Name(), "impulse");
+}
+
+}  // namespace
+}  // namespace contactsim

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "service/contact/joints/joint_couplings.h"
 #include "service/contact/union_find.h"
 
 namespace contactsim {
@@ -30,6 +31,7 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
                                JointSolverKind solver) {
   rows_.clear();
   blocks_.clear();
+  couplings_.clear();
   solver_ = solver;
   component_.clear();
   factored_ = false;
@@ -38,6 +40,7 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   if (world.joints().empty()) return;
   ReadVelocities(bodies, &built_velocities_);
   BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
+  AppendCouplingRows(world, bodies, h, JointRowMode::kVelocity, &couplings_);
   total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
   factored_ = solver == JointSolverKind::kTree && !rows_.empty() && factor_.Factor(rows_, blocks_, bodies);
   const int n = static_cast<int>(bodies.size());
@@ -142,8 +145,29 @@ double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_
       rows_[k].Apply(x[k], bodies);
       total_[k] += x[k];
     }
+    if (!couplings_.empty()) worst = std::max(worst, SolveCouplingRows(bodies, pass == 0));
     return worst;
   }
+}
+
+double JointVelocityBlock::SolveCouplingRows(std::vector<SolverBody>& bodies, bool all_kept) {
+  const int n = static_cast<int>(rows_.size());
+  Eigen::VectorXd target(couplings_.size()), d_lambda, mu;
+  for (size_t c = 0; c < couplings_.size(); ++c) target[c] = couplings_[c].rhs;
+  const double worst = SolveCouplings(
+      rows_, couplings_, target,
+      [&](const Eigen::VectorXd& rhs) {
+        Eigen::VectorXd x;
+        if (all_kept && factored_) {
+          factor_.Solve(blocks_, rhs, &x);
+        } else {
+          x = SolveJointRows(rows_, blocks_, bodies, rhs, keep_, solver_);
+        }
+        return x;
+      },
+      bodies, &d_lambda, &mu);
+  for (int k = 0; k < n; ++k) total_[k] += d_lambda[k];
+  return worst;
 }
 
 }  // namespace contactsim

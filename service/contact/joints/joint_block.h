@@ -55,8 +55,10 @@ class JointVelocityBlock {
   bool SelfContact(int a, int b) const;
   // True when solver body i is jointed.
   bool Jointed(int i) const { return i >= 0 && i < static_cast<int>(component_.size()) && component_[i] >= 0; }
-  // Projects the bodies' velocities onto the joint rows; returns the largest
-  // row velocity error it removed (m/s or rad/s).
+  // Projects the bodies' velocities onto the joint rows and the mimics'
+  // coupling rows (joint_couplings.h, with the active set the joint rows
+  // chose); returns the largest row velocity error it removed (m/s or
+  // rad/s).
   double Solve(std::vector<SolverBody>& bodies, int max_limit_passes = 8);
   // The rows with the impulse each has carried so far as its lambda, for a
   // direct solve of joint and contact rows together (jointed_contacts.h),
@@ -65,8 +67,12 @@ class JointVelocityBlock {
   void ReadImpulses(const std::vector<ConstraintRow>& rows, size_t first);
 
  private:
+  // The coupling rows' share of Solve; all_kept: every joint row kept (the
+  // factor holds).
+  double SolveCouplingRows(std::vector<SolverBody>& bodies, bool all_kept);
   std::vector<ConstraintRow> rows_;
   std::vector<JointBlock> blocks_;
+  std::vector<CouplingRow> couplings_;  // the mimics' rows (joint_couplings.h)
   Eigen::VectorXd total_;  // accumulated impulse per row this step
   std::vector<int> component_;  // per solver body: its jointed component, -1 if unjointed
   JointSolverKind solver_ = JointSolverKind::kTree;

@@ -219,7 +219,41 @@ class RowWriter {
   std::vector<double>* errors_;
 };
 
+// The coordinate row of a hinge or slider; false when neither of its
+// bodies can move.
+bool CoordinateRow(const World& world, const std::vector<SolverBody>& bodies, const Joint& j, double h,
+                   JointRowMode mode, RowWriter::Coordinate* out) {
+  const End a = MakeEnd(world, bodies, j.body_a, j.anchor_a);
+  const End b = MakeEnd(world, bodies, j.body_b, j.anchor_b);
+  std::vector<ConstraintRow> unused;
+  const RowWriter writer(a, b, h, mode, &unused, nullptr);
+  const Vec3 axis_a = a.body->q * j.axis_a;
+  *out = j.kind == JointKind::kHinge ? writer.HingeCoordinate(j, axis_a) : writer.SlideCoordinate(axis_a);
+  return a.dynamic || b.dynamic;
+}
+
 }  // namespace
+
+void AppendCouplingRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
+                        std::vector<CouplingRow>* rows) {
+  for (const Joint& j : world.joints()) {
+    const Joint* m = j.mimic.master != 0 ? world.FindJoint(j.mimic.master) : nullptr;
+    if (m == nullptr) continue;
+    RowWriter::Coordinate qf, qm;
+    const bool moves = CoordinateRow(world, bodies, j, h, mode, &qf);
+    if (!(CoordinateRow(world, bodies, *m, h, mode, &qm) || moves)) continue;
+    const double k = -j.mimic.multiplier;
+    CouplingRow row;
+    row.follower = qf.row;
+    row.master = qm.row;
+    for (Vec3* v : {&row.master.lin_a, &row.master.ang_a, &row.master.lin_b, &row.master.ang_b}) *v *= k;
+    row.rhs = qf.row.rhs + k * qm.row.rhs;
+    row.follower.rhs = row.master.rhs = 0.0;
+    row.error = qf.value + k * qm.value - j.mimic.offset;
+    if (j.kind == JointKind::kHinge) row.error = std::remainder(row.error, 2.0 * kPi);
+    rows->push_back(row);
+  }
+}
 
 bool HasJointDynamics(const World& world) {
   for (const Joint& j : world.joints()) {

@@ -121,6 +121,30 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks = nullptr,
                      std::vector<double>* errors = nullptr);
 
+// A mimic's row (physics/joint.h, JointMimic): C = q - m q_master - o with
+// J = J_q - m J_q_master, each part the coordinate row of its joint (the
+// hinge angle's or the slide's, as above), so the row spans up to four
+// bodies; it is held as two two-body rows that act together. Its impulse
+// mu turns the follower's coordinate by +mu and the master's by -m mu: the
+// gear's torques, equal and opposite in power (Box2D's b2GearJoint).
+struct CouplingRow {
+  ConstraintRow follower;  // J_q of the mimic joint
+  ConstraintRow master;    // -m J_q of its master
+  double rhs = 0.0;        // rad/s or m/s: -(h/2) (vp - m vp_master); 0 in position mode
+  double error = 0.0;      // C (rad or m; a hinge's wrapped into [-pi, pi])
+  double Velocity(const std::vector<SolverBody>& s) const { return follower.Velocity(s) + master.Velocity(s); }
+  void Apply(double d_lambda, std::vector<SolverBody>& s) const {
+    follower.Apply(d_lambda, s);
+    master.Apply(d_lambda, s);
+  }
+};
+
+// Appends the row of every mimic of the world, in the follower's joint id
+// order, for the solver bodies `bodies` (as AppendJointRows); a mimic whose
+// four bodies are all static or kinematic gives none.
+void AppendCouplingRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
+                        std::vector<CouplingRow>* rows);
+
 // True when the row has a finite bound: a joint limit (one-sided), a
 // joint's friction or an actuator's drive with an effort limit (boxed). A
 // solver holds such a row at the bound it would pass.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "service/contact/joints/joint_couplings.h"
 #include "service/contact/joints/joint_dense_solver.h"
 #include "service/contact/joints/joint_tree_solver.h"
 #include "service/contact/union_find.h"
@@ -128,7 +129,8 @@ namespace {
 // The active-set solve of the rows on `bodies` (see ApplyJointImpulses):
 // applies the impulses and leaves them in the rows' lambda.
 JointStats SolveActiveSet(std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
-                          std::vector<SolverBody>& bodies, JointSolverKind solver, int max_passes) {
+                          std::vector<SolverBody>& bodies, JointSolverKind solver, int max_passes,
+                          const std::vector<CouplingRow>& couplings = {}) {
   JointStats stats;
   const int n = static_cast<int>(rows.size());
   Eigen::VectorXd b(n);
@@ -164,7 +166,29 @@ JointStats SolveActiveSet(std::vector<ConstraintRow>& rows, const std::vector<Jo
     rows[k].Apply(rows[k].lambda, bodies);
     ++stats.rows;
   }
+  if (couplings.empty()) return stats;
+  // the mimics' rows, with the active set the joints chose (joint_couplings.h)
+  Eigen::VectorXd target(couplings.size()), d_lambda, mu;
+  for (size_t c = 0; c < couplings.size(); ++c) target[c] = couplings[c].rhs;
+  SolveCouplings(rows, couplings, target,
+                 [&](const Eigen::VectorXd& rhs) { return SolveJointRows(rows, blocks, bodies, rhs, keep, solver); },
+                 bodies, &d_lambda, &mu);
+  for (int k = 0; k < n; ++k) rows[k].lambda += d_lambda[k];
+  stats.rows += static_cast<int>(couplings.size());
   return stats;
+}
+
+// The mimics' share of a Newton step of the projection: the displacement
+// in `bodies` (v, w) then also takes each coupling error C_c to 0 to first
+// order, keeping the joint rows' step.
+void ProjectCouplings(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                      const std::vector<CouplingRow>& couplings, JointSolverKind solver,
+                      std::vector<SolverBody>& bodies) {
+  Eigen::VectorXd target(couplings.size()), d_lambda, mu;
+  for (size_t c = 0; c < couplings.size(); ++c) target[c] = -couplings[c].error;
+  SolveCouplings(rows, couplings, target,
+                 [&](const Eigen::VectorXd& rhs) { return SolveJointSystem(rows, blocks, bodies, rhs, solver); },
+                 bodies, &d_lambda, &mu);
 }
 
 }  // namespace
@@ -182,7 +206,10 @@ JointStats ApplyJointImpulses(const World& world, double h, std::vector<SolverBo
   BuildJointVelocityRows(world, bodies, h, options.solver, &rows, &blocks,
                          options.joint_dynamics ? JointRowMode::kVelocity : JointRowMode::kVelocityGeometry);
   if (rows.empty()) return {};
-  const JointStats stats = SolveActiveSet(rows, blocks, bodies, options.solver, options.max_limit_passes);
+  std::vector<CouplingRow> couplings;
+  AppendCouplingRows(world, bodies, h, JointRowMode::kVelocity, &couplings);
+  const JointStats stats =
+      SolveActiveSet(rows, blocks, bodies, options.solver, options.max_limit_passes, couplings);
   if (drive_impulses != nullptr) {
     std::vector<double> lambda(rows.size());
     for (size_t k = 0; k < rows.size(); ++k) lambda[k] = rows[k].lambda;
@@ -209,14 +236,18 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
   std::vector<ConstraintRow> rows;
   std::vector<JointBlock> blocks;
   std::vector<double> errors;
+  std::vector<CouplingRow> couplings;
   for (;;) {
     LoadSolverBodies(world, &bodies);
     rows.clear();
     blocks.clear();
     errors.clear();
+    couplings.clear();
     AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks, &errors);
+    AppendCouplingRows(world, bodies, 0.0, JointRowMode::kPosition, &couplings);
     stats.max_error = 0.0;
     for (double e : errors) stats.max_error = std::max(stats.max_error, std::abs(e));
+    for (const CouplingRow& c : couplings) stats.max_error = std::max(stats.max_error, std::abs(c.error));
     if (stats.max_error <= options.projection_tolerance ||
         stats.projection_iterations >= options.max_projection_iterations) {
       break;
@@ -228,6 +259,7 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
     // w = I^-1 J^T delta (rad)
     for (SolverBody& s : bodies) s.v.setZero(), s.w.setZero();
     for (size_t k = 0; k < rows.size(); ++k) rows[k].Apply(delta[k], bodies);
+    if (!couplings.empty()) ProjectCouplings(rows, blocks, couplings, options.solver, bodies);
     DisplaceBodies(bodies, world);
   }
   return stats;

@@ -19,6 +19,14 @@ std::vector<int> FindIslands(const World& world, const ContactSet& contacts, con
   for (const Contact& c : contacts) join(c.a, c.b);
   for (const Joint& j : world.joints()) {
     if (j.body_b != kWorldBody) join(world.IndexOf(j.body_a), world.IndexOf(j.body_b));
+    // a mimic's row joins its bodies with its master's: they sleep together
+    if (const Joint* m = j.mimic.master != 0 ? world.FindJoint(j.mimic.master) : nullptr) {
+      for (const BodyId f : {j.body_a, j.body_b}) {
+        for (const BodyId g : {m->body_a, m->body_b}) {
+          if (f != kWorldBody && g != kWorldBody) join(world.IndexOf(f), world.IndexOf(g));
+        }
+      }
+    }
   }
   for (const BodyPair& p : near) join(p.first, p.second);
   // the union by smaller index makes each root its island's first body
