@@ -10,6 +10,7 @@
 #include <cinttypes>
 #include <cstdio>
 
+#include "service/server/arm_driver/driver_commands.h"
 #include "service/server/server_config.h"
 
 namespace contactsim {
@@ -56,13 +57,19 @@ std::string ReplayReport::Summary() const {
 LogReplayer::LogReplayer(SimServer* server)
     : server_(server), reply_(server->Channel(protocol::kReply)), state_(server->Channel(protocol::kState)) {
   for (const CommandChannel& c : CommandChannels()) channels_[server->Channel(c.suffix)] = &c;
+  const ServerOptions& options = server->options();
+  if (options.arm_driver) drivers_[options.arm_driver->command_channel] = RecordKind::kArmCommand;
+  if (options.wsg_driver) drivers_[options.wsg_driver->command_channel] = RecordKind::kWsgCommand;
 }
 
 bool LogReplayer::OnEvent(const std::string& channel, const void* data, int size) {
   if (report_.diverged) return false;
   const auto it = channels_.find(channel);
+  const auto driver = drivers_.find(channel);
   if (it != channels_.end()) {
     OnCommand(channel, *it->second, data, size);
+  } else if (driver != drivers_.end()) {
+    OnDriverCommand(channel, driver->second, data, size);
   } else if (channel == reply_) {
     OnReply(data, size);
   } else if (channel == state_) {
@@ -84,7 +91,21 @@ void LogReplayer::OnCommand(const std::string& channel_name, const CommandChanne
   const Status st = channel.decode(data, UnsignedSize(data, size), DecodeContext{}, &header);
   // an undecodable command changed nothing live (DECODE_ERROR): nothing to feed
   if (st.code() == StatusCode::kDecodeError) return;
-  pending_[{header.client_id, header.request_id}] = {channel_name, std::string(static_cast<const char*>(data), size)};
+  pending_[{header.client_id, header.request_id}].push_back(
+      {channel_name, channel.suffix, std::string(static_cast<const char*>(data), size)});
+}
+
+void LogReplayer::OnDriverCommand(const std::string& channel_name, RecordKind record, const void* data, int size) {
+  const ServerOptions& options = server_->options();
+  const ArmProtocol* arm = options.arm_driver ? FindArmProtocol(options.arm_driver->protocol) : nullptr;
+  Command cmd;
+  int64_t utime = -1;
+  const Status st = DecodeDriverCommand(record, arm, data, size, &cmd, &utime);
+  // the live server answered an undecodable one with an error, or not at
+  // all: nothing to feed
+  if (utime < 0 && !st.ok()) return;
+  pending_[{channel_name, utime}].push_back(
+      {channel_name, channel_name, std::string(static_cast<const char*>(data), size)});
 }
 
 void LogReplayer::OnReply(const void* data, int size) {
@@ -92,8 +113,9 @@ void LogReplayer::OnReply(const void* data, int size) {
   if (r.decode(data, 0, size) < 0) return;
   auto it = pending_.find({r.client_id, r.request_id});
   if (it == pending_.end()) return;  // an input's error reply, or a command sent before the log began
-  const Pending p = std::move(it->second);
-  pending_.erase(it);
+  const Pending p = std::move(it->second.front());
+  it->second.pop_front();
+  if (it->second.empty()) pending_.erase(it);
   // a refused command changed nothing live (some refusals, such as a rate
   // limit, depend on the wall clock and would not repeat here)
   if (r.code != reply_t::OK) return;
@@ -102,7 +124,7 @@ void LogReplayer::OnReply(const void* data, int size) {
   server_->OnMessage(p.channel, p.payload.data(), static_cast<int>(p.payload.size()));
   server_->ApplyInbox();
   ++report_.commands_fed;
-  report_.last_command = std::string(channels_.at(p.channel)->suffix) + " from \"" + r.client_id + "\" #" + std::to_string(r.request_id) +
+  report_.last_command = p.label + " from \"" + r.client_id + "\" #" + std::to_string(r.request_id) +
                          " at step " + std::to_string(r.step) + " (" + r.message + ")";
 }
 
@@ -133,7 +155,8 @@ void LogReplayer::OnState(const void* data, int size) {
 }
 
 const ReplayReport& LogReplayer::Finish() {
-  report_.unanswered = static_cast<int64_t>(pending_.size());
+  report_.unanswered = 0;
+  for (const auto& [key, waiting] : pending_) report_.unanswered += static_cast<int64_t>(waiting.size());
   return report_;
 }
 

@@ -15,7 +15,10 @@
 // replaced.) A STATE says how far the world has stepped: the replay steps
 // to state.step and compares. A lockstep input gets no reply when accepted;
 // it is offered when logged, as the live server queued it, and applies at
-// its step.
+// its step. Drake's arm and gripper driver commands (arm_driver/) come on
+// the channels the config names; the server answers an accepted one on
+// REPLY (client_id the channel, request_id the command's utime, step where
+// it applied), so they are fed at their reply like the commands above.
 //
 // What the channels cannot carry shows as a divergence at the step it
 // touches: an input that a `reuse` late policy applied again (a wall-clock
@@ -25,6 +28,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
 #include <utility>
@@ -67,9 +71,11 @@ class LogReplayer {
  private:
   struct Pending {
     std::string channel;
+    std::string label;  // the command channel's suffix, or a driver's channel
     std::string payload;
   };
   void OnCommand(const std::string& channel_name, const CommandChannel& channel, const void* data, int size);
+  void OnDriverCommand(const std::string& channel_name, RecordKind record, const void* data, int size);
   void OnReply(const void* data, int size);
   void OnState(const void* data, int size);
   void StepTo(int64_t step);
@@ -77,9 +83,11 @@ class LogReplayer {
   SimServer* server_;
   std::string reply_, state_;                          // channel names
   std::map<std::string, const CommandChannel*> channels_;  // the command channels, by full name
-  // commands waiting for their reply, by (client id, request id); ordered
-  // containers only (determinism)
-  std::map<std::pair<std::string, int64_t>, Pending> pending_;
+  std::map<std::string, RecordKind> drivers_;              // the drivers' command channels
+  // commands waiting for their reply, by (client id, request id), oldest
+  // first (a driver's utime may repeat); ordered containers only
+  // (determinism)
+  std::map<std::pair<std::string, int64_t>, std::deque<Pending>> pending_;
   ReplayReport report_;
 };
 

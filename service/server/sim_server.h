@@ -71,6 +71,7 @@ class SimServer {
   uint64_t input_digest() const { return lockstep_.input_digest(); }  // of the last step's inputs
 
   std::string Channel(const char* suffix) const { return publisher_.Channel(suffix); }
+  const ServerOptions& options() const { return options_; }
   const World& world() const { return world_; }
   const ContactMethod& method() const { return *method_; }
   bool paused() const { return paused_; }

@@ -42,9 +42,10 @@ drake::lcmt_iiwa_command Command(int64_t utime, std::vector<double> position, st
 }
 
 // Verifies that a command sets each drive's target, the configured gains and
-// the feed-forward torque, the effort limit from the model file, and is not
-// answered; a command without positions (torque only) turns the gains off
-// and keeps the last targets.
+// the feed-forward torque, the effort limit from the model file, and is
+// answered OK on REPLY with its utime and the step it applied at (what
+// --replay places it by); a command without positions (torque only) turns
+// the gains off and keeps the last targets.
 TEST(ArmDriverTest, CommandSetsTheDrives) {
   ArmServer a(Options());
   const size_t replies = a.Replies().size();
@@ -59,7 +60,11 @@ TEST(ArmDriverTest, CommandSetsTheDrives) {
     EXPECT_EQ(d.target_velocity, 0.0);
     EXPECT_EQ(d.effort_limit, 10.0);  // the hand-made joints' <limit effort>
   }
-  EXPECT_EQ(a.Replies().size(), replies);
+  ASSERT_EQ(a.Replies().size(), replies + 1);
+  EXPECT_EQ(a.Replies().back().code, reply_t::OK) << a.Replies().back().message;
+  EXPECT_EQ(a.Replies().back().request_id, 7);
+  EXPECT_GE(a.Replies().back().step, 0);
+  EXPECT_LE(a.Replies().back().step, a.h.server.world().step);
   a.Post(Command(8, {}, Targets(-1.0)));
   a.h.server.Tick();
   for (int i = 0; i < kArmJoints; ++i) {

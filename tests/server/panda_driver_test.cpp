@@ -63,7 +63,8 @@ TEST(PandaDriverTest, EachControlModeSetsItsDrives) {
     for (int i = 0; i < kArmJoints; ++i) held.push_back(a.joint(i).actuator.target_position);
     a.Post(CommandInMode(mode, mode));
     a.h.server.Tick();
-    EXPECT_EQ(a.Replies().size(), replies) << "an accepted command is not answered";
+    ASSERT_EQ(a.Replies().size(), replies + 1) << "an accepted command is answered OK";
+    EXPECT_EQ(a.Replies().back().code, reply_t::OK) << a.Replies().back().message;
     a.h.Step(1);
     const bool position = mode & kPandaPositionMode, velocity = mode & kPandaVelocityMode;
     for (int i = 0; i < kArmJoints; ++i) {

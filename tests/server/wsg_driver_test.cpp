@@ -65,11 +65,11 @@ TEST(WsgDriverTest, StatusAtDrakesRate) {
 
 // Verifies that a command sets each finger's drive to half the separation on
 // its opening side, with the configured gains and the force as the effort
-// limit, is not answered, and opens and closes the fingers to the
+// limit, is answered OK (its utime, the step it applied at), and opens and closes the fingers to the
 // separation the status reports, at rest.
 TEST(WsgDriverTest, CommandMovesTheFingersToTheSeparation) {
   WsgServer w(testing::WsgOptions());
-  const size_t replies = w.Replies().size();
+  size_t replies = w.Replies().size();
   for (double mm : {80.0, 110.0, 25.0, 0.0}) {
     w.Post(WsgCommandMsg(7, mm, 30.0));
     w.h.Step(240);
@@ -83,8 +83,10 @@ TEST(WsgDriverTest, CommandMovesTheFingersToTheSeparation) {
     const drake::lcmt_schunk_wsg_status s = w.Statuses().back();
     EXPECT_NEAR(s.actual_position_mm, mm, kSettledMm) << mm;
     EXPECT_NEAR(s.actual_speed_mm_per_s, 0.0, 1e-3) << mm;
+    ASSERT_EQ(w.Replies().size(), ++replies);
+    EXPECT_EQ(w.Replies().back().code, reply_t::OK) << w.Replies().back().message;
+    EXPECT_EQ(w.Replies().back().request_id, 7);
   }
-  EXPECT_EQ(w.Replies().size(), replies);
 }
 
 // Swept box masses and force limits under every method that simulates

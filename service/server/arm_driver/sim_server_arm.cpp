@@ -53,16 +53,16 @@ Status SimServer::StartArmDriver() {
   return Status::Ok();
 }
 
-// An accepted command is not answered, as Drake's driver answers none; a
-// refused one is answered on REPLY (named by the channel and its utime),
-// logged and counted in STATUS's last_error, as a refused lockstep INPUT is.
+// Answered on REPLY, named by the channel and the command's utime: a
+// refused one with the reason (logged and counted in STATUS's last_error,
+// as a refused lockstep INPUT is), an accepted one with the step it applied
+// at, which places it in an lcm-logger log for --replay (log_replay.h).
+// Drake's own systems read no reply.
 Outcome SimServer::ApplyArmCommand(Command& cmd) {
   if (!arm_) return Outcome::Failed(Status::FailedPrecondition("this server has no arm driver"));
   const Status st = arm_->Apply(cmd.arm, &world_);
   if (!st.ok()) return Outcome::Failed(st);
-  Outcome out = Outcome::Done("", true);
-  out.deferred = true;
-  return out;
+  return Outcome::Done("arm command applied", true);
 }
 
 void SimServer::PublishArmStatus() {

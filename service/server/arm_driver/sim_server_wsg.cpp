@@ -22,15 +22,14 @@ Status SimServer::StartWsgDriver() {
   return Status::Ok();
 }
 
-// Answered as the arm driver's commands are: an accepted one not at all, a
-// refused one on REPLY, named by the channel and its utime.
+// Answered as the arm driver's commands are (sim_server_arm.cpp): on
+// REPLY, named by the channel and its utime, with the reason or the step
+// it applied at.
 Outcome SimServer::ApplyWsgCommand(Command& cmd) {
   if (!wsg_) return Outcome::Failed(Status::FailedPrecondition("this server has no WSG driver"));
   const Status st = wsg_->Apply(cmd.wsg, &world_);
   if (!st.ok()) return Outcome::Failed(st);
-  Outcome out = Outcome::Done("", true);
-  out.deferred = true;
-  return out;
+  return Outcome::Done("WSG command applied", true);
 }
 
 void SimServer::PublishWsgStatus() {
