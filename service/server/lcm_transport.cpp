@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "service/server/lcm_own_datagrams.h"
+
 #include <cstdlib>
 #include <exception>
 
@@ -35,12 +37,23 @@ class LcmTransport::Relay {
   RawHandler handler_;
 };
 
-LcmTransport::LcmTransport(const std::string& url) : lcm_(std::make_unique<lcm::LCM>(url)) {}
+LcmTransport::LcmTransport(const std::string& url) : lcm_(std::make_unique<lcm::LCM>(url)) {
+  int port = 0, ttl = 0;
+  if (ParseUdpmUrl(ResolveLcmUrl(url), &port, &ttl) && ttl == 0) filter_port_ = port;
+}
 
 LcmTransport::~LcmTransport() = default;
 
 void LcmTransport::Publish(const std::string& channel, const void* data, int size) {
   lcm_->publish(channel, data, static_cast<unsigned>(size));
+  if (filter_pending_.exchange(false)) {
+    const Status st = FilterOwnDatagrams(filter_port_);
+    if (st.ok()) {
+      spdlog::debug("LCM: the server's own datagrams are filtered out of its receive socket");
+    } else {
+      spdlog::info("LCM: the server's own datagrams reach its receive socket ({})", st.message());
+    }
+  }
 }
 
 void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
@@ -49,6 +62,7 @@ void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
   // LCM drops messages beyond 30 queued per subscription by default; a client
   // may send many commands without waiting, and every one must be answered.
   sub->setQueueCapacity(kCommandQueueCapacity);
+  if (filter_port_ > 0 && relays_.size() == 1) filter_pending_ = true;
 }
 
 void LcmTransport::HandleTimeout(int timeout_ms) { lcm_->handleTimeout(timeout_ms); }

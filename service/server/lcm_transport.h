@@ -4,6 +4,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
@@ -40,6 +41,11 @@ class LcmTransport : public Transport {
   class Relay;
   std::unique_ptr<lcm::LCM> lcm_;
   std::vector<std::unique_ptr<Relay>> relays_;
+  // The udpm port with ttl=0, whose receive socket gets the own-datagram
+  // filter (lcm_own_datagrams.h) once both LCM sockets exist: after the
+  // first publish that follows a subscription. 0: none to install.
+  int filter_port_ = 0;
+  std::atomic<bool> filter_pending_{false};
 };
 
 }  // namespace contactsim
