@@ -13,6 +13,10 @@
 //   swing     two rods of equal length keep the plank level (a
 //             parallelogram), so the boxes see only a bounded acceleration
 //             (g sin of the swing's amplitude), which mu holds
+//   slider    the level plank slides freely down a rail (a prismatic joint)
+//             inclined by beta, accelerating at g sin(beta) along it; in the
+//             plank's frame a box feels g cos(beta) tilted by beta from the
+//             plank's normal, which tan(beta) < mu holds
 //   slide     loads too heavy for the balance's friction slide off onto the
 //             ground: nothing becomes non-finite, no energy appears, the
 //             hinge stays closed
@@ -160,13 +164,14 @@ void Record(const World& world, double e0, SupportRun* run) {
   }
 }
 
-enum class Support { kBalance, kWeld, kSwing, kSlide };
+enum class Support { kBalance, kWeld, kSwing, kSlide, kSlider };
 const char* SupportName(Support s) {
   switch (s) {
     case Support::kBalance: return "balance";
     case Support::kWeld: return "weld";
     case Support::kSwing: return "swing";
     case Support::kSlide: return "slide";
+    case Support::kSlider: return "slider";
   }
   return "?";
 }
@@ -228,6 +233,17 @@ SupportScene Build(World& w, Support support, const Load& load, double mu, doubl
     case Support::kSwing:  // outside the plank's ends, so the rods miss the boxes
       for (double x : {-kPlankHalf[0], kPlankHalf[0]}) AddRod(w, scene.plank, centre + Vec3(x, 0.2, kRod), kSwingSpeed);
       break;
+    case Support::kSlider: {  // a rail inclined as the weld's slope, down toward +x
+      const double beta = 0.8 * std::atan(mu);
+      JointSettings rail;
+      rail.kind = JointKind::kPrismatic;
+      rail.body_a = scene.plank;
+      rail.body_b = kWorldBody;
+      rail.anchor = centre;
+      rail.axis = Vec3(std::cos(beta), 0.0, -std::sin(beta));
+      testing::AddJoint(w, rail);
+      break;
+    }
   }
   return scene;
 }
@@ -303,6 +319,34 @@ TEST_P(JointedSupportTest, StaticFrictionHoldsOnJointedSupports) {
         checks.Expect(id + " joint", r.joint_error, 0.0, kMaxJointOpening);
         checks.Expect(id + " energy", std::max(0.0, r.energy_gain), 0.0, kMaxEnergyGain * scale);
       }
+    }
+  }
+  SKIP_KNOWN_MISSES(checks);
+}
+
+// Verifies that static friction holds every load of the test above on a
+// plank sliding freely down an inclined rail (a prismatic joint, tan(beta)
+// = 0.8 mu), over the same masses, counts and planks: no box moves on the
+// plank by more than kMaxCreep, the rail stays closed and no energy appears.
+TEST_P(JointedSupportTest, StaticFrictionHoldsOnASlidingSupport) {
+  const MethodConfig& config = GetParam();
+  testing::MechanicsChecks checks(config.label);
+  for (double plank_mass : kPlankMasses) {
+    for (const Load& load : kHeldLoads) {
+      testing::MethodSim sim(config.method, config.params);
+      Vec3 pivot;
+      const SupportScene scene = Build(sim.world, Support::kSlider, load, 0.9, plank_mass, &pivot);
+      if (testing::RefusedByContract(config, sim.world, ContractOf(config).joints, "joints")) return;
+      const SupportRun r = RunSupport(sim, scene, pivot, kSeconds);
+      const double scale = EnergyScale(sim.world);
+      const std::string id = CaseId(Support::kSlider, load, plank_mass);
+      std::printf("%-9s %s: creep %.3g mm, joint %.3g mm, dE %.3g of %.3g J, %s\n", config.label.c_str(), id.c_str(),
+                  1e3 * r.creep, 1e3 * r.joint_error, r.energy_gain, scale,
+                  r.blowup.empty() ? "no blow-up" : r.blowup.c_str());
+      ASSERT_TRUE(r.finite && r.blowup.empty()) << id << ": " << r.blowup;
+      checks.Expect(id + " creep", r.creep, 0.0, kMaxCreep);
+      checks.Expect(id + " joint", r.joint_error, 0.0, kMaxJointOpening);
+      checks.Expect(id + " energy", std::max(0.0, r.energy_gain), 0.0, kMaxEnergyGain * scale);
     }
   }
   SKIP_KNOWN_MISSES(checks);

@@ -177,20 +177,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "at 1.9e-13 m/s, the implicit integrator at 3.2e-15 m/s"},
     {"penalty", "hull of 30 points seed 3 e=0.5 drop 0.1 m tilt", 1.5,
      "tips onto another face (1.1 rad) after landing flat from 10 cm with e = 0.5"},
-    // bodies resting on jointed supports (jointed_support_test.cpp; docs/physics.md, "Jointed supports")
-    // soft: the joint-contact solve after each stage (soft_jointed_solve.h)
-    // takes one feasible step a pass from the sweeps' answer, 16 passes at
-    // most; five loaded boxes (60 friction and normal rows) run out of
-    // passes with points still sliding. 64 passes hold the swings (0.10 and
-    // 0.25 mm) and leave the 0.5 kg weld at 4.4 mm, at four times the CPU
-    {"soft", "weld n=5 m=10 * creep", 0.025, "17.4 (2 kg plank) and 18.7 mm (0.5 kg) in 3 s: the passes run out, above"},
-    {"soft", "weld n=2 m=5 off=0.04 plank=0.5 creep", 2.1e-3,
-     "1.57 mm in 3 s (3.66 mm before held friction could rejoin): its load meets the heavy-on-light solve and the "
-     "joint-contact solve in turn; not traced further"},
-    {"soft", "swing n=5 m=10 * creep", 0.013, "5.0 (2 kg plank) and 9.7 mm (0.5 kg) in 3 s: the passes run out, above"},
-    {"soft", "swing n=2 m=5 off=0.04 plank=0.5 creep", 1.1e-3,
-     "0.87 mm in 3 s (0.23 mm with held friction kept held; 0.58 mm under the joint factor's earlier rounding): "
-     "its friction rows leave and rejoin the held set in turn until the passes run out (64 passes: 0.10 mm)"},
     // compound bodies swept (compound_sweep_test.cpp): a 71-sided wheel off
     // its frame rolling 1 s down 10 degrees, against the same hull as a plain body
     {"lcp_lemke", "wheel m=* *", 0.035,
