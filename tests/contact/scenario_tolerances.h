@@ -161,12 +161,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "rises 3.0% of the swing's energy from the horizontal within 1 s; 0 under pgs at dt / 2"},
     // random convex hulls dropped on their most stable face
     // (resting_hull_scenarios_test.cpp), not traced further
-    // soft: a period-two rocking of the sub-steps (warm start, one solve
-    // pass, one relax pass) on two hulls that land from 10 cm with e = 0.5;
-    // relax_iterations = 2 stills the 8-point one (2.6e-10 m/s), 4 makes it
-    // rock at 1.1e-3 m/s: not traced further
-    {"soft", "hull of 8 points seed 1 e=0.5 drop 0.1 m speed", 5.5e-5, "4.2e-5 m/s after 2.5 s, the face tilted 4.4e-5 rad"},
-    {"soft", "hull of 30 points seed 3 e=0.5 drop 0.1 m speed", 3.6e-5, "2.7e-5 m/s after 2.5 s, the face tilted 1.3e-5 rad"},
     {"lcp_pgs", "hull of 4 points * speed", 1.7e-6,
      "rocks at 1.1-1.3e-6 m/s on two tetrahedra: PGS stops at its tolerance (1e-6 m/s) of row-velocity change, "
      "which a resting body keeps; tolerance=1e-7 gives 1.4e-7 m/s"},

@@ -42,7 +42,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"lcp", {{"solver", "pgs"}}, 0xca054dea281b8b10ull},
       {"lcp", {{"solver", "lemke"}}, 0x245c20931e03f8baull},
       {"barrier", {}, 0x88fc6486c49e595bull},
-      {"soft", {}, 0xafac1065ad3e0de6ull},
+      {"soft", {}, 0x38ce4d472ae34e9dull},
   };
   return pinned;
 }

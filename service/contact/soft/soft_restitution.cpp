@@ -1,9 +1,15 @@
 #include "service/contact/soft/soft_restitution.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace contactsim {
 namespace {
+
+// Of the restitution threshold, the normal speed below which a point that
+// pushed is at rest: sequential_impacts.cpp's kRestTolerance, the accuracy
+// its solve stops at where every target is about 0.
+constexpr double kRestShare = 1e-5;
 
 // A body's velocities at the step's start: v = P / m, w = R0 I_body^-1 R0^T L
 // at its starting orientation.
@@ -25,8 +31,20 @@ bool SoftPointsRestitute(const std::vector<SoftPoint>& points) {
   return std::any_of(points.begin(), points.end(), [](const SoftPoint& p) { return p.restitution != 0.0; });
 }
 
+bool SoftStepNeedsRestitution(double threshold, const std::vector<SoftPoint>& points,
+                              const std::vector<SoftBody>& bodies) {
+  for (const SoftPoint& p : points) {
+    if (p.total_n <= 0.0 || p.mass_n <= 0.0) continue;
+    if (p.impact_speed < -threshold) return true;
+    const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]);
+    if (std::abs(vn) > kRestShare * threshold) return true;
+  }
+  return false;
+}
+
 void RestituteSoftPoints(double threshold, const World& world, const std::vector<SoftManifold>& manifolds,
                          std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies, SequentialImpacts* impacts) {
+  if (!SoftStepNeedsRestitution(threshold, points, bodies)) return;
   impacts->Begin(static_cast<int>(bodies.size()));
   for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
     for (int i = manifolds[k].first; i < manifolds[k].first + manifolds[k].count; ++i) {
