@@ -199,29 +199,32 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
 }
 
 void ImpulseMethod::LoadWarmStart(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
-  for (size_t k = 0; k < rows.size(); ++k) {
-    ContactRow& row = rows[k];
-    row.lambda_n = row.lambda_t1 = row.lambda_t2 = 0.0;
-    if (!params_.warm_start) continue;
-    const Contact& c = contacts[k];
-    const std::array<double, 3>* warm = warm_.Find(c);
-    if (warm == nullptr) continue;
-    // the stored tangent force projected on this step's tangent basis, kept
-    // in the Coulomb disk of the warm normal impulse
-    Vec3 t1f, t2f;
-    PerpendicularBasis(c.normal, &t1f, &t2f);
-    const Vec3 tangent = (*warm)[1] * t1f + (*warm)[2] * t2f;
-    row.lambda_n = h * (*warm)[0];
-    row.lambda_t1 = h * tangent.dot(row.t1);
-    row.lambda_t2 = h * tangent.dot(row.t2);
-    const double norm = std::hypot(row.lambda_t1, row.lambda_t2);
-    const double limit = row.friction * row.lambda_n;
-    if (norm > limit) {
-      const double scale = norm > 0.0 ? limit / norm : 0.0;
-      row.lambda_t1 *= scale;
-      row.lambda_t2 *= scale;
+  runner_->For(static_cast<int>(rows.size()), kRowGrain, [&](int begin, int end, int /*worker*/) {
+    size_t hint = 0;  // the cache's search hint, this thread's own
+    for (int k = begin; k < end; ++k) {
+      ContactRow& row = rows[k];
+      row.lambda_n = row.lambda_t1 = row.lambda_t2 = 0.0;
+      if (!params_.warm_start) continue;
+      const Contact& c = contacts[k];
+      const std::array<double, 3>* warm = warm_.Find(c, &hint);
+      if (warm == nullptr) continue;
+      // the stored tangent force projected on this step's tangent basis,
+      // kept in the Coulomb disk of the warm normal impulse
+      Vec3 t1f, t2f;
+      PerpendicularBasis(c.normal, &t1f, &t2f);
+      const Vec3 tangent = (*warm)[1] * t1f + (*warm)[2] * t2f;
+      row.lambda_n = h * (*warm)[0];
+      row.lambda_t1 = h * tangent.dot(row.t1);
+      row.lambda_t2 = h * tangent.dot(row.t2);
+      const double norm = std::hypot(row.lambda_t1, row.lambda_t2);
+      const double limit = row.friction * row.lambda_n;
+      if (norm > limit) {
+        const double scale = norm > 0.0 ? limit / norm : 0.0;
+        row.lambda_t1 *= scale;
+        row.lambda_t2 *= scale;
+      }
     }
-  }
+  });
 }
 
 int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
