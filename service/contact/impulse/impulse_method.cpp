@@ -374,6 +374,13 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
                         [&](ContactSet* out) { return StepOnce(world, detector, out); }, contacts_out);
 }
 
+void ImpulseMethod::CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const {
+  to->resize(from.size());
+  runner_->For(static_cast<int>(from.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+    std::copy(from.begin() + begin, from.begin() + end, to->begin() + begin);
+  });
+}
+
 void ImpulseMethod::MoveBodies(double h, World& world) {
   auto& bodies = world.bodies();
   runner_->For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
@@ -420,7 +427,7 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     });
     stats.iterations += CollisionPhase(rows_);
     StoreSolverBodies(solver_, world);
-    start_state.bodies() = world.bodies();
+    CopyBodies(world.bodies(), &start_state.bodies());
 
     IntegrateMomenta(world, remaining);
     LoadSolverBodies(world, *runner_, &solver_);
@@ -442,8 +449,10 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     if (impacts.empty()) break;
     const double t_c = FindImpactTime(start_state, impacts, remaining, &stats.iterations);
     if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
-    bodies = start_state.bodies();
-    for (RigidBody& b : bodies) AdvanceBallistic(b, t_c);
+    CopyBodies(start_state.bodies(), &bodies);
+    runner_->For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+      for (int i = begin; i < end; ++i) AdvanceBallistic(bodies[i], t_c);
+    });
     remaining -= t_c;
     ++stats.substeps;
     contacts_out->clear();

@@ -138,6 +138,8 @@ class ImpulseMethod : public ContactMethod {
                                   CollisionDetector& detector, double h);
   // Moves the bodies over h (step 5), split over the runner's threads.
   void MoveBodies(double h, World& world);
+  // *to = from, split over the runner's threads (the sub-step's start state).
+  void CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.
   double FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h, int* iterations) const;
 
