@@ -52,6 +52,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,8 @@
 #include "service/contact/warm_start_cache.h"
 
 namespace contactsim {
+
+class ColourStages;
 
 class ImpulseMethod : public ContactMethod {
  public:
@@ -108,6 +111,14 @@ class ImpulseMethod : public ContactMethod {
                     bool* interleave);
   // The split impulse's sweeps over rows_ toward `target`, on the runner.
   void SweepPositions(const std::vector<double>& target);
+  // Up to `passes` passes, each appended to a stage list by add_pass, after
+  // prologue's stages (when given), in Stages calls of 1, 2, 4, ... passes
+  // until `done`: the passes after `done` would only make the threads meet
+  // at stages that do nothing (a settled pyramid's collision phase is done
+  // after the first of its 20 passes). The same passes in the same order
+  // as one call.
+  void RunPasses(int passes, const bool& done, const std::function<void(ColourStages&)>& prologue,
+                 const std::function<void(ColourStages&)>& add_pass);
   struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
     Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
   };

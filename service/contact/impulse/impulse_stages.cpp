@@ -34,6 +34,18 @@ double Largest(const std::vector<double>& values) {
 
 }  // namespace
 
+void ImpulseMethod::RunPasses(int passes, const bool& done, const std::function<void(ColourStages&)>& prologue,
+                              const std::function<void(ColourStages&)>& add_pass) {
+  int run = 0, batch = 1;
+  do {
+    ColourStages list(&stages_, runner_->threads());
+    if (run == 0 && prologue) prologue(list);
+    for (int p = 0; p < batch && run < passes; ++p, ++run) add_pass(list);
+    runner_->Stages(stages_);
+    batch *= 2;
+  } while (run < passes && !done);
+}
+
 void ImpulseMethod::SetColourRoles(const World& world) {
   roles_.resize(solver_.size());
   for (size_t i = 0; i < solver_.size(); ++i) {
@@ -90,12 +102,10 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
     done = std::none_of(group_hit_.begin(), group_hit_.end(), [](char hit) { return hit != 0; });
     if (!done) ++passes;
   };
-  ColourStages list(&stages_, runner_->threads());
-  for (int p = 0; p < params_.collision_passes; ++p) {
+  RunPasses(params_.collision_passes, done, nullptr, [&](ColourStages& list) {
     list.AddColours(pass, colours_, groups);
     list.AddSerial(check);
-  }
-  runner_->Stages(stages_);
+  });
   return passes;
 }
 
@@ -192,14 +202,14 @@ int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<Conta
     ++sweeps;
     done = *converged = worst < params_.velocity_tolerance;
   };
-  ColourStages list(&stages_, runner_->threads());
-  list.AddColours(warm_start, colours_, blocks);
-  list.AddSerial(build_joints);
-  for (int it = 0; it < params_.iterations; ++it) {
+  const auto warm = [&](ColourStages& list) {
+    list.AddColours(warm_start, colours_, blocks);
+    list.AddSerial(build_joints);
+  };
+  RunPasses(params_.iterations, done, warm, [&](ColourStages& list) {
     list.AddColours(sweep, colours_, blocks);
     list.AddSerial(check);
-  }
-  runner_->Stages(stages_);
+  });
   return sweeps;
 }
 
@@ -227,12 +237,10 @@ void ImpulseMethod::SweepPositions(const std::vector<double>& target) {
   };
   // m/s of pseudo-velocity: far below any correction a step makes
   const Fn check = [&](int, int) { done = done || Largest(block_worst_) < 1e-9; };
-  ColourStages list(&stages_, runner_->threads());
-  for (int it = 0; it < params_.iterations; ++it) {
+  RunPasses(params_.iterations, done, nullptr, [&](ColourStages& list) {
     list.AddColours(sweep, colours_, blocks);
     list.AddSerial(check);
-  }
-  runner_->Stages(stages_);
+  });
 }
 
 }  // namespace contactsim
