@@ -6,7 +6,8 @@
 // btSequentialImpulseConstraintSolver at its defaults (10 iterations, split
 // impulse, restitution velocity threshold 0.2 m/s); spheres, boxes (with
 // Bullet's default 0.04 m margin, inside the box), static planes, and
-// static triangle meshes and heightfields (bullet_surfaces.h);
+// static triangle meshes and heightfields (bullet_surfaces.h); ball joints
+// as point-to-point constraints (other joint kinds are refused);
 // the same masses, principal inertias, poses, velocities, gravity and
 // dt (one fixed step per call). Pair materials follow contactsim's rule
 // (restitution max, friction sqrt(mu_a mu_b)) through Bullet's combine
@@ -48,8 +49,10 @@ class BulletEngine : public SceneEngine {
     dynamics_->getSolverInfo().m_numIterations = iterations;
     const auto& bodies = world.bodies();
     for (int i = 0; i < static_cast<int>(bodies.size()); ++i) AddBody(bodies[i], i);
+    for (const Joint& j : world.joints()) AddBallJoint(world, j);
   }
   ~BulletEngine() override {
+    for (auto& joint : joints_) dynamics_->removeConstraint(joint.get());
     for (auto& body : bodies_) dynamics_->removeRigidBody(body.get());
   }
 
@@ -111,6 +114,27 @@ class BulletEngine : public SceneEngine {
     bodies_.push_back(std::move(body));
   }
 
+  // A ball joint as a point-to-point constraint at the same anchor, given
+  // in each body's frame (Bullet's body frame is its centre of mass and
+  // principal axes, as contactsim's); the joined bodies do not collide
+  // unless the joint says they may (collide_connected).
+  void AddBallJoint(const World& world, const Joint& j) {
+    const int a = world.IndexOf(j.body_a);
+    const RigidBody& body_a = world.bodies()[a];
+    const Vec3 anchor = body_a.x + body_a.Rotation() * j.anchor_a;
+    std::unique_ptr<btPoint2PointConstraint> joint;
+    if (j.body_b == kWorldBody) {
+      joint = std::make_unique<btPoint2PointConstraint>(*bodies_[a], Bt(j.anchor_a));
+    } else {
+      const int b = world.IndexOf(j.body_b);
+      const RigidBody& body_b = world.bodies()[b];
+      const Vec3 anchor_b = body_b.Rotation().transpose() * (anchor - body_b.x);
+      joint = std::make_unique<btPoint2PointConstraint>(*bodies_[a], *bodies_[b], Bt(j.anchor_a), Bt(anchor_b));
+    }
+    dynamics_->addConstraint(joint.get(), !j.collide_connected);
+    joints_.push_back(std::move(joint));
+  }
+
   // A static mesh or heightfield: its shape keeps its data (surfaces_), and
   // its contacts go through the internal-edge correction.
   void AddSurface(const RigidBody& b) {
@@ -141,6 +165,7 @@ class BulletEngine : public SceneEngine {
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<BulletSurface>> surfaces_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  std::vector<std::unique_ptr<btPoint2PointConstraint>> joints_;
   std::vector<int> index_;  // mirror index of each Bullet body, -1 for static ones
 };
 
@@ -151,7 +176,8 @@ Status CreateBulletEngine(const BenchOptions& options, const SceneSpec&, const W
   }
   int iterations = 10;  // btContactSolverInfo's default
   const Status st =
-      ReadPeerSettings("Bullet", "sequential_impulse", options.params, true, world, &iterations, kTranslatesSurfaces);
+      ReadPeerSettings("Bullet", "sequential_impulse", options.params, true, world, &iterations, kTranslatesSurfaces,
+                       kTranslatesBallJoints);
   if (!st.ok()) return st;
   *out = std::make_unique<BulletEngine>(world, iterations);
   return Status::Ok();

@@ -210,6 +210,7 @@ Status CreateMujocoEngine(const BenchOptions& options, const SceneSpec&, const W
   reader.Int("memory_mb", 1, 1 << 20, &arena_mb);
   Status st = reader.Finish();
   if (st.ok()) st = CheckPeerShapes(world, "MuJoCo", kRefusesSurfaces);
+  if (st.ok()) st = CheckPeerJoints(world, "MuJoCo", kRefusesJoints);
   if (!st.ok()) return st;
 
   mju_setLogHandler(LogToStderr);

@@ -43,16 +43,37 @@ inline Status CheckPeerShapes(const World& world, const char* engine, SurfaceSup
   return Status::Ok();
 }
 
+// Whether a runner translates ball joints (Bullet: point-to-point
+// constraints); ODE's and MuJoCo's runners translate no joint.
+enum JointSupport { kRefusesJoints, kTranslatesBallJoints };
+
+// Refuses, naming the first joint it cannot translate, a scene with joints
+// the runner does not build (the joint grids of the scaling benchmark).
+inline Status CheckPeerJoints(const World& world, const char* engine, JointSupport joints) {
+  for (const Joint& j : world.joints()) {
+    if (joints == kTranslatesBallJoints && j.kind == JointKind::kBall) continue;
+    return Status::InvalidArgument(std::string(engine) + " runner: joint " + std::to_string(j.id) + " is a " +
+                                   JointKindName(j.kind) + " joint (the scene has " +
+                                   std::to_string(world.joints().size()) + " joints); " +
+                                   (joints == kTranslatesBallJoints ? "only ball joints are translated"
+                                                                    : "joints are not translated"));
+  }
+  return Status::Ok();
+}
+
 // A runner's settings before its engine is built: the `iterations`
 // parameter of `method` when it takes one (`takes_iterations`; *iterations
 // keeps the engine's default otherwise), nothing else, and the scene's
-// shapes (meshes and heightfields only where `surfaces` says so).
+// shapes (meshes and heightfields only where `surfaces` says so) and joints
+// (ball joints only where `joints` says so).
 inline Status ReadPeerSettings(const char* engine, const char* method, const ParamMap& params, bool takes_iterations,
-                               const World& world, int* iterations, SurfaceSupport surfaces = kRefusesSurfaces) {
+                               const World& world, int* iterations, SurfaceSupport surfaces = kRefusesSurfaces,
+                               JointSupport joints = kRefusesJoints) {
   ParamReader reader(method, params);
   if (takes_iterations) reader.Int("iterations", 1, 100000, iterations);
-  const Status st = reader.Finish();
-  return st.ok() ? CheckPeerShapes(world, engine, surfaces) : st;
+  Status st = reader.Finish();
+  if (st.ok()) st = CheckPeerShapes(world, engine, surfaces);
+  return st.ok() ? CheckPeerJoints(world, engine, joints) : st;
 }
 
 // A static plane {p : n_W . p <= offset_W} in the world frame.

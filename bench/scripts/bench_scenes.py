@@ -21,6 +21,9 @@ from run to run; it does not move these counts, the figure to steer by on a
 shared machine (BENCHMARKS.md, "Speed targets"). --no-instructions skips
 them; a row whose counting runs exceed --instruction-timeout shows "-".
 
+Scaling rows after the standard scenes (bench_scaling.py; --no-scaling skips
+them): Box3D's stress scenes from 1,000 to 10,000 bodies on 1 and 2 threads.
+
 Usage: bench/scripts/bench_scenes.py [--build-dir build] [--scenes a b] [--repeat 3]
        [--max-seconds 60] [--steps N] [--output BENCHMARKS.md] [--no-write]
        [--no-instructions] [--instruction-steps 480] [--instruction-timeout 900]
@@ -36,6 +39,9 @@ import shutil
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_scaling  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = ["box_pyramid", "sphere_pile", "box_rain", "bounce", "terrain_rain", "heightfield_rain"]
@@ -120,7 +126,11 @@ def run_one(bin_dir, binary, scene, method, params, args):
     if args.steps:
         cmd += ["--steps", str(args.steps)]
     # each repeat may step max_seconds; allow for building, measuring and a last slow step
-    timeout = args.max_seconds * args.repeat + 600
+    return run_command(cmd, args.max_seconds * args.repeat + 600)
+
+
+def run_command(cmd, timeout):
+    """The run's JSON object, or {"status": why it gave none}."""
     try:
         proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=timeout,
                               preexec_fn=limit_memory)
@@ -357,11 +367,15 @@ def replace_region(text, begin, end, region):
     return pre + region + rest.split(end, 1)[1]
 
 
-def write(path, run, region):
+def write(path, run, region, scaling_region=None):
     text = open(path).read() if os.path.exists(path) else "# Benchmarks\n"
     replaced = replace_region(text, BEGIN, END, region)
     if replaced is None:
         replaced = text.rstrip("\n") + "\n\n## Standard scenes against Bullet, ODE and MuJoCo\n\n" + region + "\n"
+    if scaling_region:
+        with_scaling = replace_region(replaced, bench_scaling.BEGIN, bench_scaling.END, scaling_region)
+        replaced = with_scaling if with_scaling is not None else (
+            replaced.rstrip("\n") + "\n\n## Scaling: 1,000 to 10,000 bodies\n\n" + scaling_region + "\n")
     text = replace_region(replaced, RUN_BEGIN, RUN_END, run)
     if text is None:  # the run line goes right under the title
         title, _, rest = replaced.partition("\n")
@@ -390,6 +404,10 @@ def main():
     ap.add_argument("--update-json", default=None, metavar="FILE",
                     help="replace (or add) this run's rows in a saved run's JSON and render that")
     ap.add_argument("--from-json", default=None, help="render the tables from a previous run's JSON, running nothing")
+    ap.add_argument("--no-scaling", dest="scaling", action="store_false",
+                    help="skip the scaling rows (1,000 to 10,000 bodies; bench_scaling.py)")
+    ap.add_argument("--scaling-only", action="store_true",
+                    help="run and write only the scaling rows, leaving the standard tables as they are")
     args = ap.parse_args()
     args.build_dir = os.path.abspath(args.build_dir)
     if args.instructions and shutil.which("valgrind") is None:
@@ -407,7 +425,9 @@ def main():
         load_before, args.repeat, args.max_seconds = meta["load_before"], meta["repeat"], meta["max_seconds"]
         args.threads = meta.get("threads", 1)  # runs saved before threads were recorded used one
         args.instruction_steps = meta.get("instruction_steps", args.instruction_steps)
-        return finish(results, args, started, load_before)
+        return finish(results, args, started, load_before, saved.get("scaling", []))
+    if args.scaling_only:
+        return write_scaling_only(args, run_scaling(bin_dir, args))
     plan = [(scene,) + r for scene in args.scenes for r in runs(bin_dir)
             if not args.only or r[0] in args.only or "%s:%s" % (r[0], r[2]) in args.only]
     results = []
@@ -426,11 +446,13 @@ def main():
         ms = r.get("ms_per_step")
         print(" %9s ms/step  %5.0f s  %s" % (fmt(ms), time.time() - t0, r.get("status")), flush=True)
     print("all runs: %.0f s" % (time.time() - t_all))
+    scaling = run_scaling(bin_dir, args) if args.scaling else []
     json_out = args.json_out or os.path.join(args.build_dir, "bench_scenes.json")
     with open(json_out, "w") as f:
         json.dump({"meta": {"started": started.isoformat(), "load_before": load_before, "repeat": args.repeat,
                             "max_seconds": args.max_seconds, "threads": args.threads,
-                            "instruction_steps": args.instruction_steps}, "runs": results}, f, indent=1)
+                            "instruction_steps": args.instruction_steps}, "runs": results, "scaling": scaling},
+                  f, indent=1)
     print("results: %s" % json_out)
     if args.update_json:
         with open(args.update_json) as f:
@@ -442,17 +464,56 @@ def main():
             json.dump({"meta": saved["meta"], "runs": merged}, f, indent=1)
         meta = saved["meta"]
         started = datetime.datetime.fromisoformat(meta["started"])
-        return finish(merged, args, started, meta["load_before"])
-    return finish(results, args, started, load_before)
+        return finish(merged, args, started, meta["load_before"], scaling or saved.get("scaling", []))
+    return finish(results, args, started, load_before, scaling)
 
 
-def finish(results, args, started, load_before):
+def run_scaling(bin_dir, args):
+    """The scaling rows (bench_scaling.py), each one process, in table order."""
+    names = subprocess.run([os.path.join(bin_dir, "contactsim-bench"), "--list-methods"],
+                           capture_output=True, text=True, check=True).stdout.split()
+    rows = bench_scaling.plan(bin_dir, names)
+    out = []
+    t_all = time.time()
+    for i, (scene, engine, binary, method, threads) in enumerate(rows, 1):
+        print("[%2d/%d] %-18s %-10s %-18s %d thread(s)" % (i, len(rows), scene, engine, method, threads), end="",
+              flush=True)
+        t0 = time.time()
+        cmd = bench_scaling.command(ROOT, bin_dir, scene, binary, method, threads, args.max_seconds)
+        r = run_command(cmd, args.max_seconds + 600)
+        r.update(engine=engine, label=method, scene_name=scene, threads_asked=threads)
+        out.append(r)
+        print(" %9s ms/step  %5.0f s  %s" % (fmt(r.get("ms_per_step")), time.time() - t0, r.get("status")), flush=True)
+    print("scaling rows: %.0f s" % (time.time() - t_all))
+    return out
+
+
+def write_scaling_only(args, scaling):
+    json_out = args.json_out or os.path.join(args.build_dir, "bench_scaling.json")
+    with open(json_out, "w") as f:
+        json.dump({"scaling": scaling, "load_before": "%.2f" % os.getloadavg()[0]}, f, indent=1)
+    region = bench_scaling.render(scaling, fmt, short_status)
+    text = open(args.output).read() if os.path.exists(args.output) else "# Benchmarks\n"
+    replaced = replace_region(text, bench_scaling.BEGIN, bench_scaling.END, region)
+    if replaced is None:
+        replaced = text.rstrip("\n") + "\n\n## Scaling: 1,000 to 10,000 bodies\n\n" + region + "\n"
+    if args.no_write:
+        print(region)
+    else:
+        with open(args.output, "w") as f:
+            f.write(replaced)
+        print("wrote %s (scaling rows; results %s)" % (args.output, json_out))
+    return 0
+
+
+def finish(results, args, started, load_before, scaling=()):
     run = run_line(args, started, load_before)
     region = render(results, args)
+    scaling_region = bench_scaling.render(list(scaling), fmt, short_status) if scaling else None
     if args.no_write:
-        print(run + "\n\n" + region)
+        print(run + "\n\n" + region + ("\n\n" + scaling_region if scaling_region else ""))
     else:
-        write(args.output, run, region)
+        write(args.output, run, region, scaling_region)
         print("wrote %s" % args.output)
     return 0
 

@@ -7,6 +7,9 @@
 namespace contactsim {
 namespace {
 
+// contacts a thread looks up at a time
+constexpr int kLoadGrain = 256;
+
 // The friction impulse of rows t1, t2 (directions lin_b) in the contact
 // frame's tangents t1f, t2f (PerpendicularBasis of the normal) and back:
 // Lemke's rows turn with the slip (lcp_contact_rows.h), the cache keeps the
@@ -31,15 +34,24 @@ void FromFrame(const Vec3& n, const ConstraintRow& r1, const ConstraintRow& r2, 
 
 }  // namespace
 
-void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const {
-  for (size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    const std::array<double, 3>* cached = Find(c);
-    const bool found = cached != nullptr;
-    for (int j = 0; j < 3; ++j) (*rows)[3 * k + j].lambda = found ? (*cached)[j] : 0.0;
-    ConstraintRow& r1 = (*rows)[3 * k + 1];
-    ConstraintRow& r2 = (*rows)[3 * k + 2];
-    if (found) FromFrame(c.normal, r1, r2, &r1.lambda, &r2.lambda);
+void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows, ParallelRunner* runner) const {
+  const auto load = [&](int begin, int end, int /*worker*/) {
+    size_t hint = 0;
+    for (int k = begin; k < end; ++k) {
+      const Contact& c = contacts[k];
+      const std::array<double, 3>* cached = Find(c, &hint);
+      const bool found = cached != nullptr;
+      for (int j = 0; j < 3; ++j) (*rows)[3 * k + j].lambda = found ? (*cached)[j] : 0.0;
+      ConstraintRow& r1 = (*rows)[3 * k + 1];
+      ConstraintRow& r2 = (*rows)[3 * k + 2];
+      if (found) FromFrame(c.normal, r1, r2, &r1.lambda, &r2.lambda);
+    }
+  };
+  const int n = static_cast<int>(contacts.size());
+  if (runner == nullptr) {
+    load(0, n, 0);
+  } else {
+    runner->For(n, kLoadGrain, load);
   }
 }
 
@@ -55,24 +67,25 @@ void WarmStartCache::Store(const ContactSet& contacts, const std::vector<Constra
   std::sort(impulses_.begin(), impulses_.end());
 }
 
-size_t WarmStartCache::PairStart(const Contact& c) const {
+size_t WarmStartCache::PairStart(const Contact& c, size_t* hint) const {
   // contacts come pair by pair: find where the pair's entries start once
   // (bisection) and keep it while the pair's contacts follow
-  const bool same_pair = cursor_ < impulses_.size() && std::get<0>(impulses_[cursor_].key) == c.id_a &&
-                         std::get<1>(impulses_[cursor_].key) == c.id_b &&
-                         (cursor_ == 0 || std::get<0>(impulses_[cursor_ - 1].key) != c.id_a ||
-                          std::get<1>(impulses_[cursor_ - 1].key) != c.id_b);
+  const size_t at = *hint;
+  const bool same_pair = at < impulses_.size() && std::get<0>(impulses_[at].key) == c.id_a &&
+                         std::get<1>(impulses_[at].key) == c.id_b &&
+                         (at == 0 || std::get<0>(impulses_[at - 1].key) != c.id_a ||
+                          std::get<1>(impulses_[at - 1].key) != c.id_b);
   if (!same_pair) {
     const Entry probe{Key{c.id_a, c.id_b, 0}, {}, Vec3::Zero(), 0};
-    cursor_ = static_cast<size_t>(std::lower_bound(impulses_.begin(), impulses_.end(), probe) - impulses_.begin());
+    *hint = static_cast<size_t>(std::lower_bound(impulses_.begin(), impulses_.end(), probe) - impulses_.begin());
   }
-  return cursor_;
+  return *hint;
 }
 
-const std::array<double, 3>* WarmStartCache::Find(const Contact& c) const {
+const std::array<double, 3>* WarmStartCache::Find(const Contact& c, size_t* hint) const {
   // the pair's few entries, sorted by feature, then order, so the first
   // match is the one a bisection would find
-  const size_t first = PairStart(c);
+  const size_t first = PairStart(c, hint);
   const Key key{c.id_a, c.id_b, c.feature_id};
   for (size_t k = first; k < impulses_.size(); ++k) {
     const Key& at = impulses_[k].key;

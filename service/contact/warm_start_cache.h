@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "service/collision/contact.h"
+#include "service/collision/parallel_runner.h"
 #include "service/contact/constraint_row.h"
 #include "service/contact/joints/joint_rows.h"
 
@@ -43,15 +44,20 @@ class WarmStartCache {
   // apart)
   static constexpr double kNearMatchDistance = 1e-3;
 
-  // Sets the lambda of the three rows of each contact from the cache (0 when absent).
-  void Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows) const;
+  // Sets the lambda of the three rows of each contact from the cache (0 when
+  // absent); with a runner, the contacts split over its threads.
+  void Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows, ParallelRunner* runner = nullptr) const;
   // Replaces the cache by the rows' impulses.
   void Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows);
   // The same for solvers that keep their impulses in the contact frame
   // (normal, t1, t2 of PerpendicularBasis): Find gives contact c's cached
   // impulses or nullptr; StoreFrame keeps impulses[k] for contacts[k] when
   // its normal impulse is positive.
-  const std::array<double, 3>* Find(const Contact& c) const;
+  const std::array<double, 3>* Find(const Contact& c) const { return Find(c, &cursor_); }
+  // The same with the caller's search hint (where the last pair looked up
+  // starts), for lookups split over threads: a hint moves where a search
+  // starts, never what it finds.
+  const std::array<double, 3>* Find(const Contact& c, size_t* hint) const;
   void StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses);
   // The same for joint rows: blocks index rows from `first_row` on; a row
   // with no cached impulse (a new joint) keeps the lambda it came with.
@@ -81,7 +87,7 @@ class WarmStartCache {
   // the entry of c's pair nearest to c.point within kNearMatchDistance, or
   // nullptr; `pair_first` is where the pair's entries start
   const Entry* Near(const Contact& c, size_t pair_first) const;
-  size_t PairStart(const Contact& c) const;
+  size_t PairStart(const Contact& c, size_t* hint) const;
 
   std::vector<Entry> impulses_;
   mutable size_t cursor_ = 0;  // where the pair Find looked up last starts (a search hint only)

@@ -17,6 +17,7 @@
 #include "service/proto/scene.pb.h"
 #include "service/scene/height_map_file.h"
 #include "service/scene/proto_text.h"
+#include "service/scene/grid_comb.h"
 #include "service/scene/terrain_grid.h"
 
 namespace contactsim {
@@ -324,6 +325,8 @@ Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Mate
   }
   Status st;
   if (!(st = CheckNonNegative("jitter", g.jitter())).ok()) return Status::InvalidArgument(where + ": grids " + st.message());
+  if (!(st = CheckGridComb(g, where)).ok()) return st;
+  const size_t first = scene->bodies.size();
   std::mt19937_64 rng(g.seed());
   const BodySettings proto_body = ToBodySettings(g.prototype(), default_material);
   const Vec3 origin = ToVec3(g.origin()), spacing = ToVec3(g.spacing());
@@ -350,11 +353,13 @@ Status ExpandGrid(const proto::BodyGrid& g, const std::string& where, const Mate
           overlap->Place(s, i, j, k);
         }
         if (!s.name.empty()) s.name += "_" + std::to_string(scene->bodies.size());
+        s.fixed = s.fixed || GridCombAnchor(g, i, k);
         scene->bodies.push_back(std::move(s));
         scene->origins.push_back(where);
       }
     }
   }
+  AddGridComb(g, where, first, scene);
   return Status::Ok();
 }
 

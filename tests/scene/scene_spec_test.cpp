@@ -91,6 +91,59 @@ TEST(SceneSpec, GridTooTightForAnyOrientationIsRefused) {
       << st.message();
 }
 
+// Verifies that a grid's comb joins every body to the one above it and the
+// top row along x by ball joints at the midpoints, fixes the top row's
+// middle bodies and joins no two of them, and builds into a world.
+TEST(SceneSpec, GridCombJoinsColumnsAndTheTopRow) {
+  const char* text =
+      "grids { prototype { name: \"ball\" sphere { radius: 0.4 } } nx: 5 nz: 3\n"
+      "        origin { z: 1 } spacing { x: 1 z: 1 } comb_joints: \"ball\" fixed_top: 3 }\n";
+  SceneSpec scene;
+  const Status st = ParseSceneText(text, "c.pbtxt", &scene);
+  ASSERT_TRUE(st.ok()) << st.message();
+  ASSERT_EQ(scene.bodies.size(), 15u);
+  // columns 5 x 2, the top row 4 less the 2 between anchors
+  ASSERT_EQ(scene.joints.size(), 12u);
+  int fixed = 0;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const bool anchor = i >= 11 && i <= 13;  // top row (k = 2: bodies 10-14), i = 1..3
+    EXPECT_EQ(scene.bodies[i].fixed, anchor) << "body " << i;
+    fixed += scene.bodies[i].fixed;
+  }
+  EXPECT_EQ(fixed, 3);
+  // the first joint: (0, 0, 0) up to (0, 0, 1), at their midpoint
+  EXPECT_EQ(scene.joints[0].settings.kind, JointKind::kBall);
+  EXPECT_EQ(scene.joints[0].body_a, "ball_0");
+  EXPECT_EQ(scene.joints[0].body_b, "ball_5");
+  EXPECT_EQ(scene.joints[0].settings.anchor, Vec3(0, 0, 1.5));
+  World world;
+  const Status built = BuildWorld(scene, &world);
+  EXPECT_TRUE(built.ok()) << built.message();
+  EXPECT_EQ(world.joints().size(), 12u);
+}
+
+// Verifies that a comb needs a named prototype and a known joint kind, and
+// that fixed_top stays within the row, each refused with the field named.
+TEST(SceneSpec, GridCombIsCheckedWithTheFieldNamed) {
+  const struct {
+    const char* grid;
+    const char* message;
+  } cases[] = {
+      {"prototype { sphere { radius: 0.4 } } nx: 2 comb_joints: \"ball\"", "comb_joints needs a named prototype"},
+      {"prototype { name: \"b\" sphere { radius: 0.4 } } nx: 2 comb_joints: \"hinge\"",
+       "comb_joints must be \"ball\" or empty, got \"hinge\""},
+      {"prototype { name: \"b\" sphere { radius: 0.4 } } nx: 2 fixed_top: 3",
+       "fixed_top must be between 0 and nx = 2, got 3"},
+  };
+  for (const auto& c : cases) {
+    SceneSpec scene;
+    const Status st = ParseSceneText(std::string("grids { ") + c.grid + " }\n", "c.pbtxt", &scene);
+    ASSERT_FALSE(st.ok()) << c.grid;
+    EXPECT_NE(st.message().find(std::string("c.pbtxt:1: grids[0]: ") + c.message), std::string::npos)
+        << st.message();
+  }
+}
+
 // Verifies that the default scene shipped in config/ loads and builds.
 TEST(SceneSpec, ShippedScenesLoad) {
   for (const char* name : {"default", "joints"}) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "service/collision/motion_bound.h"
@@ -15,6 +16,16 @@
 #include "service/physics/integrator.h"
 
 namespace contactsim {
+namespace {
+
+// Indices a thread takes at a time in the step's per-row, per-block,
+// per-pair and per-body loops: enough work to pay for the atomic counter.
+constexpr int kRowGrain = 256;
+constexpr int kBlockGrain = 128;
+constexpr int kPairGrain = 64;
+constexpr int kBodyGrain = 256;
+
+}  // namespace
 
 Status ImpulseMethod::SetParams(const ParamMap& params) {
   return ImpulseParamTable().Parse(Name(), params, params_, &params_);
@@ -34,7 +45,7 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   if (params_.position_correction <= 0.0) return;
   rows_.clear();
   std::vector<double> target;
-  LoadSolverBodies(world, &solver_);
+  LoadSolverBodies(world, *runner_, &solver_);
   for (const Contact& c : contacts) {
     const double excess = c.depth - params_.slop;
     if (excess <= 0.0) continue;
@@ -43,89 +54,10 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   }
   if (rows_.empty()) return;
   for (SolverBody& s : solver_) s.v.setZero(), s.w.setZero();
-  for (int it = 0; it < params_.iterations; ++it) {
-    double worst = 0.0;
-    for (size_t k = 0; k < rows_.size(); ++k) {
-      ContactRow& row = rows_[k];
-      const double gap = target[k] - row.NormalVelocity(solver_);
-      const double next = std::max(0.0, row.lambda_n + gap * row.mass_n);
-      const double d = next - row.lambda_n;
-      row.lambda_n = next;
-      row.Apply(d * row.n, solver_);
-      worst = std::max(worst, std::abs(d) * row.k_n);
-    }
-    if (worst < 1e-9) break;
-  }
+  SetColourRoles(world);
+  SweepPositions(target);
   SolveMassRatios(rows_, &target);
   DisplaceBodies(solver_, world);
-}
-
-// The contacts of one body pair (a face-on-face manifold has four) collide
-// at once: their impulses j_k >= 0 are found together, by Gauss-Seidel with
-// accumulated clamping, so that each contact leaves at -e times its approach
-// speed or faster. Applying the points one after another instead gives the
-// first corner the whole impulse: a box hit face-on by a wall would leave
-// spinning (measured: 0.33 rad/s and 3% too fast). Different pairs still
-// take turns, pass after pass, which is what carries the impulse down a
-// Newton's cradle (Guendelman et al. 2003).
-int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
-  std::vector<std::pair<size_t, size_t>> groups;  // [begin, end) of each pair's rows
-  for (size_t k = 0; k < rows.size();) {
-    size_t end = k + 1;
-    while (end < rows.size() && rows[end].a == rows[k].a && rows[end].b == rows[k].b) ++end;
-    groups.push_back({k, end});
-    k = end;
-  }
-  std::vector<double> target(rows.size()), j(rows.size());
-  int pass = 0;
-  for (; pass < params_.collision_passes; ++pass) {
-    bool any = false;
-    for (const auto& [begin, end] : groups) {
-      bool hit = false;
-      for (size_t k = begin; k < end; ++k) hit = hit || rows[k].NormalVelocity(solver_) < -params_.collision_threshold;
-      if (!hit) continue;
-      any = true;
-      // Newton's law per point: v_n+ >= -e v_n-; points that barely approach
-      // or separate only must not approach. Holding a separating point to
-      // its separating speed instead pushes it whenever another point's
-      // impulse slows it: a box resting on the ground, struck by a sphere,
-      // was thrown up at 14 m/s as the two pairs took turns (+513 J).
-      for (size_t k = begin; k < end; ++k) {
-        const double vn = rows[k].NormalVelocity(solver_);
-        target[k] = vn < -params_.collision_threshold ? -rows[k].restitution * vn : 0.0;
-        j[k] = 0.0;
-      }
-      for (int it = 0; it < params_.iterations; ++it) {
-        double worst = 0.0;
-        for (size_t k = begin; k < end; ++k) {
-          ContactRow& row = rows[k];
-          const double next = std::max(0.0, j[k] + (target[k] - row.NormalVelocity(solver_)) * row.mass_n);
-          const double d = next - j[k];
-          j[k] = next;
-          row.Apply(d * row.n, solver_);
-          worst = std::max(worst, std::abs(d) * row.k_n);
-        }
-        if (worst < params_.velocity_tolerance) break;
-      }
-      // Coulomb friction of the collision: stop the sliding if mu j allows it
-      for (size_t k = begin; k < end; ++k) {
-        ContactRow& row = rows[k];
-        row.lambda_n += j[k];
-        if (j[k] <= 0.0 || row.friction <= 0.0) continue;
-        Vec3 vt = row.FrictionVelocity(solver_);
-        vt -= row.n * row.n.dot(vt);
-        const double speed_t = vt.norm();
-        if (speed_t <= 1e-12) continue;
-        const Vec3 t = vt / speed_t;
-        const double jt = std::min(speed_t / FrictionInverseMass(row, t, solver_), row.friction * j[k]);
-        row.ApplyFriction(-jt * t, solver_);
-        row.lambda_t1 -= jt * t.dot(row.t1);
-        row.lambda_t2 -= jt * t.dot(row.t2);
-      }
-    }
-    if (!any) break;
-  }
-  return pass;
 }
 
 void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target, bool joints) {
@@ -177,20 +109,23 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
 
 void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
   GroupNormalBlocks(rows, &ContactRow::n, &blocks_);
-  for (NormalBlock& m : blocks_) {
-    if (m.count < 2) continue;
-    const ContactRow& r0 = rows[m.first];
-    NormalBlockPoint points[kMaxNormalBlock];
-    bool one_normal = true;
-    for (int i = 0; i < m.count; ++i) {
-      const ContactRow& row = rows[m.first + i];
-      const AngularResponse& r = responses_[m.first + i];
-      one_normal = one_normal && row.n.dot(r0.n) >= 1.0 - 1e-9;
-      points[i] = {row.ra, row.ra.cross(row.n), row.rb.cross(row.n), r.a_n, r.b_n};
+  runner_->For(static_cast<int>(blocks_.size()), kBlockGrain, [&](int begin, int end, int /*worker*/) {
+    for (int b = begin; b < end; ++b) {
+      NormalBlock& m = blocks_[b];
+      if (m.count < 2) continue;
+      const ContactRow& r0 = rows[m.first];
+      NormalBlockPoint points[kMaxNormalBlock];
+      bool one_normal = true;
+      for (int i = 0; i < m.count; ++i) {
+        const ContactRow& row = rows[m.first + i];
+        const AngularResponse& r = responses_[m.first + i];
+        one_normal = one_normal && row.n.dot(r0.n) >= 1.0 - 1e-9;
+        points[i] = {row.ra, row.ra.cross(row.n), row.rb.cross(row.n), r.a_n, r.b_n};
+      }
+      const double k_lin = solver_[r0.a].inv_mass + solver_[r0.b].inv_mass;
+      m.block = one_normal && InvertNormalBlock(points, m.count, k_lin, r0.t1, r0.t2, &m.inv_k);
     }
-    const double k_lin = solver_[r0.a].inv_mass + solver_[r0.b].inv_mass;
-    m.block = one_normal && InvertNormalBlock(points, m.count, k_lin, r0.t1, r0.t2, &m.inv_k);
-  }
+  });
 }
 
 bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<ContactRow>& rows,
@@ -204,7 +139,7 @@ bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<Cont
   return true;
 }
 
-double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
+double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& rows) {
   // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
   // (the same sums as SolverBody::ApplyImpulse)
   // at lever arms ra, rb
@@ -231,38 +166,65 @@ double ImpulseMethod::Sweep(std::vector<ContactRow>& rows) {
     return std::abs(dn) * row.k_n;
   };
   double worst = 0.0;  // largest change of a relative velocity, m/s
-  for (const NormalBlock& m : blocks_) {
-    // friction first, limited by the normal impulse of the last sweep
-    for (int k = m.first; k < m.first + m.count; ++k) {
-      ContactRow& row = rows[k];
-      const AngularResponse& r = responses_[k];
-      const Vec3 vrel = row.FrictionVelocity(solver_);
-      const double old1 = row.lambda_t1, old2 = row.lambda_t2;
-      double l1 = old1, l2 = old2;
-      SlipFrictionStep(row.friction * row.lambda_n, row.t1.dot(vrel), row.t2.dot(vrel), row.mass_t1, row.mass_t2,
-                       row.k_t12, &l1, &l2);
-      row.lambda_t1 = l1;
-      row.lambda_t2 = l2;
-      const double d1 = l1 - old1, d2 = l2 - old2;
-      const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
-      apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, row.fa, row.fb);
-      worst = std::max(worst, dJt.norm() * row.k_n);
+  // friction first, limited by the normal impulse of the last sweep
+  for (int k = m.first; k < m.first + m.count; ++k) {
+    ContactRow& row = rows[k];
+    const AngularResponse& r = responses_[k];
+    const Vec3 vrel = row.FrictionVelocity(solver_);
+    const double old1 = row.lambda_t1, old2 = row.lambda_t2;
+    double l1 = old1, l2 = old2;
+    SlipFrictionStep(row.friction * row.lambda_n, row.t1.dot(vrel), row.t2.dot(vrel), row.mass_t1, row.mass_t2,
+                     row.k_t12, &l1, &l2);
+    row.lambda_t1 = l1;
+    row.lambda_t2 = l2;
+    const double d1 = l1 - old1, d2 = l2 - old2;
+    const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
+    apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, row.fa, row.fb);
+    worst = std::max(worst, dJt.norm() * row.k_n);
+  }
+  // then the normal rows: together where the block keeps every impulse >= 0
+  Eigen::Vector4d step;
+  if (m.block && NormalBlockStep(m, rows, &step)) {
+    for (int i = 0; i < m.count; ++i) {
+      worst = std::max(worst, normal(rows[m.first + i], responses_[m.first + i], -step[i]));
     }
-    // then the normal rows: together where the block keeps every impulse >= 0
-    Eigen::Vector4d step;
-    if (m.block && NormalBlockStep(m, rows, &step)) {
-      for (int i = 0; i < m.count; ++i) {
-        worst = std::max(worst, normal(rows[m.first + i], responses_[m.first + i], -step[i]));
-      }
-      continue;
-    }
-    for (int k = m.first; k < m.first + m.count; ++k) {
-      ContactRow& row = rows[k];
-      const double next = std::max(0.0, row.lambda_n - row.NormalVelocity(solver_) * row.mass_n);
-      worst = std::max(worst, normal(row, responses_[k], next - row.lambda_n));
-    }
+    return worst;
+  }
+  for (int k = m.first; k < m.first + m.count; ++k) {
+    ContactRow& row = rows[k];
+    const double next = std::max(0.0, row.lambda_n - row.NormalVelocity(solver_) * row.mass_n);
+    worst = std::max(worst, normal(row, responses_[k], next - row.lambda_n));
   }
   return worst;
+}
+
+void ImpulseMethod::LoadWarmStart(const ContactSet& contacts, double h, std::vector<ContactRow>& rows) {
+  runner_->For(static_cast<int>(rows.size()), kRowGrain, [&](int begin, int end, int /*worker*/) {
+    size_t hint = 0;  // the cache's search hint, this thread's own
+    for (int k = begin; k < end; ++k) {
+      ContactRow& row = rows[k];
+      row.lambda_n = row.lambda_t1 = row.lambda_t2 = 0.0;
+      if (!params_.warm_start) continue;
+      const Contact& c = contacts[k];
+      const std::array<double, 3>* warm = warm_.Find(c, &hint);
+      if (warm == nullptr) continue;
+      // the stored tangent force projected on this step's tangent basis,
+      // kept in the Coulomb disk of the warm normal impulse
+      Vec3 t1f, t2f;
+      PerpendicularBasis(c.normal, &t1f, &t2f);
+      const Vec3 tangent = (*warm)[1] * t1f + (*warm)[2] * t2f;
+      row.lambda_n = h * (*warm)[0];
+      row.lambda_t1 = h * tangent.dot(row.t1);
+      row.lambda_t2 = h * tangent.dot(row.t2);
+      const double norm = std::hypot(row.lambda_t1, row.lambda_t2);
+      const double limit = row.friction * row.lambda_n;
+      if (norm > limit) {
+        const double scale = norm > 0.0 ? limit / norm : 0.0;
+        row.lambda_t1 *= scale;
+        row.lambda_t2 *= scale;
+      }
+    }
+  });
 }
 
 int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
@@ -270,79 +232,35 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
   // Accumulated impulses start from last step's forces times h (or zero);
   // the collision phase's impulses are kept apart (collision_n) so that
   // clamping applies to this phase only.
-  std::vector<double> collision_n(rows.size());
-  std::vector<Vec3> collision_t(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    ContactRow& row = rows[k];
-    collision_n[k] = row.lambda_n;
-    collision_t[k] = row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2;
-    row.lambda_n = row.lambda_t1 = row.lambda_t2 = 0.0;
-    if (!params_.warm_start) continue;
-    const Contact& c = contacts[k];
-    const std::array<double, 3>* warm = warm_.Find(c);
-    if (warm == nullptr) continue;
-    // the stored tangent force projected on this step's tangent basis, kept
-    // in the Coulomb disk of the warm normal impulse
-    Vec3 t1f, t2f;
-    PerpendicularBasis(c.normal, &t1f, &t2f);
-    const Vec3 tangent = (*warm)[1] * t1f + (*warm)[2] * t2f;
-    row.lambda_n = h * (*warm)[0];
-    row.lambda_t1 = h * tangent.dot(row.t1);
-    row.lambda_t2 = h * tangent.dot(row.t2);
-    const double norm = std::hypot(row.lambda_t1, row.lambda_t2);
-    const double limit = row.friction * row.lambda_n;
-    if (norm > limit) {
-      const double scale = norm > 0.0 ? limit / norm : 0.0;
-      row.lambda_t1 *= scale;
-      row.lambda_t2 *= scale;
-    }
-    if (row.fa == row.ra && row.fb == row.rb) {  // one impulse where friction acts at the contact point
-      row.Apply(row.lambda_n * row.n + row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
-    } else {
-      row.Apply(row.lambda_n * row.n, solver_);
-      row.ApplyFriction(row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2, solver_);
-    }
+  const int n = static_cast<int>(rows.size());
+  std::vector<double> collision_n(n);
+  std::vector<Vec3> collision_t(n);
+  for (int k = 0; k < n; ++k) {
+    collision_n[k] = rows[k].lambda_n;
+    collision_t[k] = rows[k].lambda_t1 * rows[k].t1 + rows[k].lambda_t2 * rows[k].t2;
   }
+  LoadWarmStart(contacts, h, rows);
   // The angular velocity change per unit impulse along n, t1, t2 of each
   // row's bodies, I^-1 (r x d) (world), computed once: the sweeps below
   // then do no 3x3 products (as Bullet's angularComponentA/B).
-  responses_.resize(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const ContactRow& row = rows[k];
-    const Mat3& Ia = solver_[row.a].inv_inertia;
-    const Mat3& Ib = solver_[row.b].inv_inertia;
-    AngularResponse& r = responses_[k];
-    r.a_n = Ia * row.ra.cross(row.n);
-    r.a_t1 = Ia * row.fa.cross(row.t1);
-    r.a_t2 = Ia * row.fa.cross(row.t2);
-    r.b_n = Ib * row.rb.cross(row.n);
-    r.b_t1 = Ib * row.fb.cross(row.t1);
-    r.b_t2 = Ib * row.fb.cross(row.t2);
-  }
-  BuildNormalBlocks(rows);
-  // the joint rows' velocity products at the warm-started velocities, the
-  // nearest to the step's end that is known before the sweeps
-  joints_.Build(world, solver_, h);
-  // joints and contacts as two blocks of one Gauss-Seidel iteration
-  // (joint_block.h): the joints solved exactly after every sweep
-  // only where a contact acts on a jointed body, and none on two of one
-  // articulated body (JointVelocityBlock::SelfContact)
-  bool touched = false, self = false;
-  for (const ContactRow& row : rows) {
-    touched = touched || joints_.Jointed(row.a) || joints_.Jointed(row.b);
-    self = self || joints_.SelfContact(row.a, row.b);
-  }
-  const bool interleave = touched && !self;
-  int it = 0;
-  bool converged = false;
-  for (; it < params_.iterations; ++it) {
-    const double worst = std::max(Sweep(rows), interleave ? joints_.Solve(solver_) : 0.0);
-    if (worst < params_.velocity_tolerance) {
-      ++it;
-      converged = true;
-      break;
+  responses_.resize(n);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      const ContactRow& row = rows[k];
+      const Mat3& Ia = solver_[row.a].inv_inertia;
+      const Mat3& Ib = solver_[row.b].inv_inertia;
+      AngularResponse& r = responses_[k];
+      r.a_n = Ia * row.ra.cross(row.n);
+      r.a_t1 = Ia * row.fa.cross(row.t1);
+      r.a_t2 = Ia * row.fa.cross(row.t2);
+      r.b_n = Ib * row.rb.cross(row.n);
+      r.b_t1 = Ib * row.fb.cross(row.t1);
+      r.b_t2 = Ib * row.fb.cross(row.t2);
     }
-  }
+  });
+  BuildNormalBlocks(rows);
+  bool converged = false, interleave = false;
+  const int it = SweepContacts(world, h, rows, &converged, &interleave);
   // jointed components too, where the sweeps stopped short (jointed_contacts.h)
   SolveMassRatios(rows, nullptr, interleave && !converged);
   // the last joint solve with its velocity products taken at the velocities
@@ -351,27 +269,26 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
   // damping and drive rows keep what the sweeps' joint solves applied
   joints_.Rebuild(world, solver_, h);
   joints_.Solve(solver_);
-  warm_forces_.resize(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const ContactRow& row = rows[k];
-    Vec3 t1f, t2f;
-    PerpendicularBasis(contacts[k].normal, &t1f, &t2f);
-    const Vec3 tangent = (row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2) / h;
-    warm_forces_[k] = {row.lambda_n / h, tangent.dot(t1f), tangent.dot(t2f)};
-  }
+  warm_forces_.resize(n);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      ContactRow& row = rows[k];
+      Vec3 t1f, t2f;
+      PerpendicularBasis(contacts[k].normal, &t1f, &t2f);
+      const Vec3 tangent = (row.lambda_t1 * row.t1 + row.lambda_t2 * row.t2) / h;
+      warm_forces_[k] = {row.lambda_n / h, tangent.dot(t1f), tangent.dot(t2f)};
+      row.lambda_n += collision_n[k];
+      row.lambda_t1 += collision_t[k].dot(row.t1);
+      row.lambda_t2 += collision_t[k].dot(row.t2);
+    }
+  });
   warm_.StoreFrame(contacts, warm_forces_);  // keeps the points with a normal force
-  for (size_t k = 0; k < rows.size(); ++k) {
-    rows[k].lambda_n += collision_n[k];
-    const Vec3 t = collision_t[k];
-    rows[k].lambda_t1 += t.dot(rows[k].t1);
-    rows[k].lambda_t2 += t.dot(rows[k].t2);
-  }
   return it;
 }
 
 std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<RigidBody>& bodies,
                                                               const ContactSet& contacts, CollisionDetector& detector,
-                                                              double h) const {
+                                                              double h) {
   const double margin = params_.slop;
   // the pairs in contact at the sub-step's start, with their deepest point
   std::map<std::pair<int, int>, double> touching;
@@ -379,29 +296,39 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
     auto [it, fresh] = touching.insert({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth});
     if (!fresh) it->second = std::max(it->second, c.depth);
   }
-  std::vector<Impact> impacts;
-  ContactSet scratch;
-  for (const BodyPair& p : detector.pairs()) {
-    // A touching pair's contact rows hold only the points found at the
-    // start: a box struck while resting on one corner turns another corner
-    // into the ground (a 0.1 kg box under a falling 3 kg sphere went 45 mm
-    // deep in one step). It is an impact when any point goes a margin
-    // deeper than the pair started, and cannot be when the pair's motion
-    // could not close a margin in h.
-    const auto was = touching.find(p);
-    const bool apart = was == touching.end();
-    if (!apart && ClosingSpeedBound(bodies[p.first], bodies[p.second], h) * h <= margin) continue;
-    const double start = apart ? 0.0 : std::max(0.0, was->second);
-    // the search stops at touching, or half a margin past a touching pair's start
-    const double target = apart ? 0.0 : start + 0.5 * margin;
-    scratch.clear();
-    Collide(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
-    for (const Contact& c : scratch) {
-      if (c.depth > start + margin) {
-        impacts.push_back({p.first, p.second, target});
-        break;
+  // each pair writes its own slot, gathered in pair order below
+  const std::vector<BodyPair>& pairs = detector.pairs();
+  const int n = static_cast<int>(pairs.size());
+  impact_depth_.assign(n, std::numeric_limits<double>::quiet_NaN());
+  impact_scratch_.resize(runner_->threads());
+  runner_->For(n, kPairGrain, [&](int begin, int end, int worker) {
+    ContactSet& scratch = impact_scratch_[worker];
+    for (int i = begin; i < end; ++i) {
+      const BodyPair& p = pairs[i];
+      // A touching pair's contact rows hold only the points found at the
+      // start: a box struck while resting on one corner turns another corner
+      // into the ground (a 0.1 kg box under a falling 3 kg sphere went 45 mm
+      // deep in one step). It is an impact when any point goes a margin
+      // deeper than the pair started, and cannot be when the pair's motion
+      // could not close a margin in h.
+      const auto was = touching.find(p);
+      const bool apart = was == touching.end();
+      if (!apart && ClosingSpeedBound(bodies[p.first], bodies[p.second], h) * h <= margin) continue;
+      const double start = apart ? 0.0 : std::max(0.0, was->second);
+      scratch.clear();
+      Collide(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
+      for (const Contact& c : scratch) {
+        if (c.depth > start + margin) {
+          // the search stops at touching, or half a margin past a touching pair's start
+          impact_depth_[i] = apart ? 0.0 : start + 0.5 * margin;
+          break;
+        }
       }
     }
+  });
+  std::vector<Impact> impacts;
+  for (int i = 0; i < n; ++i) {
+    if (!std::isnan(impact_depth_[i])) impacts.push_back({pairs[i].first, pairs[i].second, impact_depth_[i]});
   }
   return impacts;
 }
@@ -447,8 +374,35 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
                         [&](ContactSet* out) { return StepOnce(world, detector, out); }, contacts_out);
 }
 
+void ImpulseMethod::CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const {
+  to->resize(from.size());
+  runner_->For(static_cast<int>(from.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+    std::copy(from.begin() + begin, from.begin() + end, to->begin() + begin);
+  });
+}
+
+void ImpulseMethod::MoveBodies(double h, World& world) {
+  auto& bodies = world.bodies();
+  runner_->For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+    for (int i = begin; i < end; ++i) {
+      RigidBody& b = bodies[i];
+      if (b.motion == MotionType::kStatic) continue;
+      const bool touched = solver_[i].dP.squaredNorm() + solver_[i].dL.squaredNorm() > 0.0;
+      // ballistic: v0 h + F/(2m) h^2 with v0 = v - F/m h
+      const Vec3 v = touched || !b.IsDynamic() ? b.LinearVelocity()
+                                               : Vec3(b.LinearVelocity() - 0.5 * h * b.inv_mass * b.force);
+      b.x += v * h;
+      // dynamic bodies turn by the midpoint rule with L held (integrator.h),
+      // which keeps a free body's |L| and energy; exp(w h) drifted 1.5% in 10 s
+      b.q = b.IsDynamic() ? MidpointRotation(b.q, b.L, b.inv_inertia_body, h)
+                          : Quat((QuatFromRotationVector(b.AngularVelocity() * h) * b.q).normalized());
+    }
+  });
+}
+
 StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
+  runner_ = &detector.runner();
   contacts_out->clear();
   const double margin = params_.slop;
   double remaining = world.dt;
@@ -460,50 +414,45 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
   World start_state;
   for (int sub = 0;; ++sub) {
     if (sub > 0) detector.Detect(world, margin, remaining, &contacts);
-    LoadSolverBodies(world, &solver_);
-    rows_.clear();
+    LoadSolverBodies(world, *runner_, &solver_);
+    SetColourRoles(world);
+    const int n = static_cast<int>(contacts.size());
+    rows_.resize(n);
     const bool torsion = ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform;
     if (torsion) PatchFrictionPoints(contacts, &friction_points_);
-    for (size_t k = 0; k < contacts.size(); ++k) {
-      rows_.push_back(MakeContactRow(contacts[k], world, solver_, torsion ? &friction_points_[k] : nullptr));
-    }
+    runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+      for (int k = begin; k < end; ++k) {
+        rows_[k] = MakeContactRow(contacts[k], world, solver_, torsion ? &friction_points_[k] : nullptr);
+      }
+    });
     stats.iterations += CollisionPhase(rows_);
     StoreSolverBodies(solver_, world);
-    start_state.bodies() = world.bodies();
+    CopyBodies(world.bodies(), &start_state.bodies());
 
     IntegrateMomenta(world, remaining);
-    LoadSolverBodies(world, &solver_);
+    LoadSolverBodies(world, *runner_, &solver_);
     stats.iterations += ContactPhase(world, contacts, remaining, rows_);
     StoreSolverBodies(solver_, world);
-
-    auto& bodies = world.bodies();
-    for (size_t i = 0; i < bodies.size(); ++i) {
-      RigidBody& b = bodies[i];
-      if (b.motion == MotionType::kStatic) continue;
-      const bool touched = solver_[i].dP.squaredNorm() + solver_[i].dL.squaredNorm() > 0.0;
-      // ballistic: v0 h + F/(2m) h^2 with v0 = v - F/m h
-      const Vec3 v = touched || !b.IsDynamic() ? b.LinearVelocity()
-                                               : Vec3(b.LinearVelocity() - 0.5 * remaining * b.inv_mass * b.force);
-      b.x += v * remaining;
-      // dynamic bodies turn by the midpoint rule with L held (integrator.h),
-      // which keeps a free body's |L| and energy; exp(w h) drifted 1.5% in 10 s
-      b.q = b.IsDynamic() ? MidpointRotation(b.q, b.L, b.inv_inertia_body, remaining)
-                          : Quat((QuatFromRotationVector(b.AngularVelocity() * remaining) * b.q).normalized());
-    }
-    for (size_t k = 0; k < contacts.size(); ++k) {
-      Contact c = contacts[k];
-      c.normal_value = rows_[k].lambda_n;
-      c.tangent_value = rows_[k].lambda_t1 * rows_[k].t1 + rows_[k].lambda_t2 * rows_[k].t2;
-      contacts_out->push_back(c);
-    }
+    MoveBodies(remaining, world);
+    contacts_out->assign(contacts.begin(), contacts.end());
+    runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+      for (int k = begin; k < end; ++k) {
+        Contact& c = (*contacts_out)[k];
+        c.normal_value = rows_[k].lambda_n;
+        c.tangent_value = rows_[k].lambda_t1 * rows_[k].t1 + rows_[k].lambda_t2 * rows_[k].t2;
+      }
+    });
     if (params_.toi == "off" || sub + 1 >= params_.max_substeps) break;
 
+    auto& bodies = world.bodies();
     const std::vector<Impact> impacts = FindImpacts(bodies, contacts, detector, remaining);
     if (impacts.empty()) break;
     const double t_c = FindImpactTime(start_state, impacts, remaining, &stats.iterations);
     if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
-    bodies = start_state.bodies();
-    for (RigidBody& b : bodies) AdvanceBallistic(b, t_c);
+    CopyBodies(start_state.bodies(), &bodies);
+    runner_->For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+      for (int i = begin; i < end; ++i) AdvanceBallistic(bodies[i], t_c);
+    });
     remaining -= t_c;
     ++stats.substeps;
     contacts_out->clear();

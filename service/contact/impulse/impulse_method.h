@@ -33,12 +33,31 @@
 // joint_solver.h). Penetration left over is removed at the next step's start by a split
 // impulse (pseudo-velocities that move positions, never velocities), so the
 // correction adds no kinetic energy.
+//
+// Threads (impulse_stages.cpp): the passes of steps 2 and 4 and of the split
+// impulse run over the rows' body pairs colour by colour (block_colours.h:
+// two pairs of one colour share no moving body), each pass of one
+// ParallelRunner::Stages call a list of stages (colour_stages.h) with a
+// serial stage after it that decides whether to go on; the joint solves are
+// serial stages too, and the contacts on jointed bodies keep their order
+// after the colours, as lcp's rows on jointed bodies do (row_schedule.h).
+// One thread runs the same stages in the same order, so the state does not
+// depend on the thread count (docs/architecture.md, "Threads"). Within a
+// pass the pairs go colour by colour rather than in contact order once
+// there are 256 of them (impulse_stages.cpp, kMinColouredGroups; fewer keep
+// the contact order): a Newton's cradle, whose pairs alternate two
+// colours, then carries an impact down n balls in about n / 2 collision
+// passes instead of one, and a tall aligned stack can lean
+// (docs/physics.md, "impulse on threads").
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "service/collision/parallel_runner.h"
+#include "service/contact/block_colours.h"
 #include "service/contact/contact_method.h"
 #include "service/contact/contact_row.h"
 #include "service/contact/impulse/impulse_params.h"
@@ -49,6 +68,8 @@
 #include "service/contact/warm_start_cache.h"
 
 namespace contactsim {
+
+class ColourStages;
 
 class ImpulseMethod : public ContactMethod {
  public:
@@ -72,13 +93,39 @@ class ImpulseMethod : public ContactMethod {
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
   int ContactPhase(const World& world, const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
+  // Each contact's warm-start impulses from the cache (or zero), not yet applied.
+  void LoadWarmStart(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
+  // The colouring's view of the bodies (solver_): static and kinematic ones
+  // fixed, jointed ones serial, the rest coloured.
+  void SetColourRoles(const World& world);
+  // Reorders `groups` (runs of rows on one body pair) colour by colour, or
+  // keeps them in order as the overflow when they are few.
+  BlockColours ColourGroups(const std::vector<ContactRow>& rows, std::vector<NormalBlock>* groups) const;
+  // One collision pass over a pair's rows; true when one of them approached.
+  bool CollideGroup(const NormalBlock& g, std::vector<ContactRow>& rows);
+  // The contact phase's warm start (the rows' lambdas onto solver_), the
+  // joints' rows at the warm-started velocities and the sweeps, on the
+  // runner; returns the sweeps done, whether they converged and whether
+  // the joints were solved between them.
+  int SweepContacts(const World& world, double h, std::vector<ContactRow>& rows, bool* converged,
+                    bool* interleave);
+  // The split impulse's sweeps over rows_ toward `target`, on the runner.
+  void SweepPositions(const std::vector<double>& target);
+  // Up to `passes` passes, each appended to a stage list by add_pass, after
+  // prologue's stages (when given), in Stages calls of 1, 2, 4, ... passes
+  // until `done`: the passes after `done` would only make the threads meet
+  // at stages that do nothing (a settled pyramid's collision phase is done
+  // after the first of its 20 passes). The same passes in the same order
+  // as one call.
+  void RunPasses(int passes, const bool& done, const std::function<void(ColourStages&)>& prologue,
+                 const std::function<void(ColourStages&)>& add_pass);
   struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
     Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
   };
-  // One Gauss-Seidel sweep of the contact phase over blocks_: each point's
+  // One Gauss-Seidel update of a block of the contact phase: each point's
   // friction, then the block's normal rows (normal_block.h); returns the
   // largest change of a relative velocity (m/s).
-  double Sweep(std::vector<ContactRow>& rows);
+  double SweepBlock(const NormalBlock& m, std::vector<ContactRow>& rows);
   void BuildNormalBlocks(const std::vector<ContactRow>& rows);
   // The block's normal increments -step, rigid (v_n -> 0); false when a
   // point's impulse would go below 0 (the points are then swept one by one).
@@ -99,12 +146,26 @@ class ImpulseMethod : public ContactMethod {
   // start (`bodies` moved on from there by `h`): pairs that were apart,
   // and touching pairs whose motion could close a margin in h.
   std::vector<Impact> FindImpacts(const std::vector<RigidBody>& bodies, const ContactSet& contacts,
-                                  CollisionDetector& detector, double h) const;
+                                  CollisionDetector& detector, double h);
+  // Moves the bodies over h (step 5), split over the runner's threads.
+  void MoveBodies(double h, World& world);
+  // *to = from, split over the runner's threads (the sub-step's start state).
+  void CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.
   double FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h, int* iterations) const;
 
   ImpulseParams params_;
+  ParallelRunner* runner_ = nullptr;  // the detector's, for the step
   std::vector<SolverBody> solver_;
+  std::vector<ColourRole> roles_;           // per solver body
+  std::vector<NormalBlock> groups_;         // the collision phase's pairs, colour by colour
+  std::vector<double> target_, impulse_;    // per row, the collision phase's
+  std::vector<char> group_hit_;             // per group, in the last collision pass
+  BlockColours colours_;                    // of blocks_ (or groups_), for the passes
+  std::vector<double> block_worst_;         // per block, its largest change in the last pass
+  std::vector<ParallelRunner::Stage> stages_;
+  std::vector<ContactSet> impact_scratch_;  // per worker
+  std::vector<double> impact_depth_;        // per candidate pair: the impact's depth, or NaN
   JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps

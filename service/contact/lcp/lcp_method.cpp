@@ -104,7 +104,7 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   // so do all of them where joints have damping or friction: last step's
   // impulses of a friction row are a worse start than the joints' answer
   if (params_.warm_start) {
-    warm_start_.Load(contacts_, &rows_);
+    warm_start_.Load(contacts_, &rows_, &runner);
     if (!HasJointDynamics(world)) warm_start_.LoadJoints(joint_blocks_, 3 * contacts_.size(), &rows_);
   } else {
     for (size_t k = 3 * contacts_.size(); k < rows_.size(); ++k) rows_[k].lambda = 0.0;
