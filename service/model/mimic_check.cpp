@@ -22,18 +22,6 @@ std::string CoordinateKind(JointType type) {
   }
 }
 
-const char* TypeName(JointType type) {
-  switch (type) {
-    case JointType::kRevolute: return "revolute";
-    case JointType::kContinuous: return "continuous";
-    case JointType::kPrismatic: return "prismatic";
-    case JointType::kFixed: return "fixed";
-    case JointType::kFloating: return "floating";
-    case JointType::kPlanar: return "planar";
-  }
-  return "";
-}
-
 }  // namespace
 
 Status CheckMimics(const SourceMap& where, const ModelDescription& model) {
@@ -51,7 +39,7 @@ Status CheckMimics(const SourceMap& where, const ModelDescription& model) {
     const ModelJoint& master = *it->second;
     const std::string kind = CoordinateKind(j.type);
     if (kind.empty() || kind != CoordinateKind(master.type)) {
-      return Status::InvalidArgument(at + "a " + TypeName(j.type) + " joint cannot mimic the " + TypeName(master.type) +
+      return Status::InvalidArgument(at + "a " + JointTypeName(j.type) + " joint cannot mimic the " + JointTypeName(master.type) +
                                      " joint '" + master.name +
                                      "': a mimic couples two revolute or continuous joints, or two prismatic ones");
     }

@@ -8,18 +8,6 @@
 namespace contactsim::model {
 namespace {
 
-const char* JointTypeName(JointType t) {
-  switch (t) {
-    case JointType::kRevolute: return "revolute";
-    case JointType::kContinuous: return "continuous";
-    case JointType::kPrismatic: return "prismatic";
-    case JointType::kFixed: return "fixed";
-    case JointType::kFloating: return "floating";
-    case JointType::kPlanar: return "planar";
-  }
-  return "unknown";
-}
-
 // Every joint at its zero: 0 for the moving ones, the identity pose for a
 // floating one (x, y, z, qw, qx, qy, qz).
 std::vector<double> ZeroCoordinates(const ModelDescription& d) {

@@ -64,6 +64,19 @@ struct Link {
 
 enum class JointType { kRevolute, kContinuous, kPrismatic, kFixed, kFloating, kPlanar };
 
+// Each joint type's name as URDF spells it, for replies and messages.
+inline const char* JointTypeName(JointType type) {
+  switch (type) {
+    case JointType::kRevolute: return "revolute";
+    case JointType::kContinuous: return "continuous";
+    case JointType::kPrismatic: return "prismatic";
+    case JointType::kFixed: return "fixed";
+    case JointType::kFloating: return "floating";
+    case JointType::kPlanar: return "planar";
+  }
+  return "unknown";
+}
+
 struct JointLimits {
   double lower = 0.0, upper = 0.0;    // rad or m; only for revolute and prismatic
   double effort = 0.0;                // N m or N; 0: none given

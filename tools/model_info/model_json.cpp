@@ -44,18 +44,6 @@ const char* TypeName(GeometryType t) {
   return "";
 }
 
-const char* TypeName(JointType t) {
-  switch (t) {
-    case JointType::kRevolute: return "revolute";
-    case JointType::kContinuous: return "continuous";
-    case JointType::kPrismatic: return "prismatic";
-    case JointType::kFixed: return "fixed";
-    case JointType::kFloating: return "floating";
-    case JointType::kPlanar: return "planar";
-  }
-  return "";
-}
-
 std::string GeometryJson(const std::string& name, const model::Pose& origin, const Geometry& g) {
   std::ostringstream o;
   o << "{\"name\": " << JsonQuote(name) << ", \"type\": " << JsonQuote(TypeName(g.type))
@@ -99,7 +87,7 @@ std::string LinkJson(const model::Link& l) {
 
 std::string JointJson(const model::ModelJoint& j) {
   std::ostringstream o;
-  o << "{\"name\": " << JsonQuote(j.name) << ", \"type\": " << JsonQuote(TypeName(j.type))
+  o << "{\"name\": " << JsonQuote(j.name) << ", \"type\": " << JsonQuote(JointTypeName(j.type))
     << ", \"parent\": " << JsonQuote(j.parent)
     << ", \"child\": " << JsonQuote(j.child) << ", \"origin\": " << PoseJson(j.origin)
     << ", \"axis\": " << Array({j.axis.x(), j.axis.y(), j.axis.z()})
