@@ -118,7 +118,7 @@ FUZZ_BUILD = $(ASAN_BUILD)
 # exercise in the server runs under the sanitizers in the other suites. The
 # soak runs 1,000 steps there (3,000 steps took 253 s).
 ASAN_PYTEST_SKIP = --ignore=tests/python/test_iiwa_driver.py --ignore=tests/python/test_panda_driver.py \
-	--ignore=tests/python/test_wsg_driver.py \
+	--ignore=tests/python/test_wsg_driver.py --ignore=tests/python/test_driver_replay.py \
 	--ignore=tests/python/test_viewer_models.py --ignore=tests/python/test_viewer_surfaces.py \
 	--deselect=tests/python/test_joint_channels.py::test_iiwa_tracks_a_joint_trajectory_at_1khz_in_lockstep \
 	--deselect=tests/python/test_models.py::test_passive_iiwa_follows_pinocchio
