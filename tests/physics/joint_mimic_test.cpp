@@ -10,19 +10,10 @@
 #include "service/physics/body_settings.h"
 #include "service/physics/joint.h"
 #include "service/physics/world.h"
+#include "tests/contact/test_bodies.h"
 
 namespace contactsim {
 namespace {
-
-BodyId AddSphere(World& world, const Vec3& p) {
-  BodySettings s;
-  s.shape = ShapeType::kSphere;
-  s.radius = 0.1;
-  s.position = p;
-  RigidBody b;
-  EXPECT_TRUE(CreateBody(s, Material{}, &b).ok());
-  return world.AddBody(b);
-}
 
 JointId Add(World& world, JointKind kind, BodyId a, const Vec3& at) {
   JointSettings s;
@@ -40,11 +31,11 @@ struct Hand {
   World world;
   JointId h1 = 0, h2 = 0, h3 = 0, slider = 0, ball = 0;
   Hand() {
-    h1 = Add(world, JointKind::kHinge, AddSphere(world, Vec3(0, 0, 0)), Vec3(0, 0, 0));
-    h2 = Add(world, JointKind::kHinge, AddSphere(world, Vec3(1, 0, 0)), Vec3(1, 0, 0));
-    h3 = Add(world, JointKind::kHinge, AddSphere(world, Vec3(2, 0, 0)), Vec3(2, 0, 0));
-    slider = Add(world, JointKind::kPrismatic, AddSphere(world, Vec3(3, 0, 0)), Vec3(3, 0, 0));
-    ball = Add(world, JointKind::kBall, AddSphere(world, Vec3(4, 0, 0)), Vec3(4, 0, 0));
+    h1 = Add(world, JointKind::kHinge, testing::AddSphere(world, 0.1, Vec3(0, 0, 0), 0.5), Vec3(0, 0, 0));
+    h2 = Add(world, JointKind::kHinge, testing::AddSphere(world, 0.1, Vec3(1, 0, 0), 0.5), Vec3(1, 0, 0));
+    h3 = Add(world, JointKind::kHinge, testing::AddSphere(world, 0.1, Vec3(2, 0, 0), 0.5), Vec3(2, 0, 0));
+    slider = Add(world, JointKind::kPrismatic, testing::AddSphere(world, 0.1, Vec3(3, 0, 0), 0.5), Vec3(3, 0, 0));
+    ball = Add(world, JointKind::kBall, testing::AddSphere(world, 0.1, Vec3(4, 0, 0), 0.5), Vec3(4, 0, 0));
   }
 };
 
