@@ -7,6 +7,11 @@ SANITIZE   ?= OFF
 # the project's version, as CMakeLists.txt declares it
 VERSION    := $(shell grep -m1 -o 'contactsim VERSION [0-9.]*' CMakeLists.txt | cut -d' ' -f3)
 FUZZ       ?= OFF
+# Unity build: CMake compiles each layer's sources eight to a unit, so Eigen
+# and gtest are parsed once a unit instead of once a file; a cold build
+# takes about half the time. UNITY=OFF compiles one file a unit (quicker
+# rebuilds after editing one file).
+UNITY      ?= ON
 FUZZ_RUNS  ?= 20000
 FUZZ_CI_SECONDS ?= 30
 FUZZ_SECONDS ?= 600
@@ -29,7 +34,7 @@ deps:
 
 $(BUILD)/CMakeCache.txt:
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCONTACTSIM_SANITIZE=$(SANITIZE) \
-	  -DCONTACTSIM_FUZZ=$(FUZZ) $(CMAKE_CXX) $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache,)
+	  -DCONTACTSIM_FUZZ=$(FUZZ) -DCMAKE_UNITY_BUILD=$(UNITY) $(CMAKE_CXX) $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache,)
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)

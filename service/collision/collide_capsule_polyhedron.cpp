@@ -38,20 +38,20 @@ namespace {
 // Segments shorter than this (m) are a point (a capsule of half length 0).
 constexpr double kPointLength = 1e-12;
 // A clipped part shorter than this (m) gives one contact, not two.
-constexpr double kDistinctLength = 1e-6;
+constexpr double kDistinctClipLength = 1e-6;
 // The normal of a closest point is a face's normal when they agree to this
 // (1 - cos): the closest point then lies inside the face and the normal is the
 // face normal to round-off; at an edge or vertex it is strictly between.
 constexpr double kFaceCos = 1e-9;
 // Depths (m) closer than this are the same (round-off of ~1 m coordinates).
-constexpr double kDepthTol = 1e-9;
+constexpr double kSameDepthTol = 1e-9;
 // Golden-section iterations on [0, 1]: 0.618^80 ~ 2e-17 of the axis length.
 constexpr int kGoldenIterations = 80;
 
 // Tags of the feature-id hash, so that ids of different kinds never mix.
-constexpr uint32_t kTagFace = 0xCAFAu;
-constexpr uint32_t kTagEdge = 0xCAEDu;
-constexpr uint32_t kTagPoint = 0xCA90u;
+constexpr uint32_t kCapsuleTagFace = 0xCAFAu;
+constexpr uint32_t kCapsuleTagEdge = 0xCAEDu;
+constexpr uint32_t kCapsuleTagPoint = 0xCA90u;
 
 // Minimiser of a convex function on [0, 1] by golden-section search.
 double MinimiseConvex(const std::function<double(double)>& f) {
@@ -128,7 +128,7 @@ SegmentAxis SegmentSeparatingAxis(const Vec3& p0, const Vec3& p1, const PosedPol
 
 // Both ends of S clipped to the prism over face f of B (Sutherland-Hodgman on
 // a segment: the parameter interval inside every side plane); false when
-// nothing of S is over the face. An end within kDepthTol of a side plane is on
+// nothing of S is over the face. An end within kSameDepthTol of a side plane is on
 // it, as in the polygon clip (polyhedron_manifold.cpp): a capsule lying along
 // a face's edge has both ends in that side plane up to round-off, and cutting
 // it there would put its contact at an arbitrary point of the axis.
@@ -143,7 +143,7 @@ bool ClipSegmentToFace(const Vec3& p0, const Vec3& p1, const PosedPolyhedron& b,
     // edge x normal points out of a counter-clockwise face
     const Vec3 side = (v1 - v0).cross(n).normalized();
     const double d0 = side.dot(p0 - v0), d1 = side.dot(p1 - v0);  // m, <= 0 inside
-    const bool in0 = d0 <= kDepthTol, in1 = d1 <= kDepthTol;
+    const bool in0 = d0 <= kSameDepthTol, in1 = d1 <= kSameDepthTol;
     if (!in0 && !in1) return false;
     if (in0 == in1) continue;
     const double t = std::clamp(d0 / (d0 - d1), 0.0, 1.0);
@@ -167,13 +167,13 @@ double AppendCapsuleFaceContacts(const Vec3& p0, const Vec3& p1, double r, const
   double deepest = -std::numeric_limits<double>::infinity();
   if (!ClipSegmentToFace(p0, p1, b, f, &t0, &t1)) return deepest;
   const Vec3& n = b.normals[f];
-  const bool single = (t1 - t0) * (p1 - p0).norm() < kDistinctLength;
+  const bool single = (t1 - t0) * (p1 - p0).norm() < kDistinctClipLength;
   const double ends[2] = {t0, t1};
   for (int k = 0; k < (single ? 1 : 2); ++k) {
     const Vec3 c = p0 + ends[k] * (p1 - p0);
     const double height = n.dot(c) - b.offsets[f];
     if (r - height <= -margin) continue;
-    AppendSphereContact(c, r, height, n, FeatureId({kTagFace, static_cast<uint32_t>(f), static_cast<uint32_t>(k)}),
+    AppendSphereContact(c, r, height, n, FeatureId({kCapsuleTagFace, static_cast<uint32_t>(f), static_cast<uint32_t>(k)}),
                          margin, out);
     deepest = std::max(deepest, r - height);
   }
@@ -209,11 +209,11 @@ void CollideSegmentPolyhedron(const Vec3& p0, const Vec3& p1, double r, const Po
       // the deepest point of S along the face normal
       face = axis.face;
       c = m.dot(p0) <= m.dot(p1) ? p0 : p1;
-      id = FeatureId({kTagFace, static_cast<uint32_t>(face), 2u});
+      id = FeatureId({kCapsuleTagFace, static_cast<uint32_t>(face), 2u});
     } else {
       const auto& e = poly.topology->edges[axis.edge];
       c = ClosestPointsOfSegments(p0, p1, poly.vertices[e[0]], poly.vertices[e[1]]).c1;
-      id = FeatureId({kTagEdge, static_cast<uint32_t>(axis.edge)});
+      id = FeatureId({kCapsuleTagEdge, static_cast<uint32_t>(axis.edge)});
     }
   } else {
     const auto query = [&](const Vec3& p) {
@@ -224,7 +224,7 @@ void CollideSegmentPolyhedron(const Vec3& p0, const Vec3& p1, double r, const Po
     const SurfaceQuery q = query(c);
     distance = q.distance;
     m = q.normal;
-    id = FeatureId({kTagPoint, static_cast<uint32_t>(q.feature)});
+    id = FeatureId({kCapsuleTagPoint, static_cast<uint32_t>(q.feature)});
     int best = 0;
     for (int f = 1; f < static_cast<int>(poly.normals.size()); ++f) {
       if (poly.normals[f].dot(m) > poly.normals[best].dot(m)) best = f;
@@ -238,7 +238,7 @@ void CollideSegmentPolyhedron(const Vec3& p0, const Vec3& p1, double r, const Po
   if (face >= 0) deepest = AppendCapsuleFaceContacts(p0, p1, r, poly, face, margin, out);
   // the exact point, unless a face contact already has its depth (it can lie
   // outside the face when S pokes out of a side of B)
-  if (deepest < depth - kDepthTol) AppendSphereContact(c, r, distance, m, id, margin, out);
+  if (deepest < depth - kSameDepthTol) AppendSphereContact(c, r, distance, m, id, margin, out);
 }
 
 }  // namespace contactsim

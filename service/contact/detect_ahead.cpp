@@ -11,7 +11,7 @@ namespace contactsim {
 namespace {
 
 // pairs a thread bounds at a time
-constexpr int kPairGrain = 512;
+constexpr int kAheadPairGrain = 512;
 
 }  // namespace
 
@@ -21,11 +21,11 @@ void DetectAhead(const World& world, CollisionDetector& detector, double margin,
   const std::vector<BodyPair>& pairs = detector.pairs();
   // each body's terms of the bound once, then each pair's bound
   std::vector<BodyMotion> motion(bodies.size());
-  detector.runner().For(static_cast<int>(bodies.size()), kPairGrain, [&](int begin, int end, int) {
+  detector.runner().For(static_cast<int>(bodies.size()), kAheadPairGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) motion[i] = MotionOf(bodies[i]);
   });
   std::vector<double> pair_reach(pairs.size());
-  detector.runner().For(static_cast<int>(pairs.size()), kPairGrain, [&](int begin, int end, int) {
+  detector.runner().For(static_cast<int>(pairs.size()), kAheadPairGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       pair_reach[k] = ClosingSpeedBound(motion[pairs[k].first], motion[pairs[k].second], dt) * dt;
     }

@@ -5,7 +5,7 @@ namespace contactsim {
 namespace {
 
 // bodies a thread loads at a time
-constexpr int kLoadGrain = 256;
+constexpr int kSolverBodyGrain = 256;
 
 void LoadRange(const World& world, int begin, int end, std::vector<SolverBody>* bodies) {
   const auto& src = world.bodies();
@@ -30,7 +30,7 @@ void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies) {
 
 void LoadSolverBodies(const World& world, ParallelRunner& runner, std::vector<SolverBody>* bodies) {
   bodies->resize(world.bodies().size());
-  runner.For(static_cast<int>(bodies->size()), kLoadGrain,
+  runner.For(static_cast<int>(bodies->size()), kSolverBodyGrain,
              [&](int begin, int end, int) { LoadRange(world, begin, end, bodies); });
 }
 

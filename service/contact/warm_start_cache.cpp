@@ -8,7 +8,7 @@ namespace contactsim {
 namespace {
 
 // contacts a thread looks up at a time
-constexpr int kLoadGrain = 256;
+constexpr int kWarmStartGrain = 256;
 
 // The friction impulse of rows t1, t2 (directions lin_b) in the contact
 // frame's tangents t1f, t2f (PerpendicularBasis of the normal) and back:
@@ -51,7 +51,7 @@ void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>
   if (runner == nullptr) {
     load(0, n, 0);
   } else {
-    runner->For(n, kLoadGrain, load);
+    runner->For(n, kWarmStartGrain, load);
   }
 }
 

@@ -9,7 +9,6 @@
 namespace contactsim::model {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector4d Wxyz(const Quat& q) { return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()); }
 

@@ -7,10 +7,6 @@
 namespace contactsim {
 namespace {
 
-// Largest size or speed we accept; beyond it double precision and the
-// broadphase stop being meaningful.
-constexpr double kMaxLength = 1e6;  // m
-
 Status MakePlane(const BodySettings& s, Shape* shape) {
   Status st;
   if (!(st = CheckFinite("plane_normal", s.plane_normal)).ok()) return st;

@@ -6,10 +6,6 @@
 namespace contactsim {
 namespace {
 
-// Largest size we accept; beyond it double precision and the broadphase
-// stop being meaningful.
-constexpr double kMaxLength = 1e6;  // m
-
 Status CheckLength(const std::string& field, double v, bool zero_ok) {
   Status st = zero_ok ? CheckNonNegative(field, v) : CheckPositive(field, v);
   if (!st.ok()) return st;

@@ -10,6 +10,10 @@
 
 namespace contactsim {
 
+// Largest length, position or speed a command may carry; beyond it double
+// precision and the broadphase stop being meaningful.
+constexpr double kMaxLength = 1e6;  // m (m/s for speeds)
+
 std::string FormatValue(double v);
 std::string FormatValue(const Vec3& v);
 

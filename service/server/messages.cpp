@@ -1,14 +1,6 @@
 #include "service/server/messages.h"
 
 namespace contactsim {
-namespace {
-
-void Copy3(const Vec3& v, double out[3]) {
-  for (int i = 0; i < 3; ++i) out[i] = v[i];
-}
-
-}  // namespace
-
 state_t MakeStateMessage(const World& world) {
   state_t msg;
   msg.time = world.time;

@@ -12,6 +12,11 @@
 
 namespace contactsim {
 
+// A vector into a message's double[3] field.
+inline void Copy3(const Vec3& v, double out[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = v[i];
+}
+
 state_t MakeStateMessage(const World& world);
 contacts_t MakeContactsMessage(const World& world, const ContactSet& contacts, const ContactMethod& method);
 // The world's models with their link and joint names and ids (MODEL_INFO).

@@ -1,13 +1,10 @@
 #include "service/server/sensor_messages.h"
 
 #include "service/contact/contact_wrench.h"
+#include "service/server/messages.h"
 
 namespace contactsim {
 namespace {
-
-void Copy3(const Vec3& v, double out[3]) {
-  for (int k = 0; k < 3; ++k) out[k] = v[k];
-}
 
 range_reading_t ReadRange(const World& world, const RangeSensor& s, ParallelRunner* runner) {
   range_reading_t r;

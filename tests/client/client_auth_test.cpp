@@ -20,13 +20,13 @@
 #include "contactsim/client.h"
 #include "contactsim/controller.h"
 #include "contactsim/signature.h"
+#include "test_key.h"
 
 namespace contactsim {
 namespace {
 
 using namespace std::chrono_literals;
 
-const std::string kKey = "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef";
 constexpr auto kWait = 5000ms;  // generous: two cores shared with builds
 
 // Its own port (9800-9899: the C++ integration tests use 7800-8799, the
@@ -42,7 +42,7 @@ class SigningPeer {
  public:
   SigningPeer() : url_(UniqueUrl(count_)), prefix_("CLIENTAUTH" + std::to_string(::getpid()) + "_" +
                                                     std::to_string(count_++)),
-                  lcm_(url_), signer_(kKey) {
+                  lcm_(url_), signer_(testing::kTestKey) {
     lcm_.subscribeFunction(prefix_ + "_SCENE_CMD", &OnScene, this);
     lcm_.subscribeFunction(prefix_ + "_INPUT", &OnInput, this);
     thread_ = std::thread([this] {
@@ -94,7 +94,7 @@ class SigningPeer {
   int Admit(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Msg* msg) {
     const int size = static_cast<int>(rbuf->data_size);
     if (!require_signed) return msg->decode(rbuf->data, 0, UnsignedSize(rbuf->data, size));
-    const Verified v = VerifySignature(kKey, channel, rbuf->data, size);
+    const Verified v = VerifySignature(testing::kTestKey, channel, rbuf->data, size);
     std::string why = v.error;
     if (v.ok && msg->decode(rbuf->data, 0, v.payload_size) >= 0 &&
         replay_.Accept(msg->client_id, v.seq, WallClockNanoseconds(), kDefaultAuthWindowSeconds, &why)) {
@@ -137,7 +137,7 @@ class ClientAuthTest : public ::testing::Test {
  protected:
   void SetUp() override {
     key_file_ = ::testing::TempDir() + "contactsim-client-auth-" + std::to_string(::getpid()) + ".key";
-    std::ofstream(key_file_) << kKey << "\n";
+    std::ofstream(key_file_) << testing::kTestKey << "\n";
   }
   void TearDown() override { std::remove(key_file_.c_str()); }
   std::string key_file_;

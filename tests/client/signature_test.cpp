@@ -14,10 +14,11 @@
 #include <thread>
 #include <vector>
 
+#include "test_key.h"
+
 namespace contactsim {
 namespace {
 
-const std::string kKey = "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef";
 const std::string kChannel = "CONTACTSIM_BODY_CMD";
 const std::string kPayload = "contactsim test payload";
 constexpr uint64_t kSeq = 1764633600000000000ULL;  // 2025-12-02T00:00:00Z
@@ -34,19 +35,19 @@ std::string Hex(const std::string& bytes) {
   return out;
 }
 
-Verified Verify(const std::string& message, const std::string& key = kKey, const std::string& channel = kChannel) {
+Verified Verify(const std::string& message, const std::string& key = testing::kTestKey, const std::string& channel = kChannel) {
   return VerifySignature(key, channel, message.data(), static_cast<int>(message.size()));
 }
 
 std::string SignedAt(uint64_t seq) {
-  return kPayload + SignatureTrailer(kKey, kChannel, kPayload.data(), static_cast<int>(kPayload.size()), seq);
+  return kPayload + SignatureTrailer(testing::kTestKey, kChannel, kPayload.data(), static_cast<int>(kPayload.size()), seq);
 }
 
 // Verifies the bytes of the protocol's test vector, which the Python client's
 // tests pin too (tests/python/test_auth_unit.py), so both sign identically.
 TEST(SignatureTest, TrailerMatchesThePinnedTestVector) {
   const std::string trailer =
-      SignatureTrailer(kKey, kChannel, kPayload.data(), static_cast<int>(kPayload.size()), kSeq);
+      SignatureTrailer(testing::kTestKey, kChannel, kPayload.data(), static_cast<int>(kPayload.size()), kSeq);
   EXPECT_EQ(Hex(trailer),
             "43534731"                                                           // "CSG1"
             "0000b8e6e83c7d18"                                                   // seq, little-endian
@@ -56,7 +57,7 @@ TEST(SignatureTest, TrailerMatchesThePinnedTestVector) {
 
 // Verifies that a signed message verifies and yields its payload size and seq.
 TEST(SignatureTest, SignedMessageRoundTrips) {
-  Signer signer(kKey);
+  Signer signer(testing::kTestKey);
   const std::string message = signer.Sign(kChannel, kPayload.data(), static_cast<int>(kPayload.size()));
   ASSERT_EQ(message.size(), kPayload.size() + kSignatureTrailerBytes);
   EXPECT_EQ(message.substr(0, kPayload.size()), kPayload);
@@ -68,7 +69,7 @@ TEST(SignatureTest, SignedMessageRoundTrips) {
 
 // Verifies that an empty payload can be signed and verified.
 TEST(SignatureTest, EmptyPayloadRoundTrips) {
-  Signer signer(kKey);
+  Signer signer(testing::kTestKey);
   const std::string message = signer.Sign(kChannel, "", 0);
   const Verified v = Verify(message);
   ASSERT_TRUE(v.ok) << v.error;
@@ -84,7 +85,7 @@ TEST(SignatureTest, WrongKeyIsForged) {
 
 // Verifies that a message signed for one channel is refused on another.
 TEST(SignatureTest, WrongChannelIsForged) {
-  const Verified v = Verify(SignedAt(kSeq), kKey, "CONTACTSIM_SCENE_CMD");
+  const Verified v = Verify(SignedAt(kSeq), testing::kTestKey, "CONTACTSIM_SCENE_CMD");
   EXPECT_FALSE(v.ok);
   EXPECT_EQ(v.error.rfind("forged:", 0), 0u) << v.error;
 }
@@ -94,7 +95,7 @@ TEST(SignatureTest, WrongChannelIsForged) {
 TEST(SignatureTest, ChannelAndPayloadBoundaryIsSigned) {
   const std::string message = SignedAt(kSeq);
   const std::string moved = message.substr(1);  // "ontactsim ..." on channel "..._CMDc"
-  EXPECT_FALSE(Verify(moved, kKey, kChannel + "c").ok);
+  EXPECT_FALSE(Verify(moved, testing::kTestKey, kChannel + "c").ok);
 }
 
 // Verifies that flipping any one bit of the payload, the seq or the mac
@@ -138,7 +139,7 @@ TEST(SignatureTest, UnsignedSizeStripsOnlyATrailer) {
 // Verifies that seqs increase strictly even when signed faster than the
 // clock ticks and from several threads.
 TEST(SignatureTest, SignerSeqsIncreaseStrictly) {
-  Signer signer(kKey);
+  Signer signer(testing::kTestKey);
   std::vector<std::vector<uint64_t>> seqs(4);
   std::vector<std::thread> threads;
   for (auto& out : seqs) {
@@ -163,12 +164,12 @@ TEST(SignatureTest, RestartedSignerContinuesAboveTheOldSeq) {
   std::string why;
   uint64_t old_last = 0;
   {
-    Signer before(kKey);
+    Signer before(testing::kTestKey);
     for (int i = 0; i < 100; ++i) before.Sign(kChannel, "x", 1);
     old_last = before.last_seq();
     ASSERT_TRUE(window.Accept("client", old_last, WallClockNanoseconds(), kWindow, &why)) << why;
   }
-  Signer after(kKey);
+  Signer after(testing::kTestKey);
   const Verified v = Verify(after.Sign(kChannel, "x", 1));
   EXPECT_GT(v.seq, old_last);
   EXPECT_TRUE(window.Accept("client", v.seq, WallClockNanoseconds(), kWindow, &why)) << why;
@@ -267,8 +268,8 @@ class AuthKeyFileTest : public ::testing::Test {
 // Verifies that a key file's trailing whitespace is not part of the key.
 TEST_F(AuthKeyFileTest, TrailingWhitespaceIsStripped) {
   std::string key, error;
-  ASSERT_TRUE(LoadAuthKey(Write(kKey + " \r\n\n"), &key, &error)) << error;
-  EXPECT_EQ(key, kKey);
+  ASSERT_TRUE(LoadAuthKey(Write(testing::kTestKey + " \r\n\n"), &key, &error)) << error;
+  EXPECT_EQ(key, testing::kTestKey);
 }
 
 // Verifies that a short key is refused with the file's name and a hint.

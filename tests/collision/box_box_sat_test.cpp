@@ -19,7 +19,7 @@ using testing_util::Box;
 using testing_util::RandomRotation;
 using testing_util::RandomVector;
 
-constexpr double kTol = 1e-12;  // m, round-off of ~1 m coordinates
+using testing_util::kTol;
 
 void ExpectSameResult(const RigidBody& a, const RigidBody& b, double early_out, const char* what, int trial) {
   PosedPolyhedron pa, pb;

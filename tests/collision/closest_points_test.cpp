@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/collision/narrowphase_test_util.h"
+
 namespace contactsim {
 namespace {
 
 // Closed-form inputs are exact in binary up to a few ulps of 1 m.
-constexpr double kTol = 1e-12;  // m
+using testing_util::kTol;
 
 // Verifies that a point beyond a segment's end projects onto that end.
 TEST(ClosestPointsTest, PointBeyondSegmentEndClampsToEnd) {

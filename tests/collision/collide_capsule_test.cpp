@@ -25,7 +25,7 @@ using testing_util::MaxDepth;
 // capsule-polyhedron search compares distances, so near a smooth minimum it
 // locates the point only to ~sqrt(machine epsilon) ~ 1.5e-8 of the axis
 // length (the depth itself is exact to second order); points get 1e-6 m.
-constexpr double kTol = 1e-12;        // m
+using testing_util::kTol;
 constexpr double kSearchTol = 1e-6;   // m
 
 const Quat kAlongX(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));

@@ -21,12 +21,12 @@ using testing_util::RockHull;
 
 // Poses built from short decimals and 45-degree rotations: results agree with
 // the hand values to round-off, a few ulps of 1 m.
-constexpr double kTol = 1e-9;  // m
+constexpr double kManifoldTol = 1e-9;  // m
 
-// True if some contact lies at `point` (within kTol).
+// True if some contact lies at `point` (within kManifoldTol).
 bool HasPoint(const ContactSet& contacts, const Vec3& point) {
   return std::any_of(contacts.begin(), contacts.end(),
-                     [&](const Contact& c) { return (c.point - point).norm() < kTol; });
+                     [&](const Contact& c) { return (c.point - point).norm() < kManifoldTol; });
 }
 
 // Verifies that a box resting flat on the ground gives its four bottom corners with the right depth.
@@ -34,8 +34,8 @@ TEST(CollidePolyhedronTest, BoxRestingFlatOnPlaneGivesFourCorners) {
   ContactSet out;
   ASSERT_EQ(Collide(Box(1, Vec3(0.5, 0.3, 0.2), Vec3(0, 0, 0.19)), 0, Ground(2), 1, 0.0, &out), 4);
   for (const Contact& c : out) {
-    EXPECT_NEAR(c.depth, 0.01, kTol);
-    EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, kTol);
+    EXPECT_NEAR(c.depth, 0.01, kManifoldTol);
+    EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, kManifoldTol);
   }
   for (double sx : {-0.5, 0.5}) {
     for (double sy : {-0.3, 0.3}) EXPECT_TRUE(HasPoint(out, Vec3(sx, sy, -0.005)));
@@ -46,7 +46,7 @@ TEST(CollidePolyhedronTest, BoxRestingFlatOnPlaneGivesFourCorners) {
 TEST(CollidePolyhedronTest, BoxAbovePlaneWithinMarginIsSpeculative) {
   ContactSet out;
   ASSERT_EQ(Collide(Box(1, Vec3(0.5, 0.3, 0.2), Vec3(0, 0, 0.23)), 0, Ground(2), 1, 0.05, &out), 4);
-  for (const Contact& c : out) EXPECT_NEAR(c.depth, -0.03, kTol);
+  for (const Contact& c : out) EXPECT_NEAR(c.depth, -0.03, kManifoldTol);
   out.clear();
   EXPECT_EQ(Collide(Box(1, Vec3(0.5, 0.3, 0.2), Vec3(0, 0, 0.23)), 0, Ground(2), 1, 0.02, &out), 0);
 }
@@ -59,7 +59,7 @@ TEST(CollidePolyhedronTest, TiltedBoxOnPlaneGivesItsLowEdge) {
   const double low = 0.3 * std::sin(angle) + 0.2 * std::cos(angle);
   ContactSet out;
   ASSERT_EQ(Collide(Box(1, Vec3(0.5, 0.3, 0.2), Vec3(0, 0, low - 0.01), q), 0, Ground(2), 1, 0.0, &out), 2);
-  for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.01, kTol);
+  for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.01, kManifoldTol);
 }
 
 // Verifies that a small box on a large one gives four points at its bottom corners (face contact).
@@ -69,8 +69,8 @@ TEST(CollidePolyhedronTest, BoxOnBoxFaceContactGivesFourPoints) {
   ContactSet out;
   ASSERT_EQ(Collide(base, 0, top, 1, 0.0, &out), 4);
   for (const Contact& c : out) {
-    EXPECT_NEAR(c.depth, 0.02, kTol);
-    EXPECT_NEAR((c.normal - Vec3(0, 0, 1)).norm(), 0.0, kTol);
+    EXPECT_NEAR(c.depth, 0.02, kManifoldTol);
+    EXPECT_NEAR((c.normal - Vec3(0, 0, 1)).norm(), 0.0, kManifoldTol);
   }
   for (double sx : {-0.2, 0.2}) {
     for (double sy : {-0.3, 0.3}) EXPECT_TRUE(HasPoint(out, Vec3(sx, sy, 0.49)));
@@ -86,7 +86,7 @@ TEST(CollidePolyhedronTest, OffsetCubesClipToTheirOverlapSquare) {
   for (const Vec3& p : {Vec3(0, 0, 0.495), Vec3(0.5, 0, 0.495), Vec3(0.5, 0.5, 0.495), Vec3(0, 0.5, 0.495)}) {
     EXPECT_TRUE(HasPoint(out, p)) << p.transpose();
   }
-  for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.01, kTol);
+  for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.01, kManifoldTol);
 }
 
 // Verifies that two equal cubes stacked flush give their four corners, at
@@ -108,8 +108,8 @@ TEST(CollidePolyhedronTest, FlushEqualCubesGiveTheirFourCorners) {
         const std::string where = "half " + std::to_string(half) + " layer " + std::to_string(layer);
         ASSERT_EQ(Collide(a, 0, b, 1, 0.0, &out), 4) << where << " turn " << turn;
         for (const Contact& c : out) {
-          EXPECT_NEAR(std::abs(c.point.x()), half, kTol) << where << " turn " << turn;
-          EXPECT_NEAR(std::abs(c.point.y()), half, kTol) << where << " turn " << turn;
+          EXPECT_NEAR(std::abs(c.point.x()), half, kManifoldTol) << where << " turn " << turn;
+          EXPECT_NEAR(std::abs(c.point.y()), half, kManifoldTol) << where << " turn " << turn;
         }
         ++pairs;
       }
@@ -126,9 +126,9 @@ TEST(CollidePolyhedronTest, CrossedEdgesGiveOnePoint) {
                           Quat(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitY())));
   ContactSet out;
   ASSERT_EQ(Collide(a, 0, b, 1, 0.0, &out), 1);
-  EXPECT_NEAR(out[0].depth, 0.01, kTol);
-  EXPECT_NEAR((out[0].normal - Vec3(0, 0, 1)).norm(), 0.0, kTol);
-  EXPECT_NEAR((out[0].point - Vec3(0, 0, r2 / 2 - 0.005)).norm(), 0.0, kTol);
+  EXPECT_NEAR(out[0].depth, 0.01, kManifoldTol);
+  EXPECT_NEAR((out[0].normal - Vec3(0, 0, 1)).norm(), 0.0, kManifoldTol);
+  EXPECT_NEAR((out[0].point - Vec3(0, 0, r2 / 2 - 0.005)).norm(), 0.0, kManifoldTol);
 }
 
 // Verifies that feature ids are stable under a small motion that keeps the same features.
@@ -153,7 +153,7 @@ TEST(CollidePolyhedronTest, CubeHullOnPlaneGivesFourCorners) {
   for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
   ContactSet out;
   ASSERT_EQ(Collide(Convex(1, Hull(corners), Vec3(0, 0, 0.48)), 0, Ground(2), 1, 0.0, &out), 4);
-  for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.02, kTol);
+  for (const Contact& c : out) EXPECT_NEAR(c.depth, 0.02, kManifoldTol);
 }
 
 // Verifies convex-plane on an irregular hull: the deepest contact is the lowest vertex.
@@ -164,7 +164,7 @@ TEST(CollidePolyhedronTest, RockOnPlaneDeepestContactIsLowestVertex) {
   for (const Vec3& v : hull->vertices) lowest = std::min(lowest, (q * v).z());
   ContactSet out;
   ASSERT_GE(Collide(Convex(1, hull, Vec3(0, 0, -lowest - 0.015), q), 0, Ground(2), 1, 0.0, &out), 1);
-  EXPECT_NEAR(MaxDepth(out), 0.015, kTol);
+  EXPECT_NEAR(MaxDepth(out), 0.015, kManifoldTol);
 }
 
 // Verifies convex-convex between two cube hulls agrees with box-box.
@@ -179,9 +179,9 @@ TEST(CollidePolyhedronTest, CubeHullsAgreeWithBoxes) {
   Collide(Box(1, Vec3(0.5, 0.5, 0.5), Vec3::Zero()), 0, Box(2, Vec3(0.5, 0.5, 0.5), x, q), 1, 0.0, &boxes);
   ASSERT_FALSE(boxes.empty());
   ASSERT_EQ(hulls.size(), boxes.size());
-  EXPECT_NEAR(MaxDepth(hulls), MaxDepth(boxes), kTol);
+  EXPECT_NEAR(MaxDepth(hulls), MaxDepth(boxes), kManifoldTol);
   for (size_t i = 0; i < boxes.size(); ++i) {
-    EXPECT_NEAR((hulls[i].normal - boxes[i].normal).norm(), 0.0, kTol);
+    EXPECT_NEAR((hulls[i].normal - boxes[i].normal).norm(), 0.0, kManifoldTol);
   }
 }
 

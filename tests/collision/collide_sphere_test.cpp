@@ -20,7 +20,7 @@ using testing_util::Sphere;
 
 // The inputs are short decimal numbers, so closed forms agree with the hand
 // values to round-off of a few ulps of 1 m.
-constexpr double kTol = 1e-12;  // m
+using testing_util::kTol;
 
 void ExpectContact(const Contact& c, const Vec3& point, const Vec3& normal, double depth) {
   EXPECT_NEAR((c.point - point).norm(), 0.0, kTol) << c.point.transpose();

@@ -29,7 +29,7 @@ using testing_util::MakeBody;
 using testing_util::RandomRotation;
 using testing_util::Sphere;
 
-constexpr double kTol = 1e-9;
+constexpr double kSurfaceTol = 1e-9;
 
 RigidBody MeshBody(std::shared_ptr<const TriangleMesh> mesh, const Vec3& x = Vec3::Zero()) {
   return MakeBody(100, Shape::Mesh(std::move(mesh)), x);
@@ -73,7 +73,7 @@ TEST(TriangleMeshTest, DropsDegenerateTrianglesAndWeldsRepeatedVertices) {
   EXPECT_EQ(report.dropped_degenerate, 1);
   EXPECT_EQ(report.welded_vertices, 2);
   ASSERT_EQ(mesh->triangles.size(), 2u);
-  EXPECT_NEAR(mesh->bounds.max.x(), 2.0, kTol);  // scaled
+  EXPECT_NEAR(mesh->bounds.max.x(), 2.0, kSurfaceTol);  // scaled
   // the shared diagonal is edge 2 of the first triangle, edge 0 of the second
   EXPECT_EQ(mesh->active_edges[0], 0b011);
   EXPECT_EQ(mesh->active_edges[1], 0b110);
@@ -302,12 +302,12 @@ TEST(CollideSurfaceTest, RaysHitTheFrontOfMeshesAndHeightfields) {
   ASSERT_TRUE(BuildHeightField(3, 3, {0, 0, 0, 0, 0.5, 0, 0, 0, 0}, 1.0, 1.0, &field).ok());
   RayShapeHit hit;
   ASSERT_EQ(RayCastShape(Shape::Mesh(mesh), Vec3(0.31, -0.27, 2), -Vec3::UnitZ(), 10, &hit), RayShapeResult::kHit);
-  EXPECT_NEAR(hit.t, 2.0, kTol);
-  EXPECT_NEAR(hit.normal.z(), 1.0, kTol);
+  EXPECT_NEAR(hit.t, 2.0, kSurfaceTol);
+  EXPECT_NEAR(hit.normal.z(), 1.0, kSurfaceTol);
   EXPECT_EQ(RayCastShape(Shape::Mesh(mesh), Vec3(0.31, -0.27, -2), Vec3::UnitZ(), 10, &hit), RayShapeResult::kMiss);
   EXPECT_EQ(RayCastShape(Shape::Mesh(mesh), Vec3(0.31, -0.27, 2), -Vec3::UnitZ(), 1.5, &hit), RayShapeResult::kMiss);
   ASSERT_EQ(RayCastShape(Shape::Heightfield(field), Vec3(0, 0, 3), -Vec3::UnitZ(), 10, &hit), RayShapeResult::kHit);
-  EXPECT_NEAR(hit.t, 2.5, kTol);
+  EXPECT_NEAR(hit.t, 2.5, kSurfaceTol);
 }
 
 
@@ -323,7 +323,7 @@ TEST(CollideSurfaceTest, RaysOnTheHeightfieldBorderHit) {
     RayShapeHit hit;
     ASSERT_EQ(RayCastShape(Shape::Heightfield(field), p, -Vec3::UnitZ(), 10, &hit), RayShapeResult::kHit)
         << p.transpose();
-    EXPECT_NEAR(hit.t, 1.75, kTol);
+    EXPECT_NEAR(hit.t, 1.75, kSurfaceTol);
   }
   RayShapeHit hit;
   EXPECT_EQ(RayCastShape(Shape::Heightfield(field), Vec3(hx + 1e-9, 0.1, 2), -Vec3::UnitZ(), 10, &hit),

@@ -28,7 +28,7 @@ using testing_util::RandomVector;
 using testing_util::RockHull;
 using testing_util::Sphere;
 
-constexpr double kTol = 1e-12;  // m: the same arithmetic up to the pose product's round-off
+using testing_util::kTol;
 constexpr double kMargin = 0.02;  // m, speculative margin of the calls
 
 // A compound of a box, a sphere, a capsule and a hull, spread about the origin.

@@ -23,7 +23,7 @@ using testing_util::Hull;
 using testing_util::RandomRotation;
 using testing_util::RandomVector;
 
-constexpr int kTrials = 20;
+constexpr int kHullTrials = 20;
 
 // `count` points on an ellipsoid of semi-axes `axes` (m), jittered inwards,
 // as a tessellated link or wheel gives.
@@ -63,7 +63,7 @@ std::vector<int64_t> LoopPairs(const PosedPolyhedron& a, const PosedPolyhedron& 
 TEST(LargeHullQueries, GridFindsExactlyTheMinkowskiFacePairsInLoopOrder) {
   std::mt19937_64 rng(7);
   EdgePairScratch scratch;
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < kHullTrials; ++trial) {
     for (const int count : {8, 60, 400}) {
       // the bodies own the hulls the posed polyhedra point at
       const RigidBody body_a = RandomHullBody(rng, 1, count), body_b = RandomHullBody(rng, 2, 500 - count);
@@ -83,7 +83,7 @@ TEST(LargeHullQueries, GridFindsExactlyTheMinkowskiFacePairsInLoopOrder) {
 TEST(LargeHullQueries, BoxesPairWithHullsAsTheLoopPairsThem) {
   std::mt19937_64 rng(11);
   EdgePairScratch scratch;
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < kHullTrials; ++trial) {
     const RigidBody hull = RandomHullBody(rng, 2, 300);
     PosedPolyhedron a, b;
     ASSERT_TRUE(PosePolyhedron(testing_util::Box(1, Vec3(0.3, 0.1, 0.05), Vec3::Zero(), RandomRotation(rng)), &a));
@@ -97,7 +97,7 @@ TEST(LargeHullQueries, BoxesPairWithHullsAsTheLoopPairsThem) {
 
 TEST(LargeHullQueries, DescentFindsTheScannedMinimumFromAnyStart) {
   std::mt19937_64 rng(3);
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < kHullTrials; ++trial) {
     const RigidBody body = RandomHullBody(rng, 1, 300);
     PosedPolyhedron poly;
     ASSERT_TRUE(PosePolyhedron(body, &poly));
@@ -115,7 +115,7 @@ TEST(LargeHullQueries, DescentFindsTheScannedMinimumFromAnyStart) {
 
 TEST(LargeHullQueries, BoxByDescentIsTheScannedBox) {
   std::mt19937_64 rng(5);
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < kHullTrials; ++trial) {
     const RigidBody body = RandomHullBody(rng, 1, 300);
     AabbSupport support;
     for (int& v : support) v = static_cast<int>(rng() % body.shape.hull->vertices.size());
@@ -136,7 +136,7 @@ TEST(LargeHullQueries, SeparatingAxisOfLargeHullsMatchesBruteForce) {
   std::mt19937_64 rng(13);
   EdgePairScratch scratch;
   int overlaps = 0;
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < kHullTrials; ++trial) {
     const RigidBody body_a = RandomHullBody(rng, 1, 200), body_b = RandomHullBody(rng, 2, 200);
     PosedPolyhedron a, b;
     ASSERT_TRUE(PosePolyhedron(body_a, &a));
@@ -168,7 +168,7 @@ TEST(LargeHullQueries, SeparatingAxisOfLargeHullsMatchesBruteForce) {
       EXPECT_LE(sat.max_separation, brute + 1e-12) << "trial " << trial;
     }
   }
-  EXPECT_GE(overlaps, kTrials / 4);
+  EXPECT_GE(overlaps, kHullTrials / 4);
 }
 
 }  // namespace

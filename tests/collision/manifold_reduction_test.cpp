@@ -11,7 +11,7 @@ namespace contactsim {
 namespace {
 
 // Areas of unit-size polygons: round-off only.
-constexpr double kTol = 1e-12;
+using testing_util::kTol;
 
 double QuadArea(const ContactSet& c) {
   // shoelace on the xy projection, for a convex quad in any vertex order the

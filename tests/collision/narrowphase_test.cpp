@@ -21,7 +21,7 @@ using testing_util::RandomVector;
 // Swapping only reorders the same computation, so results agree to round-off.
 constexpr double kSwapTol = 1e-12;  // m
 // Random trials per pair type: enough for many contacts of each kind.
-constexpr int kTrials = 300;
+constexpr int kNarrowphaseTrials = 300;
 
 // One body of each shape type, about 0.3 m in size; the plane has a random pose too.
 RigidBody RandomBody(ShapeType type, BodyId id, std::mt19937_64& rng) {
@@ -52,7 +52,7 @@ TEST(NarrowphaseTest, SwappingBodiesFlipsNormalsAndKeepsPoints) {
     for (ShapeType tb : kTypes) {
       if (ta == ShapeType::kPlane && tb == ShapeType::kPlane) continue;
       int with_contacts = 0;
-      for (int trial = 0; trial < kTrials; ++trial) {
+      for (int trial = 0; trial < kNarrowphaseTrials; ++trial) {
         // ids equal on odd trials: the order then falls back to the poses
         const BodyId id_b = trial % 2 == 0 ? 2 : 1;
         const RigidBody a = RandomBody(ta, 1, rng);
@@ -74,7 +74,7 @@ TEST(NarrowphaseTest, SwappingBodiesFlipsNormalsAndKeepsPoints) {
           EXPECT_NEAR(ab[k].normal.norm(), 1.0, kSwapTol) << pair;
         }
       }
-      EXPECT_GT(with_contacts, kTrials / 10) << ShapeTypeName(ta) << "-" << ShapeTypeName(tb);
+      EXPECT_GT(with_contacts, kNarrowphaseTrials / 10) << ShapeTypeName(ta) << "-" << ShapeTypeName(tb);
     }
   }
 }
@@ -86,7 +86,7 @@ TEST(NarrowphaseTest, MarginOnlyAddsSpeculativeContacts) {
   for (ShapeType ta : kTypes) {
     for (ShapeType tb : kTypes) {
       if (ta == ShapeType::kPlane && tb == ShapeType::kPlane) continue;
-      for (int trial = 0; trial < kTrials; ++trial) {
+      for (int trial = 0; trial < kNarrowphaseTrials; ++trial) {
         const RigidBody a = RandomBody(ta, 1, rng);
         const RigidBody b = RandomBody(tb, 2, rng);
         ContactSet tight, wide;

@@ -12,6 +12,9 @@
 namespace contactsim {
 namespace testing_util {
 
+// Distances and depths equal to round-off of ~1 m coordinates (m).
+inline constexpr double kTol = 1e-12;
+
 inline RigidBody MakeBody(BodyId id, const Shape& shape, const Vec3& x = Vec3::Zero(),
                           const Quat& q = Quat::Identity()) {
   RigidBody body;

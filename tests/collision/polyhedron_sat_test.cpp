@@ -22,11 +22,11 @@ using testing_util::RandomRotation;
 using testing_util::RandomVector;
 
 // Projections of a few vertices of size ~1 m: round-off is ~1e-15 m.
-constexpr double kTol = 1e-12;  // m
+using testing_util::kTol;
 // Fibonacci-sphere directions; the sampled minimum overlap can only be above
 // the true depth, so no tolerance on that side is needed beyond round-off.
 constexpr int kDirections = 4000;
-constexpr int kTrials = 400;
+constexpr int kSatTrials = 400;
 
 double Separation(const PosedPolyhedron& a, const PosedPolyhedron& b, const Vec3& u) {
   double lo_a, hi_a, lo_b, hi_b;
@@ -100,7 +100,7 @@ TEST(PolyhedronSatTest, MatchesBruteForceOverAllCandidateAxes) {
   std::mt19937_64 rng(3);
   for (int kind = 0; kind < 3; ++kind) {  // box-box, box-convex, convex-convex
     int overlapping = 0;
-    for (int trial = 0; trial < kTrials; ++trial) {
+    for (int trial = 0; trial < kSatTrials; ++trial) {
       const Pair p = RandomPair(kind, rng);
       const double brute = BruteForceMaxSeparation(p.a, p.b);
       const SatResult sat = FindSeparatingAxis(p.a, p.b, 1e300);
@@ -125,7 +125,7 @@ TEST(PolyhedronSatTest, MatchesBruteForceOverAllCandidateAxes) {
         EXPECT_NEAR(Separation(p.a, p.b, sat.max_normal), sat.max_separation, kTol);
       }
     }
-    EXPECT_GT(overlapping, kTrials / 5) << "kind " << kind;
+    EXPECT_GT(overlapping, kSatTrials / 5) << "kind " << kind;
   }
 }
 
@@ -134,7 +134,7 @@ TEST(PolyhedronSatTest, MatchesBruteForceOverAllCandidateAxes) {
 TEST(PolyhedronSatTest, DepthIsTheMinimumOverlapOverAllDirections) {
   std::mt19937_64 rng(5);
   for (int kind = 0; kind < 3; ++kind) {
-    for (int trial = 0; trial < kTrials / 4; ++trial) {
+    for (int trial = 0; trial < kSatTrials / 4; ++trial) {
       const Pair p = RandomPair(kind, rng);
       const SatResult sat = FindSeparatingAxis(p.a, p.b, 1e300);
       if (sat.max_separation >= 0.0) continue;
@@ -153,7 +153,7 @@ TEST(PolyhedronSatTest, ManifoldIsNoDeeperThanTheTruePenetration) {
   std::mt19937_64 rng(9);
   int colliding = 0, shallower = 0;
   for (int kind = 0; kind < 3; ++kind) {
-    for (int trial = 0; trial < kTrials; ++trial) {
+    for (int trial = 0; trial < kSatTrials; ++trial) {
       const Pair p = RandomPair(kind, rng);
       const double brute = BruteForceMaxSeparation(p.a, p.b);
       if (std::abs(brute) < 1e-9) continue;  // grazing: either answer is right

@@ -22,7 +22,7 @@ using testing_util::MakeBody;
 using testing_util::RandomRotation;
 using testing_util::RandomVector;
 
-constexpr double kTol = 1e-9;  // m
+constexpr double kRayTol = 1e-9;  // m
 
 // g of the body's shape at a world point (see the file comment).
 double Implicit(const RigidBody& body, const Vec3& p_W) {
@@ -98,14 +98,14 @@ void ExpectMatchesReference(const RigidBody& body, const Ray& ray, int* hits, in
   if (!h.hit) return;
   ++*hits;
   EXPECT_EQ(h.body, body.id);
-  EXPECT_NEAR(h.distance, ref.t, kTol) << ShapeTypeName(body.shape.type);
-  EXPECT_NEAR((h.point - (ray.origin + ref.t * ray.direction)).norm(), 0.0, kTol);
+  EXPECT_NEAR(h.distance, ref.t, kRayTol) << ShapeTypeName(body.shape.type);
+  EXPECT_NEAR((h.point - (ray.origin + ref.t * ray.direction)).norm(), 0.0, kRayTol);
   EXPECT_NEAR(h.normal.norm(), 1.0, 1e-12);
   if (ref.t == 0.0) {
     EXPECT_EQ(h.normal, -ray.direction);
     return;
   }
-  EXPECT_NEAR(Implicit(body, h.point), 0.0, kTol);
+  EXPECT_NEAR(Implicit(body, h.point), 0.0, kRayTol);
   EXPECT_LT(h.normal.dot(ray.direction), 0.0);
   // the normal points out of the solid: a step along it leaves it
   const Vec3 just_out = h.point + 1e-7 * h.normal;
@@ -160,8 +160,8 @@ TEST(RayCastTest, RaysAtCornersAndEdgesEnterThere) {
           const Vec3 o = target + 2.0 * away;
           const RayHit hit = RayCastBody(box, MakeTestRay(o, target - o, 10.0));
           ASSERT_TRUE(hit.hit);
-          EXPECT_NEAR((hit.point - target).norm(), 0.0, kTol);
-          EXPECT_NEAR(hit.distance, (target - o).norm(), kTol);
+          EXPECT_NEAR((hit.point - target).norm(), 0.0, kRayTol);
+          EXPECT_NEAR(hit.distance, (target - o).norm(), kRayTol);
         }
       }
     }
@@ -172,7 +172,7 @@ TEST(RayCastTest, RaysAtCornersAndEdgesEnterThere) {
     const Vec3 o = v + 3.0 * (rock.q * v_B).normalized();
     const RayHit hit = RayCastBody(rock, MakeTestRay(o, v - o, 10.0));
     ASSERT_TRUE(hit.hit);
-    EXPECT_NEAR((hit.point - v).norm(), 0.0, kTol);
+    EXPECT_NEAR((hit.point - v).norm(), 0.0, kRayTol);
   }
 }
 
@@ -317,8 +317,8 @@ TEST(RayCastTest, CompoundsAreCastChildByChild) {
   // along -x from x = 5: the +x sphere's far side at 1.5
   RayHit h = RayCastBody(body, MakeTestRay(world_point(Vec3(5, 0, 0)), q * Vec3(-1, 0, 0), 10));
   ASSERT_TRUE(h.hit);
-  EXPECT_NEAR(h.distance, 3.5, kTol);
-  EXPECT_NEAR((h.normal - q * Vec3(1, 0, 0)).norm(), 0.0, kTol);
+  EXPECT_NEAR(h.distance, 3.5, kRayTol);
+  EXPECT_NEAR((h.normal - q * Vec3(1, 0, 0)).norm(), 0.0, kRayTol);
   // along y between the spheres, below the box: nothing
   EXPECT_FALSE(RayCastBody(body, MakeTestRay(world_point(Vec3(0, -5, 0)), q * Vec3(0, 1, 0), 10)).hit);
   // from inside the -x sphere
@@ -331,8 +331,8 @@ TEST(RayCastTest, CompoundsAreCastChildByChild) {
   const Vec3 up = box.orientation * Vec3(0, 0, 1);
   h = RayCastBody(body, MakeTestRay(world_point(top + 2.0 * up), q * -up, 10));
   ASSERT_TRUE(h.hit);
-  EXPECT_NEAR(h.distance, 2.0, kTol);
-  EXPECT_NEAR((h.normal - q * up).norm(), 0.0, kTol);
+  EXPECT_NEAR(h.distance, 2.0, kRayTol);
+  EXPECT_NEAR((h.normal - q * up).norm(), 0.0, kRayTol);
 }
 
 // Verifies the mask: a body whose category shares no bit with it is passed.

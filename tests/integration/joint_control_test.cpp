@@ -19,9 +19,9 @@ using JointControlTest = ServerTest;
 
 constexpr double kDt = 1e-3;          // s: 1 kHz
 constexpr int kSteps = 500;           // 0.5 s
-constexpr double kPi = 3.14159265358979323846;
 // The reference: q_i(t) = A_i (1 - cos(w t)) / 2, starting at rest at q = 0.
 const double kAmplitude[7] = {0.4, 0.3, -0.3, -0.5, 0.3, 0.4, 0.5};  // rad
+constexpr double kPi = 3.14159265358979323846;
 constexpr double kOmega = 2.0 * kPi;  // rad/s: 1 Hz
 
 // pybullet_data's iiwa in the repository's Python environment, "" if absent.

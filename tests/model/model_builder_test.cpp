@@ -19,7 +19,6 @@ using testing::Arm;
 using testing::Revolute;
 using testing::SphereLink;
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Verifies that every body sits at its link's pose at q = 0 composed from
 // the base pose and the joint origins, and that the hinges carry the

@@ -11,6 +11,7 @@
 
 #include "service/physics/body_settings.h"
 #include "service/physics/world.h"
+#include "tests/contact/test_bodies.h"
 
 namespace contactsim {
 namespace {
@@ -114,17 +115,7 @@ TEST(CollisionFilterTest, JointPairSetCountsJointsPerPair) {
   EXPECT_TRUE(s.empty());
 }
 
-BodyId AddSphere(World& world, const Vec3& p) {
-  BodySettings s;
-  s.shape = ShapeType::kSphere;
-  s.radius = 0.1;
-  s.position = p;
-  RigidBody b;
-  EXPECT_TRUE(CreateBody(s, Material{}, &b).ok());
-  return world.AddBody(b);
-}
-
-JointId AddBall(World& world, BodyId a, BodyId b, bool collide_connected) {
+JointId AddBallJoint(World& world, BodyId a, BodyId b, bool collide_connected) {
   JointSettings s;
   s.kind = JointKind::kBall;
   s.body_a = a;
@@ -139,12 +130,13 @@ JointId AddBall(World& world, BodyId a, BodyId b, bool collide_connected) {
 // The excluded pairs follow every way joints come and go.
 TEST(CollisionFilterTest, WorldKeepsJointPairsInStepWithItsJoints) {
   World world;
-  const BodyId a = AddSphere(world, Vec3(0, 0, 1)), b = AddSphere(world, Vec3(0, 0, 1.1)),
-               c = AddSphere(world, Vec3(0, 0, 1.2));
-  const JointId ab = AddBall(world, a, b, false);
-  const JointId ab2 = AddBall(world, b, a, false);
-  AddBall(world, b, c, true);  // touching allowed: not excluded
-  AddBall(world, c, kWorldBody, false);  // the world has no contacts to exclude
+  const BodyId a = testing::AddSphere(world, 0.1, Vec3(0, 0, 1), 0.5);
+  const BodyId b = testing::AddSphere(world, 0.1, Vec3(0, 0, 1.1), 0.5);
+  const BodyId c = testing::AddSphere(world, 0.1, Vec3(0, 0, 1.2), 0.5);
+  const JointId ab = AddBallJoint(world, a, b, false);
+  const JointId ab2 = AddBallJoint(world, b, a, false);
+  AddBallJoint(world, b, c, true);  // touching allowed: not excluded
+  AddBallJoint(world, c, kWorldBody, false);  // the world has no contacts to exclude
   const JointPairSet& joined = world.joined_pairs();
   EXPECT_TRUE(joined.Contains(a, b));
   EXPECT_FALSE(joined.Contains(b, c));
@@ -153,7 +145,7 @@ TEST(CollisionFilterTest, WorldKeepsJointPairsInStepWithItsJoints) {
   EXPECT_TRUE(joined.Contains(a, b)) << "the second joint still holds them";
   ASSERT_TRUE(world.RemoveJoint(ab2).ok());
   EXPECT_FALSE(joined.Contains(a, b));
-  AddBall(world, a, b, false);
+  AddBallJoint(world, a, b, false);
   // a snapshot's joints, put back
   const std::vector<Joint> saved = world.joints();
   ASSERT_TRUE(world.AssignJoints({}, world.next_joint_id).ok());
@@ -162,7 +154,7 @@ TEST(CollisionFilterTest, WorldKeepsJointPairsInStepWithItsJoints) {
   EXPECT_TRUE(joined.Contains(b, a));
   ASSERT_TRUE(world.RemoveBody(a).ok());  // takes its joints
   EXPECT_TRUE(joined.empty());
-  AddBall(world, b, c, false);
+  AddBallJoint(world, b, c, false);
   world.Clear();
   EXPECT_TRUE(world.joined_pairs().empty());
 }
@@ -170,7 +162,7 @@ TEST(CollisionFilterTest, WorldKeepsJointPairsInStepWithItsJoints) {
 TEST(CollisionFilterTest, SetCollisionFilterChangesTheBodyAndWakesIt) {
   World world;
   world.sleep.enabled = true;
-  const BodyId a = AddSphere(world, Vec3(0, 0, 1));
+  const BodyId a = testing::AddSphere(world, 0.1, Vec3(0, 0, 1), 0.5);
   world.Find(a)->sleep_island = a;
   world.Find(a)->rest_time = 2.0;
   ASSERT_TRUE(world.SetCollisionFilter(a, 4u, 0x0Fu, -2).ok());
@@ -184,7 +176,7 @@ TEST(CollisionFilterTest, SetCollisionFilterChangesTheBodyAndWakesIt) {
 
 TEST(CollisionFilterTest, SetCollisionFilterRefusesUnknownBodiesAndTheWorld) {
   World world;
-  const BodyId a = AddSphere(world, Vec3(0, 0, 1));
+  const BodyId a = testing::AddSphere(world, 0.1, Vec3(0, 0, 1), 0.5);
   const uint64_t before = HashWorldState(world);
   for (BodyId id : {BodyId{0}, BodyId{99}, BodyId{-1}}) {
     const Status st = world.SetCollisionFilter(id, 2u, 2u, 1);
@@ -208,8 +200,8 @@ TEST(CollisionFilterTest, CreateBodyAndCreateJointCarryTheFilter) {
   EXPECT_EQ(b.collision_mask, 0xF0u);
   EXPECT_EQ(b.collision_group, -7);
   World world;
-  const BodyId x = AddSphere(world, Vec3(0, 0, 1)), y = AddSphere(world, Vec3(0, 0, 1.1));
-  const JointId j = AddBall(world, x, y, true);
+  const BodyId x = testing::AddSphere(world, 0.1, Vec3(0, 0, 1), 0.5), y = testing::AddSphere(world, 0.1, Vec3(0, 0, 1.1), 0.5);
+  const JointId j = AddBallJoint(world, x, y, true);
   EXPECT_TRUE(world.FindJoint(j)->collide_connected);
   EXPECT_FALSE(JointSettings().collide_connected) << "joined bodies do not touch by default";
 }

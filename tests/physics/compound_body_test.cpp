@@ -12,7 +12,6 @@
 namespace contactsim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTol = 1e-12;  // closed forms and sums: only round-off
 
 ShapePart BoxPart(const Vec3& half, const Vec3& position, const Quat& orientation = Quat::Identity()) {

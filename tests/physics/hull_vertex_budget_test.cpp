@@ -12,7 +12,6 @@
 namespace contactsim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // n points spread evenly over an ellipsoid with semi-axes r (a Fibonacci
 // lattice), a stand-in for a mesh whose hull has every point as a vertex.

@@ -10,7 +10,6 @@
 namespace contactsim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRelTol = 1e-12;  // closed forms: only round-off
 
 // Verifies sphere mass and inertia: m = 4/3 pi r^3 rho, I = 2/5 m r^2.

@@ -25,7 +25,7 @@ struct PinnedFloatRun {
 };
 // the pyramid rests from the first step; the pile's and the rain's lowest
 // layer lands after ~68 steps, and the rest keeps landing on it
-constexpr PinnedFloatRun kRuns[] = {
+constexpr PinnedFloatRun kFloatRuns[] = {
     {"box_pyramid.pbtxt", 48, 0x28f8b671cb3bda9eull},
     {"sphere_pile.pbtxt", 120, 0x05b31de1ad4d7771ull},
     {"box_rain.pbtxt", 120, 0xe4b8247b90a23cf3ull},
@@ -35,7 +35,7 @@ constexpr PinnedFloatRun kRuns[] = {
 TEST(SoftFloatDeterminismTest, EndsEachSceneOnItsPinAtEveryWidthAndThreadCount) {
   // let oneTBB run four threads even on a two-core machine
   oneapi::tbb::global_control allow(oneapi::tbb::global_control::max_allowed_parallelism, 4);
-  for (const PinnedFloatRun& r : kRuns) {
+  for (const PinnedFloatRun& r : kFloatRuns) {
     for (const char* lanes : {"4", "8"}) {
       for (const int threads : {1, 2, 4}) {
         const testing_util::SceneRun run{r.scene, "soft", {{"precision", "float"}, {"float_lanes", lanes}}, r.steps,

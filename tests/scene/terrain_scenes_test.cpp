@@ -30,7 +30,7 @@ constexpr int kCells = 224;          // per side: 2 x 224^2 = 100,352 triangles
 constexpr double kSpacing = 0.04;    // m
 constexpr double kHalfExtent = 0.1;  // m, the boxes'
 
-SceneSpec Load(const std::string& name) {
+SceneSpec LoadTerrainScene(const std::string& name) {
   SceneSpec spec;
   const Status st = LoadSceneFile(std::string(CONTACTSIM_SOURCE_DIR) + "/config/scenes/" + name, &spec);
   EXPECT_TRUE(st.ok()) << st.message();
@@ -68,7 +68,7 @@ std::vector<double> Heights() {
 TEST(TerrainScenes, LoadAsThousandBoxesOverOneHundredThousandTriangles) {
   for (const char* name : {"terrain_rain.pbtxt", "heightfield_rain.pbtxt"}) {
     SCOPED_TRACE(name);
-    const SceneSpec spec = Load(name);
+    const SceneSpec spec = LoadTerrainScene(name);
     EXPECT_EQ(spec.steps, 1200);
     World world;
     ASSERT_TRUE(BuildWorld(spec, &world).ok());
@@ -171,7 +171,7 @@ class TerrainRainTest : public ::testing::TestWithParam<MethodConfig> {};
 std::string LandOnSurface(const MethodConfig& config, const char* name) {
   constexpr int kSteps = 120;          // 0.5 s: the boxes fall 0.1-0.4 m, landing by 0.3 s
   constexpr double kAllowance = 0.05;  // m below the half extent, deeper than any method's contacts
-  SceneSpec spec = Load(name);
+  SceneSpec spec = LoadTerrainScene(name);
   const auto left_out = [](const BodySettings& b) {
     const Vec3& p = b.position;
     return b.shape == ShapeType::kBox && (p.z() > 0.5 || std::abs(p.x()) > 0.6 || std::abs(p.y()) > 0.6);

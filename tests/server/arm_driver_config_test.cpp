@@ -11,15 +11,10 @@
 #include <vector>
 
 #include "service/server/server_config.h"
+#include "tests/server/temp_dir.h"
 
 namespace contactsim {
 namespace {
-
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 proto::ArmDriver Block(const std::string& protocol, const std::string& model) {
   proto::ArmDriver b;
@@ -94,7 +89,7 @@ TEST(ArmDriverConfigTest, BadValuesNameTheirField) {
 // Verifies that a bad field in a config file names the file, the line of the
 // field and the field.
 TEST(ArmDriverConfigTest, ConfigFileErrorNamesLineAndField) {
-  const std::string path = WriteTemp("arm_bad_rate.pbtxt",
+  const std::string path = testing::WriteTempFile("arm_bad_rate.pbtxt",
                                      "arm_driver {\n  protocol: \"iiwa\"\n  model: \"iiwa\"\n"
                                      "  status_rate_hz: 5000\n}\n");
   proto::ServerConfig config;
@@ -129,7 +124,7 @@ TEST(ArmDriverConfigTest, GainsAndGravityCompensation) {
 // options with the protocol's channels.
 TEST(ArmDriverConfigTest, IiwaAndPandaBlocksStart) {
   for (const char* protocol : {"iiwa", "panda"}) {
-    const std::string path = WriteTemp(std::string("arm_") + protocol + ".pbtxt",
+    const std::string path = testing::WriteTempFile(std::string("arm_") + protocol + ".pbtxt",
                                        std::string("arm_driver {\n  protocol: \"") + protocol +
                                            "\"\n  model: \"arm\"\n}\n");
     proto::ServerConfig config;

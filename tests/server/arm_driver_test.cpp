@@ -27,11 +27,11 @@ using testing::kComOffset;
 using testing::ServerHarness;
 using testing::Targets;
 
-ServerOptions Options(bool gravity_compensation = true, double kp = kDefaultArmKp, double kd = kDefaultArmKd) {
+ServerOptions IiwaServerOptions(bool gravity_compensation = true, double kp = kDefaultArmKp, double kd = kDefaultArmKd) {
   return testing::ArmOptions("iiwa", gravity_compensation, kp, kd);
 }
 
-drake::lcmt_iiwa_command Command(int64_t utime, std::vector<double> position, std::vector<double> torque) {
+drake::lcmt_iiwa_command IiwaCommand(int64_t utime, std::vector<double> position, std::vector<double> torque) {
   drake::lcmt_iiwa_command m;
   m.utime = utime;
   m.num_joints = static_cast<int32_t>(position.size());
@@ -47,9 +47,9 @@ drake::lcmt_iiwa_command Command(int64_t utime, std::vector<double> position, st
 // --replay places it by); a command without positions (torque only) turns
 // the gains off and keeps the last targets.
 TEST(ArmDriverTest, CommandSetsTheDrives) {
-  ArmServer a(Options());
+  ArmServer a(IiwaServerOptions());
   const size_t replies = a.Replies().size();
-  a.Post(Command(7, Targets(0.1), Targets(2.0)));
+  a.Post(IiwaCommand(7, Targets(0.1), Targets(2.0)));
   a.h.server.Tick();
   for (int i = 0; i < kArmJoints; ++i) {
     const JointActuator& d = a.joint(i).actuator;
@@ -65,7 +65,7 @@ TEST(ArmDriverTest, CommandSetsTheDrives) {
   EXPECT_EQ(a.Replies().back().request_id, 7);
   EXPECT_GE(a.Replies().back().step, 0);
   EXPECT_LE(a.Replies().back().step, a.h.server.world().step);
-  a.Post(Command(8, {}, Targets(-1.0)));
+  a.Post(IiwaCommand(8, {}, Targets(-1.0)));
   a.h.server.Tick();
   for (int i = 0; i < kArmJoints; ++i) {
     const JointActuator& d = a.joint(i).actuator;
@@ -81,8 +81,8 @@ TEST(ArmDriverTest, CommandSetsTheDrives) {
 // count of positions or torques, a NaN, bytes that are no lcmt_iiwa_command,
 // and a command while the world holds no arm.
 TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
-  ArmServer a(Options());
-  a.Post(Command(1, Targets(0.1), {}));
+  ArmServer a(IiwaServerOptions());
+  a.Post(IiwaCommand(1, Targets(0.1), {}));
   a.h.server.Tick();
   struct Case {
     drake::lcmt_iiwa_command cmd;
@@ -92,11 +92,11 @@ TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
   std::vector<double> nan = Targets(0.5);
   nan[2] = std::numeric_limits<double>::quiet_NaN();
   const std::vector<Case> cases = {
-      {Command(11, std::vector<double>(6, 0.5), {}), reply_t::INVALID_ARGUMENT,
+      {IiwaCommand(11, std::vector<double>(6, 0.5), {}), reply_t::INVALID_ARGUMENT,
        "joint_position has 6 entries; the arm has 7 joints"},
-      {Command(12, Targets(0.5), {1, 2, 3}), reply_t::INVALID_ARGUMENT, "joint_torque has 3 entries"},
-      {Command(13, nan, {}), reply_t::INVALID_ARGUMENT, "joint_position[2] is nan, not a finite number"},
-      {Command(14, Targets(0.5), std::vector<double>(kArmJoints, std::numeric_limits<double>::infinity())),
+      {IiwaCommand(12, Targets(0.5), {1, 2, 3}), reply_t::INVALID_ARGUMENT, "joint_torque has 3 entries"},
+      {IiwaCommand(13, nan, {}), reply_t::INVALID_ARGUMENT, "joint_position[2] is nan, not a finite number"},
+      {IiwaCommand(14, Targets(0.5), std::vector<double>(kArmJoints, std::numeric_limits<double>::infinity())),
        reply_t::INVALID_ARGUMENT, "joint_torque[0] is inf"},
   };
   for (const Case& k : cases) {
@@ -113,8 +113,8 @@ TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
   EXPECT_EQ(a.Replies().back().code, reply_t::DECODE_ERROR);
   for (int i = 0; i < kArmJoints; ++i) EXPECT_EQ(a.joint(i).actuator.target_position, Targets(0.1)[i]);
 
-  ServerHarness empty(Options());
-  const auto bytes = testing::Encode(Command(21, Targets(0.5), {}));
+  ServerHarness empty(IiwaServerOptions());
+  const auto bytes = testing::Encode(IiwaCommand(21, Targets(0.5), {}));
   empty.server.OnMessage("IIWA_COMMAND", bytes.data(), static_cast<int>(bytes.size()));
   empty.server.Tick();
   const reply_t r = empty.transport.All<reply_t>(empty.server.Channel("REPLY")).back();
@@ -128,7 +128,7 @@ TEST(ArmDriverTest, BadCommandsAreRefusedAndChangeNothing) {
 // step of each period).
 TEST(ArmDriverTest, StatusAtTheDriversRate) {
   for (double dt : {0.001, 1.0 / 240}) {
-    ArmServer a(Options());
+    ArmServer a(IiwaServerOptions());
     scene_cmd_t set = a.h.Scene(scene_cmd_t::SET_TIMESTEP);
     set.dt = dt;
     ASSERT_EQ(a.h.Send(set).code, reply_t::OK);
@@ -156,8 +156,8 @@ TEST(ArmDriverTest, StatusAtTheDriversRate) {
 // gravity (analytic), the external torque zero. The gains are 0, so that
 // the chain stays horizontal whatever the targets.
 TEST(ArmDriverTest, StatusFieldsAndHoldTorques) {
-  ArmServer a(Options(true, 0.0, 0.0));
-  a.Post(Command(3, Targets(0.2), std::vector<double>(kArmJoints, 0.0)));
+  ArmServer a(IiwaServerOptions(true, 0.0, 0.0));
+  a.Post(IiwaCommand(3, Targets(0.2), std::vector<double>(kArmJoints, 0.0)));
   a.h.Step(5);
   const drake::lcmt_iiwa_status s = a.Statuses<drake::lcmt_iiwa_status>().back();
   ASSERT_EQ(s.num_joints, kArmJoints);
@@ -184,7 +184,7 @@ TEST(ArmDriverTest, StatusFieldsAndHoldTorques) {
 // towards larger angles about +y); with nothing pushing, every one is 0.
 TEST(ArmDriverTest, ExternalTorqueIsThePushTimesEachJointsLeverArm) {
   constexpr double kPush = 20.0;  // N, down
-  ArmServer a(Options());                    // gravity compensation, gains holding the pose
+  ArmServer a(IiwaServerOptions());                    // gravity compensation, gains holding the pose
   a.h.Step(10);
   const drake::lcmt_iiwa_status idle = a.Statuses<drake::lcmt_iiwa_status>().back();
   for (double t : idle.joint_torque_external) EXPECT_EQ(t, 0.0);
@@ -213,7 +213,7 @@ TEST(ArmDriverTest, ExternalTorqueIsThePushTimesEachJointsLeverArm) {
 // drives where it is, and that without it the chain falls.
 TEST(ArmDriverTest, GravityCompensationHoldsTheArm) {
   for (bool compensate : {true, false}) {
-    ArmServer a(Options(compensate));
+    ArmServer a(IiwaServerOptions(compensate));
     a.h.Step(100);
     double fastest = 0;
     for (int i = 0; i < kArmJoints; ++i) {
@@ -234,13 +234,13 @@ TEST(ArmDriverTest, GravityCompensationHoldsTheArm) {
 // repeats the run's states, and the second command sent again at its step
 // ends where the run ended.
 TEST(ArmDriverTest, RewindRepeatsTheCommands) {
-  ServerOptions o = Options();
+  ServerOptions o = IiwaServerOptions();
   o.snapshot_every = 0;  // REWIND replays from the start's snapshot
   ArmServer a(o);
   a.h.Step(5);
-  a.Post(Command(1, Targets(0.1), Targets(1.0)));
+  a.Post(IiwaCommand(1, Targets(0.1), Targets(1.0)));
   const std::vector<uint64_t> first = a.h.Step(10);
-  a.Post(Command(2, Targets(-0.3), {}));
+  a.Post(IiwaCommand(2, Targets(-0.3), {}));
   a.h.Step(10);
   const uint64_t last = HashWorldState(a.h.server.world());
   scene_cmd_t rewind = a.h.Scene(scene_cmd_t::REWIND);
@@ -252,7 +252,7 @@ TEST(ArmDriverTest, RewindRepeatsTheCommands) {
     EXPECT_EQ(a.joint(i).actuator.torque, Targets(1.0)[i]);
   }
   a.h.Step(3);
-  a.Post(Command(2, Targets(-0.3), {}));
+  a.Post(IiwaCommand(2, Targets(-0.3), {}));
   EXPECT_EQ(a.h.Step(10).back(), last);
 }
 
@@ -260,7 +260,7 @@ TEST(ArmDriverTest, RewindRepeatsTheCommands) {
 // commands from the start's snapshot: the same state and the last drives.
 TEST(ArmDriverTest, RecoveryRepeatsTheCommands) {
   testing::TempDir dir;
-  ServerOptions o = Options();
+  ServerOptions o = IiwaServerOptions();
   o.journal_dir = dir.path();
   o.snapshot_every = 0;  // recovery from the start's snapshot and every record
   uint64_t last = 0;
@@ -269,9 +269,9 @@ TEST(ArmDriverTest, RecoveryRepeatsTheCommands) {
     ArmServer a(o);
     joints = a.joints;
     a.h.Step(5);
-    a.Post(Command(1, Targets(0.1), Targets(1.0)));
+    a.Post(IiwaCommand(1, Targets(0.1), Targets(1.0)));
     a.h.Step(10);
-    a.Post(Command(2, Targets(-0.3), {}));
+    a.Post(IiwaCommand(2, Targets(-0.3), {}));
     a.h.Step(10);
     last = HashWorldState(a.h.server.world());
   }

@@ -24,11 +24,11 @@ using testing::ArmServer;
 using testing::Targets;
 using Status_ = drake::lcmt_panda_status;
 
-ServerOptions Options(bool gravity_compensation = true, double kp = kDefaultArmKp, double kd = kDefaultArmKd) {
+ServerOptions PandaServerOptions(bool gravity_compensation = true, double kp = kDefaultArmKp, double kd = kDefaultArmKd) {
   return testing::ArmOptions("panda", gravity_compensation, kp, kd);
 }
 
-drake::lcmt_panda_command Command(int64_t utime, int mode, std::vector<double> position, std::vector<double> velocity,
+drake::lcmt_panda_command PandaCommand(int64_t utime, int mode, std::vector<double> position, std::vector<double> velocity,
                                   std::vector<double> torque) {
   drake::lcmt_panda_command m;
   m.utime = utime;
@@ -46,7 +46,7 @@ drake::lcmt_panda_command Command(int64_t utime, int mode, std::vector<double> p
 // velocities 0.2 + .., torques 1 + ..) and the others empty.
 drake::lcmt_panda_command CommandInMode(int64_t utime, int mode) {
   const auto array = [&](int bit, double base) { return (mode & bit) ? Targets(base) : std::vector<double>{}; };
-  return Command(utime, mode, array(kPandaPositionMode, 0.1), array(kPandaVelocityMode, 0.2),
+  return PandaCommand(utime, mode, array(kPandaPositionMode, 0.1), array(kPandaVelocityMode, 0.2),
                  array(kPandaTorqueMode, 1.0));
 }
 
@@ -57,7 +57,7 @@ drake::lcmt_panda_command CommandInMode(int64_t utime, int mode) {
 // position target stays, and the status's control_mode reads the mode back.
 TEST(PandaDriverTest, EachControlModeSetsItsDrives) {
   for (int mode = 1; mode <= 7; ++mode) {
-    ArmServer a(Options());
+    ArmServer a(PandaServerOptions());
     const size_t replies = a.Replies().size();
     std::vector<double> held;  // the start's hold targets
     for (int i = 0; i < kArmJoints; ++i) held.push_back(a.joint(i).actuator.target_position);
@@ -86,7 +86,7 @@ TEST(PandaDriverTest, EachControlModeSetsItsDrives) {
 // count, a NaN, modes that are none (0, an unknown bit, a negative byte),
 // and arrays that disagree with the mode's bits either way.
 TEST(PandaDriverTest, BadCommandsAreRefusedAndChangeNothing) {
-  ArmServer a(Options());
+  ArmServer a(PandaServerOptions());
   a.Post(CommandInMode(1, kPandaPositionMode | kPandaTorqueMode));
   a.h.server.Tick();
   std::vector<double> nan = Targets(0.5);
@@ -96,17 +96,17 @@ TEST(PandaDriverTest, BadCommandsAreRefusedAndChangeNothing) {
     const char* says;
   };
   const std::vector<Case> cases = {
-      {Command(11, kPandaPositionMode, std::vector<double>(6, 0.5), {}, {}),
+      {PandaCommand(11, kPandaPositionMode, std::vector<double>(6, 0.5), {}, {}),
        "joint_position has 6 entries; the arm has 7 joints"},
-      {Command(12, kPandaVelocityMode, {}, std::vector<double>(8, 0.5), {}), "joint_velocity has 8 entries"},
-      {Command(13, kPandaPositionMode, nan, {}, {}), "joint_position[2] is nan, not a finite number"},
-      {Command(14, 0, {}, {}, {}), "control_mode_expected 0 is not a control mode"},
-      {Command(15, 8, {}, {}, {}), "control_mode_expected 8 is not a control mode"},
-      {Command(16, kPandaPositionMode | 16, Targets(0.5), {}, {}), "control_mode_expected 17 is not a control mode"},
-      {Command(17, -1, Targets(0.5), Targets(0.5), Targets(0.5)), "control_mode_expected -1 is not a control mode"},
-      {Command(18, kPandaPositionMode, Targets(0.5), {}, Targets(0.5)),
+      {PandaCommand(12, kPandaVelocityMode, {}, std::vector<double>(8, 0.5), {}), "joint_velocity has 8 entries"},
+      {PandaCommand(13, kPandaPositionMode, nan, {}, {}), "joint_position[2] is nan, not a finite number"},
+      {PandaCommand(14, 0, {}, {}, {}), "control_mode_expected 0 is not a control mode"},
+      {PandaCommand(15, 8, {}, {}, {}), "control_mode_expected 8 is not a control mode"},
+      {PandaCommand(16, kPandaPositionMode | 16, Targets(0.5), {}, {}), "control_mode_expected 17 is not a control mode"},
+      {PandaCommand(17, -1, Targets(0.5), Targets(0.5), Targets(0.5)), "control_mode_expected -1 is not a control mode"},
+      {PandaCommand(18, kPandaPositionMode, Targets(0.5), {}, Targets(0.5)),
        "control_mode_expected 1 excludes joint_torque (mode bit 4), but it has 7 entries"},
-      {Command(19, kPandaPositionMode | kPandaTorqueMode, Targets(0.5), {}, {}),
+      {PandaCommand(19, kPandaPositionMode | kPandaTorqueMode, Targets(0.5), {}, {}),
        "control_mode_expected 5 asks for joint_torque (mode bit 4), but it has 0 entries"},
   };
   for (const Case& k : cases) {
@@ -135,7 +135,7 @@ TEST(PandaDriverTest, BadCommandsAreRefusedAndChangeNothing) {
 // (each step enters a new period), every second step at 0.5 ms.
 TEST(PandaDriverTest, StatusAtTheDriversRate) {
   for (double dt : {0.001, 1.0 / 240, 0.0005}) {
-    ArmServer a(Options());
+    ArmServer a(PandaServerOptions());
     scene_cmd_t set = a.h.Scene(scene_cmd_t::SET_TIMESTEP);
     set.dt = dt;
     ASSERT_EQ(a.h.Send(set).code, reply_t::OK);
@@ -163,9 +163,9 @@ TEST(PandaDriverTest, StatusAtTheDriversRate) {
 // command's, the measured torque the drive's effort plus the torque holding
 // the horizontal chain against gravity (analytic), no external torque.
 TEST(PandaDriverTest, StatusFieldsAndHoldTorques) {
-  ArmServer a(Options());
+  ArmServer a(PandaServerOptions());
   const std::vector<double> torque(kArmJoints, 0.25);
-  a.Post(Command(3, kPandaVelocityMode | kPandaTorqueMode, {}, Targets(0.02), torque));
+  a.Post(PandaCommand(3, kPandaVelocityMode | kPandaTorqueMode, {}, Targets(0.02), torque));
   a.h.Step(2);
   const Status_ s = a.Statuses<Status_>().back();
   ASSERT_EQ(s.num_joints, kArmJoints);
@@ -197,19 +197,19 @@ TEST(PandaDriverTest, StatusFieldsAndHoldTorques) {
 // 1 mrad, at rest to 1 mrad/s, within 1 s.
 TEST(PandaDriverTest, PositionAndVelocityModesMoveTheArm) {
   constexpr double kp = 1000, kd = 100;
-  ArmServer a(Options(true, kp, kd));
+  ArmServer a(PandaServerOptions(true, kp, kd));
   scene_cmd_t set = a.h.Scene(scene_cmd_t::SET_TIMESTEP);
   set.dt = 0.001;  // the Panda's control cycle
   ASSERT_EQ(a.h.Send(set).code, reply_t::OK);
   std::vector<double> rate;
   for (int i = 0; i < kArmJoints; ++i) rate.push_back(0.005 * (i % 2 == 0 ? 1 : -1));
-  a.Post(Command(1, kPandaVelocityMode, {}, rate, {}));
+  a.Post(PandaCommand(1, kPandaVelocityMode, {}, rate, {}));
   a.h.Step(200);
   const Status_ moving = a.Statuses<Status_>().back();
   for (int i = 0; i < kArmJoints; ++i) EXPECT_NEAR(moving.joint_velocity[i], rate[i], 1e-3) << "joint " << i;
   std::vector<double> pose;
   for (int i = 0; i < kArmJoints; ++i) pose.push_back(moving.joint_position[i] - 0.001 * i);
-  a.Post(Command(2, kPandaPositionMode, pose, {}, {}));
+  a.Post(PandaCommand(2, kPandaPositionMode, pose, {}, {}));
   a.h.Step(1000);
   const Status_ held = a.Statuses<Status_>().back();
   for (int i = 0; i < kArmJoints; ++i) {
@@ -222,7 +222,7 @@ TEST(PandaDriverTest, PositionAndVelocityModesMoveTheArm) {
 // commands, decoded by the Panda's protocol: the same state and drives.
 TEST(PandaDriverTest, RecoveryRepeatsTheCommands) {
   testing::TempDir dir;
-  ServerOptions o = Options();
+  ServerOptions o = PandaServerOptions();
   o.journal_dir = dir.path();
   o.snapshot_every = 0;  // recovery from the start's snapshot and every record
   uint64_t last = 0;

@@ -14,18 +14,18 @@
 namespace contactsim {
 namespace {
 
-std::vector<double> Values(int n, double base) {
+std::vector<double> PandaValues(int n, double base) {
   std::vector<double> v(n);
   for (int i = 0; i < n; ++i) v[i] = base + 0.1 * i;
   return v;
 }
 
-ArmJointReadings Readings(int n) {
+ArmJointReadings PandaReadings(int n) {
   ArmJointReadings r;
-  r.position = Values(n, 1.0);
-  r.velocity = Values(n, -2.0);
-  r.position_commanded = Values(n, 3.0);
-  r.torque_commanded = Values(n, 40.0);
+  r.position = PandaValues(n, 1.0);
+  r.velocity = PandaValues(n, -2.0);
+  r.position_commanded = PandaValues(n, 3.0);
+  r.torque_commanded = PandaValues(n, 40.0);
   return r;
 }
 
@@ -33,7 +33,7 @@ ArmJointReadings Readings(int n) {
 // left out (zeros; measured torque = commanded) and given.
 TEST(PandaStatusBuilderTest, FieldsCarryTheirReadings) {
   for (int n : {1, 2, 7}) {
-    ArmJointReadings r = Readings(n);
+    ArmJointReadings r = PandaReadings(n);
     drake::lcmt_panda_status m;
     ASSERT_TRUE(BuildPandaStatus(1.25, r, &m).ok());
     EXPECT_EQ(m.utime, 1250000);
@@ -50,9 +50,9 @@ TEST(PandaStatusBuilderTest, FieldsCarryTheirReadings) {
     EXPECT_EQ(m.control_command_success_rate, 1.0);
     EXPECT_EQ(m.robot_mode, +drake::lcmt_panda_status::kIdle);
     EXPECT_EQ(m.control_mode, 0);
-    r.velocity_commanded = Values(n, 0.5);
-    r.torque_applied = Values(n, 39.0);
-    r.torque_external = Values(n, -5.0);
+    r.velocity_commanded = PandaValues(n, 0.5);
+    r.torque_applied = PandaValues(n, 39.0);
+    r.torque_external = PandaValues(n, -5.0);
     ASSERT_TRUE(BuildPandaStatus(1.25, r, &m).ok());
     EXPECT_EQ(m.joint_velocity_desired, r.velocity_commanded);
     EXPECT_EQ(m.joint_torque, r.torque_applied);
@@ -69,7 +69,7 @@ TEST(PandaStatusBuilderTest, FieldsCarryTheirReadings) {
 TEST(PandaStatusBuilderTest, InputsReadAsControlModeBits) {
   using S = drake::lcmt_panda_status;
   for (int inputs = 0; inputs <= 7; ++inputs) {
-    ArmJointReadings r = Readings(7);
+    ArmJointReadings r = PandaReadings(7);
     r.inputs = inputs;
     drake::lcmt_panda_status m;
     ASSERT_TRUE(BuildPandaStatus(0.5, r, &m).ok());
@@ -84,18 +84,18 @@ TEST(PandaStatusBuilderTest, InputsReadAsControlModeBits) {
 // Verifies that a bad reading is refused, names the field, and leaves the
 // message as it was (the checks are CheckArmReadings', shared with the iiwa).
 TEST(PandaStatusBuilderTest, BadReadingsAreRefused) {
-  ArmJointReadings r = Readings(7);
-  r.velocity_commanded = Values(6, 0.0);
+  ArmJointReadings r = PandaReadings(7);
+  r.velocity_commanded = PandaValues(6, 0.0);
   drake::lcmt_panda_status m{};
   m.utime = 42;
   Status st = BuildPandaStatus(1.0, r, &m);
   EXPECT_NE(st.message().find("velocity_commanded has 6 entries, the arm 7 joints"), std::string::npos)
       << st.message();
-  r = Readings(7);
+  r = PandaReadings(7);
   r.velocity[1] = std::numeric_limits<double>::quiet_NaN();
   st = BuildPandaStatus(1.0, r, &m);
   EXPECT_NE(st.message().find("velocity[1] is not finite"), std::string::npos) << st.message();
-  st = BuildPandaStatus(-1.0, Readings(7), &m);
+  st = BuildPandaStatus(-1.0, PandaReadings(7), &m);
   EXPECT_NE(st.message().find("sim_time_s"), std::string::npos) << st.message();
   EXPECT_EQ(m.utime, 42);
   EXPECT_EQ(m.num_joints, 0);

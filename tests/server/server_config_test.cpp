@@ -7,15 +7,10 @@
 #include <fstream>
 
 #include "service/collision/parallel_runner.h"
+#include "tests/server/temp_dir.h"
 
 namespace contactsim {
 namespace {
-
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 // Verifies that the shipped default config loads with its scene.
 TEST(ServerConfig, DefaultConfigLoads) {
@@ -32,7 +27,7 @@ TEST(ServerConfig, DefaultConfigLoads) {
 
 // Verifies that a bad value names the file, the line and the field.
 TEST(ServerConfig, BadValueNamesFileLineAndField) {
-  const std::string path = WriteTemp("bad_rate.pbtxt", "channel_prefix: \"X\"\nstate_rate_hz: -5\n");
+  const std::string path = testing::WriteTempFile("bad_rate.pbtxt", "channel_prefix: \"X\"\nstate_rate_hz: -5\n");
   proto::ServerConfig config;
   const Status st = LoadServerConfig(path, &config);
   ASSERT_FALSE(st.ok());
@@ -41,7 +36,7 @@ TEST(ServerConfig, BadValueNamesFileLineAndField) {
 
 // Verifies that an unknown contact method in the config is refused.
 TEST(ServerConfig, UnknownMethodIsRefused) {
-  const std::string path = WriteTemp("bad_method.pbtxt", "contact_method: \"magic\"\n");
+  const std::string path = testing::WriteTempFile("bad_method.pbtxt", "contact_method: \"magic\"\n");
   proto::ServerConfig config;
   const Status st = LoadServerConfig(path, &config);
   ASSERT_FALSE(st.ok());
@@ -50,7 +45,7 @@ TEST(ServerConfig, UnknownMethodIsRefused) {
 
 // Verifies that a missing scene file is reported with its path.
 TEST(ServerConfig, MissingSceneIsReported) {
-  const std::string path = WriteTemp("missing_scene.pbtxt", "scene: \"nowhere.pbtxt\"\n");
+  const std::string path = testing::WriteTempFile("missing_scene.pbtxt", "scene: \"nowhere.pbtxt\"\n");
   proto::ServerConfig config;
   ASSERT_TRUE(LoadServerConfig(path, &config).ok());
   ServerSetup setup;
@@ -61,7 +56,7 @@ TEST(ServerConfig, MissingSceneIsReported) {
 
 // The server options a config of `text` gives (a failure fails the test).
 ServerOptions OptionsOf(const std::string& text) {
-  const std::string path = WriteTemp("options.pbtxt", text);
+  const std::string path = testing::WriteTempFile("options.pbtxt", text);
   proto::ServerConfig config;
   const Status loaded = LoadServerConfig(path, &config);
   EXPECT_TRUE(loaded.ok()) << loaded.message();
@@ -93,7 +88,7 @@ TEST(ServerConfig, SleepDefaultsToOnAndIsTaken) {
 // the file, the line, the field and the value.
 TEST(ServerConfig, BadThreadCountsAreRefusedNamingTheValue) {
   for (const std::string value : {"0", "-2", "100000"}) {
-    const std::string path = WriteTemp("bad_threads.pbtxt", "channel_prefix: \"X\"\nthreads: " + value + "\n");
+    const std::string path = testing::WriteTempFile("bad_threads.pbtxt", "channel_prefix: \"X\"\nthreads: " + value + "\n");
     proto::ServerConfig config;
     const Status st = LoadServerConfig(path, &config);
     ASSERT_FALSE(st.ok()) << value;

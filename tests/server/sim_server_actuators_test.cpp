@@ -21,7 +21,7 @@ namespace {
 
 using testing::ServerHarness;
 
-ServerOptions Options() {
+ServerOptions ActuatorServerOptions() {
   ServerOptions o;
   o.prefix = "A";
   return o;
@@ -76,7 +76,7 @@ const JointActuator& ActuatorOf(const ServerHarness& h, JointId id) { return h.s
 // Verifies that SET changes only the fields given (new targets keep the
 // gains), answers with the joint ids, and CLEAR removes the actuator.
 TEST(SimServerActuatorsTest, SetKeepsTheFieldsNotGivenAndClearRemoves) {
-  ServerHarness h(Options());
+  ServerHarness h(ActuatorServerOptions());
   AddJoints(h);
   JointActuator v;
   v.kp = 100.0;
@@ -101,7 +101,7 @@ TEST(SimServerActuatorsTest, SetKeepsTheFieldsNotGivenAndClearRemoves) {
 // Verifies that one bad joint or value refuses the whole command with a
 // message naming it, and no joint changes.
 TEST(SimServerActuatorsTest, ARefusedCommandChangesNoJoint) {
-  ServerHarness h(Options());
+  ServerHarness h(ActuatorServerOptions());
   AddJoints(h);
   JointActuator v;
   v.kp = 7.0;
@@ -139,7 +139,7 @@ TEST(SimServerActuatorsTest, ARefusedCommandChangesNoJoint) {
 // slide a . (p_world - p_box) grows as the box falls at g t); a STATE
 // request publishes it on demand.
 TEST(SimServerActuatorsTest, JointStateListsTheJointsWithACoordinate) {
-  ServerHarness h(Options());
+  ServerHarness h(ActuatorServerOptions());
   AddJoints(h);
   h.Step(3);
   const std::vector<joint_state_t> all = h.transport.All<joint_state_t>("A_JOINT_STATE");
@@ -164,7 +164,7 @@ TEST(SimServerActuatorsTest, JointStateListsTheJointsWithACoordinate) {
 // input holds the step), that a good one is journaled with explicit ids and
 // that after its step every joint has its standing settings again.
 TEST(SimServerActuatorsTest, LockstepJointCommandsActForOneStep) {
-  ServerHarness h(Options());
+  ServerHarness h(ActuatorServerOptions());
   AddJoints(h);
   JointActuator standing;
   standing.kp = 5.0;
@@ -212,7 +212,7 @@ TEST(SimServerActuatorsTest, LockstepJointCommandsActForOneStep) {
 // every joint its standing settings back.
 TEST(SimServerActuatorsTest, SnapshotsRewindAndRecoveryKeepTheSettings) {
   testing::TempDir dir;
-  ServerOptions o = Options();
+  ServerOptions o = ActuatorServerOptions();
   o.journal_dir = dir.path();
   o.snapshot_every = 4;
   JointActuator v;

@@ -13,12 +13,12 @@ namespace {
 
 using testing::ServerHarness;
 
-const std::string kKey(64, 'k');
+const std::string kServerKey(64, 'k');
 
 ServerOptions Signed() {
   ServerOptions o;
   o.prefix = "A";
-  o.auth_key = kKey;
+  o.auth_key = kServerKey;
   return o;
 }
 
@@ -37,7 +37,7 @@ reply_t Deliver(ServerHarness& h, const std::string& bytes) {
 // signed command from the same client is applied.
 TEST(SimServerAuthTest, OnlySignedFreshNewCommandsAreApplied) {
   ServerHarness h(Signed());
-  Signer signer(kKey), forger(std::string(64, 'x'));
+  Signer signer(kServerKey), forger(std::string(64, 'x'));
   const std::string channel = h.server.Channel("BODY_CMD");
   body_cmd_t add = h.Box(0.1, Vec3(0, 0, 1));
   add.request_id = 1;
@@ -53,7 +53,7 @@ TEST(SimServerAuthTest, OnlySignedFreshNewCommandsAreApplied) {
   EXPECT_NE(r.message.find("forged"), std::string::npos) << r.message;
 
   const uint64_t old = WallClockNanoseconds() - uint64_t{100} * 1000000000;
-  r = Deliver(h, bare + SignatureTrailer(kKey, channel, bare.data(), static_cast<int>(bare.size()), old));
+  r = Deliver(h, bare + SignatureTrailer(kServerKey, channel, bare.data(), static_cast<int>(bare.size()), old));
   EXPECT_EQ(r.code, reply_t::UNAUTHENTICATED);
   EXPECT_NE(r.message.find("stale"), std::string::npos) << r.message;
   EXPECT_EQ(h.server.world().bodies().size(), 0u);
@@ -73,7 +73,7 @@ TEST(SimServerAuthTest, AServerWithoutAKeyCutsTheTrailerOff) {
   ServerOptions o;
   o.prefix = "A";
   ServerHarness h(o);
-  Signer signer(kKey);
+  Signer signer(kServerKey);
   body_cmd_t add = h.Box(0.1, Vec3(0, 0, 1));
   const std::string bare = Bytes(add);
   const reply_t r = Deliver(h, signer.Sign(h.server.Channel("BODY_CMD"), bare.data(), static_cast<int>(bare.size())));

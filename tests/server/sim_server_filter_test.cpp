@@ -29,7 +29,7 @@ body_cmd_t Filter(ServerHarness& h, BodyId id, uint32_t category, uint32_t mask,
 // Ground (1), a lower box of category 2 (2), an upper box resting on it
 // (3), and two spheres on a ball joint that lets them touch (4, 5); 120
 // steps; the upper box's mask set to the ground's category; 30 steps more.
-void Drive(ServerHarness& h) {
+void DriveFilteredPairs(ServerHarness& h) {
   body_cmd_t ground = h.Body(body_cmd_t::ADD);
   ground.shape = body_cmd_t::PLANE;
   ground.plane_normal[2] = 1.0;
@@ -75,7 +75,7 @@ TEST(SimServerFilterTest, SetFilterDropsTheTopOfASleepingStack) {
   ServerOptions options;
   options.sleep = true;
   ServerHarness h(options);
-  Drive(h);
+  DriveFilteredPairs(h);
   const World& w = h.server.world();
   EXPECT_EQ(w.Find(2)->collision_category, 2u);
   EXPECT_EQ(w.Find(2)->collision_mask, 0xFFFFFFFFu);
@@ -125,11 +125,11 @@ TEST(SimServerFilterTest, JournalRecoveryKeepsTheFilters) {
   options.prefix = "F";
   options.snapshot_every = 50;
   ServerHarness reference(options);
-  Drive(reference);
+  DriveFilteredPairs(reference);
   options.journal_dir = dir.path();
   {
     ServerHarness first(options);
-    Drive(first);
+    DriveFilteredPairs(first);
     ASSERT_EQ(HashWorldState(first.server.world()), HashWorldState(reference.server.world()));
   }
   ServerHarness recovered(options);

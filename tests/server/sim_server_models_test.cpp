@@ -42,7 +42,7 @@ model_cmd_t Op(int8_t op, int64_t model_id = 0) {
   return m;
 }
 
-ServerOptions Options() {
+ServerOptions ModelServerOptions() {
   ServerOptions o;
   o.prefix = "M";
   return o;
@@ -53,7 +53,7 @@ ServerOptions Options() {
 // body or joint of the model cannot be removed alone, and that REMOVE takes
 // out the whole model.
 TEST(SimServerModelsTest, LoadReplyInfoAndRemove) {
-  ServerHarness h(Options());
+  ServerHarness h(ModelServerOptions());
   reply_t r = h.Send(Load(model::testing::Arm()));
   ASSERT_EQ(r.code, reply_t::OK) << r.message;
   EXPECT_EQ(r.ids, (std::vector<int64_t>{1, 1, 2, 3, 1, 2}));
@@ -97,7 +97,7 @@ TEST(SimServerModelsTest, LoadReplyInfoAndRemove) {
 // text, a missing file, a text over the limit, a text that is no model,
 // a bad orientation, an unknown op.
 TEST(SimServerModelsTest, BadLoadsChangeNothing) {
-  ServerHarness h(Options());
+  ServerHarness h(ModelServerOptions());
   const uint64_t before = HashWorldState(h.server.world());
   struct Case {
     model_cmd_t cmd;
@@ -149,7 +149,7 @@ TEST(SimServerModelsTest, BadLoadsChangeNothing) {
 // the journal comes back with the same bodies and the same record.
 TEST(SimServerModelsTest, RewindAndRecoveryKeepTheModel) {
   testing::TempDir dir;
-  ServerOptions o = Options();
+  ServerOptions o = ModelServerOptions();
   o.journal_dir = dir.path();
   o.snapshot_every = 20;
   std::vector<uint64_t> run;
@@ -200,7 +200,7 @@ TEST(SimServerModelsTest, TheRecordKeepsTheVisualsThroughASnapshot) {
   arm.links[1].visuals = {box};
   arm.links[2].visuals = {mesh, box};
   testing::TempDir dir;
-  ServerOptions o = Options();
+  ServerOptions o = ModelServerOptions();
   o.journal_dir = dir.path();
   o.snapshot_every = 10;
   {
@@ -238,7 +238,7 @@ namespace {
 // methods that take it, nothing added), loads under impulse with the world
 // joint a mimic, and then a switch to xpbd is refused and the method stays.
 TEST(SimServerModelsTest, MimicJointsFollowTheMethodsContract) {
-  ServerHarness h(Options());
+  ServerHarness h(ModelServerOptions());
   model::ModelDescription arm = model::testing::Arm();
   arm.joints[1].mimic = model::ModelMimic{"shoulder", -1.0, 0.0};
   scene_cmd_t method = h.Scene(scene_cmd_t::SET_METHOD);

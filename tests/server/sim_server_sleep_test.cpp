@@ -15,7 +15,7 @@ namespace {
 
 using testing::ServerHarness;
 
-constexpr double kHalf = 0.1;  // m, the box
+constexpr double kBoxHalf = 0.1;  // m, the box
 
 // A plane (id 1) and a box resting on it (id 2), stepped 2 s.
 void BoxOnPlaneFor2s(ServerHarness& h) {
@@ -23,7 +23,7 @@ void BoxOnPlaneFor2s(ServerHarness& h) {
   plane.shape = body_cmd_t::PLANE;
   plane.plane_normal[2] = 1.0;
   ASSERT_EQ(h.Send(plane).code, reply_t::OK);
-  ASSERT_EQ(h.Send(h.Box(kHalf, Vec3(0, 0, kHalf + 0.01))).code, reply_t::OK);
+  ASSERT_EQ(h.Send(h.Box(kBoxHalf, Vec3(0, 0, kBoxHalf + 0.01))).code, reply_t::OK);
   h.Step(480);
 }
 
@@ -87,7 +87,7 @@ TEST(SimServerSleepTest, CommandsOnASleepingBodyWakeItAndAct) {
   lift.duration = 0.1;
   ASSERT_EQ(h.Send(lift).code, reply_t::OK);
   h.Step(24);
-  EXPECT_GT(h.server.world().Find(2)->x.z(), h.server.world().Find(1)->x.z() + kHalf + 0.05);
+  EXPECT_GT(h.server.world().Find(2)->x.z(), h.server.world().Find(1)->x.z() + kBoxHalf + 0.05);
 }
 
 // Verifies that removing the plane under a sleeping box wakes it (it falls),

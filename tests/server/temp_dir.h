@@ -4,7 +4,10 @@
 
 #include <stdlib.h>
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace contactsim {
@@ -25,6 +28,14 @@ class TempDir {
  private:
   std::string path_;
 };
+
+// Writes `text` to a file `name` in gtest's temporary folder and returns its
+// path (a config or model file for a test to load).
+inline std::string WriteTempFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
 
 }  // namespace testing
 }  // namespace contactsim

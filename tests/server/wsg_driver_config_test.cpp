@@ -11,15 +11,10 @@
 #include <vector>
 
 #include "service/server/server_config.h"
+#include "tests/server/temp_dir.h"
 
 namespace contactsim {
 namespace {
-
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 proto::WsgDriver Block() {
   proto::WsgDriver b;
@@ -92,7 +87,7 @@ TEST(WsgDriverConfigTest, BadValuesNameTheirField) {
 // Verifies that a file's bad field is named with its line, and that the
 // gripper may not take one of the arm driver's channels.
 TEST(WsgDriverConfigTest, ConfigFileErrorNamesLineAndField) {
-  const std::string path = WriteTemp("wsg_bad_kp.pbtxt",
+  const std::string path = testing::WriteTempFile("wsg_bad_kp.pbtxt",
                                      "wsg_driver {\n  model: \"wsg\"\n  finger_joints: \"a\"\n"
                                      "  finger_joints: \"b\"\n  kp: -3\n}\n");
   proto::ServerConfig config;
@@ -100,7 +95,7 @@ TEST(WsgDriverConfigTest, ConfigFileErrorNamesLineAndField) {
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.message().find(path + ":5: wsg_driver: kp must be finite and >= 0"), std::string::npos)
       << st.message();
-  const std::string clash = WriteTemp("wsg_clash.pbtxt",
+  const std::string clash = testing::WriteTempFile("wsg_clash.pbtxt",
                                       "arm_driver {\n  protocol: \"iiwa\"\n  model: \"iiwa\"\n}\n"
                                       "wsg_driver {\n  model: \"wsg\"\n  finger_joints: \"a\"\n"
                                       "  finger_joints: \"b\"\n  status_channel: \"IIWA_STATUS\"\n}\n");
@@ -115,7 +110,7 @@ TEST(WsgDriverConfigTest, ConfigFileErrorNamesLineAndField) {
 // Verifies that a valid block beside an arm_driver reaches the server's
 // options with Drake's channels.
 TEST(WsgDriverConfigTest, BlockBesideAnArmStarts) {
-  const std::string path = WriteTemp("wsg_and_arm.pbtxt",
+  const std::string path = testing::WriteTempFile("wsg_and_arm.pbtxt",
                                      "arm_driver {\n  protocol: \"panda\"\n  model: \"panda\"\n}\n"
                                      "wsg_driver {\n  model: \"panda\"\n  finger_joints: \"a\"\n"
                                      "  finger_joints: \"b\"\n}\n");

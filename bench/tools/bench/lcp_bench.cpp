@@ -72,7 +72,7 @@ void BuildStack(World& world, int n) {
   for (int i = 0; i < n; ++i) AddBody(world, ShapeType::kBox, 0.1, Vec3(0, 0, 0.1 + 0.2 * i));
 }
 
-struct Run {
+struct LcpRun {
   World world;
   CollisionDetector detector;
   LcpMethod method;
@@ -80,7 +80,7 @@ struct Run {
   StepStats Step() { return method.Step(world, detector, &contacts); }
 };
 
-void TimeSteps(benchmark::State& state, Run& run) {
+void TimeSteps(benchmark::State& state, LcpRun& run) {
   long steps = 0, iterations = 0;
   for (auto _ : state) {
     iterations += run.Step().iterations;
@@ -92,7 +92,7 @@ void TimeSteps(benchmark::State& state, Run& run) {
 
 // range(0): warm start on (1) or off (0)
 void BM_LcpPyramidPgs(benchmark::State& state) {
-  Run run;
+  LcpRun run;
   run.method.SetParams({{"solver", "pgs"}, {"warm_start", state.range(0) ? "true" : "false"}});
   const BodyId top = BuildPyramid(run.world, 20);
   const Vec3 top0 = run.world.Find(top)->x;
@@ -104,7 +104,7 @@ void BM_LcpPyramidPgs(benchmark::State& state) {
 BENCHMARK(BM_LcpPyramidPgs)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
 void BM_LcpSpherePilePgs(benchmark::State& state) {
-  Run run;
+  LcpRun run;
   BuildSpherePile(run.world);
   for (int i = 0; i < 240; ++i) run.Step();
   TimeSteps(state, run);
@@ -113,7 +113,7 @@ BENCHMARK(BM_LcpSpherePilePgs)->Unit(benchmark::kMillisecond);
 
 // range(0): solver (0 pgs, 1 lemke); range(1): boxes in the stack
 void BM_LcpStack(benchmark::State& state) {
-  Run run;
+  LcpRun run;
   const char* solver = state.range(0) ? "lemke" : "pgs";
   run.method.SetParams({{"solver", solver}});
   BuildStack(run.world, static_cast<int>(state.range(1)));

@@ -21,9 +21,9 @@ namespace {
 // Indices a thread takes at a time in the step's per-row, per-block,
 // per-pair and per-body loops: enough work to pay for the atomic counter.
 constexpr int kRowGrain = 256;
-constexpr int kBlockGrain = 128;
-constexpr int kPairGrain = 64;
-constexpr int kBodyGrain = 256;
+constexpr int kImpulseBlockGrain = 128;
+constexpr int kImpulsePairGrain = 64;
+constexpr int kImpulseBodyGrain = 256;
 
 }  // namespace
 
@@ -109,7 +109,7 @@ void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::ve
 
 void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
   GroupNormalBlocks(rows, &ContactRow::n, &blocks_);
-  runner_->For(static_cast<int>(blocks_.size()), kBlockGrain, [&](int begin, int end, int /*worker*/) {
+  runner_->For(static_cast<int>(blocks_.size()), kImpulseBlockGrain, [&](int begin, int end, int /*worker*/) {
     for (int b = begin; b < end; ++b) {
       NormalBlock& m = blocks_[b];
       if (m.count < 2) continue;
@@ -301,7 +301,7 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
   const int n = static_cast<int>(pairs.size());
   impact_depth_.assign(n, std::numeric_limits<double>::quiet_NaN());
   impact_scratch_.resize(runner_->threads());
-  runner_->For(n, kPairGrain, [&](int begin, int end, int worker) {
+  runner_->For(n, kImpulsePairGrain, [&](int begin, int end, int worker) {
     ContactSet& scratch = impact_scratch_[worker];
     for (int i = begin; i < end; ++i) {
       const BodyPair& p = pairs[i];
@@ -376,14 +376,14 @@ StepStats ImpulseMethod::Step(World& world, CollisionDetector& detector, Contact
 
 void ImpulseMethod::CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const {
   to->resize(from.size());
-  runner_->For(static_cast<int>(from.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+  runner_->For(static_cast<int>(from.size()), kImpulseBodyGrain, [&](int begin, int end, int /*worker*/) {
     std::copy(from.begin() + begin, from.begin() + end, to->begin() + begin);
   });
 }
 
 void ImpulseMethod::MoveBodies(double h, World& world) {
   auto& bodies = world.bodies();
-  runner_->For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+  runner_->For(static_cast<int>(bodies.size()), kImpulseBodyGrain, [&](int begin, int end, int /*worker*/) {
     for (int i = begin; i < end; ++i) {
       RigidBody& b = bodies[i];
       if (b.motion == MotionType::kStatic) continue;
@@ -450,7 +450,7 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     const double t_c = FindImpactTime(start_state, impacts, remaining, &stats.iterations);
     if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
     CopyBodies(start_state.bodies(), &bodies);
-    runner_->For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int /*worker*/) {
+    runner_->For(static_cast<int>(bodies.size()), kImpulseBodyGrain, [&](int begin, int end, int /*worker*/) {
       for (int i = begin; i < end; ++i) AdvanceBallistic(bodies[i], t_c);
     });
     remaining -= t_c;

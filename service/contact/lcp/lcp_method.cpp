@@ -16,7 +16,7 @@ namespace contactsim {
 namespace {
 
 // bodies a thread takes at a time
-constexpr int kBodyGrain = 256;
+constexpr int kLcpBodyGrain = 256;
 
 // `velocities`: the rows act on velocities (the energy guard applies), not
 // on the split impulse's pseudo-velocities.
@@ -72,7 +72,7 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   split_pgs_.Solve(split_rows_, bodies_, options);
   subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_, false));
   auto& bodies = world.bodies();
-  runner.For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(bodies.size()), kLcpBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       if (!bodies[i].IsDynamic()) continue;
       bodies[i].x += bodies_[i].v;
@@ -175,7 +175,7 @@ void LcpMethod::BuildContactRows(World& world, ParallelRunner& runner) {
   LoadSolverBodies(world, runner, &before_);
   free_.resize(before_.size());
   const auto& forced = world.bodies();
-  runner.For(static_cast<int>(forced.size()), kBodyGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(forced.size()), kLcpBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       SolverBody& s = free_[i];
       s = before_[i];
@@ -205,7 +205,7 @@ void LcpMethod::AdvancePositions(World& world, ParallelRunner& runner) {
   // x0 + (v1 - F/(2m) h) h), the others with their end velocity
   const double h = world.dt;
   auto& bodies = world.bodies();
-  runner.For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(bodies.size()), kLcpBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       RigidBody& b = bodies[i];
       const bool touched = bodies_[i].dP.squaredNorm() + bodies_[i].dL.squaredNorm() > 0.0;

@@ -11,8 +11,8 @@ namespace contactsim {
 namespace {
 
 // groups (of rows) and normal blocks a thread prepares at a time
-constexpr int kPrepareGrain = 16;
-constexpr int kBlockGrain = 64;
+constexpr int kPgsPrepareGrain = 16;
+constexpr int kPgsBlockGrain = 64;
 
 }  // namespace
 
@@ -77,7 +77,7 @@ void PgsSolver::Prepare(const std::vector<ConstraintRow>& rows, const std::vecto
     }
   };
   if (runner != nullptr) {
-    runner->For(groups, kPrepareGrain, prepare);
+    runner->For(groups, kPgsPrepareGrain, prepare);
   } else {
     prepare(0, groups, 0);
   }
@@ -120,7 +120,7 @@ void PgsSolver::PrepareBlocks(const std::vector<PgsNormalBlock>& blocks, Paralle
     for (int i = begin; i < end; ++i) built_[i] = BuildBlock(blocks[i], &candidates_[i]);
   };
   if (runner != nullptr) {
-    runner->For(n, kBlockGrain, build);
+    runner->For(n, kPgsBlockGrain, build);
   } else {
     build(0, n, 0);
   }

@@ -4,14 +4,14 @@ namespace contactsim {
 namespace {
 
 // bodies a thread loads or stores at a time
-constexpr int kBodyGrain = 256;
+constexpr int kSoftBodyGrain = 256;
 
 }  // namespace
 
 void LoadSoftBodies(const World& world, const std::vector<char>& substepped, ParallelRunner& runner,
                     std::vector<SoftBody>* bodies) {
   bodies->resize(world.bodies().size());
-  runner.For(static_cast<int>(bodies->size()), kBodyGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(bodies->size()), kSoftBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) LoadSoftBody(world.bodies()[i], substepped[i] != 0, &(*bodies)[i]);
   });
 }
@@ -72,7 +72,7 @@ void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vec
 
 void StoreSoftBodies(const std::vector<SoftBody>& bodies, ParallelRunner& runner, World& world) {
   auto& dst = world.bodies();
-  runner.For(static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(bodies.size()), kSoftBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       const SoftBody& s = bodies[i];
       if (!s.substepped || s.inv_mass == 0.0) continue;

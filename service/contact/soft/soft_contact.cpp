@@ -28,7 +28,7 @@ double ImpactSpeed(const SoftPoint& p, const World& world, double vn0, double s0
 }
 
 // contacts a thread prepares at a time
-constexpr int kPrepareGrain = 256;
+constexpr int kSoftPrepareGrain = 256;
 
 }  // namespace
 
@@ -36,7 +36,7 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
                        std::vector<SoftPoint>* points) {
   points->resize(contacts.size());
-  runner.For(static_cast<int>(contacts.size()), kPrepareGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       (*points)[k] = PrepareSoftPoint(contacts[k], world, bodies,
                                       friction_points != nullptr ? &(*friction_points)[k] : nullptr);

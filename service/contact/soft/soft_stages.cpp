@@ -17,7 +17,7 @@ namespace {
 
 // Indices a thread takes at a time: enough work to pay for the atomic
 // counter, small enough that two threads finish a colour together.
-constexpr int kBodyGrain = 128;
+constexpr int kSoftStageBodyGrain = 128;
 constexpr int kPointGrain = 512;
 
 }  // namespace
@@ -98,8 +98,8 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // turn joint_passes times (contact/joints/joint_block.h)
   const int joint_passes = joints ? params_.joint_passes : 1;
   for (int sub = 0; sub < params_.substeps; ++sub) {
-    list.Add(integrate_velocities, 0, bodies, kBodyGrain);
-    list.Add(warm_start, 0, bodies, kBodyGrain);
+    list.Add(integrate_velocities, 0, bodies, kSoftStageBodyGrain);
+    list.Add(warm_start, 0, bodies, kSoftStageBodyGrain);
     if (joint_dynamics) list.AddSerial(begin_joints);
     // the heavy-on-light direct solve, a dense factorisation, once a stage:
     // before the stage's last joint solve
@@ -109,7 +109,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
       if (jointed_solve_.active() && pass + 1 == joint_passes) list.AddSerial(solve_jointed);
       if (joints) list.AddSerial(solve_joints);
     }
-    list.Add(integrate_positions, 0, bodies, kBodyGrain);
+    list.Add(integrate_positions, 0, bodies, kSoftStageBodyGrain);
     for (int pass = 0; pass < joint_passes; ++pass) {
       for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
       const bool last = pass + 1 == joint_passes;

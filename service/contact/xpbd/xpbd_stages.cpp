@@ -21,7 +21,7 @@ namespace contactsim {
 namespace {
 
 // bodies a thread takes at a time
-constexpr int kBodyGrain = 128;
+constexpr int kXpbdBodyGrain = 128;
 // Newton iterations of a sub-step's joint projection (xpbd_method.h, 2b):
 // after the sweeps the joints are open by at most a few mm, which one step
 // of Newton's method (quadratic) closes to below 1e-7 mm on the chains of
@@ -162,11 +162,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   for (int sub = 0; sub < substeps; ++sub) {
     if (start_overlaps) list.AddSerial(advance_time);
     if (joint_dynamics) {
-      list.Add(predict_velocities, 0, n, kBodyGrain);
+      list.Add(predict_velocities, 0, n, kXpbdBodyGrain);
       list.AddSerial(solve_joint_dynamics);
-      list.Add(predict_positions, 0, n, kBodyGrain);
+      list.Add(predict_positions, 0, n, kXpbdBodyGrain);
     } else {
-      list.Add(predict, 0, n, kBodyGrain);
+      list.Add(predict, 0, n, kXpbdBodyGrain);
     }
     if (articulation_.active()) list.AddSerial(refresh_articulation);
     if (joints) list.AddSerial(begin_joints);
@@ -177,7 +177,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     }
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);
-    list.Add(derive_velocities, 0, n, kBodyGrain);
+    list.Add(derive_velocities, 0, n, kXpbdBodyGrain);
     if (restitution) list.AddSerial(gather_impacts);
     if (sweeps > 1) list.AddSerial(begin_sweeps);
     for (const Fn& sweep : velocity_sweeps) list.AddColours(sweep, colours_, blocks);

@@ -38,7 +38,7 @@ struct BlockBodies {
 
 // The points of a block that pushed in the sub-step (lambda_n > 0): their
 // places in the block and the sum of their multipliers.
-struct Pushed {
+struct PushedPoints {
   int idx[kMaxNormalBlock];
   int count = 0;
   double sum = 0.0;
@@ -49,7 +49,7 @@ struct Pushed {
 // share it whatever their order (their impulses summed before they reach
 // the bodies); point by point where no block applies. Returns the largest
 // change of a point's normal velocity it asked for (m/s).
-double SolveBlockRestitution(double threshold, const NormalBlock& m, const Pushed& pushed_points,
+double SolveBlockRestitution(double threshold, const NormalBlock& m, const PushedPoints& pushed_points,
                              XpbdSubsetCache& cache, const XpbdArticulation& articulation,
                              std::vector<SoftBody>& all, const BlockBodies& pair, std::vector<XpbdPoint>& points) {
   SoftBody& A = pair.A;
@@ -129,7 +129,7 @@ double SolveXpbdContactVelocities(double h, double restitution_threshold, const 
   double largest = 0.0;
   for (int k = begin; k < end; ++k) {
     const NormalBlock& m = blocks[k];
-    Pushed pushed;
+    PushedPoints pushed;
     for (int i = 0; i < m.count; ++i) {
       const double lambda = (*points)[m.first + i].lambda_n;
       if (lambda > 0.0) {

@@ -8,7 +8,7 @@ namespace contactsim {
 namespace {
 
 // bodies a thread loads or stores at a time
-constexpr int kBodyGrain = 256;
+constexpr int kWideBodyGrain = 256;
 
 using Vec3f = Eigen::Vector3f;
 using Mat3f = Eigen::Matrix3f;
@@ -43,7 +43,7 @@ void LoadWideBodies(const World& world, const std::vector<SoftBody>& soft, Paral
   bodies->motion.resize(n + 1);
   bodies->state[n] = WideBody{};
   bodies->motion[n] = WideBodyMotion{};
-  runner.For(n, kBodyGrain, [&](int begin, int end, int) {
+  runner.For(n, kWideBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       LoadWideBody(world.bodies()[i], soft[i], &bodies->state[i], &bodies->motion[i]);
     }
@@ -84,7 +84,7 @@ void IntegrateWidePositions(float h, int begin, int end, WideBodies& bodies) {
 }
 
 void StoreWideBodies(const WideBodies& bodies, ParallelRunner& runner, std::vector<SoftBody>& soft, World& world) {
-  runner.For(static_cast<int>(soft.size()), kBodyGrain, [&](int begin, int end, int) {
+  runner.For(static_cast<int>(soft.size()), kWideBodyGrain, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       const WideBodyMotion& m = bodies.motion[i];
       if (!m.substepped) continue;

@@ -7,7 +7,7 @@ namespace {
 
 // Indices a thread takes at a time (soft_stages.cpp's grains; a bundle is
 // several manifolds).
-constexpr int kBodyGrain = 128;
+constexpr int kWideSolverBodyGrain = 128;
 constexpr int kBundleGrain = 64;
 
 }  // namespace
@@ -38,10 +38,10 @@ void SoftWideSolver::Run(const SoftWideStep& step, const std::vector<SoftManifol
   const int count = static_cast<int>(bodies.size());
   const int bundles = bundles_.bundles();
   for (int sub = 0; sub < step.substeps; ++sub) {
-    list.Add(integrate_velocities, 0, count, kBodyGrain);
+    list.Add(integrate_velocities, 0, count, kWideSolverBodyGrain);
     list.AddColours(warm_start, bundles_.colours(), bundles);
     list.AddColours(solve_bundles, bundles_.colours(), bundles);
-    list.Add(integrate_positions, 0, count, kBodyGrain);
+    list.Add(integrate_positions, 0, count, kWideSolverBodyGrain);
     for (int it = 0; it < step.relax_iterations; ++it) list.AddColours(relax_bundles, bundles_.colours(), bundles);
     list.Add(accumulate, 0, bundles, kBundleGrain);
   }
