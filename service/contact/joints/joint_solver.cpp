@@ -89,39 +89,70 @@ Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const s
   return lambda;
 }
 
+namespace {
+
+// A joint's friction row: boxed and rigid (a drive row is boxed and compliant).
+bool IsFrictionRow(const ConstraintRow& row) {
+  return row.cfm == 0.0 && row.lo > -ConstraintRow::kInf && row.hi < ConstraintRow::kInf;
+}
+
+// The tangent solve on every row (BuildJointVelocityRows): the geometry
+// rows at J qdot = 0, the damping and drive rows at their targets. False
+// when it does not apply: a friction row (held at its bound, not an
+// equality) or a drive row whose impulse passes its bound.
+bool SolveWholeTangent(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                       const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b, JointSolverKind solver,
+                       JointTreeFactor* factor, Eigen::VectorXd* lambda) {
+  const int n = static_cast<int>(rows.size());
+  for (const ConstraintRow& row : rows) {
+    if (IsFrictionRow(row)) return false;
+  }
+  Eigen::VectorXd whole = b;
+  for (int k = 0; k < n; ++k) {
+    if (IsJointDynamicsRow(rows[k])) whole[k] += rows[k].rhs;
+  }
+  if (solver == JointSolverKind::kTree && factor != nullptr && factor->Factor(rows, blocks, bodies)) {
+    factor->Solve(blocks, whole, lambda);
+  } else {
+    *lambda = SolveJointSystem(rows, blocks, bodies, whole, solver);
+  }
+  for (int k = 0; k < n; ++k) {
+    if (IsJointDynamicsRow(rows[k]) && ((*lambda)[k] < rows[k].lo || (*lambda)[k] > rows[k].hi)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& bodies, double h,
                             JointSolverKind solver, std::vector<ConstraintRow>* rows,
-                            std::vector<JointBlock>* blocks, JointRowMode mode) {
+                            std::vector<JointBlock>* blocks, JointRowMode mode, JointTreeFactor* factor) {
   AppendJointRows(world, bodies, h, mode, rows, blocks);
   if (rows->empty()) return;
-  // the velocity tangent to every row of the joints' geometry (all as
-  // equalities; damping and friction rows left out): qdot* + M^-1 J^T lambda0
+  // the velocity the step ends with, without the velocity products:
+  // qdot* + M^-1 J^T lambda0 with every geometry row (limits as equalities)
+  // at J qdot = 0 and the damping and drive rows at their targets, the
+  // system the velocity solve factors; where a friction row or a saturated
+  // drive makes that no equality system, the geometry rows alone
   const int n = static_cast<int>(rows->size());
   Eigen::VectorXd b(n);
   for (int k = 0; k < n; ++k) b[k] = -(*rows)[k].Velocity(bodies);
-  std::vector<char> geometry(n, 1);
-  for (int k = 0; k < n; ++k) geometry[k] = !IsJointDynamicsRow((*rows)[k]);
-  const bool all = std::find(geometry.begin(), geometry.end(), 0) == geometry.end();
-  const Eigen::VectorXd lambda0 = all ? SolveJointSystem(*rows, *blocks, bodies, b, solver)
-                                      : SolveJointRows(*rows, *blocks, bodies, b, geometry, solver);
+  Eigen::VectorXd lambda0;
+  if (!SolveWholeTangent(*rows, *blocks, bodies, b, solver, factor, &lambda0)) {
+    std::vector<char> geometry(n, 1);
+    for (int k = 0; k < n; ++k) geometry[k] = !IsJointDynamicsRow((*rows)[k]);
+    const bool all = std::find(geometry.begin(), geometry.end(), 0) == geometry.end();
+    lambda0 = all ? SolveJointSystem(*rows, *blocks, bodies, b, solver)
+                  : SolveJointRows(*rows, *blocks, bodies, b, geometry, solver);
+  }
   std::vector<SolverBody> tangent = bodies;
   for (int k = 0; k < n; ++k) {
     (*rows)[k].Apply(lambda0[k], tangent);
     (*rows)[k].lambda = std::clamp(lambda0[k], (*rows)[k].lo, (*rows)[k].hi);
   }
   // the velocity products there, for the equality rows (the first rows of
-  // each block; the same joints in the same order); a damping or drive row
-  // keeps its rate target
-  std::vector<ConstraintRow> at_tangent;
-  std::vector<JointBlock> tangent_blocks;
-  AppendJointRows(world, tangent, h, mode, &at_tangent, &tangent_blocks);
-  for (size_t i = 0; i < blocks->size(); ++i) {
-    const JointBlock& blk = (*blocks)[i];
-    for (int r = 0; r < blk.count; ++r) {
-      ConstraintRow& row = (*rows)[blk.first + r];
-      if (!IsLimitRow(row) && !IsJointDynamicsRow(row)) row.rhs = at_tangent[tangent_blocks[i].first + r].rhs;
-    }
-  }
+  // each block); a limit, damping or drive row keeps its target
+  SetJointVelocityProducts(world, tangent, h, *blocks, rows);
 }
 
 namespace {
@@ -229,14 +260,43 @@ JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions&
   return stats;
 }
 
+namespace {
+
+// A Newton step of the projection that cut the largest |C| by at least
+// this factor was in Newton's quadratic regime, where the Jacobians move by
+// about |C| in a step: the next step may keep its factorisation (a chord
+// step, converging at a rate of about |C| itself).
+constexpr double kChordShrink = 1e-3;
+
+bool SameLayout(const std::vector<JointBlock>& x, const std::vector<JointBlock>& y) {
+  if (x.size() != y.size()) return false;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (x[i].first != y[i].first || x[i].count != y[i].count || x[i].a != y[i].a || x[i].b != y[i].b) return false;
+  }
+  return true;
+}
+
+// The projection's factorisation, one per thread as SolveJointsTree's, so
+// that its nodes' storage is reused; `blocks` is the layout it factored.
+struct ProjectionFactor {
+  JointTreeFactor factor;
+  std::vector<JointBlock> blocks;
+  bool factored = false;
+};
+
+}  // namespace
+
 JointStats ProjectJointPositions(World& world, const JointSolveOptions& options) {
   JointStats stats;
   if (world.joints().empty()) return stats;
+  thread_local ProjectionFactor held;
+  held.factored = false;
   std::vector<SolverBody> bodies;
   std::vector<ConstraintRow> rows;
   std::vector<JointBlock> blocks;
   std::vector<double> errors;
   std::vector<CouplingRow> couplings;
+  double last_error = 0.0;
   for (;;) {
     LoadSolverBodies(world, &bodies);
     rows.clear();
@@ -254,7 +314,20 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
     }
     ++stats.projection_iterations;
     const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
-    const Eigen::VectorXd delta = SolveJointSystem(rows, blocks, bodies, b, options.solver);
+    Eigen::VectorXd delta;
+    const bool chord =
+        held.factored && stats.max_error <= kChordShrink * last_error && SameLayout(held.blocks, blocks);
+    last_error = stats.max_error;
+    if (chord) {
+      held.factor.Solve(blocks, b, &delta);
+    } else if (options.solver == JointSolverKind::kTree && held.factor.Factor(rows, blocks, bodies)) {
+      held.blocks = blocks;
+      held.factored = true;
+      held.factor.Solve(blocks, b, &delta);
+    } else {
+      held.factored = false;
+      delta = SolveJointSystem(rows, blocks, bodies, b, options.solver);
+    }
     // the solver bodies carry the displacement: v = M^-1 J^T delta (m),
     // w = I^-1 J^T delta (rad)
     for (SolverBody& s : bodies) s.v.setZero(), s.w.setZero();
