@@ -260,43 +260,14 @@ JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions&
   return stats;
 }
 
-namespace {
-
-// A Newton step of the projection that cut the largest |C| by at least
-// this factor was in Newton's quadratic regime, where the Jacobians move by
-// about |C| in a step: the next step may keep its factorisation (a chord
-// step, converging at a rate of about |C| itself).
-constexpr double kChordShrink = 1e-3;
-
-bool SameLayout(const std::vector<JointBlock>& x, const std::vector<JointBlock>& y) {
-  if (x.size() != y.size()) return false;
-  for (size_t i = 0; i < x.size(); ++i) {
-    if (x[i].first != y[i].first || x[i].count != y[i].count || x[i].a != y[i].a || x[i].b != y[i].b) return false;
-  }
-  return true;
-}
-
-// The projection's factorisation, one per thread as SolveJointsTree's, so
-// that its nodes' storage is reused; `blocks` is the layout it factored.
-struct ProjectionFactor {
-  JointTreeFactor factor;
-  std::vector<JointBlock> blocks;
-  bool factored = false;
-};
-
-}  // namespace
-
 JointStats ProjectJointPositions(World& world, const JointSolveOptions& options) {
   JointStats stats;
   if (world.joints().empty()) return stats;
-  thread_local ProjectionFactor held;
-  held.factored = false;
   std::vector<SolverBody> bodies;
   std::vector<ConstraintRow> rows;
   std::vector<JointBlock> blocks;
   std::vector<double> errors;
   std::vector<CouplingRow> couplings;
-  double last_error = 0.0;
   for (;;) {
     LoadSolverBodies(world, &bodies);
     rows.clear();
@@ -314,20 +285,7 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
     }
     ++stats.projection_iterations;
     const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
-    Eigen::VectorXd delta;
-    const bool chord =
-        held.factored && stats.max_error <= kChordShrink * last_error && SameLayout(held.blocks, blocks);
-    last_error = stats.max_error;
-    if (chord) {
-      held.factor.Solve(blocks, b, &delta);
-    } else if (options.solver == JointSolverKind::kTree && held.factor.Factor(rows, blocks, bodies)) {
-      held.blocks = blocks;
-      held.factored = true;
-      held.factor.Solve(blocks, b, &delta);
-    } else {
-      held.factored = false;
-      delta = SolveJointSystem(rows, blocks, bodies, b, options.solver);
-    }
+    const Eigen::VectorXd delta = SolveJointSystem(rows, blocks, bodies, b, options.solver);
     // the solver bodies carry the displacement: v = M^-1 J^T delta (m),
     // w = I^-1 J^T delta (rad)
     for (SolverBody& s : bodies) s.v.setZero(), s.w.setZero();

@@ -21,10 +21,7 @@
 //   (J M^-1 J^T + R) delta = -C,   x += M^-1 J^T delta (positions and
 // rotations, momenta untouched),
 // until every |C| is below the tolerance (quadratic convergence: 2-3
-// iterations). Once a step has cut |C| by 1e3 or more, the Jacobians move
-// by about |C| in the next, and it keeps the last factorisation (a chord
-// step, converging at a rate of about |C|: Deuflhard, "Newton Methods for
-// Nonlinear Problems", 2004, the simplified Newton method). Unlike Baumgarte stabilisation it adds no stiffness or
+// iterations). Unlike Baumgarte stabilisation it adds no stiffness or
 // parameters and leaves the velocities (and so the energy) alone, and it
 // holds C to round-off, which the 1e-6 drift bound over 10 s needs.
 //
