@@ -6,8 +6,10 @@ by STEPS, so that the load, the setup and the model's loading drop out. The
 machine's load does not move the count, where it moves a time by a factor of
 two or three. `--sleep` keeps the server's sleeping on (the held arm falls
 asleep after about 150 steps); by default every step is an awake one.
+`--free` counts bench_models.py's free-swinging iiwa instead (no
+actuators: the arm swings from its bent pose under gravity).
 
-Usage: CONTACTSIM_BUILD_DIR=build bench/scripts/arm_step_instructions.py [--steps 200] [--sleep]
+Usage: CONTACTSIM_BUILD_DIR=build bench/scripts/arm_step_instructions.py [--steps 200] [--sleep] [--free]
 """
 import argparse
 import os
@@ -22,7 +24,7 @@ sys.path.insert(0, os.path.join(ROOT, "clients", "python"))
 import bench_models  # noqa: E402
 
 
-def run(build, steps, config, models):
+def run(build, steps, config, models, free):
     """Cachegrind's instruction count of a server that steps the held iiwa `steps` times."""
     import contactsim  # noqa: PLC0415
     from contactsim.process import interrupt  # noqa: PLC0415
@@ -44,8 +46,9 @@ def run(build, steps, config, models):
                 c.set_timestep(bench_models.DT)
                 m = c.load_model(models["iiwa"], name="iiwa0", position=(0, 0, 0), fixed_base=True)
                 m.set_link_poses(bench_models._bent_iiwa_poses(models["iiwa"], (0, 0, 0)))
-                m.set_joint_targets(bench_models.IIWA_BENT, kp=bench_models.HOLD_KP, kd=bench_models.HOLD_KD)
-                m.set_effort_limits([bench_models.HOLD_EFFORT] * 7)
+                if not free:
+                    m.set_joint_targets(bench_models.IIWA_BENT, kp=bench_models.HOLD_KP, kd=bench_models.HOLD_KD)
+                    m.set_effort_limits([bench_models.HOLD_EFFORT] * 7)
                 c.step(10, timeout=600)
                 c.step(steps, timeout=6000)
         finally:
@@ -58,6 +61,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--steps", type=int, default=200)
     ap.add_argument("--sleep", action="store_true", help="keep the server's sleeping on")
+    ap.add_argument("--free", action="store_true", help="the free-swinging iiwa (no actuators)")
     a = ap.parse_args()
     build = os.environ.get("CONTACTSIM_BUILD_DIR", os.path.join(ROOT, "build"))
     import pybullet_data  # noqa: PLC0415
@@ -71,11 +75,12 @@ def main():
         f.write("sleep: %s\n" % ("true" if a.sleep else "false"))
         config = f.name
     try:
-        base = run(build, 1, config, models)
-        more = run(build, 1 + a.steps, config, models)
+        base = run(build, 1, config, models, a.free)
+        more = run(build, 1 + a.steps, config, models, a.free)
     finally:
         os.unlink(config)
-    print("held iiwa, %d steps%s: %.0f instructions a step" % (a.steps, " (sleep on)" if a.sleep else "",
+    print("%s iiwa, %d steps%s: %.0f instructions a step" % ("free" if a.free else "held", a.steps,
+                                                            " (sleep on)" if a.sleep else "",
                                                               (more - base) / a.steps))
 
 

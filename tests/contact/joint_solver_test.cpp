@@ -88,6 +88,30 @@ struct VelocitySystem {
   Eigen::VectorXd b;
 };
 
+// Verifies that SetJointVelocityProducts gives each geometry row the rhs
+// AppendJointRows gives it at the same poses and the new velocities, bit
+// for bit, and leaves the other rows' targets, on 20 random trees of every
+// joint kind whose velocities are then changed.
+TEST(JointSolverTest, VelocityProductsInPlaceEqualRowsBuiltAgain) {
+  std::mt19937 rng(777);
+  for (int trial = 0; trial < 20; ++trial) {
+    World world;
+    BuildRandomTree(world, 1 + trial, rng);
+    VelocitySystem sys(world);
+    std::vector<SolverBody> moved = sys.bodies;
+    for (SolverBody& s : moved) s.v = RandomVec(rng, 2.0), s.w = RandomVec(rng, 2.0);
+    std::vector<ConstraintRow> fresh;
+    AppendJointRows(world, moved, world.dt, JointRowMode::kVelocity, &fresh);
+    std::vector<ConstraintRow> in_place = sys.rows;
+    SetJointVelocityProducts(world, moved, world.dt, sys.blocks, &in_place);
+    ASSERT_EQ(fresh.size(), in_place.size());
+    for (size_t k = 0; k < fresh.size(); ++k) {
+      const bool geometry = !IsLimitRow(fresh[k]) && !IsJointDynamicsRow(fresh[k]);
+      EXPECT_EQ(in_place[k].rhs, geometry ? fresh[k].rhs : sys.rows[k].rhs) << "trial " << trial << " row " << k;
+    }
+  }
+}
+
 // Verifies that the tree solver (Baraff 1996) returns the dense solver's
 // multipliers to 1e-9 (relative) on 40 random trees of 1 to 30 bodies with
 // every joint kind, joints to the world included.

@@ -39,7 +39,7 @@ void JointVelocityBlock::Build(const World& world, const std::vector<SolverBody>
   built_velocities_.clear();
   if (world.joints().empty()) return;
   ReadVelocities(bodies, &built_velocities_);
-  BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_);
+  BuildJointVelocityRows(world, bodies, h, solver, &rows_, &blocks_, JointRowMode::kVelocity, &factor_);
   AppendCouplingRows(world, bodies, h, JointRowMode::kVelocity, &couplings_);
   total_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows_.size()));
   factored_ = solver == JointSolverKind::kTree && !rows_.empty() && factor_.Factor(rows_, blocks_, bodies);

@@ -38,6 +38,10 @@ class RowWriter {
   RowWriter(const End& a, const End& b, double h, JointRowMode mode, std::vector<ConstraintRow>* rows,
             std::vector<double>* errors)
       : a_(a), b_(b), h_(h), mode_(mode), rows_(rows), errors_(errors) {}
+  // Writes only the rhs of the rows from `first` on, which are there
+  // already (SetJointVelocityProducts): the geometry rows, a joint's first.
+  RowWriter(const End& a, const End& b, double h, ConstraintRow* first)
+      : a_(a), b_(b), h_(h), mode_(JointRowMode::kVelocity), rows_(nullptr), errors_(nullptr), rhs_only_(first) {}
 
   // a row with J = (lin, r_A x lin + ang | -lin, -(r_B x lin) - ang)
   ConstraintRow Make(const Vec3& lin, const Vec3& ang, double velocity_product) const {
@@ -53,6 +57,10 @@ class RowWriter {
   }
 
   ConstraintRow& Push(const ConstraintRow& row, double error) {
+    if (rhs_only_ != nullptr) {
+      rhs_only_->rhs = row.rhs;
+      return *rhs_only_++;
+    }
     rows_->push_back(row);
     if (errors_ != nullptr) errors_->push_back(error);
     return rows_->back();
@@ -217,7 +225,35 @@ class RowWriter {
   JointRowMode mode_;
   std::vector<ConstraintRow>* rows_;
   std::vector<double>* errors_;
+  ConstraintRow* rhs_only_ = nullptr;
 };
+
+// The rows of the joint's geometry (the equality rows, a joint's first).
+// Returns the axis of a hinge or slider in the world (zero for the others).
+Vec3 GeometryRows(const Joint& j, const End& a, const End& b, RowWriter* writer) {
+  const Quat q_a = a.body->q;
+  const Quat q_b = BodyOrientation(b.body);
+  switch (j.kind) {
+    case JointKind::kDistance: writer->Distance(j.length); break;
+    case JointKind::kBall: writer->Point(); break;
+    case JointKind::kHinge: {
+      const Vec3 axis_a = q_a * j.axis_a;
+      writer->Point();
+      writer->HingeAxis(axis_a, q_b * j.axis_b);
+      return axis_a;
+    }
+    case JointKind::kFixed:
+      writer->Point();
+      writer->Weld(q_a, j.rest, q_b);
+      break;
+    case JointKind::kPrismatic: {
+      const Vec3 axis_a = q_a * j.axis_a;
+      writer->Slider(axis_a, q_a, j.rest, q_b);
+      return axis_a;
+    }
+  }
+  return Vec3::Zero();
+}
 
 // The coordinate row of a hinge or slider; false when neither of its
 // bodies can move.
@@ -289,40 +325,32 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
     if (!a.dynamic && !b.dynamic) continue;  // nothing can move
     const int first = static_cast<int>(rows->size());
     RowWriter writer(a, b, h, mode, rows, errors);
-    const Quat q_a = a.body->q;
-    const Quat q_b = BodyOrientation(b.body);
+    const Vec3 axis_a = GeometryRows(j, a, b, &writer);
     int drive = -1;
-    switch (j.kind) {
-      case JointKind::kDistance: writer.Distance(j.length); break;
-      case JointKind::kBall: writer.Point(); break;
-      case JointKind::kHinge: {
-        const Vec3 axis_a = q_a * j.axis_a;
-        writer.Point();
-        writer.HingeAxis(axis_a, q_b * j.axis_b);
-        const auto coordinate = writer.HingeCoordinate(j, axis_a);
-        writer.Dynamics(j, coordinate);
-        drive = writer.Drive(j, coordinate);
-        writer.Limits(j, coordinate);
-        break;
-      }
-      case JointKind::kFixed:
-        writer.Point();
-        writer.Weld(q_a, j.rest, q_b);
-        break;
-      case JointKind::kPrismatic: {
-        const Vec3 axis_a = q_a * j.axis_a;
-        writer.Slider(axis_a, q_a, j.rest, q_b);
-        const auto coordinate = writer.SlideCoordinate(axis_a);
-        writer.Dynamics(j, coordinate);
-        drive = writer.Drive(j, coordinate);
-        writer.Limits(j, coordinate);
-        break;
-      }
+    if (j.kind == JointKind::kHinge || j.kind == JointKind::kPrismatic) {
+      const auto coordinate =
+          j.kind == JointKind::kHinge ? writer.HingeCoordinate(j, axis_a) : writer.SlideCoordinate(axis_a);
+      writer.Dynamics(j, coordinate);
+      drive = writer.Drive(j, coordinate);
+      writer.Limits(j, coordinate);
     }
     if (blocks != nullptr) {
       blocks->push_back(
           {j.id, first, static_cast<int>(rows->size()) - first, a.index, b.index, static_cast<int>(index), drive});
     }
+  }
+}
+
+
+void SetJointVelocityProducts(const World& world, const std::vector<SolverBody>& bodies, double h,
+                              const std::vector<JointBlock>& blocks, std::vector<ConstraintRow>* rows) {
+  const auto& joints = world.joints();
+  for (const JointBlock& blk : blocks) {
+    const Joint& j = joints[blk.joint];
+    const End a = MakeEnd(world, bodies, j.body_a, j.anchor_a);
+    const End b = MakeEnd(world, bodies, j.body_b, j.anchor_b);
+    RowWriter writer(a, b, h, rows->data() + blk.first);
+    GeometryRows(j, a, b, &writer);
   }
 }
 

@@ -121,6 +121,13 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks = nullptr,
                      std::vector<double>* errors = nullptr);
 
+// Sets the rhs of each block's geometry rows (its equality rows, the first
+// of the block) to the velocity products at the velocities of `bodies`:
+// the rhs AppendJointRows would give them there, in velocity mode, for the
+// same poses and blocks.
+void SetJointVelocityProducts(const World& world, const std::vector<SolverBody>& bodies, double h,
+                              const std::vector<JointBlock>& blocks, std::vector<ConstraintRow>* rows);
+
 // A mimic's row (physics/joint.h, JointMimic): C = q - m q_master - o with
 // J = J_q - m J_q_master, each part the coordinate row of its joint (the
 // hinge angle's or the slide's, as above), so the row spans up to four

@@ -89,39 +89,70 @@ Eigen::VectorXd SolveJointSystem(const std::vector<ConstraintRow>& rows, const s
   return lambda;
 }
 
+namespace {
+
+// A joint's friction row: boxed and rigid (a drive row is boxed and compliant).
+bool IsFrictionRow(const ConstraintRow& row) {
+  return row.cfm == 0.0 && row.lo > -ConstraintRow::kInf && row.hi < ConstraintRow::kInf;
+}
+
+// The tangent solve on every row (BuildJointVelocityRows): the geometry
+// rows at J qdot = 0, the damping and drive rows at their targets. False
+// when it does not apply: a friction row (held at its bound, not an
+// equality) or a drive row whose impulse passes its bound.
+bool SolveWholeTangent(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                       const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b, JointSolverKind solver,
+                       JointTreeFactor* factor, Eigen::VectorXd* lambda) {
+  const int n = static_cast<int>(rows.size());
+  for (const ConstraintRow& row : rows) {
+    if (IsFrictionRow(row)) return false;
+  }
+  Eigen::VectorXd whole = b;
+  for (int k = 0; k < n; ++k) {
+    if (IsJointDynamicsRow(rows[k])) whole[k] += rows[k].rhs;
+  }
+  if (solver == JointSolverKind::kTree && factor != nullptr && factor->Factor(rows, blocks, bodies)) {
+    factor->Solve(blocks, whole, lambda);
+  } else {
+    *lambda = SolveJointSystem(rows, blocks, bodies, whole, solver);
+  }
+  for (int k = 0; k < n; ++k) {
+    if (IsJointDynamicsRow(rows[k]) && ((*lambda)[k] < rows[k].lo || (*lambda)[k] > rows[k].hi)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& bodies, double h,
                             JointSolverKind solver, std::vector<ConstraintRow>* rows,
-                            std::vector<JointBlock>* blocks, JointRowMode mode) {
+                            std::vector<JointBlock>* blocks, JointRowMode mode, JointTreeFactor* factor) {
   AppendJointRows(world, bodies, h, mode, rows, blocks);
   if (rows->empty()) return;
-  // the velocity tangent to every row of the joints' geometry (all as
-  // equalities; damping and friction rows left out): qdot* + M^-1 J^T lambda0
+  // the velocity the step ends with, without the velocity products:
+  // qdot* + M^-1 J^T lambda0 with every geometry row (limits as equalities)
+  // at J qdot = 0 and the damping and drive rows at their targets, the
+  // system the velocity solve factors; where a friction row or a saturated
+  // drive makes that no equality system, the geometry rows alone
   const int n = static_cast<int>(rows->size());
   Eigen::VectorXd b(n);
   for (int k = 0; k < n; ++k) b[k] = -(*rows)[k].Velocity(bodies);
-  std::vector<char> geometry(n, 1);
-  for (int k = 0; k < n; ++k) geometry[k] = !IsJointDynamicsRow((*rows)[k]);
-  const bool all = std::find(geometry.begin(), geometry.end(), 0) == geometry.end();
-  const Eigen::VectorXd lambda0 = all ? SolveJointSystem(*rows, *blocks, bodies, b, solver)
-                                      : SolveJointRows(*rows, *blocks, bodies, b, geometry, solver);
+  Eigen::VectorXd lambda0;
+  if (!SolveWholeTangent(*rows, *blocks, bodies, b, solver, factor, &lambda0)) {
+    std::vector<char> geometry(n, 1);
+    for (int k = 0; k < n; ++k) geometry[k] = !IsJointDynamicsRow((*rows)[k]);
+    const bool all = std::find(geometry.begin(), geometry.end(), 0) == geometry.end();
+    lambda0 = all ? SolveJointSystem(*rows, *blocks, bodies, b, solver)
+                  : SolveJointRows(*rows, *blocks, bodies, b, geometry, solver);
+  }
   std::vector<SolverBody> tangent = bodies;
   for (int k = 0; k < n; ++k) {
     (*rows)[k].Apply(lambda0[k], tangent);
     (*rows)[k].lambda = std::clamp(lambda0[k], (*rows)[k].lo, (*rows)[k].hi);
   }
   // the velocity products there, for the equality rows (the first rows of
-  // each block; the same joints in the same order); a damping or drive row
-  // keeps its rate target
-  std::vector<ConstraintRow> at_tangent;
-  std::vector<JointBlock> tangent_blocks;
-  AppendJointRows(world, tangent, h, mode, &at_tangent, &tangent_blocks);
-  for (size_t i = 0; i < blocks->size(); ++i) {
-    const JointBlock& blk = (*blocks)[i];
-    for (int r = 0; r < blk.count; ++r) {
-      ConstraintRow& row = (*rows)[blk.first + r];
-      if (!IsLimitRow(row) && !IsJointDynamicsRow(row)) row.rhs = at_tangent[tangent_blocks[i].first + r].rhs;
-    }
-  }
+  // each block); a limit, damping or drive row keeps its target
+  SetJointVelocityProducts(world, tangent, h, *blocks, rows);
 }
 
 namespace {

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "service/contact/joints/joint_rows.h"
+#include "service/contact/joints/joint_tree_solver.h"
 
 namespace contactsim {
 
@@ -67,20 +68,27 @@ Eigen::VectorXd SolveJointRows(const std::vector<ConstraintRow>& rows, const std
 
 // The velocity rows of the world's joints (AppendJointRows) with the
 // velocity products -(h/2) Jdot qdot taken at the velocity the step ends
-// with, not at qdot*: a first solve projects qdot* onto the constraints
-// (J qdot = 0) and the products are evaluated there. qdot* holds this step's
-// gravity kick, which the joints cancel: a pendulum hanging at rest would
-// otherwise see a "centripetal" (g h)^2 / l and creep (3.5e-6 m/s for 1 m
-// at h = 1/240 s). The LCP method takes its joint rows from here; the rows
-// come out with lambda = the multipliers of that first solve (clamped to the
-// row bounds): the joints' answer without contacts and velocity products,
-// a starting guess for an iterative solver that has no better one (a
-// hanging chain's tensions at once, where projected Gauss-Seidel from zero
-// needs hundreds of sweeps).
+// with, not at qdot*: a first solve finds that velocity without the
+// products (qdot* with every geometry row at J qdot = 0 and the damping and
+// drive rows at their targets) and the products are evaluated there. qdot*
+// holds this step's gravity kick, which the joints cancel: a pendulum
+// hanging at rest would otherwise see a "centripetal" (g h)^2 / l and creep
+// (3.5e-6 m/s for 1 m at h = 1/240 s). The first solve has the velocity
+// solve's matrix, so that one factorisation serves both: `factor`, when
+// given, is left holding it (JointVelocityBlock). A friction row, held at
+// its bound rather than at a target, or a drive whose impulse would pass
+// its effort limit, makes the first solve one of the geometry rows alone.
+// The LCP method takes its joint rows from here; the rows come out with
+// lambda = the multipliers of that first solve (clamped to the row bounds):
+// the joints' answer without contacts and velocity products, a starting
+// guess for an iterative solver that has no better one (a hanging chain's
+// tensions at once, where projected Gauss-Seidel from zero needs hundreds
+// of sweeps).
 // `mode` is kVelocity or kVelocityGeometry (without damping and friction).
 void BuildJointVelocityRows(const World& world, const std::vector<SolverBody>& bodies, double h,
                             JointSolverKind solver, std::vector<ConstraintRow>* rows,
-                            std::vector<JointBlock>* blocks, JointRowMode mode = JointRowMode::kVelocity);
+                            std::vector<JointBlock>* blocks, JointRowMode mode = JointRowMode::kVelocity,
+                            JointTreeFactor* factor = nullptr);
 
 // Sets the rows' lambda to the joints' answer alone, the active-set solve
 // of ApplyJointImpulses on a copy of `bodies`: with damping and friction
