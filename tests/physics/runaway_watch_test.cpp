@@ -98,36 +98,6 @@ TEST(RunawayWatch, NonFiniteStateTripsItAtOnce) {
   }
 }
 
-// Verifies that a steady gain (not a geometric one) of a light body in a
-// heavy scene trips the watch once it passes the scene's scale S, and only
-// then: a 0.5 kg ball beside 50 kg gaining 2.5 S linearly over 120 steps,
-// as a plank on a failing rail did, against one gaining 0.5 S.
-TEST(RunawayWatch, SteadyGainBeyondTheScaleTripsIt) {
-  for (const double total : {2.5, 0.5}) {  // of S
-    World world;
-    world.gravity = Vec3::Zero();
-    AddBall(world, 50.0, Vec3(0, 0, 1), Vec3::Zero());
-    const BodyId light = AddBall(world, 0.5, Vec3(1, 0, 1), Vec3::Zero());
-    const double scale = 50.5 * 0.5;  // J, S without gravity: every body at 1 m/s
-    RunawayWatch watch;
-    Status st;
-    int steps = 0;
-    for (; steps < 120 && st.ok(); ++steps) {
-      const double energy = total * scale * (steps + 1) / 120.0;  // J, given to the light body
-      world.Find(light)->P = Vec3(std::sqrt(2.0 * 0.5 * energy), 0, 0);
-      st = WatchedStep(world, watch);
-    }
-    if (total > 1.0) {
-      EXPECT_FALSE(st.ok()) << total;
-      EXPECT_NE(st.message().find("blew up at step"), std::string::npos) << st.message();
-      // trips where the gain passes S (which holds the first step's motion too)
-      EXPECT_NEAR(steps, 120 / total, 4) << total;
-    } else {
-      EXPECT_TRUE(st.ok()) << st.message();
-    }
-  }
-}
-
 // Verifies that a velocity a command sets (here 1,000 m/s) is a new baseline
 // after Rebase, not a blow-up, while the same jump without one is.
 TEST(RunawayWatch, RebaseAcceptsWhatACommandSet) {
