@@ -36,9 +36,9 @@
 // an impact the method's push-out of the overlap it left must not become
 // velocity either (a row of six gained 15% of its energy when only
 // components with an impact took part). A component without restitution
-// takes part where the caller marks a row `struck` (soft and xpbd: a point
-// that met faster than the threshold, or that the method's solve left
-// parting: its push-out), so that e = 0 gives the one-at-a-time answer too
+// takes part where the caller marks a row `struck` (soft and xpbd: a
+// frictionless point that met faster than the threshold, or that the
+// method's solve left parting: its push-out), so that e = 0 gives the one-at-a-time answer too
 // (every pair of a struck row leaves at the same speed) where the method's
 // own passes stop short of it; the others are left to the method. Every
 // impulse is equal and opposite, so momentum is kept.

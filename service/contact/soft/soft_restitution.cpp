@@ -28,6 +28,7 @@ void AddStartVelocities(const World& world, const std::vector<SoftBody>& bodies,
 }  // namespace
 
 bool SoftPointStruck(double threshold, const SoftPoint& p, const std::vector<SoftBody>& bodies) {
+  if (p.friction != 0.0) return false;
   if (p.impact_speed < -threshold) return true;
   return p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]) > threshold;
 }
@@ -36,9 +37,13 @@ bool SoftStepNeedsRestitution(double threshold, const std::vector<SoftPoint>& po
                               const std::vector<SoftBody>& bodies) {
   for (const SoftPoint& p : points) {
     if (p.total_n <= 0.0 || p.mass_n <= 0.0) continue;
-    if (p.impact_speed < -threshold) return true;
-    const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]);
-    if (p.restitution != 0.0 ? std::abs(vn) > kRestShare * threshold : vn > threshold) return true;
+    if (p.restitution != 0.0) {
+      if (p.impact_speed < -threshold) return true;
+      const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]);
+      if (std::abs(vn) > kRestShare * threshold) return true;
+    } else if (SoftPointStruck(threshold, p, bodies)) {
+      return true;
+    }
   }
   return false;
 }

@@ -17,13 +17,15 @@ void MarkStruck(int a, int b, const std::vector<SoftBody>& bodies, std::vector<c
 
 }  // namespace
 
-bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                     std::vector<char>* struck) {
+bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
+                     const std::vector<SoftBody>& bodies, std::vector<char>* struck) {
   struck->assign(bodies.size(), 0);
   bool any = false;
-  for (const XpbdPoint& p : points) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    const XpbdPoint& p = points[i];
     if (p.w_n <= 0.0 || p.jointed) continue;
     any = any || p.restitution > 0.0;
+    if (frames[i].friction != 0.0) continue;
     const SoftBody& A = bodies[p.a];
     const SoftBody& B = bodies[p.b];
     if (std::abs(XpbdNormalVelocity(p, A.v, A.w, B.v, B.w)) <= strike) continue;

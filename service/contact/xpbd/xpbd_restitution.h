@@ -7,8 +7,12 @@
 // its strike down the row. The positional push lambda_n moved the bodies
 // as the velocity impulse lambda_n / h does, which the rows start from.
 //
-// Components without restitution take part too where a point approached
-// faster than `strike` at the step's start: their rows leave with e = 0's
+// Components without restitution take part too where a frictionless point
+// approached or parted faster than `strike` at the step's start (the
+// stage's impulses are normal only and come after the friction, which they
+// would undo in part: a rolling 71-gon struck at each edge turned at
+// omega r / v 0.975 instead of 0.997; docs/physics.md, "Restitution across
+// simultaneous contacts"): their rows leave with e = 0's
 // one-at-a-time answer, every pair of a struck row at one speed, where the
 // velocity pass's one sweep a sub-step left them parting by up to 0.14 v0.
 // A struck body keeps its component in the stage for the rest of the step,
@@ -32,8 +36,8 @@ namespace contactsim {
 // Before the sub-steps: marks in `struck` (per body) the dynamic bodies of
 // the points approaching faster than `strike` (m/s) and returns whether the
 // step needs the stage at all (a strike, or a point with restitution).
-bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<SoftBody>& bodies,
-                     std::vector<char>* struck);
+bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
+                     const std::vector<SoftBody>& bodies, std::vector<char>* struck);
 
 // The sub-step's rows, before the velocity pass: marks in `deferred` the
 // blocks whose restitution waits for SolveXpbdImpacts (the velocity pass

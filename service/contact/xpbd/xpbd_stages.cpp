@@ -150,7 +150,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   // from the impacts one at a time (xpbd_restitution.h); the standard
   // scenes' e = 0 at rest have none
   deferred_.assign(blocks_.size(), 0);
-  const bool impacts = MarkXpbdStrikes(strike, points_, bodies_, &struck_);
+  const bool impacts = MarkXpbdStrikes(strike, points_, frames_, bodies_, &struck_);
 
   ColourStages list(&stages_, runner.threads());
   const int blocks = static_cast<int>(blocks_.size());
