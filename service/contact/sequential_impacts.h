@@ -38,10 +38,11 @@
 // components with an impact took part). A component without restitution
 // takes part where the caller marks a row `struck` (soft and xpbd: a
 // frictionless point that met faster than the threshold, or that the
-// method's solve left parting: its push-out), so that e = 0 gives the one-at-a-time answer too
-// (every pair of a struck row leaves at the same speed) where the method's
-// own passes stop short of it; the others are left to the method. Every
-// impulse is equal and opposite, so momentum is kept.
+// method's solve left parting: its push-out), so that e = 0 gives the
+// one-at-a-time answer too (every pair of a struck row leaves at the same
+// speed) where the method's own passes stop short of it; the others are
+// left to the method. Every impulse is equal and opposite, so momentum is
+// kept.
 #pragma once
 
 #include <vector>

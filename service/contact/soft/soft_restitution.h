@@ -14,9 +14,10 @@
 // pushed met faster than the threshold or leaves the sub-steps parting
 // faster than it (SequentialImpacts' `struck`; the stage's impulses are
 // normal only and come after the friction, which they would undo in part:
-// docs/physics.md, "Restitution across simultaneous contacts"): their rows then leave with e = 0's
-// one-at-a-time answer, every pair of a struck row at one speed, where one
-// relax pass a sub-step left them parting by up to 0.094 v0. The parting
+// docs/physics.md, "Restitution across simultaneous contacts"): their rows
+// then leave with e = 0's one-at-a-time answer, every pair of a struck row
+// at one speed, where one relax pass a sub-step left them parting by up to
+// 0.094 v0. The parting
 // is the springs' push-out of the overlap an impact left, which the relax
 // pass did not take back in the steps after it; a resting pyramid's points
 // part at most 0.13 of the threshold (0.0102 m/s against 2 |g| dt), and a
