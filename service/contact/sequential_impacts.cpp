@@ -97,7 +97,7 @@ bool SequentialImpacts::Collide(int begin, int end, double threshold) {
   return true;
 }
 
-void SequentialImpacts::KeepRestitutionComponents() {
+void SequentialImpacts::KeepTakingPartComponents() {
   UnionFind sets(static_cast<int>(start_.size()));
   for (const ImpactRow& r : rows_) {
     if (start_[local_[r.a]].inv_mass > 0.0 && start_[local_[r.b]].inv_mass > 0.0) {
@@ -108,13 +108,13 @@ void SequentialImpacts::KeepRestitutionComponents() {
   auto root = [&](const ImpactRow& r) {
     return sets.Root(start_[local_[r.a]].inv_mass > 0.0 ? local_[r.a] : local_[r.b]);
   };
-  std::vector<char> restituting(start_.size(), 0);
+  std::vector<char> taking_part(start_.size(), 0);
   for (size_t k = 0; k < rows_.size(); ++k) {
-    if (rows_[k].restitution > 0.0) restituting[root(rows_[k])] = 1;
+    if (rows_[k].restitution > 0.0 || rows_[k].struck) taking_part[root(rows_[k])] = 1;
   }
   size_t kept = 0;
   for (size_t k = 0; k < rows_.size(); ++k) {
-    if (!restituting[root(rows_[k])]) continue;
+    if (!taking_part[root(rows_[k])]) continue;
     rows_[kept] = rows_[k];
     gain_[kept++] = gain_[k];
   }
@@ -127,7 +127,7 @@ bool SequentialImpacts::FindTargets(double threshold, const ImpactCascade& casca
   scratch_ = start_;
   gain_.assign(rows_.size(), 0.0);
   SetGains();
-  KeepRestitutionComponents();
+  KeepTakingPartComponents();
   if (rows_.empty()) return false;
   j_.assign(rows_.size(), 0.0);
   double fastest = 0.0;  // m/s

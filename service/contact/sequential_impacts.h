@@ -35,9 +35,14 @@
 // with restitution, with or without an impact this step: in the steps after
 // an impact the method's push-out of the overlap it left must not become
 // velocity either (a row of six gained 15% of its energy when only
-// components with an impact took part). Components without restitution
-// are left to the method. Every impulse is equal and opposite, so
-// momentum is kept.
+// components with an impact took part). A component without restitution
+// takes part where the caller marks a row `struck` (soft and xpbd: a
+// frictionless point that met faster than the threshold, or that the
+// method's solve left parting: its push-out), so that e = 0 gives the
+// one-at-a-time answer too (every pair of a struck row leaves at the same
+// speed) where the method's own passes stop short of it; the others are
+// left to the method. Every impulse is equal and opposite, so momentum is
+// kept.
 #pragma once
 
 #include <vector>
@@ -55,6 +60,9 @@ struct ImpactRow {
   Vec3 ia_n, ib_n;      // I^-1 (r x n), zero for a body that does not move
   double mass_n = 0.0;  // kg, 1 / K along n
   double restitution = 0.0;
+  // with restitution 0, whether the row's component takes part all the same
+  // (above); the caller's choice, false where it leaves e = 0 to its solve
+  bool struck = false;
   // m/s, the normal velocity at which the pair met: where it is below v_n
   // before the solve (a pair apart that gained approach over its gap in
   // free flight) the difference is the row's gain (step 1); else 0
@@ -86,7 +94,7 @@ class SequentialImpacts {
   bool HasBody(int index) const { return local_[index] >= 0; }
   void AddRow(const ImpactRow& row) { rows_.push_back(row); }
   // Steps 1 and 2 (threshold in m/s); keeps only the rows of components
-  // with restitution and returns whether any is left.
+  // with restitution or a struck row and returns whether any is left.
   bool FindTargets(double threshold, const ImpactCascade& cascade = ImpactCascade());
   // Step 3 on the method's bodies.
   void Solve(std::vector<SoftBody>& bodies);
@@ -101,7 +109,7 @@ class SequentialImpacts {
   void Push(double j, const ImpactRow& r);
   // one collision of the rows [begin, end): false when none approached
   bool Collide(int begin, int end, double threshold);
-  void KeepRestitutionComponents();
+  void KeepTakingPartComponents();
   void SetGains();
 
   std::vector<int> local_;        // per world body: its index in start_, -1 if none

@@ -232,7 +232,8 @@ std::vector<RowCase> RowCases() {
           c.n = n;
           c.gap = gap;
           c.e = e;
-          c.mass = masses[k % 3];
+          // e = 0 falls on every third k: it takes the masses in turn along the rows
+          c.mass = masses[(e == 0.0 ? k / 3 : k) % 3];
           c.v0 = speeds[(k / 3 + k) % 3];
           cases.push_back(c);
           ++k;

@@ -118,11 +118,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // (MechanicsStruckRowTest, line_impacts.h), worst |v - v_analytic| / v0
     // over the row lengths 2-6; docs/physics.md, "Restitution across
     // simultaneous contacts"
-    {"soft", "row * e=0", 0.13, "0.03-0.094 v0: without restitution no stage drives the rows to v_n = 0, and one relax "
-                          "pass a sub-step leaves the springs' push-out in a row (8 relax passes: 0.030 v0)"},
-    {"xpbd", "row * e=0", 0.19, "0.02-0.14 v0: the velocity pass's one Gauss-Seidel sweep a sub-step leaves the row's "
-                          "pairs parting (velocity_iterations = 32: within 6e-4 v0, but a resting pyramid's step "
-                          "takes 10 times as long; iterations = 16: within 0.01 v0)"},
     {"penalty", "row * gap=0 e=*", 0.49, "0.13-0.37 v0: simultaneous springs of 4 ms spread the strike over the row "
                                    "(energy kept to 0.3% with e = 1); the impacts take turns only when a gap takes "
                                    "longer to close than a contact lasts (the 2 mm cradle)"},
@@ -225,8 +220,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"soft_float", "stack n=8 height", 1.4e-3, "1.00 mm lower: the springs of the lower layers carry k m g, sum k g / omega^2"},
     {"soft_float", "stack n=20 height", 8.7e-3, "6.6 mm lower: its springs, as for 8"},
     {"soft_float", "stack n=8 size=* height", 1.4e-3, "1.0 mm lower at every size and mass: its springs, as above"},
-    {"soft_float", "row * e=0", 0.13, "0.03-0.094 v0: without restitution no stage drives the rows to v_n = 0, and one relax "
-                          "pass a sub-step leaves the springs' push-out in a row (8 relax passes: 0.030 v0)"},
     {"soft_float", "* overlap=0.5mm speed", 0.05, "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
     {"soft_float", "hull of * speed", 1.1e-4,
      "rocks on 12 of the 15 hull cases at 1.2e-6 to 8.4e-5 m/s after 2.5 s: soft's model, as under double"},

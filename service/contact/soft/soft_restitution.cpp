@@ -27,17 +27,23 @@ void AddStartVelocities(const World& world, const std::vector<SoftBody>& bodies,
 
 }  // namespace
 
-bool SoftPointsRestitute(const std::vector<SoftPoint>& points) {
-  return std::any_of(points.begin(), points.end(), [](const SoftPoint& p) { return p.restitution != 0.0; });
+bool SoftPointStruck(double threshold, const SoftPoint& p, const std::vector<SoftBody>& bodies) {
+  if (p.friction != 0.0) return false;
+  if (p.impact_speed < -threshold) return true;
+  return p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]) > threshold;
 }
 
 bool SoftStepNeedsRestitution(double threshold, const std::vector<SoftPoint>& points,
                               const std::vector<SoftBody>& bodies) {
   for (const SoftPoint& p : points) {
     if (p.total_n <= 0.0 || p.mass_n <= 0.0) continue;
-    if (p.impact_speed < -threshold) return true;
-    const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]);
-    if (std::abs(vn) > kRestShare * threshold) return true;
+    if (p.restitution != 0.0) {
+      if (p.impact_speed < -threshold) return true;
+      const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]);
+      if (std::abs(vn) > kRestShare * threshold) return true;
+    } else if (SoftPointStruck(threshold, p, bodies)) {
+      return true;
+    }
   }
   return false;
 }
@@ -59,6 +65,7 @@ void RestituteSoftPoints(double threshold, const World& world, const std::vector
       r.n = p.n, r.ra_n = p.ra_n, r.rb_n = p.rb_n, r.ia_n = p.ia_n, r.ib_n = p.ib_n;
       r.mass_n = p.mass_n;
       r.restitution = p.restitution;
+      r.struck = SoftPointStruck(threshold, p, bodies);
       r.impact = p.impact_speed;
       r.lambda = p.total_n;
       impacts->AddRow(r);

@@ -10,10 +10,25 @@
 // point that was apart at the step's start adds what its approach gained
 // over its gap (SoftPoint::impact_speed, free flight).
 //
+// Components without restitution take part where a frictionless point that
+// pushed met faster than the threshold or leaves the sub-steps parting
+// faster than it (SequentialImpacts' `struck`; the stage's impulses are
+// normal only and come after the friction, which they would undo in part:
+// docs/physics.md, "Restitution across simultaneous contacts"): their rows
+// then leave with e = 0's one-at-a-time answer, every pair of a struck row
+// at one speed, where one relax pass a sub-step left them parting by up to
+// 0.094 v0. The parting
+// is the springs' push-out of the overlap an impact left, which the relax
+// pass did not take back in the steps after it; a resting pyramid's points
+// part at most 0.13 of the threshold (0.0102 m/s against 2 |g| dt), and a
+// tenth of the threshold ran the stage over the whole pyramid in a step of
+// 60 and cost 8.8% more instructions.
+//
 // A step at rest runs none of it: when no point that pushed met faster than
 // the threshold and every such point leaves the sub-steps with |v_n| within
 // kRestShare of the threshold (what the impacts' own solve counts as rest,
-// sequential_impacts.cpp), the targets would all be about 0 and the solve
+// sequential_impacts.cpp; without restitution, parting no faster than the
+// threshold), the targets would all be about 0 and the solve
 // would only stir a face's four dependent corners until its passes change
 // the velocities by less than that share: a hull resting with e = 0.5 was
 // left rocking at 2.7e-5 and 4.2e-5 m/s in a period-two cycle of the steps,
@@ -28,12 +43,14 @@
 
 namespace contactsim {
 
-// Whether any point has restitution, so that the restitution stage has work.
-bool SoftPointsRestitute(const std::vector<SoftPoint>& points);
+// Whether a point without restitution that pushed calls for the stage
+// (above): it met faster than `threshold` or leaves parting faster than it.
+bool SoftPointStruck(double threshold, const SoftPoint& p, const std::vector<SoftBody>& bodies);
 
 // Whether the step's points need the restitution stage at all (above):
 // some point that pushed met faster than `threshold` or leaves moving along
-// its normal faster than kRestShare of it.
+// its normal faster than kRestShare of it (without restitution: parting
+// faster than it).
 bool SoftStepNeedsRestitution(double threshold, const std::vector<SoftPoint>& points,
                               const std::vector<SoftBody>& bodies);
 

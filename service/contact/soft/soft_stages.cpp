@@ -49,9 +49,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     SoftWideStep wide{h, params_.substeps, params_.relax_iterations, solve, 0};
     if (params_.float_lanes != "widest") wide.lanes = std::stoi(params_.float_lanes);
     wide_.Run(wide, manifolds_, colours_, runner, world, points_, bodies_);
-    if (SoftPointsRestitute(points_)) {
-      RestituteSoftPoints(RestitutionThreshold(world), world, manifolds_, points_, bodies_, &impacts_);
-    }
+    RestituteSoftPoints(RestitutionThreshold(world), world, manifolds_, points_, bodies_, &impacts_);
     return;
   }
   SoftPass relax = solve;
@@ -119,9 +117,8 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     }
     list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }
-  // without a point with restitution (the standard scenes' e = 0) there is
-  // no restitution stage at all
-  if (SoftPointsRestitute(points_)) list.AddSerial(restitute);
+  // a step at rest leaves it after one look at the points (soft_restitution.h)
+  list.AddSerial(restitute);
   runner.Stages(stages_);
 }
 

@@ -158,6 +158,7 @@ class XpbdMethod : public ContactMethod {
   std::vector<ParallelRunner::Stage> stages_;
   SequentialImpacts impacts_;             // a sub-step's restitution rows (xpbd_restitution.h)
   std::vector<char> deferred_;            // per block: restitution left to impacts_
+  std::vector<char> struck_;              // per body: its component took part in impacts_ this step
   std::vector<XpbdPassBlock> pass_blocks_;  // per block: its state over the velocity pass's sweeps
 };
 

@@ -1,17 +1,50 @@
 #include "service/contact/xpbd/xpbd_restitution.h"
 
+#include <cmath>
+
 namespace contactsim {
+namespace {
+
+// The points that take part in the stage: pushed in the sub-step, not
+// jointed (the velocity pass's block restitution, through the articulation).
+bool TakesPart(const XpbdPoint& p) { return p.lambda_n > 0.0 && p.w_n > 0.0 && !p.jointed; }
+
+void MarkStruck(int a, int b, const std::vector<SoftBody>& bodies, std::vector<char>* struck) {
+  for (int i : {a, b}) {
+    if (bodies[i].inv_mass > 0.0) (*struck)[i] = 1;
+  }
+}
+
+}  // namespace
+
+bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
+                     const std::vector<SoftBody>& bodies, std::vector<char>* struck) {
+  struck->assign(bodies.size(), 0);
+  bool any = false;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const XpbdPoint& p = points[i];
+    if (p.w_n <= 0.0 || p.jointed) continue;
+    any = any || p.restitution > 0.0;
+    if (frames[i].friction != 0.0) continue;
+    const SoftBody& A = bodies[p.a];
+    const SoftBody& B = bodies[p.b];
+    if (std::abs(XpbdNormalVelocity(p, A.v, A.w, B.v, B.w)) <= strike) continue;
+    MarkStruck(p.a, p.b, bodies, struck);
+    any = true;
+  }
+  return any;
+}
 
 bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock>& blocks,
                        const std::vector<XpbdPoint>& points, const std::vector<XpbdPose>& predicted,
-                       const std::vector<SoftBody>& bodies, SequentialImpacts* impacts, std::vector<char>* deferred) {
+                       const std::vector<SoftBody>& bodies, SequentialImpacts* impacts, std::vector<char>* deferred,
+                       std::vector<char>* struck) {
   deferred->assign(blocks.size(), 0);
   impacts->Begin(static_cast<int>(bodies.size()));
   for (int k = 0; k < static_cast<int>(blocks.size()); ++k) {
     for (int i = blocks[k].first; i < blocks[k].first + blocks[k].count; ++i) {
       const XpbdPoint& p = points[i];
-      if (p.lambda_n <= 0.0 || p.w_n <= 0.0) continue;  // did not push in the sub-step
-      if (p.jointed) continue;  // the velocity pass's block restitution, through the articulation
+      if (!TakesPart(p)) continue;
       for (int b : {p.a, p.b}) {
         if (!impacts->HasBody(b)) impacts->SetBody(b, predicted[b].v, predicted[b].w, bodies[b].inv_mass);
       }
@@ -22,6 +55,7 @@ bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock
       r.n = p.n, r.ra_n = p.ra_n, r.rb_n = p.rb_n, r.ia_n = p.ia_n, r.ib_n = p.ib_n;
       r.mass_n = 1.0 / p.w_n;
       r.restitution = p.restitution;
+      r.struck = (*struck)[p.a] || (*struck)[p.b];
       // v~ is the velocity at which the sub-step's pairs meet: no gain
       r.impact = XpbdNormalVelocity(p, predicted[p.a].v, predicted[p.a].w, predicted[p.b].v, predicted[p.b].w);
       r.lambda = p.lambda_n / h;
@@ -29,7 +63,10 @@ bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock
     }
   }
   if (!impacts->FindTargets(threshold)) return false;
-  for (const ImpactRow& r : impacts->rows()) (*deferred)[r.group] = 1;
+  for (const ImpactRow& r : impacts->rows()) {
+    (*deferred)[r.group] = 1;
+    MarkStruck(r.a, r.b, bodies, struck);
+  }
   return true;
 }
 

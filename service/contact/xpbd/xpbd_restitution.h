@@ -6,6 +6,25 @@
 // predicted velocities v~ (sequential_impacts.h): a Newton's cradle passes
 // its strike down the row. The positional push lambda_n moved the bodies
 // as the velocity impulse lambda_n / h does, which the rows start from.
+//
+// Components without restitution take part too where a frictionless point
+// approached or parted faster than `strike` at the step's start (the
+// stage's impulses are normal only and come after the friction, which they
+// would undo in part: a rolling 71-gon struck at each edge turned at
+// omega r / v 0.975 instead of 0.997; docs/physics.md, "Restitution across
+// simultaneous contacts"): their rows leave with e = 0's one-at-a-time
+// answer, every pair of a struck row at one speed, where the velocity
+// pass's one sweep a sub-step left them parting by up to 0.14 v0.
+// A struck body keeps its component in the stage for the rest of the step,
+// while the sub-steps pass the impact's overlap down the row and push it
+// out. `strike` is max(threshold, 2 |g| dt), a step's gravity, not a
+// sub-step's: a resting stack's sweeps leave its points approaching faster
+// than 2 |g| h at a sub-step's start (the 20-row pyramid up to 3.2 times,
+// with 10 sub-steps), and a stage over the whole stack in those sub-steps
+// cost its step 25 times the instructions. The strikes are looked for once
+// a step, before the sub-steps: a look every sub-step cost the pyramid 2.8%;
+// parting at the step's start counts, as the steps after an impact still
+// push its overlap out.
 #pragma once
 
 #include <vector>
@@ -16,12 +35,21 @@
 
 namespace contactsim {
 
+// Before the sub-steps: marks in `struck` (per body) the dynamic bodies of
+// the frictionless points approaching or parting faster than `strike`
+// (m/s; `frames` parallel to `points`) and returns whether the step needs
+// the stage at all (a strike, or a point with restitution).
+bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
+                     const std::vector<SoftBody>& bodies, std::vector<char>* struck);
+
 // The sub-step's rows, before the velocity pass: marks in `deferred` the
 // blocks whose restitution waits for SolveXpbdImpacts (the velocity pass
-// leaves their normals alone) and returns whether there are any.
+// leaves their normals alone) and returns whether there are any; adds the
+// bodies of the rows that take part to `struck`.
 bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock>& blocks,
                        const std::vector<XpbdPoint>& points, const std::vector<XpbdPose>& predicted,
-                       const std::vector<SoftBody>& bodies, SequentialImpacts* impacts, std::vector<char>* deferred);
+                       const std::vector<SoftBody>& bodies, SequentialImpacts* impacts, std::vector<char>* deferred,
+                       std::vector<char>* struck);
 
 // After the velocity pass: drives the rows to their targets and adds the
 // impulses to the points' report.

@@ -61,6 +61,8 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   solve.articulation = &articulation_;
   const double joint_alpha_tilde = params_.joint_compliance / (h * h);
   const double threshold = std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * h);
+  // an approach that takes part at e = 0 (xpbd_restitution.h)
+  const double strike = std::max(threshold, 2.0 * world.gravity.norm() * world.dt);
 
   using Fn = ParallelRunner::StageFn;
   const Fn predict_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_); };
@@ -118,7 +120,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn solve_joint_dynamics = [&](int, int) { joint_velocities.SolveVelocities(world, h, bodies_); };
   const bool joint_dynamics = HasJointDynamics(world);
   const Fn gather_impacts = [&](int, int) {
-    GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_);
+    GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_, &struck_);
   };
   const int sweeps = params_.velocity_iterations;
   std::vector<Fn> velocity_sweeps;
@@ -144,11 +146,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   };
   pass_blocks_.resize(blocks_.size());
   const Fn solve_impacts = [&](int, int) { SolveXpbdImpacts(h, &impacts_, bodies_, &points_); };
-  // components with restitution take their bounce from the impacts one at
-  // a time (xpbd_restitution.h); the standard scenes' e = 0 have none
-  const bool restitution = std::any_of(points_.begin(), points_.end(),
-                                       [](const XpbdPoint& p) { return p.restitution != 0.0; });
+  // components with restitution or a struck point take their velocities
+  // from the impacts one at a time (xpbd_restitution.h); the standard
+  // scenes' e = 0 at rest have none
   deferred_.assign(blocks_.size(), 0);
+  const bool impacts = MarkXpbdStrikes(strike, points_, frames_, bodies_, &struck_);
 
   ColourStages list(&stages_, runner.threads());
   const int blocks = static_cast<int>(blocks_.size());
@@ -178,11 +180,11 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
     if (ratio_.active()) list.AddSerial(solve_ratios);
     if (project_joints) list.AddSerial(project);
     list.Add(derive_velocities, 0, n, kXpbdBodyGrain);
-    if (restitution) list.AddSerial(gather_impacts);
+    if (impacts) list.AddSerial(gather_impacts);
     if (sweeps > 1) list.AddSerial(begin_sweeps);
     for (const Fn& sweep : velocity_sweeps) list.AddColours(sweep, colours_, blocks);
     if (sweeps > 1) list.AddColours(report, colours_, blocks);
-    if (restitution) list.AddSerial(solve_impacts);
+    if (impacts) list.AddSerial(solve_impacts);
   }
   runner.Stages(stages_);
   joint_velocities.StoreEfforts(world);
