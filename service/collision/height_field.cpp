@@ -16,14 +16,31 @@ constexpr int kCorner[2][3][2] = {{{0, 0}, {0, 1}, {1, 1}}, {{0, 0}, {1, 1}, {1,
 // the edge, in the neighbouring triangle (height_field.h's split).
 constexpr int kAcross[2][3][2] = {{{-1, 0}, {1, 2}, {1, 0}}, {{0, 1}, {2, 1}, {0, -1}}};
 
+// Bits of a cell's edge_bits entry per half.
+constexpr int kBitsPerHalf = 6;
+
 }  // namespace
 
 SurfaceTriangle HeightField::Triangle(int r, int c, int half) const {
+  if (edge_bits.empty()) return TriangleWithNeighbours(r, c, half);
+  SurfaceTriangle tri = Corners(r, c, half);
+  const unsigned bits = edge_bits[tri.index / 2] >> (kBitsPerHalf * half);
+  tri.active_edges = static_cast<uint8_t>(bits & 7u);
+  tri.convex_edges = static_cast<uint8_t>((bits >> 3) & 7u);
+  return tri;
+}
+
+SurfaceTriangle HeightField::Corners(int r, int c, int half) const {
   SurfaceTriangle tri;
   for (int k = 0; k < 3; ++k) tri.v[k] = Sample(r + kCorner[half][k][0], c + kCorner[half][k][1]);
   const Vec3 n = (tri.v[1] - tri.v[0]).cross(tri.v[2] - tri.v[0]);
   tri.normal = n.normalized();  // never degenerate: the x-y projection has area dx dy / 2
   tri.index = static_cast<uint32_t>(2 * (r * (cols - 1) + c) + half);
+  return tri;
+}
+
+SurfaceTriangle HeightField::TriangleWithNeighbours(int r, int c, int half) const {
+  SurfaceTriangle tri = Corners(r, c, half);
   tri.active_edges = 0;
   tri.convex_edges = 0;
   for (int k = 0; k < 3; ++k) {
@@ -90,6 +107,17 @@ Status BuildHeightField(int rows, int cols, const std::vector<double>& heights, 
   const auto [lo, hi] = std::minmax_element(heights.begin(), heights.end());
   f->min_height = *lo;
   f->max_height = *hi;
+  f->edge_bits.resize(static_cast<size_t>(rows - 1) * (cols - 1));
+  for (int r = 0; r + 1 < rows; ++r) {
+    for (int c = 0; c + 1 < cols; ++c) {
+      unsigned bits = 0;
+      for (int half = 0; half < 2; ++half) {
+        const SurfaceTriangle tri = f->TriangleWithNeighbours(r, c, half);
+        bits |= (tri.active_edges | (tri.convex_edges << 3u)) << (kBitsPerHalf * half);
+      }
+      f->edge_bits[static_cast<size_t>(r) * (cols - 1) + c] = static_cast<uint16_t>(bits);
+    }
+  }
   *field = std::move(f);
   return Status::Ok();
 }

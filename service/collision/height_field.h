@@ -7,10 +7,13 @@
 // along its diagonal from (r, c) to (r + 1, c + 1): half 0 is
 // (r, c), (r, c + 1), (r + 1, c + 1) and half 1 is (r, c), (r + 1, c + 1),
 // (r + 1, c), both counter-clockwise seen from +z. An edge's activity
-// (triangle_surface.h) comes from the triangle across it, also made on the
-// fly; the grid's border edges are open, hence active.
+// (triangle_surface.h) comes from the triangle across it; the grid's border
+// edges are open, hence active. The edges' bits are found once, when the
+// field is built (two bytes a cell beside its eight of height), since a
+// query asks for the same cells' triangles step after step.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -31,12 +34,18 @@ struct HeightField {
   double spacing_y = 1.0;  // m, > 0
   std::vector<double> heights;  // m, rows * cols, row-major (row r at y_r)
   double min_height = 0.0, max_height = 0.0;  // m
+  // per cell r (cols - 1) + c: bits 6 half + k the active edge k of the
+  // half, bits 6 half + 3 + k its convex edge k (SurfaceTriangle's bits)
+  std::vector<uint16_t> edge_bits;
 
   Vec3 Sample(int r, int c) const {
     return Vec3((c - 0.5 * (cols - 1)) * spacing_x, (r - 0.5 * (rows - 1)) * spacing_y, heights[r * cols + c]);
   }
   // Triangle `half` (0 or 1) of cell (r, c), with its active edges.
   SurfaceTriangle Triangle(int r, int c, int half) const;
+  // The same with its edges' bits found from the triangles across them
+  // (what fills edge_bits).
+  SurfaceTriangle TriangleWithNeighbours(int r, int c, int half) const;
   Aabb Bounds() const;
 
   // Calls visit(const SurfaceTriangle&) for the triangles of every cell
@@ -45,6 +54,8 @@ struct HeightField {
   void ForEachTriangle(const Aabb& box, Visit&& visit) const;
 
  private:
+  // The triangle's vertices, normal and index, without its edges' bits.
+  SurfaceTriangle Corners(int r, int c, int half) const;
   // Range of cells [lo, hi] whose extent overlaps [min, max] along one
   // axis; false when none does.
   bool CellRange(double min, double max, double spacing, int samples, int* lo, int* hi) const;

@@ -107,6 +107,27 @@ bool HasClosedTopology(const PosedPolyhedron& poly) {
   return true;
 }
 
+bool GaussArcTable::Build(const PosedPolyhedron& a, const PosedPolyhedron& b) {
+  if (!HasClosedTopology(a) || !HasClosedTopology(b)) return false;
+  const int edges_a = static_cast<int>(a.edge_dirs.size());
+  const int edges_b = static_cast<int>(b.edge_dirs.size());
+  faces_a_ = static_cast<int>(a.normals.size());
+  faces_b_ = static_cast<int>(b.normals.size());
+  if (edges_a * faces_b_ > kMaxEntries || edges_b * faces_a_ > kMaxEntries) return false;
+  faces_of_a_ = a.topology->edge_faces.data();
+  faces_of_b_ = b.topology->edge_faces.data();
+  // the products of IsMinkowskiFace(a, b, c, d) with a, b of A and c, d = -n_B
+  for (int ea = 0; ea < edges_a; ++ea) {
+    const Vec3 b_x_a = a.normals[faces_of_a_[ea][1]].cross(a.normals[faces_of_a_[ea][0]]);
+    for (int f = 0; f < faces_b_; ++f) arc_a_face_b_[ea * faces_b_ + f] = (-b.normals[f]).dot(b_x_a);
+  }
+  for (int eb = 0; eb < edges_b; ++eb) {
+    const Vec3 d_x_c = (-b.normals[faces_of_b_[eb][1]]).cross(-b.normals[faces_of_b_[eb][0]]);
+    for (int f = 0; f < faces_a_; ++f) arc_b_face_a_[eb * faces_a_ + f] = a.normals[f].dot(d_x_c);
+  }
+  return true;
+}
+
 void MinkowskiEdgePairs(const PosedPolyhedron& a, const PosedPolyhedron& b, EdgePairScratch* s) {
   const int edges_a = static_cast<int>(a.edge_dirs.size());
   const int edges_b = static_cast<int>(b.edge_dirs.size());

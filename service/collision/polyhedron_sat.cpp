@@ -178,9 +178,14 @@ bool EdgeQuery(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_
     }
     return false;
   }
+  // small closed pairs (a box on a triangle's prism) read the Gauss-map
+  // test from tables; open topologies test each pair
+  GaussArcTable table;
+  const bool tabled = table.Build(a, b);
   for (int ea = 0; ea < edges_a; ++ea) {
     for (int eb = 0; eb < edges_b; ++eb) {
-      if (visit(ea, eb, false)) return true;
+      if (tabled && !table.IsMinkowskiFace(ea, eb)) continue;
+      if (visit(ea, eb, tabled)) return true;
     }
   }
   return false;

@@ -82,7 +82,9 @@ bool AxisSeparation(const PosedPolyhedron& a, const PosedPolyhedron& b, const Se
 // Large hulls' face queries descend the vertex graph (MinProjection) and
 // their edge queries visit only the edge pairs that form Minkowski faces
 // (minkowski_edge_pairs.h), which give the same result as the scans; the
-// pair search keeps its buffers in `scratch` (optional).
+// pair search keeps its buffers in `scratch` (optional). Small closed pairs
+// read the Gauss-map test of each edge pair from tables (GaussArcTable),
+// the same answers for fewer products.
 SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b, double early_out,
                              EdgePairScratch* scratch = nullptr);
 

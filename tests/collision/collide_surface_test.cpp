@@ -236,9 +236,10 @@ TEST(CollideSurfaceTest, ConvexEdgeKeepsItsNormal) {
   for (const Contact& c : out) EXPECT_NEAR(c.normal.dot(-Vec3(1, 0, 1).normalized()), 1.0, 1e-6) << c.normal.transpose();
 }
 
-// Verifies the heightfield against the same grid as a mesh: a box and a
-// ball over a wavy field get the same contacts (points, normals, depths)
-// whichever way the triangles were made.
+// Verifies the heightfield against the same grid as a mesh: its stored
+// edge bits are its neighbours', and a box and a ball over a wavy field get
+// the same contacts (points, normals, depths) whichever way the triangles
+// were made.
 TEST(CollideSurfaceTest, HeightfieldEqualsItsMesh) {
   const int n = 16;
   const double cell = 0.1;
@@ -249,6 +250,22 @@ TEST(CollideSurfaceTest, HeightfieldEqualsItsMesh) {
   }
   std::shared_ptr<const HeightField> field;
   ASSERT_TRUE(BuildHeightField(n + 1, n + 1, heights, cell, cell, &field).ok());
+  // the edge bits stored when the field was built are those its
+  // neighbours give, on a field with edges of both kinds
+  int active = 0;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      for (int half : {0, 1}) {
+        const SurfaceTriangle stored = field->Triangle(r, c, half);
+        const SurfaceTriangle found = field->TriangleWithNeighbours(r, c, half);
+        EXPECT_EQ(stored.active_edges, found.active_edges) << r << ", " << c << ", " << half;
+        EXPECT_EQ(stored.convex_edges, found.convex_edges) << r << ", " << c << ", " << half;
+        for (int k = 0; k < 3; ++k) active += (stored.active_edges >> k) & 1;
+      }
+    }
+  }
+  EXPECT_GT(active, 0);
+  EXPECT_LT(active, 6 * n * n);
   // the mesh takes the field's own samples, so that both hold the same
   // vertices to the last bit and only the way the triangles are made differs
   testing::MeshData m = GridMesh(n, cell);

@@ -1,7 +1,8 @@
 // The shortcuts that make hulls of hundreds of vertices cheap give exactly
 // what the scans they replace give: the Gauss-map grid's edge pairs are the
 // double loop's Minkowski-face pairs, the descent's support value is the
-// scan's, and a hull's box found by descent is the scanned box, bit for bit,
+// scan's, a small pair's Gauss-map tables accept the loop's pairs, and a
+// hull's box found by descent is the scanned box, bit for bit,
 // on random hulls (ellipsoid-like clouds, elongated ones, few and many
 // points) in random poses, whatever vertex the descents start from.
 #include <gtest/gtest.h>
@@ -93,6 +94,41 @@ TEST(LargeHullQueries, BoxesPairWithHullsAsTheLoopPairsThem) {
     MinkowskiEdgePairs(b, a, &scratch);
     EXPECT_EQ(scratch.pairs, LoopPairs(b, a));
   }
+}
+
+// Verifies that the Gauss-map tables of small pairs (boxes, and hulls of 8
+// and 12 points, each way round) accept exactly the double loop's pairs,
+// and that a table too large for its bound is refused.
+TEST(LargeHullQueries, GaussArcTableAcceptsExactlyTheLoopPairs) {
+  std::mt19937_64 rng(13);
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const RigidBody box = testing_util::Box(1, Vec3(0.3, 0.1, 0.05), RandomVector(rng, 0.3), RandomRotation(rng));
+    const RigidBody small = RandomHullBody(rng, 2, 8), medium = RandomHullBody(rng, 3, 12);
+    for (const RigidBody* first : {&box, &small, &medium}) {
+      for (const RigidBody* other : {&box, &small, &medium}) {
+        PosedPolyhedron a, b;
+        ASSERT_TRUE(PosePolyhedron(*first, &a));
+        ASSERT_TRUE(PosePolyhedron(*other, &b));
+        GaussArcTable table;
+        ASSERT_TRUE(table.Build(a, b));
+        std::vector<int64_t> pairs;
+        const int edges_b = static_cast<int>(b.edge_dirs.size());
+        for (int ea = 0; ea < static_cast<int>(a.edge_dirs.size()); ++ea) {
+          for (int eb = 0; eb < edges_b; ++eb) {
+            if (table.IsMinkowskiFace(ea, eb)) pairs.push_back(static_cast<int64_t>(ea) * edges_b + eb);
+          }
+        }
+        EXPECT_EQ(pairs, LoopPairs(a, b)) << "trial " << trial;
+      }
+    }
+  }
+  // 400 points: hundreds of edges against hundreds of faces
+  const RigidBody large_a = RandomHullBody(rng, 1, 400), large_b = RandomHullBody(rng, 2, 400);
+  PosedPolyhedron a, b;
+  ASSERT_TRUE(PosePolyhedron(large_a, &a));
+  ASSERT_TRUE(PosePolyhedron(large_b, &b));
+  GaussArcTable table;
+  EXPECT_FALSE(table.Build(a, b));
 }
 
 TEST(LargeHullQueries, DescentFindsTheScannedMinimumFromAnyStart) {
