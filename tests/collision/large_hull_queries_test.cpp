@@ -101,7 +101,7 @@ TEST(LargeHullQueries, BoxesPairWithHullsAsTheLoopPairsThem) {
 // and that a table too large for its bound is refused.
 TEST(LargeHullQueries, GaussArcTableAcceptsExactlyTheLoopPairs) {
   std::mt19937_64 rng(13);
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < kHullTrials; ++trial) {
     const RigidBody box = testing_util::Box(1, Vec3(0.3, 0.1, 0.05), RandomVector(rng, 0.3), RandomRotation(rng));
     const RigidBody small = RandomHullBody(rng, 2, 8), medium = RandomHullBody(rng, 3, 12);
     for (const RigidBody* first : {&box, &small, &medium}) {
