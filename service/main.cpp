@@ -107,6 +107,11 @@ int main(int argc, char** argv) {
   // with a key, everything the server publishes is signed (docs/protocol.md)
   SigningTransport signing(&transport, setup.options.auth_key);
   Transport* out = setup.options.auth_key.empty() ? static_cast<Transport*>(&transport) : &signing;
+  // Stop requests are caught from before Init on: Init announces the
+  // server and recovers its journal, and a client that has seen either may
+  // stop it at once; Run then returns at its first look at g_stop.
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
   SimServer server(setup.options, out);
   // Subscribe before Init announces the server (STATUS): LCM opens its
   // receive socket on the first subscribe, and a client may answer the
@@ -118,9 +123,6 @@ int main(int argc, char** argv) {
     spdlog::critical("{}", st.message());
     return 1;
   }
-
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
 
   spdlog::info("contactsim-server {} ready: {} bodies, method {}, {} threads, {} mode{}, channels {}_*, LCM {}",
                CONTACTSIM_VERSION, server.world().bodies().size(), server.method().Name(), setup.options.threads,
