@@ -36,7 +36,8 @@ void OnSignal(int) { g_stop.store(true); }
 int main(int argc, char** argv) {
   using namespace contactsim;
   CLI::App app{"contactsim-server: rigid-body contact co-simulation over LCM"};
-  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir, replay_log, auth_key_file;
+  std::string config_path, scene_path, lcm_url, prefix, log_level, mode, journal_dir, replay_log, auth_key_file,
+      joint_state;
   bool paused = false, no_live_line = false;
   app.add_option("--config", config_path, "server configuration (protobuf text)")->required();
   app.add_option("--scene", scene_path, "scene file, overriding the config's");
@@ -47,6 +48,12 @@ int main(int argc, char** argv) {
       ->check([](const std::string& name) {
         RunMode m;
         return ParseRunMode(name, &m) ? std::string() : std::string("must be realtime, free_run or lockstep");
+      });
+  app.add_option("--joint-state", joint_state,
+                 "always, outside_lockstep or off: when JOINT_STATE is published beside STATE (config joint_state)")
+      ->check([](const std::string& name) {
+        JointStatePolicy p;
+        return ParseJointStatePolicy(name, &p) ? std::string() : std::string("must be always, outside_lockstep or off");
       });
   app.add_flag("--paused", paused, "start paused");
   app.add_flag("--no-live-line", no_live_line, "do not print the progress line");
@@ -78,6 +85,7 @@ int main(int argc, char** argv) {
   if (!mode.empty()) {
     ParseRunMode(mode, &setup.options.mode);  // checked by CLI11
   }
+  if (!joint_state.empty()) ParseJointStatePolicy(joint_state, &setup.options.joint_state);  // checked by CLI11
   if (paused) setup.options.start_paused = true;
   if (no_live_line) setup.options.live_line = false;
   if (!journal_dir.empty()) setup.options.journal_dir = journal_dir;

@@ -76,10 +76,14 @@ void SimServer::RestoreStandingActuators() {
   standing_actuators_.clear();
 }
 
+// Lockstep controllers read the joints from STATE: JOINT_STATE beside it
+// would be a second datagram a step that wakes every socket on the group
+// (docs/actuators.md, "Joint channels", has the measurements).
 void SimServer::PublishJointState() {
-  const bool any = std::any_of(world_.joints().begin(), world_.joints().end(),
-                               [](const Joint& j) { return HasJointCoordinate(j.kind); });
-  if (!any) return;
+  const JointStatePolicy policy = options_.joint_state;
+  if (policy == JointStatePolicy::kOff) return;
+  if (policy == JointStatePolicy::kOutsideLockstep && mode_ == RunMode::kLockstep && lockstep_.active()) return;
+  if (!HasCoordinateJoints(world_)) return;
   publisher_.Publish(publisher_.Channel(protocol::kJointState), MakeJointStateMessage(world_));
 }
 

@@ -48,6 +48,11 @@ std::string ReplayReport::Summary() const {
     if (states_compared > 0) s += " (steps " + std::to_string(first_step) + " to " + std::to_string(last_step) + ")";
     s += " match the replay\n";
   }
+  if (states_undecodable > 0) {
+    s += "error: " + std::to_string(states_undecodable) +
+         " STATE messages are not this build's state_t (its fingerprint or layout differs: a log recorded by "
+         "another version of contactsim) and were not compared; replay the log with the version that recorded it\n";
+  }
   s += "  " + std::to_string(commands_fed) + " commands and " + std::to_string(inputs_fed) + " lockstep inputs fed";
   if (unanswered > 0) s += "; " + std::to_string(unanswered) + " commands had no reply in the log and were not fed";
   s += "\n";
@@ -134,7 +139,10 @@ void LogReplayer::StepTo(int64_t step) {
 
 void LogReplayer::OnState(const void* data, int size) {
   state_t m;
-  if (m.decode(data, 0, size) < 0) return;
+  if (m.decode(data, 0, size) < 0) {
+    ++report_.states_undecodable;
+    return;
+  }
   StepTo(m.step);
   const uint64_t logged = static_cast<uint64_t>(m.state_hash);
   const uint64_t replayed = HashWorldState(server_->world());
@@ -191,7 +199,8 @@ int RunReplay(ServerSetup setup, const std::string& log_path) {
   const ReplayReport& report = replayer.Finish();
   std::fputs(report.Summary().c_str(), stdout);
   std::fflush(stdout);
-  return report.diverged ? 2 : 0;
+  if (report.diverged) return 2;
+  return report.states_undecodable > 0 ? 1 : 0;
 }
 
 }  // namespace contactsim

@@ -42,6 +42,9 @@ struct ServerSetup;
 
 struct ReplayReport {
   int64_t states_compared = 0;
+  // STATEs this build's state_t does not decode: a log recorded by a
+  // contactsim whose STATE had another layout (its fingerprint differs)
+  int64_t states_undecodable = 0;
   int64_t commands_fed = 0;   // command messages applied at their reply
   int64_t inputs_fed = 0;     // lockstep inputs offered
   int64_t unanswered = 0;     // commands without a reply in the log: not fed

@@ -1,5 +1,7 @@
 #include "service/server/messages.h"
 
+#include "service/server/joint_state_message.h"
+
 namespace contactsim {
 state_t MakeStateMessage(const World& world) {
   state_t msg;
@@ -23,6 +25,7 @@ state_t MakeStateMessage(const World& world) {
     Copy3(b.LinearVelocity(), s.linear_velocity);
     Copy3(b.AngularVelocity(), s.angular_velocity);
   }
+  FillStateJoints(world, &msg);
   return msg;
 }
 

@@ -37,6 +37,10 @@ const std::vector<ServerOption>& ServerOptionTable() {
        "settled islands sleep until something wakes them (docs/physics.md, \"Sleeping\"), as in Box2D, Bullet and "
        "Jolt"},
       {"live_line", &SO::live_line, 0, 0, {}, "", "a one-line progress report on stderr"},
+      {"joint_state", &SO::joint_state, 0, 0, JointStateChoices(), "",
+       "when JOINT_STATE is published with STATE, whose joint block carries the same joints: always; "
+       "outside_lockstep (not while lockstep controllers are registered: they read STATE, one datagram a step); "
+       "off (docs/actuators.md, \"Joint channels\")"},
       {"max_bodies", &SO::max_bodies, 1, INT_MAX, {}, "bodies", "ADD beyond this is refused"},
       {"max_joints", &SO::max_joints, 0, INT_MAX, {}, "joints", "joint ADD beyond this is refused"},
       {"max_convex_points", &DL::max_convex_points, 4, INT_MAX, {}, "points", "points of one CONVEX body"},
@@ -130,6 +134,9 @@ Status Read(const ServerOption& o, const proto::ServerConfig& config, const Fiel
   } else if (auto m = std::get_if<LatePolicy SO::*>(&o.member)) {
     const std::string v = r->GetString(config, fd);
     if ((st = CheckChoice(o, v)).ok()) ParseLatePolicy(v, &(out->*(*m)));
+  } else if (auto m = std::get_if<JointStatePolicy SO::*>(&o.member)) {
+    const std::string v = r->GetString(config, fd);
+    if ((st = CheckChoice(o, v)).ok()) out->*(*m) = static_cast<JointStatePolicy>(IndexOf(o, v));
   }
   return st;
 }
@@ -148,6 +155,9 @@ std::string Text(const ServerOption& o, const ServerOptions& options) {
   }
   if (auto m = std::get_if<LatePolicy SO::*>(&o.member)) {
     return "\"" + std::string(LatePolicyName(options.*(*m))) + "\"";
+  }
+  if (auto m = std::get_if<JointStatePolicy SO::*>(&o.member)) {
+    return "\"" + std::string(o.choices[static_cast<int>(options.*(*m))]) + "\"";
   }
   return "";
 }
@@ -178,6 +188,22 @@ Status ReadServerOptions(const proto::ServerConfig& config, ServerOptions* optio
     }
   }
   return Status::Ok();
+}
+
+const std::vector<const char*>& JointStateChoices() {
+  static const std::vector<const char*> choices = {"always", "outside_lockstep", "off"};  // JointStatePolicy's order
+  return choices;
+}
+
+bool ParseJointStatePolicy(const std::string& text, JointStatePolicy* policy) {
+  const std::vector<const char*>& c = JointStateChoices();
+  for (size_t i = 0; i < c.size(); ++i) {
+    if (text == c[i]) {
+      *policy = static_cast<JointStatePolicy>(i);
+      return true;
+    }
+  }
+  return false;
 }
 
 std::string ServerOptionsMarkdown() {

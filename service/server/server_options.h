@@ -25,6 +25,10 @@
 
 namespace contactsim {
 
+// When JOINT_STATE goes out beside STATE, whose joint block carries the same
+// joints (docs/actuators.md, "Joint channels"); the config's choices in order.
+enum class JointStatePolicy { kAlways, kOutsideLockstep, kOff };
+
 struct ServerOptions {
   std::string prefix = "CONTACTSIM";
   RunMode mode = RunMode::kRealtime;
@@ -45,6 +49,7 @@ struct ServerOptions {
   std::string auth_key;        // read from the config's auth_key_file; "" = no signatures
   double auth_window_s = 30.0;
   bool live_line = true;
+  JointStatePolicy joint_state = JointStatePolicy::kOutsideLockstep;
   std::vector<std::string> model_paths;       // the config's model_path, from the config's folder
   std::vector<std::string> model_path_flags;  // not in the config: --model-path's, searched first
   std::string journal_dir;     // the config's journal_dir, from the config's folder; "" = none on disk
@@ -62,7 +67,8 @@ struct ServerOptions {
 struct ServerOption {
   using Member = std::variant<double ServerOptions::*, int ServerOptions::*, int64_t ServerOptions::*,
                               bool ServerOptions::*, std::string ServerOptions::*, int DecodeLimits::*,
-                              RunMode ServerOptions::*, FsyncPolicy ServerOptions::*, LatePolicy ServerOptions::*>;
+                              RunMode ServerOptions::*, FsyncPolicy ServerOptions::*, LatePolicy ServerOptions::*,
+                              JointStatePolicy ServerOptions::*>;
   const char* name;  // the field of proto::ServerConfig
   Member member;
   double lo, hi;                      // numbers: the range
@@ -78,6 +84,11 @@ const std::vector<ServerOption>& ServerOptionTable();
 // against its range or choices; the first error names the field and the
 // value, and *field (when given) is its name.
 Status ReadServerOptions(const proto::ServerConfig& config, ServerOptions* options, std::string* field = nullptr);
+
+// The joint_state option's words, in JointStatePolicy's order (the table's
+// and the --joint-state flag's choices), and one word into the policy.
+const std::vector<const char*>& JointStateChoices();
+bool ParseJointStatePolicy(const std::string& text, JointStatePolicy* policy);
 
 // docs/configuration.md's table: option, default, range or choices, unit, doc.
 std::string ServerOptionsMarkdown();

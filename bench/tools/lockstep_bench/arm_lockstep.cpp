@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -33,7 +34,7 @@ ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, do
   gains.kd.assign(r.joints, 400.0);
   if (!(c = client.SetJointActuators(gains)).ok()) return fail("gains", c);
   const auto state = client.LatestState();
-  r.state_bytes = (state ? state->getEncodedSize() : 0) + (joints ? joints->getEncodedSize() : 0);
+  const int joint_state_bytes = joints ? joints->getEncodedSize() : 0;
   JointCommand targets;
   targets.model_id = arm.value.id;
   targets.target_position.assign(r.joints, 0.0);
@@ -44,6 +45,9 @@ ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, do
 
   const int n = r.joints;
   const int64_t model = arm.value.id;
+  // JOINT_STATEs heard while in lockstep: the server's joint_state option decides
+  std::atomic<int64_t> joint_states{0};
+  const int counter = client.OnJointState([&joint_states](const joint_state_t&) { ++joint_states; });
   Controller controller(client, [n, model](const state_t& s, const joint_state_t&) {
     ControlOutput out;
     out.joints.model_id = model;
@@ -57,15 +61,22 @@ ArmLockstepResult MeasureArmLockstep(Client& client, const std::string& urdf, do
     r.error = "lockstep did not reach step " + std::to_string(warm);
     return r;
   }
-  const double cpu0 = ProcessCpuSeconds(server) + ProcessCpuSeconds(getpid());
+  const ProcessSched sched0 = ReadProcessSched(server) + ReadProcessSched(getpid());
+  const int64_t js0 = joint_states.load();
   const int64_t s0 = controller.answered();
   const auto t0 = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   const int64_t s1 = controller.answered();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double cpu1 = ProcessCpuSeconds(server) + ProcessCpuSeconds(getpid());
+  const ProcessSched spent = ReadProcessSched(server) + ReadProcessSched(getpid()) - sched0;
+  const int64_t js1 = joint_states.load();
   r.cycles_per_second = (s1 - s0) / elapsed;
-  r.cpu_per_cycle = s1 > s0 ? (cpu1 - cpu0) / (s1 - s0) : 0.0;
+  r.cpu_per_cycle = s1 > s0 ? spent.cpu_seconds / (s1 - s0) : 0.0;
+  r.runs_per_cycle = s1 > s0 ? spent.runs / (s1 - s0) : 0.0;
+  r.joint_states_per_cycle = s1 > s0 ? static_cast<double>(js1 - js0) / (s1 - s0) : 0.0;
+  const auto last = client.LatestState();
+  r.state_bytes = (last ? last->getEncodedSize() : 0) + (r.joint_states_per_cycle > 0.5 ? joint_state_bytes : 0);
+  client.RemoveCallback(counter);
   client.Pause();
   controller.Stop();
   client.SetMode(Mode::kFreeRun);

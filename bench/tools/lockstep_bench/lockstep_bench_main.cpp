@@ -10,6 +10,7 @@
 // the rates (process_cpu.h).
 //
 //   contactsim-bench-lockstep [--config FILE] [--bodies 1,100] [--arm URDF] [--seconds S] [--lcm-url URL]
+//                             [--joint-state always|outside_lockstep|off]
 //
 // A benchmark, not a test: it prints numbers and asserts none.
 #include <CLI/CLI.hpp>
@@ -73,7 +74,8 @@ void Reap(pid_t pid, bool interrupt) {
 
 struct LockstepResult {
   double cycles_per_second = 0.0;
-  double cpu_per_cycle = 0.0;  // s on a CPU, the server's and this process's together
+  double cpu_per_cycle = 0.0;   // s on a CPU, the server's and this process's together
+  double runs_per_cycle = 0.0;  // times their threads were put on a CPU (process_cpu.h)
   int state_bytes = 0, input_bytes = 0;
   std::string error;
 };
@@ -120,15 +122,17 @@ LockstepResult MeasureLockstep(Client& client, int bodies, double seconds, pid_t
     r.error = "lockstep did not reach step " + std::to_string(warm);
     return r;
   }
-  const double cpu0 = bench::ProcessCpuSeconds(server) + bench::ProcessCpuSeconds(getpid());
+  const bench::ProcessSched sched0 = bench::ReadProcessSched(server) + bench::ReadProcessSched(getpid());
   const int64_t s0 = controller.answered();
   const auto t0 = Clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   const int64_t s1 = controller.answered();
   const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
-  const double cpu1 = bench::ProcessCpuSeconds(server) + bench::ProcessCpuSeconds(getpid());
+  const bench::ProcessSched spent =
+      bench::ReadProcessSched(server) + bench::ReadProcessSched(getpid()) - sched0;
   r.cycles_per_second = (s1 - s0) / elapsed;
-  r.cpu_per_cycle = s1 > s0 ? (cpu1 - cpu0) / (s1 - s0) : 0.0;
+  r.cpu_per_cycle = s1 > s0 ? spent.cpu_seconds / (s1 - s0) : 0.0;
+  r.runs_per_cycle = s1 > s0 ? spent.runs / (s1 - s0) : 0.0;
   client.Pause();
   controller.Stop();
   client.SetMode(Mode::kFreeRun);
@@ -136,30 +140,33 @@ LockstepResult MeasureLockstep(Client& client, int bodies, double seconds, pid_t
 }
 
 // The ping-pong of `ping_bytes` pings and `pong_bytes` pongs against a
-// pong process of its own; false if the pong never answered. *cpu: s on a
-// CPU per round trip, both processes together (with the pong's start).
+// pong process of its own; false if the pong never answered. *trip: CPU
+// and runs per round trip, both processes together (with the pong's start).
 bool PingPong(const std::string& self, const std::string& url, const std::string& channel, int ping_bytes,
-              int pong_bytes, double seconds, bench::PingPongResult* pp, double* cpu) {
+              int pong_bytes, double seconds, bench::PingPongResult* pp, bench::ProcessSched* trip) {
   const pid_t pong = Spawn({self, "--lcm-url", url, "--pong", channel, "--pong-bytes", std::to_string(pong_bytes)},
                            false);
-  const double cpu0 = bench::ProcessCpuSeconds(getpid());
+  const bench::ProcessSched sched0 = bench::ReadProcessSched(getpid());
   const bool ok = bench::RunPing(url, channel, ping_bytes, seconds, 20.0, pp);
-  const double spent = bench::ProcessCpuSeconds(getpid()) - cpu0 + bench::ProcessCpuSeconds(pong);
+  const bench::ProcessSched spent = bench::ReadProcessSched(getpid()) - sched0 + bench::ReadProcessSched(pong);
   Reap(pong, !ok);
-  *cpu = pp->round_trips > 0 ? spent / pp->round_trips : 0.0;
+  const double n = pp->round_trips > 0 ? static_cast<double>(pp->round_trips) : 0.0;
+  *trip = n > 0 ? bench::ProcessSched{spent.cpu_seconds / n, spent.runs / n} : bench::ProcessSched{};
   return ok;
 }
 
 // One row of the table: the rates, their ratio, and the CPU of a cycle and
 // of a round trip (microseconds) and theirs.
-void PrintRow(const std::string& world, int bytes, double cycles, double cycle_cpu, double trips, double trip_cpu) {
-  std::printf("| %s | %d | %.0f | %.0f | %.2f | %.0f | %.0f | %.2f |\n", world.c_str(), bytes, cycles, trips,
-              cycles / trips, 1e6 * cycle_cpu, 1e6 * trip_cpu, cycle_cpu > 0.0 ? trip_cpu / cycle_cpu : 0.0);
+void PrintRow(const std::string& world, int bytes, double cycles, double cycle_cpu, double cycle_runs, double trips,
+              const bench::ProcessSched& trip) {
+  std::printf("| %s | %d | %.0f | %.0f | %.2f | %.0f | %.0f | %.2f | %.1f | %.1f |\n", world.c_str(), bytes, cycles,
+              trips, cycles / trips, 1e6 * cycle_cpu, 1e6 * trip.cpu_seconds,
+              cycle_cpu > 0.0 ? trip.cpu_seconds / cycle_cpu : 0.0, cycle_runs, trip.runs);
   std::fflush(stdout);
 }
 
 // The arm row: its lockstep rate beside a ping-pong of the same sizes
-// (STATE and JOINT_STATE out, the input back); 0, or 1 on failure.
+// (what the server sends a cycle, the input back); 0, or 1 on failure.
 int MeasureArmRow(Client& client, const std::string& self, const std::string& url, const std::string& prefix,
                   const std::string& urdf, double seconds, pid_t server) {
   const bench::ArmLockstepResult arm = bench::MeasureArmLockstep(client, urdf, seconds, server);
@@ -168,13 +175,14 @@ int MeasureArmRow(Client& client, const std::string& self, const std::string& ur
     return 1;
   }
   bench::PingPongResult pp;
-  double trip_cpu = 0.0;
-  if (!PingPong(self, url, prefix + "_PPARM", arm.state_bytes, arm.input_bytes, seconds, &pp, &trip_cpu)) {
+  bench::ProcessSched trip;
+  if (!PingPong(self, url, prefix + "_PPARM", arm.state_bytes, arm.input_bytes, seconds, &pp, &trip)) {
     std::fprintf(stderr, "arm: the pong process never answered\n");
     return 1;
   }
-  PrintRow(std::to_string(arm.joints) + "-joint arm, joint commands", arm.state_bytes, arm.cycles_per_second,
-           arm.cpu_per_cycle, pp.per_second(), trip_cpu);
+  PrintRow(std::to_string(arm.joints) + "-joint arm, joint commands" +
+               (arm.joint_states_per_cycle > 0.5 ? " (+ JOINT_STATE)" : ""),
+           arm.state_bytes, arm.cycles_per_second, arm.cpu_per_cycle, arm.runs_per_cycle, pp.per_second(), trip);
   return 0;
 }
 
@@ -192,6 +200,8 @@ int main(int argc, char** argv) {
   std::string arm = CONTACTSIM_SOURCE_DIR "/.venv/lib/python3.11/site-packages/pybullet_data/kuka_iiwa/model.urdf";
   app.add_option("--arm", arm, "a fixed-base arm's URDF driven by joint commands (\"\": none)");
   app.add_option("--lcm-url", url, "LCM URL (default: $LCM_DEFAULT_URL, else the project default)");
+  std::string joint_state;
+  app.add_option("--joint-state", joint_state, "the server's --joint-state (default: the config's joint_state)");
   app.add_option("--pong", pong_channel, "internal: run as the pong process on this channel");
   app.add_option("--pong-bytes", pong_bytes, "internal: pong payload size");
   CLI11_PARSE(app, argc, argv);
@@ -203,14 +213,17 @@ int main(int argc, char** argv) {
   const std::string prefix = "LOCKSTEP_BENCH_" + std::to_string(getpid());
   std::printf("lockstep cycles per second, one C++ controller, %g s per measurement, LCM %s\n\n", seconds,
               url.c_str());
-  std::printf("| world | STATE bytes | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong | "
-              "CPU us/cycle (server + controller) | CPU us/round trip (both ends) | ping-pong / lockstep CPU |\n");
-  std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| world | bytes out a cycle | lockstep cycles/s | LCM ping-pong round trips/s | lockstep / ping-pong | "
+              "CPU us/cycle (server + controller) | CPU us/round trip (both ends) | ping-pong / lockstep CPU | "
+              "runs/cycle | runs/round trip |\n");
+  std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::fflush(stdout);
 
-  const pid_t server = Spawn({server_bin, "--config", config, "--lcm-url", url, "--prefix", prefix, "--mode",
-                              "free_run", "--paused", "--no-live-line", "--log-level", "warn"},
-                             true);
+  std::vector<std::string> server_args = {server_bin, "--config",       config, "--lcm-url", url, "--prefix", prefix,
+                                          "--mode",   "free_run",     "--paused", "--no-live-line", "--log-level",
+                                          "warn"};
+  if (!joint_state.empty()) server_args.insert(server_args.end(), {"--joint-state", joint_state});
+  const pid_t server = Spawn(server_args, true);
   ClientOptions options;
   options.url = url;
   options.prefix = prefix;
@@ -232,15 +245,15 @@ int main(int argc, char** argv) {
       }
       // the transport alone, between two processes, with the same sizes
       bench::PingPongResult pp;
-      double trip_cpu = 0.0;
+      bench::ProcessSched trip;
       if (!PingPong(self, url, prefix + "_PP" + std::to_string(n), ls.state_bytes, ls.input_bytes, seconds, &pp,
-                    &trip_cpu)) {
+                    &trip)) {
         std::fprintf(stderr, "%d bodies: the pong process never answered\n", n);
         rc = 1;
         break;
       }
       PrintRow(std::to_string(n) + " bodies", ls.state_bytes, ls.cycles_per_second, ls.cpu_per_cycle,
-               pp.per_second(), trip_cpu);
+               ls.runs_per_cycle, pp.per_second(), trip);
       if (pp.resends > 0) std::printf("(%lld ping(s) resent after 1 s: lost on UDP)\n", static_cast<long long>(pp.resends));
       std::fflush(stdout);
     }

@@ -145,16 +145,57 @@ int Client::OnJointState(JointStateCallback callback) {
 
 std::optional<joint_state_t> Client::LatestJointState() const {
   std::lock_guard<std::mutex> lock(mutex_);
+  return LatestJointStateLocked();
+}
+
+std::optional<joint_state_t> Client::LatestJointStateLocked() const {
+  const bool state_newer = latest_state_ && latest_state_->num_joints > 0 &&
+                           (!latest_joint_state_ || latest_joint_state_->step <= latest_state_->step);
+  if (state_newer) return JointStateOfLocked(*latest_state_);
   return latest_joint_state_;
+}
+
+joint_state_t Client::JointStateOf(const state_t& state) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return JointStateOfLocked(state);
+}
+
+joint_state_t Client::JointStateOfLocked(const state_t& state) const {
+  joint_state_t m;
+  m.time = state.time;
+  m.step = state.step;
+  m.num_joints = state.num_joints;
+  m.joint_ids = state.joint_ids;
+  m.model_ids = state.joint_model_ids;
+  m.positions = state.joint_positions;
+  m.velocities = state.joint_velocities;
+  m.efforts = state.joint_efforts;
+  m.names.resize(state.joint_ids.size());
+  for (size_t i = 0; i < state.joint_ids.size(); ++i) {
+    const std::string* name = nullptr;
+    if (latest_model_info_ && state.joint_model_ids[i] != 0) {
+      for (const model_entry_t& e : latest_model_info_->models) {
+        if (e.model_id != state.joint_model_ids[i]) continue;
+        for (size_t k = 0; k < e.joint_ids.size() && name == nullptr; ++k) {
+          if (e.joint_ids[k] == state.joint_ids[i]) name = &e.joint_names[k];
+        }
+      }
+    }
+    m.names[i] = name != nullptr ? *name : std::to_string(state.joint_ids[i]);
+  }
+  return m;
 }
 
 std::optional<joint_state_t> Client::WaitForJointState(const std::function<bool(const joint_state_t&)>& predicate,
                                                        std::chrono::milliseconds timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (!changed_.wait_for(lock, timeout, [&] { return latest_joint_state_ && predicate(*latest_joint_state_); })) {
-    return std::nullopt;
-  }
-  return latest_joint_state_;
+  std::optional<joint_state_t> found;
+  const bool ok = changed_.wait_for(lock, timeout, [&] {
+    found = LatestJointStateLocked();
+    return found && predicate(*found);
+  });
+  if (!ok) return std::nullopt;
+  return found;
 }
 
 int Client::OnSensors(SensorsCallback callback) {

@@ -41,10 +41,8 @@ void Controller::OnState(const state_t& state) {
   }
   ControlOutput inputs;
   if (joint_policy_) {
-    // lost: the server publishes STATE and JOINT_STATE again while it waits
-    const std::optional<joint_state_t> joints = client_.LatestJointState();
-    if (!joints || joints->step != state.step) return;
-    inputs = joint_policy_(state, *joints);
+    // STATE carries the step's joints: one message a step, nothing to wait for
+    inputs = joint_policy_(state, client_.JointStateOf(state));
   } else {
     inputs.bodies = policy_(state);
   }

@@ -7,8 +7,10 @@ and ``effort_limit`` / ``velocity_limit``. ``set_joint_actuator`` and
 ``set_joint_actuators`` change the standing settings on
 <prefix>_ACTUATOR_CMD; only the fields given change, so new targets keep the
 gains. A lockstep input carries a :class:`JointCommand` for one step.
-<prefix>_JOINT_STATE carries every joint's coordinate, rate and effort with
-each STATE; ``joint_state()`` is the latest as a :class:`JointState`.
+STATE carries every joint's coordinate, rate and effort (its joint block,
+``State.joints``), and <prefix>_JOINT_STATE the same with the joints' names
+beside STATE outside lockstep (the server's ``joint_state`` option);
+``joint_state()`` is the latest of the two as a :class:`JointState`.
 """
 import threading
 
@@ -101,6 +103,24 @@ class JointState:
         self.velocities = np.array(msg.velocities, dtype=np.float64)
         self.efforts = np.array(msg.efforts, dtype=np.float64)
 
+    @classmethod
+    def from_state(cls, msg, names=None):
+        """The joint block of a state_t: the same joints in the same order
+        as the JOINT_STATE of its step. ``names`` maps joint id -> the model
+        file's name (MODEL_INFO's); a joint it lacks is named by its id in
+        decimal, as JOINT_STATE names a joint of no model."""
+        js = cls.__new__(cls)
+        js.step = msg.step
+        js.time = msg.time
+        js.joint_ids = np.array(msg.joint_ids, dtype=np.int64)
+        js.model_ids = np.array(msg.joint_model_ids, dtype=np.int64)
+        names = names or {}
+        js.names = [names.get(int(j), str(int(j))) for j in msg.joint_ids]
+        js.positions = np.array(msg.joint_positions, dtype=np.float64)
+        js.velocities = np.array(msg.joint_velocities, dtype=np.float64)
+        js.efforts = np.array(msg.joint_efforts, dtype=np.float64)
+        return js
+
     def of_model(self, model_id):
         """(positions, velocities, efforts) of one model's joints, in its order."""
         sel = self.model_ids == int(model_id)
@@ -185,9 +205,39 @@ class ActuatorCommands:
             return self._joint_state
 
     def joint_state(self):
-        """The latest JOINT_STATE as a JointState, or None before any."""
+        """The latest joint state as a JointState: the joint block of the
+        latest STATE, or the latest JOINT_STATE when that is newer (or STATE
+        carries no joints); None before either."""
         with self._lock:
-            return self._joint_state
+            js = self._joint_state
+        st = self._latest_state_obj()
+        if st is None or st.joints is None or (js is not None and js.step > st.step):
+            return js
+        return self.joints_of(st)
+
+    def joints_of(self, state):
+        """A State's joint block as a JointState named from MODEL_INFO (see
+        JointState.from_state), or None when the STATE carries no joints."""
+        if state.joints is None:
+            return None
+        names = self._joint_names()
+        if names:
+            return JointState.from_state(state.raw, names)
+        return state.joints
+
+    def _joint_names(self):
+        # joint id -> name from the latest MODEL_INFO, rebuilt when it changes
+        with self._lock:
+            info = getattr(self, "_model_info", None)
+            cached = getattr(self, "_joint_names_cache", (None, {}))
+        if info is None:
+            return {}
+        if cached[0] is not info:
+            names = {int(j): n for e in info.models for n, j in zip(e.joint_names, e.joint_ids) if j != 0}
+            cached = (info, names)
+            with self._lock:
+                self._joint_names_cache = cached
+        return cached[1]
 
     def wait_for_joint_state(self, predicate=None, timeout=None):
         """Waits for a JOINT_STATE after this call (satisfying predicate,

@@ -9,8 +9,8 @@ JointCommand) set joints' actuator fields for that one step only.
 """
 import threading
 
-from . import input_t, scene_cmd_t
-from .actuators import JointCommand, encode_joint_command
+from . import input_t, joint_state_t, scene_cmd_t
+from .actuators import JointCommand, JointState, encode_joint_command
 from .errors import TimeoutError
 
 LATE_POLICIES = {None: scene_cmd_t.LATE_DEFAULT, "wait": scene_cmd_t.LATE_WAIT,
@@ -89,8 +89,9 @@ class Controller:
     """Runs ``callback(state) -> forces`` in lockstep (forces as in
     ``send_input``). The callback may also return a JointCommand, or
     (forces, JointCommand). With ``joint_state=True`` it is called as
-    ``callback(state, joint_state)`` with the JOINT_STATE of the same step
-    (published just before STATE). Use as a context manager or call
+    ``callback(state, joint_state)`` with the joints STATE carries (a
+    JointState named from MODEL_INFO; empty when the world has none), so a
+    step needs one message. Use as a context manager or call
     start() / stop()::
 
         with Controller(client, pd) as ctl:
@@ -123,10 +124,12 @@ class Controller:
             # a duplicate of an input already applied is ignored)
             self.client._publish_input(self._last_payload)
             return
+        js = None
         if self.joint_state:
-            js = self.client.joint_state()
-            if js is None or js.step != state.step:
-                return  # its JOINT_STATE was lost: the server sends STATE again while it waits
+            js = self.client.joints_of(state)
+            if js is None:
+                js = JointState(joint_state_t())
+                js.step, js.time = state.step, state.time
         try:
             out = self.callback(state, js) if self.joint_state else self.callback(state)
             forces, joints = _split(out)

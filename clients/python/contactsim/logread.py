@@ -44,6 +44,23 @@ def _progress(total, enabled):
     return SimpleNamespace(update=lambda n: None, close=lambda: None)
 
 
+def _decode_state(event):
+    """A logged STATE, or a ValueError that says why not: a STATE recorded by
+    a contactsim whose state_t had another layout (its fingerprint, the
+    first 8 bytes, differs) cannot be read by this one."""
+    try:
+        return state_t.decode(event.data)
+    except ValueError:
+        fingerprint = bytes(event.data[:8])
+        if fingerprint != state_t._get_packed_fingerprint():
+            raise ValueError(
+                "the STATE on %s at log event %d is not this contactsim's state_t (fingerprint %s, expected %s): "
+                "the log was recorded by another version of contactsim; read it with that version"
+                % (event.channel, event.eventnum, fingerprint.hex(), state_t._get_packed_fingerprint().hex())) from None
+        raise ValueError("the STATE on %s at log event %d does not decode (truncated or corrupt)"
+                         % (event.channel, event.eventnum)) from None
+
+
 def _stack_bodies(ids_per_state, rows_per_state):
     """(N, B, 13) array over the union of body ids, NaN where a body is absent
     from a STATE (added later or removed earlier)."""
@@ -82,7 +99,7 @@ def read_log(path, prefix=None, progress=False):
       ``step_rate``, ``real_time_factor``, ``num_bodies``, ``num_sleeping``
       (docs/physics.md, "Sleeping"), ``num_contacts``, ``max_penetration``,
       and lists ``mode`` and ``method``;
-    * ``joints``: per JOINT_STATE message ``time``, ``step``; per joint
+    * ``joints``: per STATE with joints ``time``, ``step``; per joint
       seen ``joint_ids``, ``joint_index`` (id -> column), ``names``,
       ``model_ids``; ``position``, ``velocity``, ``effort`` (N, J: rad or m,
       rad/s or m/s, N m or N), NaN where a joint did not exist;
@@ -117,7 +134,8 @@ def read_log(path, prefix=None, progress=False):
                 t0 = event.timestamp
             kind = names.get(event.channel)
             if kind == "state":
-                m = state_t.decode(event.data)
+                m = _decode_state(event)
+                joints.add_state(m)
                 st["time"].append(m.time)
                 st["step"].append(m.step)
                 st["log_time"].append((event.timestamp - t0) * 1e-6)

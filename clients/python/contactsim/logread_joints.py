@@ -1,5 +1,7 @@
-"""Joint trajectories from the JOINT_STATE messages of a log (read_log's
-``joints``; docs/actuators.md, "Joint channels")."""
+"""Joint trajectories of a log (read_log's ``joints``; docs/actuators.md,
+"Joint channels"): one row per STATE, from its joint block, which every
+STATE carries; JOINT_STATE messages, where the server published them, name
+the joints (else a joint is named by its id in decimal)."""
 from types import SimpleNamespace
 
 import numpy as np
@@ -8,22 +10,32 @@ from . import joint_state_t
 
 
 class JointTrajectories:
-    """Collects JOINT_STATE messages, then stacks them into arrays."""
+    """Collects the joint blocks of STATE messages and the names of
+    JOINT_STATE messages, then stacks them into arrays."""
 
     def __init__(self):
         self._time, self._step, self._rows = [], [], []
         self._names, self._models = {}, {}
 
-    def add(self, data):
-        m = joint_state_t.decode(data)
+    def add_state(self, m):
+        """A decoded state_t: a row, when it carries joints."""
+        if m.num_joints == 0:
+            return
         self._time.append(m.time)
         self._step.append(m.step)
         rows = {}
-        for j, model, name, q, v, u in zip(m.joint_ids, m.model_ids, m.names, m.positions, m.velocities, m.efforts):
+        for j, model, q, v, u in zip(m.joint_ids, m.joint_model_ids, m.joint_positions, m.joint_velocities,
+                                     m.joint_efforts):
             rows[int(j)] = (q, v, u)
-            self._names[int(j)] = name
+            self._names.setdefault(int(j), str(int(j)))
             self._models[int(j)] = int(model)
         self._rows.append(rows)
+
+    def add(self, data):
+        """An encoded JOINT_STATE: the joints' names."""
+        m = joint_state_t.decode(data)
+        for j, name in zip(m.joint_ids, m.names):
+            self._names[int(j)] = name
 
     def result(self):
         """``time``, ``step`` (N,); ``joint_ids`` (J,) every joint seen, in

@@ -116,8 +116,9 @@ class Model:
 
     def joint_state(self, timeout=None):
         """(positions, velocities, efforts): numpy arrays over
-        ``actuated_joints`` from the latest JOINT_STATE (waits for one if
-        none has come yet)."""
+        ``actuated_joints`` from the latest STATE's joints, or JOINT_STATE's
+        when newer (``Client.joint_state``; asks for a JOINT_STATE if
+        neither has come yet)."""
         js = self._client.joint_state()
         if js is None:
             js = self._client.request_joint_state(timeout=timeout)

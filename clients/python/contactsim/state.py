@@ -4,6 +4,7 @@ from collections import namedtuple
 import numpy as np
 
 from . import status_t
+from .actuators import JointState
 
 # The run modes by their wire value, the Python client's one table of them
 # (client.MODES and logread read it). The names are the server's
@@ -45,11 +46,14 @@ class State:
     """The world after a step: ``time`` (s), ``step``, ``state_hash``,
     ``input_digest`` (of the lockstep inputs applied in the step, 0 if none),
     ``kinetic_energy`` and ``potential_energy`` (J, of the dynamic bodies) and
-    ``bodies``, a dict body id -> BodyState in ascending id order. Two states
-    compare equal when every field of every body is bit-identical."""
+    ``bodies``, a dict body id -> BodyState in ascending id order, and
+    ``joints``, the joints with a coordinate as a JointState (named by id;
+    ``Client.joints_of`` names them from MODEL_INFO), None when the world has
+    none. Two states compare equal when every field of every body is
+    bit-identical."""
 
     __slots__ = ("time", "step", "state_hash", "input_digest", "kinetic_energy", "potential_energy", "bodies",
-                 "raw")
+                 "joints", "raw")
 
     def __init__(self, msg):
         self.time = msg.time
@@ -59,6 +63,7 @@ class State:
         self.kinetic_energy = msg.kinetic_energy
         self.potential_energy = msg.potential_energy
         self.bodies = {b.id: BodyState(b) for b in msg.bodies}
+        self.joints = JointState.from_state(msg) if msg.num_joints > 0 else None
         self.raw = msg
 
     def __eq__(self, other):

@@ -413,11 +413,18 @@ class Client {
   std::optional<contacts_t> LatestContacts() const;
   std::optional<status_t> LatestStatus() const;
   std::optional<sensors_t> LatestSensors() const;
-  // JOINT_STATE is published just before the STATE of the same step.
+  // The latest joint state: the joints of the latest STATE, or the latest
+  // JOINT_STATE when that is newer or STATE carries no joints. JOINT_STATE
+  // goes out just before the STATE of the same step, outside lockstep by
+  // default (the server's joint_state option; docs/actuators.md).
   std::optional<joint_state_t> LatestJointState() const;
-  // The first JOINT_STATE (the latest one, or one arriving later) for which
+  // STATE's joint block as a joint_state_t, named from the latest
+  // MODEL_INFO (a joint it does not name: its id in decimal, as JOINT_STATE
+  // names a joint of no model); empty when the world has no joints.
+  joint_state_t JointStateOf(const state_t& state) const;
+  // The first joint state (LatestJointState, now or later) for which
   // `predicate` holds; nullopt after `timeout`. An actuator_cmd_t STATE
-  // asks the server for one now.
+  // asks the server for a JOINT_STATE now.
   std::optional<joint_state_t> WaitForJointState(const std::function<bool(const joint_state_t&)>& predicate,
                                                  std::chrono::milliseconds timeout);
 
@@ -465,6 +472,9 @@ class Client {
   void SubscribeSensors(int queue_capacity);
   static void OnJointState(const lcm::ReceiveBuffer*, const std::string&, Client*);
   static void OnModelInfo(const lcm::ReceiveBuffer*, const std::string&, Client*);
+  // LatestJointState and JointStateOf with mutex_ held
+  std::optional<joint_state_t> LatestJointStateLocked() const;
+  joint_state_t JointStateOfLocked(const state_t& state) const;
   // The latest MODEL_INFO received after the `after`-th, within the reply timeout.
   std::optional<model_info_t> WaitForModelInfo(uint64_t after, const std::function<bool(const model_info_t&)>& predicate);
   void HandleProgress(const progress_t* progress);

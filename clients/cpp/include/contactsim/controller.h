@@ -11,8 +11,9 @@
 //   ctl.WaitForStep(720, std::chrono::seconds(30));
 //   ctl.Stop();                                // releases
 //
-// A JointPolicy also reads the JOINT_STATE of the same step (published just
-// before STATE) and may command joints for that one step:
+// A JointPolicy also reads the step's joints, from STATE's joint block
+// (Client::JointStateOf: one message a step), and may command joints for
+// that one step:
 //   contactsim::Controller ctl(client, [&](const state_t& s, const joint_state_t& j) {
 //     contactsim::ControlOutput out;
 //     out.joints.model_id = arm.id;

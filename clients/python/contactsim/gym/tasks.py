@@ -103,7 +103,7 @@ class ArmTask:
         return gymnasium.spaces.Box(-1.0, 1.0, (len(self.goal),), np.float64)
 
     def observe(self, client, state, ids):
-        js = client.joint_state()  # published just before the STATE of the same step
+        js = client.joints_of(state)  # STATE carries the joints of its step
         q, v, _ = js.of_model(ids["model"])
         self._q = q  # the reward's, which sees only STATE
         return np.concatenate([q, v])

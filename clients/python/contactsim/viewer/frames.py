@@ -16,10 +16,13 @@ from .. import contacts_t, state_t
 
 # state_t on the wire (lcmtypes/state_t.lcm): fingerprint, time, step,
 # state_hash, input_digest, kinetic and potential energy, num_bodies, then
-# each body_state_t (nested: no fingerprint) as id and 13 doubles, big-endian
+# each body_state_t (nested: no fingerprint) as id and 13 doubles, then the
+# joint block: num_joints and five columns of that many 8-byte values
+# (ids, model ids, positions, velocities, efforts), big-endian
 _STATE_HEAD = np.dtype([("fp", "V8"), ("time", ">f8"), ("step", ">i8"), ("hash", ">i8"), ("digest", ">i8"),
                         ("kinetic", ">f8"), ("potential", ">f8"), ("n", ">i4")])
 _BODY = np.dtype([("id", ">i8"), ("x", ">f8", 3), ("q", ">f8", 4), ("v", ">f8", 3), ("w", ">f8", 3)])
+_JOINT_COLUMNS = 5
 _STATE_FP = state_t._get_packed_fingerprint()
 # contacts_t: fingerprint, time, step, method (int32 length with its NUL, bytes),
 # value_kind (int8), num_contacts, then each contact_t
@@ -48,7 +51,11 @@ def read_state(payload):
         return None
     head = np.frombuffer(payload, _STATE_HEAD, count=1)[0]
     n = int(head["n"])
-    if n < 0 or len(payload) != _STATE_HEAD.itemsize + n * _BODY.itemsize:
+    joints_at = _STATE_HEAD.itemsize + n * _BODY.itemsize
+    if n < 0 or len(payload) < joints_at + 4:
+        return None
+    joints = int(np.frombuffer(payload, ">i4", count=1, offset=joints_at)[0])
+    if joints < 0 or len(payload) != joints_at + 4 + joints * _JOINT_COLUMNS * 8:
         return None
     return head, np.frombuffer(payload, _BODY, count=n, offset=_STATE_HEAD.itemsize)
 
