@@ -77,6 +77,50 @@ def test_joint_state_names_the_models_joints_in_order_then_loose_ones(arm_server
     # published with every STATE, just before it: the STEP's reply waits for its STATE
     c.step(1)
     assert c.joint_state().step == c.state().step == 5
+    # STATE carries the same joints: named from MODEL_INFO, equal bit for bit
+    st = c.state()
+    from_state = c.joints_of(st)
+    published = c.request_joint_state()
+    assert published.step == from_state.step == 5
+    assert list(from_state.joint_ids) == list(published.joint_ids)
+    assert list(from_state.model_ids) == list(published.model_ids)
+    assert from_state.names == published.names
+    for a, b in ((from_state.positions, published.positions), (from_state.velocities, published.velocities),
+                 (from_state.efforts, published.efforts)):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_a_lockstep_controller_reads_its_joints_from_state_alone(arm_server):
+    """While a controller is registered in lockstep the server sends no
+    JOINT_STATE (joint_state "outside_lockstep", the default): the
+    controller's joints, Model.joint_state() and Client.joint_state() come
+    from STATE, of the step just taken."""
+    c = arm_server.client
+    arm = c.load_model(IIWA, name="arm", fixed_base=True)
+    arm.set_joint_targets(np.full(7, 0.1), kp=400.0, kd=40.0)
+    heard, seen = [], {}
+    remove = c.on_joint_state(heard.append)
+
+    def policy(state, joints):
+        seen[state.step] = joints
+        return None
+
+    start = c.state().step
+    with contactsim.Controller(c, policy, joint_state=True) as ctl:
+        c.set_mode("lockstep")
+        c.resume()
+        ctl.wait_for_step(start + 20, timeout=60)
+        c.pause()
+    remove()
+    c.set_mode("free_run")
+    in_lockstep = [js for js in heard if start < js.step <= start + 20]
+    assert in_lockstep == []
+    last = seen[max(seen)]
+    assert last.names == IIWA_JOINTS and list(last.model_ids) == [arm.id] * 7
+    assert np.all(last.positions != 0.0)
+    assert c.joint_state().step == c.state().step
+    q, _, _ = arm.joint_state()
+    np.testing.assert_array_equal(q, c.state().joints.of_model(arm.id)[0])
 
 
 def test_actuator_commands_round_trip_and_refusals_change_nothing(arm_server):

@@ -161,3 +161,42 @@ def test_plot_reports_a_missing_log(tmp_path):
     run = subprocess.run([sys.executable, "-m", "contactsim.plot", str(tmp_path / "nope.lcmlog"), "-o",
                           str(tmp_path / "out")], capture_output=True, text=True, timeout=60, env=env)
     assert run.returncode == 1 and "cannot read" in run.stderr
+
+
+def test_a_state_of_another_layout_is_named_not_misread(tmp_path):
+    """A log recorded by a contactsim whose state_t had no joint block: its
+    STATE's fingerprint differs, and read_log says so instead of misreading
+    it (docs/protocol.md, "State")."""
+    m = contactsim.state_t()
+    m.step, m.time = 3, 0.01
+    new = m.encode()
+    old = bytes([new[0] ^ 0x5A]) + new[1:-4]   # another fingerprint, no num_joints
+    path = tmp_path / "old.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(0, "CONTACTSIM_STATE", old)
+    log.close()
+    with pytest.raises(ValueError, match="another version of contactsim") as e:
+        read_log(path, prefix="CONTACTSIM")
+    assert "CONTACTSIM_STATE" in str(e.value)
+
+
+def test_joint_trajectories_come_from_state(tmp_path):
+    """read_log's joints are STATE's joint blocks, named by JOINT_STATE
+    where the log has one and by id otherwise."""
+    path = tmp_path / "joints.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    js = contactsim.joint_state_t()
+    js.step, js.num_joints, js.joint_ids, js.model_ids, js.names = 1, 1, [4], [1], ["elbow"]
+    js.positions, js.velocities, js.efforts = [0.5], [0.25], [2.0]
+    log.write_event(0, "CONTACTSIM_JOINT_STATE", js.encode())
+    for step in (1, 2):
+        m = contactsim.state_t()
+        m.step, m.time = step, 0.01 * step
+        m.num_joints, m.joint_ids, m.joint_model_ids = 2, [4, 9], [1, 0]
+        m.joint_positions, m.joint_velocities, m.joint_efforts = [0.5 * step, 1.0], [0.25, 0.0], [2.0, 0.0]
+        log.write_event(step, "CONTACTSIM_STATE", m.encode())
+    log.close()
+    j = read_log(path, prefix="CONTACTSIM").joints
+    assert list(j.step) == [1, 2] and list(j.joint_ids) == [4, 9]
+    assert j.names == ["elbow", "9"] and list(j.model_ids) == [1, 0]
+    np.testing.assert_array_equal(j.position, [[0.5, 1.0], [1.0, 1.0]])

@@ -38,6 +38,20 @@ def test_read_state_matches_lcm_decoding():
     assert list(frame[:6]) == [1, 300, 1.25, 2.5, -7.0, 50]
 
 
+# Verifies that a STATE with a joint block reads the same bodies, and that a
+# payload cut inside the block is refused.
+def test_read_state_reads_past_the_joints():
+    m = _state(4, np.random.default_rng(5))
+    m.num_joints = 3
+    m.joint_ids, m.joint_model_ids = [7, 8, 9], [1, 1, 0]
+    m.joint_positions, m.joint_velocities, m.joint_efforts = [0.1, 0.2, 0.3], [1.0, 2.0, 3.0], [4.0, 5.0, 6.0]
+    payload = m.encode()
+    head, bodies = read_state(payload)
+    assert head["n"] == 4
+    np.testing.assert_array_equal(bodies["x"], [b.position for b in m.bodies])
+    assert read_state(payload[:-8]) is None
+
+
 # Verifies that contacts_from_payload reads points and normals past the
 # method string, whatever its length.
 def test_contacts_payload_matches_lcm_decoding():

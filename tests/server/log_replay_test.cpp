@@ -297,6 +297,28 @@ TEST(LogReplayTest, ReplayOfARunWithAFilterChangeIsIdentical) {
   EXPECT_LE(cut.divergent_step, 200);
 }
 
+// Verifies that a log whose STATEs have another state_t layout (one
+// recorded before STATE carried joints: its fingerprint differs and it
+// ends before the joint block) is reported as such, with every STATE
+// counted as not compared, rather than as a divergence or a crash.
+TEST(LogReplayTest, StatesOfAnotherLayoutAreReportedNotCompared) {
+  LiveRun run;
+  run.Record();
+  Tape tape = run.tape();
+  for (auto& [channel, bytes] : tape) {
+    if (channel != "CONTACTSIM_STATE") continue;
+    bytes[0] ^= 0x5a;                 // another fingerprint
+    bytes.resize(bytes.size() - 4);   // no num_joints
+  }
+  const ReplayReport r = Replay(tape);
+  EXPECT_FALSE(r.diverged) << r.Summary();
+  EXPECT_EQ(r.states_compared, 0);
+  EXPECT_EQ(r.states_undecodable, CountStates(run.tape()));
+  const std::string text = r.Summary();
+  EXPECT_NE(text.find("STATE messages are not this build's state_t"), std::string::npos) << text;
+  EXPECT_NE(text.find("another version of contactsim"), std::string::npos) << text;
+}
+
 // Verifies that a tampered command (a larger impulse) is reported at the
 // first STATE after it, with both hashes and the command named.
 TEST(LogReplayTest, TamperedCommandIsReportedAtTheFirstStateAfterIt) {
