@@ -431,13 +431,15 @@ void Client::HandleReply(const lcm::ReceiveBuffer*, const std::string&,
   }
 }
 
+// The decoded message is moved into latest_state_ once the callbacks have
+// read it: a lockstep cycle copies no STATE.
 void Client::HandleState(const lcm::ReceiveBuffer*, const std::string&,
-                         const state_t* state) {
+                         state_t* state) {
   for (const auto& callback : Snapshot(mutex_, callbacks_->state)) {
     callback(*state);
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  latest_state_ = *state;
+  latest_state_ = std::move(*state);
   ++states_received_;
   changed_.notify_all();
 }

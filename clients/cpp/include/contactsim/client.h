@@ -457,7 +457,7 @@ class Client {
   void HandleReply(const lcm::ReceiveBuffer*, const std::string&,
                    const reply_t* reply);
   void HandleState(const lcm::ReceiveBuffer*, const std::string&,
-                   const state_t* state);
+                   state_t* state);
   void HandleContacts(const lcm::ReceiveBuffer*, const std::string&,
                       const contacts_t* contacts);
   void HandleStatus(const lcm::ReceiveBuffer*, const std::string&,
