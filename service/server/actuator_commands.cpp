@@ -78,7 +78,8 @@ void SimServer::RestoreStandingActuators() {
 
 // Lockstep controllers read the joints from STATE: JOINT_STATE beside it
 // would be a second datagram a step that wakes every socket on the group
-// (docs/actuators.md, "Joint channels", has the measurements).
+// (docs/actuators.md, "Joint channels"; BENCHMARKS.md, "Lockstep: one
+// datagram each way", has the measurements).
 void SimServer::PublishJointState() {
   const JointStatePolicy policy = options_.joint_state;
   if (policy == JointStatePolicy::kOff) return;
