@@ -111,6 +111,11 @@ def test_a_lockstep_controller_reads_its_joints_from_state_alone(arm_server):
         c.resume()
         ctl.wait_for_step(start + 20, timeout=60)
         c.pause()
+        # still registered: what the client holds of the joints is STATE's
+        st = c.state()
+        assert c.joint_state().step == st.step > start
+        q, _, _ = arm.joint_state()
+        np.testing.assert_array_equal(q, st.joints.of_model(arm.id)[0])
     remove()
     c.set_mode("free_run")
     in_lockstep = [js for js in heard if start < js.step <= start + 20]
@@ -118,9 +123,6 @@ def test_a_lockstep_controller_reads_its_joints_from_state_alone(arm_server):
     last = seen[max(seen)]
     assert last.names == IIWA_JOINTS and list(last.model_ids) == [arm.id] * 7
     assert np.all(last.positions != 0.0)
-    assert c.joint_state().step == c.state().step
-    q, _, _ = arm.joint_state()
-    np.testing.assert_array_equal(q, c.state().joints.of_model(arm.id)[0])
 
 
 def test_actuator_commands_round_trip_and_refusals_change_nothing(arm_server):

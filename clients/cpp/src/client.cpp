@@ -149,8 +149,9 @@ std::optional<joint_state_t> Client::LatestJointState() const {
 }
 
 std::optional<joint_state_t> Client::LatestJointStateLocked() const {
+  // of one step, JOINT_STATE: it names the joints without MODEL_INFO
   const bool state_newer = latest_state_ && latest_state_->num_joints > 0 &&
-                           (!latest_joint_state_ || latest_joint_state_->step <= latest_state_->step);
+                           (!latest_joint_state_ || latest_joint_state_->step < latest_state_->step);
   if (state_newer) return JointStateOfLocked(*latest_state_);
   return latest_joint_state_;
 }

@@ -206,12 +206,13 @@ class ActuatorCommands:
 
     def joint_state(self):
         """The latest joint state as a JointState: the joint block of the
-        latest STATE, or the latest JOINT_STATE when that is newer (or STATE
-        carries no joints); None before either."""
+        latest STATE, or the latest JOINT_STATE when that is of the same
+        step (it names the joints without MODEL_INFO) or newer, or STATE
+        carries no joints; None before either."""
         with self._lock:
             js = self._joint_state
         st = self._latest_state_obj()
-        if st is None or st.joints is None or (js is not None and js.step > st.step):
+        if st is None or st.joints is None or (js is not None and js.step >= st.step):
             return js
         return self.joints_of(st)
 

@@ -414,7 +414,8 @@ class Client {
   std::optional<status_t> LatestStatus() const;
   std::optional<sensors_t> LatestSensors() const;
   // The latest joint state: the joints of the latest STATE, or the latest
-  // JOINT_STATE when that is newer or STATE carries no joints. JOINT_STATE
+  // JOINT_STATE when that is of the same step or newer, or STATE carries no
+  // joints. JOINT_STATE
   // goes out just before the STATE of the same step, outside lockstep by
   // default (the server's joint_state option; docs/actuators.md).
   std::optional<joint_state_t> LatestJointState() const;
