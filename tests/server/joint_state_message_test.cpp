@@ -21,7 +21,7 @@ namespace {
 
 using testing::ServerHarness;
 
-ServerOptions JointOptions(JointStatePolicy policy = JointStatePolicy::kAlways) {
+ServerOptions JointStateServerOptions(JointStatePolicy policy = JointStatePolicy::kAlways) {
   ServerOptions o;
   o.prefix = "J";
   o.joint_state = policy;
@@ -79,7 +79,7 @@ void AddArmAndHinge(ServerHarness& h) {
 }
 
 // Bit for bit: the same doubles, not merely close ones.
-bool SameBits(const std::vector<double>& a, const std::vector<double>& b) {
+bool SameDoubleBits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
@@ -92,7 +92,7 @@ TEST(JointStateMessageTest, StateCarriesTheJointStateOfItsStepUnderEveryMethod) 
   for (const ContactMethodEntry& e : ContactMethodTable()) {
     if (!e.contract.joints) continue;
     SCOPED_TRACE(e.name);
-    ServerHarness h(JointOptions(), e.name);
+    ServerHarness h(JointStateServerOptions(), e.name);
     AddArmAndHinge(h);
     h.Step(5);
     const std::vector<state_t> states = h.transport.All<state_t>("J_STATE");
@@ -108,9 +108,9 @@ TEST(JointStateMessageTest, StateCarriesTheJointStateOfItsStepUnderEveryMethod) 
     EXPECT_EQ(s.joint_ids, js->joint_ids);
     EXPECT_EQ(s.joint_model_ids, js->model_ids);
     EXPECT_EQ(s.joint_model_ids, (std::vector<int64_t>{1, 1, 0}));
-    EXPECT_TRUE(SameBits(s.joint_positions, js->positions));
-    EXPECT_TRUE(SameBits(s.joint_velocities, js->velocities));
-    EXPECT_TRUE(SameBits(s.joint_efforts, js->efforts));
+    EXPECT_TRUE(SameDoubleBits(s.joint_positions, js->positions));
+    EXPECT_TRUE(SameDoubleBits(s.joint_velocities, js->velocities));
+    EXPECT_TRUE(SameDoubleBits(s.joint_efforts, js->efforts));
     EXPECT_NE(s.joint_efforts[0], 0.0);
     EXPECT_EQ(js->names, (std::vector<std::string>{"shoulder", "elbow", std::to_string(js->joint_ids[2])}));
   }
@@ -119,7 +119,7 @@ TEST(JointStateMessageTest, StateCarriesTheJointStateOfItsStepUnderEveryMethod) 
 // Verifies that a world without joints sends an empty joint block: STATE
 // is four bytes (the count) longer than its bodies and header.
 TEST(JointStateMessageTest, AJointlessStateGrowsByItsCountAlone) {
-  ServerHarness h(JointOptions());
+  ServerHarness h(JointStateServerOptions());
   ASSERT_EQ(h.Send(h.Box(0.1, Vec3(0, 0, 1))).code, reply_t::OK);
   h.Step(1);
   const state_t s = h.transport.All<state_t>("J_STATE").back();
@@ -163,19 +163,19 @@ size_t JointStatesInLockstep(ServerHarness& h, int steps) {
 // ACTUATOR_CMD STATE still gets one. STATE carries the joints in all three.
 TEST(JointStateMessageTest, TheOptionDecidesWhenJointStateGoesOut) {
   {
-    ServerHarness h(JointOptions(JointStatePolicy::kAlways));
+    ServerHarness h(JointStateServerOptions(JointStatePolicy::kAlways));
     AddArmAndHinge(h);
     EXPECT_EQ(JointStatesInLockstep(h, 4), 4u);
   }
   {
-    ServerHarness h(JointOptions(JointStatePolicy::kOutsideLockstep));
+    ServerHarness h(JointStateServerOptions(JointStatePolicy::kOutsideLockstep));
     AddArmAndHinge(h);
     h.Step(2);
     EXPECT_FALSE(h.transport.All<joint_state_t>("J_JOINT_STATE").empty());
     EXPECT_EQ(JointStatesInLockstep(h, 4), 0u);
   }
   {
-    ServerHarness h(JointOptions(JointStatePolicy::kOff));
+    ServerHarness h(JointStateServerOptions(JointStatePolicy::kOff));
     AddArmAndHinge(h);
     h.Step(2);
     EXPECT_TRUE(h.transport.All<joint_state_t>("J_JOINT_STATE").empty());
