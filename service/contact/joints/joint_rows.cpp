@@ -75,13 +75,29 @@ class RowWriter {
   // so A's lever arm reaches B's anchor: J = (u, (p_B - x_A) x u | -u,
   // -r_B x u); vp = (w_A x (w_A x u)) . d + 2 (w_A x u) . ddot +
   // u . (w_A x (w_A x r_A) - w_B x (w_B x r_B)).
+  // When B cannot move (the world, a static or kinematic body), u is taken
+  // fixed in B instead (the weld rows keep the two directions one): then
+  // Cdot = u . ddot + (w_B x u) . d, J = (u, r_A x u | -u, -(p_A - x_B) x u),
+  // vp = (w_B x (w_B x u)) . d + 2 (w_B x u) . ddot + the same centripetal
+  // terms, and A's lever arm stays r_A. Fixed in A, A's lever |p_B - x_A|
+  // grows with the slide s, and with it the rows' coupling to the weld
+  // rows (A's line-row diagonal 1/m + s^2/I against the weld's 1/I): a
+  // 0.5 kg plank 15 m down its rail left the sweeps' rail rows off by
+  // 0.1 m/s, and past 16 m they pumped energy into it (docs/physics.md,
+  // "Prismatic joints, limits, damping and friction").
   ConstraintRow Line(const Vec3& u, double* error) const {
     const Vec3 d = a_.p - b_.p;
     const Vec3 ddot = a_.PointVelocity() - b_.PointVelocity();
-    const Vec3 turn = a_.w.cross(u);
-    const double vp = a_.w.cross(turn).dot(d) + 2.0 * turn.dot(ddot) + u.dot(a_.Centripetal() - b_.Centripetal());
+    const bool in_b = !b_.dynamic;
+    const Vec3 w = in_b ? b_.w : a_.w;
+    const Vec3 turn = w.cross(u);
+    const double vp = w.cross(turn).dot(d) + 2.0 * turn.dot(ddot) + u.dot(a_.Centripetal() - b_.Centripetal());
     ConstraintRow row = Make(u, Vec3::Zero(), vp);
-    row.ang_a = (b_.p - a_.body->x).cross(u);
+    if (!in_b) {
+      row.ang_a = (b_.p - a_.body->x).cross(u);
+    } else if (b_.body != nullptr) {
+      row.ang_b = -(a_.p - b_.body->x).cross(u);
+    }
     *error = u.dot(d);
     return row;
   }
