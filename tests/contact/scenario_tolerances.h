@@ -166,11 +166,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "at 1.9e-13 m/s, the implicit integrator at 3.2e-15 m/s"},
     {"penalty", "hull of 30 points seed 3 e=0.5 drop 0.1 m tilt", 1.5,
      "tips onto another face (1.1 rad) after landing flat from 10 cm with e = 0.5"},
-    // a block slid 20-50 m from its rail's world anchor
-    // (prismatic_joint_test.cpp, SliderFarAlongItsRailKeepsItsRateAndEnergy):
-    // xpbd's own slider correction (xpbd_slider.h), not traced
-    {"xpbd", "far slider m=* half=* far=20 line", 2.5e-4,
-     "1.8-1.9e-4 m off its line with the anchor 20 m away (9.8e-7 m at 50 m) at every mass and size; not traced"},
     // compound bodies swept (compound_sweep_test.cpp): a 71-sided wheel off
     // its frame rolling 1 s down 10 degrees, against the same hull as a plain body
     {"lcp_lemke", "wheel m=* *", 0.035,
