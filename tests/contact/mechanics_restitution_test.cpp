@@ -102,8 +102,9 @@ INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsBounceTest,
                          BounceName);
 
 // A body struck into a row of touching or nearly touching bodies of its
-// kind and mass on a line, without gravity or friction: the striker and the
-// row `gap` apart, the striker at v0 along +x (MechanicsStruckRowTest).
+// kind and mass on a line, without gravity: the striker and the row `gap`
+// apart, the striker at v0 along +x (MechanicsStruckRowTest). The strike is
+// head-on, so friction between the bodies must not change the outcome.
 struct RowCase {
   ShapeType shape = ShapeType::kSphere;  // spheres of radius 0.05 m, or cubes of half size 0.05 m
   int n = 3;                             // bodies in the row, besides the striker
@@ -111,15 +112,19 @@ struct RowCase {
   double mass = 1.0;                     // kg, each
   double v0 = 1.0;                       // m/s
   double e = 1.0;
+  double friction = 0.0;                 // Coulomb coefficient of every body
   const char* name = "row";              // the case's name prefix ("cradle" for the classic one)
 };
 
-// The case's name as kKnownMisses lists it: "row sphere n=3 gap=0.0001 e=0.5".
+// The case's name as kKnownMisses lists it: "row sphere n=3 gap=0.0001 e=0.5",
+// with " mu=0.5" after it when the bodies have friction.
 std::string RowCaseId(const RowCase& c) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "%s %s n=%d gap=%g e=%g", c.name, c.shape == ShapeType::kSphere ? "sphere" : "cube",
                 c.n, c.gap, c.e);
-  return buf;
+  std::string id = buf;
+  if (c.friction > 0.0) id += testing::CaseId(" mu=%g", c.friction);
+  return id;
 }
 
 std::ostream& operator<<(std::ostream& os, const RowCase& c) {
@@ -138,7 +143,7 @@ BodyId AddRowBody(World& world, const RowCase& c, double x, double v) {
   s.position = Vec3(x, 0, 0);
   s.linear_velocity = Vec3(v, 0, 0);
   s.restitution = c.e;
-  s.friction = 0.0;
+  s.friction = c.friction;
   return testing::AddValidBody(world, s);
 }
 
@@ -241,6 +246,24 @@ std::vector<RowCase> RowCases() {
       }
     }
   }
+  // head-on rows with friction between the bodies: rows of 3 and 6,
+  // touching, every e, mu 0.5 and 1
+  for (ShapeType shape : {ShapeType::kSphere, ShapeType::kBox}) {
+    for (int n : {3, 6}) {
+      for (double e : {1.0, 0.5, 0.0}) {
+        RowCase c;
+        c.shape = shape;
+        c.n = n;
+        c.e = e;
+        // each e meets every mass and speed over the four rows
+        c.friction = k % 2 == 0 ? 0.5 : 1.0;
+        c.mass = masses[(k + k / 3) % 3];
+        c.v0 = speeds[(k / 3) % 3];
+        cases.push_back(c);
+        ++k;
+      }
+    }
+  }
   return cases;
 }
 
@@ -266,7 +289,8 @@ INSTANTIATE_TEST_SUITE_P(EveryMethod, MechanicsStruckRowTest,
                            return std::get<0>(info.param).label + "_" +
                                   (c.shape == ShapeType::kSphere ? "sphere" : "cube") + std::to_string(c.n) +
                                   (c.gap > 0.0 ? "_apart" : "_touching") + "_e" +
-                                  std::to_string(static_cast<int>(c.e * 10));
+                                  std::to_string(static_cast<int>(c.e * 10)) +
+                                  (c.friction > 0.0 ? "_mu" + std::to_string(static_cast<int>(c.friction * 10)) : "");
                          });
 
 using RackParam = std::tuple<MethodConfig, double, double>;  // method, e, mass (kg)

@@ -122,6 +122,14 @@ inline constexpr KnownMiss kKnownMisses[] = {
                                    "(energy kept to 0.3% with e = 1); the impacts take turns only when a gap takes "
                                    "longer to close than a contact lasts (the 2 mm cradle)"},
     {"penalty", "row * gap=0.0001 e=*", 0.41, "0.11-0.31 v0: 0.1 mm closes in 0.02-0.2 ms, within the 4 ms contacts"},
+    // the same rows with friction between the bodies (mu 0.5 and 1), e = 0:
+    // the sequential-impacts stage takes frictionless points only, since its
+    // normal impulses come after the friction and would undo part of it
+    // (docs/physics.md, "Restitution across simultaneous contacts"), so these
+    // rows keep the method's own one relax pass a sub-step
+    {"soft", "row * e=0 mu=*", 0.127, "0.054-0.097 v0: the springs' push-out of the strike's overlap parts the row"},
+    {"soft_float", "row * e=0 mu=*", 0.12, "0.054-0.092 v0: as under double"},
+    {"xpbd", "row * e=0 mu=*", 0.188, "0.075-0.144 v0: its position push-out of the strike's overlap parts the row"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's
     // forces over w = d_hat / 50, so 50 times stiffer than a resting gap),
@@ -166,12 +174,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "at 1.9e-13 m/s, the implicit integrator at 3.2e-15 m/s"},
     {"penalty", "hull of 30 points seed 3 e=0.5 drop 0.1 m tilt", 1.5,
      "tips onto another face (1.1 rad) after landing flat from 10 cm with e = 0.5"},
-    // a level plank sliding down a rail with its loads (jointed_support_test.cpp,
-    // StaticFrictionHoldsOnASlidingSupport); every other load, plank and method holds
-    {"lcp_pgs", "slider n=5 m=10 off=0.02 plank=0.5 creep", 2.1,
-     "1.57 m in 3 s: five 10 kg boxes leave the 0.5 kg plank on its rail (the same load on the balance, weld and "
-     "swing holds, and on the 2 kg plank); not traced"},
-    {"lcp_pgs", "slider n=5 m=10 off=0.02 plank=0.5 energy", 1.7e3, "gains 1,310 J with the boxes above: not traced"},
     // compound bodies swept (compound_sweep_test.cpp): a 71-sided wheel off
     // its frame rolling 1 s down 10 degrees, against the same hull as a plain body
     {"lcp_lemke", "wheel m=* *", 0.035,

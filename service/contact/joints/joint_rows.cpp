@@ -33,6 +33,18 @@ End MakeEnd(const World& world, const std::vector<SolverBody>& bodies, BodyId id
   return e;
 }
 
+// A rail's directions turn with B when B cannot move (RowWriter::Line
+// says why), with A otherwise.
+bool RailInB(const End& a, const End& b) { return !b.dynamic && a.body != nullptr; }
+
+// The slider's axis in the world, from the body its rail is fixed in. The
+// weld keeps q_A = q_B rest^-1 (RowWriter::Weld: q_A rest q_B^-1 = 1), so
+// taken from B the axis is q_B rest^-1 axis_A.
+Vec3 SliderAxis(const Joint& j, const End& a, const End& b) {
+  if (RailInB(a, b)) return BodyOrientation(b.body) * (j.rest.conjugate() * j.axis_a);
+  return a.body->q * j.axis_a;
+}
+
 class RowWriter {
  public:
   RowWriter(const End& a, const End& b, double h, JointRowMode mode, std::vector<ConstraintRow>* rows,
@@ -75,13 +87,31 @@ class RowWriter {
   // so A's lever arm reaches B's anchor: J = (u, (p_B - x_A) x u | -u,
   // -r_B x u); vp = (w_A x (w_A x u)) . d + 2 (w_A x u) . ddot +
   // u . (w_A x (w_A x r_A) - w_B x (w_B x r_B)).
+  // When B cannot move (the world, a static or kinematic body), u is taken
+  // fixed in B instead (the weld rows keep the two directions one): then
+  // Cdot = u . ddot + (w_B x u) . d, J = (u, r_A x u | -u, -(p_A - x_B) x u),
+  // vp = (w_B x (w_B x u)) . d + 2 (w_B x u) . ddot + the same centripetal
+  // terms, and A's lever arm stays r_A. Fixed in A, A's lever |p_B - x_A|
+  // grows with the slide s, and with it the rows' coupling to the weld
+  // rows (A's line-row diagonal 1/m + s^2/I against the weld's 1/I): a
+  // 0.5 kg plank 15 m down its rail left the sweeps' rail rows off by
+  // 0.1 m/s, and past 16 m they pumped energy into it (docs/physics.md,
+  // "Prismatic joints, limits, damping and friction").
+  // The caller takes u from the same body (SliderAxis), so the error and
+  // the Jacobian describe one function and a position projection converges.
   ConstraintRow Line(const Vec3& u, double* error) const {
     const Vec3 d = a_.p - b_.p;
     const Vec3 ddot = a_.PointVelocity() - b_.PointVelocity();
-    const Vec3 turn = a_.w.cross(u);
-    const double vp = a_.w.cross(turn).dot(d) + 2.0 * turn.dot(ddot) + u.dot(a_.Centripetal() - b_.Centripetal());
+    const bool in_b = RailInB(a_, b_);
+    const Vec3 w = RailSpin();
+    const Vec3 turn = w.cross(u);
+    const double vp = w.cross(turn).dot(d) + 2.0 * turn.dot(ddot) + u.dot(a_.Centripetal() - b_.Centripetal());
     ConstraintRow row = Make(u, Vec3::Zero(), vp);
-    row.ang_a = (b_.p - a_.body->x).cross(u);
+    if (!in_b) {
+      row.ang_a = (b_.p - a_.body->x).cross(u);
+    } else if (b_.body != nullptr) {
+      row.ang_b = -(a_.p - b_.body->x).cross(u);
+    }
     *error = u.dot(d);
     return row;
   }
@@ -134,7 +164,7 @@ class RowWriter {
   Coordinate SlideCoordinate(const Vec3& axis) const {
     Coordinate c;
     c.row = Line(-axis, &c.value);  // C = -a . (p_A - p_B) = s
-    c.rate = axis.dot(b_.PointVelocity() - a_.PointVelocity()) + a_.w.cross(axis).dot(b_.p - a_.p);
+    c.rate = axis.dot(b_.PointVelocity() - a_.PointVelocity()) + RailSpin().cross(axis).dot(b_.p - a_.p);
     return c;
   }
 
@@ -219,6 +249,9 @@ class RowWriter {
   }
 
  private:
+  // the angular velocity of the body the rail's directions are fixed in
+  Vec3 RailSpin() const { return RailInB(a_, b_) ? b_.w : a_.w; }
+
   const End& a_;
   const End& b_;
   double h_;
@@ -247,9 +280,9 @@ Vec3 GeometryRows(const Joint& j, const End& a, const End& b, RowWriter* writer)
       writer->Weld(q_a, j.rest, q_b);
       break;
     case JointKind::kPrismatic: {
-      const Vec3 axis_a = q_a * j.axis_a;
-      writer->Slider(axis_a, q_a, j.rest, q_b);
-      return axis_a;
+      const Vec3 axis = SliderAxis(j, a, b);
+      writer->Slider(axis, q_a, j.rest, q_b);
+      return axis;
     }
   }
   return Vec3::Zero();
@@ -263,8 +296,8 @@ bool CoordinateRow(const World& world, const std::vector<SolverBody>& bodies, co
   const End b = MakeEnd(world, bodies, j.body_b, j.anchor_b);
   std::vector<ConstraintRow> unused;
   const RowWriter writer(a, b, h, mode, &unused, nullptr);
-  const Vec3 axis_a = a.body->q * j.axis_a;
-  *out = j.kind == JointKind::kHinge ? writer.HingeCoordinate(j, axis_a) : writer.SlideCoordinate(axis_a);
+  *out = j.kind == JointKind::kHinge ? writer.HingeCoordinate(j, a.body->q * j.axis_a)
+                                     : writer.SlideCoordinate(SliderAxis(j, a, b));
   return a.dynamic || b.dynamic;
 }
 
