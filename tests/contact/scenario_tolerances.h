@@ -156,9 +156,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "rises 3.0% of the swing's energy from the horizontal within 1 s; 0 under pgs at dt / 2"},
     // random convex hulls dropped on their most stable face
     // (resting_hull_scenarios_test.cpp), not traced further
-    {"lcp_pgs", "hull of 4 points * speed", 1.7e-6,
-     "rocks at 1.1-1.3e-6 m/s on two tetrahedra: PGS stops at its tolerance (1e-6 m/s) of row-velocity change, "
-     "which a resting body keeps; tolerance=1e-7 gives 1.4e-7 m/s"},
     {"penalty", "hull of 5 points seed 1 e=0 * speed", 0.015,
      "rings at 0.011 m/s with e = 0 from either drop (0.17 kg, 7.9 cm): the three points' dashpots, each "
      "implicit against its own point, together exceed the explicit sub-step's bound on a rocking mode and its "
