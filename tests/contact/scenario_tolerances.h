@@ -169,12 +169,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "1.57 m in 3 s: five 10 kg boxes leave the 0.5 kg plank on its rail (the same load on the balance, weld and "
      "swing holds, and on the 2 kg plank); not traced"},
     {"lcp_pgs", "slider n=5 m=10 off=0.02 plank=0.5 energy", 1.7e3, "gains 1,310 J with the boxes above: not traced"},
-    // compound bodies swept (compound_sweep_test.cpp): a 71-sided wheel off
-    // its frame rolling 1 s down 10 degrees, against the same hull as a plain body
-    {"lcp_lemke", "wheel m=* *", 0.035,
-     "omega r / v 0.971 / 0.977 at 0.1 / 10 kg against the plain hull's 0.997 (speed now within 1% of the plain "
-     "hull's, 0.80-0.81 m/s at every mass, with the regularised pivots of lemke.h; before 1.5-2.9% off): the "
-     "compound's side points, dependent across its parts' manifolds; not traced further"},
     // a cube let fall 0.1 mm onto a slope with mu 0.9 (friction_scenarios_test.cpp,
     // CubeFallenOntoSlopeHolds), its motion within the slope in 3 s; the
     // same at every mass and size (0.02 and 0.05 m half sizes)
