@@ -207,11 +207,20 @@ TEST_P(CompoundSweepTest, LTipsOverItsEdgeAtTheAnalyticAngle) {
   SKIP_KNOWN_MISSES(checks);
 }
 
+// Largest relative difference of the wheel's rolled ratio (below) from the
+// plain hull's: every method measured within 2.1e-3 (xpbd; lemke 5e-4,
+// the others 0).
+constexpr double kRolledMatch = 5e-3;
+
 // The wheel's speed after 1 s on a 10 degree slope (gravity turned about y
-// instead of the ground), and omega r / v.
+// instead of the ground), omega r / v then, and the angle it turned times r
+// over the distance it travelled (1 when it rolls without slipping, for
+// the circumscribed radius r; 0.9993 for the 71 sides, whose flats roll
+// 2 r sin(pi / n) a side of 2 pi / n rad).
 struct Roll {
   double speed = 0.0;
   double ratio = 0.0;
+  double rolled = 0.0;
 };
 
 Roll RollWheel(const MethodConfig& config, bool compound, double mass, bool* refused) {
@@ -244,15 +253,25 @@ Roll RollWheel(const MethodConfig& config, bool compound, double mass, bool* ref
   *refused = testing::RefusedByContract(config, sim.world, !compound || testing::ContractOf(config).compound_bodies,
                                         "compound");
   if (*refused) return {};
-  for (int i = 0; i < static_cast<int>(std::lround(1.0 / sim.world.dt)); ++i) sim.Step();
+  const double x0 = sim.world.Find(id)->x.x();
+  double turned = 0.0;  // rad about y, the angle the wheel rolled through
+  for (int i = 0; i < static_cast<int>(std::lround(1.0 / sim.world.dt)); ++i) {
+    sim.Step();
+    turned += sim.world.Find(id)->AngularVelocity().y() * sim.world.dt;
+  }
   const RigidBody& b = *sim.world.Find(id);
-  return {b.LinearVelocity().x(), b.AngularVelocity().y() * kRadius / b.LinearVelocity().x()};
+  return {b.LinearVelocity().x(), b.AngularVelocity().y() * kRadius / b.LinearVelocity().x(),
+          turned * kRadius / (b.x.x() - x0)};
 }
 
-// Verifies the off-axis wheel rolls as the plain hull: its speed and its
-// omega r / v within 1% of the plain hull's. (A 71-sided hull rolls with
-// a bump at every side, and omega r / v at an instant of it is not 1: the
-// methods measured 0.986-1.026 for either body.)
+// Verifies the off-axis wheel rolls as the plain hull: its speed within 1%
+// of the plain hull's and the angle it turned per distance within
+// kRolledMatch. (A 71-sided hull rolls with a bump at every side, and
+// omega r / v at an instant of it is not 1: the methods measured
+// 0.968-1.026 for either body at 1 s, and where the two bodies' speeds
+// differ a little, as under lemke, whose pivots pick among the dependent
+// corners of each flat, the instant falls at another phase of the bump:
+// 0.968 against 0.988 at 10 kg, whose rolled ratios agree to 1e-4.)
 TEST_P(CompoundSweepTest, OffAxisWheelRollsAsThePlainHull) {
   const MethodConfig& config = GetParam();
   testing::MechanicsChecks checks(config.label);
@@ -261,10 +280,12 @@ TEST_P(CompoundSweepTest, OffAxisWheelRollsAsThePlainHull) {
     const Roll plain = RollWheel(config, false, mass, &refused);
     const Roll wheel = RollWheel(config, true, mass, &refused);
     if (refused) return;
-    std::printf("%-10s wheel %4g kg: speed %.4f m/s (plain hull %.4f), omega r / v %.4f (plain hull %.4f)\n",
-                config.label.c_str(), mass, wheel.speed, plain.speed, wheel.ratio, plain.ratio);
+    std::printf("%-10s wheel %4g kg: speed %.4f m/s (plain hull %.4f), omega r / v %.4f (plain hull %.4f), "
+                "rolled %.4f (plain hull %.4f)\n",
+                config.label.c_str(), mass, wheel.speed, plain.speed, wheel.ratio, plain.ratio, wheel.rolled,
+                plain.rolled);
     checks.Expect(testing::CaseId("wheel m=%g speed", mass), wheel.speed / plain.speed, 1.0, 0.01);
-    checks.Expect(testing::CaseId("wheel m=%g rolling", mass), wheel.ratio / plain.ratio, 1.0, 0.01);
+    checks.Expect(testing::CaseId("wheel m=%g rolling", mass), wheel.rolled / plain.rolled, 1.0, kRolledMatch);
   }
   SKIP_KNOWN_MISSES(checks);
 }

@@ -116,6 +116,9 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   }
   PgsOptions options;
   options.iterations = params_.iterations;
+  // one warm-started sweep a step lets an over-relaxed mode grow from step
+  // to step up to the tolerance; two contract it (pgs.h, "Warm-started solves")
+  options.min_iterations = std::min(2, params_.iterations);
   options.tolerance = params_.tolerance;
   GroupNormalBlocks(contacts_, &Contact::normal, &pairs_);
   normal_blocks_.clear();

@@ -228,7 +228,7 @@ void PgsSolver::SweepInOrder(const PgsOptions& options, std::vector<ConstraintRo
     const double worst = SweepRows(0, static_cast<int>(rows_.size()));
     report->iterations = it + 1;
     report->residual = worst;
-    if (worst < options.tolerance) {
+    if (worst < options.tolerance && it + 1 >= options.min_iterations) {
       report->converged = true;
       break;
     }

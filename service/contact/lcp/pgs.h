@@ -39,6 +39,21 @@
 // aligned stack walks. The pair's rows sit together in the caller's order,
 // so no row between them in the schedule touches either body.
 //
+// Warm-started solves, one a step: the warm start applies last step's
+// impulses in full, the part that corrected last step's velocity error
+// included, so the next solve must take that part back. For a mode that a
+// sweep over-relaxes (a sweep multiplies its error by c = 1 - omega with
+// omega > 1: the friction step eta = 2 / tr(A_tt) over-relaxes the stiffer
+// tangent of an anisotropic pair by up to 2 lambda_max / tr), m sweeps a
+// step leave error and impulse evolving over the steps by a map of
+// eigenvalues c^m +- sqrt(c^2m - c^m); with one sweep and c < -1/3 one of
+// them lies beyond -1, and the mode grows until a sweep changes a row
+// velocity by more than the tolerance and a second sweep knocks it back:
+// a resting tetrahedron rocked at the tolerance, 1e-6 m/s, with tolerance
+// 1e-12 at 1e-12 m/s. With two sweeps c^m >= 0 and the map contracts
+// (|eigenvalue|^2 = c^m < 1), so PgsOptions::min_iterations = 2 lets the
+// same body settle to round-off (docs/methods/lcp.md, "Resting hulls").
+//
 // Reported per solve:
 //   residual        m/s, the largest change of a row velocity J_k v made by
 //                   the last sweep (|change of lambda_k| A_kk); the solve
@@ -87,6 +102,7 @@ struct PgsNormalBlock {
 
 struct PgsOptions {
   int iterations = 30;        // sweeps at most
+  int min_iterations = 1;     // sweeps at least (2 for warm-started solves a step, see above)
   double tolerance = 1e-6;    // m/s: stop when no row velocity changes more in a sweep
   const std::vector<PgsNormalBlock>* normal_blocks = nullptr;  // none: every row alone
   ParallelRunner* runner = nullptr;  // sweep colour by colour on its threads; none: serially in the caller's order

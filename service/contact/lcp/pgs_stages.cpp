@@ -40,7 +40,7 @@ void PgsSolver::SweepColoured(const PgsOptions& options, std::vector<ConstraintR
     const double worst = groups > 0 ? *std::max_element(group_worst_.begin(), group_worst_.end()) : 0.0;
     ++report->iterations;
     report->residual = worst;
-    report->converged = done = worst < options.tolerance;
+    report->converged = done = worst < options.tolerance && report->iterations >= options.min_iterations;
   };
   // the impulses go to the bodies through ConstraintRow::Apply, so dP and
   // dL sum; a colour's groups share no body with mass, the only ones written
