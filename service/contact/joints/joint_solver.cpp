@@ -328,8 +328,13 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
   std::vector<double> errors;
   std::vector<CouplingRow> couplings;
   double last_error = 0.0;
+  // Position rows read the solver bodies' indices and inverse masses only
+  // (joint_rows.h), which a displacement leaves alone: the bodies are
+  // loaded again at the new poses (their world inertias) only for a solve,
+  // not for the check that ends the projection.
+  LoadSolverBodies(world, &bodies);
+  bool displaced = false;
   for (;;) {
-    LoadSolverBodies(world, &bodies);
     rows.clear();
     blocks.clear();
     errors.clear();
@@ -344,6 +349,7 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
       break;
     }
     ++stats.projection_iterations;
+    if (displaced) LoadSolverBodies(world, &bodies);
     const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
     // a mimic's coupling solve factors afresh (SolveJointSystem): no chord there
     const bool chord =
@@ -357,6 +363,7 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
     for (size_t k = 0; k < rows.size(); ++k) rows[k].Apply(delta[k], bodies);
     if (!couplings.empty()) ProjectCouplings(rows, blocks, couplings, options.solver, bodies);
     DisplaceBodies(bodies, world);
+    displaced = true;
   }
   return stats;
 }
