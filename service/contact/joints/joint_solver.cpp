@@ -260,16 +260,81 @@ JointStats SolveJointVelocities(World& world, double h, const JointSolveOptions&
   return stats;
 }
 
+namespace {
+
+// A Newton step's factorisation kept for a chord step of the projection
+// (joint_solver.h): it serves the next iteration when the last step cut the
+// largest error by kChordCut at least (the factored Jacobians are still
+// close) and that error is within kChordReach of the tolerance (one chord
+// step, which cuts it by about kChordCut again, then ends the projection;
+// further from it, a fresh Newton step converges in fewer iterations).
+constexpr double kChordCut = 1e-3;
+constexpr double kChordReach = 1e3;
+
+bool ChordApplies(double error, double last_error, double tolerance) {
+  return last_error > 0.0 && error <= kChordCut * last_error && error <= kChordReach * tolerance;
+}
+
+class ProjectionFactor {
+ public:
+  // delta solving (J M^-1 J^T + R) delta = b at the rows' poses, or, with
+  // `chord` and a factorisation of the same blocks held, with the matrix
+  // factored at an earlier iteration's poses.
+  Eigen::VectorXd Solve(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
+                        const std::vector<SolverBody>& bodies, const Eigen::VectorXd& b, bool chord,
+                        JointSolverKind solver) {
+    Eigen::VectorXd delta;
+    if (chord && held_ && SameShape(blocks)) {
+      factor_.Solve(blocks, b, &delta);
+      return delta;
+    }
+    held_ = solver == JointSolverKind::kTree && factor_.Factor(rows, blocks, bodies);
+    if (!held_) return SolveJointSystem(rows, blocks, bodies, b, solver);
+    shape_.assign(blocks.begin(), blocks.end());
+    factor_.Solve(blocks, b, &delta);
+    return delta;
+  }
+  // Forgets the factors: nothing of one projection reaches the next.
+  void Reset() { held_ = false; }
+
+ private:
+  bool SameShape(const std::vector<JointBlock>& blocks) const {
+    if (blocks.size() != shape_.size()) return false;
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      const JointBlock& x = blocks[i];
+      const JointBlock& y = shape_[i];
+      if (x.first != y.first || x.count != y.count || x.a != y.a || x.b != y.b) return false;
+    }
+    return true;
+  }
+
+  // one per thread, kept so that its nodes' storage serves the next
+  // projection (JointTreeFactor); its factors serve one projection only
+  JointTreeFactor factor_;
+  std::vector<JointBlock> shape_;  // the blocks factor_ was factored with
+  bool held_ = false;
+};
+
+}  // namespace
+
 JointStats ProjectJointPositions(World& world, const JointSolveOptions& options) {
   JointStats stats;
   if (world.joints().empty()) return stats;
+  thread_local ProjectionFactor factor;
+  factor.Reset();
   std::vector<SolverBody> bodies;
   std::vector<ConstraintRow> rows;
   std::vector<JointBlock> blocks;
   std::vector<double> errors;
   std::vector<CouplingRow> couplings;
+  double last_error = 0.0;
+  // Position rows read the solver bodies' indices and inverse masses only
+  // (joint_rows.h), which a displacement leaves alone: the bodies are
+  // loaded again at the new poses (their world inertias) only for a solve,
+  // not for the check that ends the projection.
+  LoadSolverBodies(world, &bodies);
+  bool displaced = false;
   for (;;) {
-    LoadSolverBodies(world, &bodies);
     rows.clear();
     blocks.clear();
     errors.clear();
@@ -284,14 +349,21 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
       break;
     }
     ++stats.projection_iterations;
+    if (displaced) LoadSolverBodies(world, &bodies);
     const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
-    const Eigen::VectorXd delta = SolveJointSystem(rows, blocks, bodies, b, options.solver);
+    // a mimic's coupling solve factors afresh (SolveJointSystem): no chord there
+    const bool chord =
+        options.chord_steps && couplings.empty() &&
+        ChordApplies(stats.max_error, last_error, options.projection_tolerance);
+    const Eigen::VectorXd delta = factor.Solve(rows, blocks, bodies, b, chord, options.solver);
+    last_error = stats.max_error;
     // the solver bodies carry the displacement: v = M^-1 J^T delta (m),
     // w = I^-1 J^T delta (rad)
     for (SolverBody& s : bodies) s.v.setZero(), s.w.setZero();
     for (size_t k = 0; k < rows.size(); ++k) rows[k].Apply(delta[k], bodies);
     if (!couplings.empty()) ProjectCouplings(rows, blocks, couplings, options.solver, bodies);
     DisplaceBodies(bodies, world);
+    displaced = true;
   }
   return stats;
 }

@@ -24,6 +24,14 @@
 // iterations). Unlike Baumgarte stabilisation it adds no stiffness or
 // parameters and leaves the velocities (and so the energy) alone, and it
 // holds C to round-off, which the 1e-6 drift bound over 10 s needs.
+// The last iteration is usually a chord step: when a Newton step has cut
+// the largest |C| by 1e3 or more and left it within 1e3 of the tolerance,
+// the next step solves with that step's factorisation (its Jacobians have
+// moved by about |C| since) instead of factoring at the new poses, and cuts
+// |C| by about 1e3 again; a step that cuts less makes the next a Newton step
+// (the chord method: Kelley, "Iterative Methods for Linear and Nonlinear
+// Equations", SIAM 1995). `chord_steps = false` factors every iteration
+// (lcp: see docs/methods/lcp.md).
 //
 // The system is split into components (joints connected through dynamic
 // bodies); a loop-free component is solved by the tree solver
@@ -46,6 +54,7 @@ struct JointSolveOptions {
   int max_limit_passes = 8;             // active-set solves per velocity step at most
   int max_projection_iterations = 10;   // Newton iterations per projection at most
   double projection_tolerance = 1e-12;  // m, or rad for angular rows: largest |C| left
+  bool chord_steps = true;              // a projection's Newton factorisation serves its last step (above)
   bool joint_dynamics = true;           // false: without the joints' damping and friction rows
 };
 

@@ -216,7 +216,11 @@ void LcpMethod::AdvancePositions(World& world, ParallelRunner& runner) {
       IntegratePosition(b, h);
     }
   });
-  ProjectJointPositions(world);
+  // every iteration a Newton step: lcp's 100-link chain whose masses grow
+  // tenfold runs away with chord steps (docs/methods/lcp.md)
+  JointSolveOptions projection;
+  projection.chord_steps = false;
+  ProjectJointPositions(world, projection);
 }
 
 StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
