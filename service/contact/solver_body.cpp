@@ -23,6 +23,24 @@ void LoadRange(const World& world, int begin, int end, std::vector<SolverBody>* 
   }
 }
 
+void StoreRange(const std::vector<SolverBody>& bodies, int begin, int end, World& world) {
+  auto& dst = world.bodies();
+  for (int i = begin; i < end; ++i) {
+    if (!dst[i].IsDynamic()) continue;
+    dst[i].P += bodies[i].dP;
+    dst[i].L += bodies[i].dL;
+  }
+}
+
+void DisplaceRange(const std::vector<SolverBody>& bodies, int begin, int end, World& world) {
+  auto& dst = world.bodies();
+  for (int i = begin; i < end; ++i) {
+    if (!dst[i].IsDynamic()) continue;
+    dst[i].x += bodies[i].v;
+    dst[i].q = (QuatFromRotationVector(bodies[i].w) * dst[i].q).normalized();
+  }
+}
+
 }  // namespace
 
 void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies) {
@@ -37,21 +55,21 @@ void LoadSolverBodies(const World& world, ParallelRunner& runner, std::vector<So
 }
 
 void StoreSolverBodies(const std::vector<SolverBody>& bodies, World& world) {
-  auto& dst = world.bodies();
-  for (size_t i = 0; i < dst.size(); ++i) {
-    if (!dst[i].IsDynamic()) continue;
-    dst[i].P += bodies[i].dP;
-    dst[i].L += bodies[i].dL;
-  }
+  StoreRange(bodies, 0, static_cast<int>(world.bodies().size()), world);
+}
+
+void StoreSolverBodies(const std::vector<SolverBody>& bodies, ParallelRunner& runner, World& world) {
+  runner.For(static_cast<int>(world.bodies().size()), kSolverBodyGrain,
+             [&](int begin, int end, int) { StoreRange(bodies, begin, end, world); });
 }
 
 void DisplaceBodies(const std::vector<SolverBody>& bodies, World& world) {
-  auto& dst = world.bodies();
-  for (size_t i = 0; i < dst.size(); ++i) {
-    if (!dst[i].IsDynamic()) continue;
-    dst[i].x += bodies[i].v;
-    dst[i].q = (QuatFromRotationVector(bodies[i].w) * dst[i].q).normalized();
-  }
+  DisplaceRange(bodies, 0, static_cast<int>(world.bodies().size()), world);
+}
+
+void DisplaceBodies(const std::vector<SolverBody>& bodies, ParallelRunner& runner, World& world) {
+  runner.For(static_cast<int>(world.bodies().size()), kSolverBodyGrain,
+             [&](int begin, int end, int) { DisplaceRange(bodies, begin, end, world); });
 }
 
 }  // namespace contactsim

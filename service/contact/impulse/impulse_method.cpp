@@ -63,7 +63,7 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   SetColourRoles(world);
   SweepPositions(target);
   SolveMassRatios(rows_, &target);
-  DisplaceBodies(solver_, world);
+  DisplaceBodies(solver_, *runner_, world);
 }
 
 void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target, bool joints) {
@@ -357,14 +357,14 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
   return impacts;
 }
 
-double ImpulseMethod::FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h,
+double ImpulseMethod::FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
                                      int* iterations) const {
   // Bound on how fast any pair can close during the sub-step (needed for
   // conservative advancement, which keeps thin bodies from being skipped):
   // relative speed plus rotation sweep plus what the forces add over h.
   double max_closing = 0.0;
   for (const Impact& p : impacts) {
-    max_closing = std::max(max_closing, ClosingSpeedBound(start.bodies()[p.a], start.bodies()[p.b], h));
+    max_closing = std::max(max_closing, ClosingSpeedBound(start[p.a], start[p.b], h));
   }
   // Separations up to everything the sub-step can close are measured exactly
   // rather than clamped, so advancement takes full-size steps.
@@ -373,8 +373,8 @@ double ImpulseMethod::FindImpactTime(const World& start, const std::vector<Impac
   auto distance_at = [&](double t) {
     double deepest = -reach;  // the most any pair is past its impact depth
     for (const Impact& p : impacts) {
-      RigidBody a = start.bodies()[p.a];
-      RigidBody b = start.bodies()[p.b];
+      RigidBody a = start[p.a];
+      RigidBody b = start[p.b];
       AdvanceBallistic(a, t);
       AdvanceBallistic(b, t);
       scratch.clear();
@@ -435,7 +435,6 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
   detector.Detect(world, margin, remaining, &contacts);
   CorrectPositions(world, contacts);
 
-  World start_state;
   for (int sub = 0;; ++sub) {
     if (sub > 0) detector.Detect(world, margin, remaining, &contacts);
     LoadSolverBodies(world, *runner_, &solver_);
@@ -450,13 +449,13 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
       }
     });
     stats.iterations += CollisionPhase(rows_);
-    StoreSolverBodies(solver_, world);
-    CopyBodies(world.bodies(), &start_state.bodies());
+    StoreSolverBodies(solver_, *runner_, world);
+    CopyBodies(world.bodies(), &start_bodies_);
 
     IntegrateMomenta(world, remaining);
     LoadSolverBodies(world, *runner_, &solver_);
     stats.iterations += ContactPhase(world, contacts, remaining, rows_);
-    StoreSolverBodies(solver_, world);
+    StoreSolverBodies(solver_, *runner_, world);
     MoveBodies(remaining, world);
     contacts_out->assign(contacts.begin(), contacts.end());
     runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
@@ -471,9 +470,9 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     auto& bodies = world.bodies();
     const std::vector<Impact> impacts = FindImpacts(bodies, contacts, detector, remaining);
     if (impacts.empty()) break;
-    const double t_c = FindImpactTime(start_state, impacts, remaining, &stats.iterations);
+    const double t_c = FindImpactTime(start_bodies_, impacts, remaining, &stats.iterations);
     if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
-    CopyBodies(start_state.bodies(), &bodies);
+    CopyBodies(start_bodies_, &bodies);
     runner_->For(static_cast<int>(bodies.size()), kImpulseBodyGrain, [&](int begin, int end, int /*worker*/) {
       for (int i = begin; i < end; ++i) AdvanceBallistic(bodies[i], t_c);
     });

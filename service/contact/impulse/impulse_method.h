@@ -154,7 +154,8 @@ class ImpulseMethod : public ContactMethod {
   // *to = from, split over the runner's threads (the sub-step's start state).
   void CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.
-  double FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h, int* iterations) const;
+  double FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
+                        int* iterations) const;
 
   ImpulseParams params_;
   ParallelRunner* runner_ = nullptr;  // the detector's, for the step
@@ -177,6 +178,7 @@ class ImpulseMethod : public ContactMethod {
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  std::vector<RigidBody> start_bodies_;     // the sub-step's start state (kept: a body is dear to construct)
   std::vector<int> row_of_;                 // per contact: its split impulse row, or -1
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four
   std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve

@@ -238,7 +238,7 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
 
   report_ = SolveReport();
   if (!rows_.empty()) Solve(world, bodies_, runner);
-  StoreSolverBodies(bodies_, world);
+  StoreSolverBodies(bodies_, runner, world);
   StoreWarmStart(runner);
   warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);
   std::vector<double> lambda(joint_rows_.size()), drive_impulses;
