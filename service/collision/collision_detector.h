@@ -1,7 +1,7 @@
 // The collision pipeline of one step: bounding boxes, broadphase, narrowphase.
 // The bounding boxes and the narrowphase run on the detector's own threads
 // (parallel_runner.h; docs/architecture.md, "Threads") with the same result,
-// bit for bit, for any number of them; the broadphase is serial.
+// bit for bit, for any number of them; so does the broadphase's sweep.
 #pragma once
 
 #include <cstdint>

@@ -12,6 +12,7 @@
 #include "service/collision/compound_children.h"
 #include "service/collision/feature_id.h"
 #include "service/collision/polyhedron_sat.h"
+#include "service/collision/region_probe.h"
 #include "service/collision/separating_axis_cache.h"
 
 namespace contactsim {
@@ -215,7 +216,10 @@ void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::
     Dispatch(bodies[p.first], p.first, bodies[p.second], p.second, ctx, contacts);
   };
   if (runner.threads() == 1 || n <= kPairGrain) {  // the serial path
-    for (int i = 0; i < n; ++i) collide(i, &scratch_, out);
+    {
+      const ParallelRegionProbe probe(n > kPairGrain);  // the pairs' loop runs on the threads when there are more
+      for (int i = 0; i < n; ++i) collide(i, &scratch_, out);
+    }
     cache_.Rebuild(updates_);
     return;
   }

@@ -13,6 +13,8 @@
 #include <string>
 #include <thread>
 
+#include "service/collision/region_probe.h"
+
 namespace contactsim {
 
 struct ParallelRunner::Arena {
@@ -47,6 +49,7 @@ void ParallelRunner::For(int n, int grain, const RangeFn& body) {
   if (n <= 0) return;
   const int chunk = grain > 0 ? grain : 1;
   if (arena_ == nullptr || n <= chunk) {
+    const ParallelRegionProbe probe(n > chunk);  // more than a chunk: on the threads when there are more
     body(0, n, 0);
     return;
   }

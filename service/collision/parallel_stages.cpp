@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "service/collision/parallel_runner.h"
+#include "service/collision/region_probe.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -78,6 +79,7 @@ void RunStageList(const std::vector<ParallelRunner::Stage>& stages, const std::v
 void ParallelRunner::Stages(const std::vector<Stage>& stages) {
   if (threads_ == 1) {
     for (const Stage& stage : stages) {
+      const ParallelRegionProbe probe(stage.end - stage.begin > stage.grain);  // more than one chunk
       if (stage.end > stage.begin) (*stage.fn)(stage.begin, stage.end);
     }
     return;

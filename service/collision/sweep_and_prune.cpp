@@ -1,14 +1,19 @@
 #include "service/collision/sweep_and_prune.h"
 
 #include <algorithm>
+#include <functional>
 
 #include "service/collision/broadphase_check.h"
+#include "service/collision/region_probe.h"
 
 namespace contactsim {
 namespace {
 
 // boxes a thread sweeps at a time (a box meets a few to a few dozen others)
 constexpr int kSweepGrain = 128;
+// boxes a thread gathers, and bodies whose partners it sorts, at a time
+// (tens of nanoseconds each)
+constexpr int kGatherGrain = 512;
 
 // Boxes wider than this (m) are unbounded on that axis: planes get +-1e15
 // (aabb.cpp). They would swamp the spread of the others, so they do not vote
@@ -23,17 +28,38 @@ bool Before(double min_a, int index_a, double min_b, int index_b) {
   return min_a < min_b || (min_a == min_b && index_a < index_b);
 }
 
-// Variance of the box centres along each axis, bounded boxes only.
-Vec3 CentreVariance(const std::vector<Aabb>& boxes) {
+// The sums CentreVariance needs over some boxes.
+struct CentreSums {
   Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero(), count = Vec3::Zero();
-  for (const Aabb& box : boxes) {
-    for (int k = 0; k < 3; ++k) {
-      if (box.max[k] - box.min[k] > kUnboundedExtent) continue;
-      const double c = 0.5 * (box.min[k] + box.max[k]);
-      sum[k] += c;
-      sum_sq[k] += c * c;
-      count[k] += 1.0;
+};
+
+// Variance of the box centres along each axis, bounded boxes only. The
+// sums are taken over runs of kGatherGrain boxes (on the threads when
+// `split` spreads them) and added in run order, so the axis does not depend
+// on the thread count (nor could the pairs: they are sorted by body).
+Vec3 CentreVariance(const std::vector<Aabb>& boxes,
+                    const std::function<void(int, int, const ParallelRunner::RangeFn&)>& split) {
+  const int n = static_cast<int>(boxes.size());
+  std::vector<CentreSums> runs((n + kGatherGrain - 1) / kGatherGrain);
+  split(n, kGatherGrain, [&](int lo, int hi, int /*worker*/) {
+    for (int r = lo; r < hi; r += kGatherGrain) {
+      CentreSums& s = runs[r / kGatherGrain];
+      for (int i = r; i < std::min(r + kGatherGrain, hi); ++i) {
+        for (int k = 0; k < 3; ++k) {
+          if (boxes[i].max[k] - boxes[i].min[k] > kUnboundedExtent) continue;
+          const double c = 0.5 * (boxes[i].min[k] + boxes[i].max[k]);
+          s.sum[k] += c;
+          s.sum_sq[k] += c * c;
+          s.count[k] += 1.0;
+        }
+      }
     }
+  });
+  Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero(), count = Vec3::Zero();
+  for (const CentreSums& s : runs) {
+    sum += s.sum;
+    sum_sq += s.sum_sq;
+    count += s.count;
   }
   Vec3 variance = Vec3::Zero();
   for (int k = 0; k < 3; ++k) {
@@ -45,7 +71,8 @@ Vec3 CentreVariance(const std::vector<Aabb>& boxes) {
 }  // namespace
 
 int SweepAndPrune::ChooseAxis(const std::vector<Aabb>& boxes) const {
-  const Vec3 variance = CentreVariance(boxes);
+  const Vec3 variance = CentreVariance(
+      boxes, [this](int n, int grain, const ParallelRunner::RangeFn& body) { Split(n, grain, body); });
   int best = 0;
   for (int k = 1; k < 3; ++k) {
     if (variance[k] > variance[best]) best = k;
@@ -65,7 +92,9 @@ void SweepAndPrune::Rebuild(const std::vector<Aabb>& boxes) {
 // Insertion sort of the last step's order under the new bounds: each entry
 // moves left past the entries that now start after it.
 void SweepAndPrune::Repair(const std::vector<Aabb>& boxes) {
-  for (Entry& e : entries_) e.min = boxes[e.index].min[axis_];
+  Split(static_cast<int>(entries_.size()), kGatherGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) entries_[k].min = boxes[entries_[k].index].min[axis_];
+  });
   int64_t swaps = 0;
   const int n = static_cast<int>(entries_.size());
   for (int i = 1; i < n; ++i) {
@@ -87,11 +116,21 @@ void SweepAndPrune::Gather(const std::vector<Aabb>& boxes, const std::vector<boo
   max_.resize(n);
   sweep_.resize(n);
   movable_.resize(n);
-  for (int k = 0; k < n; ++k) {
-    const Aabb& box = boxes[entries_[k].index];
-    max_[k] = box.max[axis_];
-    sweep_[k] = {box.min[axis_], box.min[u], box.max[u], box.min[v], box.max[v]};
-    movable_[k] = movable[entries_[k].index] ? 1 : 0;
+  Split(n, kGatherGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      const Aabb& box = boxes[entries_[k].index];
+      max_[k] = box.max[axis_];
+      sweep_[k] = {box.min[axis_], box.min[u], box.max[u], box.min[v], box.max[v]};
+      movable_[k] = movable[entries_[k].index] ? 1 : 0;
+    }
+  });
+}
+
+void SweepAndPrune::Split(int n, int grain, const ParallelRunner::RangeFn& body) const {
+  if (runner_ != nullptr) {
+    runner_->For(n, grain, body);
+  } else {
+    body(0, n, 0);
   }
 }
 
@@ -124,6 +163,7 @@ void SweepAndPrune::FindPairs(const std::vector<Aabb>& boxes, const std::vector<
   if (threads > 1) {
     runner_->For(n, kSweepGrain, sweep);
   } else {
+    const ParallelRegionProbe probe(n > kSweepGrain);  // on the threads when there are more
     sweep(0, n, 0);
   }
   for (const std::vector<BodyPair>& w : worker_pairs_) pairs->insert(pairs->end(), w.begin(), w.end());
@@ -161,9 +201,11 @@ void SweepAndPrune::SortPairsByBody(int n, std::vector<BodyPair>* pairs) {
   sorted_.resize(pairs->size());
   for (const BodyPair& p : *pairs) sorted_[first_counts_[p.first]++] = p;
   // first_counts_[i] now ends body i's run, which starts at the end of i - 1's
-  for (int i = 0, begin = 0; i < n; begin = first_counts_[i], ++i) {
-    std::sort(sorted_.begin() + begin, sorted_.begin() + first_counts_[i]);
-  }
+  Split(n, kGatherGrain, [&](int first, int last, int /*worker*/) {
+    for (int i = first; i < last; ++i) {
+      std::sort(sorted_.begin() + (i == 0 ? 0 : first_counts_[i - 1]), sorted_.begin() + first_counts_[i]);
+    }
+  });
   pairs->swap(sorted_);
 }
 

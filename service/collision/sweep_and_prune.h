@@ -56,6 +56,8 @@ class SweepAndPrune : public Broadphase {
   // Appends the pairs of the boxes at sweep positions [begin, end) with the
   // boxes after them.
   void Sweep(int begin, int end, std::vector<BodyPair>* pairs) const;
+  // body over [0, n) on the runner's threads, or on this one without a runner
+  void Split(int n, int grain, const ParallelRunner::RangeFn& body) const;
   // `pairs` of bodies below n in (first, second) order.
   void SortPairsByBody(int n, std::vector<BodyPair>* pairs);
 

@@ -36,8 +36,12 @@ void LoadSolverBodies(const World& world, std::vector<SolverBody>* bodies);
 void LoadSolverBodies(const World& world, ParallelRunner& runner, std::vector<SolverBody>* bodies);
 // Adds the summed impulses to each dynamic body's P and L.
 void StoreSolverBodies(const std::vector<SolverBody>& bodies, World& world);
+// The same with the bodies split over the runner's threads.
+void StoreSolverBodies(const std::vector<SolverBody>& bodies, ParallelRunner& runner, World& world);
 // Moves each dynamic body by its solver v (m) and rotates it by w (rad,
 // world): the displacement solves of split impulses and joint projection.
 void DisplaceBodies(const std::vector<SolverBody>& bodies, World& world);
+// The same with the bodies split over the runner's threads.
+void DisplaceBodies(const std::vector<SolverBody>& bodies, ParallelRunner& runner, World& world);
 
 }  // namespace contactsim

@@ -9,6 +9,9 @@ namespace {
 
 // contacts a thread looks up at a time
 constexpr int kWarmStartGrain = 256;
+// contacts a thread turns into entries, and entries it sorts as one run,
+// at a time (StoreEntries)
+constexpr int kStoreGrain = 1024;
 
 // The friction impulse of rows t1, t2 (directions lin_b) in the contact
 // frame's tangents t1f, t2f (PerpendicularBasis of the normal) and back:
@@ -55,16 +58,59 @@ void WarmStartCache::Load(const ContactSet& contacts, std::vector<ConstraintRow>
   }
 }
 
-void WarmStartCache::Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows) {
-  impulses_.clear();
-  for (size_t k = 0; k < contacts.size(); ++k) {
+void WarmStartCache::Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows,
+                           ParallelRunner* runner) {
+  StoreEntries(contacts.size(), [&](size_t k, Entry* entry) {
     const Contact& c = contacts[k];
-    if (rows[3 * k].lambda <= 0.0) continue;
+    if (rows[3 * k].lambda <= 0.0) return false;
     double l1 = rows[3 * k + 1].lambda, l2 = rows[3 * k + 2].lambda;
     ToFrame(c.normal, rows[3 * k + 1], rows[3 * k + 2], &l1, &l2);
-    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, {rows[3 * k].lambda, l1, l2}, c.point, k});
+    *entry = {Key{c.id_a, c.id_b, c.feature_id}, {rows[3 * k].lambda, l1, l2}, c.point, k};
+    return true;
+  }, runner);
+}
+
+void WarmStartCache::StoreEntries(size_t n, const MakeEntry& make, ParallelRunner* runner) {
+  const auto split = [runner](int count, int grain, const ParallelRunner::RangeFn& body) {
+    if (runner == nullptr) {
+      body(0, count, 0);
+    } else {
+      runner->For(count, grain, body);
+    }
+  };
+  // each contact writes its own slot, kept or not; the kept ones are then
+  // packed in contact order
+  scratch_.resize(n);
+  kept_.assign(n, 0);
+  split(static_cast<int>(n), kStoreGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) kept_[k] = make(k, &scratch_[k]) ? 1 : 0;
+  });
+  impulses_.clear();
+  for (size_t k = 0; k < n; ++k) {
+    if (kept_[k] != 0) impulses_.push_back(scratch_[k]);
   }
-  std::sort(impulses_.begin(), impulses_.end());
+  // runs of kStoreGrain entries sorted apart (the same runs however the
+  // range is split), then merged pairwise, wider and wider. The entries'
+  // order is total (key, then contact index), so this gives what one
+  // std::sort gives, bit for bit. Contacts come pair by pair in body order,
+  // so neighbouring runs are mostly in order already and their merge is
+  // skipped.
+  const int m = static_cast<int>(impulses_.size());
+  const auto begin = impulses_.begin();
+  split(m, kStoreGrain, [&](int lo, int hi, int /*worker*/) {
+    for (int r = lo; r < hi; r += kStoreGrain) std::sort(begin + r, begin + std::min(r + kStoreGrain, hi));
+  });
+  for (int width = kStoreGrain; width < m; width *= 2) {
+    const int merges = (m + 2 * width - 1) / (2 * width);
+    split(merges, 1, [&](int first, int last, int /*worker*/) {
+      for (int i = first; i < last; ++i) {
+        const int lo = 2 * i * width, mid = std::min(lo + width, m), hi = std::min(lo + 2 * width, m);
+        if (mid == hi || !(begin[mid] < begin[mid - 1])) continue;
+        std::merge(begin + lo, begin + mid, begin + mid, begin + hi, scratch_.begin() + lo);
+        std::copy(scratch_.begin() + lo, scratch_.begin() + hi, begin + lo);
+      }
+    });
+  }
 }
 
 size_t WarmStartCache::PairStart(const Contact& c, size_t* hint) const {
@@ -111,14 +157,14 @@ const WarmStartCache::Entry* WarmStartCache::Near(const Contact& c, size_t pair_
   return best;
 }
 
-void WarmStartCache::StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses) {
-  impulses_.clear();
-  for (size_t k = 0; k < contacts.size(); ++k) {
+void WarmStartCache::StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses,
+                                ParallelRunner* runner) {
+  StoreEntries(contacts.size(), [&](size_t k, Entry* entry) {
     const Contact& c = contacts[k];
-    if (impulses[k][0] <= 0.0) continue;
-    impulses_.push_back({Key{c.id_a, c.id_b, c.feature_id}, impulses[k], c.point, k});
-  }
-  std::sort(impulses_.begin(), impulses_.end());
+    if (impulses[k][0] <= 0.0) return false;
+    *entry = {Key{c.id_a, c.id_b, c.feature_id}, impulses[k], c.point, k};
+    return true;
+  }, runner);
 }
 
 void WarmStartCache::LoadJoints(const std::vector<JointBlock>& blocks, size_t first_row,

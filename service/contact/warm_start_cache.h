@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -47,8 +48,10 @@ class WarmStartCache {
   // Sets the lambda of the three rows of each contact from the cache (0 when
   // absent); with a runner, the contacts split over its threads.
   void Load(const ContactSet& contacts, std::vector<ConstraintRow>* rows, ParallelRunner* runner = nullptr) const;
-  // Replaces the cache by the rows' impulses.
-  void Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows);
+  // Replaces the cache by the rows' impulses; with a runner, the entries
+  // are made and sorted on its threads (the same cache bit for bit: the
+  // entries' order is total, StoreEntries).
+  void Store(const ContactSet& contacts, const std::vector<ConstraintRow>& rows, ParallelRunner* runner = nullptr);
   // The same for solvers that keep their impulses in the contact frame
   // (normal, t1, t2 of PerpendicularBasis): Find gives contact c's cached
   // impulses or nullptr; StoreFrame keeps impulses[k] for contacts[k] when
@@ -58,7 +61,8 @@ class WarmStartCache {
   // starts), for lookups split over threads: a hint moves where a search
   // starts, never what it finds.
   const std::array<double, 3>* Find(const Contact& c, size_t* hint) const;
-  void StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses);
+  void StoreFrame(const ContactSet& contacts, const std::vector<std::array<double, 3>>& impulses,
+                  ParallelRunner* runner = nullptr);
   // The same for joint rows: blocks index rows from `first_row` on; a row
   // with no cached impulse (a new joint) keeps the lambda it came with.
   void LoadJoints(const std::vector<JointBlock>& blocks, size_t first_row, std::vector<ConstraintRow>* rows) const;
@@ -88,8 +92,14 @@ class WarmStartCache {
   // nullptr; `pair_first` is where the pair's entries start
   const Entry* Near(const Contact& c, size_t pair_first) const;
   size_t PairStart(const Contact& c, size_t* hint) const;
+  // Replaces impulses_ by the entries make(k, &entry) returns true for, k
+  // over [0, n), sorted; on the runner's threads when given.
+  using MakeEntry = std::function<bool(size_t k, Entry* entry)>;
+  void StoreEntries(size_t n, const MakeEntry& make, ParallelRunner* runner);
 
   std::vector<Entry> impulses_;
+  std::vector<Entry> scratch_;  // StoreEntries' slots and merge buffer
+  std::vector<char> kept_;      // StoreEntries: per contact, whether it is kept
   mutable size_t cursor_ = 0;  // where the pair Find looked up last starts (a search hint only)
   // (joint id, row within the block) -> lambda, sorted by key
   using JointKey = std::pair<JointId, int32_t>;

@@ -5,8 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <oneapi/tbb/global_control.h>
+
+#include <algorithm>
 #include <array>
+#include <map>
+#include <random>
+#include <tuple>
 #include <vector>
+
+#include "service/collision/parallel_runner.h"
 
 namespace contactsim {
 namespace {
@@ -93,6 +101,87 @@ TEST(WarmStartCacheTest, SaveAndRestoreKeepIdsImpulsesAndPlaces) {
   const std::string bytes = cache.Save();
   EXPECT_FALSE(restored.Restore(bytes.substr(0, bytes.size() - 3)));
   EXPECT_EQ(restored.Save(), bytes);
+}
+
+// 1 to 4 contacts for each of `pairs` body pairs, pair by pair in body
+// order as the detector emits them, or shuffled; every 50th repeats the
+// feature id before it (a hash collision: the first in contact order
+// wins). A fifth have no normal impulse and are not kept.
+ContactSet ManyContacts(int pairs, bool shuffled, std::vector<std::array<double, 3>>* impulses) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  ContactSet contacts;
+  for (int p = 0; p < pairs; ++p) {
+    const int count = 1 + p % 4;
+    for (int k = 0; k < count; ++k) {
+      const uint32_t feature = contacts.size() % 50 == 49 && k > 0 ? 20 + k - 1 : 20 + k;
+      contacts.push_back(MakeContact(p, p + 1 + p % 3, feature, Vec3(value(rng), value(rng), value(rng))));
+    }
+  }
+  if (shuffled) std::shuffle(contacts.begin(), contacts.end(), rng);
+  impulses->clear();
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    impulses->push_back({k % 5 == 4 ? 0.0 : 1.0 + value(rng), value(rng), value(rng)});
+  }
+  return contacts;
+}
+
+// Verifies that storing on 1, 2 and 4 threads gives the cache of a serial
+// store bit for bit (the runs sorted apart and merged, or found in order
+// and left), with 7,500 contacts in body order and shuffled, and that
+// each kept contact finds its own impulses, the first of a repeated id
+// winning.
+TEST(WarmStartCacheTest, StoreOnThreadsGivesTheSerialCache) {
+  // let oneTBB run four threads even on a two-core machine
+  oneapi::tbb::global_control allow(oneapi::tbb::global_control::max_allowed_parallelism, 4);
+  for (const bool shuffled : {false, true}) {
+    std::vector<std::array<double, 3>> impulses;
+    const ContactSet contacts = ManyContacts(3000, shuffled, &impulses);
+    WarmStartCache serial;
+    serial.StoreFrame(contacts, impulses);
+    std::map<std::tuple<BodyId, BodyId, uint32_t>, size_t> first;  // key -> first kept contact
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      if (impulses[k][0] > 0.0) first.insert({{contacts[k].id_a, contacts[k].id_b, contacts[k].feature_id}, k});
+    }
+    ASSERT_EQ(serial.size(), static_cast<size_t>(std::count_if(impulses.begin(), impulses.end(),
+                                                                [](const auto& l) { return l[0] > 0.0; })));
+    for (const auto& [key, k] : first) {
+      const std::array<double, 3>* found = serial.Find(contacts[k]);
+      ASSERT_NE(found, nullptr) << "contact " << k;
+      EXPECT_EQ(*found, impulses[k]) << "contact " << k << (shuffled ? " (shuffled)" : "");
+    }
+    for (const int threads : {1, 2, 4}) {
+      ParallelRunner runner(threads);
+      WarmStartCache cache;
+      cache.StoreFrame(contacts, impulses, &runner);
+      EXPECT_EQ(cache.Save(), serial.Save()) << threads << " threads" << (shuffled ? ", shuffled" : "");
+    }
+  }
+}
+
+// Verifies that Store, from constraint rows, keeps the same cache on 1, 2
+// and 4 threads as without a runner.
+TEST(WarmStartCacheTest, StoreFromRowsOnThreadsGivesTheSerialCache) {
+  oneapi::tbb::global_control allow(oneapi::tbb::global_control::max_allowed_parallelism, 4);
+  std::vector<std::array<double, 3>> impulses;
+  ContactSet contacts = ManyContacts(3000, true, &impulses);
+  for (Contact& c : contacts) c.normal = Vec3(0.6, 0.0, 0.8);
+  std::vector<ConstraintRow> rows(3 * contacts.size());
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    for (int j = 0; j < 3; ++j) {
+      rows[3 * k + j].lambda = impulses[k][j];
+      rows[3 * k + j].lin_b = Vec3(j == 0, j == 1, j == 2);  // not the contact frame: turned into it
+    }
+  }
+  WarmStartCache serial;
+  serial.Store(contacts, rows);
+  EXPECT_GT(serial.size(), 5000u);
+  for (const int threads : {1, 2, 4}) {
+    ParallelRunner runner(threads);
+    WarmStartCache cache;
+    cache.Store(contacts, rows, &runner);
+    EXPECT_EQ(cache.Save(), serial.Save()) << threads << " threads";
+  }
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
@@ -23,7 +22,7 @@ namespace {
 constexpr int kRowGrain = 256;
 constexpr int kImpulseBlockGrain = 128;
 constexpr int kImpulsePairGrain = 64;
-constexpr int kImpulseBodyGrain = 256;
+constexpr int kImpulseBodyGrain = 64;
 
 }  // namespace
 
@@ -43,21 +42,28 @@ Status ImpulseMethod::LoadState(const std::string& bytes) {
 // separation of beta (depth - slop) each, then applied to positions only.
 void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   if (params_.position_correction <= 0.0) return;
-  rows_.clear();
-  std::vector<double> target;
   LoadSolverBodies(world, *runner_, &solver_);
-  for (const Contact& c : contacts) {
-    const double excess = c.depth - params_.slop;
-    if (excess <= 0.0) continue;
-    rows_.push_back(MakeContactRow(c, world, solver_));
-    target.push_back(params_.position_correction * excess);
-  }
+  // a row per contact deeper than the slop, in contact order: each
+  // contact's row index counted here, the rows made on the threads
+  const int n = static_cast<int>(contacts.size());
+  row_of_.resize(n);
+  int count = 0;
+  for (int k = 0; k < n; ++k) row_of_[k] = contacts[k].depth - params_.slop > 0.0 ? count++ : -1;
+  rows_.resize(count);
+  std::vector<double> target(count);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      if (row_of_[k] < 0) continue;
+      rows_[row_of_[k]] = MakeContactRow(contacts[k], world, solver_);
+      target[row_of_[k]] = params_.position_correction * (contacts[k].depth - params_.slop);
+    }
+  });
   if (rows_.empty()) return;
   for (SolverBody& s : solver_) s.v.setZero(), s.w.setZero();
   SetColourRoles(world);
   SweepPositions(target);
   SolveMassRatios(rows_, &target);
-  DisplaceBodies(solver_, world);
+  DisplaceBodies(solver_, *runner_, world);
 }
 
 void ImpulseMethod::SolveMassRatios(std::vector<ContactRow>& rows, const std::vector<double>* target, bool joints) {
@@ -282,20 +288,37 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
       row.lambda_t2 += collision_t[k].dot(row.t2);
     }
   });
-  warm_.StoreFrame(contacts, warm_forces_);  // keeps the points with a normal force
+  warm_.StoreFrame(contacts, warm_forces_, runner_);  // keeps the points with a normal force
   return it;
+}
+
+void ImpulseMethod::FindTouching(const ContactSet& contacts) {
+  // the detector emits a pair's contacts together and the pairs in body
+  // order, so the list comes out sorted and the sort is a check; a stable
+  // sort otherwise keeps each pair's contacts in their order, so the
+  // deepest is taken in the same order either way
+  touching_.clear();
+  for (const Contact& c : contacts) touching_.push_back({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth});
+  const auto by_pair = [](const Touching& l, const Touching& r) { return l.pair < r.pair; };
+  if (!std::is_sorted(touching_.begin(), touching_.end(), by_pair)) {
+    std::stable_sort(touching_.begin(), touching_.end(), by_pair);
+  }
+  size_t kept = 0;
+  for (size_t k = 0; k < touching_.size(); ++k) {
+    if (kept > 0 && touching_[kept - 1].pair == touching_[k].pair) {
+      touching_[kept - 1].depth = std::max(touching_[kept - 1].depth, touching_[k].depth);
+    } else {
+      touching_[kept++] = touching_[k];
+    }
+  }
+  touching_.resize(kept);
 }
 
 std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<RigidBody>& bodies,
                                                               const ContactSet& contacts, CollisionDetector& detector,
                                                               double h) {
   const double margin = params_.slop;
-  // the pairs in contact at the sub-step's start, with their deepest point
-  std::map<std::pair<int, int>, double> touching;
-  for (const Contact& c : contacts) {
-    auto [it, fresh] = touching.insert({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth});
-    if (!fresh) it->second = std::max(it->second, c.depth);
-  }
+  FindTouching(contacts);
   // each pair writes its own slot, gathered in pair order below
   const std::vector<BodyPair>& pairs = detector.pairs();
   const int n = static_cast<int>(pairs.size());
@@ -311,10 +334,11 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
       // deep in one step). It is an impact when any point goes a margin
       // deeper than the pair started, and cannot be when the pair's motion
       // could not close a margin in h.
-      const auto was = touching.find(p);
-      const bool apart = was == touching.end();
+      const auto was = std::lower_bound(touching_.begin(), touching_.end(), p,
+                                        [](const Touching& t, const BodyPair& q) { return t.pair < q; });
+      const bool apart = was == touching_.end() || was->pair != p;
       if (!apart && ClosingSpeedBound(bodies[p.first], bodies[p.second], h) * h <= margin) continue;
-      const double start = apart ? 0.0 : std::max(0.0, was->second);
+      const double start = apart ? 0.0 : std::max(0.0, was->depth);
       scratch.clear();
       Collide(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
       for (const Contact& c : scratch) {
@@ -333,14 +357,14 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
   return impacts;
 }
 
-double ImpulseMethod::FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h,
+double ImpulseMethod::FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
                                      int* iterations) const {
   // Bound on how fast any pair can close during the sub-step (needed for
   // conservative advancement, which keeps thin bodies from being skipped):
   // relative speed plus rotation sweep plus what the forces add over h.
   double max_closing = 0.0;
   for (const Impact& p : impacts) {
-    max_closing = std::max(max_closing, ClosingSpeedBound(start.bodies()[p.a], start.bodies()[p.b], h));
+    max_closing = std::max(max_closing, ClosingSpeedBound(start[p.a], start[p.b], h));
   }
   // Separations up to everything the sub-step can close are measured exactly
   // rather than clamped, so advancement takes full-size steps.
@@ -349,8 +373,8 @@ double ImpulseMethod::FindImpactTime(const World& start, const std::vector<Impac
   auto distance_at = [&](double t) {
     double deepest = -reach;  // the most any pair is past its impact depth
     for (const Impact& p : impacts) {
-      RigidBody a = start.bodies()[p.a];
-      RigidBody b = start.bodies()[p.b];
+      RigidBody a = start[p.a];
+      RigidBody b = start[p.b];
       AdvanceBallistic(a, t);
       AdvanceBallistic(b, t);
       scratch.clear();
@@ -411,7 +435,6 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
   detector.Detect(world, margin, remaining, &contacts);
   CorrectPositions(world, contacts);
 
-  World start_state;
   for (int sub = 0;; ++sub) {
     if (sub > 0) detector.Detect(world, margin, remaining, &contacts);
     LoadSolverBodies(world, *runner_, &solver_);
@@ -426,13 +449,13 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
       }
     });
     stats.iterations += CollisionPhase(rows_);
-    StoreSolverBodies(solver_, world);
-    CopyBodies(world.bodies(), &start_state.bodies());
+    StoreSolverBodies(solver_, *runner_, world);
+    CopyBodies(world.bodies(), &start_bodies_);
 
     IntegrateMomenta(world, remaining);
     LoadSolverBodies(world, *runner_, &solver_);
     stats.iterations += ContactPhase(world, contacts, remaining, rows_);
-    StoreSolverBodies(solver_, world);
+    StoreSolverBodies(solver_, *runner_, world);
     MoveBodies(remaining, world);
     contacts_out->assign(contacts.begin(), contacts.end());
     runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
@@ -447,9 +470,9 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     auto& bodies = world.bodies();
     const std::vector<Impact> impacts = FindImpacts(bodies, contacts, detector, remaining);
     if (impacts.empty()) break;
-    const double t_c = FindImpactTime(start_state, impacts, remaining, &stats.iterations);
+    const double t_c = FindImpactTime(start_bodies_, impacts, remaining, &stats.iterations);
     if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
-    CopyBodies(start_state.bodies(), &bodies);
+    CopyBodies(start_bodies_, &bodies);
     runner_->For(static_cast<int>(bodies.size()), kImpulseBodyGrain, [&](int begin, int end, int /*worker*/) {
       for (int i = begin; i < end; ++i) AdvanceBallistic(bodies[i], t_c);
     });

@@ -147,12 +147,15 @@ class ImpulseMethod : public ContactMethod {
   // and touching pairs whose motion could close a margin in h.
   std::vector<Impact> FindImpacts(const std::vector<RigidBody>& bodies, const ContactSet& contacts,
                                   CollisionDetector& detector, double h);
+  // touching_ from the contacts at the sub-step's start.
+  void FindTouching(const ContactSet& contacts);
   // Moves the bodies over h (step 5), split over the runner's threads.
   void MoveBodies(double h, World& world);
   // *to = from, split over the runner's threads (the sub-step's start state).
   void CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.
-  double FindImpactTime(const World& start, const std::vector<Impact>& impacts, double h, int* iterations) const;
+  double FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
+                        int* iterations) const;
 
   ImpulseParams params_;
   ParallelRunner* runner_ = nullptr;  // the detector's, for the step
@@ -166,10 +169,17 @@ class ImpulseMethod : public ContactMethod {
   std::vector<ParallelRunner::Stage> stages_;
   std::vector<ContactSet> impact_scratch_;  // per worker
   std::vector<double> impact_depth_;        // per candidate pair: the impact's depth, or NaN
+  struct Touching {
+    BodyPair pair;  // body indices, lower first
+    double depth;   // m, of the pair's deepest contact
+  };
+  std::vector<Touching> touching_;  // the pairs in contact at the sub-step's start, by pair
   JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  std::vector<RigidBody> start_bodies_;     // the sub-step's start state (kept: a body is dear to construct)
+  std::vector<int> row_of_;                 // per contact: its split impulse row, or -1
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four
   std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
   std::vector<char> jointed_contacts_;      // per body: jointed and touched (jointed_contacts.h)

@@ -15,8 +15,8 @@
 namespace contactsim {
 namespace {
 
-// bodies a thread takes at a time
-constexpr int kLcpBodyGrain = 256;
+// bodies a thread takes at a time (solver_body.cpp says why 64)
+constexpr int kLcpBodyGrain = 64;
 
 // `velocities`: the rows act on velocities (the energy guard applies), not
 // on the split impulse's pseudo-velocities.
@@ -142,7 +142,7 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   subspace_.Solve(rows_, bodies, direct);
 }
 
-void LcpMethod::StoreWarmStart() {
+void LcpMethod::StoreWarmStart(ParallelRunner& runner) {
   // an impact's impulse is no start for the next step, which sees the
   // bodies after it: a row of touching cubes struck at one end started the
   // next step from the strike's impulses, and 20 sweeps left its bodies
@@ -155,7 +155,7 @@ void LcpMethod::StoreWarmStart() {
     solved[k] = rows_[3 * k].lambda;
     rows_[3 * k].lambda = std::max(solved[k] - impact, 0.0);
   }
-  warm_start_.Store(contacts_, rows_);
+  warm_start_.Store(contacts_, rows_, &runner);
   for (size_t k = 0; k < solved.size(); ++k) {
     if (solved[k] >= 0.0) rows_[3 * k].lambda = solved[k];
   }
@@ -245,8 +245,8 @@ StepStats LcpMethod::StepOnce(World& world, CollisionDetector& detector, Contact
 
   report_ = SolveReport();
   if (!rows_.empty()) Solve(world, bodies_, runner);
-  StoreSolverBodies(bodies_, world);
-  StoreWarmStart();
+  StoreSolverBodies(bodies_, runner, world);
+  StoreWarmStart(runner);
   warm_start_.StoreJoints(joint_blocks_, first_joint_row, rows_);
   std::vector<double> lambda(joint_rows_.size()), drive_impulses;
   for (size_t k = 0; k < joint_rows_.size(); ++k) lambda[k] = rows_[first_joint_row + k].lambda;

@@ -95,7 +95,7 @@ class LcpMethod : public ContactMethod {
   void AdvancePositions(World& world, ParallelRunner& runner);
   void Solve(const World& world, std::vector<SolverBody>& bodies, ParallelRunner& runner);
   // warm_start_ from the rows, less the impacts' impulses
-  void StoreWarmStart();
+  void StoreWarmStart(ParallelRunner& runner);
   // where the contacts' friction acts with patch_torsion, else null (the contact points)
   const std::vector<Vec3>* FrictionPoints() const {
     return friction_points_.empty() ? nullptr : &friction_points_;

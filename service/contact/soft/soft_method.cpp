@@ -80,7 +80,7 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   for (size_t k = 0; k < points_.size(); ++k) {
     impulses_[k] = {points_[k].lambda_n, points_[k].lambda_t1, points_[k].lambda_t2};
   }
-  warm_start_.StoreFrame(contacts_, impulses_);
+  warm_start_.StoreFrame(contacts_, impulses_, &detector.runner());
   StepStats stats = Report(contacts_out);
   world.FinishStep();
   return stats;
