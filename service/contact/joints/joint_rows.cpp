@@ -35,13 +35,13 @@ End MakeEnd(const World& world, const std::vector<SolverBody>& bodies, BodyId id
 
 // A rail's directions turn with B when B cannot move (RowWriter::Line
 // says why), with A otherwise.
-bool RailInB(const End& a, const End& b) { return !b.dynamic && a.body != nullptr; }
+bool RailInB(const End& b) { return !b.dynamic; }
 
 // The slider's axis in the world, from the body its rail is fixed in. The
 // weld keeps q_A = q_B rest^-1 (RowWriter::Weld: q_A rest q_B^-1 = 1), so
 // taken from B the axis is q_B rest^-1 axis_A.
 Vec3 SliderAxis(const Joint& j, const End& a, const End& b) {
-  if (RailInB(a, b)) return BodyOrientation(b.body) * (j.rest.conjugate() * j.axis_a);
+  if (RailInB(b)) return BodyOrientation(b.body) * (j.rest.conjugate() * j.axis_a);
   return a.body->q * j.axis_a;
 }
 
@@ -102,7 +102,7 @@ class RowWriter {
   ConstraintRow Line(const Vec3& u, double* error) const {
     const Vec3 d = a_.p - b_.p;
     const Vec3 ddot = a_.PointVelocity() - b_.PointVelocity();
-    const bool in_b = RailInB(a_, b_);
+    const bool in_b = RailInB(b_);
     const Vec3 w = RailSpin();
     const Vec3 turn = w.cross(u);
     const double vp = w.cross(turn).dot(d) + 2.0 * turn.dot(ddot) + u.dot(a_.Centripetal() - b_.Centripetal());
@@ -250,7 +250,7 @@ class RowWriter {
 
  private:
   // the angular velocity of the body the rail's directions are fixed in
-  Vec3 RailSpin() const { return RailInB(a_, b_) ? b_.w : a_.w; }
+  Vec3 RailSpin() const { return RailInB(b_) ? b_.w : a_.w; }
 
   const End& a_;
   const End& b_;
