@@ -54,7 +54,7 @@ Status CommandBatch::Enqueue(Command& cmd) {
     }
     inbox_.push_back(std::move(cmd));
   }
-  wake_.notify_one();
+  if (!hold_wake_ups_) wake_.notify_one();
   return Status::Ok();
 }
 
@@ -84,7 +84,16 @@ void CommandBatch::CountRejection(const Status& status) {
 
 void CommandBatch::Wait(std::chrono::steady_clock::time_point until, const std::atomic<bool>& stop) {
   std::unique_lock<std::mutex> lock(mutex_);
-  wake_.wait_until(lock, until, [this, &stop] { return !inbox_.empty() || stop.load(); });
+  wake_.wait_until(lock, until, [this, &stop] { return !inbox_.empty() || woken_ || stop.load(); });
+  woken_ = false;
+}
+
+void CommandBatch::Wake() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    woken_ = true;
+  }
+  wake_.notify_one();
 }
 
 bool CommandBatch::Drain() {

@@ -7,8 +7,10 @@
 // answered INTERNAL: nothing is acknowledged that a restart would lose, and
 // nothing is applied that was not acknowledged (docs/reliability.md).
 //
-// The LCM thread calls Enqueue and Reject; everything else is the
-// simulation thread's. They share the inbox and the counters.
+// The LCM thread calls Enqueue and Reject; everything else belongs to the
+// thread that holds the loop's turn (the simulation thread, or the LCM
+// thread while the simulation thread waits for lockstep inputs: sim_server.h).
+// They share the inbox and the counters.
 #pragma once
 
 #include <contactsim/reply_t.hpp>
@@ -49,8 +51,12 @@ class CommandBatch {
   CommandBatch(const ServerOptions& options, const Publisher* publisher, const World* world,
                const std::shared_ptr<ContactMethod>* method, Hooks hooks);
 
-  // LCM thread: moves `cmd` into the inbox, or leaves it when the inbox is full.
+  // LCM thread: moves `cmd` into the inbox, or leaves it when the inbox is
+  // full; wakes a Wait unless wake-ups are held.
   Status Enqueue(Command& cmd);
+  // LCM thread: while held, Enqueue wakes nobody (this thread drains the
+  // inbox itself: SimServer's turn on the input's thread).
+  void HoldWakeUps(bool hold) { hold_wake_ups_ = hold; }
   // LCM thread: an answer before the command reaches the world (no step).
   void Reject(const std::string& client_id, int64_t request_id, const Status& status, const char* channel);
 
@@ -60,8 +66,10 @@ class CommandBatch {
   // command that replaces the world commits first, so that no undo
   // reaches across it.
   void Commit();
-  // Waits until a command arrives, `until`, or `stop`.
+  // Waits until a command arrives, Wake, `until`, or `stop`.
   void Wait(std::chrono::steady_clock::time_point until, const std::atomic<bool>& stop);
+  // Ends the current or next Wait early.
+  void Wake();
 
   // A reply to a command, held while a batch is applied.
   void SendReply(const std::string& client_id, int64_t request_id, const Status& status, const std::string& message,
@@ -92,10 +100,12 @@ class CommandBatch {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Command> inbox_;
+  bool woken_ = false;  // guarded by mutex_: Wake was called
+  bool hold_wake_ups_ = false;  // LCM thread only
   std::atomic<int64_t> accepted_{0}, rejected_{0}, unauthenticated_{0}, limited_{0};
   std::string last_error_;  // guarded by mutex_
 
-  // simulation thread only
+  // the turn's thread only
   Journal journal_;
   SnapshotStore history_;
   bool replaying_ = false;

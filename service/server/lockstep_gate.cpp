@@ -29,8 +29,8 @@ std::string EncodeInput(const ControllerInput& in) {
   return bytes;
 }
 
-LockstepGate::LockstepGate(const ServerOptions& options, CommandBatch* batch)
-    : late_policy_(options.late_policy), late_timeout_(options.late_timeout), batch_(batch) {}
+LockstepGate::LockstepGate(const ServerOptions& options)
+    : late_policy_(options.late_policy), late_timeout_(options.late_timeout) {}
 
 Outcome LockstepGate::Apply(Command& cmd, int64_t step) {
   using K = Command::Kind;
@@ -64,12 +64,12 @@ Outcome LockstepGate::Apply(Command& cmd, int64_t step) {
 }
 
 bool LockstepGate::Ready(int64_t k, bool state_sent, const std::function<void()>& publish_state,
-                         const std::atomic<bool>* stop) {
+                         Clock::time_point* until) {
   if (!lockstep_.active() || lockstep_.Ready(k)) {
     waiting_ = false;
     return true;
   }
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = Clock::now();
   // STATE k-1 goes out again every kStateResendPeriod while the server
   // waits: a STATE or an input lost on UDP, or an input that raced ahead of
   // its controller's registration, would otherwise stall a `wait` policy
@@ -80,7 +80,7 @@ bool LockstepGate::Ready(int64_t k, bool state_sent, const std::function<void()>
     publish_state();
     last_state_ = now;
   }
-  if (stop == nullptr) return false;  // Tick: tests drive the inputs
+  if (until == nullptr) return false;  // Tick: tests drive the inputs
   if (!waiting_) {
     waiting_ = true;
     wait_start_ = now;
@@ -94,13 +94,12 @@ bool LockstepGate::Ready(int64_t k, bool state_sent, const std::function<void()>
   }
   // wake for an input, the next late deadline, or (at the latest) 50 ms for
   // STATUS, the STATE resend and stop
-  auto until = now + std::chrono::milliseconds(50);
+  *until = now + std::chrono::milliseconds(50);
   const double deadline = lockstep_.NextDeadline(k);
   if (deadline >= 0.0) {
-    until = std::min(until, wait_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                              std::chrono::duration<double>(deadline)));
+    *until = std::min(*until, wait_start_ + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(deadline)));
   }
-  batch_->Wait(until, *stop);
   return false;
 }
 

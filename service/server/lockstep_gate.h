@@ -1,11 +1,11 @@
 // The server's lockstep side (docs/lockstep.md): controller registration,
 // inputs, and the wait before each step until every controller's input for
-// it is here or its late policy has decided. Simulation thread.
+// it is here or its late policy has decided. The thread that holds the
+// loop's turn (sim_server.h, "Threads").
 #pragma once
 
 #include <contactsim/status_t.hpp>
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "service/server/command.h"
-#include "service/server/command_batch.h"
 #include "service/server/lockstep.h"
 #include "service/server/outcome.h"
 #include "service/server/server_options.h"
@@ -22,18 +21,22 @@ namespace contactsim {
 
 class LockstepGate {
  public:
-  // `batch` is waited on for inputs.
-  LockstepGate(const ServerOptions& options, CommandBatch* batch);
+  using Clock = std::chrono::steady_clock;
+
+  explicit LockstepGate(const ServerOptions& options);
 
   // REGISTER_CONTROLLER, RELEASE_CONTROLLER and INPUT with the world at `step`.
   Outcome Apply(Command& cmd, int64_t step);
   // Before step k: true when every controller's input for k is here (or its
   // late policy decided). Otherwise calls `publish_state` for STATE k-1 if a
   // controller may not have seen it (`state_sent` false, a controller just
-  // registered, or again every kStateResendPeriod), waits a little for
-  // inputs (null `stop`: never) and returns false so that the loop drains
-  // the inbox and asks again.
-  bool Ready(int64_t k, bool state_sent, const std::function<void()>& publish_state, const std::atomic<bool>* stop);
+  // registered, or again every kStateResendPeriod) and returns false. With
+  // `until` (null in Tick: tests drive the inputs and no clock runs) it
+  // starts or continues the wait for k, applies the late policies, and sets
+  // *until to when the caller should ask again at the latest (the next late
+  // deadline, or 50 ms for STATUS, the STATE resend and stop) unless an
+  // input comes first.
+  bool Ready(int64_t k, bool state_sent, const std::function<void()>& publish_state, Clock::time_point* until);
   // Removes and returns the inputs for `step`, in controller id order, and
   // keeps their digest for STATE.
   std::vector<ControllerInput> Take(int64_t step);
@@ -45,13 +48,12 @@ class LockstepGate {
  private:
   const LatePolicy late_policy_;  // for controllers registered without one
   const double late_timeout_;
-  CommandBatch* batch_;
   Lockstep lockstep_;
   uint64_t input_digest_ = 0;
   bool republish_state_ = false;  // a controller registered: it needs the current STATE
   bool waiting_ = false;
-  std::chrono::steady_clock::time_point wait_start_;
-  std::chrono::steady_clock::time_point last_state_;  // last STATE sent while waiting
+  Clock::time_point wait_start_;
+  Clock::time_point last_state_;  // last STATE sent while waiting
 };
 
 // The input as applied, for the journal (a reused input carries its new step).

@@ -73,6 +73,10 @@ const std::vector<ServerOption>& ServerOptionTable() {
        "for lockstep controllers registered without one (docs/lockstep.md)"},
       {"late_timeout_s", &SO::late_timeout, 1e-4, 3600, {}, "s of wall-clock time",
        "after which reuse and drop act, likewise"},
+      {"lockstep_step_on_input", &SO::lockstep_step_on_input, 0, 0, {}, "",
+       "while the simulation thread waits for lockstep inputs, the thread that receives the last one takes the "
+       "step, so that no sleeping thread is woken between an input and its step (docs/architecture.md, "
+       "\"Threads\"); the same steps either way"},
   };
   return table;
 }

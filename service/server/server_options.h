@@ -58,6 +58,7 @@ struct ServerOptions {
   int max_snapshots = 32;
   LatePolicy late_policy = LatePolicy::kWait;
   double late_timeout = 0.1;
+  bool lockstep_step_on_input = true;
   std::optional<ArmDriverConfig> arm_driver;  // the config's arm_driver block, checked
   std::optional<WsgDriverConfig> wsg_driver;  // the config's wsg_driver block, checked
   bool write_files = true;     // not in the config: false (a replay) makes SNAPSHOT to a file write nothing

@@ -14,6 +14,8 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
       paused_(options_.start_paused),
       mode_(options_.mode),
       real_time_factor_(options_.real_time_factor),
+      status_period_(std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(1.0 / std::max(1e-3, options_.status_rate_hz)))),
       publisher_(options_, transport),
       steps_(&publisher_),
       batch_(options_, &publisher_, &world_, &method_,
@@ -23,7 +25,7 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
                 contacts_.clear();
                 publisher_.UpdateRates(world_.dt);
               }}),
-      lockstep_(options_, &batch_),
+      lockstep_(options_),
       intake_(options_, &batch_) {
   if (options_.arm_driver) arm_ = std::make_unique<ArmDriver>(*options_.arm_driver);
   if (options_.wsg_driver) wsg_ = std::make_unique<WsgDriver>(*options_.wsg_driver);
@@ -174,8 +176,8 @@ void SimServer::ApplyInput(const ControllerInput& in, bool live) {
   ApplyInputJoints(in, live);
 }
 
-bool SimServer::LockstepReady(const std::atomic<bool>* stop) {
-  return lockstep_.Ready(world_.step + 1, publisher_.StateSentAt(world_.step), [this] { PublishState(); }, stop);
+bool SimServer::LockstepReady(Clock::time_point* until) {
+  return lockstep_.Ready(world_.step + 1, publisher_.StateSentAt(world_.step), [this] { PublishState(); }, until);
 }
 
 // Replies to the STEP commands whose last step is done, after their STATE.
@@ -240,49 +242,99 @@ bool SimServer::Tick() {
   return true;
 }
 
+SimServer::Pause SimServer::Turn(Clock::time_point* until, bool lockstep_only) {
+  const auto now = Clock::now();
+  if (now >= next_status_) {
+    PublishStatus(now);
+    next_status_ = now + status_period_;
+  }
+  publisher_.LiveLine(false, world_, contacts_.size(), method_->Name(), Halted());
+  const bool changed = batch_.Drain();
+  if (changed) runaway_.Rebase(world_);
+  PublishModelInfo();
+  const bool stepping = steps_.owed();
+  if (paused_ && !stepping) {
+    if (changed) PublishState();
+    *until = Clock::now() + std::chrono::milliseconds(50);
+    reanchor_ = true;
+    return Pause::kForCommands;
+  }
+  if (lockstep_only && mode_ != RunMode::kLockstep) {
+    *until = Clock::now();  // the simulation thread's loop takes it from here
+    return Pause::kForCommands;
+  }
+  if (mode_ == RunMode::kRealtime && !stepping) {
+    if (reanchor_) {
+      wall_anchor_ = Clock::now();
+      sim_anchor_ = world_.time;
+      reanchor_ = false;
+    }
+    // pace: step k is due when the wall clock reaches anchor + sim time / rtf
+    const auto due = wall_anchor_ + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>((world_.time - sim_anchor_) / real_time_factor_));
+    const auto t = Clock::now();
+    if (t < due) {
+      *until = std::min(due, next_status_);
+      return Pause::kForCommands;
+    }
+    // far behind (a slow step or a long pause): do not try to catch up in a burst
+    if (t - due > std::chrono::milliseconds(250)) reanchor_ = true;
+  } else {
+    reanchor_ = true;
+  }
+  if (mode_ == RunMode::kLockstep && !LockstepReady(until)) {
+    *until = std::min(*until, next_status_);
+    return Pause::kForInputs;
+  }
+  StepWorld();
+  return Pause::kNone;
+}
+
+void SimServer::OnMessage(const std::string& channel, const void* data, int size) {
+  if (parked_.load()) {
+    std::unique_lock<std::mutex> turn(turn_mutex_, std::try_to_lock);
+    // with the turn held, parked_ is exact: the simulation thread sets it
+    // before it lets go of the turn and clears it once it has it back
+    if (turn.owns_lock() && parked_.load()) {
+      batch_.HoldWakeUps(true);  // this thread drains what it queues
+      intake_.OnMessage(channel, data, size);
+      batch_.HoldWakeUps(false);
+      TurnOnInput();
+      return;
+    }
+  }
+  intake_.OnMessage(channel, data, size);
+}
+
+void SimServer::TurnOnInput() {
+  Clock::time_point until;
+  Pause pause;
+  while ((pause = Turn(&until, true)) == Pause::kNone) {
+  }
+  // The simulation thread sleeps until parked_until_ unless woken. A later
+  // wait for inputs needs no wake-up (it wakes early, finds the inputs
+  // missing and waits again); anything else, or an earlier deadline (a
+  // controller registered with a shorter timeout), does.
+  if (pause != Pause::kForInputs || until < parked_until_) batch_.Wake();
+}
+
 void SimServer::Run(const std::atomic<bool>& stop) {
-  const auto status_period = std::chrono::duration<double>(1.0 / std::max(1e-3, options_.status_rate_hz));
-  auto next_status = Clock::now() + std::chrono::duration_cast<Clock::duration>(status_period);
-  Clock::time_point wall_anchor = Clock::now();
-  double sim_anchor = world_.time;
+  std::unique_lock<std::mutex> turn(turn_mutex_);
+  next_status_ = Clock::now() + status_period_;
   while (!stop.load()) {
-    const auto now = Clock::now();
-    if (now >= next_status) {
-      PublishStatus(now);
-      next_status = now + std::chrono::duration_cast<Clock::duration>(status_period);
-    }
-    publisher_.LiveLine(false, world_, contacts_.size(), method_->Name(), Halted());
-    const bool changed = batch_.Drain();
-    if (changed) runaway_.Rebase(world_);
-    PublishModelInfo();
-    const bool stepping = steps_.owed();
-    if (paused_ && !stepping) {
-      if (changed) PublishState();
-      batch_.Wait(Clock::now() + std::chrono::milliseconds(50), stop);
-      reanchor_ = true;
-      continue;
-    }
-    if (mode_ == RunMode::kRealtime && !stepping) {
-      if (reanchor_) {
-        wall_anchor = Clock::now();
-        sim_anchor = world_.time;
-        reanchor_ = false;
-      }
-      // pace: step k is due when the wall clock reaches anchor + sim time / rtf
-      const auto due = wall_anchor + std::chrono::duration_cast<Clock::duration>(
-                                         std::chrono::duration<double>((world_.time - sim_anchor) / real_time_factor_));
-      const auto t = Clock::now();
-      if (t < due) {
-        batch_.Wait(std::min(due, next_status), stop);
-        continue;
-      }
-      // far behind (a slow step or a long pause): do not try to catch up in a burst
-      if (t - due > std::chrono::milliseconds(250)) reanchor_ = true;
+    Clock::time_point until;
+    const Pause pause = Turn(&until, false);
+    if (pause == Pause::kNone) continue;
+    if (pause == Pause::kForInputs && options_.lockstep_step_on_input) {
+      parked_until_ = until;
+      parked_.store(true);
+      turn.unlock();
+      batch_.Wait(until, stop);
+      turn.lock();
+      parked_.store(false);
     } else {
-      reanchor_ = true;
+      batch_.Wait(until, stop);
     }
-    if (mode_ == RunMode::kLockstep && !LockstepReady(&stop)) continue;
-    StepWorld();
   }
   CancelStepCommands("server stopping");
   PublishStatus(Clock::now());

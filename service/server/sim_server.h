@@ -10,14 +10,19 @@
 //   Publisher      the outgoing channels, their rates, PROGRESS, live line
 //
 // SimServer keeps the world, the contact method, the collision detector,
-// sleeping, the commands on the world and the loop (Run). Only the
-// simulation thread touches the world, so the engine needs no locks; the two
-// threads share only the batch's inbox and counters.
+// sleeping, the commands on the world and the loop (Run). One thread at a
+// time touches the world, the one that holds the loop's turn, so the engine
+// needs no locks: the simulation thread, except while it waits for lockstep
+// inputs with lockstep_step_on_input, when the LCM thread takes the turn for
+// the message it received and steps as soon as the inputs are complete (no
+// wake-up of a sleeping thread between the input and the step). Otherwise
+// the two threads share only the batch's inbox and counters.
 #pragma once
 
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,8 +57,9 @@ class SimServer {
   // (snapshot + the journal records after it).
   Status Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> method);
 
-  // LCM thread: one payload received on `channel` (CommandIntake). Never throws.
-  void OnMessage(const std::string& channel, const void* data, int size) { intake_.OnMessage(channel, data, size); }
+  // LCM thread: one payload received on `channel` (CommandIntake); takes the
+  // loop's turn when the simulation thread waits for lockstep inputs. Never throws.
+  void OnMessage(const std::string& channel, const void* data, int size);
   // The full names of the command channels, to subscribe to.
   std::vector<std::string> CommandChannelNames() const { return intake_.ChannelNames(); }
 
@@ -130,7 +136,13 @@ class SimServer {
   // its state the base of REWIND and recovery.
   void StartOver();
 
-  // the loop
+  // the loop: one turn applies the inbox and takes a step if one is due;
+  // otherwise it says what the loop waits for, and *until how long at most
+  enum class Pause { kNone, kForCommands, kForInputs };
+  Pause Turn(Clock::time_point* until, bool lockstep_only);
+  // LCM thread, with the turn: the turns the simulation thread would take
+  // for the message just queued; wakes it if its wait no longer fits.
+  void TurnOnInput();
   void StepWorld();
   // A step that blew up (runaway_watch.h): its state is not published, the
   // running STEPs are answered with the reason, STATUS carries it at once,
@@ -141,7 +153,7 @@ class SimServer {
   void SimulateStep();
   void ApplyInputs();
   void ApplyInput(const ControllerInput& input, bool live);
-  bool LockstepReady(const std::atomic<bool>* stop);  // null: never blocks
+  bool LockstepReady(Clock::time_point* until);  // null: Tick (no clock)
   void FinishStepCommands();
   void CancelStepCommands(const std::string& why);
   bool Halted() const { return paused_ && !steps_.owed(); }  // paused with no STEP to take
@@ -167,6 +179,17 @@ class SimServer {
   RunMode mode_;
   double real_time_factor_;
   bool reanchor_ = true;  // REALTIME pacing starts again from now
+  Clock::time_point wall_anchor_;  // REALTIME: step k is due at wall_anchor_ + (time - sim_anchor_) / rtf
+  double sim_anchor_ = 0.0;
+  Clock::duration status_period_;
+  Clock::time_point next_status_;
+
+  // The loop's turn: held by the simulation thread in Run except while it
+  // waits for lockstep inputs (parked_, until parked_until_), when the LCM
+  // thread may take it (OnMessage).
+  std::mutex turn_mutex_;
+  std::atomic<bool> parked_{false};
+  Clock::time_point parked_until_;
 
   std::unique_ptr<ArmDriver> arm_;  // null without an arm_driver block
   std::unique_ptr<WsgDriver> wsg_;  // null without a wsg_driver block
