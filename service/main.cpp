@@ -9,8 +9,9 @@
 // (service/server/log_replay.h); exit code 0 identical, 2 diverged.
 //
 // Two threads: this one runs the simulation loop (SimServer::Run), a second
-// one receives LCM messages and hands them to the server. SIGINT and SIGTERM
-// stop both cleanly.
+// one receives LCM messages and hands them to the server, and takes the
+// loop's turn while the loop waits for lockstep inputs (sim_server.h).
+// SIGINT and SIGTERM stop both cleanly.
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>

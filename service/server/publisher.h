@@ -4,7 +4,8 @@
 // factor measured between two of them, PROGRESS of long commands, and the
 // live line on stderr. Replies may go out from either thread (the
 // transport's Publish is thread-safe; nothing here that a reply touches
-// changes after construction); the rest is the simulation thread's.
+// changes after construction); the rest belongs to the thread that holds
+// the loop's turn (sim_server.h).
 #pragma once
 
 #include <contactsim/contacts_t.hpp>
