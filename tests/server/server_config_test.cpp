@@ -34,6 +34,25 @@ TEST(ServerConfig, BadValueNamesFileLineAndField) {
   EXPECT_NE(st.message().find(path + ":2: state_rate_hz must be in"), std::string::npos) << st.message();
 }
 
+// Verifies that lockstep_step_on_input is on unless the config turns it
+// off, and that a value that is not a bool is refused by the text format's
+// parser, which names the file and the line.
+TEST(ServerConfig, LockstepStepOnInputIsReadAndABadValueRefused) {
+  EXPECT_TRUE(ServerOptions{}.lockstep_step_on_input);
+  proto::ServerConfig config;
+  const std::string off = testing::WriteTempFile("lockstep_off.pbtxt", "lockstep_step_on_input: false\n");
+  ASSERT_TRUE(LoadServerConfig(off, &config).ok());
+  ServerSetup setup;
+  ASSERT_TRUE(MakeServerSetup(config, off, "", &setup).ok());
+  EXPECT_FALSE(setup.options.lockstep_step_on_input);
+  for (const char* bad : {"lockstep_step_on_input: 2\n", "lockstep_step_on_input: \"yes\"\n"}) {
+    const std::string path = testing::WriteTempFile("lockstep_bad.pbtxt", std::string("mode: LOCKSTEP\n") + bad);
+    const Status st = LoadServerConfig(path, &config);
+    ASSERT_FALSE(st.ok()) << bad;
+    EXPECT_NE(st.message().find(path + ":2:"), std::string::npos) << st.message();
+  }
+}
+
 // Verifies that an unknown contact method in the config is refused.
 TEST(ServerConfig, UnknownMethodIsRefused) {
   const std::string path = testing::WriteTempFile("bad_method.pbtxt", "contact_method: \"magic\"\n");
