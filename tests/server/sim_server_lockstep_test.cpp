@@ -184,6 +184,7 @@ struct LockstepRun {
   std::vector<int64_t> hashes;  // STATE k's, k = 1..n
   int on_input_thread = 0;      // STATEs published by the thread that sent the input
   int on_sim_thread = 0;
+  double velocity = 0.0;        // the box's along x in the last STATE
 };
 
 // n cycles: STATE k-1, then the input for k (4 N, none at k = 3).
@@ -198,6 +199,7 @@ LockstepRun Cycles(RunningServer& s, int n) {
     run.hashes.push_back(p.state.state_hash);
     run.on_input_thread += p.thread == std::this_thread::get_id();
     run.on_sim_thread += p.thread == s.sim_thread();
+    run.velocity = p.state.bodies.at(0).linear_velocity[0];
   }
   return run;
 }
@@ -222,6 +224,7 @@ TEST(LockstepTurnTest, StepsOnTheInputsThreadAreTheSimulationThreads) {
     }
   }
   EXPECT_EQ(runs[0].hashes, runs[1].hashes);
+  EXPECT_NEAR(runs[1].velocity, (kSteps - 1) * 4.0 / 2.0 / 240.0, 1e-12);
 }
 
 // Verifies the lockstep guarantees with the option on: an input for a step
@@ -248,6 +251,34 @@ TEST(LockstepTurnTest, RefusedInputsAndCommandsWhileWaitingKeepTheirGuarantees) 
   const reply_t stepped = s.Scene(scene_cmd_t::STEP, 0, 10);
   EXPECT_EQ(stepped.code, reply_t::OK) << stepped.message;
   EXPECT_EQ(stepped.step, 15);
+}
+
+// Verifies that a late policy still acts after its timeout when the steps
+// are taken on the input's thread: a second controller that never answers,
+// registered with "drop" and 20 ms, holds the steps back until the
+// simulation thread's wait reaches its deadline and drops it; the steps
+// then go on with "ctl"'s inputs alone, which all act.
+TEST(LockstepTurnTest, LatePoliciesActWhileTheInputsThreadTakesTheSteps) {
+  RunningServer s(true);
+  StartLockstep(s);
+  Cycles(s, 3);
+  scene_cmd_t reg{};
+  reg.op = scene_cmd_t::REGISTER_CONTROLLER;
+  reg.late_policy = scene_cmd_t::LATE_DROP;
+  reg.late_timeout = 0.02;
+  ASSERT_EQ(s.Send(reg, "SCENE_CMD", "silent").code, reply_t::OK);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 4; k <= 8; ++k) {
+    s.Input(k, 4.0, 6000 + k);
+    ASSERT_EQ(s.transport.State(k).state.step, k);
+  }
+  // step 4 waited for the silent controller's timeout, the others did not
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(20));
+  // seven steps of 4 N (step 3 had none) on 2 kg for 1/240 s each
+  EXPECT_NEAR(s.transport.State(8).state.bodies.at(0).linear_velocity[0], 7 * 4.0 / 2.0 / 240.0, 1e-12);
+  const reply_t paused = s.Scene(scene_cmd_t::PAUSE);
+  ASSERT_EQ(paused.code, reply_t::OK);
+  EXPECT_EQ(paused.step, 8);
 }
 
 }  // namespace
