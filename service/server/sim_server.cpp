@@ -259,8 +259,10 @@ SimServer::Pause SimServer::Turn(Clock::time_point* until, bool lockstep_only) {
     reanchor_ = true;
     return Pause::kForCommands;
   }
-  if (lockstep_only && mode_ != RunMode::kLockstep) {
-    *until = Clock::now();  // the simulation thread's loop takes it from here
+  // the input's thread steps only on inputs: without a controller a
+  // lockstep world runs free, which is the simulation thread's loop
+  if (lockstep_only && (mode_ != RunMode::kLockstep || !lockstep_.active())) {
+    *until = Clock::now();
     return Pause::kForCommands;
   }
   if (mode_ == RunMode::kRealtime && !stepping) {

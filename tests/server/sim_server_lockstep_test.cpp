@@ -281,5 +281,25 @@ TEST(LockstepTurnTest, LatePoliciesActWhileTheInputsThreadTakesTheSteps) {
   EXPECT_EQ(paused.step, 8);
 }
 
+// Verifies that releasing the last controller while the simulation thread
+// waits hands the loop back to it: a lockstep world without controllers
+// runs free on the simulation thread, and the input's thread returns to
+// its messages (a PAUSE is answered, the steps stop).
+TEST(LockstepTurnTest, ReleasingTheLastControllerHandsTheStepsBack) {
+  RunningServer s(true);
+  StartLockstep(s);
+  Cycles(s, 3);
+  scene_cmd_t release{};
+  release.op = scene_cmd_t::RELEASE_CONTROLLER;
+  ASSERT_EQ(s.Send(release, "SCENE_CMD", "ctl").code, reply_t::OK);
+  // STATE at state_rate_hz now: every 4th step at 60 Hz and dt 1/240 s
+  const WaitableTransport::Published free = s.transport.State(100);
+  EXPECT_EQ(free.state.step, 100);
+  EXPECT_EQ(free.thread, s.sim_thread());
+  const reply_t paused = s.Scene(scene_cmd_t::PAUSE);
+  ASSERT_EQ(paused.code, reply_t::OK);
+  EXPECT_GE(paused.step, 100);
+}
+
 }  // namespace
 }  // namespace contactsim
