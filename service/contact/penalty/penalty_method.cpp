@@ -51,7 +51,7 @@ void PenaltyMethod::ExplicitWorldStep(World& world, CollisionDetector& detector,
   options.elapsed = dt;
   BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
   const int substeps = ExplicitSubsteps(world, rows_, params_, dt);
-  const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps);
+  const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps, &impacts_);
   stats->substeps = s.substeps;
   stats->max_penetration = s.max_penetration;
   KeepAnchors(world, contacts_, dt);

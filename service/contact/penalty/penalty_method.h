@@ -44,6 +44,7 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/penalty/penalty_friction.h"
+#include "service/contact/penalty/penalty_impacts.h"
 #include "service/contact/penalty/penalty_params.h"
 #include "service/contact/penalty/penalty_row.h"
 
@@ -81,6 +82,7 @@ class PenaltyMethod : public ContactMethod {
   FrictionAnchors anchors_;
   ContactSet contacts_;
   std::vector<PenaltyRow> rows_;
+  PenaltyImpacts impacts_;  // the explicit step's impact stage (penalty_impacts.h)
 };
 
 }  // namespace contactsim
