@@ -107,6 +107,9 @@ class ExplicitStepper {
       if (row.engaged && row.depth > row.anchor.rest_depth) pair_touching_[row.pair] = 1;
     }
     pair_damping_.Prepare(world, rows);
+    // a step whose rows can hold no impact (every one with friction and
+    // restitution 0, or restitution = off) runs none of the stage
+    if (impacts_ != nullptr && std::none_of(rows.begin(), rows.end(), MayBeStruck)) impacts_ = nullptr;
   }
 
   void Substep(ExplicitStats* stats) {
@@ -252,7 +255,10 @@ class ExplicitStepper {
     for (size_t k = 0; k < rows_.size(); ++k) {
       arms_[k].ra = frames_[k].ra;
       arms_[k].rb = frames_[k].rb;
-      arms_[k].spring_depth = rows_[k].depth - rows_[k].anchor.rest_depth;
+      const PenaltyRow& row = rows_[k];
+      const Vec3 v = v_[row.b] + w_[row.b].cross(frames_[k].rb) - v_[row.a] - w_[row.a].cross(frames_[k].ra);
+      arms_[k].vn = row.n.dot(v);
+      arms_[k].spring_depth = row.depth - row.anchor.rest_depth;
     }
     return impacts_->Resolve(world_, rows_, arms_, impact_threshold_, h_, world_.dt);
   }

@@ -12,23 +12,17 @@ namespace {
 // at most 100 passes (lcp_impacts.cpp: 20 passes at the threshold alone
 // left six touching spheres struck at 0.5 m/s with e = 0.5 0.017 v0 off).
 constexpr ImpactCascade kCascade{1e-3, 100};
+// Rows apart by less than the fastest strike closes in this many sub-steps
+// take part (penalty_impacts.h, step 2).
+constexpr double kReachSubsteps = 2.0;
 
-// n . (v_B - v_A) at the row's arms now (m/s, < 0 approaching)
-double NormalVelocity(const World& world, const PenaltyRow& row, const ImpactArms& arms) {
-  const RigidBody& A = world.bodies()[row.a];
-  const RigidBody& B = world.bodies()[row.b];
-  const Vec3 v = B.LinearVelocity() + B.AngularVelocity().cross(arms.rb) - A.LinearVelocity() -
-                 A.AngularVelocity().cross(arms.ra);
-  return row.n.dot(v);
-}
-
-// step 1: frictionless or rebounding, approaching and touching within the
-// sub-step h
-bool Struck(const World& world, const PenaltyRow& row, const ImpactArms& arms, double threshold, double h) {
-  if (!row.engaged || row.restitution < 0.0) return false;
-  if (row.restitution == 0.0 && row.mu != 0.0) return false;
-  const double vn = NormalVelocity(world, row, arms);
-  return vn < -threshold && arms.spring_depth - vn * h > 0.0;
+// step 1: frictionless or rebounding, approaching, and closing within the
+// sub-step h (touching by its end, and compressed by no more than it
+// closes: a loaded spring that rings faster than the threshold is no impact)
+bool Struck(const PenaltyRow& row, const ImpactArms& arms, double threshold, double h) {
+  if (!MayBeStruck(row) || arms.vn >= -threshold) return false;
+  const double closing = -arms.vn * h;  // m, what the approach closes in the sub-step
+  return arms.spring_depth + closing > 0.0 && arms.spring_depth <= closing;
 }
 
 ImpactRow ImpactRowOf(const World& world, const PenaltyRow& row, const ImpactArms& arms, int k) {
@@ -62,14 +56,14 @@ bool PenaltyImpacts::Resolve(World& world, std::vector<PenaltyRow>& rows, const 
   // step 1, and the fastest strike (m/s)
   double fastest = 0.0;
   for (size_t k = 0; k < rows.size(); ++k) {
-    if (Struck(world, rows[k], arms[k], threshold, h)) {
-      fastest = std::max(fastest, -NormalVelocity(world, rows[k], arms[k]));
+    if (Struck(rows[k], arms[k], threshold, h)) {
+      fastest = std::max(fastest, -arms[k].vn);
     }
   }
   if (fastest == 0.0) return false;
   // step 2: components over the rows within the strike's reach
   auto& bodies = world.bodies();
-  const double reach = fastest * dt;
+  const double reach = kReachSubsteps * fastest * h;
   auto near = [&](const PenaltyRow& row) {
     return row.engaged && row.restitution >= 0.0 && row.depth - row.anchor.rest_depth > -reach;
   };
@@ -80,7 +74,7 @@ bool PenaltyImpacts::Resolve(World& world, std::vector<PenaltyRow>& rows, const 
   auto root = [&](const PenaltyRow& row) { return sets.Root(bodies[row.a].IsDynamic() ? row.a : row.b); };
   struck_.assign(bodies.size(), 0);
   for (size_t k = 0; k < rows.size(); ++k) {
-    if (Struck(world, rows[k], arms[k], threshold, h)) struck_[root(rows[k])] = 1;
+    if (Struck(rows[k], arms[k], threshold, h)) struck_[root(rows[k])] = 1;
   }
   impacts_.Begin(static_cast<int>(bodies.size()));
   for (size_t k = 0; k < rows.size(); ++k) {
@@ -105,6 +99,7 @@ bool PenaltyImpacts::Resolve(World& world, std::vector<PenaltyRow>& rows, const 
     if (B.IsDynamic()) B.P += r.phase * r.n, B.L += r.phase * r.rb_n;
     // step 4: the spring starts where the impact left it
     PenaltyRow& row = rows[r.point];
+    row.impulse += r.phase;
     if (arms[r.point].spring_depth > 0.0) row.anchor.rest_depth = std::max(row.anchor.rest_depth, row.depth);
   }
   return any;

@@ -123,10 +123,11 @@ StepStats PenaltyMethod::StepOnce(World& world, CollisionDetector& detector, Con
   for (const PenaltyRow& row : rows_) {
     if (!row.engaged) continue;
     const Contact& c = contacts_[row.contact];
-    if (row.depth <= 0.0 && row.lambda <= 0.0) continue;
+    if (row.depth <= 0.0 && row.lambda <= 0.0 && row.impulse <= 0.0) continue;
     Contact out = c;
     out.depth = row.depth;
-    out.normal_value = row.lambda;
+    // an impact's impulse as the mean force over the step
+    out.normal_value = row.lambda + row.impulse / world.dt;
     out.tangent_value = row.ft;
     contacts_out->push_back(out);
   }

@@ -32,7 +32,10 @@
 //  joint_solver.h) on the momenta after each momentum update, before the
 //  positions move; after the positions, their drift is projected away.
 // Contact::normal_value and tangent_value are forces (N): the normal force
-// on B and the friction force on B (world) of the last sub-step; depth is
+// on B and the friction force on B (world) of the last sub-step, the normal
+// one plus the impulse of an impact the stage took in the step divided by
+// the step (its mean force: the impact may end before the pair touches, and
+// is reported all the same); depth is
 // the point's depth at the step's end.
 // StepStats: iterations = active-set passes of the implicit solve (0 when
 // explicit), residual = its largest complementarity violation left (N),

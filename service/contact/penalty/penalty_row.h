@@ -49,6 +49,7 @@ struct PenaltyRow {
 
   // results of the step
   double lambda = 0.0;         // N, normal force on B (>= 0)
+  double impulse = 0.0;        // N s, normal impulse on B of the step's impact stage (penalty_impacts.h)
   Vec3 ft = Vec3::Zero();      // N, friction force on B, world
   bool sliding = false;
 
