@@ -21,7 +21,9 @@
 //     sub-steps of symplectic Euler as resolve a rebounding pair's spring
 //     (max_omega_h) and keep the stiffest mode stable (power iteration),
 //     each point's depth carried with its bodies' motion; bodies that no
-//     contact pushes fly ballistically;
+//     contact pushes fly ballistically; with impacts = sequential, a pair
+//     closing within a sub-step faster than impact_threshold first takes
+//     its component's impacts one at a time (penalty_impacts.h);
 //  implicit: in `substeps` sub-steps of h = dt / substeps, each a detection
 //     with depth > -margin, rows (penalty_row.h), the linearly implicit
 //     momentum step (penalty_implicit.h), then positions with the
