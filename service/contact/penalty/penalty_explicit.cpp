@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/penalty/penalty_impacts.h"
 #include "service/contact/penalty/penalty_pair_damping.h"
 #include "service/contact/penalty/penalty_stiffness.h"
 #include "service/physics/integrator.h"
@@ -65,13 +66,16 @@ struct RowFrame {
 
 class ExplicitStepper {
  public:
-  ExplicitStepper(World& world, std::vector<PenaltyRow>& rows, const PenaltyParams& params, double h)
-      : world_(world), rows_(rows), params_(params), h_(h), linear_(params.model == "linear") {
+  ExplicitStepper(World& world, std::vector<PenaltyRow>& rows, const PenaltyParams& params, double h,
+                  PenaltyImpacts* impacts)
+      : world_(world), rows_(rows), params_(params), h_(h), linear_(params.model == "linear"),
+        impacts_(params.impacts == "sequential" ? impacts : nullptr),
+        impact_threshold_(PenaltyImpactThreshold(world, params.impact_threshold)) {
     const auto& bodies = world.bodies();
     const size_t n = bodies.size();
     x0_.resize(n), R0t_.resize(n), force_.resize(n), torque_.resize(n), rotation_.resize(n);
     v_.resize(n), w_.resize(n), pushed_.assign(n, false), pairs_.assign(n, 0.0);
-    reach_.assign(n, 0.0), radius_.assign(n, 0.0);
+    reach_.assign(n, 0.0), ahead_.assign(n, 0.0), radius_.assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
       x0_[i] = bodies[i].x;
       R0t_[i] = bodies[i].Rotation().transpose();
@@ -103,6 +107,9 @@ class ExplicitStepper {
       if (row.engaged && row.depth > row.anchor.rest_depth) pair_touching_[row.pair] = 1;
     }
     pair_damping_.Prepare(world, rows);
+    // a step whose rows can hold no impact (every one with friction and
+    // restitution 0, or restitution = off) runs none of the stage
+    if (impacts_ != nullptr && std::none_of(rows.begin(), rows.end(), MayBeStruck)) impacts_ = nullptr;
   }
 
   void Substep(ExplicitStats* stats) {
@@ -163,6 +170,7 @@ class ExplicitStepper {
       if (rows_[k].engaged) MeasureRow(k, stats);
     }
     if (!apply) return;
+    if (impacts_ != nullptr && ResolveImpacts()) RemeasureVelocities();
     if (pair_damping_.active()) SolvePairDamping();
     for (size_t i = 0; i < bodies.size(); ++i) bodies[i].force = force_[i], bodies[i].torque = torque_[i];
     std::fill(pushed_.begin(), pushed_.end(), false);
@@ -193,6 +201,14 @@ class ExplicitStepper {
       }
     }
     measured_ = true;
+    // the impact stage takes a pair as it closes within the coming
+    // sub-step, so its rows are measured one sub-step's motion ahead
+    if (impacts_ != nullptr) {
+      for (size_t i = 0; i < bodies.size(); ++i) {
+        if (bodies[i].motion == MotionType::kStatic) continue;
+        ahead_[i] = h_ * (v_[i].norm() + w_[i].norm() * radius_[i]);
+      }
+    }
   }
 
   // stage 1: the row's depth and velocity now; its anchor advances by the
@@ -203,7 +219,7 @@ class ExplicitStepper {
     RowFrame& f = frames_[k];
     // no point of either body has moved farther than its reach: a gap
     // wider than both is still open (most speculative rows of a pile)
-    if (f.depth0 + reach_[row.a] + reach_[row.b] < 0.0) {
+    if (f.depth0 + reach_[row.a] + reach_[row.b] + ahead_[row.a] + ahead_[row.b] < 0.0) {
       f.touching = false;
       return;
     }
@@ -231,6 +247,48 @@ class ExplicitStepper {
     if (bodies[row.a].IsDynamic()) pairs_[row.a] += 1.0 / row.nc;
     if (bodies[row.b].IsDynamic()) pairs_[row.b] += 1.0 / row.nc;
     pair_touching_[row.pair] = 1;
+  }
+
+  // the impact stage (penalty_impacts.h) on this pass's touching points
+  bool ResolveImpacts() {
+    arms_.resize(rows_.size());
+    for (size_t k = 0; k < rows_.size(); ++k) {
+      arms_[k].ra = frames_[k].ra;
+      arms_[k].rb = frames_[k].rb;
+      const PenaltyRow& row = rows_[k];
+      const Vec3 v = v_[row.b] + w_[row.b].cross(frames_[k].rb) - v_[row.a] - w_[row.a].cross(frames_[k].ra);
+      arms_[k].vn = row.n.dot(v);
+      arms_[k].spring_depth = row.depth - row.anchor.rest_depth;
+    }
+    return impacts_->Resolve(world_, rows_, arms_, impact_threshold_, h_, world_.dt);
+  }
+
+  // after the impact stage's impulses: each body's velocities, and each
+  // touching row's velocity, law and whether its spring still bites (the
+  // stage moved the struck rows' rest depth to their depth)
+  void RemeasureVelocities() {
+    const auto& bodies = world_.bodies();
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      if (!bodies[i].IsDynamic()) continue;
+      v_[i] = bodies[i].LinearVelocity();
+      w_[i] = bodies[i].AngularVelocity();
+    }
+    for (size_t k = 0; k < rows_.size(); ++k) {
+      PenaltyRow& row = rows_[k];
+      RowFrame& f = frames_[k];
+      if (!row.engaged || !f.touching) continue;
+      const double spring_depth = row.depth - row.anchor.rest_depth;
+      if (spring_depth <= 0.0) {
+        f.touching = false;
+        if (bodies[row.a].IsDynamic()) pairs_[row.a] -= 1.0 / row.nc;
+        if (bodies[row.b].IsDynamic()) pairs_[row.b] -= 1.0 / row.nc;
+        continue;
+      }
+      f.v = v_[row.b] + w_[row.b].cross(f.rb) - v_[row.a] - w_[row.a].cross(f.ra);
+      row.vn0 = row.n.dot(f.v);
+      row.vt0 = f.v - row.n * row.vn0;
+      row.law = EvaluateNormalLaw(params_, spring_depth, row.vn0, row.nc, row.damping, row.kp);
+    }
   }
 
   // the coupled dashpots of this pass's touching points, by pair
@@ -320,6 +378,9 @@ class ExplicitStepper {
   const PenaltyParams& params_;
   double h_;
   bool linear_;
+  PenaltyImpacts* impacts_;  // null: impacts = springs
+  double impact_threshold_;  // m/s (PenaltyImpactThreshold)
+  std::vector<ImpactArms> arms_;
   std::vector<Vec3> x0_, force_, torque_, v_, w_;
   std::vector<Mat3> R0t_, rotation_;
   // per dynamic body: touching pairs, sum of 1 / nc over its touching
@@ -333,6 +394,7 @@ class ExplicitStepper {
   std::vector<double> shared_;       // per row: n_b, for pair_damping_
   std::vector<bool> pushed_;  // per body: a contact force acted in this sub-step
   std::vector<double> reach_;   // m, per body: how far any of its points may have moved since the step's start
+  std::vector<double> ahead_;   // m, per body: how far they may move in the coming sub-step (impact stage only)
   std::vector<double> radius_;  // m, per body: BoundingRadius
   bool measured_ = false;       // Measure ran before (reach_ counts from the second call)
 };
@@ -340,10 +402,10 @@ class ExplicitStepper {
 }  // namespace
 
 ExplicitStats ExplicitStep(World& world, std::vector<PenaltyRow>& rows, const PenaltyParams& params, double dt,
-                           int substeps) {
+                           int substeps, PenaltyImpacts* impacts) {
   ExplicitStats stats;
   stats.substeps = substeps;
-  ExplicitStepper stepper(world, rows, params, dt / substeps);
+  ExplicitStepper stepper(world, rows, params, dt / substeps, impacts);
   for (int s = 0; s < substeps; ++s) stepper.Substep(&stats);
   stepper.Finish(&stats);
   return stats;

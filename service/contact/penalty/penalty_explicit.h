@@ -14,7 +14,9 @@
 // margin is speculative (SpeculativeMargin), so a contact that begins
 // within the step is already a row.
 //
-// Each sub-step of h, per engaged row:
+// Each sub-step of h, per engaged row (stage 1 for every row, then with
+// impacts = sequential the impact stage of penalty_impacts.h on the rows
+// that stage 1 found struck, then stages 2-4):
 //  1. depth and relative velocity at the current poses and velocities; the
 //     friction anchor advances by the last sub-step's slip, s += h v_t;
 //  2. the normal law (penalty_force.h) with each dashpot c integrated
@@ -43,6 +45,7 @@
 
 #include <vector>
 
+#include "service/contact/penalty/penalty_impacts.h"
 #include "service/contact/penalty/penalty_params.h"
 #include "service/contact/penalty/penalty_row.h"
 #include "service/physics/world.h"
@@ -65,7 +68,9 @@ int ExplicitSubsteps(const World& world, const std::vector<PenaltyRow>& rows, co
 // step's start). Each body's force and torque must hold the external
 // wrench; they are restored to it. Leaves in each row its last sub-step's
 // lambda, ft, sliding, depth and anchor (stretch advanced by the slip).
+// With params.impacts = sequential, each sub-step first resolves the impacts
+// of its struck components by `impacts` (penalty_impacts.h).
 ExplicitStats ExplicitStep(World& world, std::vector<PenaltyRow>& rows, const PenaltyParams& params, double dt,
-                           int substeps);
+                           int substeps, PenaltyImpacts* impacts);
 
 }  // namespace contactsim

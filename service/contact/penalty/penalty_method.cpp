@@ -51,7 +51,7 @@ void PenaltyMethod::ExplicitWorldStep(World& world, CollisionDetector& detector,
   options.elapsed = dt;
   BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
   const int substeps = ExplicitSubsteps(world, rows_, params_, dt);
-  const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps);
+  const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps, &impacts_);
   stats->substeps = s.substeps;
   stats->max_penetration = s.max_penetration;
   KeepAnchors(world, contacts_, dt);
@@ -123,10 +123,11 @@ StepStats PenaltyMethod::StepOnce(World& world, CollisionDetector& detector, Con
   for (const PenaltyRow& row : rows_) {
     if (!row.engaged) continue;
     const Contact& c = contacts_[row.contact];
-    if (row.depth <= 0.0 && row.lambda <= 0.0) continue;
+    if (row.depth <= 0.0 && row.lambda <= 0.0 && row.impulse <= 0.0) continue;
     Contact out = c;
     out.depth = row.depth;
-    out.normal_value = row.lambda;
+    // an impact's impulse as the mean force over the step
+    out.normal_value = row.lambda + row.impulse / world.dt;
     out.tangent_value = row.ft;
     contacts_out->push_back(out);
   }

@@ -21,7 +21,9 @@
 //     sub-steps of symplectic Euler as resolve a rebounding pair's spring
 //     (max_omega_h) and keep the stiffest mode stable (power iteration),
 //     each point's depth carried with its bodies' motion; bodies that no
-//     contact pushes fly ballistically;
+//     contact pushes fly ballistically; with impacts = sequential, a pair
+//     closing within a sub-step faster than impact_threshold first takes
+//     its component's impacts one at a time (penalty_impacts.h);
 //  implicit: in `substeps` sub-steps of h = dt / substeps, each a detection
 //     with depth > -margin, rows (penalty_row.h), the linearly implicit
 //     momentum step (penalty_implicit.h), then positions with the
@@ -32,7 +34,10 @@
 //  joint_solver.h) on the momenta after each momentum update, before the
 //  positions move; after the positions, their drift is projected away.
 // Contact::normal_value and tangent_value are forces (N): the normal force
-// on B and the friction force on B (world) of the last sub-step; depth is
+// on B and the friction force on B (world) of the last sub-step, the normal
+// one plus the impulse of an impact the stage took in the step divided by
+// the step (its mean force: the impact may end before the pair touches, and
+// is reported all the same); depth is
 // the point's depth at the step's end.
 // StepStats: iterations = active-set passes of the implicit solve (0 when
 // explicit), residual = its largest complementarity violation left (N),
@@ -44,6 +49,7 @@
 
 #include "service/contact/contact_method.h"
 #include "service/contact/penalty/penalty_friction.h"
+#include "service/contact/penalty/penalty_impacts.h"
 #include "service/contact/penalty/penalty_params.h"
 #include "service/contact/penalty/penalty_row.h"
 
@@ -81,6 +87,7 @@ class PenaltyMethod : public ContactMethod {
   FrictionAnchors anchors_;
   ContactSet contacts_;
   std::vector<PenaltyRow> rows_;
+  PenaltyImpacts impacts_;  // the explicit step's impact stage (penalty_impacts.h)
 };
 
 }  // namespace contactsim

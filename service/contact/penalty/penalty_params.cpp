@@ -30,6 +30,13 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
       ChoiceOrNumberParam("restitution", &P::restitution, {"material", "off"}, 0.0, 1.0,
                           "damping source: material derives kd (or the Hunt-Crossley alpha) from the pair's "
                           "max(e_a, e_b), a number from that value, off uses kd / hc_damping"),
+      ChoiceParam("impacts", &P::impacts, {"sequential", "springs"},
+                  "explicit: sequential resolves the impacts of a component whose pair meets faster than "
+                  "impact_threshold one at a time before its springs act (penalty_impacts.h); springs leaves them "
+                  "to the springs and dashpots"),
+      DoubleParam("impact_threshold", &P::impact_threshold, 0.0, 100.0, "m/s",
+                  "explicit, impacts = sequential: a touching pair approaching faster than max(this, 2 |g| dt) "
+                  "is an impact"),
       ChoiceParam("model", &P::model, {"linear", "hunt_crossley"}, "normal force law"),
       DoubleParam("hc_exponent", &P::hc_exponent, 1.0, 3.0, "", "n of kp d^n (1.5: Hertz contact of spheres)"),
       DoubleParam("hc_damping", &P::hc_damping, 0.0, 100.0, "s/m", "Hunt-Crossley alpha when restitution = off"),

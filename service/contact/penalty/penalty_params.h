@@ -20,6 +20,11 @@ struct PenaltyParams {
   double contact_time = 0.004;
   double kd = 1.0e3;                    // N s/m
   std::string restitution = "material";
+  // explicit: "sequential" resolves a pair that meets faster than
+  // impact_threshold by the sequential-impacts stage before its springs act
+  // (penalty_impacts.h); "springs" leaves every impact to the springs
+  std::string impacts = "sequential";
+  double impact_threshold = 0.01;       // m/s, raised to 2 |g| dt under gravity
   double hc_exponent = 1.5;
   double hc_damping = 0.2;              // s/m
   double friction_stiffness = 1.0e6;    // N/m

@@ -161,6 +161,7 @@ void BuildPenaltyRows(const World& world, const ContactSet& contacts, const Pena
     row.damping = damping;
     row.m_share = pair.m_eff / row.nc;
     row.rebounds = pair.restitution != 0.0;
+    row.restitution = pair.restitution;
     row.m_spring = pair.m_spring / row.nc;
     row.law = EvaluateNormalLaw(params, spring_depth, row.vn0, row.nc, damping, pair.kp);
     if (linear && spring_depth > 0.0 && !was_penetrating && options.h > 0.0) {

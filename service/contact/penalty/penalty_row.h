@@ -39,6 +39,7 @@ struct PenaltyRow {
   double m_share = 0.0;        // kg: the pair's m_eff / nc, the most momentum an onset impulse may take per m/s
   double m_spring = 0.0;       // kg: the mass the pair's stiffness was set for, / nc (m_s of a contact time, else m_eff)
   bool rebounds = true;        // the pair's restitution is not 0 (or unknown: restitution = off)
+  double restitution = -1.0;   // the pair's combined restitution, -1 when kd / alpha are given (off)
   double kt = 0.0, ct = 0.0;   // N/m, N s/m: tangential spring and damper of this point
   double mu = 0.0;             // combined Coulomb coefficient
   double inv_mass_n = 0.0;     // 1/kg: the point's inverse effective mass along n
@@ -48,6 +49,7 @@ struct PenaltyRow {
 
   // results of the step
   double lambda = 0.0;         // N, normal force on B (>= 0)
+  double impulse = 0.0;        // N s, normal impulse on B of the step's impact stage (penalty_impacts.h)
   Vec3 ft = Vec3::Zero();      // N, friction force on B, world
   bool sliding = false;
 
