@@ -7,9 +7,11 @@ machine's load does not move the count, where it moves a time by a factor of
 two or three. `--sleep` keeps the server's sleeping on (the held arm falls
 asleep after about 150 steps); by default every step is an awake one.
 `--free` counts bench_models.py's free-swinging iiwa instead (no
-actuators: the arm swings from its bent pose under gravity).
+actuators: the arm swings from its bent pose under gravity). `--ten`
+counts bench_models.py's ten bent iiwas over the ground instead (no
+actuators: they swing down onto the ground and onto one another).
 
-Usage: CONTACTSIM_BUILD_DIR=build bench/scripts/arm_step_instructions.py [--steps 200] [--sleep] [--free]
+Usage: CONTACTSIM_BUILD_DIR=build bench/scripts/arm_step_instructions.py [--steps 200] [--sleep] [--free | --ten]
 """
 import argparse
 import os
@@ -24,7 +26,7 @@ sys.path.insert(0, os.path.join(ROOT, "clients", "python"))
 import bench_models  # noqa: E402
 
 
-def run(build, steps, config, models, free):
+def run(build, steps, config, models, free, ten=False):
     """Cachegrind's instruction count of a server that steps the held iiwa `steps` times."""
     import contactsim  # noqa: PLC0415
     from contactsim.process import interrupt  # noqa: PLC0415
@@ -44,9 +46,14 @@ def run(build, steps, config, models, free):
             with contactsim.Client(url=url, prefix=prefix, timeout=600) as c:
                 c.wait_for_server(timeout=300)
                 c.set_timestep(bench_models.DT)
-                m = c.load_model(models["iiwa"], name="iiwa0", position=(0, 0, 0), fixed_base=True)
-                m.set_link_poses(bench_models._bent_iiwa_poses(models["iiwa"], (0, 0, 0)))
-                if not free:
+                placed = [(0, 0, 0)]
+                if ten:  # bench_models.py's "ten bent iiwas", bases 0.6 m above the ground
+                    c.add_plane((0, 0, 1), 0.0)
+                    placed = [(0.8 * (k % 5), 0.8 * (k // 5), 0.6) for k in range(10)]
+                for k, base in enumerate(placed):
+                    m = c.load_model(models["iiwa"], name="iiwa%d" % k, position=base, fixed_base=True)
+                    m.set_link_poses(bench_models._bent_iiwa_poses(models["iiwa"], base))
+                if not free and not ten:
                     m.set_joint_targets(bench_models.IIWA_BENT, kp=bench_models.HOLD_KP, kd=bench_models.HOLD_KD)
                     m.set_effort_limits([bench_models.HOLD_EFFORT] * 7)
                 c.step(10, timeout=600)
@@ -62,6 +69,7 @@ def main():
     ap.add_argument("--steps", type=int, default=200)
     ap.add_argument("--sleep", action="store_true", help="keep the server's sleeping on")
     ap.add_argument("--free", action="store_true", help="the free-swinging iiwa (no actuators)")
+    ap.add_argument("--ten", action="store_true", help="the ten bent iiwas over the ground (no actuators)")
     a = ap.parse_args()
     build = os.environ.get("CONTACTSIM_BUILD_DIR", os.path.join(ROOT, "build"))
     import pybullet_data  # noqa: PLC0415
@@ -75,11 +83,12 @@ def main():
         f.write("sleep: %s\n" % ("true" if a.sleep else "false"))
         config = f.name
     try:
-        base = run(build, 1, config, models, a.free)
-        more = run(build, 1 + a.steps, config, models, a.free)
+        base = run(build, 1, config, models, a.free, a.ten)
+        more = run(build, 1 + a.steps, config, models, a.free, a.ten)
     finally:
         os.unlink(config)
-    print("%s iiwa, %d steps%s: %.0f instructions a step" % ("free" if a.free else "held", a.steps,
+    what = "ten bent iiwas" if a.ten else ("free iiwa" if a.free else "held iiwa")
+    print("%s, %d steps%s: %.0f instructions a step" % (what, a.steps,
                                                             " (sleep on)" if a.sleep else "",
                                                               (more - base) / a.steps))
 

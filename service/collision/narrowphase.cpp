@@ -200,6 +200,16 @@ int Narrowphase::Collide(const RigidBody& a, int ia, const RigidBody& b, int ib,
   return added;
 }
 
+int Narrowphase::CollideReadOnly(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
+                                 ContactSet* out) const {
+  AxisCacheUpdate discarded;
+  CollideContext ctx;
+  ctx.margin = margin;
+  ctx.cache = &cache_;
+  ctx.cache_update = &discarded;
+  return Dispatch(a, ia, b, ib, ctx, out);
+}
+
 void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::vector<BodyPair>& pairs,
                                double margin, ParallelRunner& runner, ContactSet* out) {
   const int n = static_cast<int>(pairs.size());

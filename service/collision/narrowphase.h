@@ -45,6 +45,11 @@ double PairSignedDistance(const RigidBody& a, const RigidBody& b, double margin,
 class Narrowphase {
  public:
   int Collide(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out);
+  // The same contacts as Collide, trying the stored axis first but leaving
+  // the cache as it is: for a look at poses other than the detection's (an
+  // impulse sub-step's end), where most pairs the detection found apart are
+  // still apart along the same axis. Safe from many threads at once.
+  int CollideReadOnly(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ContactSet* out) const;
   // Collides every pair (indices into `bodies`) and appends the contacts to
   // `out` in pair order: the same contacts as Collide on each pair in turn.
   // Each pair reads the cache and writes its change aside

@@ -318,7 +318,7 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
       }
       Eigen::SparseMatrix<double> S(f, f);
       S.setFromTriplets(triplets_.begin(), triplets_.end());
-      const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(S, b));
+      const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(S, b, nullptr, &min_norm_cache_));
       const bool newly_held = start_free ? StepWithinBounds(members, free_rows, dl, held, rows, bodies)
                                          : ClampPastBounds(members, free_rows, dl, held, rows, bodies);
       if (newly_held) continue;

@@ -61,6 +61,7 @@
 #include <vector>
 
 #include "service/contact/constraint_row.h"
+#include "service/contact/min_norm_solve.h"
 
 namespace contactsim {
 
@@ -177,6 +178,7 @@ class SubspaceSolver {
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> A_;
   Eigen::VectorXd diag_;
+  MinNormCache min_norm_cache_;  // symbolic analyses of the components' patterns
 };
 
 }  // namespace contactsim

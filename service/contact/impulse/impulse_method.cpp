@@ -340,7 +340,9 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
       if (!apart && ClosingSpeedBound(bodies[p.first], bodies[p.second], h) * h <= margin) continue;
       const double start = apart ? 0.0 : std::max(0.0, was->depth);
       scratch.clear();
-      Collide(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
+      // a pair the detection found apart is usually still apart along the
+      // axis it stored (separating_axis_cache.h), which answers in one axis
+      detector.narrowphase().CollideReadOnly(bodies[p.first], p.first, bodies[p.second], p.second, 0.0, &scratch);
       for (const Contact& c : scratch) {
         if (c.depth > start + margin) {
           // the search stops at touching, or half a margin past a touching pair's start
