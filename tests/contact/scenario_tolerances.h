@@ -122,14 +122,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
                                    "(energy kept to 0.3% with e = 1); the impacts take turns only when a gap takes "
                                    "longer to close than a contact lasts (the 2 mm cradle)"},
     {"penalty", "row * gap=0.0001 e=*", 0.41, "0.11-0.31 v0: 0.1 mm closes in 0.02-0.2 ms, within the 4 ms contacts"},
-    // the same rows with friction between the bodies (mu 0.5 and 1), e = 0:
-    // the sequential-impacts stage takes frictionless points only, since its
-    // normal impulses come after the friction and would undo part of it
-    // (docs/physics.md, "Restitution across simultaneous contacts"), so these
-    // rows keep the method's own one relax pass a sub-step
-    {"soft", "row * e=0 mu=*", 0.127, "0.054-0.097 v0: the springs' push-out of the strike's overlap parts the row"},
-    {"soft_float", "row * e=0 mu=*", 0.12, "0.054-0.092 v0: as under double"},
-    {"xpbd", "row * e=0 mu=*", 0.188, "0.075-0.144 v0: its position push-out of the strike's overlap parts the row"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's
     // forces over w = d_hat / 50, so 50 times stiffer than a resting gap),
