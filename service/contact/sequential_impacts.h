@@ -48,10 +48,10 @@
 // answer too (every pair of a struck row leaves at the same speed) where
 // the method's own passes stop short of it; a struck row with friction
 // does so only in a component that no static or kinematic body holds (a
-// row struck in free flight): under gravity the resting and falling piles
-// meet such strikes in nearly every step, and the stage over the whole pile
-// tripled soft's step and took xpbd's from 17 to 88-102 ms
-// (docs/physics.md, "Restitution across simultaneous contacts"). The
+// row struck in free flight): under gravity the falling piles meet such
+// strikes in nearly every step, and the stage over the whole pile tripled
+// soft's step and took xpbd's from 17 to 88-102 ms (docs/physics.md,
+// "Restitution across simultaneous contacts"). The
 // others are left to the method. Every impulse is equal and opposite, so
 // momentum is kept.
 #pragma once

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "service/contact/union_find.h"
+
 namespace contactsim {
 namespace {
 
@@ -34,12 +36,43 @@ void SetFrictionRows(const XpbdPoint& p, const XpbdPointFrame& frame, const std:
   }
 }
 
+// Marks the bodies of the `frictional` strikes whose component of bodies
+// joined by the step's points no static or kinematic body holds (the stage
+// takes a struck point with friction only there, sequential_impacts.h);
+// looked for here, once a step, so that a held pile is not gathered in
+// every sub-step. Returns whether it marked any.
+bool MarkFreeStrikes(const std::vector<int>& frictional, const std::vector<XpbdPoint>& points,
+                     const std::vector<SoftBody>& bodies, std::vector<char>* struck) {
+  if (frictional.empty()) return false;
+  const int n = static_cast<int>(bodies.size());
+  UnionFind sets(n);
+  std::vector<char> held(n, 0);
+  for (const XpbdPoint& p : points) {
+    if (p.w_n <= 0.0 || p.jointed) continue;
+    if (bodies[p.a].inv_mass > 0.0 && bodies[p.b].inv_mass > 0.0) sets.Join(p.a, p.b);
+  }
+  for (const XpbdPoint& p : points) {
+    if (p.w_n <= 0.0 || p.jointed) continue;
+    if (bodies[p.a].inv_mass <= 0.0) held[sets.Root(p.b)] = 1;
+    if (bodies[p.b].inv_mass <= 0.0) held[sets.Root(p.a)] = 1;
+  }
+  bool any = false;
+  for (int i : frictional) {
+    const XpbdPoint& p = points[i];
+    if (held[sets.Root(bodies[p.a].inv_mass > 0.0 ? p.a : p.b)]) continue;
+    MarkStruck(p.a, p.b, bodies, struck);
+    any = true;
+  }
+  return any;
+}
+
 }  // namespace
 
 bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
                      const std::vector<SoftBody>& bodies, std::vector<char>* struck) {
   struck->assign(bodies.size(), 0);
   bool any = false;
+  std::vector<int> frictional;  // struck points with friction and without restitution
   for (size_t i = 0; i < points.size(); ++i) {
     const XpbdPoint& p = points[i];
     if (p.w_n <= 0.0 || p.jointed) continue;
@@ -47,10 +80,14 @@ bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const 
     const SoftBody& A = bodies[p.a];
     const SoftBody& B = bodies[p.b];
     if (std::abs(XpbdNormalVelocity(p, A.v, A.w, B.v, B.w)) <= strike) continue;
+    if (frames[i].friction > 0.0 && p.restitution <= 0.0) {
+      frictional.push_back(static_cast<int>(i));
+      continue;
+    }
     MarkStruck(p.a, p.b, bodies, struck);
     any = true;
   }
-  return any;
+  return MarkFreeStrikes(frictional, points, bodies, struck) || any;
 }
 
 bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock>& blocks,

@@ -36,7 +36,9 @@
 namespace contactsim {
 
 // Before the sub-steps: marks in `struck` (per body) the dynamic bodies of
-// the frictionless points approaching or parting faster than `strike`
+// the points approaching or parting faster than `strike` (with friction and
+// without restitution: in a component of the step's points that no static
+// or kinematic body holds)
 // (m/s; `frames` parallel to `points`) and returns whether the step needs
 // the stage at all (a strike, or a point with restitution).
 bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
