@@ -148,8 +148,8 @@ void SequentialImpacts::KeepTakingPartComponents() {
   auto root = [&](const ImpactRow& r) {
     return sets.Root(start_[local_[r.a]].inv_mass > 0.0 ? local_[r.a] : local_[r.b]);
   };
-  // a component held by a static or kinematic body takes part through a
-  // struck row with friction only with restitution (ImpactRow::struck)
+  // a struck row with friction makes its component take part only where no
+  // static or kinematic body holds it (ImpactRow::struck)
   std::vector<char> held(start_.size(), 0);
   for (const ImpactRow& r : rows_) {
     if (start_[local_[r.a]].inv_mass <= 0.0 || start_[local_[r.b]].inv_mass <= 0.0) held[root(r)] = 1;
@@ -220,7 +220,8 @@ double SequentialImpacts::SolveRow(int k, std::vector<SoftBody>& bodies) {
   // cone of its own)
   const TangentMass& m = tangent_[k];
   double l1 = r.t[0].lambda, l2 = r.t[1].lambda;
-  SlipFrictionStep(r.friction * std::abs(r.lambda - method_lambda_[k]), SlipOf(r.t[0], A, B), SlipOf(r.t[1], A, B), m.m1, m.m2, m.k12, &l1, &l2);
+  const double limit = r.friction * std::abs(r.lambda - method_lambda_[k]);
+  SlipFrictionStep(limit, SlipOf(r.t[0], A, B), SlipOf(r.t[1], A, B), m.m1, m.m2, m.k12, &l1, &l2);
   const double d1 = l1 - r.t[0].lambda, d2 = l2 - r.t[1].lambda;
   r.t[0].lambda = l1, r.t[1].lambda = l2;
   PushImpulse(d1, r.t[0].d, r.t[0].ia, r.t[0].ib, A, B);
