@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/push_impulse.h"
+#include "service/contact/slip_friction_step.h"
 #include "service/contact/union_find.h"
 
 namespace contactsim {
@@ -67,6 +68,41 @@ void SequentialImpacts::Push(double j, const ImpactRow& r) {
   PushImpulse(j, r.n, r.ia_n, r.ib_n, scratch_[local_[r.a]], scratch_[local_[r.b]]);
 }
 
+double SequentialImpacts::Slip(int k, int axis) const {
+  const ImpactTangent& t = rows_[k].t[axis];
+  const Velocity& A = scratch_[local_[rows_[k].a]];
+  const Velocity& B = scratch_[local_[rows_[k].b]];
+  return t.d.dot(B.v - A.v) + t.rb.dot(B.w) - t.ra.dot(A.w);
+}
+
+void SequentialImpacts::SetTangentMasses() {
+  tangent_.assign(rows_.size(), TangentMass());
+  for (size_t k = 0; k < rows_.size(); ++k) {
+    const ImpactRow& r = rows_[k];
+    if (r.friction <= 0.0) continue;
+    const double linear = start_[local_[r.a]].inv_mass + start_[local_[r.b]].inv_mass;
+    const auto K = [&](const ImpactTangent& x, const ImpactTangent& y, double lin) {
+      return lin + x.ra.dot(y.ia) + x.rb.dot(y.ib);
+    };
+    const double k11 = K(r.t[0], r.t[0], linear), k22 = K(r.t[1], r.t[1], linear);
+    tangent_[k] = {k11 > 0.0 ? 1.0 / k11 : 0.0, k22 > 0.0 ? 1.0 / k22 : 0.0, K(r.t[0], r.t[1], 0.0)};
+  }
+}
+
+double SequentialImpacts::CollideFriction(int k) {
+  const ImpactRow& r = rows_[k];
+  const TangentMass& m = tangent_[k];
+  double l1 = jt_[2 * k], l2 = jt_[2 * k + 1];
+  SlipFrictionStep(r.friction * j_[k], Slip(k, 0), Slip(k, 1), m.m1, m.m2, m.k12, &l1, &l2);
+  const double d1 = l1 - jt_[2 * k], d2 = l2 - jt_[2 * k + 1];
+  jt_[2 * k] = l1, jt_[2 * k + 1] = l2;
+  Velocity& A = scratch_[local_[r.a]];
+  Velocity& B = scratch_[local_[r.b]];
+  PushImpulse(d1, r.t[0].d, r.t[0].ia, r.t[0].ib, A, B);
+  PushImpulse(d2, r.t[1].d, r.t[1].ia, r.t[1].ib, A, B);
+  return std::max(m.m1 > 0.0 ? std::abs(d1) / m.m1 : 0.0, m.m2 > 0.0 ? std::abs(d2) / m.m2 : 0.0);
+}
+
 bool SequentialImpacts::Collide(int begin, int end, double threshold) {
   bool hit = false;
   for (int k = begin; k < end && !hit; ++k) hit = Approach(k) < -threshold;
@@ -79,6 +115,7 @@ bool SequentialImpacts::Collide(int begin, int end, double threshold) {
     const double u = Approach(k);
     rows_[k].target = u < -threshold ? -rows_[k].restitution * u : 0.0;
     j_[k] = 0.0;
+    jt_[2 * k] = jt_[2 * k + 1] = 0.0;
     scale = std::max(scale, -u);
   }
   for (int it = 0; it < kPairIterations; ++it) {
@@ -90,6 +127,9 @@ bool SequentialImpacts::Collide(int begin, int end, double threshold) {
       j_[k] = next;
       Push(d, r);
       worst = std::max(worst, std::abs(d) / r.mass_n);
+      // Coulomb friction within the cone of the collision's normal impulse
+      // (Guendelman, Bridson and Fedkiw 2003, the collision phase)
+      if (r.friction > 0.0) worst = std::max(worst, CollideFriction(k));
     }
     if (worst <= kTolerance * scale) break;
   }
@@ -108,9 +148,16 @@ void SequentialImpacts::KeepTakingPartComponents() {
   auto root = [&](const ImpactRow& r) {
     return sets.Root(start_[local_[r.a]].inv_mass > 0.0 ? local_[r.a] : local_[r.b]);
   };
+  // a struck row with friction makes its component take part only where no
+  // static or kinematic body holds it (ImpactRow::struck)
+  std::vector<char> held(start_.size(), 0);
+  for (const ImpactRow& r : rows_) {
+    if (start_[local_[r.a]].inv_mass <= 0.0 || start_[local_[r.b]].inv_mass <= 0.0) held[root(r)] = 1;
+  }
   std::vector<char> taking_part(start_.size(), 0);
-  for (size_t k = 0; k < rows_.size(); ++k) {
-    if (rows_[k].restitution > 0.0 || rows_[k].struck) taking_part[root(rows_[k])] = 1;
+  for (const ImpactRow& r : rows_) {
+    const int c = root(r);
+    if (r.restitution > 0.0 || (r.struck && (r.friction <= 0.0 || !held[c]))) taking_part[c] = 1;
   }
   size_t kept = 0;
   for (size_t k = 0; k < rows_.size(); ++k) {
@@ -130,6 +177,8 @@ bool SequentialImpacts::FindTargets(double threshold, const ImpactCascade& casca
   KeepTakingPartComponents();
   if (rows_.empty()) return false;
   j_.assign(rows_.size(), 0.0);
+  jt_.assign(2 * rows_.size(), 0.0);
+  SetTangentMasses();
   double fastest = 0.0;  // m/s
   for (size_t k = 0; k < rows_.size(); ++k) fastest = std::max(fastest, -Approach(static_cast<int>(k)));
   for (int pass = 0; pass < cascade.max_passes; ++pass) {
@@ -149,9 +198,14 @@ bool SequentialImpacts::FindTargets(double threshold, const ImpactCascade& casca
 
 namespace {
 
-// One Gauss-Seidel update of row r on the method's bodies; returns the
-// velocity change (m/s).
-double SolveRow(ImpactRow& r, std::vector<SoftBody>& bodies) {
+double SlipOf(const ImpactTangent& t, const SoftBody& A, const SoftBody& B) {
+  return t.d.dot(B.v - A.v) + t.rb.dot(B.w) - t.ra.dot(A.w) - t.held;
+}
+
+}  // namespace
+
+double SequentialImpacts::SolveRow(int k, std::vector<SoftBody>& bodies) {
+  ImpactRow& r = rows_[k];
   SoftBody& A = bodies[r.a];
   SoftBody& B = bodies[r.b];
   const double vn = r.n.dot(B.v - A.v) + r.rb_n.dot(B.w) - r.ra_n.dot(A.w);
@@ -159,16 +213,40 @@ double SolveRow(ImpactRow& r, std::vector<SoftBody>& bodies) {
   const double d = next - r.lambda;
   r.lambda = next;
   PushImpulse(d, r.n, r.ia_n, r.ib_n, A, B);
-  return std::abs(d) / r.mass_n;
+  double change = std::abs(d) / r.mass_n;
+  if (r.friction <= 0.0) return change;
+  // the slip the method's solve left, held within the cone of what this
+  // solve changed the normal impulse by (the method's friction used the
+  // cone of its own)
+  const TangentMass& m = tangent_[k];
+  double l1 = r.t[0].lambda, l2 = r.t[1].lambda;
+  const double limit = r.friction * std::abs(r.lambda - method_lambda_[k]);
+  SlipFrictionStep(limit, SlipOf(r.t[0], A, B), SlipOf(r.t[1], A, B), m.m1, m.m2, m.k12, &l1, &l2);
+  const double d1 = l1 - r.t[0].lambda, d2 = l2 - r.t[1].lambda;
+  r.t[0].lambda = l1, r.t[1].lambda = l2;
+  PushImpulse(d1, r.t[0].d, r.t[0].ia, r.t[0].ib, A, B);
+  PushImpulse(d2, r.t[1].d, r.t[1].ia, r.t[1].ib, A, B);
+  if (m.m1 > 0.0) change = std::max(change, std::abs(d1) / m.m1);
+  if (m.m2 > 0.0) change = std::max(change, std::abs(d2) / m.m2);
+  return change;
 }
-
-}  // namespace
 
 void SequentialImpacts::Solve(std::vector<SoftBody>& bodies) {
   double largest = 0.0;
   for (const ImpactRow& r : rows_) largest = std::max(largest, r.target);
   const double tolerance = std::max(kTolerance * largest, kRestTolerance * threshold_);
   const int count = static_cast<int>(rows_.size());
+  method_lambda_.resize(rows_.size());
+  for (int k = 0; k < count; ++k) {
+    ImpactRow& r = rows_[k];
+    method_lambda_[k] = r.lambda;
+    if (r.friction <= 0.0) continue;
+    for (ImpactTangent& t : r.t) {
+      t.lambda = 0.0;
+      t.held = 0.0;
+      t.held = SlipOf(t, bodies[r.a], bodies[r.b]);
+    }
+  }
   for (int pass = 0; pass < kMaxSolvePasses; ++pass) {
     double worst = 0.0;
     // a pair's points until they agree: a face's four corners are
@@ -179,7 +257,7 @@ void SequentialImpacts::Solve(std::vector<SoftBody>& bodies) {
       while (end < count && rows_[end].group == rows_[begin].group) ++end;
       for (int it = 0; it < kPairIterations; ++it) {
         double change = 0.0;
-        for (int k = begin; k < end; ++k) change = std::max(change, SolveRow(rows_[k], bodies));
+        for (int k = begin; k < end; ++k) change = std::max(change, SolveRow(k, bodies));
         if (it == 0) worst = std::max(worst, change);
         if (end - begin == 1 || change <= kPairTolerance * tolerance) break;
       }

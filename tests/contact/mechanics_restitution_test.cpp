@@ -246,21 +246,24 @@ std::vector<RowCase> RowCases() {
       }
     }
   }
-  // head-on rows with friction between the bodies: rows of 3 and 6,
-  // touching, every e, mu 0.5 and 1
+  // head-on rows with friction between the bodies: rows of 2 to 6,
+  // touching and 0.1 mm apart, every e, mu 0.5 and 1
   for (ShapeType shape : {ShapeType::kSphere, ShapeType::kBox}) {
-    for (int n : {3, 6}) {
-      for (double e : {1.0, 0.5, 0.0}) {
-        RowCase c;
-        c.shape = shape;
-        c.n = n;
-        c.e = e;
-        // each e meets every mass and speed over the four rows
-        c.friction = k % 2 == 0 ? 0.5 : 1.0;
-        c.mass = masses[(k + k / 3) % 3];
-        c.v0 = speeds[(k / 3) % 3];
-        cases.push_back(c);
-        ++k;
+    for (int n = 2; n <= 6; ++n) {
+      for (double gap : {0.0, 1e-4}) {
+        for (double e : {1.0, 0.5, 0.0}) {
+          RowCase c;
+          c.shape = shape;
+          c.n = n;
+          c.gap = gap;
+          c.e = e;
+          // each e meets every mass and speed and both coefficients along the rows
+          c.friction = k % 2 == 0 ? 0.5 : 1.0;
+          c.mass = masses[(k + k / 3) % 3];
+          c.v0 = speeds[(k / 3) % 3];
+          cases.push_back(c);
+          ++k;
+        }
       }
     }
   }

@@ -122,14 +122,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // springs: a frictional pair with e = 0 takes its tangential impulse
     // over the contact, which the stage's normal impulse would drop
     {"penalty", "row * e=0 mu=*", 0.16, "0.12-0.133 v0: simultaneous springs of 4 ms spread the strike over the row"},
-    // the same rows with friction between the bodies (mu 0.5 and 1), e = 0:
-    // the sequential-impacts stage takes frictionless points only, since its
-    // normal impulses come after the friction and would undo part of it
-    // (docs/physics.md, "Restitution across simultaneous contacts"), so these
-    // rows keep the method's own one relax pass a sub-step
-    {"soft", "row * e=0 mu=*", 0.127, "0.054-0.097 v0: the springs' push-out of the strike's overlap parts the row"},
-    {"soft_float", "row * e=0 mu=*", 0.12, "0.054-0.092 v0: as under double"},
-    {"xpbd", "row * e=0 mu=*", 0.188, "0.075-0.144 v0: its position push-out of the strike's overlap parts the row"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's
     // forces over w = d_hat / 50, so 50 times stiffer than a resting gap),

@@ -27,8 +27,8 @@ struct PinnedFloatRun {
 // layer lands after ~68 steps, and the rest keeps landing on it
 constexpr PinnedFloatRun kFloatRuns[] = {
     {"box_pyramid.pbtxt", 48, 0x28f8b671cb3bda9eull},
-    {"sphere_pile.pbtxt", 120, 0x05b31de1ad4d7771ull},
-    {"box_rain.pbtxt", 120, 0xe4b8247b90a23cf3ull},
+    {"sphere_pile.pbtxt", 120, 0x6bfadd605a194841ull},
+    {"box_rain.pbtxt", 120, 0xb6839297c062a708ull},
 };
 
 // Verifies the pinned hash at 4 and 8 lanes on 1, 2 and 4 threads.

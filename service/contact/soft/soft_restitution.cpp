@@ -28,7 +28,6 @@ void AddStartVelocities(const World& world, const std::vector<SoftBody>& bodies,
 }  // namespace
 
 bool SoftPointStruck(double threshold, const SoftPoint& p, const std::vector<SoftBody>& bodies) {
-  if (p.friction != 0.0) return false;
   if (p.impact_speed < -threshold) return true;
   return p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]) > threshold;
 }
@@ -68,13 +67,19 @@ void RestituteSoftPoints(double threshold, const World& world, const std::vector
       r.struck = SoftPointStruck(threshold, p, bodies);
       r.impact = p.impact_speed;
       r.lambda = p.total_n;
+      r.friction = p.restitution > 0.0 ? 0.0 : p.friction;
+      r.t[0] = {p.t1, p.ra_t1, p.rb_t1, p.ia_t1, p.ib_t1};
+      r.t[1] = {p.t2, p.ra_t2, p.rb_t2, p.ia_t2, p.ib_t2};
       impacts->AddRow(r);
     }
   }
   if (!impacts->FindTargets(threshold)) return;
   impacts->Solve(bodies);
   for (const ImpactRow& r : impacts->rows()) {
-    points[r.point].total_n = r.lambda;
+    SoftPoint& p = points[r.point];
+    p.total_n = r.lambda;
+    p.total_t1 += r.t[0].lambda;
+    p.total_t2 += r.t[1].lambda;
   }
 }
 

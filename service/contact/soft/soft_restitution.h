@@ -10,14 +10,16 @@
 // point that was apart at the step's start adds what its approach gained
 // over its gap (SoftPoint::impact_speed, free flight).
 //
-// Components without restitution take part where a frictionless point that
-// pushed met faster than the threshold or leaves the sub-steps parting
-// faster than it (SequentialImpacts' `struck`; the stage's impulses are
-// normal only and come after the friction, which they would undo in part:
-// docs/physics.md, "Restitution across simultaneous contacts"): their rows
-// then leave with e = 0's one-at-a-time answer, every pair of a struck row
-// at one speed, where one relax pass a sub-step left them parting by up to
-// 0.094 v0. The parting
+// Components without restitution take part where a point that pushed met
+// faster than the threshold or leaves the sub-steps parting faster than it
+// (SequentialImpacts' `struck`; a point with friction only where no static
+// body holds its component; docs/physics.md, "Restitution across
+// simultaneous contacts"): their rows then leave with e = 0's
+// one-at-a-time answer, every pair of a struck row at one speed, where one
+// relax pass a sub-step left them parting by up to 0.097 v0. The stage
+// takes the friction of the points without restitution (their step
+// totals gain its friction impulses); with restitution it stays normal
+// only, as its friction moved the restitution scenes' trajectories. The parting
 // is the springs' push-out of the overlap an impact left, which the relax
 // pass did not take back in the steps after it; a resting pyramid's points
 // part at most 0.13 of the threshold (0.0102 m/s against 2 |g| dt), and a

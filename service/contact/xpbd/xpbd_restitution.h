@@ -7,14 +7,14 @@
 // its strike down the row. The positional push lambda_n moved the bodies
 // as the velocity impulse lambda_n / h does, which the rows start from.
 //
-// Components without restitution take part too where a frictionless point
-// approached or parted faster than `strike` at the step's start (the
-// stage's impulses are normal only and come after the friction, which they
-// would undo in part: a rolling 71-gon struck at each edge turned at
-// omega r / v 0.975 instead of 0.997; docs/physics.md, "Restitution across
-// simultaneous contacts"): their rows leave with e = 0's one-at-a-time
-// answer, every pair of a struck row at one speed, where the velocity
-// pass's one sweep a sub-step left them parting by up to 0.14 v0.
+// Components without restitution take part too where a point approached
+// or parted faster than `strike` at the step's start (a point with
+// friction only where no static body holds its component, and then with
+// the stage's friction, which holds the slip the velocity pass left so as
+// not to undo it; docs/physics.md, "Restitution across simultaneous
+// contacts"): their rows leave with e = 0's one-at-a-time answer, every
+// pair of a struck row at one speed, where the velocity pass's one sweep a
+// sub-step left them parting by up to 0.144 v0.
 // A struck body keeps its component in the stage for the rest of the step,
 // while the sub-steps pass the impact's overlap down the row and push it
 // out. `strike` is max(threshold, 2 |g| dt), a step's gravity, not a
@@ -36,7 +36,9 @@
 namespace contactsim {
 
 // Before the sub-steps: marks in `struck` (per body) the dynamic bodies of
-// the frictionless points approaching or parting faster than `strike`
+// the points approaching or parting faster than `strike` (with friction and
+// without restitution: in a component of the step's points that no static
+// or kinematic body holds)
 // (m/s; `frames` parallel to `points`) and returns whether the step needs
 // the stage at all (a strike, or a point with restitution).
 bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
@@ -47,9 +49,9 @@ bool MarkXpbdStrikes(double strike, const std::vector<XpbdPoint>& points, const 
 // leaves their normals alone) and returns whether there are any; adds the
 // bodies of the rows that take part to `struck`.
 bool GatherXpbdImpacts(double h, double threshold, const std::vector<NormalBlock>& blocks,
-                       const std::vector<XpbdPoint>& points, const std::vector<XpbdPose>& predicted,
-                       const std::vector<SoftBody>& bodies, SequentialImpacts* impacts, std::vector<char>* deferred,
-                       std::vector<char>* struck);
+                       const std::vector<XpbdPoint>& points, const std::vector<XpbdPointFrame>& frames,
+                       const std::vector<XpbdPose>& predicted, const std::vector<SoftBody>& bodies,
+                       SequentialImpacts* impacts, std::vector<char>* deferred, std::vector<char>* struck);
 
 // After the velocity pass: drives the rows to their targets and adds the
 // impulses to the points' report.

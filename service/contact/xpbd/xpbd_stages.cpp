@@ -120,7 +120,7 @@ void XpbdMethod::RunSubsteps(World& world, int substeps, bool project_joints, Pa
   const Fn solve_joint_dynamics = [&](int, int) { joint_velocities.SolveVelocities(world, h, bodies_); };
   const bool joint_dynamics = HasJointDynamics(world);
   const Fn gather_impacts = [&](int, int) {
-    GatherXpbdImpacts(h, threshold, blocks_, points_, predicted_, bodies_, &impacts_, &deferred_, &struck_);
+    GatherXpbdImpacts(h, threshold, blocks_, points_, frames_, predicted_, bodies_, &impacts_, &deferred_, &struck_);
   };
   const int sweeps = params_.velocity_iterations;
   std::vector<Fn> velocity_sweeps;
