@@ -228,41 +228,31 @@ std::vector<RowCase> RowCases() {
   const double masses[] = {0.1, 1.0, 10.0}, speeds[] = {0.5, 2.0, 5.0};
   std::vector<RowCase> cases;
   int k = 0;
-  for (ShapeType shape : {ShapeType::kSphere, ShapeType::kBox}) {
-    for (int n = 2; n <= 6; ++n) {
-      for (double gap : {0.0, 1e-4}) {
-        for (double e : {1.0, 0.5, 0.0}) {
-          RowCase c;
-          c.shape = shape;
-          c.n = n;
-          c.gap = gap;
-          c.e = e;
-          // e = 0 falls on every third k: it takes the masses in turn along the rows
-          c.mass = masses[(e == 0.0 ? k / 3 : k) % 3];
-          c.v0 = speeds[(k / 3 + k) % 3];
-          cases.push_back(c);
-          ++k;
-        }
-      }
-    }
-  }
-  // head-on rows with friction between the bodies: rows of 2 to 6,
-  // touching and 0.1 mm apart, every e, mu 0.5 and 1
-  for (ShapeType shape : {ShapeType::kSphere, ShapeType::kBox}) {
-    for (int n = 2; n <= 6; ++n) {
-      for (double gap : {0.0, 1e-4}) {
-        for (double e : {1.0, 0.5, 0.0}) {
-          RowCase c;
-          c.shape = shape;
-          c.n = n;
-          c.gap = gap;
-          c.e = e;
-          // each e meets every mass and speed and both coefficients along the rows
-          c.friction = k % 2 == 0 ? 0.5 : 1.0;
-          c.mass = masses[(k + k / 3) % 3];
-          c.v0 = speeds[(k / 3) % 3];
-          cases.push_back(c);
-          ++k;
+  // first the frictionless rows, then the same rows with friction between
+  // the bodies (mu 0.5 and 1 in turn)
+  for (bool friction : {false, true}) {
+    for (ShapeType shape : {ShapeType::kSphere, ShapeType::kBox}) {
+      for (int n = 2; n <= 6; ++n) {
+        for (double gap : {0.0, 1e-4}) {
+          for (double e : {1.0, 0.5, 0.0}) {
+            RowCase c;
+            c.shape = shape;
+            c.n = n;
+            c.gap = gap;
+            c.e = e;
+            if (!friction) {
+              // e = 0 falls on every third k: it takes the masses in turn along the rows
+              c.mass = masses[(e == 0.0 ? k / 3 : k) % 3];
+              c.v0 = speeds[(k / 3 + k) % 3];
+            } else {
+              // each e meets every mass and speed and both coefficients along the rows
+              c.friction = k % 2 == 0 ? 0.5 : 1.0;
+              c.mass = masses[(k + k / 3) % 3];
+              c.v0 = speeds[(k / 3) % 3];
+            }
+            cases.push_back(c);
+            ++k;
+          }
         }
       }
     }

@@ -12,22 +12,13 @@
 
 #include "service/contact/penalty/penalty_method.h"
 #include "service/physics/body_settings.h"
+#include "tests/contact/method_sim.h"
 #include "tests/contact/test_bodies.h"
 
 namespace contactsim {
 namespace {
 
-struct Sim {
-  World world;
-  CollisionDetector detector;
-  std::unique_ptr<ContactMethod> method = std::make_unique<PenaltyMethod>();
-  ContactSet contacts;
-  explicit Sim(const ParamMap& params = {}) {
-    const Status st = method->SetParams(params);
-    EXPECT_TRUE(st.ok()) << st.message();
-  }
-  StepStats Step() { return method->Step(world, detector, &contacts); }
-};
+using testing::MethodSim;
 
 BodyId AddBall(World& world, double x, double v, double mass, double e, double friction) {
   BodySettings s;
@@ -53,7 +44,7 @@ TEST(PenaltyImpactsTest, HeadOnPairLeavesWithNewtonsLawAtEveryMassRatio) {
   constexpr double kTolerance = 1e-9;  // of v0: one impulse in double precision
   for (double ratio : {1.0, 3.0, 100.0, 0.01}) {
     for (double e : {0.0, 0.3, 0.7, 1.0}) {
-      Sim sim;
+      MethodSim sim("penalty");
       sim.world.gravity.setZero();
       const double ma = 1.0, mb = ma / ratio;
       const BodyId a = AddBall(sim.world, 0.0, kV0, ma, e, 0.0);
@@ -79,7 +70,7 @@ TEST(PenaltyImpactsTest, HeadOnPairLeavesWithNewtonsLawAtEveryMassRatio) {
 // end bit for bit where they end with impacts = springs.
 TEST(PenaltyImpactsTest, FrictionalWorldWithoutRestitutionIsLeftToTheSprings) {
   auto run = [](const std::string& impacts) {
-    Sim sim({{"impacts", impacts}});
+    MethodSim sim("penalty", {{"impacts", impacts}});
     testing::AddGround(sim.world, 0.0, 0.5);
     const BodyId box = testing::AddBox(sim.world, Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 0.3), 0.0, 0.5);
     const BodyId ball = testing::AddSphere(sim.world, 0.1, Vec3(1, 0, 0.1), 0.0, 0.5, Vec3(1, 0, 0));
