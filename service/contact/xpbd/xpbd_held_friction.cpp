@@ -204,7 +204,8 @@ bool SolveHeldXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodie
   }
   patch.sticking = false;
   const Vec3 lambda_t = patch.lambda_t + dl_f[0] * patch.t1 + dl_f[1] * patch.t2;
-  if (!(lambda_t.norm() <= mu * held_sum)) {  // beyond the cone: the patch slides
+  // the cone over the step (xpbd_patch_friction.h)
+  if (!((patch.step_lambda_t + lambda_t).norm() <= mu * (patch.step_pushed + held_sum))) {  // the patch slides
     patch.origin = offset;
     return true;
   }
@@ -212,6 +213,7 @@ bool SolveHeldXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodie
   if (rows.twist && !twist) patch.origin[2] = offset[2];  // it spins: hold the translation only
   patch.lambda_t = lambda_t;
   patch.lambda_twist += dl_f[2];
+  patch.pushed = held_sum;
   ApplyHeldStep(world, bodies, patch, idx, count, dl_f, dl_n, points);
   return true;
 }

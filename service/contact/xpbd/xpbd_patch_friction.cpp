@@ -140,6 +140,14 @@ void RefreshJointedXpbdPatch(const std::vector<XpbdPoint>& points, const std::ve
 }
 
 void BeginXpbdPatch(XpbdPatch* patch) {
+  if (patch->sticking && !patch->jointed && !patch->compound) {
+    patch->step_lambda_t += patch->lambda_t;
+    patch->step_pushed += patch->pushed;
+  } else {
+    patch->step_lambda_t.setZero();
+    patch->step_pushed = 0.0;
+  }
+  patch->pushed = 0.0;
   patch->lambda_t.setZero();
   patch->lambda_twist = 0.0;
   patch->clamped = false;
@@ -242,7 +250,9 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, c
   }
   Vec3 lambda_t = patch.lambda_t + dl[0] * patch.t1 + dl[1] * patch.t2;
   double twist_step = dl[2];
-  if (lambda_t.norm() > mu * pushed) {  // beyond the cone: the patch slides
+  // the cone over the step for a patch of free bodies (header); the step's
+  // sums stay zero for a jointed or compound patch
+  if ((patch.step_lambda_t + lambda_t).norm() > mu * (patch.step_pushed + pushed)) {  // the patch slides
     if (!patch.jointed) {
       patch.origin = offset;
       return;
@@ -261,6 +271,7 @@ void SolveXpbdPatchFriction(World& world, const std::vector<SoftBody>& bodies, c
   const Vec3 P = lambda_t - patch.lambda_t;
   const Vec3& n = p0.n;
   patch.lambda_t = lambda_t;
+  patch.pushed = pushed;
   patch.lambda_twist += twist_step;
   if (patch.jointed) {
     articulation.Displace(world, bodies, p0.a, -P, -(patch.ra.cross(P) + twist_step * n));

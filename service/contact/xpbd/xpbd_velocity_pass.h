@@ -36,10 +36,12 @@
 namespace contactsim {
 
 // A block's brakes over the sweeps of a sub-step's velocity pass: what
-// BrakeXpbdPatch has spent (t1, t2, twist) and applied (N s on B, world).
+// BrakeXpbdPatch has spent (t1, t2, twist) and applied (N s on B, world),
+// and the normal impulse the pass's restitution added to the pushes.
 struct XpbdPassBlock {
   Vec3 spent = Vec3::Zero();
   Vec3 braked = Vec3::Zero();
+  double restitution = 0.0;  // N s, summed over the points and sweeps
 };
 
 // Which of a sub-step's velocity sweeps this is: the first starts the
