@@ -17,6 +17,10 @@ const ParamTable<BarrierParams>& BarrierParamTable() {
       IntParam("max_iterations", &P::max_iterations, 1, 1000, "", "Newton iterations per step at most"),
       DoubleParam("ccd_fraction", &P::ccd_fraction, 0.01, 0.9, "",
                   "a line-search step keeps each distance above this fraction of its start"),
+      IntParam("friction_lag_passes", &P::friction_lag_passes, 1, 100, "",
+               "minimisations a step at most, each with friction lagged at the last one's solution"),
+      DoubleParam("friction_lag_tolerance", &P::friction_lag_tolerance, 0.0, 1.0, "",
+                  "the lag has settled when no pair's mu lambda moves by more than this fraction of the largest"),
   };
   return table;
 }

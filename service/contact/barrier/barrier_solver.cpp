@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 
 #include "service/contact/barrier/additive_ccd.h"
@@ -200,6 +201,25 @@ void BarrierSolver::Lag(const std::vector<Entry>& entries) {
   }
 }
 
+bool BarrierSolver::LagSettled(const std::vector<Friction>& used, const std::vector<Friction>& now,
+                               double tolerance) {
+  // per pair of bodies, the sum of its pairs' mu lambda: the primitive
+  // pairs within reach come and go at the solution while the bodies' load
+  // on each other stays
+  std::map<std::pair<int, int>, double> change;
+  double largest = 0.0;
+  for (const Friction& f : now) {
+    double& sum = change[{f.a, f.b}];
+    sum += f.mu_lambda;
+    largest = std::max(largest, sum);
+  }
+  for (const Friction& f : used) change[{f.a, f.b}] -= f.mu_lambda;
+  for (const auto& [bodies, delta] : change) {
+    if (std::abs(delta) > tolerance * largest) return false;
+  }
+  return true;
+}
+
 void BarrierSolver::LagFromState(const World& world) {
   friction_.clear();
   std::map<BodyId, int> index;
@@ -386,19 +406,24 @@ BarrierStepResult BarrierSolver::Step(World& world, const BarrierParams& params,
   std::vector<Entry> line;
   // turning bodies start at their prediction (affine_prediction.h)
   StartTurningBodiesAtPrediction(&step, &line, &entries, &last_min);
-  // A step with a restarted body has no lag from a previous step: its
-  // first lambda comes from the start of the step, which for bodies placed
-  // touching (shifted pairs at 1e-2 d_hat) is many times their weight. As
-  // IPC's lagged iterations (sec. 5), the minimisation is then repeated once
-  // from its solution with the friction lagged there.
-  const int passes = restarted && !friction_.empty() ? 2 : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    if (pass > 0) {
-      ActivateAll();
-      Collect(nullptr, &entries);
-      Lag(entries);
-    }
+  // IPC's lagged iterations (sec. 5): the minimisation is repeated from its
+  // solution with the friction lagged there until the lag settles
+  // (barrier_params.h). A step with a restarted body has no lag from a
+  // previous step: its first lambda comes from the start of the step, which
+  // for bodies placed touching (shifted pairs at 1e-2 d_hat) is many times
+  // their weight, so it always takes a second pass.
+  const int passes = std::max(params.friction_lag_passes, restarted ? 2 : 1);
+  for (int pass = 1;; ++pass) {
     Minimise(&entries, &last_min, &result);
+    if (friction_.empty() || pass >= passes) break;
+    ActivateAll();
+    Collect(nullptr, &entries);
+    std::vector<Friction> used = std::move(friction_);
+    Lag(entries);
+    if (!(restarted && pass == 1) && LagSettled(used, friction_, params.friction_lag_tolerance)) {
+      friction_ = std::move(used);  // the friction the solution was found with
+      break;
+    }
   }
 
   // every pair within d_hat at the end, for the contacts and the lag

@@ -287,6 +287,9 @@ class BarrierSolver {
                  BarrierStepResult* result) const;
   // Lagged friction of the pairs in `entries` at the bodies' q.
   void Lag(const std::vector<Entry>& entries);
+  // Whether the lag `now` at a solution is the lag `used` to find it: each
+  // pair of bodies' sum of mu lambda within `tolerance` of the largest.
+  static bool LagSettled(const std::vector<Friction>& used, const std::vector<Friction>& now, double tolerance);
   // The previous step's lagged friction, for bodies still present.
   void LagFromState(const World& world);
   // Stores the bodies' affine state and the end-of-step friction lag.
