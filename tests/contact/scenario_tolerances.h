@@ -148,15 +148,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "0.59-1.1 / 1.6-1.8 cm/s (wall / stack) at 0.01-0.5 mm: a placed overlap is its springs' rest depth, pushed out "
      "at overlap_push_speed (penalty_row.h), so the bodies fall into the springs as when placed touching"},
     {"soft", "* overlap=0.5mm speed", 0.05, "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
-    // long chains (joint_chain_scenarios_test.cpp): a 100-link chain whose
-    // masses grow tenfold to its free end gains energy under lcp_pgs at
-    // the default step and none at dt / 2: the work lambda . rhs of the
-    // joint rows' velocity-product targets -(h/2) Jdot qdot in the steps
-    // where the free end whips (docs/methods/lcp.md, "Long chains")
-    {"lcp_pgs", "100 links growing from * deg energy rise", 0.029,
-     "rises 2.19% of the swing's energy from the horizontal within 1 s (0.51% from 45 deg; impulse 0.86%), "
-     "75 J of it in one step, at step 230 of 240, in the exact velocity solve: the product targets' work "
-     "lambda . rhs = 180 J there; without them 0, but a parallel swing's boxes creep 1.2-2.9 mm"},
     // random convex hulls dropped on their most stable face
     // (resting_hull_scenarios_test.cpp), not traced further
     {"penalty", "hull of 5 points seed 1 e=0 * speed", 0.015,

@@ -94,6 +94,9 @@ class LcpMethod : public ContactMethod {
   // Step 6 and 7 above.
   void AdvancePositions(World& world, ParallelRunner& runner);
   void Solve(const World& world, std::vector<SolverBody>& bodies, ParallelRunner& runner);
+  // Solve on bodies_, again without the joint rows' velocity products where
+  // they made it add kinetic energy (lcp_method.cpp).
+  void SolveWithinEnergy(const World& world, size_t first_joint_row, ParallelRunner& runner);
   // warm_start_ from the rows, less the impacts' impulses
   void StoreWarmStart(ParallelRunner& runner);
   // where the contacts' friction acts with patch_torsion, else null (the contact points)
