@@ -81,33 +81,4 @@ bool MarkJointedContacts(const std::vector<Row>& rows, const std::vector<int>& c
   return MarkJointedContacts(rows, component.size(), [&component](int i) { return component[i] >= 0; }, marked);
 }
 
-// Whether every component of dynamic bodies (joined by `joint_rows` and
-// `contacts`, anything with body indices a and b, -1 the world) that holds
-// a `marked` body has at most `max_rows` rows, counting `per_contact` rows
-// a contact and one a joint row: whether the direct solve takes every one
-// of them (subspace_solve.h, SubspaceOptions::max_rows, counts them so).
-template <class JointRow, class Row, class Body>
-bool MarkedComponentsFit(const std::vector<JointRow>& joint_rows, const std::vector<Row>& contacts, int per_contact,
-                         const std::vector<Body>& bodies, const std::vector<char>& marked, int max_rows) {
-  const int n = static_cast<int>(bodies.size());
-  auto dynamic = [&bodies](int i) { return i >= 0 && bodies[i].inv_mass > 0.0; };
-  UnionFind sets(n);
-  auto join = [&](const auto& r) {
-    if (dynamic(r.a) && dynamic(r.b)) sets.Join(r.a, r.b);
-  };
-  for (const JointRow& r : joint_rows) join(r);
-  for (const Row& r : contacts) join(r);
-  std::vector<int> count(n, 0);
-  auto add = [&](const auto& r, int rows) {
-    const int body = dynamic(r.a) ? r.a : dynamic(r.b) ? r.b : -1;
-    if (body >= 0) count[sets.Root(body)] += rows;
-  };
-  for (const JointRow& r : joint_rows) add(r, 1);
-  for (const Row& r : contacts) add(r, per_contact);
-  for (int i = 0; i < n; ++i) {
-    if (marked[i] && dynamic(i) && count[sets.Root(i)] > max_rows) return false;
-  }
-  return true;
-}
-
 }  // namespace contactsim

@@ -184,7 +184,6 @@ class ImpulseMethod : public ContactMethod {
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four
   std::vector<ConstraintRow> normal_rows_;  // the rows for the direct solve
   std::vector<char> jointed_contacts_;      // per body: jointed and touched (jointed_contacts.h)
-  std::vector<char> block_jointed_;         // per block of the contact sweeps: on a jointed body
   SubspaceSolver subspace_;
   // Contact-phase force (N: normal, and tangent along the contact frame's
   // PerpendicularBasis) of each contact point of the last sub-step, by pair

@@ -12,7 +12,6 @@
 
 #include "service/contact/colour_stages.h"
 #include "service/contact/impulse/impulse_method.h"
-#include "service/contact/jointed_contacts.h"
 
 namespace contactsim {
 
@@ -28,17 +27,6 @@ using Fn = ParallelRunner::StageFn;
 // let a rocking mode grow from round-off, 12 mm in 10 s at the default
 // velocity_tolerance (docs/physics.md, "impulse on threads").
 constexpr int kMinColouredGroups = 256;
-
-// Sweeps before the direct solve of the jointed components takes over
-// from sweeps that have not converged there (SweepContacts). The sweeps
-// give that solve its active set; joint and contact blocks in turn
-// converge at about m_link / m_load a sweep (jointed_contacts.h), and ten
-// iiwas touching the ground and one another left every arm's joint rows
-// more than 1e-3 m/s off after each of 30 sweeps. Ten sweeps, then the
-// solve: 22.9M instructions a step of those arms against 30.6M after 30;
-// five leave a worse active set, whose solve took 26.3M (BENCHMARKS.md,
-// "Arm speed: the impact search's depth bound and the jointed sweeps").
-constexpr int kSweepsBeforeJointedSolve = 10;
 
 double Largest(const std::vector<double>& values) {
   return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
@@ -195,11 +183,6 @@ int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<Conta
   // the joints solved exactly after every sweep only where a contact acts
   // on a jointed body, and none on two of one articulated body
   // (JointVelocityBlock::SelfContact)
-  // With the joints interleaved, the sweeps may stop short once the blocks
-  // on no jointed body have converged (after kSweepsBeforeJointedSolve):
-  // the rest is the direct solve's (SolveMassRatios), when it takes every
-  // component that holds a jointed body (direct_max_rows).
-  bool direct_after = false;
   const Fn build_joints = [&](int, int) {
     joints_.Build(world, solver_, h);
     bool touched = false, self = false;
@@ -208,23 +191,6 @@ int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<Conta
       self = self || joints_.SelfContact(row.a, row.b);
     }
     *interleave = touched && !self;
-    direct_after = *interleave &&
-                   MarkJointedContacts(rows, solver_.size(), [this](int i) { return joints_.Jointed(i); },
-                                       &jointed_contacts_) &&
-                   MarkedComponentsFit(joints_.rows(), rows, 3, solver_, jointed_contacts_, params_.direct_max_rows);
-    block_jointed_.assign(blocks, 0);
-    for (int b = 0; b < blocks && direct_after; ++b) {
-      const ContactRow& row = rows[blocks_[b].first];
-      block_jointed_[b] = joints_.Jointed(row.a) || joints_.Jointed(row.b);
-    }
-  };
-  // the largest change of the last sweep on the blocks of no jointed body
-  const auto unjointed_worst = [&] {
-    double worst = 0.0;
-    for (int b = 0; b < blocks; ++b) {
-      if (!block_jointed_[b]) worst = std::max(worst, block_worst_[b]);
-    }
-    return worst;
   };
   const Fn sweep = [&](int i, int j) {
     if (done) return;
@@ -235,8 +201,6 @@ int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<Conta
     const double worst = std::max(Largest(block_worst_), *interleave ? joints_.Solve(solver_) : 0.0);
     ++sweeps;
     done = *converged = worst < params_.velocity_tolerance;
-    done = done || (direct_after && sweeps >= kSweepsBeforeJointedSolve &&
-                    unjointed_worst() < params_.velocity_tolerance);
   };
   const auto warm = [&](ColourStages& list) {
     list.AddColours(warm_start, colours_, blocks);

@@ -46,7 +46,6 @@ class JointVelocityBlock {
   // (AddDriveImpulses, joint_rows.h).
   void AddDriveImpulses(std::vector<double>* impulses) const;
   bool empty() const { return rows_.empty(); }
-  const std::vector<ConstraintRow>& rows() const { return rows_; }
   // True when a contact joins two bodies (solver indices a, b) of one
   // jointed component: an articulated body touching itself, whose contact
   // and joint rows can ask for motions no velocity meets. Solved in turn,
