@@ -16,8 +16,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // for bodies of metres, and the bound is kept above either
 constexpr double kRoundOff = 1e-9;
 
-// max over one box, hull or plane of u.p (world); +infinity where unbounded
-// or unknown
+// max over one box or hull of u.p (world); +infinity for another shape
+// (the pair functions then give no bound)
 double PieceSupport(const Shape& shape, const Vec3& x, const Quat& q, const Vec3& u) {
   switch (shape.type) {
     case ShapeType::kBox: return u.dot(x) + shape.half_extents.dot((q.conjugate() * u).cwiseAbs());
