@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "service/collision/depth_bound.h"
 #include "service/collision/motion_bound.h"
 #include "service/collision/narrowphase.h"
 #include "service/collision/time_of_impact.h"
@@ -298,7 +299,9 @@ void ImpulseMethod::FindTouching(const ContactSet& contacts) {
   // sort otherwise keeps each pair's contacts in their order, so the
   // deepest is taken in the same order either way
   touching_.clear();
-  for (const Contact& c : contacts) touching_.push_back({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth});
+  for (const Contact& c : contacts) {
+    touching_.push_back({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth, c.a < c.b ? c.normal : Vec3(-c.normal)});
+  }
   const auto by_pair = [](const Touching& l, const Touching& r) { return l.pair < r.pair; };
   if (!std::is_sorted(touching_.begin(), touching_.end(), by_pair)) {
     std::stable_sort(touching_.begin(), touching_.end(), by_pair);
@@ -306,7 +309,7 @@ void ImpulseMethod::FindTouching(const ContactSet& contacts) {
   size_t kept = 0;
   for (size_t k = 0; k < touching_.size(); ++k) {
     if (kept > 0 && touching_[kept - 1].pair == touching_[k].pair) {
-      touching_[kept - 1].depth = std::max(touching_[kept - 1].depth, touching_[k].depth);
+      if (touching_[k].depth > touching_[kept - 1].depth) touching_[kept - 1] = touching_[k];
     } else {
       touching_[kept++] = touching_[k];
     }
@@ -339,6 +342,10 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
       const bool apart = was == touching_.end() || was->pair != p;
       if (!apart && ClosingSpeedBound(bodies[p.first], bodies[p.second], h) * h <= margin) continue;
       const double start = apart ? 0.0 : std::max(0.0, was->depth);
+      // nor when the pair overlaps along its deepest start contact's normal
+      // by too little for any contact to be that deep (depth_bound.h): the
+      // same answer as the full test for a look along one axis
+      if (!apart && ContactDepthBound(bodies[p.first], bodies[p.second], was->normal) <= start + margin) continue;
       scratch.clear();
       // a pair the detection found apart is usually still apart along the
       // axis it stored (separating_axis_cache.h), which answers in one axis

@@ -172,6 +172,7 @@ class ImpulseMethod : public ContactMethod {
   struct Touching {
     BodyPair pair;  // body indices, lower first
     double depth;   // m, of the pair's deepest contact
+    Vec3 normal;    // unit, world, that contact's normal from pair.first to pair.second
   };
   std::vector<Touching> touching_;  // the pairs in contact at the sub-step's start, by pair
   JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps

@@ -117,10 +117,16 @@ double JointVelocityBlock::Solve(std::vector<SolverBody>& bodies, int max_limit_
   Eigen::VectorXd& b = b_;
   Eigen::VectorXd& x = x_;
   b.resize(n);
+  // the first pass's right-hand side is the rows' error before the solve
   double worst = 0.0;
-  for (int k = 0; k < n; ++k) worst = std::max(worst, std::abs(RowError(rows_[k], bodies, total_[k])));
+  for (int k = 0; k < n; ++k) {
+    b[k] = RowError(rows_[k], bodies, total_[k]);
+    worst = std::max(worst, std::abs(b[k]));
+  }
   for (int pass = 0;; ++pass) {
-    for (int k = 0; k < n; ++k) b[k] = RowError(rows_[k], bodies, total_[k]);
+    if (pass > 0) {
+      for (int k = 0; k < n; ++k) b[k] = RowError(rows_[k], bodies, total_[k]);
+    }
     if (pass == 0 && factored_) {
       factor_.Solve(blocks_, b, &x);  // every row kept: the system factored at Build
     } else {
