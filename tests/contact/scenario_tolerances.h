@@ -114,14 +114,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // the same compliance and gaps as the 0.2 m cubes
     {"penalty", "stack n=8 size=* height", 7.5e-4, "0.57 mm lower at every size and mass: its compliance, as above"},
     {"soft", "stack n=8 size=* height", 1.4e-3, "1.0 mm lower at every size and mass: its springs, as above"},
-    // a row of touching or 0.1 mm apart bodies struck by one more
-    // (MechanicsStruckRowTest, line_impacts.h), worst |v - v_analytic| / v0
-    // over the row lengths 2-6; docs/physics.md, "Restitution across
-    // simultaneous contacts". With friction between the bodies and e = 0,
-    // penalty's impact stage (penalty_impacts.h) leaves the rows to the
-    // springs: a frictional pair with e = 0 takes its tangential impulse
-    // over the contact, which the stage's normal impulse would drop
-    {"penalty", "row * e=0 mu=*", 0.16, "0.12-0.133 v0: simultaneous springs of 4 ms spread the strike over the row"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's
     // forces over w = d_hat / 50, so 50 times stiffer than a resting gap),
