@@ -129,7 +129,12 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "4.913-4.945 m/s^2 against mu g 4.905 (+0.17 to +0.82%), the same on its plane: placed pairs, as slide m=*"},
     {"barrier", "surface ramp 20 deg down", 0.033, "1.487 against 1.512 m/s^2 (-1.6%), the same on its plane"},
     // bodies placed touching or overlapping (placement_contact_test.cpp):
-    // moved from the placement, fastest point at any step
+    // moved from the placement, fastest point at any step. penalty's
+    // load-aware start (preload = placed, penalty_preload.h) takes the wall
+    // and the stacks to 0.06-0.31 cm/s touching and from impulse, but rolls
+    // the pile's capsule 0.96-1.04 mm, so it is off; overlaps of 0.1 mm and
+    // more rise at overlap_push_speed a course, 1.5 cm/s at the top of three,
+    // with either start (docs/methods/penalty.md, "Load-aware start")
     {"penalty", "* overlap=0mm speed", 0.03,
      "2.2 cm/s (stack of three), 1.2 cm/s (wall): its springs start unloaded, so a placed stack falls into them "
      "and rings at pi / contact_time, about g contact_time / pi = 1.25 cm/s per course of load"},

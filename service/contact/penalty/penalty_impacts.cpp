@@ -63,6 +63,31 @@ bool FreeOnly(const PenaltyRow& row) { return row.restitution == 0.0 && row.mu >
 
 }  // namespace
 
+bool MayHoldImpact(const World& world, const std::vector<PenaltyRow>& rows) {
+  bool free_only = false;
+  for (const PenaltyRow& row : rows) {
+    if (!MayBeStruck(row)) continue;
+    if (!FreeOnly(row)) return true;
+    free_only = true;
+  }
+  if (!free_only) return false;
+  // components over every engaged row: each sub-step's lie within them
+  const auto& bodies = world.bodies();
+  UnionFind sets(static_cast<int>(bodies.size()));
+  for (const PenaltyRow& row : rows) {
+    if (row.engaged && bodies[row.a].IsDynamic() && bodies[row.b].IsDynamic()) sets.Join(row.a, row.b);
+  }
+  auto root = [&](const PenaltyRow& row) { return sets.Root(bodies[row.a].IsDynamic() ? row.a : row.b); };
+  std::vector<char> held(bodies.size(), 0);
+  for (const PenaltyRow& row : rows) {
+    if (row.engaged && !(bodies[row.a].IsDynamic() && bodies[row.b].IsDynamic())) held[root(row)] = 1;
+  }
+  for (const PenaltyRow& row : rows) {
+    if (MayBeStruck(row) && !held[root(row)]) return true;
+  }
+  return false;
+}
+
 double PenaltyImpactThreshold(const World& world, double impact_threshold) {
   return std::max(impact_threshold, 2.0 * world.gravity.norm() * world.dt);
 }
