@@ -33,7 +33,9 @@ struct AnchorState {
   Vec3 stretch = Vec3::Zero();  // m, world, tangent: B's contact point minus the anchor
   bool penetrating = false;     // depth > 0 in the step that stored it
   double impact_speed = 0.0;    // m/s, approach speed when the contact began
-  double rest_depth = 0.0;      // m: > 0 the overlap the pair was placed with, left of it (penalty_row.h); < 0 a placed start's compression (penalty_preload.h)
+  // m: > 0 the overlap the pair was placed with, left of it (penalty_row.h);
+  // < 0 a placed start's compression (penalty_preload.h)
+  double rest_depth = 0.0;
 };
 
 class FrictionAnchors {
