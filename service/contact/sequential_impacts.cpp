@@ -133,7 +133,11 @@ bool SequentialImpacts::Collide(int begin, int end, double threshold) {
     }
     if (worst <= kTolerance * scale) break;
   }
-  for (int k = begin; k < end; ++k) rows_[k].phase += j_[k];
+  for (int k = begin; k < end; ++k) {
+    rows_[k].phase += j_[k];
+    rows_[k].t[0].phase += jt_[2 * k];
+    rows_[k].t[1].phase += jt_[2 * k + 1];
+  }
   return true;
 }
 

@@ -69,6 +69,7 @@ struct ImpactTangent {
   Vec3 d, ra, rb, ia, ib;
   double lambda = 0.0;  // N s, out: step 3's friction impulse along d
   double held = 0.0;    // m/s, out: the slip along d step 3 holds (the method's)
+  double phase = 0.0;   // N s, out: step 1's friction impulse along d, summed over its collisions
 };
 
 struct ImpactRow {

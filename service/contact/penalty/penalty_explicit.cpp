@@ -107,9 +107,9 @@ class ExplicitStepper {
       if (row.engaged && row.depth > row.anchor.rest_depth) pair_touching_[row.pair] = 1;
     }
     pair_damping_.Prepare(world, rows);
-    // a step whose rows can hold no impact (every one with friction and
-    // restitution 0, or restitution = off) runs none of the stage
-    if (impacts_ != nullptr && std::none_of(rows.begin(), rows.end(), MayBeStruck)) impacts_ = nullptr;
+    // a step whose rows can hold no impact (restitution = off, or friction
+    // and e = 0 in held components only) runs none of the stage
+    if (impacts_ != nullptr && !MayHoldImpact(world, rows)) impacts_ = nullptr;
   }
 
   void Substep(ExplicitStats* stats) {

@@ -19,14 +19,20 @@ void FrictionAnchors::Keep(const Contact& c, const AnchorState& state) {
   next_[MakeKey(c)] = s;
 }
 
-double FrictionAnchors::PairRestDepth(BodyId a, BodyId b) const {
+bool FrictionAnchors::PairRestDepth(BodyId a, BodyId b, double* rest) const {
   const BodyId lo = std::min(a, b), hi = std::max(a, b);
-  double rest = -1.0;
+  int points = 0;
+  double largest = 0.0, sum = 0.0;
   for (auto it = current_.lower_bound(Key{lo, hi, 0});
        it != current_.end() && std::get<0>(it->first) == lo && std::get<1>(it->first) == hi; ++it) {
-    rest = std::max(rest, it->second.rest_depth);
+    const double r = it->second.rest_depth;
+    largest = points == 0 ? r : std::max(largest, r);
+    sum += r;
+    ++points;
   }
-  return rest;
+  if (points == 0) return false;
+  *rest = largest >= 0.0 ? largest : sum / points;
+  return true;
 }
 
 void FrictionAnchors::Commit() {

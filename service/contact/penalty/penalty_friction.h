@@ -33,7 +33,9 @@ struct AnchorState {
   Vec3 stretch = Vec3::Zero();  // m, world, tangent: B's contact point minus the anchor
   bool penetrating = false;     // depth > 0 in the step that stored it
   double impact_speed = 0.0;    // m/s, approach speed when the contact began
-  double rest_depth = 0.0;      // m, >= 0: the overlap the pair was placed with, left of it (penalty_row.h)
+  // m: > 0 the overlap the pair was placed with, left of it (penalty_row.h);
+  // < 0 a placed start's compression (penalty_preload.h)
+  double rest_depth = 0.0;
 };
 
 class FrictionAnchors {
@@ -43,9 +45,11 @@ class FrictionAnchors {
   bool Find(const Contact& c, AnchorState* state) const;
   // Keeps c's state for the next step; contacts not kept are dropped by Commit.
   void Keep(const Contact& c, const AnchorState& state);
-  // The largest rest depth among the points of the pair of bodies a, b kept
-  // in the last step, or -1 when none was kept.
-  double PairRestDepth(BodyId a, BodyId b) const;
+  // The rest depth a new point of the pair of bodies a, b starts with, from
+  // the points of the pair kept in the last step: their largest if any is
+  // >= 0 (a placed overlap), else their mean (a placed start's compression,
+  // penalty_preload.h); false when none was kept.
+  bool PairRestDepth(BodyId a, BodyId b, double* rest) const;
   void Commit();
   void Clear();
   size_t size() const { return current_.size(); }

@@ -42,10 +42,51 @@ ImpactRow ImpactRowOf(const World& world, const PenaltyRow& row, const ImpactArm
   r.mass_n = K > 0.0 ? 1.0 / K : 0.0;
   r.restitution = row.restitution;
   r.struck = true;  // only the components of struck rows are added
+  // e = 0 with friction: Coulomb within each collision's impulse (as soft's
+  // and xpbd's rows); a rebounding row's impacts stay normal-only
+  r.friction = row.restitution > 0.0 ? 0.0 : row.mu;
+  if (r.friction <= 0.0) return r;
+  for (int axis : {0, 1}) {
+    ImpactTangent& t = r.t[axis];
+    t.d = axis == 0 ? row.t1 : row.t2;
+    t.ra = arms.ra.cross(t.d);
+    t.rb = arms.rb.cross(t.d);
+    t.ia = A.IsDynamic() ? Vec3(A.InvInertiaWorld() * t.ra) : Vec3::Zero();
+    t.ib = B.IsDynamic() ? Vec3(B.InvInertiaWorld() * t.rb) : Vec3::Zero();
+  }
   return r;
 }
 
+// A struck row with friction and e = 0 (the stage takes it only in a
+// component that no static or kinematic body holds: sequential_impacts.h).
+bool FreeOnly(const PenaltyRow& row) { return row.restitution == 0.0 && row.mu > 0.0; }
+
 }  // namespace
+
+bool MayHoldImpact(const World& world, const std::vector<PenaltyRow>& rows) {
+  bool free_only = false;
+  for (const PenaltyRow& row : rows) {
+    if (!MayBeStruck(row)) continue;
+    if (!FreeOnly(row)) return true;
+    free_only = true;
+  }
+  if (!free_only) return false;
+  // components over every engaged row: each sub-step's lie within them
+  const auto& bodies = world.bodies();
+  UnionFind sets(static_cast<int>(bodies.size()));
+  for (const PenaltyRow& row : rows) {
+    if (row.engaged && bodies[row.a].IsDynamic() && bodies[row.b].IsDynamic()) sets.Join(row.a, row.b);
+  }
+  auto root = [&](const PenaltyRow& row) { return sets.Root(bodies[row.a].IsDynamic() ? row.a : row.b); };
+  std::vector<char> held(bodies.size(), 0);
+  for (const PenaltyRow& row : rows) {
+    if (row.engaged && !(bodies[row.a].IsDynamic() && bodies[row.b].IsDynamic())) held[root(row)] = 1;
+  }
+  for (const PenaltyRow& row : rows) {
+    if (MayBeStruck(row) && !held[root(row)]) return true;
+  }
+  return false;
+}
 
 double PenaltyImpactThreshold(const World& world, double impact_threshold) {
   return std::max(impact_threshold, 2.0 * world.gravity.norm() * world.dt);
@@ -72,10 +113,22 @@ bool PenaltyImpacts::Resolve(World& world, std::vector<PenaltyRow>& rows, const 
     if (near(row) && bodies[row.a].IsDynamic() && bodies[row.b].IsDynamic()) sets.Join(row.a, row.b);
   }
   auto root = [&](const PenaltyRow& row) { return sets.Root(bodies[row.a].IsDynamic() ? row.a : row.b); };
-  struck_.assign(bodies.size(), 0);
-  for (size_t k = 0; k < rows.size(); ++k) {
-    if (Struck(rows[k], arms[k], threshold, h)) struck_[root(rows[k])] = 1;
+  // a held component's frictional strikes are left to the springs here,
+  // so that a pile under gravity is not gathered for the stage to drop
+  held_.assign(bodies.size(), 0);
+  for (const PenaltyRow& row : rows) {
+    if (near(row) && !(bodies[row.a].IsDynamic() && bodies[row.b].IsDynamic())) held_[root(row)] = 1;
   }
+  struck_.assign(bodies.size(), 0);
+  bool any_struck = false;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (!Struck(rows[k], arms[k], threshold, h)) continue;
+    const int c = root(rows[k]);
+    if (FreeOnly(rows[k]) && held_[c]) continue;
+    struck_[c] = 1;
+    any_struck = true;
+  }
+  if (!any_struck) return false;
   impacts_.Begin(static_cast<int>(bodies.size()));
   for (size_t k = 0; k < rows.size(); ++k) {
     const PenaltyRow& row = rows[k];
@@ -95,8 +148,14 @@ bool PenaltyImpacts::Resolve(World& world, std::vector<PenaltyRow>& rows, const 
     any = true;
     RigidBody& A = bodies[r.a];
     RigidBody& B = bodies[r.b];
-    if (A.IsDynamic()) A.P -= r.phase * r.n, A.L -= r.phase * r.ra_n;
-    if (B.IsDynamic()) B.P += r.phase * r.n, B.L += r.phase * r.rb_n;
+    // the normal impulse and the friction it carried
+    Vec3 p = r.phase * r.n;
+    Vec3 la = r.phase * r.ra_n, lb = r.phase * r.rb_n;
+    if (r.friction > 0.0) {  // r.t is set only then
+      for (const ImpactTangent& t : r.t) p += t.phase * t.d, la += t.phase * t.ra, lb += t.phase * t.rb;
+    }
+    if (A.IsDynamic()) A.P -= p, A.L -= la;
+    if (B.IsDynamic()) B.P += p, B.L += lb;
     // step 4: the spring starts where the impact left it
     PenaltyRow& row = rows[r.point];
     row.impulse += r.phase;

@@ -21,20 +21,24 @@
 //     push out again; a loaded spring ringing faster than the threshold is
 //     no impact: taking it as one set its rest depth deeper at each ring,
 //     and a Hunt-Crossley box sank 0.13 m),
-//     with a known restitution e >= 0 (not restitution = off), and e > 0 or
-//     frictionless (a frictional e = 0 contact keeps its springs, dashpots
-//     and friction: a landing with friction takes its tangential impulse
-//     over the contact, which a normal-only impact would drop);
+//     with a known restitution e >= 0 (not restitution = off); a row with
+//     friction and e = 0 only in a component that no static or kinematic
+//     body holds (a strike in free flight, as soft's and xpbd's: a landing
+//     keeps its springs, dashpots and friction, and a pile under gravity
+//     meets such strikes in nearly every sub-step);
 //  2. the rows that take part: those of the components (dynamic bodies
 //     joined by rows) that hold a struck row, touching or apart by less
 //     than the fastest strike closes in two sub-steps, 2 v h (the gaps of
 //     a row of nearly touching bodies close within the strike: 0.1 mm at
 //     0.5 m/s in 0.2 ms, a sub-step of a 4 ms contact time; a wider gap is
-//     left to the sub-steps, whose stage takes it when it closes);
+//     left to the sub-steps, whose stage takes it when it closes); a row
+//     with friction and e = 0 takes Coulomb's impulse within each of its
+//     collisions (sequential_impacts.h, step 1), a rebounding one none;
 //  3. the impacts on the bodies' velocities now (ImpactCascade: until the
 //     pairs approach slower than 1e-3 of the strike, at most 100 passes, as
-//     lcp's), and each row's phase impulse applied to its bodies (and
-//     added to the row's `impulse`, which the step reports);
+//     lcp's), and each row's phase impulse, normal and friction, applied
+//     to its bodies (the normal one added to the row's `impulse`, which
+//     the step reports);
 //  4. a row that took an impulse while already compressed starts its
 //     spring at the depth it has now (its rest depth, penalty_row.h, which
 //     then drains at overlap_push_speed): the stage's impulse replaces the
@@ -60,11 +64,18 @@ struct ImpactArms {
   double spring_depth = 0.0;  // m, d - d_rest (> 0 compressed)
 };
 
-// Whether the row's law lets it be struck (step 1 without its speed):
-// engaged, a known restitution, and restitution > 0 or no friction.
-inline bool MayBeStruck(const PenaltyRow& row) {
-  return row.engaged && row.restitution >= 0.0 && (row.restitution > 0.0 || row.mu == 0.0);
-}
+// Whether the row's law lets it be struck (step 1 without its speed and
+// its component): engaged, with a known restitution.
+inline bool MayBeStruck(const PenaltyRow& row) { return row.engaged && row.restitution >= 0.0; }
+
+// Whether a step over `rows` may hold an impact for the stage: a row that
+// may be struck with restitution > 0 or without friction, or one with
+// friction and e = 0 in a component of the step's engaged rows that no
+// static or kinematic body holds (each sub-step's components lie within
+// those). A pile at rest under gravity with friction and e = 0 runs none of
+// the stage (its look at every row each sub-step cost the pyramid 6.7% of
+// its instructions).
+bool MayHoldImpact(const World& world, const std::vector<PenaltyRow>& rows);
 
 class PenaltyImpacts {
  public:
@@ -76,6 +87,7 @@ class PenaltyImpacts {
  private:
   SequentialImpacts impacts_;
   std::vector<int> root_;      // per body: its component's root, -1 static
+  std::vector<char> held_;     // per root: a static or kinematic body touches the component
   std::vector<char> struck_;   // per root: holds a struck row
 };
 

@@ -50,6 +50,9 @@ void PenaltyMethod::ExplicitWorldStep(World& world, CollisionDetector& detector,
   options.speculative = true;
   options.elapsed = dt;
   BuildPenaltyRows(world, contacts_, params_, anchors_, options, &rows_);
+  if (params_.preload == "placed") {
+    preload_.Apply(world, params_, PenaltyImpactThreshold(world, params_.impact_threshold), &rows_);
+  }
   const int substeps = ExplicitSubsteps(world, rows_, params_, dt);
   const ExplicitStats s = ExplicitStep(world, rows_, params_, dt, substeps, &impacts_);
   stats->substeps = s.substeps;

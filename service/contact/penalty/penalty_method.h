@@ -51,6 +51,7 @@
 #include "service/contact/penalty/penalty_friction.h"
 #include "service/contact/penalty/penalty_impacts.h"
 #include "service/contact/penalty/penalty_params.h"
+#include "service/contact/penalty/penalty_preload.h"
 #include "service/contact/penalty/penalty_row.h"
 
 namespace contactsim {
@@ -88,6 +89,7 @@ class PenaltyMethod : public ContactMethod {
   ContactSet contacts_;
   std::vector<PenaltyRow> rows_;
   PenaltyImpacts impacts_;  // the explicit step's impact stage (penalty_impacts.h)
+  PenaltyPreload preload_;  // the explicit step's load-aware start (penalty_preload.h)
 };
 
 }  // namespace contactsim

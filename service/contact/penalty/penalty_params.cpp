@@ -57,6 +57,13 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
       DoubleParam("overlap_push_speed", &P::overlap_push_speed, 1e-6, 1e3, "m/s",
                   "an overlap a pair already had when first seen (deeper than its approach could reach in the "
                   "step) is the spring's rest depth, which shrinks at this speed (penalty_row.h)"),
+      ChoiceParam("preload", &P::preload, {"placed", "off"},
+                  "explicit: placed starts the springs of a contact component placed at rest (no touching point "
+                  "seen before, none moving faster than the impact threshold) compressed by their share of its "
+                  "static load (penalty_preload.h); off starts them unloaded"),
+      DoubleParam("preload_drain_speed", &P::preload_drain_speed, 0.0, 1e3, "m/s",
+                  "the compression a placed start gave a spring (a negative rest depth) is given back at this "
+                  "speed, 0 = kept while the contact lasts (penalty_row.h)"),
       DoubleParam("margin", &P::margin, 0.0, 0.1, "m", "contacts up to this gap are detected (implicit: predicted; explicit: plus what the step can close)"),
       JointSubstepRatioParam(&P::joint_substep_ratio),
       JointSubstepsParam(&P::joint_substeps),

@@ -86,11 +86,18 @@ double RestDepth(const FrictionAnchors& anchors, const Contact& c, const Penalty
                  const RowOptions& options) {
   const double overlap = std::max(0.0, c.depth);
   const double drained = params.overlap_push_speed * options.elapsed;
+  // a placed start's compression (penalty_preload.h) is given back slowly
+  if (row.had_anchor && row.anchor.rest_depth < 0.0) {
+    return std::min(0.0, row.anchor.rest_depth + params.preload_drain_speed * options.elapsed);
+  }
   if (row.had_anchor) return std::min(overlap, std::max(0.0, row.anchor.rest_depth - drained));
   // a new point of a pair in contact shares the pair's rest depth (the
   // manifold's points change as a placed body settles)
-  const double pair_rest = anchors.PairRestDepth(c.id_a, c.id_b);
-  if (pair_rest >= 0.0) return std::min(overlap, std::max(0.0, pair_rest - drained));
+  double pair_rest = 0.0;
+  if (anchors.PairRestDepth(c.id_a, c.id_b, &pair_rest)) {
+    if (pair_rest < 0.0) return std::min(0.0, pair_rest + params.preload_drain_speed * options.elapsed);
+    return std::min(overlap, std::max(0.0, pair_rest - drained));
+  }
   return std::max(0.0, overlap - std::max(0.0, -row.vn0) * options.elapsed - drained);
 }
 
