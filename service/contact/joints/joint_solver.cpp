@@ -334,14 +334,22 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
   // Position rows read the solver bodies' indices and inverse masses only
   // (joint_rows.h), which a displacement leaves alone: the bodies are
   // loaded again at the new poses (their world inertias) only for a solve,
-  // not for the check that ends the projection, which needs the errors
-  // alone (AppendJointErrors: no Jacobians).
+  // not for the check that ends the projection. The first check builds
+  // the rows with their errors (a step's drift nearly always asks for an
+  // iteration); a check after a displacement, which usually ends the
+  // projection, takes the errors alone (AppendJointErrors: no Jacobians).
   LoadSolverBodies(world, &bodies);
   bool displaced = false;
   for (;;) {
+    rows.clear();
+    blocks.clear();
     errors.clear();
     couplings.clear();
-    AppendJointErrors(world, bodies, &errors);
+    if (displaced) {
+      AppendJointErrors(world, bodies, &errors);
+    } else {
+      AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks, &errors);
+    }
     AppendCouplingRows(world, bodies, 0.0, JointRowMode::kPosition, &couplings);
     stats.max_error = 0.0;
     for (double e : errors) stats.max_error = std::max(stats.max_error, std::abs(e));
@@ -351,10 +359,10 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
       break;
     }
     ++stats.projection_iterations;
-    if (displaced) LoadSolverBodies(world, &bodies);
-    rows.clear();
-    blocks.clear();
-    AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks);
+    if (displaced) {
+      LoadSolverBodies(world, &bodies);
+      AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks);
+    }
     const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
     // a mimic's coupling solve factors afresh (SolveJointSystem): no chord there
     const bool chord =
