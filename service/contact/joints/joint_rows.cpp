@@ -45,6 +45,10 @@ Vec3 SliderAxis(const Joint& j, const End& a, const End& b) {
   return a.body->q * j.axis_a;
 }
 
+// Writes a joint's rows (rows_), or only their errors (rows_ null: the
+// projection's check, AppendJointErrors) or only their rhs (rhs_only_:
+// SetJointVelocityProducts); the two partial writers skip the Jacobians of
+// the equality rows and compute what they keep by the same arithmetic.
 class RowWriter {
  public:
   RowWriter(const End& a, const End& b, double h, JointRowMode mode, std::vector<ConstraintRow>* rows,
@@ -73,14 +77,27 @@ class RowWriter {
       rhs_only_->rhs = row.rhs;
       return *rhs_only_++;
     }
-    rows_->push_back(row);
     if (errors_ != nullptr) errors_->push_back(error);
+    if (rows_ == nullptr) return scratch_ = row;
+    rows_->push_back(row);
     return rows_->back();
   }
 
-  ConstraintRow& Add(const Vec3& lin, const Vec3& ang, double error, double velocity_product) {
-    return Push(Make(lin, ang, velocity_product), error);
+  // an equality row (Make); a partial writer keeps its error or rhs only
+  void Add(const Vec3& lin, const Vec3& ang, double error, double velocity_product) {
+    if (rhs_only_ != nullptr) {
+      (rhs_only_++)->rhs = mode_ != JointRowMode::kPosition ? -0.5 * h_ * velocity_product : 0.0;
+    } else if (rows_ == nullptr) {
+      errors_->push_back(error);
+    } else {
+      Push(Make(lin, ang, velocity_product), error);
+    }
   }
+
+  // True when the joint's coordinate (HingeCoordinate, SlideCoordinate)
+  // feeds a row: always in velocity mode, only for the limits in position
+  // mode.
+  bool WantsCoordinate(const Joint& j) const { return mode_ != JointRowMode::kPosition || j.limited; }
 
   // C = u . (p_A - p_B) for a direction u fixed in A (world now): B's
   // anchor kept on a line or plane of A. Cdot = u . ddot + (w_A x u) . d,
@@ -259,6 +276,7 @@ class RowWriter {
   std::vector<ConstraintRow>* rows_;
   std::vector<double>* errors_;
   ConstraintRow* rhs_only_ = nullptr;
+  ConstraintRow scratch_;  // a row an errors-only writer hands back unstored
 };
 
 // The rows of the joint's geometry (the equality rows, a joint's first).
@@ -347,33 +365,46 @@ void AddDriveEfforts(const std::vector<double>& impulses, double duration, World
   }
 }
 
-void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
-                     std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks,
-                     std::vector<double>* errors) {
+namespace {
+
+// AppendJointRows, or with rows null only the errors (AppendJointErrors).
+void WriteJointRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
+                    std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks, std::vector<double>* errors) {
   const auto& joints = world.joints();
   for (size_t index = 0; index < joints.size(); ++index) {
     const Joint& j = joints[index];
     const End a = MakeEnd(world, bodies, j.body_a, j.anchor_a);
     const End b = MakeEnd(world, bodies, j.body_b, j.anchor_b);
     if (!a.dynamic && !b.dynamic) continue;  // nothing can move
-    const int first = static_cast<int>(rows->size());
+    const int first = rows != nullptr ? static_cast<int>(rows->size()) : 0;
     RowWriter writer(a, b, h, mode, rows, errors);
     const Vec3 axis_a = GeometryRows(j, a, b, &writer);
     int drive = -1;
-    if (j.kind == JointKind::kHinge || j.kind == JointKind::kPrismatic) {
+    if ((j.kind == JointKind::kHinge || j.kind == JointKind::kPrismatic) && writer.WantsCoordinate(j)) {
       const auto coordinate =
           j.kind == JointKind::kHinge ? writer.HingeCoordinate(j, axis_a) : writer.SlideCoordinate(axis_a);
       writer.Dynamics(j, coordinate);
       drive = writer.Drive(j, coordinate);
       writer.Limits(j, coordinate);
     }
-    if (blocks != nullptr) {
+    if (blocks != nullptr && rows != nullptr) {
       blocks->push_back(
           {j.id, first, static_cast<int>(rows->size()) - first, a.index, b.index, static_cast<int>(index), drive});
     }
   }
 }
 
+}  // namespace
+
+void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, double h, JointRowMode mode,
+                     std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks,
+                     std::vector<double>* errors) {
+  WriteJointRows(world, bodies, h, mode, rows, blocks, errors);
+}
+
+void AppendJointErrors(const World& world, const std::vector<SolverBody>& bodies, std::vector<double>* errors) {
+  WriteJointRows(world, bodies, 0.0, JointRowMode::kPosition, nullptr, nullptr, errors);
+}
 
 void SetJointVelocityProducts(const World& world, const std::vector<SolverBody>& bodies, double h,
                               const std::vector<JointBlock>& blocks, std::vector<ConstraintRow>* rows) {

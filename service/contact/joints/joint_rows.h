@@ -121,6 +121,11 @@ void AppendJointRows(const World& world, const std::vector<SolverBody>& bodies, 
                      std::vector<ConstraintRow>* rows, std::vector<JointBlock>* blocks = nullptr,
                      std::vector<double>* errors = nullptr);
 
+// Appends the errors C of the rows AppendJointRows gives in position mode,
+// in their order and equal bit for bit, without building the rows: the
+// check that ends a position projection needs the errors alone.
+void AppendJointErrors(const World& world, const std::vector<SolverBody>& bodies, std::vector<double>* errors);
+
 // Sets the rhs of each block's geometry rows (its equality rows, the first
 // of the block) to the velocity products at the velocities of `bodies`:
 // the rhs AppendJointRows would give them there, in velocity mode, for the

@@ -288,7 +288,9 @@ class ProjectionFactor {
       factor_.Solve(blocks, b, &delta);
       return delta;
     }
-    held_ = solver == JointSolverKind::kTree && factor_.Factor(rows, blocks, bodies);
+    // at poses the projection has just moved, a system never repeats the
+    // last one: no reuse key (JointTreeFactor::Factor)
+    held_ = solver == JointSolverKind::kTree && factor_.Factor(rows, blocks, bodies, /*reuse=*/false);
     if (!held_) return SolveJointSystem(rows, blocks, bodies, b, solver);
     shape_.assign(blocks.begin(), blocks.end());
     factor_.Solve(blocks, b, &delta);
@@ -322,16 +324,20 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
   if (world.joints().empty()) return stats;
   thread_local ProjectionFactor factor;
   factor.Reset();
-  std::vector<SolverBody> bodies;
-  std::vector<ConstraintRow> rows;
-  std::vector<JointBlock> blocks;
-  std::vector<double> errors;
-  std::vector<CouplingRow> couplings;
+  // kept per thread so that their storage serves the next projection
+  thread_local std::vector<SolverBody> bodies;
+  thread_local std::vector<ConstraintRow> rows;
+  thread_local std::vector<JointBlock> blocks;
+  thread_local std::vector<double> errors;
+  thread_local std::vector<CouplingRow> couplings;
   double last_error = 0.0;
   // Position rows read the solver bodies' indices and inverse masses only
   // (joint_rows.h), which a displacement leaves alone: the bodies are
   // loaded again at the new poses (their world inertias) only for a solve,
-  // not for the check that ends the projection.
+  // not for the check that ends the projection. The first check builds
+  // the rows with their errors (a step's drift nearly always asks for an
+  // iteration); a check after a displacement, which usually ends the
+  // projection, takes the errors alone (AppendJointErrors: no Jacobians).
   LoadSolverBodies(world, &bodies);
   bool displaced = false;
   for (;;) {
@@ -339,7 +345,11 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
     blocks.clear();
     errors.clear();
     couplings.clear();
-    AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks, &errors);
+    if (displaced) {
+      AppendJointErrors(world, bodies, &errors);
+    } else {
+      AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks, &errors);
+    }
     AppendCouplingRows(world, bodies, 0.0, JointRowMode::kPosition, &couplings);
     stats.max_error = 0.0;
     for (double e : errors) stats.max_error = std::max(stats.max_error, std::abs(e));
@@ -349,7 +359,10 @@ JointStats ProjectJointPositions(World& world, const JointSolveOptions& options)
       break;
     }
     ++stats.projection_iterations;
-    if (displaced) LoadSolverBodies(world, &bodies);
+    if (displaced) {
+      LoadSolverBodies(world, &bodies);
+      AppendJointRows(world, bodies, 0.0, JointRowMode::kPosition, &rows, &blocks);
+    }
     const Eigen::VectorXd b = -Eigen::Map<const Eigen::VectorXd>(errors.data(), errors.size());
     // a mimic's coupling solve factors afresh (SolveJointSystem): no chord there
     const bool chord =

@@ -263,10 +263,10 @@ void JointTreeFactor::Key(const std::vector<ConstraintRow>& rows, const std::vec
 }
 
 bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
-                             const std::vector<SolverBody>& bodies) {
-  Key(rows, blocks, bodies);
+                             const std::vector<SolverBody>& bodies, bool reuse) {
+  if (reuse) Key(rows, blocks, bodies);
   // bitwise, so that -0 and 0 differ as the arithmetic may
-  if (keyed_ && key_.size() == key_next_.size() &&
+  if (reuse && keyed_ && key_.size() == key_next_.size() &&
       std::memcmp(key_.data(), key_next_.data(), key_.size() * sizeof(double)) == 0) {
     return true;
   }
@@ -293,8 +293,10 @@ bool JointTreeFactor::Factor(const std::vector<ConstraintRow>& rows, const std::
   }
   rows_ = nullptr;  // read while factoring only
   blocks_ = nullptr;
-  key_.swap(key_next_);  // key_next_'s storage, the last key, is written over by the next
-  keyed_ = true;
+  if (reuse) {
+    key_.swap(key_next_);  // key_next_'s storage, the last key, is written over by the next
+    keyed_ = true;
+  }
   return true;
 }
 

@@ -67,9 +67,11 @@ class JointTreeFactor {
   // compliance, the same blocks, their bodies' inverse masses and inertias)
   // keeps that factorisation: a step builds its joint rows again at new
   // velocities but the same poses (JointVelocityBlock::Rebuild), which
-  // changes only the right-hand sides.
+  // changes only the right-hand sides. `reuse = false` skips that
+  // comparison (and the key it needs) for a caller whose systems do not
+  // repeat; the factors are the same either way.
   bool Factor(const std::vector<ConstraintRow>& rows, const std::vector<JointBlock>& blocks,
-              const std::vector<SolverBody>& bodies);
+              const std::vector<SolverBody>& bodies, bool reuse = true);
   // lambda for the right-hand side b (one entry per row), after Factor with
   // the same blocks.
   void Solve(const std::vector<JointBlock>& blocks, const Eigen::VectorXd& b, Eigen::VectorXd* lambda);
