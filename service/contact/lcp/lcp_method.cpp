@@ -238,17 +238,17 @@ void LcpMethod::SolveWithinEnergy(const World& world, size_t first_joint_row, Pa
     Solve(world, bodies_, runner);
     return;
   }
-  const std::vector<SolverBody> start = bodies_;
-  const std::vector<ConstraintRow> rows = rows_;
+  energy_bodies_ = bodies_;
+  energy_rows_ = rows_;
   Solve(world, bodies_, runner);
   double added = 0.0, kinetic = 0.0;
-  SolveEnergy(world, start, bodies_, &added, &kinetic);
+  SolveEnergy(world, energy_bodies_, bodies_, &added, &kinetic);
   if (!(added > kEnergyGuard * kinetic)) return;
-  bodies_ = start;
-  rows_ = rows;
-  std::vector<SolverBody> resting = start;
-  for (SolverBody& b : resting) b.v = b.w = Vec3::Zero();
-  SetJointVelocityProducts(world, resting, world.dt, joint_blocks_, &joint_rows_);
+  rows_.swap(energy_rows_);
+  bodies_ = energy_bodies_;
+  // the products at rest are zero
+  for (SolverBody& b : energy_bodies_) b.v = b.w = Vec3::Zero();
+  SetJointVelocityProducts(world, energy_bodies_, world.dt, joint_blocks_, &joint_rows_);
   std::copy(joint_rows_.begin(), joint_rows_.end(), rows_.begin() + first_joint_row);
   Solve(world, bodies_, runner);
 }

@@ -112,6 +112,9 @@ class LcpMethod : public ContactMethod {
   SequentialImpacts sequence_;           // impacts = sequential (lcp_impacts.h)
   std::vector<double> impact_impulses_;  // per contact, N s, the impacts' warm start (-1: none)
   std::vector<ConstraintRow> rows_, split_rows_, joint_rows_, lemke_rows_;
+  // the solve's start, kept while SolveWithinEnergy checks its energy
+  std::vector<SolverBody> energy_bodies_;
+  std::vector<ConstraintRow> energy_rows_;
   std::vector<JointBlock> joint_blocks_;
   PgsSolver pgs_, split_pgs_;
   // each contact pair's normal rows (3 k for contact k), solved as blocks by pgs_
