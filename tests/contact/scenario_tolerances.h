@@ -158,8 +158,8 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // CubeFallenOntoSlopeHolds), its motion within the slope in 3 s; the
     // same at every mass and size (0.02 and 0.05 m half sizes)
     {"soft", "slope hold deg=40 *", 6.9e-4,
-     "0.53 mm in 3 s (0.44 before the relax pass held a loaded point's gap, soft_contact.h; the float path 0.46): "
-     "not traced further"},
+     "0.53 mm in 3 s (the float path 0.46): the landing keeps 60% of its speed along the slope, as friction in "
+     "the relax pass is capped by the solve pass's normal impulse (docs/methods/soft.md, \"Friction\")"},
     {"penalty", "slope hold deg=38 *", 7.5e-4,
      "0.57 mm in 3 s, all within 0.08 s of the landing: the cube lands rocking on its downhill edge, its two points' "
      "dashpots (each implicit against its own point) ringing on the rocking mode, so the normal load averages "
