@@ -98,10 +98,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"xpbd", "grip F=200 m=*", 35.0,
      "53.6 to 53.7 N of the 80 N limit: kp e / (1 + (h kp + kd) h / m) = 144 / 2.68 with 10 sub-steps, kd 400, "
      "a 0.1 kg finger"},
-    // penalty: its stacks rest on springs (penalty_stiffness.h)
-    {"penalty", "stack n=8 height", 7.5e-4,
-     "sinks 0.57 mm: its compliance, sum over the layers of k m g / kp, kp = m pi^2 / contact_time^2 (4 ms)"},
-    {"penalty", "stack n=20 height", 4.4e-3, "sinks 3.34 mm: its compliance, sum of k g contact_time^2 / pi^2"},
     // 20 aligned cubes under sequential impulses and PGS: each face rests
     // a little inside the slop the sweeps leave (docs/physics.md)
     {"impulse", "stack n=20 height", 1.3e-3, "1.0 mm lower after 10 s, 0.05 mm a face"},
@@ -112,7 +108,6 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"soft", "stack n=20 height", 8.7e-3, "6.6 mm lower: its springs, as for 8"},
     // the 8-stack at other sizes and masses (MechanicsAlignedStackSweepTest):
     // the same compliance and gaps as the 0.2 m cubes
-    {"penalty", "stack n=8 size=* height", 7.5e-4, "0.57 mm lower at every size and mass: its compliance, as above"},
     {"soft", "stack n=8 size=* height", 1.4e-3, "1.0 mm lower at every size and mass: its springs, as above"},
     // barrier, a cube or sphere placed touching, settled, then launched or
     // let roll: it rests on placed pairs (barrier_solver.h, the barrier's

@@ -45,8 +45,10 @@ struct PenaltyParams {
   // (docs/methods/penalty.md, "Load-aware start")
   std::string preload = "placed";
   // m/s: the speed at which such a start's compression (a negative rest
-  // depth) is given back, so the springs come to their own equilibrium
-  double preload_drain_speed = 0.001;
+  // depth) is given back, so the springs come to their own equilibrium; 0
+  // (the default) keeps it while the contact lasts, so a placed body stays
+  // where it was placed (docs/methods/penalty.md, "Load-aware start")
+  double preload_drain_speed = 0.0;
   double joint_substep_ratio = 100.0;
   int joint_substeps = 4;
 

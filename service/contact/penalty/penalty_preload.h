@@ -24,10 +24,11 @@
 //     passes;
 //  3. each row's spring starts compressed by its load: its rest depth
 //     becomes d - lambda nc / kp (linear; (lambda nc / kp)^(1 / n) for
-//     Hunt-Crossley), negative where the row only touches. A negative rest
-//     depth rises back to 0 at `preload_drain_speed` (penalty_row.h), so
-//     the springs come to their own equilibrium depth slowly (a stack of n
-//     courses settles at n times that speed at its top).
+//     Hunt-Crossley), negative where the row only touches. The rest depth
+//     is kept while the contact lasts (`preload_drain_speed` = 0, the
+//     default), so the bodies stay where they were placed; a positive
+//     speed gives it back, and the springs sink to their own equilibrium
+//     depth (a stack of n courses at n times that speed at its top).
 #pragma once
 
 #include <vector>
