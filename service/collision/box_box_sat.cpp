@@ -78,10 +78,14 @@ SatResult EdgeResult(const BestAxis& best, const Mat3& Ra, const Mat3& Rb) {
 }  // namespace
 
 SatResult FindBoxBoxSeparatingAxis(const RigidBody& a, const RigidBody& b, double early_out) {
-  const Mat3 Ra = a.Rotation();
-  const Mat3 Rb = b.Rotation();
-  const Vec3& ha = a.shape.half_extents;
-  const Vec3& hb = b.shape.half_extents;
+  return FindBoxBoxSeparatingAxis(BoxPose(a), BoxPose(b), early_out);
+}
+
+SatResult FindBoxBoxSeparatingAxis(const BoxPose& a, const BoxPose& b, double early_out) {
+  const Mat3& Ra = a.R;
+  const Mat3& Rb = b.R;
+  const Vec3& ha = a.h;
+  const Vec3& hb = b.h;
   const Vec3 d = b.x - a.x;
   const Mat3 abs_c = (Ra.transpose() * Rb).cwiseAbs();  // |A_i . B_j|
   const Vec3 da = Ra.transpose() * d;

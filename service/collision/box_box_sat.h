@@ -15,11 +15,14 @@
 #pragma once
 
 #include "service/collision/polyhedron_sat.h"
+#include "service/collision/posed_polyhedron.h"
 #include "service/physics/rigid_body.h"
 
 namespace contactsim {
 
 // a and b must be boxes.
 SatResult FindBoxBoxSeparatingAxis(const RigidBody& a, const RigidBody& b, double early_out);
+// The same on the boxes' poses, taken once for the pair's test and manifold.
+SatResult FindBoxBoxSeparatingAxis(const BoxPose& a, const BoxPose& b, double early_out);
 
 }  // namespace contactsim
