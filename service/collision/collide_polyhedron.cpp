@@ -36,13 +36,13 @@ void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const Collid
   ReduceManifold(first, out);
 }
 
-// box (a) - box (b): the closed-form separating-axis test (box_box_sat.h)
+// box (a) - box (b): the closed-form separating-axis test for a contact (box_box_sat.h)
 // and, for a touching pair, the manifold from the same poses
 // (box_box_manifold.h), so that nothing is posed; `cached` says whether
 // the pair's axis goes to the cache.
 void CollideBoxes(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, bool cached, ContactSet* out) {
   const BoxPose pa(a), pb(b);
-  const SatResult sat = FindBoxBoxSeparatingAxis(pa, pb, ctx.margin);
+  const SatResult sat = FindBoxBoxContactAxis(pa, pb, ctx.margin);
   if (sat.separation > ctx.margin) {
     if (cached) ctx.cache_update->Store(a.id, b.id, sat.axis);
     return;
