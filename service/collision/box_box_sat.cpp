@@ -155,9 +155,10 @@ bool EdgeAxes(const BoxPair& p, double early_out, SatResult* edges_result, SatRe
 // c . B_j2 = -C_ij1, |c| = sqrt(C_i1j^2 + C_i2j^2), and
 //   sep |c| = |c . d| - ha_i1 |C_i2j| - ha_i2 |C_i1j| - hb_j1 |C_ij2| - hb_j2 |C_ij1|,
 // a tenth of the loop's products. The two differ by round-off, a few
-// 1e-16 of the boxes' size over |c| for unit quaternions, as the
-// integrator keeps them; kScreenRelTolerance allows 1e-7 of it, so that a
-// pair this says cannot exceed the limit does not.
+// 1e-16 of the boxes' size over |c| for unit quaternions (the integrator
+// and MakeOrientation normalise every orientation); kScreenRelTolerance
+// allows 1e-7 of it, so that a pair this says cannot exceed the limit does
+// not. A pair is left out as parallel only at half the loop's cut-off.
 bool SomeEdgeMayExceed(const BoxPair& p, double limit) {
   constexpr double kScreenRelTolerance = 1e-7;
   const Mat3 C = p.a.R.transpose() * p.b.R;
@@ -170,7 +171,7 @@ bool SomeEdgeMayExceed(const BoxPair& p, double limit) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
       const double len = std::sqrt(C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j));
       // EdgeAxes skips it too: its |c| is within round-off of len
-      if (len < kSatParallelSin * (1.0 - kScreenRelTolerance)) continue;
+      if (len < 0.5 * kSatParallelSin) continue;
       const double cd = C(i1, j) * p.da[i2] - C(i2, j) * p.da[i1];
       const double sep_len = std::abs(cd) - ha[i1] * std::abs(C(i2, j)) - ha[i2] * std::abs(C(i1, j)) -
                              hb[j1] * std::abs(C(i, j2)) - hb[j2] * std::abs(C(i, j1));
