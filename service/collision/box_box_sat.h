@@ -15,11 +15,23 @@
 #pragma once
 
 #include "service/collision/polyhedron_sat.h"
+#include "service/collision/posed_polyhedron.h"
 #include "service/physics/rigid_body.h"
 
 namespace contactsim {
 
 // a and b must be boxes.
 SatResult FindBoxBoxSeparatingAxis(const RigidBody& a, const RigidBody& b, double early_out);
+// The same on the boxes' poses, taken once for the pair's test and manifold.
+SatResult FindBoxBoxSeparatingAxis(const BoxPose& a, const BoxPose& b, double early_out);
+
+// The axis, normal and separation of FindBoxBoxSeparatingAxis, bit for bit,
+// for a contact: the nine edge pairs are tested only when a closed form of
+// their separations (ODE's, from the entries of Ra^T Rb) says that one may
+// beat the faces' choice or the early out. Resting boxes' faces win by the
+// preference tolerances, so most touching pairs skip the pairs' loop, two
+// fifths of the test. max_separation and max_normal then cover the faces
+// only: use FindBoxBoxSeparatingAxis where they are needed.
+SatResult FindBoxBoxContactAxis(const BoxPose& a, const BoxPose& b, double early_out);
 
 }  // namespace contactsim

@@ -1,7 +1,9 @@
 // Polyhedron pairs: box and convex hull against a plane (closed form over the
 // vertices) and against each other (separating-axis test + face clipping).
 #include <cstdint>
+#include <optional>
 
+#include "service/collision/box_box_manifold.h"
 #include "service/collision/box_box_sat.h"
 #include "service/collision/collide_pairs.h"
 #include "service/collision/feature_id.h"
@@ -34,10 +36,24 @@ void CollidePolyhedronPlane(const RigidBody& a, const RigidBody& b, const Collid
   ReduceManifold(first, out);
 }
 
+// box (a) - box (b): the closed-form separating-axis test for a contact (box_box_sat.h)
+// and, for a touching pair, the manifold from the same poses
+// (box_box_manifold.h), so that nothing is posed; `cached` says whether
+// the pair's axis goes to the cache.
+void CollideBoxes(const RigidBody& a, const RigidBody& b, const CollideContext& ctx, bool cached, ContactSet* out) {
+  const BoxPose pa(a), pb(b);
+  const SatResult sat = FindBoxBoxContactAxis(pa, pb, ctx.margin);
+  if (sat.separation > ctx.margin) {
+    if (cached) ctx.cache_update->Store(a.id, b.id, sat.axis);
+    return;
+  }
+  if (cached) ctx.cache_update->Erase(a.id, b.id);
+  BoxBoxManifold(pa, pb, sat, ctx.margin, out);
+}
+
 // box/convex (a) - box/convex (b): separating-axis test, with the axis that
 // separated the pair last call tried first when a cache is given (Baraff);
-// two boxes take the closed-form test (box_box_sat.h), so that only a
-// touching pair of boxes is posed (for its manifold).
+// two boxes take CollideBoxes.
 void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideContext& ctx,
                       ContactSet* out) {
   // equal ids (callers without a world) cannot be told apart in the cache
@@ -52,24 +68,22 @@ void CollidePolyhedra(const RigidBody& a, const RigidBody& b, const CollideConte
       return;
     }
   }
-  const bool boxes = a.shape.type == ShapeType::kBox && b.shape.type == ShapeType::kBox;
-  PolyhedronScratch local;
-  PolyhedronScratch& scratch = ctx.scratch != nullptr ? *ctx.scratch : local;
+  if (a.shape.type == ShapeType::kBox && b.shape.type == ShapeType::kBox) {
+    CollideBoxes(a, b, ctx, cache != nullptr, out);
+    return;
+  }
+  // a caller without scratch gets one for this pair; the others construct none
+  std::optional<PolyhedronScratch> local;
+  PolyhedronScratch& scratch = ctx.scratch != nullptr ? *ctx.scratch : local.emplace();
   PosedPolyhedron& pa = scratch.a;
   PosedPolyhedron& pb = scratch.b;
-  SatResult sat;
-  if (boxes) {
-    sat = FindBoxBoxSeparatingAxis(a, b, ctx.margin);
-  } else {
-    if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
-    sat = FindSeparatingAxis(pa, pb, ctx.margin, &scratch.edge_pairs);
-  }
+  if (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb)) return;
+  const SatResult sat = FindSeparatingAxis(pa, pb, ctx.margin, &scratch.edge_pairs);
   if (sat.separation > ctx.margin) {
     if (cache != nullptr) update->Store(a.id, b.id, sat.axis);
     return;
   }
   if (cache != nullptr) update->Erase(a.id, b.id);
-  if (boxes && (!PosePolyhedron(a, &pa) || !PosePolyhedron(b, &pb))) return;
   PolyhedronManifold(pa, pb, sat, ctx.margin, out, &scratch.clip);
 }
 

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
+#include <memory>
 
 namespace contactsim {
 namespace {
@@ -11,7 +11,7 @@ namespace {
 // Index in [0, n) maximising score(i) over the points not yet chosen; -1 if
 // every point is chosen. Ties keep the lowest index (deterministic).
 template <typename Score>
-int ArgMax(size_t n, const std::vector<bool>& chosen, Score score) {
+int ArgMax(size_t n, const bool* chosen, Score score) {
   int best = -1;
   double best_score = 0.0;
   for (size_t i = 0; i < n; ++i) {
@@ -32,17 +32,17 @@ int ArgMax(size_t n, const std::vector<bool>& chosen, Score score) {
 // index could win it a place over the deeper one: a thin plate spun on the
 // ground (its top face within the detection reach) kept two top corners
 // and stood on two of its four bottom ones. Returns how many are left.
-size_t HideShadowedPoints(const Contact* c, size_t n, const Vec3& normal, std::vector<bool>* hidden) {
+size_t HideShadowedPoints(const Contact* c, size_t n, const Vec3& normal, bool* hidden) {
   size_t left = n;
   for (size_t j = 0; j < n; ++j) {
-    for (size_t i = 0; i < n && !(*hidden)[j]; ++i) {
+    for (size_t i = 0; i < n && !hidden[j]; ++i) {
       if (i == j) continue;
       const double deeper = c[i].depth - c[j].depth;
       if (!(deeper > 0.0)) continue;
       const Vec3 d = c[j].point - c[i].point;
       const Vec3 in_plane = d - normal.dot(d) * normal;
       if (in_plane.norm() <= deeper) {
-        (*hidden)[j] = true;
+        hidden[j] = true;
         --left;
       }
     }
@@ -50,27 +50,47 @@ size_t HideShadowedPoints(const Contact* c, size_t n, const Vec3& normal, std::v
   return left;
 }
 
+// Keeps the points [first, first + n) marked in `keep`, in their order, by
+// moving them down over the others (a kept point never moves up).
+void KeepMarked(size_t first, size_t n, const bool* keep, ContactSet* contacts) {
+  Contact* c = contacts->data() + first;
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (keep[i]) c[kept++] = c[i];
+  }
+  contacts->resize(first + kept);
+}
+
+// The flags of up to kInlinePoints points live on the stack: a box pair's
+// clipped polygon has at most 8, and a heap allocation a reduced manifold
+// cost as much as the reduction itself.
+constexpr size_t kInlinePoints = 64;
+
 }  // namespace
 
 void ReduceManifold(size_t first, ContactSet* contacts) {
   const size_t n = contacts->size() - first;
   if (n <= kMaxManifoldPoints) return;
+  bool inline_flags[2 * kInlinePoints];
+  std::unique_ptr<bool[]> heap_flags;
+  bool* flags = inline_flags;
+  if (n > kInlinePoints) {
+    heap_flags.reset(new bool[2 * n]);
+    flags = heap_flags.get();
+  }
+  bool* chosen = flags;
+  bool* hidden = flags + n;
+  std::fill(flags, flags + 2 * n, false);
   const Contact* c = contacts->data() + first;
   const Vec3 normal = c[0].normal;
-  std::vector<bool> chosen(n, false);
   // a hidden point is never chosen: it counts as chosen for ArgMax, and
   // is left out below; when four or fewer are left they are the manifold
-  std::vector<bool> hidden(n, false);
-  if (HideShadowedPoints(c, n, normal, &hidden) <= kMaxManifoldPoints) {
-    ContactSet kept;
-    for (size_t i = 0; i < n; ++i) {
-      if (!hidden[i]) kept.push_back(c[i]);
-    }
-    contacts->resize(first);
-    contacts->insert(contacts->end(), kept.begin(), kept.end());
+  if (HideShadowedPoints(c, n, normal, hidden) <= kMaxManifoldPoints) {
+    for (size_t i = 0; i < n; ++i) chosen[i] = !hidden[i];
+    KeepMarked(first, n, chosen, contacts);
     return;
   }
-  chosen = hidden;
+  std::copy(hidden, hidden + n, chosen);
 
   // deepest point
   const int i0 = ArgMax(n, chosen, [&](size_t i) { return c[i].depth; });
@@ -98,13 +118,8 @@ void ReduceManifold(size_t first, ContactSet* contacts) {
     return added;
   });
   chosen[i3] = true;
-
-  ContactSet kept;
-  for (size_t i = 0; i < n; ++i) {
-    if (chosen[i] && !hidden[i]) kept.push_back(c[i]);
-  }
-  contacts->resize(first);
-  contacts->insert(contacts->end(), kept.begin(), kept.end());
+  for (size_t i = 0; i < n; ++i) chosen[i] = chosen[i] && !hidden[i];
+  KeepMarked(first, n, chosen, contacts);
 }
 
 }  // namespace contactsim

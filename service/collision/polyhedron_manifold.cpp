@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "service/collision/closest_points.h"
+#include "service/collision/face_clip.h"
 #include "service/collision/collide_pairs.h"
 #include "service/collision/feature_id.h"
 #include "service/collision/manifold_reduction.h"
@@ -13,45 +14,12 @@
 namespace contactsim {
 namespace {
 
-// Tags of the feature-id hash, so that ids of different kinds never mix.
-constexpr uint32_t kTagClip = 0xC11Fu;
-constexpr uint32_t kTagFace = 0xFACEu;
-constexpr uint32_t kTagEdge = 0xED6Eu;
-constexpr uint32_t kTagFallback = 0xFA11u;
-
-// Depths (m) closer than this are the same (round-off of ~1 m coordinates).
-constexpr double kDepthTol = 1e-9;
-
-// p is inside the polyhedron or within kDepthTol of its surface.
+// p is inside the polyhedron or within kClipDepthTol of its surface.
 bool InsidePolyhedron(const PosedPolyhedron& poly, const Vec3& p) {
   for (size_t f = 0; f < poly.normals.size(); ++f) {
-    if (poly.normals[f].dot(p) - poly.offsets[f] > kDepthTol) return false;
+    if (poly.normals[f].dot(p) - poly.offsets[f] > kClipDepthTol) return false;
   }
   return true;
-}
-
-// Sutherland-Hodgman: keeps the part of `poly` with n.p <= offset. A point
-// within kDepthTol of the plane is on it: two flush faces of equal boxes
-// have edges on each other's side planes, each end a round-off either side,
-// and cutting such an edge put a point anywhere along it (t = dp / (dp - dq)
-// of two ~1e-17 distances). In an aligned stack that point replaced a
-// corner of the manifold and the stack leaned.
-void ClipAgainstPlane(const std::vector<ClipPoint>& poly, const Vec3& n, double offset, uint32_t plane,
-                      std::vector<ClipPoint>* out) {
-  out->clear();
-  const size_t m = poly.size();
-  for (size_t k = 0; k < m; ++k) {
-    const ClipPoint& p = poly[k];
-    const ClipPoint& q = poly[k + 1 == m ? 0 : k + 1];  // no division in the loop
-    const double dp = n.dot(p.p) - offset;
-    const double dq = n.dot(q.p) - offset;
-    const bool p_in = dp <= kDepthTol, q_in = dq <= kDepthTol;
-    if (p_in) out->push_back(p);
-    if (p_in != q_in) {
-      const double t = std::clamp(dp / (dp - dq), 0.0, 1.0);
-      out->push_back({p.p + t * (q.p - p.p), FeatureId({kTagClip, plane, p.tag, q.tag})});
-    }
-  }
 }
 
 void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
@@ -75,83 +43,48 @@ void FaceManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatR
     }
   }
 
-  std::vector<ClipPoint>& poly = buffers->poly;
-  std::vector<ClipPoint>& clipped = buffers->clipped;
-  poly.clear();
+  std::vector<ClipPoint>& incident = buffers->poly;
+  incident.clear();
   for (int v : inc.topology->faces[inc_face].vertices) {
-    poly.push_back({inc.vertices[v], static_cast<uint32_t>(v)});
+    incident.push_back({inc.vertices[v], static_cast<uint32_t>(v)});
   }
-  // side planes of the reference face: edge x normal points out of the face
-  // for a counter-clockwise loop seen from outside
   const std::vector<int>& loop = ref.topology->faces[ref_face].vertices;
-  for (size_t j = 0; j < loop.size() && !poly.empty(); ++j) {
-    const Vec3& p0 = ref.vertices[loop[j]];
-    const Vec3& p1 = ref.vertices[loop[j + 1 == loop.size() ? 0 : j + 1]];
-    const Vec3 side = (p1 - p0).cross(n_ref);
-    const double len = side.norm();
-    if (len <= 0.0) continue;
-    const Vec3 side_n = side / len;
-    ClipAgainstPlane(poly, side_n, side_n.dot(p0), static_cast<uint32_t>(j), &clipped);
-    poly.swap(clipped);
-  }
+  const std::vector<ClipPoint>& poly = *ClipToReferenceFace(
+      [&](size_t j) -> const Vec3& { return ref.vertices[loop[j]]; }, loop.size(), n_ref, &incident, &buffers->clipped);
 
-  const uint32_t ref_side = ref_is_a ? 0u : 1u;
+  const ReferenceFace face{n_ref, ref_offset, normal_ab, ref_is_a, ref_face};
   const size_t first = out->size();
-  double deepest = -std::numeric_limits<double>::infinity();
-  for (const ClipPoint& cp : poly) {
-    const double s = n_ref.dot(cp.p) - ref_offset;  // < 0 below the reference face
-    if (-s <= -margin) continue;
-    // cp.p is on the incident surface; the reference surface is -s n_ref away
-    const Vec3 surface_a = ref_is_a ? Vec3(cp.p - s * n_ref) : cp.p;
-    AppendContact(surface_a, normal_ab, -s,
-                  FeatureId({kTagFace, ref_side, static_cast<uint32_t>(ref_face),
-                             static_cast<uint32_t>(inc_face), cp.tag}),
-                  out);
-    deepest = std::max(deepest, -s);
-  }
-  if (deepest < -sat.separation - kDepthTol) {
-    // the incident body's deepest vertex, which defines the axis's depth, is
-    // off the incident face or outside the reference face's side planes
-    // (deep overlaps of hulls; or round-off left no point): add it, so that
-    // the deepest contact has the axis's depth and a penetrating pair is not
-    // lost. Only where it is inside the reference body: the far end of a
-    // long plank tilted over a short support lies below the support's top
-    // plane but beside the support, where it touches nothing, and a point
-    // there gave the support a lever arm of the plank's length
-    // (docs/physics.md, "Manifold points beside the body").
-    const int v = SupportVertex(inc, -n_ref);
-    const double s = n_ref.dot(inc.vertices[v]) - ref_offset;
-    const bool none = out->size() == first;
-    if (-s > -margin && (none || InsidePolyhedron(ref, inc.vertices[v]))) {
-      const Vec3 surface_a = ref_is_a ? Vec3(inc.vertices[v] - s * n_ref) : inc.vertices[v];
-      AppendContact(surface_a, normal_ab, -s,
-                    FeatureId({kTagFallback, ref_side, static_cast<uint32_t>(ref_face),
-                               static_cast<uint32_t>(v)}),
-                    out);
-    }
+  const double deepest = AppendFacePoints(face, inc_face, poly.data(), poly.size(), margin, out);
+  if (ClippingLostTheDepth(deepest, -sat.separation)) {
+    AppendDeepestIncidentVertex(
+        static_cast<int>(inc.vertices.size()), [&](int v) -> const Vec3& { return inc.vertices[v]; },
+        [&](const Vec3& p) { return InsidePolyhedron(ref, p); }, face, first, margin, out);
   }
   ReduceManifold(first, out);
 }
 
 void EdgeManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
                   double margin, ContactSet* out) {
+  const auto& edge_a = a.topology->edges[sat.axis.a];
+  const auto& edge_b = b.topology->edges[sat.axis.b];
+  AppendEdgeContact(a.vertices[edge_a[0]], a.vertices[edge_a[1]], b.vertices[edge_b[0]], b.vertices[edge_b[1]], sat,
+                    margin, out);
+}
+
+}  // namespace
+
+void AppendEdgeContact(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const SatResult& sat,
+                       double margin, ContactSet* out) {
   const double depth = -sat.separation;
   if (depth <= -margin) return;
   // the SAT keeps only Minkowski-face edge pairs, which are the touching edges
-  const int ea = sat.axis.a;
-  const int eb = sat.axis.b;
-  const auto& edge_a = a.topology->edges[ea];
-  const auto& edge_b = b.topology->edges[eb];
-  const SegmentClosestPoints cp = ClosestPointsOfSegments(a.vertices[edge_a[0]], a.vertices[edge_a[1]],
-                                                          b.vertices[edge_b[0]], b.vertices[edge_b[1]]);
+  const SegmentClosestPoints cp = ClosestPointsOfSegments(a0, a1, b0, b1);
   // the closest points are the two surface points; the SAT separation is
   // their distance along the axis
   const Vec3 mid = 0.5 * (cp.c1 + cp.c2);
   AppendContact(mid + 0.5 * depth * sat.normal, sat.normal, depth,
-                FeatureId({kTagEdge, static_cast<uint32_t>(ea), static_cast<uint32_t>(eb)}), out);
+                FeatureId({kTagEdge, static_cast<uint32_t>(sat.axis.a), static_cast<uint32_t>(sat.axis.b)}), out);
 }
-
-}  // namespace
 
 void PolyhedronManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
                         double margin, ContactSet* out, ClipBuffers* buffers) {

@@ -18,24 +18,20 @@
 #include <vector>
 
 #include "service/collision/contact.h"
+#include "service/collision/clip_buffers.h"
 #include "service/collision/polyhedron_sat.h"
 
 namespace contactsim {
 
-// A point of the clipped incident polygon: its position and the incident
-// vertex index, or the hash of the clip that made it.
-struct ClipPoint {
-  Vec3 p;
-  uint32_t tag;
-};
-// Polygons of the clipping, kept by a caller between calls so that a step
-// allocates nothing once their capacity is reached.
-struct ClipBuffers {
-  std::vector<ClipPoint> poly, clipped;
-};
-
 // Appends the contacts (depth > -margin) of the axis in `sat`; normals from A to B.
 void PolyhedronManifold(const PosedPolyhedron& a, const PosedPolyhedron& b, const SatResult& sat,
                         double margin, ContactSet* out, ClipBuffers* buffers);
+
+// The edge case of PolyhedronManifold, which the box-box manifold
+// (box_box_manifold.h) shares with it (the face case shares face_clip.h):
+// the one contact of an edge axis, midway between the closest points of
+// A's edge [a0, a1] and B's edge [b0, b1].
+void AppendEdgeContact(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const SatResult& sat,
+                       double margin, ContactSet* out);
 
 }  // namespace contactsim

@@ -204,6 +204,11 @@ SatResult FindSeparatingAxis(const PosedPolyhedron& a, const PosedPolyhedron& b,
   return ChooseSeparatingAxis(face_a, face_b, edges);
 }
 
+double EdgeChoiceSeparation(const SatResult& faces) {
+  // -d_edge < threshold(d_face) with d = -separation; negation is exact
+  return -PreferenceThreshold(-faces.separation, kSatEdgeRelTolerance);
+}
+
 SatResult ChooseSeparatingAxis(const SatResult& face_a, const SatResult& face_b, const SatResult& edges) {
   // the unbiased maximum (first of equals: faces of A, faces of B, edges)
   const SatResult* max = &face_a;
@@ -214,10 +219,7 @@ SatResult ChooseSeparatingAxis(const SatResult& face_a, const SatResult& face_b,
   // prefer faces of A, then faces of B, then edges (depth d = -separation)
   SatResult best = face_a;
   if (-face_b.separation < PreferenceThreshold(-best.separation, kSatFaceRelTolerance)) best = face_b;
-  if (edges.axis.kind != SeparatingAxis::Kind::kNone &&
-      -edges.separation < PreferenceThreshold(-best.separation, kSatEdgeRelTolerance)) {
-    best = edges;
-  }
+  if (edges.axis.kind != SeparatingAxis::Kind::kNone && edges.separation > EdgeChoiceSeparation(best)) best = edges;
   best.max_separation = max_separation;
   best.max_normal = max_normal;
   return best;

@@ -99,5 +99,8 @@ SatResult EarlyOutResult(SatResult r);
 // pair (separation -inf and kind kNone where there is none), with the
 // preferences above and the unbiased maximum.
 SatResult ChooseSeparatingAxis(const SatResult& face_a, const SatResult& face_b, const SatResult& edges);
+// The separation (m) an edge axis must exceed for ChooseSeparatingAxis to
+// prefer it over `faces`, the axis it chose from the faces alone.
+double EdgeChoiceSeparation(const SatResult& faces);
 
 }  // namespace contactsim

@@ -53,7 +53,7 @@ bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out) {
 
   out->vertices.resize(topo.vertices.size());
   for (size_t i = 0; i < topo.vertices.size(); ++i) {
-    out->vertices[i] = R * topo.vertices[i].cwiseProduct(scale) + body.x;
+    out->vertices[i] = PosedVertex(R, scale, body.x, topo.vertices[i]);
   }
   if (body.shape.type == ShapeType::kBox) {
     // the unit box's face normals and edges lie along the frame axes: face
@@ -62,10 +62,8 @@ bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out) {
     out->normals.resize(6);
     out->offsets.resize(6);
     for (int f = 0; f < 6; ++f) {
-      const int i = f / 2;
-      const Vec3 n = f % 2 == 0 ? Vec3(R.col(i)) : Vec3(-R.col(i));
-      out->normals[f] = n;
-      out->offsets[f] = n.dot(body.x) + scale[i];
+      out->normals[f] = BoxFaceNormal(R, f);
+      out->offsets[f] = BoxFaceOffset(out->normals[f], body.x, scale, f);
     }
     out->edge_dirs.resize(topo.edges.size());
     for (size_t e = 0; e < topo.edges.size(); ++e) {

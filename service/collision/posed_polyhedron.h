@@ -33,6 +33,30 @@ inline const std::array<int, 2>* EdgeFaces(const PosedPolyhedron& poly, int e) {
 // The cube [-1, 1]^3: 8 vertices (index bits x, y, z), 6 faces, 12 edges.
 const ConvexHull& UnitBoxTopology();
 
+// A box's frame and size, taken from its body once per pair and shared by
+// the closed-form box-box steps (box_box_sat.h, box_box_manifold.h).
+struct BoxPose {
+  Mat3 R;  // rotation, body to world
+  Vec3 h;  // m, half extents
+  Vec3 x;  // m, world, centre
+  explicit BoxPose(const RigidBody& body) : R(body.Rotation()), h(body.shape.half_extents), x(body.x) {}
+};
+
+// World position of vertex v (index bits x, y, z) of the unit box topology
+// scaled to the box: the expression PosePolyhedron poses every vertex with,
+// so that a box posed vertex by vertex equals the posed box bit for bit.
+inline Vec3 PosedVertex(const Mat3& R, const Vec3& scale, const Vec3& x, const Vec3& unit_vertex) {
+  return R * unit_vertex.cwiseProduct(scale) + x;
+}
+// Face f = 2i + s of a box (outward normal (-1)^s R e_i, topology order
+// +x, -x, +y, -y, +z, -z) as PosePolyhedron poses it: n . p = offset on it.
+inline Vec3 BoxFaceNormal(const Mat3& R, int f) { return f % 2 == 0 ? Vec3(R.col(f / 2)) : Vec3(-R.col(f / 2)); }
+inline double BoxFaceOffset(const Vec3& n, const Vec3& x, const Vec3& h, int f) { return n.dot(x) + h[f / 2]; }
+inline Vec3 BoxVertex(const BoxPose& box, int v) {
+  const Vec3 corner((v & 1) ? 1.0 : -1.0, (v & 2) ? 1.0 : -1.0, (v & 4) ? 1.0 : -1.0);
+  return PosedVertex(box.R, box.h, box.x, corner);
+}
+
 // Fills `out` for a box or convex body; returns false for other shapes or a
 // convex body without a hull.
 bool PosePolyhedron(const RigidBody& body, PosedPolyhedron* out);

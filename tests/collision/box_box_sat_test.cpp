@@ -109,5 +109,43 @@ TEST(BoxBoxSat, MatchesTheGeneralTestOnNearlyAlignedStacks) {
   }
 }
 
+// The contact variant must choose what the full test chooses, bit for bit:
+// the same axis, normal and separation (its maximum may cover the faces
+// only), and the same verdict against the early out.
+void ExpectSameContactAxis(const RigidBody& a, const RigidBody& b, double early_out, const char* what, int trial) {
+  const BoxPose pa(a), pb(b);
+  const SatResult full = FindBoxBoxSeparatingAxis(pa, pb, early_out);
+  const SatResult contact = FindBoxBoxContactAxis(pa, pb, early_out);
+  EXPECT_EQ(contact.axis, full.axis) << what << " trial " << trial;
+  EXPECT_EQ(contact.separation, full.separation) << what << " trial " << trial;
+  EXPECT_EQ(contact.normal, full.normal) << what << " trial " << trial;
+}
+
+// Verifies the contact variant against the full test on random pairs of
+// random sizes (edge and face contacts, apart and overlapping) and on the
+// resting pairs of stacks, with and without an early out.
+TEST(BoxBoxSat, ContactAxisIsTheFullTestsChoice) {
+  std::mt19937_64 rng(19);
+  for (int trial = 0; trial < 3000; ++trial) {
+    const RigidBody a = RandomBox(1, 0.3, rng);
+    const RigidBody b = RandomBox(2, 1.2, rng);
+    ExpectSameContactAxis(a, b, std::numeric_limits<double>::infinity(), "random", trial);
+    ExpectSameContactAxis(a, b, 0.01, "random, early out", trial);
+  }
+  std::uniform_real_distribution<double> tilt(-1e-3, 1e-3), gap(-1e-3, 1e-3);
+  const Vec3 h(0.5, 0.5, 0.5);
+  for (int trial = 0; trial < 900; ++trial) {
+    auto turn = [&]() {
+      return trial % 3 == 0 ? Quat::Identity()
+                            : Quat(Eigen::AngleAxisd(tilt(rng), RandomVector(rng, 1.0).normalized()));
+    };
+    const Vec3 offset = trial % 2 == 0 ? Vec3{0.5 + tilt(rng) * 100, 0.0, 1.0 + gap(rng)} : Vec3(1.0 + gap(rng), 0, 0);
+    const RigidBody a = Box(1, h, Vec3::Zero(), turn());
+    const RigidBody b = Box(2, h, offset, turn());
+    ExpectSameContactAxis(a, b, 0.01, "stack", trial);
+    ExpectSameContactAxis(a, b, std::numeric_limits<double>::infinity(), "stack, no early out", trial);
+  }
+}
+
 }  // namespace
 }  // namespace contactsim

@@ -68,5 +68,24 @@ TEST(ManifoldReductionTest, OctagonalPrismOnPlaneGivesFourPoints) {
   EXPECT_NEAR(QuadArea(out), 2.0 * 0.25, kTol);
 }
 
+// Verifies that a manifold of more points than the reduction keeps on its
+// stack (100 points of a regular polygon, a hull face's worth) reduces the
+// same way: the deepest point and the largest inscribed square (2 R^2).
+TEST(ManifoldReductionTest, HundredPointPolygonReducesToLargestSquare) {
+  ContactSet contacts;
+  for (int k = 0; k < 100; ++k) {
+    Contact c;
+    c.point = Vec3(std::cos(k * M_PI / 50), std::sin(k * M_PI / 50), 0);
+    c.normal = Vec3::UnitZ();
+    c.depth = k == 7 ? 0.02 : 0.01;
+    c.feature_id = k;
+    contacts.push_back(c);
+  }
+  ReduceManifold(0, &contacts);
+  ASSERT_EQ(contacts.size(), 4u);
+  EXPECT_NEAR(QuadArea(contacts), 2.0, kTol);
+  EXPECT_EQ(contacts[0].feature_id, 7u);  // the points keep their order
+}
+
 }  // namespace
 }  // namespace contactsim
