@@ -36,11 +36,19 @@ double IncrementalHull::Height(int point, const Face& f) const {
   return f.n.dot(points_[point] - points_[f.v[0]]) / f.len;
 }
 
+void IncrementalHull::CollectLive() {
+  live_.clear();
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+    if (faces_[f].alive && faces_[f].len > 0.0) live_.push_back(f);
+  }
+}
+
+// the largest height whichever face attains it: the face kept only tells
+// when the height must be measured again
 void IncrementalHull::MeasureAll(int p) {
   double best = kBelow;
   int top = -1;
-  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-    if (!faces_[f].alive || !(faces_[f].len > 0.0)) continue;
+  for (int f : live_) {
     const double h = Height(p, faces_[f]);
     if (h > best) best = h, top = f;
   }
@@ -81,6 +89,7 @@ void IncrementalHull::Start(const std::array<int, 4>& corners) {
     AddFace(t[0], t[1], t[2]);
   }
   cone_ok_ = Connect();
+  CollectLive();
   for (int p = 0; p < static_cast<int>(points_.size()); ++p) MeasureAll(p);
   for (int c : corners) height_[c] = kBelow, top_face_[c] = -1;
 }
@@ -143,6 +152,7 @@ bool IncrementalHull::Cone(int eye) {
     faces_[f].nb = {loop[j].outside, first + (j + 1) % m, first + (j + m - 1) % m};
   }
   for (int f : visible) faces_[f].alive = false;
+  CollectLive();
   // each remaining point: against the new faces only, unless its highest
   // face is gone
   for (int p = 0; p < static_cast<int>(points_.size()); ++p) {
@@ -169,6 +179,7 @@ Status IncrementalHull::Rebuild() {
   stamp_.clear();
   for (const auto& t : triangles) AddFace(added_[t[0]], added_[t[1]], added_[t[2]]);
   cone_ok_ = Connect();
+  CollectLive();
   std::vector<bool> is_added(points_.size(), false);
   for (int i : added_) is_added[i] = true;
   for (int p = 0; p < static_cast<int>(points_.size()); ++p) {

@@ -62,6 +62,8 @@ class IncrementalHull {
 
   int AddFace(int a, int b, int c);
   double Height(int point, const Face& f) const;
+  // live_ from faces_ (after faces were added or killed).
+  void CollectLive();
   // Re-measures point p against every live face.
   void MeasureAll(int p);
   // The faces `eye` sees, flooded from `seed`; false when their horizon is
@@ -78,6 +80,7 @@ class IncrementalHull {
   const std::vector<Vec3>& points_;
   double tol_;
   std::vector<Face> faces_;
+  std::vector<int> live_;       // the faces alive, so that a point is measured against them alone
   std::vector<int> added_;
   std::vector<double> height_;  // -inf for a point added or within the tolerance
   std::vector<int> top_face_;   // the face of each point's height
