@@ -23,7 +23,8 @@ int IncrementalHull::AddFace(int a, int b, int c) {
   Face f;
   f.v = {a, b, c};
   f.nb = {-1, -1, -1};
-  f.n = (points_[b] - points_[a]).cross(points_[c] - points_[a]);
+  f.a = points_[a];
+  f.n = (points_[b] - f.a).cross(points_[c] - f.a);
   f.len = f.n.norm();
   faces_.push_back(f);
   stamp_.push_back(-1);
@@ -33,7 +34,7 @@ int IncrementalHull::AddFace(int a, int b, int c) {
 // as the budget measured it: the distance above the plane through the
 // face's first corner
 double IncrementalHull::Height(int point, const Face& f) const {
-  return f.n.dot(points_[point] - points_[f.v[0]]) / f.len;
+  return f.n.dot(points_[point] - f.a) / f.len;
 }
 
 void IncrementalHull::CollectLive() {

@@ -52,6 +52,7 @@ class IncrementalHull {
   struct Face {
     std::array<int, 3> v;   // point indices, counter-clockwise seen from outside
     std::array<int, 3> nb;  // the face across edge v[k] -> v[k + 1]
+    Vec3 a;                 // the point v0
     Vec3 n;                 // (v1 - v0) x (v2 - v0), unnormalised
     double len = 0.0;       // |n|
     bool alive = true;
