@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """One model of pybullet_data loaded again and again into one server (a
 reset between loads), for profiling a load: the server may run under a
-wrapper (valgrind, perf), so that an instruction count of the loads can be
-taken. Prints each load's MODEL_CMD LOAD round trip in ms. BENCHMARKS.md,
+wrapper that runs it in the wrapper's own process (valgrind: a wrapper
+that starts the server as a child, as perf stat does, is not stopped by
+the interrupt at the end), so that an instruction count of the loads can
+be taken. Prints each load's MODEL_CMD LOAD round trip in ms. BENCHMARKS.md,
 "Robot models: load time", gives the commands.
 
 Usage: bench/scripts/bench_model_load.py [--build-dir build] [--model iiwa|r2d2|panda] [--loads 10]

@@ -41,8 +41,9 @@ std::vector<int> CornerIndices(std::size_t points, const std::vector<std::array<
 // Greedy choice among the full hull's `vertices`: from the initial
 // tetrahedron, add the vertex highest above the hull of those kept so far,
 // until `max_vertices` are kept or none lies above it by more than `tol`.
-// One hull grows by a cone each round (incremental_hull.h) instead of a
-// hull from scratch each round.
+// One hull grows by a cone each round (incremental_hull.h), a fraction
+// of the cost of a hull from scratch each round (BENCHMARKS.md, "Robot
+// models: load time").
 Status GreedyVertices(const std::vector<Vec3>& vertices, int max_vertices, double tol, std::vector<int>* chosen) {
   std::array<int, 4> corners;
   if (Status st = InitialTetrahedron(vertices, tol, &corners); !st.ok()) return st;

@@ -17,7 +17,7 @@
 // Where the cone step cannot be taken safely (the faces the point sees do
 // not form one disk, or a new face has no area: nearly coplanar points),
 // the hull is built again from its points by qhull (quickhull.h) and every
-// height measured anew, as the budget did every round before.
+// height measured anew, as a hull from scratch each round would.
 #pragma once
 
 #include <array>

@@ -41,8 +41,8 @@ std::vector<Vec3> Jittered(std::vector<Vec3> pts, double times) {
 }
 
 // Every point's height above the hull of `added`, from scratch: qhull's
-// triangles and a scan of their planes (what the budget did every round),
-// slivers left out.
+// triangles and a scan of their planes (the greedy rule as docs/models.md
+// states it), slivers left out.
 std::vector<double> HeightsFromScratch(const std::vector<Vec3>& pts, const std::vector<int>& added, double tol) {
   std::vector<Vec3> kept;
   for (int i : added) kept.push_back(pts[i]);
