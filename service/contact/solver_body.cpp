@@ -15,9 +15,16 @@ void LoadRange(const World& world, int begin, int end, std::vector<SolverBody>* 
     const RigidBody& b = src[i];
     SolverBody& s = (*bodies)[i];
     s.v = b.LinearVelocity();
-    s.w = b.AngularVelocity();
     s.inv_mass = b.inv_mass;
-    s.inv_inertia = b.IsDynamic() ? b.InvInertiaWorld() : Mat3::Zero();
+    // a dynamic body's w = I_W^-1 L (RigidBody::AngularVelocity) from the
+    // one world inertia: the same arithmetic, half the rotations
+    if (b.IsDynamic()) {
+      s.inv_inertia = b.InvInertiaWorld();
+      s.w = s.inv_inertia * b.L;
+    } else {
+      s.inv_inertia.setZero();
+      s.w = b.AngularVelocity();
+    }
     s.dP.setZero();
     s.dL.setZero();
   }

@@ -34,6 +34,28 @@ double Coupling(const ConstraintRow& p, const ConstraintRow& q, const std::vecto
   return sum;
 }
 
+// The m x m matrix of `entries` in compressed column form. No two entries
+// share a place, and within a column they come in ascending row order, so
+// this is the matrix setFromTriplets builds from them, value for value and
+// in the same order, without its transposed copy, duplicate search and
+// allocations.
+void FillColumns(int m, const std::vector<Eigen::Triplet<double>>& entries, std::vector<int>* cursor,
+                 Eigen::SparseMatrix<double>* a) {
+  a->resize(m, m);  // compressed, column starts zeroed
+  a->resizeNonZeros(static_cast<Eigen::Index>(entries.size()));
+  int* start = a->outerIndexPtr();
+  for (const Eigen::Triplet<double>& e : entries) ++start[e.col() + 1];
+  for (int c = 0; c < m; ++c) start[c + 1] += start[c];
+  cursor->assign(start, start + m);
+  int* inner = a->innerIndexPtr();
+  double* value = a->valuePtr();
+  for (const Eigen::Triplet<double>& e : entries) {
+    const int at = (*cursor)[e.col()]++;
+    inner[at] = e.row();
+    value[at] = e.value();
+  }
+}
+
 // Sets a row's impulse to `value` and gives the bodies the difference.
 void SetImpulse(ConstraintRow& row, double value, std::vector<SolverBody>& bodies) {
   row.Apply(value - row.lambda, bodies);
@@ -171,8 +193,7 @@ void SubspaceSolver::BuildCoupling(const std::vector<int>& members, const std::v
       }
     }
   }
-  A_.resize(m, m);
-  A_.setFromTriplets(triplets_.begin(), triplets_.end());
+  FillColumns(m, triplets_, &cursor_, &A_);  // the rows i come in ascending order
   diag_ = A_.diagonal();
 }
 
@@ -316,9 +337,8 @@ int SubspaceSolver::SolveComponent(const std::vector<int>& members, std::vector<
           triplets_.emplace_back(pr, pc, scale(pr) * it.value() * scale(pc));
         }
       }
-      Eigen::SparseMatrix<double> S(f, f);
-      S.setFromTriplets(triplets_.begin(), triplets_.end());
-      const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(S, b, nullptr, &min_norm_cache_));
+      FillColumns(f, triplets_, &cursor_, &free_block_);  // column by column, rows ascending
+      const Eigen::VectorXd dl = scale.cwiseProduct(MinNormSolve(free_block_, b, nullptr, &min_norm_cache_));
       const bool newly_held = start_free ? StepWithinBounds(members, free_rows, dl, held, rows, bodies)
                                          : ClampPastBounds(members, free_rows, dl, held, rows, bodies);
       if (newly_held) continue;

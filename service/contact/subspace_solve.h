@@ -176,7 +176,9 @@ class SubspaceSolver {
   std::vector<int> counted_;                 // per body: the last KineticEnergy call that summed it
   int energy_calls_ = 0;
   std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<int> cursor_;  // FillColumns' next place in each column
   Eigen::SparseMatrix<double> A_;
+  Eigen::SparseMatrix<double> free_block_;  // the Jacobi-scaled A of a pass's free rows
   Eigen::VectorXd diag_;
   MinNormCache min_norm_cache_;  // symbolic analyses of the components' patterns
 };

@@ -1,7 +1,8 @@
 #include "service/physics/integrator.h"
 
-#include <Eigen/LU>
 #include <algorithm>
+
+#include "service/physics/lu3.h"
 
 namespace contactsim {
 
@@ -17,7 +18,7 @@ Quat MidpointRotation(const Quat& q, const Vec3& L_W, const Mat3& inv_inertia_bo
   for (int it = 0; it < 50; ++it) {
     w = inv_inertia_body * (0.5 * (L0 + L1));
     const Mat3 half = 0.5 * h * Skew(w);
-    const Vec3 next = (Mat3::Identity() + half).partialPivLu().solve((Mat3::Identity() - half) * L0);
+    const Vec3 next = SolveLu3(Mat3::Identity() + half, (Mat3::Identity() - half) * L0);  // Eigen's LU, bit for bit
     const double change = (next - L1).norm();
     L1 = next;
     if (change <= 1e-15 * scale) break;

@@ -53,21 +53,25 @@ Status RunawayWatch::AfterStep(const World& world) {
   const double kinematic = KinematicSpeed(world);
   double fastest = -1.0;
   const RigidBody* fast = nullptr;
+  double kinetic = 0.0;  // KineticEnergy(world), each body's w taken once for it and the work
   for (size_t i = 0; i < bodies.size(); ++i) {
     const RigidBody& b = bodies[i];
     if (!StateIsFinite(b)) {
       return Status::FailedPrecondition("the world blew up at step " + std::to_string(world.step) + ": " +
                                         Describe("has a non-finite state, |x| =", b, b.x.norm(), "m"));
     }
-    if (!b.IsDynamic() || i >= before_.size() || bodies.size() != before_.size()) continue;
+    if (!b.IsDynamic()) continue;
+    const Vec3 w = b.AngularVelocity();
+    kinetic += 0.5 * b.P.squaredNorm() * b.inv_mass + 0.5 * b.L.dot(w);  // RigidBody::KineticEnergy
+    if (i >= before_.size() || bodies.size() != before_.size()) continue;
     // the work of the body's force (gravity's is in V) and torque over the step
     const Vec3 applied = b.force - b.mass * world.gravity;
-    work_ += std::abs(applied.dot(b.x - before_[i])) + std::abs(b.torque.dot(b.AngularVelocity())) * world.dt;
+    work_ += std::abs(applied.dot(b.x - before_[i])) + std::abs(b.torque.dot(w)) * world.dt;
     work_ += 2.0 * b.mass * kinematic * kinematic;
     const double speed = b.LinearVelocity().norm();
     if (speed > fastest) fastest = speed, fast = &b;
   }
-  const double gain = MechanicalEnergy(world) - base_energy_ - work_;
+  const double gain = kinetic + PotentialEnergy(world) - base_energy_ - work_;
   if (based_ && gain > factor_ * scale_) {
     char text[200];
     std::snprintf(text, sizeof text, "the world blew up at step %lld: its energy rose %.3g J beyond what it had and "

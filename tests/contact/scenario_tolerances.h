@@ -132,18 +132,13 @@ inline constexpr KnownMiss kKnownMisses[] = {
     {"barrier", "surface ramp 20 deg down", 0.033, "1.487 against 1.512 m/s^2 (-1.6%), the same on its plane"},
     // bodies placed touching or overlapping (placement_contact_test.cpp):
     // moved from the placement, fastest point at any step. penalty's
-    // load-aware start (preload = placed, penalty_preload.h) takes the wall
-    // and the stacks to 0.06-0.31 cm/s touching and from impulse, but rolls
-    // the pile's capsule 0.96-1.04 mm, so it is off; overlaps of 0.1 mm and
-    // more rise at overlap_push_speed a course, 1.5 cm/s at the top of three,
-    // with either start (docs/methods/penalty.md, "Load-aware start")
-    {"penalty", "* overlap=0mm speed", 0.03,
-     "2.2 cm/s (stack of three), 1.2 cm/s (wall): its springs start unloaded, so a placed stack falls into them "
-     "and rings at pi / contact_time, about g contact_time / pi = 1.25 cm/s per course of load"},
-    {"penalty", "* from impulse speed", 0.03, "2.3 cm/s: impulse rests them touching, the same fall into its springs"},
-    {"penalty", "* overlap=0.*mm speed", 0.024,
-     "0.59-1.1 / 1.6-1.8 cm/s (wall / stack) at 0.01-0.5 mm: a placed overlap is its springs' rest depth, pushed out "
-     "at overlap_push_speed (penalty_row.h), so the bodies fall into the springs as when placed touching"},
+    // load-aware start (preload = placed, penalty_preload.h) holds every
+    // scene placed touching (0.07-0.31 cm/s); overlaps of 0.1 mm and more
+    // rise at overlap_push_speed a course, 1.5 cm/s at the top of three
+    // (docs/methods/penalty.md, "Placement overlaps")
+    {"penalty", "* overlap=0.*mm speed", 0.02,
+     "1.1 / 1.5 cm/s (wall / stack) at 0.1 and 0.5 mm: a placed overlap is its springs' rest depth, pushed out at "
+     "overlap_push_speed (penalty_row.h), 0.5 cm/s a course"},
     {"soft", "* overlap=0.5mm speed", 0.05, "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
     // random convex hulls dropped on their most stable face
     // (resting_hull_scenarios_test.cpp), not traced further
@@ -158,8 +153,8 @@ inline constexpr KnownMiss kKnownMisses[] = {
     // CubeFallenOntoSlopeHolds), its motion within the slope in 3 s; the
     // same at every mass and size (0.02 and 0.05 m half sizes)
     {"soft", "slope hold deg=40 *", 6.9e-4,
-     "0.53 mm in 3 s (0.44 before the relax pass held a loaded point's gap, soft_contact.h; the float path 0.46): "
-     "not traced further"},
+     "0.53 mm in 3 s (the float path 0.46): the landing keeps 60% of its speed along the slope, as friction in "
+     "the relax pass is capped by the solve pass's normal impulse (docs/methods/soft.md, \"Friction\")"},
     {"penalty", "slope hold deg=38 *", 7.5e-4,
      "0.57 mm in 3 s, all within 0.08 s of the landing: the cube lands rocking on its downhill edge, its two points' "
      "dashpots (each implicit against its own point) ringing on the rocking mode, so the normal load averages "

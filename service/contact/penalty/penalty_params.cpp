@@ -57,7 +57,7 @@ const ParamTable<PenaltyParams>& PenaltyParamTable() {
       DoubleParam("overlap_push_speed", &P::overlap_push_speed, 1e-6, 1e3, "m/s",
                   "an overlap a pair already had when first seen (deeper than its approach could reach in the "
                   "step) is the spring's rest depth, which shrinks at this speed (penalty_row.h)"),
-      ChoiceParam("preload", &P::preload, {"off", "placed"},
+      ChoiceParam("preload", &P::preload, {"placed", "off"},
                   "explicit: placed starts the springs of a contact component placed at rest (no touching point "
                   "seen before, none moving faster than the impact threshold) compressed by their share of its "
                   "static load (penalty_preload.h); off starts them unloaded"),

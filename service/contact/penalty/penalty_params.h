@@ -39,11 +39,11 @@ struct PenaltyParams {
   // seen (placement, a pose set, a switch from another method) is pushed
   // out; the spring takes the overlap as its rest depth (penalty_row.h)
   double overlap_push_speed = 0.005;
-  // explicit: "placed" starts the springs of a component placed at rest
-  // compressed by their share of its static load (penalty_preload.h);
-  // "off" starts them at their rest length (the default: docs/methods/penalty.md,
-  // "Load-aware start")
-  std::string preload = "off";
+  // explicit: "placed" (the default) starts the springs of a component
+  // placed at rest compressed by their share of its static load
+  // (penalty_preload.h); "off" starts them at their rest length
+  // (docs/methods/penalty.md, "Load-aware start")
+  std::string preload = "placed";
   // m/s: the speed at which such a start's compression (a negative rest
   // depth) is given back, so the springs come to their own equilibrium
   double preload_drain_speed = 0.001;
