@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "service/physics/cylinder_hull.h"
-#include "service/physics/hull_vertex_budget.h"
+#include "service/physics/hull_memo.h"
 #include "service/physics/validation.h"
 
 namespace contactsim::model {
@@ -18,7 +18,7 @@ Eigen::Vector4d Wxyz(const Quat& q) { return Eigen::Vector4d(q.w(), q.x(), q.y()
 // `max_hull_vertices` of them (hull_vertex_budget.h; 0: all). A mesh with
 // no hull keeps its vertices, so that building the shape names the part
 // and the reason, as for any other hull.
-ShapePart PartOf(const PartPlan& part, int max_hull_vertices) {
+ShapePart PartOf(const PartPlan& part, int max_hull_vertices, HullMemo* memo) {
   const Geometry& g = *part.geometry;
   ShapePart p;
   p.position = part.origin.position;
@@ -37,7 +37,7 @@ ShapePart PartOf(const PartPlan& part, int max_hull_vertices) {
       break;
     case GeometryType::kMesh:
       p.type = ShapeType::kConvex;
-      if (!BudgetedHullPoints(g.mesh_vertices, max_hull_vertices, &p.points).ok()) p.points = g.mesh_vertices;
+      if (!memo->BudgetedPoints(g.mesh_vertices, max_hull_vertices, &p.points).ok()) p.points = g.mesh_vertices;
       break;
   }
   return p;
@@ -46,7 +46,7 @@ ShapePart PartOf(const PartPlan& part, int max_hull_vertices) {
 }  // namespace
 
 Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_static, int max_hull_vertices,
-                        const std::string& where, BodySettings* settings) {
+                        const std::string& where, HullMemo* memo, BodySettings* settings) {
   if (plan.parts.empty()) {
     return Status::InvalidArgument(where + " has no collision element (with the links merged into it); a body "
                                    "needs at least one shape");
@@ -58,7 +58,7 @@ Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_stati
   }
   BodySettings s;
   s.shape = ShapeType::kCompound;
-  for (const PartPlan& part : plan.parts) s.parts.push_back(PartOf(part, max_hull_vertices));
+  for (const PartPlan& part : plan.parts) s.parts.push_back(PartOf(part, max_hull_vertices, memo));
   s.position = owner_W.position;
   s.orientation = Wxyz(owner_W.orientation);
   s.fixed = is_static;

@@ -13,6 +13,7 @@
 #include "service/model/body_plan.h"
 #include "service/model/model_description.h"
 #include "service/physics/body_settings.h"
+#include "service/physics/hull_memo.h"
 #include "service/physics/joint.h"
 #include "service/physics/status.h"
 
@@ -21,9 +22,10 @@ namespace contactsim::model {
 // A body's settings from its plan, with its owner link's frame at `owner_W`
 // in the world. A static body (the fixed base) gets no mass. A mesh becomes
 // the hull of at most `max_hull_vertices` of its vertices (0: the full hull;
-// hull_vertex_budget.h).
+// hull_vertex_budget.h), taken from `memo` when another link's mesh had
+// the same vertices.
 Status MakeBodySettings(const BodyPlan& plan, const Pose& owner_W, bool is_static, int max_hull_vertices,
-                        const std::string& where, BodySettings* settings);
+                        const std::string& where, HullMemo* memo, BodySettings* settings);
 
 // A moving joint's settings with the child link's frame at `child_W` in the
 // world at q = 0; the body ids are left for the caller. Fixed joints are

@@ -6,10 +6,16 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <system_error>
 
 namespace contactsim::model {
 namespace {
+
+Status TooManyVertices(const std::string& path, size_t max_vertices) {
+  return Status::ResourceExhausted("mesh '" + path + "' has more than " + std::to_string(max_vertices) +
+                                   " vertices (the limit max_mesh_vertices)");
+}
 
 // Appends the vertices of `node` and its children, with `parent` the
 // transform from the node's parent to the file's root frame, and, when
@@ -22,10 +28,7 @@ Status CollectVertices(const aiScene& scene, const aiNode& node, const aiMatrix4
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
     const int first = static_cast<int>(out->size());
-    if (out->size() + mesh.mNumVertices > max_vertices) {
-      return Status::ResourceExhausted("mesh '" + path + "' has more than " + std::to_string(max_vertices) +
-                                       " vertices (the limit max_mesh_vertices)");
-    }
+    if (out->size() + mesh.mNumVertices > max_vertices) return TooManyVertices(path, max_vertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D p = to_root * mesh.mVertices[v];
       const Vec3 vertex(scale.x() * p.x, scale.y() * p.y, scale.z() * p.z);
@@ -66,21 +69,27 @@ Status ReadMeshVertices(const std::string& path, const Vec3& scale, const ReadLi
   if (!checked.ok()) return checked;
   Assimp::Importer importer;
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  // shared corners once, not once per face: STL repeats them in every triangle
-  const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+  // no post-processing: the hull needs positions only, and the sort below
+  // welds the corners that STL repeats in every triangle exactly, in a
+  // fraction of the time assimp's JoinIdenticalVertices takes (BENCHMARKS.md,
+  // "Robot models: load time")
+  const aiScene* scene = importer.ReadFile(path, 0);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     return Status::InvalidArgument("mesh '" + path + "' cannot be read: " + importer.GetErrorString());
   }
+  // every corner as the file repeats it (max_mesh_bytes bounds them); the
+  // vertex limit counts the distinct ones
   std::vector<Vec3> out;
-  Status st = CollectVertices(*scene, *scene->mRootNode, aiMatrix4x4(), scale, limits.max_mesh_vertices, path, &out);
+  Status st = CollectVertices(*scene, *scene->mRootNode, aiMatrix4x4(), scale, std::numeric_limits<size_t>::max(),
+                              path, &out);
   if (!st.ok()) return st;
   if (out.empty()) return Status::InvalidArgument("mesh '" + path + "' has no vertices");
-  // each corner once: assimp keeps a corner once per normal (an STL cube
-  // has 24), and the hull needs positions only
+  // each corner once: STL and OBJ give a corner once per face that uses it
   std::sort(out.begin(), out.end(), [](const Vec3& a, const Vec3& b) {
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   });
   out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (out.size() > limits.max_mesh_vertices) return TooManyVertices(path, limits.max_mesh_vertices);
   *vertices = std::move(out);
   return Status::Ok();
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "service/model/engine_settings.h"
+#include "service/physics/hull_memo.h"
 
 namespace contactsim::model {
 namespace {
@@ -29,10 +30,11 @@ Status PrepareModel(ModelBuild build, const World& world, const Material& defaul
   // one negative group per model, named by its id: its bodies never collide
   // with each other unless it asks for self-collision
   const int group = -static_cast<int>(world.next_model_id % 1000000000);
+  HullMemo memo;  // links that share a mesh or a cylinder's size build its hull once
   for (size_t i = 0; i < build.bodies.size(); ++i) {
     RigidBody b;
     Status st = ApplySelfCollision(build.record.self_collide, group, &build.bodies[i].settings);
-    if (st.ok()) st = CreateBody(build.bodies[i].settings, default_material, &b);
+    if (st.ok()) st = CreateBody(build.bodies[i].settings, default_material, &b, &memo);
     if (!st.ok()) {
       return Status::InvalidArgument("model \"" + name + "\", link \"" + build.record.links[build.bodies[i].link].name +
                                      "\": " + st.message());

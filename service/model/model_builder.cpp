@@ -4,6 +4,7 @@
 #include "service/model/engine_settings.h"
 #include "service/model/model_check.h"
 #include "service/model/visual_entry.h"
+#include "service/physics/hull_memo.h"
 
 namespace contactsim::model {
 namespace {
@@ -67,13 +68,14 @@ Status BuildModel(ModelDescription d, const ModelOptions& options, ModelBuild* b
   if (Status st = LinkWorldPoses(d, options.base, ZeroCoordinates(d), &b.link_pose_W); !st.ok()) {
     return st.Prefixed(model + ": ");
   }
+  HullMemo memo;  // links that share a mesh budget it once
   for (const BodyPlan& plan : plans) {
     const std::string where = model + ", link \"" + d.links[plan.owner].name + "\"";
     const bool is_static = options.fixed_base && plan.owner == tree.root;
     BuiltBody body;
     body.link = plan.owner;
     if (Status st = MakeBodySettings(plan, b.link_pose_W[plan.owner], is_static, options.max_hull_vertices, where,
-                                     &body.settings);
+                                     &memo, &body.settings);
         !st.ok()) {
       return st;
     }

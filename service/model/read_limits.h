@@ -14,7 +14,7 @@ struct ReadLimits {
   size_t max_links = 1000;
   size_t max_joints = 1000;
   size_t max_mesh_bytes = 64u << 20;        // bytes of one mesh file
-  size_t max_mesh_vertices = 200000;        // vertices of one mesh as stored (a corner per normal)
+  size_t max_mesh_vertices = 200000;        // distinct vertices of one mesh (as stored, for a render mesh)
   size_t max_total_mesh_vertices = 2000000; // over every collision mesh of a model
 };
 

@@ -59,7 +59,7 @@ Status CheckExplicitMass(const BodySettings& s) {
 // The shape posed about its centre of mass, the body's origin: `com`
 // receives that centre in the settings' frame (the explicit one, else the
 // shape's at uniform density).
-Status MakeShape(const BodySettings& s, Shape* shape, Vec3* com) {
+Status MakeShape(const BodySettings& s, HullMemo* memo, Shape* shape, Vec3* com) {
   *com = Vec3::Zero();
   if (s.shape == ShapeType::kPlane) {
     if (!s.parts.empty()) return Status::InvalidArgument("parts are for a compound shape, got them on a plane");
@@ -70,7 +70,7 @@ Status MakeShape(const BodySettings& s, Shape* shape, Vec3* com) {
     return MakeSurface(s, shape);
   }
   std::vector<ShapeChild> children;
-  Status st = MakeFrameChildren(s, &children);
+  Status st = MakeFrameChildren(s, &children, memo);
   if (!st.ok()) return st;
   if (s.center_of_mass) {
     *com = *s.center_of_mass;
@@ -92,12 +92,12 @@ Status CheckMaterial(std::optional<double> restitution, std::optional<double> fr
   return Status::Ok();
 }
 
-Status CreateBody(const BodySettings& s, const Material& default_material, RigidBody* body) {
+Status CreateBody(const BodySettings& s, const Material& default_material, RigidBody* body, HullMemo* memo) {
   Status st;
   Shape shape;
   Vec3 com;
   if (!(st = CheckExplicitMass(s)).ok()) return st;
-  if (!(st = MakeShape(s, &shape, &com)).ok()) return st;
+  if (!(st = MakeShape(s, memo, &shape, &com)).ok()) return st;
   if (!(st = CheckFinite("position", s.position)).ok()) return st;
   if (!(st = CheckInRange("position", s.position.cwiseAbs().maxCoeff(), 0.0, kMaxLength)).ok()) return st;
   if (!(st = CheckFinite("linear_velocity", s.linear_velocity)).ok()) return st;

@@ -13,6 +13,8 @@
 
 namespace contactsim {
 
+class HullMemo;  // hull_memo.h
+
 // One shape of a compound body, posed in the frame that
 // BodySettings::position and orientation place in the world (a robot
 // link's frame): a sphere, box, capsule or convex hull, with the same
@@ -75,8 +77,10 @@ constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water
 // as RigidBody::frame_origin; the body axes are the settings' axes. A
 // single shape whose centre is not the centre of mass becomes a compound
 // of one child, exactly (docs/physics.md, "Compound bodies and mass
-// properties").
-Status CreateBody(const BodySettings& settings, const Material& default_material, RigidBody* body);
+// properties"). Hulls come from `memo` when given (hull_memo.h: a model's
+// links that share a mesh or a cylinder's size build its hull once).
+Status CreateBody(const BodySettings& settings, const Material& default_material, RigidBody* body,
+                  HullMemo* memo = nullptr);
 
 // Validates restitution and friction for SET_MATERIAL-like changes.
 Status CheckMaterial(std::optional<double> restitution, std::optional<double> friction);

@@ -15,7 +15,7 @@ Status CheckLength(const std::string& field, double v, bool zero_ok) {
 // One solid shape from its fields; `prefix` names the fields ("" or
 // "parts[2]."). A hull's child sits at its centroid, the rest at the origin.
 Status MakeSolid(const std::string& prefix, ShapeType type, double radius, const Vec3& half_extents,
-                 double half_length, const std::vector<Vec3>& points, ShapeChild* child) {
+                 double half_length, const std::vector<Vec3>& points, HullMemo* memo, ShapeChild* child) {
   Status st;
   *child = ShapeChild();
   switch (type) {
@@ -40,7 +40,9 @@ Status MakeSolid(const std::string& prefix, ShapeType type, double radius, const
         if (!(st = CheckFinite(prefix + "points[" + std::to_string(i) + "]", points[i])).ok()) return st;
       }
       std::shared_ptr<const ConvexHull> hull;
-      if (!(st = BuildConvexHull(points, &hull, &child->position)).ok()) {
+      st = memo != nullptr ? memo->Hull(points, &hull, &child->position)
+                           : BuildConvexHull(points, &hull, &child->position);
+      if (!st.ok()) {
         return prefix.empty() ? st : Status::InvalidArgument(prefix + "points: " + st.message());
       }
       child->shape = Shape::Convex(hull);
@@ -54,9 +56,10 @@ Status MakeSolid(const std::string& prefix, ShapeType type, double radius, const
                                       : "type " + std::to_string(static_cast<int>(type))));
 }
 
-Status MakePartChild(const ShapePart& part, int index, ShapeChild* child) {
+Status MakePartChild(const ShapePart& part, int index, HullMemo* memo, ShapeChild* child) {
   const std::string prefix = "parts[" + std::to_string(index) + "].";
-  Status st = MakeSolid(prefix, part.type, part.radius, part.half_extents, part.half_length, part.points, child);
+  Status st =
+      MakeSolid(prefix, part.type, part.radius, part.half_extents, part.half_length, part.points, memo, child);
   if (!st.ok()) return st;
   if (!(st = CheckFinite(prefix + "position", part.position)).ok()) return st;
   if (!(st = CheckInRange(prefix + "position", part.position.cwiseAbs().maxCoeff(), 0.0, kMaxLength)).ok()) {
@@ -73,7 +76,7 @@ Status MakePartChild(const ShapePart& part, int index, ShapeChild* child) {
 
 }  // namespace
 
-Status MakeFrameChildren(const BodySettings& s, std::vector<ShapeChild>* children) {
+Status MakeFrameChildren(const BodySettings& s, std::vector<ShapeChild>* children, HullMemo* memo) {
   children->clear();
   if (s.shape != ShapeType::kCompound) {
     if (!s.parts.empty()) {
@@ -81,7 +84,7 @@ Status MakeFrameChildren(const BodySettings& s, std::vector<ShapeChild>* childre
                                      " part(s) on a " + ShapeTypeName(s.shape));
     }
     ShapeChild child;
-    Status st = MakeSolid("", s.shape, s.radius, s.half_extents, s.half_length, s.points, &child);
+    Status st = MakeSolid("", s.shape, s.radius, s.half_extents, s.half_length, s.points, memo, &child);
     if (!st.ok()) {
       return s.shape == ShapeType::kPlane || s.shape >= ShapeType::kCount
                  ? Status::InvalidArgument("shape must be sphere, box, capsule, convex, plane or compound, got type " +
@@ -98,7 +101,7 @@ Status MakeFrameChildren(const BodySettings& s, std::vector<ShapeChild>* childre
   }
   for (int i = 0; i < n; ++i) {
     ShapeChild child;
-    Status st = MakePartChild(s.parts[i], i, &child);
+    Status st = MakePartChild(s.parts[i], i, memo, &child);
     if (!st.ok()) {
       children->clear();
       return st;

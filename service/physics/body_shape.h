@@ -7,14 +7,16 @@
 #include <vector>
 
 #include "service/physics/body_settings.h"
+#include "service/physics/hull_memo.h"
 
 namespace contactsim {
 
 // The solid shapes of `s` (one for a sphere, box, capsule or convex, each
 // part for a compound), each posed in the settings' frame; a hull's child
 // sits at its centroid. Not for planes. The message names the field
-// ("parts[2].radius", "radius") and the value.
-Status MakeFrameChildren(const BodySettings& s, std::vector<ShapeChild>* children);
+// ("parts[2].radius", "radius") and the value. Hulls come from `memo` when
+// given (hull_memo.h).
+Status MakeFrameChildren(const BodySettings& s, std::vector<ShapeChild>* children, HullMemo* memo = nullptr);
 
 // The body's shape for a centre of mass `com` in the settings' frame: the
 // lone child's own shape when it sits at com unturned and `s` is not a

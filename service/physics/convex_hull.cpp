@@ -27,11 +27,8 @@ int64_t EdgeKey(int a, int b) { return (static_cast<int64_t>(a) << 32) | static_
 
 // Groups of edge-adjacent triangles lying in one plane (within tol), found by
 // flooding from each unassigned triangle in order, against the seed's plane.
-std::vector<int> GroupCoplanar(const std::vector<Vec3>& p, const std::vector<Triangle>& tris, double tol) {
-  std::unordered_map<int64_t, int> edge_tri;
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t) {
-    for (int k = 0; k < 3; ++k) edge_tri[EdgeKey(tris[t][k], tris[t][(k + 1) % 3])] = t;
-  }
+std::vector<int> GroupCoplanar(const std::vector<Vec3>& p, const std::vector<Triangle>& tris, double tol,
+                               const std::unordered_map<int64_t, int>& edge_tri) {
   std::vector<int> group(tris.size(), -1);
   int groups = 0;
   for (int seed = 0; seed < static_cast<int>(tris.size()); ++seed) {
@@ -59,14 +56,13 @@ std::vector<int> GroupCoplanar(const std::vector<Vec3>& p, const std::vector<Tri
   return group;
 }
 
-// Boundary loop of one group: its directed edges whose twin lies outside the
-// group, chained head to tail. Counter-clockwise from outside, as the
-// triangles are.
+// Boundary loop of one group (its triangles `members`): its directed edges
+// whose twin lies outside the group, chained head to tail. Counter-clockwise
+// from outside, as the triangles are.
 std::vector<int> BoundaryLoop(const std::vector<Triangle>& tris, const std::vector<int>& group, int g,
-                              const std::unordered_map<int64_t, int>& edge_tri) {
+                              const std::vector<int>& members, const std::unordered_map<int64_t, int>& edge_tri) {
   std::map<int, int> next;
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t) {
-    if (group[t] != g) continue;
+  for (int t : members) {
     for (int k = 0; k < 3; ++k) {
       const int a = tris[t][k], b = tris[t][(k + 1) % 3];
       const auto twin = edge_tri.find(EdgeKey(b, a));
@@ -129,10 +125,13 @@ Status BuildConvexHull(const std::vector<Vec3>& points, std::shared_ptr<const Co
   for (int t = 0; t < static_cast<int>(tris.size()); ++t) {
     for (int k = 0; k < 3; ++k) edge_tri[EdgeKey(tris[t][k], tris[t][(k + 1) % 3])] = t;
   }
-  const std::vector<int> group = GroupCoplanar(points, tris, tol);
+  const std::vector<int> group = GroupCoplanar(points, tris, tol, edge_tri);
   const int groups = group.empty() ? 0 : *std::max_element(group.begin(), group.end()) + 1;
+  // each group's triangles, so that a loop looks at its own alone
+  std::vector<std::vector<int>> members(groups);
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t) members[group[t]].push_back(t);
   std::vector<std::vector<int>> loops(groups);
-  for (int g = 0; g < groups; ++g) loops[g] = BoundaryLoop(tris, group, g, edge_tri);
+  for (int g = 0; g < groups; ++g) loops[g] = BoundaryLoop(tris, group, g, members[g], edge_tri);
 
   // a vertex on the straight part of a hull edge is collinear in both faces
   // that share it; drop it only when it is collinear in every face, so that

@@ -4,6 +4,7 @@
 #include <array>
 #include <string>
 
+#include "service/physics/incremental_hull.h"
 #include "service/physics/quickhull.h"
 
 namespace contactsim {
@@ -37,59 +38,22 @@ std::vector<int> CornerIndices(std::size_t points, const std::vector<std::array<
   return out;
 }
 
-// A triangle's plane: a corner, its (unnormalised) normal and that
-// normal's length.
-struct Plane {
-  Vec3 a, n;
-  double len;
-};
-
-// The planes of the triangles of `hull_points` with a non-zero area.
-std::vector<Plane> TrianglePlanes(const std::vector<Vec3>& hull_points,
-                                  const std::vector<std::array<int, 3>>& triangles) {
-  std::vector<Plane> planes;
-  for (const auto& t : triangles) {
-    const Vec3& a = hull_points[t[0]];
-    const Vec3 n = (hull_points[t[1]] - a).cross(hull_points[t[2]] - a);
-    const double len = n.norm();
-    if (len > 0.0) planes.push_back({a, n, len});
-  }
-  return planes;
-}
-
-// How far `p` lies above a hull with these face planes: its largest height
-// over them (<= 0 inside).
-double HeightAbove(const Vec3& p, const std::vector<Plane>& planes) {
-  double height = -1e300;
-  for (const Plane& f : planes) height = std::max(height, f.n.dot(p - f.a) / f.len);
-  return height;
-}
-
 // Greedy choice among the full hull's `vertices`: from the initial
 // tetrahedron, add the vertex highest above the hull of those kept so far,
 // until `max_vertices` are kept or none lies above it by more than `tol`.
+// One hull grows by a cone each round (incremental_hull.h), a fraction
+// of the cost of a hull from scratch each round (BENCHMARKS.md, "Robot
+// models: load time").
 Status GreedyVertices(const std::vector<Vec3>& vertices, int max_vertices, double tol, std::vector<int>* chosen) {
   std::array<int, 4> corners;
   if (Status st = InitialTetrahedron(vertices, tol, &corners); !st.ok()) return st;
   chosen->assign(corners.begin(), corners.end());
-  std::vector<bool> taken(vertices.size(), false);
-  for (int i : corners) taken[i] = true;
-  std::vector<Vec3> kept;
-  std::vector<std::array<int, 3>> triangles;
+  IncrementalHull hull(vertices, tol);
+  hull.Start(corners);
   while (static_cast<int>(chosen->size()) < max_vertices) {
-    kept.clear();
-    for (int i : *chosen) kept.push_back(vertices[i]);
-    if (Status st = Quickhull(kept, tol, &triangles); !st.ok()) return st;
-    const std::vector<Plane> planes = TrianglePlanes(kept, triangles);
-    int eye = -1;
-    double highest = tol;
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-      if (taken[i]) continue;
-      const double h = HeightAbove(vertices[i], planes);
-      if (h > highest) highest = h, eye = static_cast<int>(i);
-    }
+    const int eye = hull.Highest();
     if (eye < 0) break;
-    taken[eye] = true;
+    if (Status st = hull.Add(eye); !st.ok()) return st;
     chosen->push_back(eye);
   }
   std::sort(chosen->begin(), chosen->end());

@@ -4,6 +4,10 @@
 // hulls at once). Options:
 //   Qt   triangulated output: merged facets come as triangles, which
 //        BuildConvexHull merges back into polygon faces;
+//   Q5   no check of the outer planes after the hull is built
+//        (qh_check_maxout): it moves qhull's bound on how far a point lies
+//        outside its facet, which no output here uses, and was 5% of
+//        loading R2D2 (BENCHMARKS.md, "Robot models: load time");
 //   C-t  pre-merge facets whose centrums lie within t of their neighbours'
 //        planes, t the caller's tolerance, so nearly coplanar points do not
 //        make slivers.
@@ -143,7 +147,7 @@ Status Quickhull(const std::vector<Vec3>& points, double tolerance,
   for (const Vec3& p : points) coords.insert(coords.end(), {p.x(), p.y(), p.z()});
   std::ostringstream flags;
   flags.precision(17);
-  flags << "qhull Qt C-" << tolerance;
+  flags << "qhull Qt Q5 C-" << tolerance;
   std::string options = flags.str();
   MessageStream messages;
   qhT qh_qh;

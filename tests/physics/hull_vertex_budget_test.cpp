@@ -8,29 +8,17 @@
 #include <random>
 
 #include "service/physics/convex_hull.h"
+#include "tests/physics/point_clouds.h"
 
 namespace contactsim {
 namespace {
 
 
-// n points spread evenly over an ellipsoid with semi-axes r (a Fibonacci
-// lattice), a stand-in for a mesh whose hull has every point as a vertex.
-std::vector<Vec3> Ellipsoid(int n, const Vec3& r) {
-  std::vector<Vec3> pts;
-  const double golden = kPi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n;
-    const double s = std::sqrt(1.0 - z * z);
-    pts.emplace_back(r.x() * s * std::cos(golden * i), r.y() * s * std::sin(golden * i), r.z() * z);
-  }
-  return pts;
-}
-
 // The largest support gap h_full(u) - h_kept(u) over many directions u: the
 // Hausdorff distance between two nested convex sets, sampled.
 double SupportGap(const std::vector<Vec3>& full, const std::vector<Vec3>& kept) {
   double gap = 0.0;
-  for (const Vec3& u : Ellipsoid(4000, Vec3::Ones())) {
+  for (const Vec3& u : EllipsoidPoints(4000, Vec3::Ones())) {
     double hf = -1e300, hk = -1e300;
     for (const Vec3& p : full) hf = std::max(hf, u.dot(p));
     for (const Vec3& p : kept) hk = std::max(hk, u.dot(p));
@@ -55,7 +43,7 @@ double HullVolume(const std::vector<Vec3>& pts) {
 // even than that; measured: volume 90.2% to 91.4%, gap 1.9% to 5.7%).
 TEST(HullVertexBudgetTest, KeepsFewPointsInsideTheFullHullAndConvergesWithTheBudget) {
   for (const Vec3& r : {Vec3(1.0, 1.0, 1.0), Vec3(0.05, 0.08, 0.2), Vec3(3.0, 0.5, 1.0)}) {
-    const std::vector<Vec3> cloud = Ellipsoid(600, r);
+    const std::vector<Vec3> cloud = EllipsoidPoints(600, r);
     const double full_volume = HullVolume(cloud);
     double last_gap = 1e300;
     for (int budget : {8, 16, 32, 64, 128}) {
@@ -81,7 +69,7 @@ TEST(HullVertexBudgetTest, KeepsFewPointsInsideTheFullHullAndConvergesWithTheBud
 // exactly the hull's vertices (interior points dropped), so that the hull
 // built from them is the full hull.
 TEST(HullVertexBudgetTest, AGenerousBudgetKeepsTheFullHull) {
-  std::vector<Vec3> cloud = Ellipsoid(40, Vec3(1.0, 2.0, 0.5));
+  std::vector<Vec3> cloud = EllipsoidPoints(40, Vec3(1.0, 2.0, 0.5));
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.3, 0.3);
   for (int i = 0; i < 50; ++i) cloud.push_back(Vec3{u(rng), u(rng), u(rng)});  // inside
@@ -109,7 +97,7 @@ TEST(HullVertexBudgetTest, SmallBudgetsKeepExtremePoints) {
 // Verifies the refusals: a budget below four, too few points, a flat cloud.
 TEST(HullVertexBudgetTest, RefusesBadBudgetsAndFlatClouds) {
   std::vector<Vec3> kept;
-  const Status low = BudgetedHullPoints(Ellipsoid(50, Vec3::Ones()), 3, &kept);
+  const Status low = BudgetedHullPoints(EllipsoidPoints(50, Vec3::Ones()), 3, &kept);
   EXPECT_FALSE(low.ok());
   EXPECT_NE(low.message().find("max_hull_vertices must be 0 (every vertex) or at least 4, got 3"), std::string::npos)
       << low.message();
