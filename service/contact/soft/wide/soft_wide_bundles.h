@@ -46,6 +46,8 @@ class WideBundles {
   float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
   void PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m, const std::vector<SoftBody>& bodies,
                 const std::vector<Vec3>* friction_points, int bundle, int lane);
+  // A padding lane: every field zero (it reads the resting dummy body).
+  void ClearLane(int bundle, int lane);
 
   int width_ = 0;
   int dummy_ = 0;

@@ -229,8 +229,16 @@ struct PrepareLanes {
       const B k_lin = f.Get(kInvMassA) + f.Get(kInvMassB);
       const int slots = view.slots[bundle];
       Rows rows;
-      for (int s = 0; s < slots; ++s) PreparePoint(f, s, Ia, Ib, k_lin, &rows);
-      if (slots >= 2) PrepareBlock(f, slots, rows, k_lin);
+      for (int s = 0; s < slots; ++s) {
+        PreparePoint(f, s, Ia, Ib, k_lin, &rows);
+        // the step's largest push and totals start at zero (the bundles are not cleared)
+        for (const int field : {kMaxPush, kTotalN, kTotalT1, kTotalT2}) f.Set(SlotAt(s, field), B(0.0f));
+      }
+      if (slots >= 2) {
+        PrepareBlock(f, slots, rows, k_lin);
+      } else {
+        f.Set(kBlock, B(0.0f));
+      }
     }
   }
 };
