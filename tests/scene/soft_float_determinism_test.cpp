@@ -57,5 +57,17 @@ TEST(SoftFloatDeterminismTest, FloatPathAnswersInItsOwnPrecision) {
   EXPECT_NE(testing_util::RunSceneHash(single), testing_util::RunSceneHash(twice));
 }
 
+// Verifies that a world the float path hands to the double path (here
+// every point heavy-on-light: direct_mass_ratio 1) steps bit for bit as
+// under precision=double, though the float path's preparation leaves the
+// friction rows and K^-1 to its prepare kernel until it knows the path.
+TEST(SoftFloatDeterminismTest, HeavyOnLightWorldStepsAsUnderTheDoublePath) {
+  const testing_util::SceneRun single{
+      "box_pyramid.pbtxt", "soft", {{"precision", "float"}, {"direct_mass_ratio", "1"}}, 12, 1};
+  const testing_util::SceneRun twice{
+      "box_pyramid.pbtxt", "soft", {{"precision", "double"}, {"direct_mass_ratio", "1"}}, 12, 1};
+  EXPECT_EQ(testing_util::RunSceneHash(single), testing_util::RunSceneHash(twice));
+}
+
 }  // namespace
 }  // namespace contactsim
