@@ -38,8 +38,7 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   // float over its lanes; RunSubsteps fills them in should the step turn
   // to the double path after all
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
-  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_,
-                    !wide_prepare_);
+  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
   BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
   OrderBlocksFromTheTop(world, points_, &manifolds_);
   if (!params_.warm_start) return;
