@@ -130,8 +130,7 @@ struct PrepareLanes {
   // lane of fewer than 4 points counts a diagonal of 1 in the spread,
   // whatever its bundle's slots (so the test does not depend on which
   // manifolds share its bundle, nor on the width).
-  template <int slots>
-  static M Invert(const B& count, const B (&k)[kSlots][kSlots], B (&inv)[kSlots][kSlots]) {
+  static M Invert(int slots, const B& count, const B (&k)[kSlots][kSlots], B (&inv)[kSlots][kSlots]) {
     const B zero(0.0f), one(1.0f);
     B l[kSlots][kSlots], d_inv[kSlots];
     M ok = zero == zero;
@@ -175,8 +174,7 @@ struct PrepareLanes {
   }
 
   // The lane's K^-1 or K^+ and whether it takes the block solve.
-  template <int slots>
-  static void PrepareBlock(const typename L::Fields& f, const Rows& rows, const B& k_lin) {
+  static void PrepareBlock(const typename L::Fields& f, int slots, const Rows& rows, const B& k_lin) {
     const B zero(0.0f), one(1.0f);
     const B count = f.Get(kCount);
     B k[kSlots][kSlots], inv[kSlots][kSlots];
@@ -195,8 +193,8 @@ struct PrepareLanes {
       k_max = xsimd::select(point, xsimd::max(k_max, k[i][i]), k_max);
     }
     B c[kSlots] = {zero, zero, zero, zero};
-    if constexpr (slots == kSlots) {
-      const M face = count == B(4.0f);
+    M face = count == B(4.0f);
+    if (slots == kSlots && xsimd::any(face)) {
       M valid;
       FaceNullVector(rows, f.Get3(kT1), f.Get3(kT2), c, &valid);
       ok = ok && (valid || !face);
@@ -205,7 +203,7 @@ struct PrepareLanes {
         for (int j = 0; j < kSlots; ++j) k[i][j] = k[i][j] + c[i] * c[j];
       }
     }
-    ok = ok && Invert<slots>(count, k, inv);
+    ok = ok && Invert(slots, count, k, inv);
     B inv_max = zero;
     for (int i = 0; i < slots; ++i) {
       const M row = B(static_cast<float>(i)) < count;
@@ -222,34 +220,24 @@ struct PrepareLanes {
     }
   }
 
-  // A bundle of `slots` points a lane (the loops over them unrolled).
-  template <int slots>
-  static void PrepareBundle(const WideView& view, int bundle) {
-    const typename L::Fields f = L::Of(view, bundle);
-    B Ia[9], Ib[9];
-    GatherInertia(view, view.body_a + bundle * W, Ia);
-    GatherInertia(view, view.body_b + bundle * W, Ib);
-    const B k_lin = f.Get(kInvMassA) + f.Get(kInvMassB);
-    Rows rows;
-    for (int s = 0; s < slots; ++s) {
-      PreparePoint(f, s, Ia, Ib, k_lin, &rows);
-      // the step's largest push and totals start at zero (the bundles are not cleared)
-      for (const int field : {kMaxPush, kTotalN, kTotalT1, kTotalT2}) f.Set(SlotAt(s, field), B(0.0f));
-    }
-    if constexpr (slots >= 2) {
-      PrepareBlock<slots>(f, rows, k_lin);
-    } else {
-      f.Set(kBlock, B(0.0f));
-    }
-  }
-
   static void Prepare(const WideView& view, int begin, int end) {
     for (int bundle = begin; bundle < end; ++bundle) {
-      switch (view.slots[bundle]) {
-        case 1: PrepareBundle<1>(view, bundle); break;
-        case 2: PrepareBundle<2>(view, bundle); break;
-        case 3: PrepareBundle<3>(view, bundle); break;
-        default: PrepareBundle<kSlots>(view, bundle); break;
+      const typename L::Fields f = L::Of(view, bundle);
+      B Ia[9], Ib[9];
+      GatherInertia(view, view.body_a + bundle * W, Ia);
+      GatherInertia(view, view.body_b + bundle * W, Ib);
+      const B k_lin = f.Get(kInvMassA) + f.Get(kInvMassB);
+      const int slots = view.slots[bundle];
+      Rows rows;
+      for (int s = 0; s < slots; ++s) {
+        PreparePoint(f, s, Ia, Ib, k_lin, &rows);
+        // the step's largest push and totals start at zero (the bundles are not cleared)
+        for (const int field : {kMaxPush, kTotalN, kTotalT1, kTotalT2}) f.Set(SlotAt(s, field), B(0.0f));
+      }
+      if (slots >= 2) {
+        PrepareBlock(f, slots, rows, k_lin);
+      } else {
+        f.Set(kBlock, B(0.0f));
       }
     }
   }
