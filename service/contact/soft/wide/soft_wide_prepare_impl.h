@@ -4,11 +4,11 @@
 // step's start, each point's rows as PrepareSoftPoint makes them (Jacobians
 // r x d, responses I^-1 (r x d), effective masses 1 / K) and each lane's
 // block K^-1 (normal_block.h), in float, straight into the bundle, as
-// Box3D prepares its contact constraints (box3d src/contact_solver.c,
-// b2PrepareContactsTask).
+// Box2D v3 and Box3D prepare their wide contact constraints (box2d
+// src/contact_solver.c, b2PrepareContactsTask).
 //
 // K^-1 by Cholesky over the lanes: K = L L^T, K^-1 = L^-T L^-1, 4 x 4 at
-// most and unrolled. A face's four points act on three velocities, so their
+// most. A face's four points act on three velocities, so their
 // K is singular and takes K^+ = (K + c c^T)^-1 - c c^T directly
 // (normal_block.h); two or three points take K^-1. A lane takes the block
 // solve when L's diagonal passes normal_block.cpp's test and K's estimated
