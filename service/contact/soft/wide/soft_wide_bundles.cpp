@@ -67,7 +67,8 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   // the rows, effective masses and K^-1 are the prepare kernel's
   // the bundle's slots past the manifold's points: no anchors, no spring, no impulse
   for (int s = m.count; s < slots_[bundle]; ++s) {
-    for (const int field : {kRa, kRb, kFa, kFb}) put3(SlotAt(s, field), Vec3::Zero());
+    for (const int field : {kRa, kRb}) put3(SlotAt(s, field), Vec3::Zero());
+    if (friction_points != nullptr) put3(SlotAt(s, kFa), Vec3::Zero()), put3(SlotAt(s, kFb), Vec3::Zero());
     for (const int field : {kAdjustedSeparation, kFriction, kBiasRate, kMassScale, kImpulseScale, kLambdaN,
                             kLambdaT1, kLambdaT2}) {
       put(SlotAt(s, field), 0.0);
@@ -77,9 +78,12 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
     const SoftPoint& p = points[m.first + s];
     points_[static_cast<size_t>(index) * kSlots + s] = m.first + s;
     const auto at = [s](int field) { return SlotAt(s, field); };
-    Vec3 fa, fb;
-    SoftFrictionArms(p, m.first + s, friction_points, bodies, &fa, &fb);
-    put3(at(kRa), p.ra), put3(at(kRb), p.rb), put3(at(kFa), fa), put3(at(kFb), fb);
+    put3(at(kRa), p.ra), put3(at(kRb), p.rb);
+    if (friction_points != nullptr) {
+      Vec3 fa, fb;
+      SoftFrictionArms(p, m.first + s, friction_points, bodies, &fa, &fb);
+      put3(at(kFa), fa), put3(at(kFb), fb);
+    }
     put(at(kAdjustedSeparation), p.adjusted_separation);
     put(at(kFriction), p.friction);
     put(at(kBiasRate), p.soft.bias_rate), put(at(kMassScale), p.soft.mass_scale);
@@ -93,6 +97,7 @@ void WideBundles::Pack(const std::vector<SoftPoint>& points, const std::vector<S
                        const std::vector<Vec3>* friction_points, int width, int dummy) {
   width_ = width;
   dummy_ = dummy;
+  friction_at_anchors_ = friction_points == nullptr;
   const int overflow = static_cast<int>(manifolds.size()) - colours.starts.back();
   colours_.starts.assign(1, 0);
   for (int c = 0; c < colours.colours(); ++c) {
@@ -164,6 +169,7 @@ wide::WideView WideBundles::View(wide::WideBody* bodies) {
   view.offsets = offsets_.data();
   view.bodies = bodies;
   view.width = width_;
+  view.friction_at_anchors = friction_at_anchors_;
   return view;
 }
 

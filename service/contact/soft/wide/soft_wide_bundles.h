@@ -51,6 +51,7 @@ class WideBundles {
 
   int width_ = 0;
   int dummy_ = 0;
+  bool friction_at_anchors_ = true;  // kFa, kFb not packed (the kernels read kRa, kRb)
   std::vector<float> data_;  // from its first kAlign-aligned float (Aligned)
   std::vector<int> body_a_, body_b_;            // per lane
   std::vector<unsigned char> write_a_, write_b_;  // per lane

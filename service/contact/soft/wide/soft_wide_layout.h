@@ -33,7 +33,8 @@ enum LaneField : int {
 // Per slot (point): the rows' anchors, Jacobians and responses
 // (SoftPoint), effective masses, spring, accumulated impulses and totals.
 // The bundles are packed with the anchors, where friction acts (kFa, kFb:
-// the anchors, or the patch's point, patch_torsion.h), the spring and the
+// the patch's point, patch_torsion.h; not packed where it acts at the
+// anchors, WideView::friction_at_anchors), the spring and the
 // warm start; the prepare kernel (soft_wide_kernels.h) computes the rest
 // (Jacobians, responses, effective masses, K^-1) over the lanes.
 enum SlotField : int {
@@ -99,6 +100,9 @@ struct WideView {
   const unsigned char* write_b = nullptr;
   const unsigned char* slots = nullptr;    // per bundle: most points of its lanes
   WideBody* bodies = nullptr;
+  // friction acts at the anchors: kFa and kFb are not packed (patch
+  // torsion off, patch_torsion.h)
+  bool friction_at_anchors = true;
   int width = 0;
 };
 

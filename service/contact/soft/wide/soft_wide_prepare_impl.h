@@ -79,12 +79,13 @@ struct PrepareLanes {
   };
 
   // Slot s's rows, as PrepareSoftPoint computes them.
-  static void PreparePoint(const typename L::Fields& f, int s, const B* Ia, const B* Ib, const B& k_lin,
-                           Rows* rows) {
+  static void PreparePoint(const typename L::Fields& f, int s, bool friction_at_anchors, const B* Ia, const B* Ib,
+                           const B& k_lin, Rows* rows) {
     const auto at = [s](int field) { return SlotAt(s, field); };
     const auto set3 = [&](int field, const V3& v) { f.Set(field, v.x), f.Set(field + 1, v.y), f.Set(field + 2, v.z); };
     const V3 n = f.Get3(kN), t1 = f.Get3(kT1), t2 = f.Get3(kT2);
-    const V3 ra = f.Get3(at(kRa)), rb = f.Get3(at(kRb)), fa = f.Get3(at(kFa)), fb = f.Get3(at(kFb));
+    const V3 ra = f.Get3(at(kRa)), rb = f.Get3(at(kRb));
+    const V3 fa = friction_at_anchors ? ra : f.Get3(at(kFa)), fb = friction_at_anchors ? rb : f.Get3(at(kFb));
     const V3 ra_n = Cross(ra, n), rb_n = Cross(rb, n);
     const V3 ia_n = Times(Ia, ra_n), ib_n = Times(Ib, rb_n);
     const V3 ra_t1 = Cross(fa, t1), ra_t2 = Cross(fa, t2), rb_t1 = Cross(fb, t1), rb_t2 = Cross(fb, t2);
@@ -124,7 +125,7 @@ struct PrepareLanes {
     for (int i = 0; i < 4; ++i) c[i] = c[i] * scale;
   }
 
-  // inv = k^-1 of the symmetric `slots` x `slots` k by Cholesky; false
+  // inv = k^-1 of the symmetric `slots` x `slots` k (its lower triangle) by Cholesky; false
   // lanes where k is not positive definite or L's diagonal spreads too far.
   // As normal_block.cpp pads every block to 4 x 4 with the identity, a
   // lane of fewer than 4 points counts a diagonal of 1 in the spread,
@@ -182,7 +183,8 @@ struct PrepareLanes {
     M ok = count >= B(2.0f);
     for (int i = 0; i < slots; ++i) {
       const M point = B(static_cast<float>(i)) < count;
-      for (int j = 0; j < slots; ++j) {
+      // the lower triangle (Invert reads no other)
+      for (int j = 0; j <= i; ++j) {
         const B kij = k_lin + L::Dot(rows.ra_n[i], rows.ia_n[j]) + L::Dot(rows.rb_n[i], rows.ib_n[j]);
         // a smaller block's unused rows and columns are the identity's
         const M used = point && (B(static_cast<float>(j)) < count);
@@ -200,7 +202,7 @@ struct PrepareLanes {
       ok = ok && (valid || !face);
       for (int i = 0; i < kSlots; ++i) c[i] = xsimd::select(face, c[i], zero);
       for (int i = 0; i < kSlots; ++i) {
-        for (int j = 0; j < kSlots; ++j) k[i][j] = k[i][j] + c[i] * c[j];
+        for (int j = 0; j <= i; ++j) k[i][j] = k[i][j] + c[i] * c[j];
       }
     }
     ok = ok && Invert(slots, count, k, inv);
@@ -230,7 +232,7 @@ struct PrepareLanes {
       const int slots = view.slots[bundle];
       Rows rows;
       for (int s = 0; s < slots; ++s) {
-        PreparePoint(f, s, Ia, Ib, k_lin, &rows);
+        PreparePoint(f, s, view.friction_at_anchors, Ia, Ib, k_lin, &rows);
         // the step's largest push and totals start at zero (the bundles are not cleared)
         for (const int field : {kMaxPush, kTotalN, kTotalT1, kTotalT2}) f.Set(SlotAt(s, field), B(0.0f));
       }
