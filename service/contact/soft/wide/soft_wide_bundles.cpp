@@ -63,8 +63,7 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   write_b_[index] = bodies[p0.b].inv_mass > 0.0 ? 1 : 0;
   put3(kN, p0.n), put3(kT1, p0.t1), put3(kT2, p0.t2);
   put(kInvMassA, bodies[p0.a].inv_mass), put(kInvMassB, bodies[p0.b].inv_mass);
-  put(kCount, m.count);
-  // the rows, effective masses and K^-1 are the prepare kernel's
+  put(kCount, m.count);  // the rows, effective masses and K^-1 are the prepare kernel's
   // the bundle's slots past the manifold's points: no anchors, no spring, no impulse
   for (int s = m.count; s < slots_[bundle]; ++s) {
     for (const int field : {kRa, kRb}) put3(SlotAt(s, field), Vec3::Zero());
