@@ -30,22 +30,35 @@ double ImpactSpeed(const SoftPoint& p, const World& world, double vn0, double s0
 // contacts a thread prepares at a time
 constexpr int kSoftPrepareGrain = 256;
 
+// The friction rows' Jacobians, responses and masses of a point acting at
+// fa, fb (lever arms from A's and B's centres of mass).
+void SetFrictionRows(const Vec3& fa, const Vec3& fb, const SoftBody& sa, const SoftBody& sb, SoftPoint* p) {
+  p->ra_t1 = fa.cross(p->t1), p->ra_t2 = fa.cross(p->t2);
+  p->rb_t1 = fb.cross(p->t1), p->rb_t2 = fb.cross(p->t2);
+  p->ia_t1 = sa.inv_inertia * p->ra_t1, p->ia_t2 = sa.inv_inertia * p->ra_t2;
+  p->ib_t1 = sb.inv_inertia * p->rb_t1, p->ib_t2 = sb.inv_inertia * p->rb_t2;
+  const double k_lin = sa.inv_mass + sb.inv_mass;
+  p->mass_t1 = MassOf(k_lin + p->ra_t1.dot(p->ia_t1) + p->rb_t1.dot(p->ib_t1));
+  p->mass_t2 = MassOf(k_lin + p->ra_t2.dot(p->ia_t2) + p->rb_t2.dot(p->ib_t2));
+  p->k_t12 = p->ra_t1.dot(p->ia_t2) + p->rb_t1.dot(p->ib_t2);
+}
+
 }  // namespace
 
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
-                       std::vector<SoftPoint>* points) {
+                       std::vector<SoftPoint>* points, bool friction_rows) {
   points->resize(contacts.size());
   runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       (*points)[k] = PrepareSoftPoint(contacts[k], world, bodies,
-                                      friction_points != nullptr ? &(*friction_points)[k] : nullptr);
+                                      friction_points != nullptr ? &(*friction_points)[k] : nullptr, friction_rows);
     }
   });
 }
 
 SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                           const Vec3* friction_point) {
+                           const Vec3* friction_point, bool friction_rows) {
   const SoftBody& sa = bodies[c.a];
   const SoftBody& sb = bodies[c.b];
   const ContactRow basis = MakeContactBasis(c, world);
@@ -59,22 +72,42 @@ SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vect
   p.t2 = basis.t2;
   p.friction = basis.friction;
   p.restitution = basis.restitution;
-  // where the friction acts: the contact point, or one of the patch's (patch_torsion.h)
-  const Vec3 fa = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.a].x) : p.ra;
-  const Vec3 fb = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.b].x) : p.rb;
-  p.ra_n = p.ra.cross(p.n), p.ra_t1 = fa.cross(p.t1), p.ra_t2 = fa.cross(p.t2);
-  p.rb_n = p.rb.cross(p.n), p.rb_t1 = fb.cross(p.t1), p.rb_t2 = fb.cross(p.t2);
-  p.ia_n = sa.inv_inertia * p.ra_n, p.ia_t1 = sa.inv_inertia * p.ra_t1, p.ia_t2 = sa.inv_inertia * p.ra_t2;
-  p.ib_n = sb.inv_inertia * p.rb_n, p.ib_t1 = sb.inv_inertia * p.rb_t1, p.ib_t2 = sb.inv_inertia * p.rb_t2;
+  p.ra_n = p.ra.cross(p.n), p.rb_n = p.rb.cross(p.n);
+  p.ia_n = sa.inv_inertia * p.ra_n, p.ib_n = sb.inv_inertia * p.rb_n;
   const double k_lin = sa.inv_mass + sb.inv_mass;
   p.mass_n = MassOf(k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n));
-  p.mass_t1 = MassOf(k_lin + p.ra_t1.dot(p.ia_t1) + p.rb_t1.dot(p.ib_t1));
-  p.mass_t2 = MassOf(k_lin + p.ra_t2.dot(p.ia_t2) + p.rb_t2.dot(p.ib_t2));
-  p.k_t12 = p.ra_t1.dot(p.ia_t2) + p.rb_t1.dot(p.ib_t2);
+  if (friction_rows) {
+    // where the friction acts: the contact point, or one of the patch's (patch_torsion.h)
+    const Vec3 fa = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.a].x) : p.ra;
+    const Vec3 fb = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.b].x) : p.rb;
+    SetFrictionRows(fa, fb, sa, sb, &p);
+  }
   p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
   const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
   p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
   return p;
+}
+
+void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,
+                      const std::vector<SoftBody>& bodies, Vec3* fa, Vec3* fb) {
+  if (friction_points == nullptr) {
+    *fa = p.ra, *fb = p.rb;
+    return;
+  }
+  *fa = (*friction_points)[k] - bodies[p.a].x0;
+  *fb = (*friction_points)[k] - bodies[p.b].x0;
+}
+
+void PrepareSoftFrictionRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
+                             ParallelRunner& runner, std::vector<SoftPoint>* points) {
+  runner.For(static_cast<int>(points->size()), kSoftPrepareGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      SoftPoint& p = (*points)[k];
+      Vec3 fa, fb;
+      SoftFrictionArms(p, k, friction_points, bodies, &fa, &fb);
+      SetFrictionRows(fa, fb, bodies[p.a], bodies[p.b], &p);
+    }
+  });
 }
 
 void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,

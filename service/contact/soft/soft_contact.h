@@ -74,13 +74,25 @@ struct SoftPoint {
 
 // The points of `contacts` at the bodies' state at the step's start, their
 // friction rows acting at `friction_points` (patch_torsion.h; null: at the
-// contact points). On the world's threads (each point is its own).
+// contact points). On the world's threads (each point is its own). Without
+// `friction_rows` the friction rows' Jacobians, responses and masses are
+// left unset: the float path computes them in float over its lanes
+// (soft_wide_kernels.h), and PrepareSoftFrictionRows fills them in when
+// the step turns to the double path after all.
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
-                       std::vector<SoftPoint>* points);
+                       std::vector<SoftPoint>* points, bool friction_rows = true);
 // One of them; friction_point null: at c.point.
 SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                           const Vec3* friction_point = nullptr);
+                           const Vec3* friction_point = nullptr, bool friction_rows = true);
+// Where point k's friction acts, from A's and B's centres of mass at the
+// step's start: its anchors, or friction_points[k] (patch_torsion.h).
+void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,
+                      const std::vector<SoftBody>& bodies, Vec3* fa, Vec3* fb);
+// The friction rows of points prepared without them, as PrepareSoftPoints
+// computes them.
+void PrepareSoftFrictionRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
+                             ParallelRunner& runner, std::vector<SoftPoint>* points);
 
 // Each point's spring for sub-steps of h: `hertz` between two movable
 // bodies, twice it against a static or kinematic one, which carries no

@@ -76,8 +76,13 @@ void SolveBlockNormals(const SoftPass& pass, const SoftManifold& m, std::vector<
 }  // namespace
 
 void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
-                        std::vector<SoftManifold>* manifolds) {
+                        std::vector<SoftManifold>* manifolds, bool invert) {
   GroupNormalBlocks(points, &SoftPoint::n, manifolds);
+  if (invert) InvertSoftManifolds(points, runner, manifolds);
+}
+
+void InvertSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
+                         std::vector<SoftManifold>* manifolds) {
   runner.For(static_cast<int>(manifolds->size()), kInvertGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       SoftManifold& m = (*manifolds)[k];

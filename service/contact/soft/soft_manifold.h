@@ -15,10 +15,14 @@ namespace contactsim {
 using SoftManifold = NormalBlock;
 
 // Groups consecutive points of one body pair (the narrowphase emits a
-// pair's points together) and inverts K where a block solve applies (on
-// the world's threads).
+// pair's points together) and, with `invert`, inverts K where a block
+// solve applies (InvertSoftManifolds; the float path inverts its own in
+// float, soft_wide_kernels.h).
 void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
-                        std::vector<SoftManifold>* manifolds);
+                        std::vector<SoftManifold>* manifolds, bool invert = true);
+// K^-1 of each manifold where a block solve applies (on the world's threads).
+void InvertSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
+                         std::vector<SoftManifold>* manifolds);
 
 // Passes over the manifolds [begin, end) (one colour of block_colours.h,
 // or all of them in order):

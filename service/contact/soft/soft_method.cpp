@@ -33,10 +33,13 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   for (const Contact& c : contacts_) in_contact_[c.a] = in_contact_[c.b] = 1;
   SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, runner, &bodies_);
-  const bool torsion = ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform;
-  if (torsion) PatchFrictionPoints(contacts_, &friction_points_);
-  PrepareSoftPoints(contacts_, world, bodies_, torsion ? &friction_points_ : nullptr, runner, &points_);
-  BuildSoftManifolds(points_, runner, &manifolds_);
+  if (FrictionPoints() != nullptr) PatchFrictionPoints(contacts_, &friction_points_);
+  // the float path (SoftWideSolver) computes the friction rows and K^-1 in
+  // float over its lanes; RunSubsteps fills them in should the step turn
+  // to the double path after all
+  wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
+  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
+  BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
   OrderBlocksFromTheTop(world, points_, &manifolds_);
   if (!params_.warm_start) return;
   for (size_t k = 0; k < contacts_.size(); ++k) {
@@ -46,6 +49,10 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
       points_[k].lambda_t2 = (*cached)[2];
     }
   }
+}
+
+const std::vector<Vec3>* SoftMethod::FrictionPoints() const {
+  return ParsePatchTorsion(params_.patch_torsion) == PatchTorsion::kUniform ? &friction_points_ : nullptr;
 }
 
 void SoftMethod::ColourManifolds() {

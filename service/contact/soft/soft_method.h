@@ -85,6 +85,9 @@ class SoftMethod : public ContactMethod {
   // (soft_stages.cpp).
   void RunSubsteps(World& world, ParallelRunner& runner);
   StepStats Report(ContactSet* contacts) const;
+  // where the points' friction acts with patch_torsion (patch_torsion.h);
+  // null: at the points
+  const std::vector<Vec3>* FrictionPoints() const;
   // Restitution applies to approaches faster than this (m/s).
   double RestitutionThreshold(const World& world) const;
 
@@ -103,6 +106,9 @@ class SoftMethod : public ContactMethod {
   SoftRatioSolve ratio_solve_;
   SoftJointedSolve jointed_solve_;
   SoftWideSolver wide_;  // precision=float
+  // this step's points and manifolds wait for the float path's prepare
+  // kernel (no friction rows, no K^-1 yet)
+  bool wide_prepare_ = false;
   SequentialImpacts impacts_;
   std::vector<std::array<double, 3>> impulses_;
   WarmStartCache warm_start_;

@@ -48,9 +48,19 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   if (params_.precision == "float" && SoftWideSolver::Applies(world, ratio_solve_.active())) {
     SoftWideStep wide{h, params_.substeps, params_.relax_iterations, solve, 0};
     if (params_.float_lanes != "widest") wide.lanes = std::stoi(params_.float_lanes);
+    wide.friction_points = FrictionPoints();
     wide_.Run(wide, manifolds_, colours_, runner, world, points_, bodies_);
-    RestituteSoftPoints(RestitutionThreshold(world), world, manifolds_, points_, bodies_, &impacts_);
+    const double threshold = RestitutionThreshold(world);
+    if (!SoftStepNeedsRestitution(threshold, points_, bodies_)) return;
+    // restitution's friction rows are the float path's (soft_wide_solver.h)
+    wide_.UnpackFrictionRows(points_);
+    RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
     return;
+  }
+  if (wide_prepare_) {
+    // the double path's rows, as Prepare makes them for precision=double
+    PrepareSoftFrictionRows(bodies_, FrictionPoints(), runner, &points_);
+    InvertSoftManifolds(points_, runner, &manifolds_);
   }
   SoftPass relax = solve;
   relax.use_bias = false;

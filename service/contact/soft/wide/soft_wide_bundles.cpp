@@ -4,32 +4,6 @@
 #include <cstdint>
 
 namespace contactsim {
-namespace {
-
-// The largest condition number, estimated as max K_ii max |K^-1_ij|, at
-// which a manifold's normal rows take the block solve in single precision.
-// The block's increment is K^-1 times the rows' velocities, whose float
-// round-off (6e-8 relative) K^-1 amplifies by up to the condition: at 1e3
-// that is 6e-5 of the bodies' speed. Worse blocks, such as the points of
-// a triangle of a curved surface with two of them nearly in line with the
-// third, are swept point by point, as the double path sweeps the blocks
-// it cannot invert (normal_block.h). Taken as they came, such blocks gave a
-// box landing on a curved 100,000-triangle terrain 4.8e8 m/s in one step.
-constexpr double kMaxFloatBlockCondition = 1e3;
-
-bool FloatBlock(const std::vector<SoftPoint>& points, const SoftManifold& m) {
-  if (!m.block) return false;
-  double k_max = 0.0;
-  for (int i = 0; i < m.count; ++i) {
-    const double mass = points[m.first + i].mass_n;
-    if (!(mass > 0.0)) return false;
-    k_max = std::max(k_max, 1.0 / mass);
-  }
-  const double inv_max = m.inv_k.topLeftCorner(m.count, m.count).cwiseAbs().maxCoeff();
-  return k_max * inv_max <= kMaxFloatBlockCondition;
-}
-
-}  // namespace
 
 static_assert(wide::kSlots == kMaxNormalBlock, "a lane holds a manifold's points");
 
@@ -61,7 +35,10 @@ void WideBundles::Allocate(const std::vector<SoftManifold>& manifolds, const Blo
     floats += static_cast<size_t>(wide::BundleFields(slots_[b])) * width_;
   }
   const size_t lanes = slots_.size() * width_;
-  data_.assign(floats + kPad, 0.0f);
+  // not cleared: PackLane writes a lane's inputs and zeroes its empty
+  // slots', ClearLane a padding lane, and the prepare kernel the rest
+  // (clearing the whole array cost 3.6% of a pyramid step)
+  data_.resize(floats + kPad);
   body_a_.assign(lanes, dummy_);
   body_b_.assign(lanes, dummy_);
   write_a_.assign(lanes, 0);
@@ -70,7 +47,8 @@ void WideBundles::Allocate(const std::vector<SoftManifold>& manifolds, const Blo
 }
 
 void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m,
-                           const std::vector<SoftBody>& bodies, int bundle, int lane) {
+                           const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
+                           int bundle, int lane) {
   using namespace wide;
   float* base = Aligned() + offsets_[bundle] + lane;
   const auto put = [&](int field, double x) { base[field * width_] = static_cast<float>(x); };
@@ -85,22 +63,27 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   write_b_[index] = bodies[p0.b].inv_mass > 0.0 ? 1 : 0;
   put3(kN, p0.n), put3(kT1, p0.t1), put3(kT2, p0.t2);
   put(kInvMassA, bodies[p0.a].inv_mass), put(kInvMassB, bodies[p0.b].inv_mass);
-  const bool block = FloatBlock(points, m);
-  put(kBlock, block ? 1.0 : 0.0);
-  // K^-1's rows and columns past the block's points stay zero
-  for (int i = 0; block && i < m.count; ++i) {
-    for (int j = 0; j < m.count; ++j) put(kInvK + 4 * i + j, m.inv_k(i, j));
+  put(kCount, m.count);  // the rows, effective masses and K^-1 are the prepare kernel's
+  // the bundle's slots past the manifold's points: no anchors, no spring, no impulse
+  for (int s = m.count; s < slots_[bundle]; ++s) {
+    for (const int field : {kRa, kRb}) put3(SlotAt(s, field), Vec3::Zero());
+    if (friction_points != nullptr) put3(SlotAt(s, kFa), Vec3::Zero()), put3(SlotAt(s, kFb), Vec3::Zero());
+    for (const int field : {kAdjustedSeparation, kFriction, kBiasRate, kMassScale, kImpulseScale, kLambdaN,
+                            kLambdaT1, kLambdaT2}) {
+      put(SlotAt(s, field), 0.0);
+    }
   }
   for (int s = 0; s < m.count; ++s) {
     const SoftPoint& p = points[m.first + s];
     points_[static_cast<size_t>(index) * kSlots + s] = m.first + s;
     const auto at = [s](int field) { return SlotAt(s, field); };
     put3(at(kRa), p.ra), put3(at(kRb), p.rb);
-    put3(at(kRaN), p.ra_n), put3(at(kRbN), p.rb_n), put3(at(kIaN), p.ia_n), put3(at(kIbN), p.ib_n);
-    put3(at(kRaT1), p.ra_t1), put3(at(kRaT2), p.ra_t2), put3(at(kRbT1), p.rb_t1), put3(at(kRbT2), p.rb_t2);
-    put3(at(kIaT1), p.ia_t1), put3(at(kIaT2), p.ia_t2), put3(at(kIbT1), p.ib_t1), put3(at(kIbT2), p.ib_t2);
+    if (friction_points != nullptr) {
+      Vec3 fa, fb;
+      SoftFrictionArms(p, m.first + s, friction_points, bodies, &fa, &fb);
+      put3(at(kFa), fa), put3(at(kFb), fb);
+    }
     put(at(kAdjustedSeparation), p.adjusted_separation);
-    put(at(kMassN), p.mass_n), put(at(kMassT1), p.mass_t1), put(at(kMassT2), p.mass_t2), put(at(kKT12), p.k_t12);
     put(at(kFriction), p.friction);
     put(at(kBiasRate), p.soft.bias_rate), put(at(kMassScale), p.soft.mass_scale);
     put(at(kImpulseScale), p.soft.impulse_scale);
@@ -109,9 +92,11 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
 }
 
 void WideBundles::Pack(const std::vector<SoftPoint>& points, const std::vector<SoftManifold>& manifolds,
-                       const BlockColours& colours, const std::vector<SoftBody>& bodies, int width, int dummy) {
+                       const BlockColours& colours, const std::vector<SoftBody>& bodies,
+                       const std::vector<Vec3>* friction_points, int width, int dummy) {
   width_ = width;
   dummy_ = dummy;
+  friction_at_anchors_ = friction_points == nullptr;
   const int overflow = static_cast<int>(manifolds.size()) - colours.starts.back();
   colours_.starts.assign(1, 0);
   for (int c = 0; c < colours.colours(); ++c) {
@@ -122,29 +107,54 @@ void WideBundles::Pack(const std::vector<SoftPoint>& points, const std::vector<S
   for (int c = 0; c < colours.colours(); ++c) {
     for (int k = colours.starts[c]; k < colours.starts[c + 1]; ++k) {
       const int offset = k - colours.starts[c];
-      PackLane(points, manifolds[k], bodies, colours_.starts[c] + offset / width_, offset % width_);
+      PackLane(points, manifolds[k], bodies, friction_points, colours_.starts[c] + offset / width_, offset % width_);
     }
   }
   for (int k = 0; k < overflow; ++k) {
-    PackLane(points, manifolds[colours.starts.back() + k], bodies, colours_.starts.back() + k, 0);
+    PackLane(points, manifolds[colours.starts.back() + k], bodies, friction_points, colours_.starts.back() + k, 0);
+  }
+  for (int index = 0; index < static_cast<int>(body_a_.size()); ++index) {
+    if (body_a_[index] == dummy_) ClearLane(index / width_, index % width_);
+  }
+}
+
+void WideBundles::ClearLane(int bundle, int lane) {
+  float* base = Aligned() + offsets_[bundle] + lane;
+  for (int field = 0; field < wide::BundleFields(slots_[bundle]); ++field) base[field * width_] = 0.0f;
+}
+
+template <class Read>
+void WideBundles::ForEachPoint(const Read& read) const {
+  for (size_t entry = 0; entry < points_.size(); ++entry) {
+    const int k = points_[entry];
+    if (k < 0) continue;
+    const size_t index = entry / wide::kSlots;
+    const size_t bundle = index / width_, lane = index % width_;
+    read(k, static_cast<int>(entry % wide::kSlots), Aligned() + offsets_[bundle] + lane);
   }
 }
 
 void WideBundles::Unpack(std::vector<SoftPoint>& points) const {
   using namespace wide;
-  for (size_t entry = 0; entry < points_.size(); ++entry) {
-    const int k = points_[entry];
-    if (k < 0) continue;
-    const size_t index = entry / kSlots;
-    const int s = static_cast<int>(entry % kSlots);
-    const size_t bundle = index / width_, lane = index % width_;
-    const float* base = Aligned() + offsets_[bundle] + lane;
+  ForEachPoint([&](int k, int s, const float* base) {
     const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width_]); };
     SoftPoint& p = points[k];
     p.lambda_n = get(kLambdaN), p.lambda_t1 = get(kLambdaT1), p.lambda_t2 = get(kLambdaT2);
     p.max_push = get(kMaxPush);
     p.total_n = get(kTotalN), p.total_t1 = get(kTotalT1), p.total_t2 = get(kTotalT2);
-  }
+  });
+}
+
+void WideBundles::UnpackFrictionRows(std::vector<SoftPoint>& points) const {
+  using namespace wide;
+  ForEachPoint([&](int k, int s, const float* base) {
+    const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width_]); };
+    const auto get3 = [&](int field) { return Vec3(get(field), get(field + 1), get(field + 2)); };
+    SoftPoint& p = points[k];
+    p.ra_t1 = get3(kRaT1), p.ra_t2 = get3(kRaT2), p.rb_t1 = get3(kRbT1), p.rb_t2 = get3(kRbT2);
+    p.ia_t1 = get3(kIaT1), p.ia_t2 = get3(kIaT2), p.ib_t1 = get3(kIbT1), p.ib_t2 = get3(kIbT2);
+    p.mass_t1 = get(kMassT1), p.mass_t2 = get(kMassT2), p.k_t12 = get(kKT12);
+  });
 }
 
 wide::WideView WideBundles::View(wide::WideBody* bodies) {
@@ -158,6 +168,7 @@ wide::WideView WideBundles::View(wide::WideBody* bodies) {
   view.offsets = offsets_.data();
   view.bodies = bodies;
   view.width = width_;
+  view.friction_at_anchors = friction_at_anchors_;
   return view;
 }
 

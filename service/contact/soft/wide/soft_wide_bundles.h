@@ -18,12 +18,18 @@ namespace contactsim {
 class WideBundles {
  public:
   // Packs `manifolds` (ordered colour by colour, as `colours` says) of
-  // `points`, whose lambdas hold the warm start, for `width` lanes;
-  // `dummy` is the resting body padding lanes read.
+  // `points`, whose lambdas hold the warm start, for `width` lanes, their
+  // friction acting at `friction_points` (null: at the points); `dummy` is
+  // the resting body padding lanes read. What the points' rows derive
+  // from their anchors is left to the prepare kernel (soft_wide_layout.h).
   void Pack(const std::vector<SoftPoint>& points, const std::vector<SoftManifold>& manifolds,
-            const BlockColours& colours, const std::vector<SoftBody>& bodies, int width, int dummy);
+            const BlockColours& colours, const std::vector<SoftBody>& bodies,
+            const std::vector<Vec3>* friction_points, int width, int dummy);
   // The accumulated impulses, largest pushes and step totals back into `points`.
   void Unpack(std::vector<SoftPoint>& points) const;
+  // The friction rows' Jacobians, responses and effective masses the
+  // prepare kernel computed, into `points`.
+  void UnpackFrictionRows(std::vector<SoftPoint>& points) const;
   // Colour c's bundles are [colours().starts[c], starts[c + 1]); the
   // overflow's bundles follow, one manifold each.
   const BlockColours& colours() const { return colours_; }
@@ -34,12 +40,18 @@ class WideBundles {
   // Counts each bundle's slots, places the bundles and clears their fields.
   void Allocate(const std::vector<SoftManifold>& manifolds, const BlockColours& colours);
   const float* Aligned() const;
+  // calls read(point, slot, lane's first float) for every packed point
+  template <class Read>
+  void ForEachPoint(const Read& read) const;
   float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
   void PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m, const std::vector<SoftBody>& bodies,
-                int bundle, int lane);
+                const std::vector<Vec3>* friction_points, int bundle, int lane);
+  // A padding lane: every field zero (it reads the resting dummy body).
+  void ClearLane(int bundle, int lane);
 
   int width_ = 0;
   int dummy_ = 0;
+  bool friction_at_anchors_ = true;  // kFa, kFb not packed (the kernels read kRa, kRb)
   std::vector<float> data_;  // from its first kAlign-aligned float (Aligned)
   std::vector<int> body_a_, body_b_;            // per lane
   std::vector<unsigned char> write_a_, write_b_;  // per lane

@@ -14,8 +14,11 @@ namespace wide {
 
 struct WideKernels {
   int width = 0;  // lanes a bundle
-  // bundles [begin, end): the warm start, a solve or relax pass (the pass
-  // says which), and adding the accumulated impulses to the step's totals
+  // bundles [begin, end): the rows' Jacobians, responses, effective
+  // masses and K^-1 from the packed anchors (soft_wide_prepare_impl.h), the
+  // warm start, a solve or relax pass (the pass says which), and adding the
+  // accumulated impulses to the step's totals
+  void (*prepare)(const WideView& view, int begin, int end) = nullptr;
   void (*warm_start)(const WideView& view, int begin, int end) = nullptr;
   void (*solve)(const WideView& view, const WidePass& pass, int begin, int end) = nullptr;
   void (*accumulate)(const WideView& view, int begin, int end) = nullptr;

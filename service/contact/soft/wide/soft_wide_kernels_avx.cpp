@@ -4,14 +4,14 @@
 #include "service/contact/soft/wide/soft_wide_kernels.h"
 
 #if defined(__AVX__)
-#include "service/contact/soft/wide/soft_wide_kernels_impl.h"
+#include "service/contact/soft/wide/soft_wide_prepare_impl.h"
 #endif
 
 namespace contactsim {
 namespace wide {
 
 #if defined(__AVX__)
-const WideKernels* AvxKernels() { return &Lanes<xsimd::avx>::Table(); }
+const WideKernels* AvxKernels() { return &KernelTable<xsimd::avx>(); }
 #else
 const WideKernels* AvxKernels() { return nullptr; }
 #endif

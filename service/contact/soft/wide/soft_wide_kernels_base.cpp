@@ -3,12 +3,12 @@
 // and the choice among the sets built.
 #include <xsimd/xsimd.hpp>
 
-#include "service/contact/soft/wide/soft_wide_kernels_impl.h"
+#include "service/contact/soft/wide/soft_wide_prepare_impl.h"
 
 namespace contactsim {
 namespace wide {
 
-const WideKernels& BaseKernels() { return Lanes<xsimd::default_arch>::Table(); }
+const WideKernels& BaseKernels() { return KernelTable<xsimd::default_arch>(); }
 
 namespace {
 

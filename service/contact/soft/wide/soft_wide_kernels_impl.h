@@ -8,7 +8,8 @@
 // the normal rows as a block (SolveBlockNormals, soft_manifold.cpp)
 // accepted per lane when every impulse stays >= 0, else swept point by
 // point (SolveSoftNormal). Where the scalar code branches, the lanes take
-// both sides and select.
+// both sides and select. The prepare kernel and the table of an
+// instruction set's kernels are soft_wide_prepare_impl.h's.
 #pragma once
 
 #include <xsimd/xsimd.hpp>
@@ -307,11 +308,6 @@ struct Lanes {
       SolveNormals(view, bundle, f, pass, n, ima, imb, m, p);
       Scatter(view, bundle, p);
     }
-  }
-
-  static const WideKernels& Table() {
-    static const WideKernels table = {W, &WarmStart, &Solve, &Accumulate};
-    return table;
   }
 };
 

@@ -16,20 +16,27 @@ constexpr int kSlots = 4;  // kMaxNormalBlock (normal_block.h; checked where the
 constexpr int kAlign = 64;  // bytes, a cache line and the widest vector
 
 // Per lane: the pair's normal and tangents (shared by its points), inverse
-// masses, whether the normal rows take the block solve and its K^-1 (row-major).
+// masses, its points, whether the normal rows take the block solve and its
+// K^-1 (row-major).
 enum LaneField : int {
   kN = 0,
   kT1 = 3,
   kT2 = 6,
   kInvMassA = 9,
   kInvMassB = 10,
-  kBlock = 11,  // 1 or 0
-  kInvK = 12,
+  kCount = 11,  // the manifold's points (0 in a padding lane)
+  kBlock = 12,  // 1 or 0
+  kInvK = 13,
   kLaneFields = kInvK + 16,
 };
 
 // Per slot (point): the rows' anchors, Jacobians and responses
 // (SoftPoint), effective masses, spring, accumulated impulses and totals.
+// The bundles are packed with the anchors, where friction acts (kFa, kFb:
+// the patch's point, patch_torsion.h; not packed where it acts at the
+// anchors, WideView::friction_at_anchors), the spring and the
+// warm start; the prepare kernel (soft_wide_kernels.h) computes the rest
+// (Jacobians, responses, effective masses, K^-1) over the lanes.
 enum SlotField : int {
   kRa = 0,
   kRb = 3,
@@ -61,7 +68,9 @@ enum SlotField : int {
   kTotalN,
   kTotalT1,
   kTotalT2,
-  kSlotFields,
+  kFa,
+  kFb = kFa + 3,
+  kSlotFields = kFb + 3,
 };
 
 // fields of a bundle whose lanes hold at most `slots` points
@@ -79,6 +88,10 @@ struct WideBody {
 
 // What a kernel call sees of the bundles and the bodies.
 struct WideView {
+  // body i's world inverse inertia at the step's start, column-major:
+  // inv_inertia + i * inertia_stride (read by the prepare kernel only)
+  const float* inv_inertia = nullptr;
+  int inertia_stride = 0;
   float* data = nullptr;           // bundle b's field f: data + offsets[b] + f * width
   const int* offsets = nullptr;    // per bundle, floats (a bundle holds BundleFields(slots[b]) fields)
   const int* body_a = nullptr;     // per bundle lane: WideBody index (padding: the resting dummy)
@@ -87,6 +100,9 @@ struct WideView {
   const unsigned char* write_b = nullptr;
   const unsigned char* slots = nullptr;    // per bundle: most points of its lanes
   WideBody* bodies = nullptr;
+  // friction acts at the anchors: kFa and kFb are not packed (patch
+  // torsion off, patch_torsion.h)
+  bool friction_at_anchors = true;
   int width = 0;
 };
 

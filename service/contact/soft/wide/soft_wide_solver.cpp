@@ -17,8 +17,11 @@ void SoftWideSolver::Run(const SoftWideStep& step, const std::vector<SoftManifol
                          std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies) {
   const wide::WideKernels& kernels = wide::ChooseKernels(step.lanes);
   LoadWideBodies(world, bodies, runner, &bodies_);
-  bundles_.Pack(points, manifolds, colours, bodies, kernels.width, bodies_.dummy());
-  const wide::WideView view = bundles_.View(bodies_.state.data());
+  bundles_.Pack(points, manifolds, colours, bodies, step.friction_points, kernels.width, bodies_.dummy());
+  wide::WideView view = bundles_.View(bodies_.state.data());
+  static_assert(sizeof(WideBodyMotion) % sizeof(float) == 0, "a body's inertia lies a whole number of floats on");
+  view.inv_inertia = bodies_.motion[0].inv_inertia.data();
+  view.inertia_stride = static_cast<int>(sizeof(WideBodyMotion) / sizeof(float));
   const float h = static_cast<float>(step.h);
   wide::WidePass solve;
   solve.inv_h = static_cast<float>(step.solve.inv_h);
@@ -33,10 +36,12 @@ void SoftWideSolver::Run(const SoftWideStep& step, const std::vector<SoftManifol
   const Fn solve_bundles = [&](int i, int j) { kernels.solve(view, solve, i, j); };
   const Fn relax_bundles = [&](int i, int j) { kernels.solve(view, relax, i, j); };
   const Fn accumulate = [&](int i, int j) { kernels.accumulate(view, i, j); };
+  const Fn prepare = [&](int i, int j) { kernels.prepare(view, i, j); };
 
   ColourStages list(&stages_, runner.threads());
   const int count = static_cast<int>(bodies.size());
   const int bundles = bundles_.bundles();
+  list.Add(prepare, 0, bundles, kBundleGrain);
   for (int sub = 0; sub < step.substeps; ++sub) {
     list.Add(integrate_velocities, 0, count, kWideSolverBodyGrain);
     list.AddColours(warm_start, bundles_.colours(), bundles);

@@ -35,6 +35,8 @@ struct SoftWideStep {
   int relax_iterations = 1;
   SoftPass solve;             // the solve's targets; the relax pass drops the bias
   int lanes = 0;              // 4 or 8; 0: the widest the processor runs
+  // where each point's friction acts (patch_torsion.h); null: at its anchors
+  const std::vector<Vec3>* friction_points = nullptr;
 };
 
 class SoftWideSolver {
@@ -43,8 +45,15 @@ class SoftWideSolver {
   static bool Applies(const World& world, bool heavy_on_light) { return world.joints().empty() && !heavy_on_light; }
   // The sub-steps: the world's poses and `bodies` (v, w, dp, dR) at the
   // step's end, the points' impulses and totals as the double path leaves them.
+  // The points and manifolds come without their friction rows and K^-1
+  // (PrepareSoftPoints, BuildSoftManifolds), which the prepare kernel
+  // computes in the bundles.
   void Run(const SoftWideStep& step, const std::vector<SoftManifold>& manifolds, const BlockColours& colours,
            ParallelRunner& runner, World& world, std::vector<SoftPoint>& points, std::vector<SoftBody>& bodies);
+  // The last step's friction rows (Jacobians, responses, masses), which
+  // Run computes in float only, into `points`, for restitution after the
+  // step (soft_restitution.h), which runs in the few steps with an impact.
+  void UnpackFrictionRows(std::vector<SoftPoint>& points) const { bundles_.UnpackFrictionRows(points); }
 
  private:
   WideBodies bodies_;
