@@ -1,0 +1,63 @@
+// The bound on a body pair's dashpots taken together, for the explicit
+// step (penalty_explicit.h, stage 2).
+//
+// Stage 2 integrates each point's dashpot c_i implicitly against its own
+// point's inverse effective mass K_ii, c_i' = c_i / (1 + h n_b c_i K_ii),
+// so that one point alone takes at most its own velocity in a sub-step.
+// The p points of a pair act on the same bodies, and in a sub-step their
+// dashpots take the share b of a mode u of the pair's velocities
+//   b(u) = h sum_i c_i' (J_i u)^2 / u^T M u,
+// whose largest value over u is the largest eigenvalue of the p x p matrix
+//   B = h W^1/2 K W^1/2,  W = diag(c_i'),  K_ij = J_i M^-1 J_j^T.
+// Symplectic Euler is stable on a mode only while b <= 2 - (omega h)^2 / 2.
+// Each c_i' h K_ii is below 1, so the trace of B is below p: a sphere's
+// one point and a box's four corners landing flat (B's eigenvalues
+// 1, 1.5, 1.5 and 0 when saturated) stay inside it, but three points of an
+// uneven face of a light hull, overdamped (restitution 0), reached
+// lambda_max(B) > 2 on a rocking mode, whose velocity then flipped sign
+// every sub-step (docs/methods/penalty.md, "Resting hulls").
+//
+// Where lambda_max(B) > kMaxShare, every dashpot of the pair is scaled by
+// kMaxShare / lambda_max(B) (its largest mode then loses kMaxShare of its
+// velocity a sub-step, the others less). B is formed once a step over the
+// pair's engaged points with n_b = 1, the largest c_i' any sub-step can
+// give them, so a sub-step's touching points never exceed the bound.
+// lambda_max by power iteration (Golub and Van Loan, "Matrix Computations",
+// 8.2.1), exact for p = 2.
+#pragma once
+
+#include <vector>
+
+#include "service/contact/penalty/penalty_row.h"
+#include "service/physics/world.h"
+
+namespace contactsim {
+
+class PenaltyDampingBound {
+ public:
+  // the largest share of a mode's velocity a pair's dashpots may take in a
+  // sub-step: below 2 - (omega h)^2 / 2 at the omega h <= 1 of the
+  // sub-step count (penalty_explicit.h), and above a box's 1.5
+  static constexpr double kMaxShare = 1.5;
+
+  // Each engaged row's scale for sub-steps of h (linear law; 1 otherwise).
+  void Prepare(const World& world, const std::vector<PenaltyRow>& rows, double h, bool linear);
+  double Scale(size_t k) const { return scale_.empty() ? 1.0 : scale_[k]; }
+
+ private:
+  double LargestShare(const World& world, const std::vector<PenaltyRow>& rows, const int* points, int p, double h);
+
+  // a point of the pair being bounded: its normal from the pair's lower
+  // body index to the higher, the angular parts of J on each (r x n) and
+  // of M^-1 J^T (I^-1 (r x n)), zero on a body that is not dynamic
+  struct Point {
+    Vec3 n, jl, jh, kl, kh;
+  };
+
+  std::vector<double> scale_;   // per row
+  std::vector<Point> points_;
+  std::vector<int> start_, order_;  // rows grouped by pair: order_[start_[q] .. start_[q + 1])
+  std::vector<double> b_, u_, w_;   // p x p matrix, power iteration vectors
+};
+
+}  // namespace contactsim
