@@ -40,13 +40,18 @@ class PenaltyDampingBound {
   // sub-step count (penalty_explicit.h), and above a box's 1.5
   static constexpr double kMaxShare = 1.5;
 
-  // Each engaged row's scale for sub-steps of h (linear law; 1 otherwise).
+  // Each engaged pair's lambda_max(B) with n_b = 1, for sub-steps of h
+  // (linear law; none otherwise).
   void Prepare(const World& world, const std::vector<PenaltyRow>& rows, double h, bool linear);
-  double Scale(size_t k) const { return scale_.empty() ? 1.0 : scale_[k]; }
+  // The scale of row k's cut dashpot in a sub-step whose n_b is `shared`.
+  double Scale(size_t k, double shared) const;
 
  private:
-  double LargestShare(const World& world, const std::vector<PenaltyRow>& rows, const int* points, int p, double h);
-
+  // a pair's lambda_max(B) at n_b = 1 and its least h c_i K_ii, per row
+  // (share 0: within the bound)
+  struct Bound {
+    double share = 0.0, least = 0.0;
+  };
   // a point of the pair being bounded: its normal from the pair's lower
   // body index to the higher, the angular parts of J on each (r x n) and
   // of M^-1 J^T (I^-1 (r x n)), zero on a body that is not dynamic
@@ -54,10 +59,18 @@ class PenaltyDampingBound {
     Vec3 n, jl, jh, kl, kh;
   };
 
-  std::vector<double> scale_;   // per row
-  std::vector<Point> points_;
+  // the pair's Bound where B at the step's start n_b (`shared`) may pass
+  // kMaxShare, else share 0
+  Bound PairBound(const World& world, const std::vector<PenaltyRow>& rows, const int* points, int p, double h,
+                  double shared);
+  double LargestEigenvalue(int p);
+
+  std::vector<Bound> bounds_;       // per row
+  std::vector<int> touching_;       // per pair: its points touching at the step's start
+  std::vector<double> shared_;      // per body: n_b at the step's start
   std::vector<int> start_, order_;  // rows grouped by pair: order_[start_[q] .. start_[q + 1])
-  std::vector<double> b_, u_, w_;   // p x p matrix, power iteration vectors
+  std::vector<Point> points_;
+  std::vector<double> a_, w_, k_, b_, u_;  // per point, p x p matrices, power iteration vectors
 };
 
 }  // namespace contactsim

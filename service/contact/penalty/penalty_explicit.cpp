@@ -327,7 +327,7 @@ class ExplicitStepper {
     }
     const double shared = std::max(1.0, std::max(pairs_[row.a], pairs_[row.b]));
     const bool coupled = pair_damping_.Coupled(k);
-    const double scale = damping_bound_.Scale(k);
+    const double scale = damping_bound_.Scale(k, shared);
     double cn = scale * row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
     double lambda = row.law.lambda0 + (row.law.c - cn) * row.vn0;
     if (coupled) {
