@@ -42,6 +42,8 @@ void PenaltyDampingBound::Prepare(const World& world, const std::vector<PenaltyR
     if (rows[k].engaged) order_[start_[rows[k].pair + 1]++] = static_cast<int>(k);
   }
   bounds_.assign(rows.size(), Bound());
+  inv_inertia_.resize(bodies.size());
+  inertia_set_.assign(bodies.size(), 0);
   for (int q = 0; q < pairs; ++q) {
     if (touching_[q] < 2) continue;
     const int* points = &order_[start_[q]];
@@ -54,13 +56,21 @@ void PenaltyDampingBound::Prepare(const World& world, const std::vector<PenaltyR
   }
 }
 
-double PenaltyDampingBound::Scale(size_t k, double shared) const {
-  if (bounds_.empty() || bounds_[k].share <= kMaxShare) return 1.0;
+double PenaltyDampingBound::BoundedScale(size_t k, double shared) const {
   // B(n_b) = D B(1) D with D^2 = diag((1 + a_i) / (1 + n_b a_i)), largest
   // at the least a_i
   const double a = bounds_[k].least;
   const double share = bounds_[k].share * (1.0 + a) / (1.0 + shared * a);
   return share > kMaxShare ? kMaxShare / share : 1.0;
+}
+
+const Mat3& PenaltyDampingBound::InvInertia(const World& world, int body) {
+  if (!inertia_set_[body]) {
+    const RigidBody& b = world.bodies()[body];
+    inv_inertia_[body] = b.IsDynamic() ? b.InvInertiaWorld() : Mat3::Zero();
+    inertia_set_[body] = 1;
+  }
+  return inv_inertia_[body];
 }
 
 // a_i = h c_i K_ii, and B(n)_ij = sqrt(w_i w_j) K_ij with
@@ -84,8 +94,8 @@ PenaltyDampingBound::Bound PenaltyDampingBound::PairBound(const World& world, co
   const RigidBody& L = bodies[lo];
   const RigidBody& H = bodies[hi];
   const double inv_mass = (L.IsDynamic() ? L.inv_mass : 0.0) + (H.IsDynamic() ? H.inv_mass : 0.0);
-  const Mat3 il = L.IsDynamic() ? L.InvInertiaWorld() : Mat3::Zero();
-  const Mat3 ih = H.IsDynamic() ? H.InvInertiaWorld() : Mat3::Zero();
+  const Mat3& il = InvInertia(world, lo);
+  const Mat3& ih = InvInertia(world, hi);
   points_.resize(p);
   for (int i = 0; i < p; ++i) {
     const PenaltyRow& row = rows[points[i]];

@@ -44,7 +44,9 @@ class PenaltyDampingBound {
   // (linear law; none otherwise).
   void Prepare(const World& world, const std::vector<PenaltyRow>& rows, double h, bool linear);
   // The scale of row k's cut dashpot in a sub-step whose n_b is `shared`.
-  double Scale(size_t k, double shared) const;
+  double Scale(size_t k, double shared) const {
+    return bounds_.empty() || bounds_[k].share <= kMaxShare ? 1.0 : BoundedScale(k, shared);
+  }
 
  private:
   // a pair's lambda_max(B) at n_b = 1 and its least h c_i K_ii, per row
@@ -64,12 +66,18 @@ class PenaltyDampingBound {
   Bound PairBound(const World& world, const std::vector<PenaltyRow>& rows, const int* points, int p, double h,
                   double shared);
   double LargestEigenvalue(int p);
+  double BoundedScale(size_t k, double shared) const;
+  // the body's I^-1 in the world frame, formed once a step (zero if it is
+  // not dynamic)
+  const Mat3& InvInertia(const World& world, int body);
 
   std::vector<Bound> bounds_;       // per row
   std::vector<int> touching_;       // per pair: its points touching at the step's start
   std::vector<double> shared_;      // per body: n_b at the step's start
   std::vector<int> start_, order_;  // rows grouped by pair: order_[start_[q] .. start_[q + 1])
   std::vector<Point> points_;
+  std::vector<Mat3> inv_inertia_;   // per body, where inertia_set_
+  std::vector<char> inertia_set_;
   std::vector<double> a_, w_, k_, b_, u_;  // per point, p x p matrices, power iteration vectors
 };
 
