@@ -11,6 +11,14 @@ namespace {
 // in 1e3 (from below: kMaxShare keeps room to 2 for the rest)
 constexpr int kPowerIterations = 16;
 
+// m v by its entries: Eigen's 3 x 3 product here, one more caller of the
+// template the sub-steps' lever arms use, made GCC stop inlining it there
+// (2.4% more instructions a pyramid step)
+Vec3 Times(const Mat3& m, const Vec3& v) {
+  return Vec3(m(0, 0) * v.x() + m(0, 1) * v.y() + m(0, 2) * v.z(), m(1, 0) * v.x() + m(1, 1) * v.y() + m(1, 2) * v.z(),
+              m(2, 0) * v.x() + m(2, 1) * v.y() + m(2, 2) * v.z());
+}
+
 }  // namespace
 
 void PenaltyDampingBound::Prepare(const World& world, const std::vector<PenaltyRow>& rows, double h, bool linear) {
@@ -104,8 +112,8 @@ PenaltyDampingBound::Bound PenaltyDampingBound::PairBound(const World& world, co
     q.n = forward ? row.n : Vec3(-row.n);
     q.jl = (forward ? row.ra : row.rb).cross(q.n);
     q.jh = (forward ? row.rb : row.ra).cross(q.n);
-    q.kl = il * q.jl;
-    q.kh = ih * q.jh;
+    q.kl = Times(il, q.jl);
+    q.kh = Times(ih, q.jh);
   }
   // K_ij scaled to B(n_b); Gershgorin's row sums bound lambda_max from above
   k_.resize(p * p);
