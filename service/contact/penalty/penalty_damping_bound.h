@@ -14,14 +14,23 @@
 // one point and a box's four corners landing flat (B's eigenvalues
 // 1, 1.5, 1.5 and 0 when saturated) stay inside it, but three points of an
 // uneven face of a light hull, overdamped (restitution 0), reached
-// lambda_max(B) > 2 on a rocking mode, whose velocity then flipped sign
+// lambda_max(B) = 1.86 on a rocking mode, whose velocity then flipped sign
 // every sub-step (docs/methods/penalty.md, "Resting hulls").
 //
-// Where lambda_max(B) > kMaxShare, every dashpot of the pair is scaled by
-// kMaxShare / lambda_max(B) (its largest mode then loses kMaxShare of its
-// velocity a sub-step, the others less). B is formed once a step over the
-// pair's engaged points with n_b = 1, the largest c_i' any sub-step can
-// give them, so a sub-step's touching points never exceed the bound.
+// Where lambda_max(B) > kMaxShare, every normal dashpot of the pair is
+// scaled by kMaxShare / lambda_max(B) (its largest mode then loses
+// kMaxShare of its velocity a sub-step, the others less). B is formed once
+// a step over the pair's engaged points at n_b = 1 (the largest c_i' a
+// sub-step can give them) and rescaled in each sub-step for that
+// sub-step's n_b: B(n_b) = D B(1) D with D^2 = diag((1 + a_i) / (1 + n_b
+// a_i)), a_i = h c_i K_ii, so lambda_max(B(n_b)) <= lambda_max(B(1))
+// (1 + a) / (1 + n_b a) with a the pair's least a_i. Counted at n_b = 1
+// throughout, the bound cut the pairs of loads on a jointed plank that
+// their n_b already held below it, and they crept past their bound.
+// It is formed only for pairs with two points touching at the step's
+// start whose trace, then Gershgorin bound, at that start's n_b pass
+// kMaxShare (a busy body's pairs, as the pyramid's, end there: forming it
+// for every pair cost the pyramid 9% of its instructions).
 // lambda_max by power iteration (Golub and Van Loan, "Matrix Computations",
 // 8.2.1), exact for p = 2.
 #pragma once
