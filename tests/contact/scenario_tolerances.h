@@ -136,14 +136,12 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "overlap_push_speed (penalty_row.h), 0.5 cm/s a course"},
     {"soft", "* overlap=0.5mm speed", 0.05, "3.8 cm/s: its soft contacts push a 0.5 mm overlap out at their spring's rate"},
     // random convex hulls dropped on their most stable face
-    // (resting_hull_scenarios_test.cpp), not traced further
-    {"penalty", "hull of 5 points seed 1 e=0 * speed", 0.015,
-     "rings at 0.011 m/s with e = 0 from either drop (0.17 kg, 7.9 cm): the three points' dashpots, each "
-     "implicit against its own point, together exceed the explicit sub-step's bound on a rocking mode and its "
-     "velocity flips sign every sub-step while the pose stays; 3x the sub-steps (max_omega_h=0.05) rests it "
-     "at 1.9e-13 m/s, the implicit integrator at 3.2e-15 m/s"},
+    // (resting_hull_scenarios_test.cpp; docs/methods/penalty.md, "Resting hulls")
     {"penalty", "hull of 30 points seed 3 e=0.5 drop 0.1 m tilt", 1.5,
-     "tips onto another face (1.1 rad) after landing flat from 10 cm with e = 0.5"},
+     "tips onto another face (1.1 rad) after landing flat from 10 cm with e = 0.5: in the landing step the "
+     "detector's four points are two of the face's vertices and two 13-15 mm above (the speculative margin), so "
+     "the impact stage strikes an edge (25 rad/s about it), the hull bounces tilted 0.1 rad, lands on a corner "
+     "and tumbles"},
     // a cube let fall 0.1 mm onto a slope with mu 0.9 (friction_scenarios_test.cpp,
     // CubeFallenOntoSlopeHolds), its motion within the slope in 3 s; the
     // same at every mass and size (0.02 and 0.05 m half sizes)
@@ -155,8 +153,9 @@ inline constexpr KnownMiss kKnownMisses[] = {
      "dashpots (each implicit against its own point) ringing on the rocking mode, so the normal load averages "
      "0.87 m g cos and the landing's tangential speed (0.027 m/s) is left to kinetic friction, (mu cos - sin) g = "
      "0.46 m/s^2 at 40 degrees; the rigid methods stop it within the impact. The pair's dashpots solved together "
-     "(penalty_pair_damping.h) gave 0.53 / 1.0 mm and rest the 5-point hull below, at 24% more instructions a "
-     "pyramid step"},
+     "(penalty_pair_damping.h) gave 0.53 / 1.0 mm at 24% more instructions a pyramid step; the pair damping bound "
+     "(penalty_damping_bound.h) does not act here (the two points' share stays below 1.5), and a stronger "
+     "friction dashpot slides farther (friction_damping_ratio=3: 0.60 / 1.35 mm)"},
     {"penalty", "slope hold deg=40 *", 1.6e-3, "1.2 mm in 3 s: the landing slide, as at 38 degrees"},
     // the off-axis wheel (compound_sweep_test.cpp) against its plain hull:
     // the plain hull's face patches solve their friction with their normals

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "service/contact/joints/joint_solver.h"
+#include "service/contact/penalty/penalty_damping_bound.h"
 #include "service/contact/penalty/penalty_impacts.h"
 #include "service/contact/penalty/penalty_pair_damping.h"
 #include "service/contact/penalty/penalty_stiffness.h"
@@ -107,6 +108,7 @@ class ExplicitStepper {
       if (row.engaged && row.depth > row.anchor.rest_depth) pair_touching_[row.pair] = 1;
     }
     pair_damping_.Prepare(world, rows);
+    damping_bound_.Prepare(world, rows, h, linear_);
     // a step whose rows can hold no impact (restitution = off, or friction
     // and e = 0 in held components only) runs none of the stage
     if (impacts_ != nullptr && !MayHoldImpact(world, rows)) impacts_ = nullptr;
@@ -325,7 +327,8 @@ class ExplicitStepper {
     }
     const double shared = std::max(1.0, std::max(pairs_[row.a], pairs_[row.b]));
     const bool coupled = pair_damping_.Coupled(k);
-    double cn = row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
+    const double scale = damping_bound_.Scale(k, shared);
+    double cn = scale * row.law.c / (1.0 + h_ * shared * row.law.c * row.inv_mass_n);
     double lambda = row.law.lambda0 + (row.law.c - cn) * row.vn0;
     if (coupled) {
       // the pair's dashpots solved together: the force in place of c vn0,
@@ -396,6 +399,7 @@ class ExplicitStepper {
   // per body pair: a point of it touched in the last pass, and in this one
   std::vector<char> pair_touched_, pair_touching_;
   PenaltyPairDamping pair_damping_;  // the pairs with a compound body
+  PenaltyDampingBound damping_bound_;
   std::vector<char> touching_;       // per row, for pair_damping_
   std::vector<double> shared_;       // per row: n_b, for pair_damping_
   std::vector<bool> pushed_;  // per body: a contact force acted in this sub-step

@@ -31,7 +31,10 @@
 //     explicit dashpots together reversed its velocity each sub-step; and
 //     the Gershgorin bound over the points themselves counted a landing
 //     box's four corners against each other (their rotations cancel for
-//     the bounce), cut its damping by a quarter and it rebounded to 0.31 h;
+//     the bounce), cut its damping by a quarter and it rebounded to 0.31 h.
+//     A pair's points together are bounded by the largest eigenvalue of
+//     their cut dashpots' share (penalty_damping_bound.h): a light hull's
+//     three overdamped points rang on its rocking mode;
 //  3. onset: a point that starts to penetrate at depth d missed the dashpot
 //     impulse c d of its way in; it is added over the sub-step, capped so
 //     that with the dashpot it takes at most the approach momentum
