@@ -8,7 +8,7 @@
 // contacts), but for sleeping, which is off for the world and every body, so
 // that every step solves every contact. Spheres as sphere shapes, boxes as
 // box hulls (b3MakeBoxHull); Box3D has no plane, so a static plane is a
-// static box whose top face is the plane (kGroundHalfHeight thick, wide
+// static box whose top face is the plane (2 kGroundHalfHeight thick, wide
 // enough to hold every body of the scene). Dynamic bodies get contactsim's
 // mass and principal inertia explicitly (b3Body_SetMassData; the shapes add
 // no mass), and the same poses, velocities, gravity and dt (one b3World_Step
@@ -38,9 +38,14 @@
 namespace contactsim::bench {
 namespace {
 
-constexpr int kDefaultSubsteps = 4;      // Box3D's samples and benchmark step with 4 sub-steps
 constexpr float kGroundHalfHeight = 1.0f;  // m, as the ground boxes of Box3D's samples
 constexpr double kGroundMargin = 10.0;   // m of ground beyond the farthest body
+
+// What --param may change; Box3D's defaults otherwise.
+struct Box3dSettings {
+  int substeps = 4;             // b3World_Step's sub-steps: Box3D's samples and benchmark use 4
+  double contact_hertz = 30.0;  // Hz, b3DefaultWorldDef's contactHertz (static contacts get twice it)
+};
 
 b3Vec3 B3(const Vec3& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())}; }
 Vec3 FromB3(const b3Vec3& v) { return Vec3(v.x, v.y, v.z); }
@@ -66,10 +71,11 @@ double GroundHalfWidth(const World& world, const Vec3& plane_point) {
 
 class Box3dEngine : public SceneEngine {
  public:
-  Box3dEngine(const World& world, int substeps, int threads)
-      : mirror_(world), substeps_(substeps), threads_(threads) {
+  Box3dEngine(const World& world, const Box3dSettings& settings, int threads)
+      : mirror_(world), settings_(settings), threads_(threads) {
     b3WorldDef def = b3DefaultWorldDef();
     def.gravity = B3(world.gravity);
+    def.contactHertz = static_cast<float>(settings.contact_hertz);
     def.enableSleep = false;
     if (threads > 1) {
       pool_ = std::make_unique<Box3dTaskPool>(threads);
@@ -84,7 +90,7 @@ class Box3dEngine : public SceneEngine {
   }
   ~Box3dEngine() override { b3DestroyWorld(world_); }  // before the pool its tasks run on
 
-  void Step() override { b3World_Step(world_, static_cast<float>(mirror_.dt), substeps_); }
+  void Step() override { b3World_Step(world_, static_cast<float>(mirror_.dt), settings_.substeps); }
 
   const World& Sync() override {
     auto& out = mirror_.bodies();
@@ -98,10 +104,9 @@ class Box3dEngine : public SceneEngine {
   }
 
   ParamMap Params() const override {
-    const b3WorldDef d = b3DefaultWorldDef();
-    return {{"substeps", std::to_string(substeps_)},
-            {"contact_hertz", std::to_string(d.contactHertz)},
-            {"damping_ratio", std::to_string(d.contactDampingRatio)},
+    return {{"substeps", std::to_string(settings_.substeps)},
+            {"contact_hertz", std::to_string(settings_.contact_hertz)},
+            {"damping_ratio", std::to_string(b3DefaultWorldDef().contactDampingRatio)},
             {"precision", "float"},
             {"simd", "sse2"},
             {"threads", std::to_string(threads_)},
@@ -161,7 +166,7 @@ class Box3dEngine : public SceneEngine {
   }
 
   World mirror_;
-  int substeps_;
+  Box3dSettings settings_;
   int threads_;
   std::unique_ptr<Box3dTaskPool> pool_;  // null on one thread
   b3WorldId world_;
@@ -178,14 +183,15 @@ Status CreateBox3dEngine(const BenchOptions& options, const SceneSpec&, const Wo
     return Status::InvalidArgument("Box3D runner: --threads " + std::to_string(options.threads) +
                                    " is above Box3D's B3_MAX_WORKERS (" + std::to_string(B3_MAX_WORKERS) + ")");
   }
-  int substeps = kDefaultSubsteps;
+  Box3dSettings settings;
   ParamReader reader(options.method.c_str(), options.params);
-  reader.Int("substeps", 1, 1000, &substeps);
+  reader.Int("substeps", 1, 1000, &settings.substeps);
+  reader.Double("contact_hertz", 0.1, 1e4, &settings.contact_hertz);
   Status st = reader.Finish();
   if (st.ok()) st = CheckPeerShapes(world, "Box3D", kRefusesSurfaces);
   if (st.ok()) st = CheckPeerJoints(world, "Box3D", kRefusesJoints);
   if (!st.ok()) return st;
-  *out = std::make_unique<Box3dEngine>(world, substeps, options.threads);
+  *out = std::make_unique<Box3dEngine>(world, settings, options.threads);
   return Status::Ok();
 }
 
