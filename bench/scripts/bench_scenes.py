@@ -7,7 +7,8 @@ peers:begin / peers:end markers; the rest of the file is left as it is.
 
 Engines: contactsim-bench with every registered contact method
 (--list-methods), and the peer runners that were built (bench/peers:
-Bullet sequential impulse, ODE QuickStep and Dantzig, MuJoCo Newton and CG). Each
+Bullet sequential impulse, Box3D's soft step when a Box3D source was given
+at configure time, ODE QuickStep and Dantzig, MuJoCo Newton and CG). Each
 run is a separate process with --repeat 3 --json; a run that fails (NaN,
 explosion, time limit, crash, memory limit) becomes a row that says so and
 never stops the driver.
@@ -52,25 +53,32 @@ RUN_BEGIN, RUN_END = "<!-- run:begin -->", "<!-- run:end -->"
 APEX = 0.5 * 0.5 * 0.9  # m, analytic first apex of the bounce scene (e^2 h)
 MEMORY_LIMIT = 6 << 30  # bytes of address space per run: a dense LCP of a 1,000-body pile would take the machine
 
-# Peer rows: (engine, binary, method). Bullet first: the ratio column divides by it.
+# Peer rows: (engine, binary, method). Bullet first: the ratio column divides by it; Box3D beside it, the
+# peer soft's speed target is set against (targets()).
 PEERS = [
     ("bullet", "contactsim-bench-bullet", "sequential_impulse"),
+    ("box3d", "contactsim-bench-box3d", "soft_step"),
     ("ode", "contactsim-bench-ode", "quickstep"),
     ("ode", "contactsim-bench-ode", "dantzig"),
     ("mujoco", "contactsim-bench-mujoco", "newton"),
     # MuJoCo's own advice for scenes whose Newton Hessian fills in (the 1,000-body pile)
     ("mujoco", "contactsim-bench-mujoco", "cg"),
 ]
-# The runners that step on --threads threads (MuJoCo through its thread pool).
-THREADED = ("contactsim-bench", "contactsim-bench-mujoco")
+# The runners that step on --threads threads (MuJoCo through its thread pool, Box3D through its task callbacks).
+THREADED = ("contactsim-bench", "contactsim-bench-mujoco", "contactsim-bench-box3d")
+# The peers listed before contactsim's rows (Bullet, Box3D); the others come after them.
+LEADING_PEERS = 2
 # Extra contactsim rows beyond each method's defaults, used when the method is registered.
-VARIANTS = {"lcp": [["solver=pgs"], ["solver=lemke"]]}
+VARIANTS = {"lcp": [["solver=pgs"], ["solver=lemke"]], "soft": [[], ["precision=float"]]}
+# soft's speed target (BENCHMARKS.md, "Speed targets"): at or below Box3D's time as a multiple of Bullet's
+# on these scenes, both measured in the same run.
+SOFT_TARGET_SCENES = ("box_pyramid", "sphere_pile", "box_rain")
 
 
 def runs(bin_dir):
     """(engine, binary, method, params) for every row, in table order."""
     out = []
-    for engine, binary, method in PEERS[:1]:
+    for engine, binary, method in PEERS[:LEADING_PEERS]:
         if os.path.exists(os.path.join(bin_dir, binary)):
             out.append((engine, binary, method, []))
     names = subprocess.run([os.path.join(bin_dir, "contactsim-bench"), "--list-methods"],
@@ -78,7 +86,7 @@ def runs(bin_dir):
     for method in names:
         for params in VARIANTS.get(method, [[]]):
             out.append(("contactsim", "contactsim-bench", method, params))
-    for engine, binary, method in PEERS[1:]:
+    for engine, binary, method in PEERS[LEADING_PEERS:]:
         if os.path.exists(os.path.join(bin_dir, binary)):
             out.append((engine, binary, method, []))
     return out
@@ -285,12 +293,46 @@ def targets(results):
             err = (h - APEX) / APEX
             out.append("* bounce, %s: apex %.4f m, %+.1f%% of 0.225 m (%s)." % (
                 label, h, 100 * err, "met" if abs(err) <= 0.02 else "**missed**"))
+    out += soft_targets(results, row)
     out += terrain_targets(results)
     bad = ["%s on %s (%s)" % (r["label"], r["scene_name"], r.get("status")) for r in results
            if r["engine"] == "contactsim" and failed(r)]
     out.append("* Every contact method completes every scene: %s." % (
         "met" if not bad else "**not met**: " + "; ".join(bad)))
     return out + [""]
+
+
+def soft_targets(results, row):
+    """soft's speed target: its ms/step as a multiple of Bullet's at or below Box3D's, both from this run,
+    with the instruction ratios beside; unchecked in a build without the Box3D runner."""
+    out = []
+    ran = {r["scene_name"] for r in results}
+    for scene in [s for s in SOFT_TARGET_SCENES if s in ran]:
+        bullet = row(scene, "bullet", "sequential_impulse")
+        box3d = row(scene, "box3d", "soft_step")
+        for label in ("soft", "soft precision=float"):
+            r = row(scene, "contactsim", label)
+            if not r:
+                continue
+            if not bullet or failed(r) or failed(bullet):
+                out.append("* %s, %s: **not met**, the run did not complete (%s)." % (
+                    scene, label, (r if failed(r) else bullet or {}).get("status", "no row")))
+                continue
+            ratio = r["ms_per_step"] / bullet["ms_per_step"]
+            if box3d is None or failed(box3d):
+                out.append("* %s, %s: %.2fx Bullet's ms/step; **not checked**, no completed Box3D row (%s; "
+                           "configure with CONTACTSIM_BOX3D_SOURCE_DIR)." % (
+                               scene, label, ratio, (box3d or {}).get("status", "no runner")))
+                continue
+            target = box3d["ms_per_step"] / bullet["ms_per_step"]
+            line = "* %s, %s: %.2fx Bullet's ms/step against Box3D's %.2fx (%s)" % (
+                scene, label, ratio, target,
+                "met" if ratio <= target else "**missed by %.0f%%**" % (100 * (ratio / target - 1)))
+            counts = [x.get("instructions_per_step") for x in (r, bullet, box3d)]
+            if all(counts):
+                line += "; in instructions %.2fx against %.2fx" % (counts[0] / counts[1], counts[2] / counts[1])
+            out.append(line + ".")
+    return out
 
 
 def terrain_targets(results):
@@ -334,8 +376,8 @@ def render(results, args):
            "",
            "Reproduce: `make bench` (or `.venv/bin/python bench/scripts/bench_scenes.py --build-dir build "
            "--repeat %d --max-seconds %g`). Each row is one process: `contactsim-bench` or a peer runner "
-           "`contactsim-bench-{bullet,ode,mujoco}` with `--scene config/scenes/NAME.pbtxt --method M "
-           "--repeat %d --json` (and `--threads %d` for contactsim and MuJoCo; Bullet and ODE step on one); "
+           "`contactsim-bench-{bullet,box3d,ode,mujoco}` with `--scene config/scenes/NAME.pbtxt --method M "
+           "--repeat %d --json` (and `--threads %d` for contactsim, Box3D and MuJoCo; Bullet and ODE step on one); "
            "ms/step is the median of the repeats (stepping loop only), min-max "
            "in brackets; a repeat stops after %g s of stepping (status `timeout`). "
            "Instructions a step: valgrind's cachegrind count of a run of 1 + N steps less one of 1 step, over N "
@@ -390,7 +432,8 @@ def main():
     ap.add_argument("--scenes", nargs="+", default=SCENES, choices=SCENES)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--max-seconds", type=float, default=60.0, help="stepping time per repeat before giving up")
-    ap.add_argument("--threads", type=int, default=1, help="contactsim's and MuJoCo's threads (Bullet and ODE use one)")
+    ap.add_argument("--threads", type=int, default=1,
+                    help="contactsim's, Box3D's and MuJoCo's threads (Bullet and ODE use one)")
     ap.add_argument("--steps", type=int, default=0, help="override the scenes' steps (for a quick look)")
     ap.add_argument("--no-instructions", dest="instructions", action="store_false",
                     help="skip the instruction counts (valgrind) beside the times")
