@@ -51,6 +51,26 @@ TEST_P(ThreadDeterminismTest, HashDoesNotDependOnThreads) {
   }
 }
 
+// Verifies the same with manifold reuse on (manifold_cache.h), whose kept
+// manifolds are state carried from step to step: on the two box scenes,
+// where touching box pairs keep theirs.
+TEST_P(ThreadDeterminismTest, ManifoldReuseHashDoesNotDependOnThreads) {
+  oneapi::tbb::global_control allow(oneapi::tbb::global_control::max_allowed_parallelism, 4);
+  if (testing_util::RunSceneOnce({kRuns[0].scene, GetParam(), {}, 1, 1}).detections == 0) {
+    GTEST_SKIP() << GetParam() << " does not call the collision detector";
+  }
+  for (const ShortRun& r : {kRuns[0], kRuns[2]}) {
+    testing_util::SceneRun run{r.scene, GetParam(), {}, r.steps, 1, true};
+    const uint64_t serial = testing_util::RunSceneHash(run);
+    for (const int threads : {2, 4}) {
+      run.threads = threads;
+      const uint64_t hash = testing_util::RunSceneHash(run);
+      EXPECT_EQ(hash, serial) << GetParam() << " on " << r.scene << " with " << threads << " threads: 0x"
+                              << std::hex << hash << ", 1 thread 0x" << serial;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryMethod, ThreadDeterminismTest, ::testing::ValuesIn(ContactMethodNames()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
