@@ -37,7 +37,7 @@ namespace contactsim {
 
 // Whether the detector reuses manifolds unless told otherwise (the server's
 // `manifold_reuse` option): off, because a kept manifold is state that
-// snapshots do not carry, and BENCHMARKS.md ("Manifold reuse") measures
+// snapshots do not carry, and BENCHMARKS.md ("Shared: manifold reuse") measures
 // what it saves.
 constexpr bool kManifoldReuseDefault = false;
 // The share of the detection's margin that B's points may move in A's frame
