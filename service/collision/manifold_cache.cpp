@@ -23,7 +23,9 @@ double Reach(const RigidBody& body) {
 
 }  // namespace
 
-bool KeepsManifold(const RigidBody& a, const RigidBody& b) { return a.id != b.id && IsPolyhedron(a) && IsPolyhedron(b); }
+bool KeepsManifold(const RigidBody& a, const RigidBody& b) {
+  return a.id != b.id && IsPolyhedron(a) && IsPolyhedron(b);
+}
 
 size_t ManifoldCache::Place(BodyId a, BodyId b) const {
   CachedManifold key;
