@@ -33,6 +33,10 @@ class CollisionDetector {
   // and then nothing changes. 1 is the serial code path.
   Status SetThreads(int threads);
   int threads() const { return runner_->threads(); }
+  // Manifold reuse for touching polyhedron pairs (the `manifold_reuse`
+  // setting, manifold_cache.h; docs/physics.md, "Collision").
+  void SetManifoldReuse(bool on) { narrowphase_.SetManifoldReuse(on); }
+  bool manifold_reuse() const { return narrowphase_.manifold_reuse(); }
   // The world's threads, for the contact methods' solvers too.
   ParallelRunner& runner() const { return *runner_; }
 

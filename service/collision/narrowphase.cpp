@@ -214,23 +214,26 @@ void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::
                                double margin, ParallelRunner& runner, ContactSet* out) {
   const int n = static_cast<int>(pairs.size());
   updates_.assign(pairs.size(), AxisCacheUpdate());
-  // every pair reads the cache as it was before the detection and writes
-  // its change aside; the cache is rebuilt from the changes in pair order
+  if (manifold_reuse_) {
+    // only the outcome's fields: a manifold is written when one is made
+    manifold_updates_.resize(pairs.size());
+    for (ManifoldUpdate& u : manifold_updates_) {
+      u.kind = ManifoldUpdate::Kind::kNone;
+      u.reuses = u.remakes = 0;
+    }
+  }
+  // every pair reads the caches as they were before the detection and
+  // writes its change aside; the caches are rebuilt from the changes in
+  // pair order
   auto collide = [&](int i, PolyhedronScratch* scratch, ContactSet* contacts) {
-    CollideContext ctx;
-    ctx.margin = margin;
-    ctx.cache = &cache_;
-    ctx.cache_update = &updates_[i];
-    ctx.scratch = scratch;
-    const BodyPair& p = pairs[i];
-    Dispatch(bodies[p.first], p.first, bodies[p.second], p.second, ctx, contacts);
+    CollidePair(bodies, pairs[i], i, margin, scratch, contacts);
   };
   if (runner.threads() == 1 || n <= kPairGrain) {  // the serial path
     {
       const ParallelRegionProbe probe(n > kPairGrain);  // the pairs' loop runs on the threads when there are more
       for (int i = 0; i < n; ++i) collide(i, &scratch_, out);
     }
-    cache_.Rebuild(updates_);
+    RebuildCaches();
     return;
   }
   // slots and scratch only grow, so a warmed-up step allocates nothing
@@ -244,7 +247,30 @@ void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::
   });
   // pair order, as the serial loop appends
   for (int i = 0; i < n; ++i) out->insert(out->end(), slots_[i].begin(), slots_[i].end());
+  RebuildCaches();
+}
+
+void Narrowphase::CollidePair(const std::vector<RigidBody>& bodies, const BodyPair& p, int i, double margin,
+                              PolyhedronScratch* scratch, ContactSet* out) {
+  const RigidBody& a = bodies[p.first];
+  const RigidBody& b = bodies[p.second];
+  const bool keeps = manifold_reuse_ && KeepsManifold(a, b);
+  if (keeps && manifolds_.Reuse(a, p.first, b, p.second, margin, &manifold_updates_[i], out)) return;
+  CollideContext ctx;
+  ctx.margin = margin;
+  ctx.cache = &cache_;
+  ctx.cache_update = &updates_[i];
+  ctx.scratch = scratch;
+  const size_t first = out->size();
+  Dispatch(a, p.first, b, p.second, ctx, out);
+  if (keeps) {
+    ManifoldCache::Record(a, b, out->data() + first, static_cast<int>(out->size() - first), &manifold_updates_[i]);
+  }
+}
+
+void Narrowphase::RebuildCaches() {
   cache_.Rebuild(updates_);
+  if (manifold_reuse_) manifolds_.Rebuild(manifold_updates_);
 }
 
 }  // namespace contactsim

@@ -14,6 +14,7 @@
 #include "service/collision/broadphase.h"
 #include "service/collision/collide_pairs.h"
 #include "service/collision/contact.h"
+#include "service/collision/manifold_cache.h"
 #include "service/collision/parallel_runner.h"
 #include "service/collision/separating_axis_cache.h"
 #include "service/physics/rigid_body.h"
@@ -58,11 +59,27 @@ class Narrowphase {
   // than one thread each pair fills its own slot of contacts, and the slots
   // are concatenated in pair order, so cache, counters and contacts are the
   // same bit for bit for any number of threads.
+  // With manifold reuse on, a touching pair of polyhedra whose relative
+  // pose moved little since its manifold was made gets that manifold at the
+  // current poses instead (manifold_cache.h); its kept manifolds are
+  // rebuilt in pair order like the axes, so this too is the same for any
+  // number of threads.
   void CollidePairs(const std::vector<RigidBody>& bodies, const std::vector<BodyPair>& pairs, double margin,
                     ParallelRunner& runner, ContactSet* out);
-  // Forgets the cached axes and zeroes the counters (scene reset or load).
-  void Reset() { cache_.Clear(); }
+  // Manifold reuse in CollidePairs (the `manifold_reuse` option); off, every
+  // pair is collided afresh. Switching forgets the kept manifolds.
+  void SetManifoldReuse(bool on) {
+    if (on != manifold_reuse_) manifolds_.Clear();
+    manifold_reuse_ = on;
+  }
+  bool manifold_reuse() const { return manifold_reuse_; }
+  // Forgets the cached axes and manifolds and zeroes the counters (scene reset or load).
+  void Reset() {
+    cache_.Clear();
+    manifolds_.Clear();
+  }
   const SeparatingAxisCache& cache() const { return cache_; }
+  const ManifoldCache& manifolds() const { return manifolds_; }
 
  private:
   SeparatingAxisCache cache_;
@@ -70,6 +87,13 @@ class Narrowphase {
   std::vector<PolyhedronScratch> worker_scratch_;  // one per runner thread
   std::vector<ContactSet> slots_;                  // one per pair, kept between steps
   std::vector<AxisCacheUpdate> updates_;           // one per pair of the last CollidePairs
+  bool manifold_reuse_ = kManifoldReuseDefault;
+  ManifoldCache manifolds_;
+  std::vector<ManifoldUpdate> manifold_updates_;   // one per pair of the last CollidePairs, when reusing
+  // One pair of CollidePairs: its kept manifold when it may be reused, else Dispatch.
+  void CollidePair(const std::vector<RigidBody>& bodies, const BodyPair& p, int i, double margin,
+                   PolyhedronScratch* scratch, ContactSet* out);
+  void RebuildCaches();
 };
 
 }  // namespace contactsim

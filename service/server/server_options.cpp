@@ -36,6 +36,11 @@ const std::vector<ServerOption>& ServerOptionTable() {
       {"sleep", &SO::sleep, 0, 0, {}, "",
        "settled islands sleep until something wakes them (docs/physics.md, \"Sleeping\"), as in Box2D, Bullet and "
        "Jolt"},
+      {"manifold_reuse", &SO::manifold_reuse, 0, 0, {}, "",
+       "a touching pair of boxes or hulls keeps its contact points while the two moved less than a tenth of the "
+       "method's margin relative to each other, and recomputes their depths from the poses instead of colliding "
+       "again (docs/physics.md, \"Manifold reuse\"); changes trajectories, and a snapshot does not carry the kept "
+       "points"},
       {"live_line", &SO::live_line, 0, 0, {}, "", "a one-line progress report on stderr"},
       {"joint_state", &SO::joint_state, 0, 0, JointStateChoices(), "",
        "when JOINT_STATE is published with STATE, whose joint block carries the same joints: always; "

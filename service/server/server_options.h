@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "service/collision/manifold_cache.h"
 #include "service/collision/parallel_runner.h"
 #include "service/proto/config.pb.h"
 #include "service/server/arm_driver/arm_driver_config.h"
@@ -40,6 +41,7 @@ struct ServerOptions {
   std::string broadphase = "sap";
   int threads = DefaultThreadCount();
   bool sleep = true;
+  bool manifold_reuse = kManifoldReuseDefault;
   int max_bodies = 100000;
   int max_joints = 100000;
   DecodeLimits decode_limits;  // its members are rows of the table too

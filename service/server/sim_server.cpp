@@ -35,6 +35,7 @@ Status SimServer::Init(const SceneSpec* scene, std::shared_ptr<ContactMethod> me
   Status st = detector_.SetBroadphase(options_.broadphase);
   if (!st.ok()) return st;
   if (!(st = detector_.SetThreads(options_.threads)).ok()) return st;
+  detector_.SetManifoldReuse(options_.manifold_reuse);
   if (scene != nullptr) {
     if (!(st = BuildWorld(*scene, &world_)).ok()) return st;
   }

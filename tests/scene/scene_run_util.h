@@ -22,6 +22,7 @@ struct SceneRun {
   ParamMap params;     // over the method's defaults
   int steps = 0;       // 0: the scene's own `steps`
   int threads = 1;     // of the collision detector
+  bool manifold_reuse = false;  // the detector's (manifold_cache.h)
 };
 
 inline std::string Describe(const std::string& method, const ParamMap& params) {
@@ -53,6 +54,7 @@ inline SceneRunResult RunSceneOnce(const SceneRun& run) {
   CollisionDetector detector;
   st = detector.SetThreads(run.threads);
   EXPECT_TRUE(st.ok()) << st.message();
+  detector.SetManifoldReuse(run.manifold_reuse);
   ContactSet contacts;
   const int steps = run.steps > 0 ? run.steps : spec.steps;
   EXPECT_GT(steps, 0);

@@ -16,6 +16,7 @@ class ContactsimEngine : public SceneEngine {
   }
   Status SetBroadphase(const std::string& name) { return detector_.SetBroadphase(name); }
   Status SetThreads(int threads) { return detector_.SetThreads(threads); }
+  void SetManifoldReuse(bool on) { detector_.SetManifoldReuse(on); }
   void Step() override { stats_ = sleep_.Step(world_, *method_, detector_, &contacts_); }
   int Sleeping() const override { return sleep_.stats().sleeping; }
   std::optional<StepStats> LastStats() const override { return stats_; }
@@ -46,6 +47,7 @@ Status CreateContactsimEngine(const BenchOptions& options, const SceneSpec& scen
   auto engine = std::make_unique<ContactsimEngine>(std::move(method), world, options.sleep);
   if (!(st = engine->SetBroadphase(options.broadphase)).ok()) return st;
   if (!(st = engine->SetThreads(options.threads)).ok()) return st;
+  engine->SetManifoldReuse(options.manifold_reuse);
   *out = std::move(engine);
   return Status::Ok();
 }
