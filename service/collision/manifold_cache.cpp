@@ -2,23 +2,15 @@
 #include "service/collision/manifold_cache.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "service/collision/collide_pairs.h"
+#include "service/collision/motion_bound.h"
 
 namespace contactsim {
 namespace {
 
 bool IsPolyhedron(const RigidBody& body) {
   return body.shape.type == ShapeType::kBox || (body.shape.type == ShapeType::kConvex && body.shape.hull != nullptr);
-}
-
-// The farthest point of a box or hull from its origin (m).
-double Reach(const RigidBody& body) {
-  if (body.shape.type == ShapeType::kBox) return body.shape.half_extents.norm();
-  double reach_sq = 0.0;
-  for (const Vec3& v : body.shape.hull->vertices) reach_sq = std::max(reach_sq, v.squaredNorm());
-  return std::sqrt(reach_sq);
 }
 
 }  // namespace
@@ -91,7 +83,7 @@ void ManifoldCache::Record(const RigidBody& a, const RigidBody& b, const Contact
   const Mat3 R_B = b.Rotation();
   m.p_AB = R_A.transpose() * (b.x - a.x);
   m.q_AB = a.q.conjugate() * b.q;
-  m.reach_b = Reach(b);
+  m.reach_b = BoundingRadius(b.shape);
   m.count = count;
   for (int k = 0; k < count; ++k) {
     const Contact& c = first[k];
