@@ -198,7 +198,7 @@ struct Lanes {
             dr[6] * n.x + dr[7] * n.y + dr[8] * n.z};
   }
   static void NormalTargets(const WideView& view, int bundle, const Fields& f, const WidePass& pass, const V3& n,
-                            const Motion& m, Targets* t) {
+                            const Motion& m, const B* lambda, Targets* t) {
     const B shift = Dot(n, Sub(m.dpb, m.dpa));
     const V3 na = TurnedBack(m.dra, n), nb = TurnedBack(m.drb, n);
     const B zero(0.0f), one(1.0f), inv_h(pass.inv_h), floor(-pass.max_push_velocity);
@@ -211,7 +211,9 @@ struct Lanes {
         t->mass_scale[s] = xsimd::select(apart, one, f.Get(at(kMassScale)));
         t->impulse_scale[s] = xsimd::select(apart, zero, f.Get(at(kImpulseScale)));
       } else {
-        t->bias[s] = xsimd::select(apart, sep * inv_h, zero);
+        // a point that pushes keeps its gap (SoftPass::hold_pushing_gaps)
+        const M speculative = pass.hold_pushing_gaps ? apart && !(lambda[s] > zero) : apart;
+        t->bias[s] = xsimd::select(speculative, sep * inv_h, zero);
         t->mass_scale[s] = one;
         t->impulse_scale[s] = zero;
       }
@@ -274,13 +276,13 @@ struct Lanes {
   static void SolveNormals(const WideView& view, int bundle, const Fields& f, const WidePass& pass, const V3& n,
                            const B& ima, const B& imb, const Motion& m, Pair& p) {
     const int slots = view.slots[bundle];
-    Targets t;
-    NormalTargets(view, bundle, f, pass, n, m, &t);
     B lambda[kSlots], push[kSlots];
     for (int s = 0; s < slots; ++s) {
       lambda[s] = f.Get(SlotAt(s, kLambdaN));
       push[s] = f.Get(SlotAt(s, kMaxPush));
     }
+    Targets t;
+    NormalTargets(view, bundle, f, pass, n, m, lambda, &t);
     Pair block = p;
     B block_lambda[kSlots], block_push[kSlots];
     for (int s = 0; s < slots; ++s) block_lambda[s] = lambda[s], block_push[s] = push[s];

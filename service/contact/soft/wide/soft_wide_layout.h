@@ -110,6 +110,8 @@ struct WideView {
 struct WidePass {
   float inv_h = 0.0f;
   bool use_bias = true;
+  // relax: a separated point with lambda_n > 0 is rigid at v_n >= 0 (keeps its gap)
+  bool hold_pushing_gaps = false;
   float max_push_velocity = 3.0f;
 };
 

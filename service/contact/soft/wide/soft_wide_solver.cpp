@@ -28,6 +28,8 @@ void SoftWideSolver::Run(const SoftWideStep& step, const std::vector<SoftManifol
   solve.max_push_velocity = static_cast<float>(step.solve.max_push_velocity);
   wide::WidePass relax = solve;
   relax.use_bias = false;
+  // as the double path's relax pass (soft_stages.cpp; no joints here)
+  relax.hold_pushing_gaps = true;
 
   using Fn = ParallelRunner::StageFn;
   const Fn integrate_velocities = [&](int i, int j) { IntegrateWideVelocities(h, i, j, bodies_); };
