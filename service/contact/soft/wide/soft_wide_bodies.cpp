@@ -34,6 +34,18 @@ void LoadWideBody(const RigidBody& b, const SoftBody& s, WideBody* state, WideBo
 // portable_math.h's, so the float path's turns are the same on every build
 Eigen::Quaternionf TurnOf(const Vec3f& phi) { return QuatFromRotationVector(phi.cast<double>()).cast<float>(); }
 
+// R(q) - I, column-major, from Eigen's toRotationMatrix's products without
+// its 1 - ...: the diagonal keeps its digits at a small turn
+void TurnMinusIdentity(const Eigen::Quaternionf& q, float* m) {
+  const float tx = 2.0f * q.x(), ty = 2.0f * q.y(), tz = 2.0f * q.z();
+  const float twx = tx * q.w(), twy = ty * q.w(), twz = tz * q.w();
+  const float txx = tx * q.x(), txy = ty * q.x(), txz = tz * q.x();
+  const float tyy = ty * q.y(), tyz = tz * q.y(), tzz = tz * q.z();
+  const float columns[9] = {-(tyy + tzz), txy + twz, txz - twy, txy - twz, -(txx + tzz),
+                            tyz + twx,    txz + twy, tyz - twx, -(txx + tyy)};
+  for (int k = 0; k < 9; ++k) m[k] = columns[k];
+}
+
 }  // namespace
 
 void LoadWideBodies(const World& world, const std::vector<SoftBody>& soft, ParallelRunner& runner,
@@ -74,10 +86,9 @@ void IntegrateWidePositions(float h, int begin, int end, WideBodies& bodies) {
     }
     Eigen::Map<Vec3f>(s.dp) += h * Eigen::Map<const Vec3f>(s.v);
     m.dq = (TurnOf(h * w) * m.dq).normalized();
-    const Mat3f dR = m.dq.toRotationMatrix();
-    Eigen::Map<Mat3f>(s.dR) = dR;
+    TurnMinusIdentity(m.dq, s.turn);
     if (!m.hold_momentum) continue;
-    const Mat3f R = dR * m.R0;
+    const Mat3f R = (Eigen::Map<const Mat3f>(s.turn) + Mat3f::Identity()) * m.R0;
     m.inv_inertia = R * m.inv_inertia_body * R.transpose();
     w = m.inv_inertia * L;
   }

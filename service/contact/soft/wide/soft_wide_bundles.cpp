@@ -68,7 +68,7 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   for (int s = m.count; s < slots_[bundle]; ++s) {
     for (const int field : {kRa, kRb}) put3(SlotAt(s, field), Vec3::Zero());
     if (friction_points != nullptr) put3(SlotAt(s, kFa), Vec3::Zero()), put3(SlotAt(s, kFb), Vec3::Zero());
-    for (const int field : {kAdjustedSeparation, kFriction, kBiasRate, kMassScale, kImpulseScale, kLambdaN,
+    for (const int field : {kSeparation, kFriction, kBiasRate, kMassScale, kImpulseScale, kLambdaN,
                             kLambdaT1, kLambdaT2}) {
       put(SlotAt(s, field), 0.0);
     }
@@ -83,7 +83,9 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
       SoftFrictionArms(p, m.first + s, friction_points, bodies, &fa, &fb);
       put3(at(kFa), fa), put3(at(kFb), fb);
     }
-    put(at(kAdjustedSeparation), p.adjusted_separation);
+    // s_0 itself rather than s_0 - n . (r_B - r_A): in float, that difference
+    // of anchors' lengths loses s_0 to their round-off (NormalTargets)
+    put(at(kSeparation), p.adjusted_separation + p.n.dot(p.rb - p.ra));
     put(at(kFriction), p.friction);
     put(at(kBiasRate), p.soft.bias_rate), put(at(kMassScale), p.soft.mass_scale);
     put(at(kImpulseScale), p.soft.impulse_scale);

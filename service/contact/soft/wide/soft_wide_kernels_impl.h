@@ -52,7 +52,8 @@ struct Lanes {
   struct Pair {
     V3 va, wa, vb, wb;
   };
-  // The motion since the step's start that a separation reads.
+  // The motion since the step's start that a separation reads (the turns
+  // as dR - I, WideBody::turn).
   struct Motion {
     V3 dpa, dpb;
     B dra[9], drb[9];
@@ -67,7 +68,7 @@ struct Lanes {
         buf[3 + k][l] = body.w[k];
         buf[6 + k][l] = body.dp[k];
       }
-      for (int k = 0; k < 9; ++k) buf[9 + k][l] = body.dR[k];
+      for (int k = 0; k < 9; ++k) buf[9 + k][l] = body.turn[k];
     }
     *v = {B::load_aligned(buf[0]), B::load_aligned(buf[1]), B::load_aligned(buf[2])};
     *w = {B::load_aligned(buf[3]), B::load_aligned(buf[4]), B::load_aligned(buf[5])};
@@ -188,12 +189,19 @@ struct Lanes {
   }
 
   // What each point's normal row aims at (SoftNormalTarget) at its
-  // separation now (SoftSeparation: n . dR r = (dR^T n) . r, so each
-  // body's turn meets n once a lane).
+  // separation now, SoftSeparation's s written as
+  //   s = s_0 + n . (dp_B - dp_A) + ((dR_B - I)^T n) . r_B - ((dR_A - I)^T n) . r_A,
+  // (n . dR r = (dR^T n) . r, so each body's turn meets n once a lane):
+  // every term is as small as the motion, so s keeps float's digits of
+  // itself. The double path's s_0 - n . (r_B - r_A) + n . (dR_B r_B - dR_A r_A)
+  // cancels the anchors' lengths, which in float left s wrong by their
+  // round-off, up to 1e-8 m at 0.1 m, afresh each step as the anchors moved:
+  // the springs (k ~ 4e4 N/m) chased it, and a hull resting on a face
+  // rocked at up to 1.2e-6 m/s.
   struct Targets {
     B bias[kSlots], mass_scale[kSlots], impulse_scale[kSlots];
   };
-  static V3 TurnedBack(const B* dr, const V3& n) {  // dR^T n, dR column-major
+  static V3 TurnedBack(const B* dr, const V3& n) {  // (dR - I)^T n, dR - I column-major
     return {dr[0] * n.x + dr[1] * n.y + dr[2] * n.z, dr[3] * n.x + dr[4] * n.y + dr[5] * n.z,
             dr[6] * n.x + dr[7] * n.y + dr[8] * n.z};
   }
@@ -204,7 +212,7 @@ struct Lanes {
     const B zero(0.0f), one(1.0f), inv_h(pass.inv_h), floor(-pass.max_push_velocity);
     for (int s = 0; s < view.slots[bundle]; ++s) {
       const auto at = [s](int field) { return SlotAt(s, field); };
-      const B sep = shift + Dot(nb, f.Get3(at(kRb))) - Dot(na, f.Get3(at(kRa))) + f.Get(at(kAdjustedSeparation));
+      const B sep = shift + Dot(nb, f.Get3(at(kRb))) - Dot(na, f.Get3(at(kRa))) + f.Get(at(kSeparation));
       const M apart = sep > zero;  // speculative: may close the gap, not pass it
       if (pass.use_bias) {
         t->bias[s] = xsimd::select(apart, sep * inv_h, xsimd::max(f.Get(at(kBiasRate)) * sep, floor));

@@ -52,7 +52,7 @@ enum SlotField : int {
   kIaT2 = 33,
   kIbT1 = 36,
   kIbT2 = 39,
-  kAdjustedSeparation = 42,
+  kSeparation = 42,  // m, s_0: the separation at the step's start
   kMassN,
   kMassT1,
   kMassT2,
@@ -83,7 +83,10 @@ struct WideBody {
   float v[3] = {0, 0, 0};   // m/s
   float w[3] = {0, 0, 0};   // rad/s, world
   float dp[3] = {0, 0, 0};  // m, x - x0
-  float dR[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // R(q) R(q0)^T, column-major
+  // R(q) R(q0)^T - I, column-major: the turn since the step's start kept
+  // apart from the identity, so that a resting body's turn keeps float's
+  // digits (soft_wide_kernels_impl.h, NormalTargets)
+  float turn[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
 };
 
 // What a kernel call sees of the bundles and the bodies.
