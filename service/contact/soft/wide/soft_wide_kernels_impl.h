@@ -20,6 +20,16 @@ namespace contactsim {
 namespace wide {
 namespace {
 
+// m: a point at most this far apart counts as touching (a soft row, not a
+// speculative rigid one). The separations are exact to the motion
+// (NormalTargets), so a face placed exactly touching, s_0 = 0, takes its
+// corners' signs from the turn that float's round-off in the passes gives
+// it (1e-7 rad/s, 1e-11 m at a corner in a sub-step): corners either side
+// of 0 mixed rigid and soft rows in one block, and an aligned stack of
+// 0.04 m cubes drifted 2.4 mm sideways. 1e-9 m is a hundred times that
+// and a thousandth of the gap a pushing point rests at (0.9 um, soft.md).
+constexpr float kTouchingGap = 1e-9f;
+
 template <class Arch>
 struct Lanes {
   using B = xsimd::batch<float, Arch>;
@@ -213,7 +223,8 @@ struct Lanes {
     for (int s = 0; s < view.slots[bundle]; ++s) {
       const auto at = [s](int field) { return SlotAt(s, field); };
       const B sep = shift + Dot(nb, f.Get3(at(kRb))) - Dot(na, f.Get3(at(kRa))) + f.Get(at(kSeparation));
-      const M apart = sep > zero;  // speculative: may close the gap, not pass it
+      // speculative: may close the gap, not pass it
+      const M apart = sep > B(kTouchingGap);
       if (pass.use_bias) {
         t->bias[s] = xsimd::select(apart, sep * inv_h, xsimd::max(f.Get(at(kBiasRate)) * sep, floor));
         t->mass_scale[s] = xsimd::select(apart, one, f.Get(at(kMassScale)));
