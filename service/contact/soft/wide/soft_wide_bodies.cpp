@@ -41,8 +41,9 @@ void TurnMinusIdentity(const Eigen::Quaternionf& q, float* m) {
   const float twx = tx * q.w(), twy = ty * q.w(), twz = tz * q.w();
   const float txx = tx * q.x(), txy = ty * q.x(), txz = tz * q.x();
   const float tyy = ty * q.y(), tyz = tz * q.y(), tzz = tz * q.z();
-  const float columns[9] = {-(tyy + tzz), txy + twz, txz - twy, txy - twz, -(txx + tzz),
-                            tyz + twx,    txz + twy, tyz - twx, -(txx + tyy)};
+  const float columns[9] = {-(tyy + tzz), txy + twz,    txz - twy,  // column 0
+                            txy - twz,    -(txx + tzz), tyz + twx,  // column 1
+                            txz + twy,    tyz - twx,    -(txx + tyy)};
   for (int k = 0; k < 9; ++k) m[k] = columns[k];
 }
 
