@@ -56,38 +56,55 @@ Vec3 InPlane(const Vec3& a, const Vec3& b, const Vec3& normal) {
   return d - normal.dot(d) * normal;
 }
 
+// Whether a and b are level: their depths differ by at most kFlushSlope
+// times their in-plane distance.
+bool Level(const Contact& a, const Contact& b, const Vec3& normal) {
+  return std::abs(a.depth - b.depth) <= kFlushSlope * InPlane(a.point, b.point, normal).norm();
+}
+
 // The points of a face that lies flush with the contact plane at the
 // deepest point: when the points that no deeper point hides include three
 // or more that span such a face, hides every other one and returns how many
-// are left (else returns `left`). A point is level with the deepest one p0
-// when its depth is at most kFlushSlope |in-plane offset| less: the slope
-// is a ratio, so the rule holds at every size, and it tells a face's
-// corners (equal depths, or a face tilted less than the slope) from the
-// vertices of its neighbour faces within the detection margin, which rise
-// from it at their dihedral angle. Those reach farther than the face, so
-// Gregorius's widest area kept them over the face's own corners: a hull
-// landing flat from 10 cm kept two of its face's three corners and two
-// vertices 13-15 mm above it, and penalty's impact stage struck the two as
-// an edge and tipped it (docs/methods/penalty.md, "Resting hulls"). The
-// level points must span a face, not a sliver: their widest triangle (p0,
-// the farthest from it, the widest with the two) at least kMinFaceWidth of
-// its long side wide, and its own depth slope below kFlushSlope (a face
-// tilted more than that has level points only along a line through p0).
-size_t HideAllButFlushFace(const Contact* c, size_t n, const Vec3& normal, bool* hidden, bool* skip,
-                           size_t left) {
-  const int i0 = ArgMax(n, hidden, [&](size_t i) { return c[i].depth; });
+// are left (else returns `left`). The face's points are grown from the
+// deepest one, deeper first, each joining when it is level with every
+// point joined before it. The slope is a ratio, so the rule holds at every
+// size, and it tells a face's corners (equal depths, or a face tilted less
+// than the slope) from the vertices of its neighbour faces within the
+// detection margin, which rise from its rim at their dihedral angle. Those
+// reach farther than the face, so Gregorius's widest area kept them over
+// the face's own corners: a hull landing flat from 10 cm kept two of its
+// face's three corners and two vertices 13-15 mm above it, and penalty's
+// impact stage struck the two as an edge and tipped it
+// (docs/methods/penalty.md, "Resting hulls"). Level with every member, not
+// only with the deepest: a long narrow flat's neighbour rises gently seen
+// from the flat's far end, steeply from its near one (a 71-sided wheel's
+// flats, 0.09 rad apart, are 9 mm wide and 5 cm long). The points must span
+// a face, not a sliver: their widest triangle (the deepest, the farthest
+// from it, the widest with the two) at least kMinFaceWidth of its long side
+// wide, and its own depth slope below kFlushSlope (on a face tilted more,
+// points level pairwise lie along its level lines). `visited` and `outside`
+// are scratch flags for n points.
+size_t HideAllButFlushFace(const Contact* c, size_t n, const Vec3& normal, bool* hidden, bool* visited,
+                           bool* outside, size_t left) {
+  std::copy(hidden, hidden + n, visited);
+  std::fill(outside, outside + n, true);
   size_t level = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double drop = c[i0].depth - c[i].depth;
-    skip[i] = hidden[i] || drop > kFlushSlope * InPlane(c[i0].point, c[i].point, normal).norm();
-    level += skip[i] ? 0 : 1;
+  int i0 = -1;
+  for (int j; (j = ArgMax(n, visited, [&](size_t i) { return c[i].depth; })) >= 0;) {
+    visited[j] = true;
+    bool joins = true;
+    for (size_t k = 0; k < n && joins; ++k) joins = outside[k] || Level(c[j], c[k], normal);
+    if (!joins) continue;
+    outside[j] = false;
+    ++level;
+    if (i0 < 0) i0 = j;
   }
   if (level < 3) return left;
-  skip[i0] = true;
-  const int i1 = ArgMax(n, skip, [&](size_t i) { return InPlane(c[i0].point, c[i].point, normal).squaredNorm(); });
-  skip[i1] = true;
+  outside[i0] = true;
+  const int i1 = ArgMax(n, outside, [&](size_t i) { return InPlane(c[i0].point, c[i].point, normal).squaredNorm(); });
+  outside[i1] = true;
   const Vec3 u = InPlane(c[i0].point, c[i1].point, normal);
-  const int i2 = ArgMax(n, skip, [&](size_t i) {
+  const int i2 = ArgMax(n, outside, [&](size_t i) {
     return std::abs(u.cross(InPlane(c[i0].point, c[i].point, normal)).dot(normal));
   });
   const Vec3 v = InPlane(c[i0].point, c[i2].point, normal);
@@ -98,8 +115,8 @@ size_t HideAllButFlushFace(const Contact* c, size_t n, const Vec3& normal, bool*
   // width |area2| / |u| against kMinFaceWidth |u|
   const bool wide = std::abs(area2) >= kMinFaceWidth * u.squaredNorm();
   if (!wide || !(slope_area2.norm() <= kFlushSlope * std::abs(area2))) return left;
-  skip[i0] = skip[i1] = skip[i2] = false;
-  for (size_t i = 0; i < n; ++i) hidden[i] = hidden[i] || skip[i];
+  outside[i0] = outside[i1] = false;
+  for (size_t i = 0; i < n; ++i) hidden[i] = hidden[i] || outside[i];
   return level;
 }
 
@@ -140,7 +157,7 @@ void ReduceManifold(size_t first, ContactSet* contacts) {
   // a hidden point is never chosen: it counts as chosen for ArgMax, and
   // is left out below; when four or fewer are left they are the manifold
   size_t left = HideShadowedPoints(c, n, normal, hidden);
-  if (left > kMaxManifoldPoints) left = HideAllButFlushFace(c, n, normal, hidden, skip, left);
+  if (left > kMaxManifoldPoints) left = HideAllButFlushFace(c, n, normal, hidden, chosen, skip, left);
   if (left <= kMaxManifoldPoints) {
     for (size_t i = 0; i < n; ++i) chosen[i] = !hidden[i];
     KeepMarked(first, n, chosen, contacts);
