@@ -120,51 +120,12 @@ size_t HideAllButFlushFace(const Contact* c, size_t n, const Vec3& normal, bool*
   return level;
 }
 
-// Keeps the points [first, first + n) marked in `keep`, in their order, by
-// moving them down over the others (a kept point never moves up).
-void KeepMarked(size_t first, size_t n, const bool* keep, ContactSet* contacts) {
-  Contact* c = contacts->data() + first;
-  size_t kept = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (keep[i]) c[kept++] = c[i];
-  }
-  contacts->resize(first + kept);
-}
-
-// The flags of up to kInlinePoints points live on the stack: a box pair's
-// clipped polygon has at most 8, and a heap allocation a reduced manifold
-// cost as much as the reduction itself.
-constexpr size_t kInlinePoints = 64;
-
-}  // namespace
-
-void ReduceManifold(size_t first, ContactSet* contacts) {
-  const size_t n = contacts->size() - first;
-  if (n <= kMaxManifoldPoints) return;
-  bool inline_flags[3 * kInlinePoints];
-  std::unique_ptr<bool[]> heap_flags;
-  bool* flags = inline_flags;
-  if (n > kInlinePoints) {
-    heap_flags.reset(new bool[3 * n]);
-    flags = heap_flags.get();
-  }
-  bool* chosen = flags;
-  bool* hidden = flags + n;
-  bool* skip = flags + 2 * n;
-  std::fill(flags, flags + 3 * n, false);
-  const Contact* c = contacts->data() + first;
-  const Vec3 normal = c[0].normal;
-  // a hidden point is never chosen: it counts as chosen for ArgMax, and
-  // is left out below; when four or fewer are left they are the manifold
-  size_t left = HideShadowedPoints(c, n, normal, hidden);
-  if (left > kMaxManifoldPoints) left = HideAllButFlushFace(c, n, normal, hidden, chosen, skip, left);
-  if (left <= kMaxManifoldPoints) {
-    for (size_t i = 0; i < n; ++i) chosen[i] = !hidden[i];
-    KeepMarked(first, n, chosen, contacts);
-    return;
-  }
-  std::copy(hidden, hidden + n, chosen);
-
+// Marks in `chosen` (where the points already chosen or hidden are
+// marked) Gregorius's four: the deepest, the farthest from it, the largest
+// triangle with the two, the most area added to it. Returns whether they
+// are pairwise level (so lie flush, or on a face tilted less than
+// kFlushSlope). Needs more than four unmarked points.
+bool ChooseFour(const Contact* c, size_t n, const Vec3& normal, bool* chosen) {
   // deepest point
   const int i0 = ArgMax(n, chosen, [&](size_t i) { return c[i].depth; });
   chosen[i0] = true;
@@ -191,7 +152,66 @@ void ReduceManifold(size_t first, ContactSet* contacts) {
     return added;
   });
   chosen[i3] = true;
-  for (size_t i = 0; i < n; ++i) chosen[i] = chosen[i] && !hidden[i];
+  const int four[4] = {i0, i1, i2, i3};
+  for (int a = 0; a < 4; ++a) {
+    for (int b = a + 1; b < 4; ++b) {
+      if (!Level(c[four[a]], c[four[b]], normal)) return false;
+    }
+  }
+  return true;
+}
+
+// Keeps the points [first, first + n) marked in `keep`, in their order, by
+// moving them down over the others (a kept point never moves up).
+void KeepMarked(size_t first, size_t n, const bool* keep, ContactSet* contacts) {
+  Contact* c = contacts->data() + first;
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (keep[i]) c[kept++] = c[i];
+  }
+  contacts->resize(first + kept);
+}
+
+// The flags of up to kInlinePoints points live on the stack: a box pair's
+// clipped polygon has at most 8, and a heap allocation a reduced manifold
+// cost as much as the reduction itself.
+constexpr size_t kInlinePoints = 64;
+
+}  // namespace
+
+void ReduceManifold(size_t first, ContactSet* contacts) {
+  const size_t n = contacts->size() - first;
+  if (n <= kMaxManifoldPoints) return;
+  bool inline_flags[4 * kInlinePoints];
+  std::unique_ptr<bool[]> heap_flags;
+  bool* flags = inline_flags;
+  if (n > kInlinePoints) {
+    heap_flags.reset(new bool[4 * n]);
+    flags = heap_flags.get();
+  }
+  bool* chosen = flags;
+  bool* hidden = flags + n;
+  bool* scratch = flags + 2 * n;  // two arrays
+  std::fill(flags, flags + 2 * n, false);
+  const Contact* c = contacts->data() + first;
+  const Vec3 normal = c[0].normal;
+  // a hidden point is never chosen: it counts as chosen for ArgMax, and
+  // is left out below; when four or fewer are left they are the manifold
+  size_t left = HideShadowedPoints(c, n, normal, hidden);
+  std::copy(hidden, hidden + n, chosen);
+  // four that are not all level may have passed over a face flush at the
+  // deepest point: then the face's points are chosen among (the four
+  // would be the same had they all been the face's)
+  if (left > kMaxManifoldPoints && !ChooseFour(c, n, normal, chosen)) {
+    const size_t face = HideAllButFlushFace(c, n, normal, hidden, scratch, scratch + n, left);
+    if (face < left) {
+      left = face;
+      std::copy(hidden, hidden + n, chosen);
+      if (left > kMaxManifoldPoints) ChooseFour(c, n, normal, chosen);
+    }
+  }
+  // four or fewer left are the manifold
+  for (size_t i = 0; i < n; ++i) chosen[i] = left <= kMaxManifoldPoints ? !hidden[i] : chosen[i] && !hidden[i];
   KeepMarked(first, n, chosen, contacts);
 }
 
