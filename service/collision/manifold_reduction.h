@@ -3,10 +3,12 @@
 // those two, and the point that adds the most area to that triangle
 // (Gregorius, "Robust Contact Creation for Physics Simulations", GDC 2015),
 // chosen among the points that no deeper point hides (one within 45
-// degrees below it: a thin plate's top corner above a bottom one), and,
-// when some of them span a face flush with the contact plane at the deepest
-// point, among that face's points only (a hull's landing face, not its
-// neighbours' vertices above it within the margin).
+// degrees below it: a thin plate's top corner above a bottom one). When
+// the four are not all level (kFlushSlope) and some of the points span a
+// face flush with the contact plane at the deepest point, the four are
+// chosen among that face's points instead (a hull's landing face, not its
+// neighbours' vertices above it within the margin; docs/physics.md,
+// "Manifold reduction keeps a flush face").
 // Four points that span the largest area are what a solver needs to hold a
 // face on a face; more add cost and no support.
 #pragma once
@@ -19,10 +21,10 @@ namespace contactsim {
 
 constexpr size_t kMaxManifoldPoints = 4;
 
-// A point is level with the deepest point when its depth is at most this
-// fraction of its in-plane offset less (about 1.1 degrees): a face lands
-// with its corners level, its neighbour faces' vertices rise from it at
-// their dihedral angles (tens of degrees on a random hull).
+// Two points are level when their depths differ by at most this fraction
+// of their in-plane distance (about 1.1 degrees): a face lands with its
+// corners level, its neighbour faces' vertices rise from it at their
+// dihedral angles (tens of degrees on a random hull).
 constexpr double kFlushSlope = 0.02;
 // A level set spans a face when its widest triangle is at least this
 // fraction of its long side wide; narrower, it is an edge to a solver.
