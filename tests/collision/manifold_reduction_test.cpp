@@ -202,6 +202,30 @@ TEST(ManifoldReductionTest, HullLandingOnATriangleKeepsTheTriangle) {
   for (const Contact& c : out) EXPECT_NEAR(c.depth, -gap, kTol);
 }
 
+// Verifies that a long narrow flat (a 71-sided wheel's: 8.85 x 50 mm at
+// 0.1 m, its neighbour flats rising at 2 pi / 71) keeps its four corners,
+// though a neighbour's far vertex seen from the flat's far corner rises
+// less than the flush slope, at 1 mm to 1 m.
+TEST(ManifoldReductionTest, LongNarrowFlatKeepsItsFourCorners) {
+  const double w = 0.0885, l = 0.5, a = 2.0 * M_PI / 71.0;  // in units of the scale
+  for (const double scale : kScales) {
+    std::mt19937_64 rng(71);
+    const ManifoldFrame f = RandomFrame(rng, scale);
+    ContactSet contacts;
+    uint32_t id = 0;
+    for (const double y : {-0.5 * l, 0.5 * l}) {
+      for (const double side : {-1.0, 1.0}) {
+        contacts.push_back(f.Point(side * 0.5 * w, y, 0.0, id++));                                    // corners 0-3
+        contacts.push_back(f.Point(side * (0.5 * w + w * std::cos(a)), y, w * std::sin(a), 100u + id));  // neighbours
+      }
+    }
+    ReduceManifold(0, &contacts);
+    SCOPED_TRACE(::testing::Message() << "scale " << scale);
+    ASSERT_EQ(contacts.size(), 4u);
+    EXPECT_TRUE(AllBelow(contacts, 100u));
+  }
+}
+
 // Verifies that a thin plate (0.5 x 0.5 x 0.02 m) whose top face lies within
 // the margin rests on its four bottom corners, flat and tilted 0.01 to
 // 0.3 rad about a random horizontal axis, at 1 mm to 1 m.
