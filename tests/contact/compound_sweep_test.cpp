@@ -208,8 +208,8 @@ TEST_P(CompoundSweepTest, LTipsOverItsEdgeAtTheAnalyticAngle) {
 }
 
 // Largest relative difference of the wheel's rolled ratio (below) from the
-// plain hull's: every method measured within 2.1e-3 (xpbd; lemke 5e-4,
-// the others 0).
+// plain hull's: every method measured within 8e-4 (xpbd; lemke 2e-4,
+// the others 0) but penalty (a known miss, scenario_tolerances.h).
 constexpr double kRolledMatch = 5e-3;
 
 // The wheel's speed after 1 s on a 10 degree slope (gravity turned about y
