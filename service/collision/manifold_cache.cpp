@@ -2,6 +2,9 @@
 #include "service/collision/manifold_cache.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
 
 #include "service/collision/collide_pairs.h"
 #include "service/collision/motion_bound.h"
@@ -17,6 +20,13 @@ bool IsPolyhedron(const RigidBody& body) {
 
 bool KeepsManifold(const RigidBody& a, const RigidBody& b) {
   return a.id != b.id && IsPolyhedron(a) && IsPolyhedron(b);
+}
+
+bool IsSortedByPair(const std::vector<CachedManifold>& entries) {
+  // strictly increasing: sorted and no key twice
+  return std::adjacent_find(entries.begin(), entries.end(), [](const CachedManifold& x, const CachedManifold& y) {
+           return !(x < y);
+         }) == entries.end();
 }
 
 size_t ManifoldCache::Place(BodyId a, BodyId b) const {
@@ -109,6 +119,14 @@ void ManifoldCache::Rebuild(const std::vector<ManifoldUpdate>& updates) {
   // the broadphase's pairs come sorted by body index, which follows the ids in most worlds
   if (!std::is_sorted(next_.begin(), next_.end())) std::sort(next_.begin(), next_.end());
   entries_.swap(next_);
+}
+
+void ManifoldCache::Restore(std::vector<CachedManifold> entries) {
+  if (!IsSortedByPair(entries)) {  // a programmer error: a snapshot's are checked when read
+    std::fprintf(stderr, "ManifoldCache::Restore: %zu entries not sorted by (a, b)\n", entries.size());
+    std::abort();
+  }
+  entries_ = std::move(entries);
 }
 
 void ManifoldCache::Clear() {

@@ -36,10 +36,10 @@
 namespace contactsim {
 
 // Whether the detector reuses manifolds unless told otherwise (the server's
-// `manifold_reuse` option): off, because a kept manifold is state that
-// snapshots do not carry, and BENCHMARKS.md ("Shared: manifold reuse") measures
-// what it saves.
-constexpr bool kManifoldReuseDefault = false;
+// `manifold_reuse` option): on; snapshots carry the kept manifolds
+// (service/scene/snapshot_manifolds.h), so a restored run continues bit for
+// bit, and BENCHMARKS.md ("Shared: manifold reuse") measures what it saves.
+constexpr bool kManifoldReuseDefault = true;
 // The share of the detection's margin that B's points may move in A's frame
 // before the manifold is made again: 1 mm at soft's 1 cm margin, 0.1 mm at
 // impulse's and lcp's 1 mm slop. A resting box moves micrometres in its
@@ -81,6 +81,9 @@ struct ManifoldUpdate {
 // True for the pairs whose manifolds are kept: two polyhedra (box, convex).
 bool KeepsManifold(const RigidBody& a, const RigidBody& b);
 
+// True when `entries` are sorted by (a, b) with no key twice, as a cache holds them.
+bool IsSortedByPair(const std::vector<CachedManifold>& entries);
+
 class ManifoldCache {
  public:
   // When a manifold is kept for (a, b) and B has moved less than
@@ -101,6 +104,12 @@ class ManifoldCache {
 
   const CachedManifold* Find(BodyId a, BodyId b) const;
   size_t size() const { return entries_.size(); }
+  // Every kept manifold, sorted by (a, b): the state a snapshot saves
+  // (service/scene/snapshot_manifolds.h).
+  const std::vector<CachedManifold>& entries() const { return entries_; }
+  // Replaces every manifold by a snapshot's, which must be sorted by (a, b)
+  // with no key twice (IsSortedByPair); the counters stay.
+  void Restore(std::vector<CachedManifold> entries);
   int64_t reuses() const { return reuses_; }
   int64_t remakes() const { return remakes_; }
   // Forgets every manifold and zeroes the counters.

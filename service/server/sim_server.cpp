@@ -88,10 +88,12 @@ Outcome SimServer::Apply(Command& cmd) {
   }
 }
 
-void SimServer::ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> method) {
+void SimServer::ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> method,
+                             std::vector<CachedManifold> manifolds) {
   world_ = std::move(world);
   method_ = std::move(method);
   detector_.Reset();
+  detector_.RestoreManifolds(std::move(manifolds));
   sleep_.Reset();
   standing_actuators_.clear();
 }
