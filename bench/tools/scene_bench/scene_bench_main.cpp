@@ -123,6 +123,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   result.engine = info.engine;
   result.threads = info.threaded ? options.threads : 1;  // Bullet and ODE step on one thread
   result.sleep = info.engine == "contactsim" && options.sleep;
+  result.manifold_reuse = info.engine == "contactsim" && options.manifold_reuse;
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {
