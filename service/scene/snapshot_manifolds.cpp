@@ -9,7 +9,7 @@ namespace {
 
 using google::protobuf::RepeatedField;
 
-void Put(const Vec3& v, RepeatedField<double>* out) {
+void PutVec3(const Vec3& v, RepeatedField<double>* out) {
   for (int k = 0; k < 3; ++k) out->Add(v[k]);
 }
 
@@ -21,7 +21,7 @@ Status GetVec3(const RepeatedField<double>& in, const std::string& field, Vec3* 
   return Status::Ok();
 }
 
-Status LoadPoint(const proto::SnapshotManifold::Point& in, const std::string& where, CachedPoint* p) {
+Status LoadManifoldPoint(const proto::SnapshotManifold::Point& in, const std::string& where, CachedPoint* p) {
   Status st = GetVec3(in.on_a(), where + "on_a", &p->on_a_A);
   if (st.ok()) st = GetVec3(in.on_b(), where + "on_b", &p->on_b_B);
   if (st.ok()) st = GetVec3(in.normal(), where + "normal", &p->normal_A);
@@ -49,7 +49,7 @@ Status LoadManifold(const proto::SnapshotManifold& in, CachedManifold* m) {
   }
   m->count = in.points_size();
   for (int k = 0; k < m->count; ++k) {
-    st = LoadPoint(in.points(k), where + "point " + std::to_string(k) + " ", &m->points[k]);
+    st = LoadManifoldPoint(in.points(k), where + "point " + std::to_string(k) + " ", &m->points[k]);
     if (!st.ok()) return st;
   }
   return Status::Ok();
@@ -62,14 +62,14 @@ void SaveManifolds(const ManifoldCache& cache, proto::Snapshot* out) {
     proto::SnapshotManifold* p = out->add_manifolds();
     p->set_body_a(m.a);
     p->set_body_b(m.b);
-    Put(m.p_AB, p->mutable_p_ab());
+    PutVec3(m.p_AB, p->mutable_p_ab());
     for (double c : {m.q_AB.w(), m.q_AB.x(), m.q_AB.y(), m.q_AB.z()}) p->add_q_ab(c);
     p->set_reach_b(m.reach_b);
     for (int k = 0; k < m.count; ++k) {
       proto::SnapshotManifold::Point* q = p->add_points();
-      Put(m.points[k].on_a_A, q->mutable_on_a());
-      Put(m.points[k].on_b_B, q->mutable_on_b());
-      Put(m.points[k].normal_A, q->mutable_normal());
+      PutVec3(m.points[k].on_a_A, q->mutable_on_a());
+      PutVec3(m.points[k].on_b_B, q->mutable_on_b());
+      PutVec3(m.points[k].normal_A, q->mutable_normal());
       q->set_feature_id(m.points[k].feature_id);
     }
   }

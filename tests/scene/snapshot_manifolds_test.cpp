@@ -71,7 +71,7 @@ constexpr int kSnapshotStep = 60, kMoreSteps = 120;
 
 // Verifies, for every registered method with manifold reuse on: a snapshot
 // taken at step k while boxes and a hull rest and slide on each other holds
-// kept manifolds, and the world, method and manifolds restored into a fresh
+// kept manifolds (when the method asks the detector), and the world, method and manifolds restored into a fresh
 // world and a fresh detector reproduce the uninterrupted run's hash at every
 // later step, ending with the same snapshot, kept manifolds included.
 TEST(SnapshotManifoldsTest, RestoredRunWithReuseMatchesTheOriginalBitForBitForEveryMethod) {
@@ -83,7 +83,8 @@ TEST(SnapshotManifoldsTest, RestoredRunWithReuseMatchesTheOriginalBitForBitForEv
     detector.SetManifoldReuse(true);
     RunSteps(world, *method, detector, kSnapshotStep);
     proto::Snapshot saved = Save(world, *method, detector);
-    EXPECT_GT(saved.manifolds_size(), 0);
+    // a method that finds its own pairs (barrier: pair_search.h) keeps none
+    if (detector.stats().detections > 0) EXPECT_GT(saved.manifolds_size(), 0);
     const std::vector<uint64_t> original = RunSteps(world, *method, detector, kMoreSteps);
     const std::string original_end = Save(world, *method, detector).SerializeAsString();
 
