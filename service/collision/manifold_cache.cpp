@@ -30,10 +30,11 @@ bool IsSortedByPair(const std::vector<CachedManifold>& entries) {
 }
 
 size_t ManifoldCache::Place(BodyId a, BodyId b) const {
-  CachedManifold key;
-  key.a = a;
-  key.b = b;
-  return std::lower_bound(entries_.begin(), entries_.end(), key) - entries_.begin();
+  // compares the ids alone: a CachedManifold key would initialise its four points on every lookup
+  const auto before = [](const CachedManifold& m, const std::pair<BodyId, BodyId>& key) {
+    return m.a != key.first ? m.a < key.first : m.b < key.second;
+  };
+  return std::lower_bound(entries_.begin(), entries_.end(), std::make_pair(a, b), before) - entries_.begin();
 }
 
 const CachedManifold* ManifoldCache::Find(BodyId a, BodyId b) const {
