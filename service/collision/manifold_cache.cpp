@@ -43,9 +43,30 @@ const CachedManifold* ManifoldCache::Find(BodyId a, BodyId b) const {
   return found ? &entries_[place] : nullptr;
 }
 
-bool ManifoldCache::Reuse(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
-                          ManifoldUpdate* update, ContactSet* out) const {
-  const CachedManifold* m = Find(a.id, b.id);
+void ManifoldCache::Locate(const std::vector<RigidBody>& bodies, const std::vector<std::pair<int, int>>& pairs,
+                          std::vector<const CachedManifold*>* found) const {
+  found->assign(pairs.size(), nullptr);
+  if (entries_.empty()) return;
+  size_t next = 0;  // the first entry not before the last pair's key
+  std::pair<BodyId, BodyId> last(0, 0);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const std::pair<BodyId, BodyId> key(bodies[pairs[i].first].id, bodies[pairs[i].second].id);
+    if (key < last) {  // the ids stopped ascending: binary searches from here on
+      for (size_t k = i; k < pairs.size(); ++k) {
+        (*found)[k] = Find(bodies[pairs[k].first].id, bodies[pairs[k].second].id);
+      }
+      return;
+    }
+    last = key;
+    while (next < entries_.size() && std::make_pair(entries_[next].a, entries_[next].b) < key) ++next;
+    if (next < entries_.size() && entries_[next].a == key.first && entries_[next].b == key.second) {
+      (*found)[i] = &entries_[next];
+    }
+  }
+}
+
+bool ManifoldCache::ReuseAt(const CachedManifold* m, const RigidBody& a, int ia, const RigidBody& b, int ib,
+                            double margin, ManifoldUpdate* update, ContactSet* out) const {
   if (m == nullptr) return false;
   // how far B's points may have moved in A's frame since the manifold was made
   const Mat3 R_A = a.Rotation();

@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "service/collision/contact.h"
@@ -92,7 +93,19 @@ class ManifoldCache {
   // indices) to `out`, marks the entry kept in `update` and returns true.
   // Otherwise appends nothing and returns false. Reads only.
   bool Reuse(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ManifoldUpdate* update,
-             ContactSet* out) const;
+             ContactSet* out) const {
+    return ReuseAt(Find(a.id, b.id), a, ia, b, ib, margin, update, out);
+  }
+  // The same with the pair's entry found beforehand (Locate; null: none).
+  bool ReuseAt(const CachedManifold* m, const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
+               ManifoldUpdate* update, ContactSet* out) const;
+  // The entry of each pair (indices into `bodies`, keyed by the two ids) or
+  // null, into `found`: the same as Find on each, by one merge of the pairs
+  // with the sorted entries while the pairs' ids ascend (the broadphase
+  // sorts pairs by index, which follows the ids in most worlds) and by
+  // Find for the rest. Reads only.
+  void Locate(const std::vector<RigidBody>& bodies, const std::vector<std::pair<int, int>>& pairs,
+              std::vector<const CachedManifold*>* found) const;
   // Writes into `update` the manifold of contacts [first, first + count)
   // that Collide just made for (a, b), to keep; none when there are no
   // points or more than kMaxCachedPoints.

@@ -96,6 +96,7 @@ class Narrowphase {
   bool manifold_reuse_ = kManifoldReuseDefault;
   ManifoldCache manifolds_;
   std::vector<ManifoldUpdate> manifold_updates_;   // one per pair of the last CollidePairs, when reusing
+  std::vector<const CachedManifold*> kept_;        // each pair's kept manifold or null (ManifoldCache::Locate)
   // One pair of CollidePairs: its kept manifold when it may be reused, else Dispatch.
   void CollidePair(const std::vector<RigidBody>& bodies, const BodyPair& p, int i, double margin,
                    PolyhedronScratch* scratch, ContactSet* out);
