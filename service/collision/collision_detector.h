@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "service/collision/broadphase.h"
@@ -37,6 +38,12 @@ class CollisionDetector {
   // setting, manifold_cache.h; docs/physics.md, "Collision").
   void SetManifoldReuse(bool on) { narrowphase_.SetManifoldReuse(on); }
   bool manifold_reuse() const { return narrowphase_.manifold_reuse(); }
+  // The kept manifolds are the detector's only state that changes results
+  // (the separating-axis cache and the broadphase's order change only
+  // speed): a snapshot saves them and a restore puts them back
+  // (service/scene/snapshot_manifolds.h).
+  const ManifoldCache& manifolds() const { return narrowphase_.manifolds(); }
+  void RestoreManifolds(std::vector<CachedManifold> entries) { narrowphase_.RestoreManifolds(std::move(entries)); }
   // The world's threads, for the contact methods' solvers too.
   ParallelRunner& runner() const { return *runner_; }
 

@@ -2,6 +2,9 @@
 #include "service/collision/manifold_cache.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
 
 #include "service/collision/collide_pairs.h"
 #include "service/collision/motion_bound.h"
@@ -19,11 +22,19 @@ bool KeepsManifold(const RigidBody& a, const RigidBody& b) {
   return a.id != b.id && IsPolyhedron(a) && IsPolyhedron(b);
 }
 
+bool IsSortedByPair(const std::vector<CachedManifold>& entries) {
+  // strictly increasing: sorted and no key twice
+  return std::adjacent_find(entries.begin(), entries.end(), [](const CachedManifold& x, const CachedManifold& y) {
+           return !(x < y);
+         }) == entries.end();
+}
+
 size_t ManifoldCache::Place(BodyId a, BodyId b) const {
-  CachedManifold key;
-  key.a = a;
-  key.b = b;
-  return std::lower_bound(entries_.begin(), entries_.end(), key) - entries_.begin();
+  // compares the ids alone: a CachedManifold key would initialise its four points on every lookup
+  const auto before = [](const CachedManifold& m, const std::pair<BodyId, BodyId>& key) {
+    return m.a != key.first ? m.a < key.first : m.b < key.second;
+  };
+  return std::lower_bound(entries_.begin(), entries_.end(), std::make_pair(a, b), before) - entries_.begin();
 }
 
 const CachedManifold* ManifoldCache::Find(BodyId a, BodyId b) const {
@@ -32,9 +43,30 @@ const CachedManifold* ManifoldCache::Find(BodyId a, BodyId b) const {
   return found ? &entries_[place] : nullptr;
 }
 
-bool ManifoldCache::Reuse(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
-                          ManifoldUpdate* update, ContactSet* out) const {
-  const CachedManifold* m = Find(a.id, b.id);
+void ManifoldCache::Locate(const std::vector<RigidBody>& bodies, const std::vector<std::pair<int, int>>& pairs,
+                          std::vector<const CachedManifold*>* found) const {
+  found->assign(pairs.size(), nullptr);
+  if (entries_.empty()) return;
+  size_t next = 0;  // the first entry not before the last pair's key
+  std::pair<BodyId, BodyId> last(0, 0);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const std::pair<BodyId, BodyId> key(bodies[pairs[i].first].id, bodies[pairs[i].second].id);
+    if (key < last) {  // the ids stopped ascending: binary searches from here on
+      for (size_t k = i; k < pairs.size(); ++k) {
+        (*found)[k] = Find(bodies[pairs[k].first].id, bodies[pairs[k].second].id);
+      }
+      return;
+    }
+    last = key;
+    while (next < entries_.size() && std::make_pair(entries_[next].a, entries_[next].b) < key) ++next;
+    if (next < entries_.size() && entries_[next].a == key.first && entries_[next].b == key.second) {
+      (*found)[i] = &entries_[next];
+    }
+  }
+}
+
+bool ManifoldCache::ReuseAt(const CachedManifold* m, const RigidBody& a, int ia, const RigidBody& b, int ib,
+                            double margin, ManifoldUpdate* update, ContactSet* out) const {
   if (m == nullptr) return false;
   // how far B's points may have moved in A's frame since the manifold was made
   const Mat3 R_A = a.Rotation();
@@ -109,6 +141,14 @@ void ManifoldCache::Rebuild(const std::vector<ManifoldUpdate>& updates) {
   // the broadphase's pairs come sorted by body index, which follows the ids in most worlds
   if (!std::is_sorted(next_.begin(), next_.end())) std::sort(next_.begin(), next_.end());
   entries_.swap(next_);
+}
+
+void ManifoldCache::Restore(std::vector<CachedManifold> entries) {
+  if (!IsSortedByPair(entries)) {  // a programmer error: a snapshot's are checked when read
+    std::fprintf(stderr, "ManifoldCache::Restore: %zu entries not sorted by (a, b)\n", entries.size());
+    std::abort();
+  }
+  entries_ = std::move(entries);
 }
 
 void ManifoldCache::Clear() {

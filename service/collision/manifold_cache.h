@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "service/collision/contact.h"
@@ -36,10 +37,10 @@
 namespace contactsim {
 
 // Whether the detector reuses manifolds unless told otherwise (the server's
-// `manifold_reuse` option): off, because a kept manifold is state that
-// snapshots do not carry, and BENCHMARKS.md ("Shared: manifold reuse") measures
-// what it saves.
-constexpr bool kManifoldReuseDefault = false;
+// `manifold_reuse` option): on; snapshots carry the kept manifolds
+// (service/scene/snapshot_manifolds.h), so a restored run continues bit for
+// bit, and BENCHMARKS.md ("Shared: manifold reuse") measures what it saves.
+constexpr bool kManifoldReuseDefault = true;
 // The share of the detection's margin that B's points may move in A's frame
 // before the manifold is made again: 1 mm at soft's 1 cm margin, 0.1 mm at
 // impulse's and lcp's 1 mm slop. A resting box moves micrometres in its
@@ -81,6 +82,9 @@ struct ManifoldUpdate {
 // True for the pairs whose manifolds are kept: two polyhedra (box, convex).
 bool KeepsManifold(const RigidBody& a, const RigidBody& b);
 
+// True when `entries` are sorted by (a, b) with no key twice, as a cache holds them.
+bool IsSortedByPair(const std::vector<CachedManifold>& entries);
+
 class ManifoldCache {
  public:
   // When a manifold is kept for (a, b) and B has moved less than
@@ -89,7 +93,19 @@ class ManifoldCache {
   // indices) to `out`, marks the entry kept in `update` and returns true.
   // Otherwise appends nothing and returns false. Reads only.
   bool Reuse(const RigidBody& a, int ia, const RigidBody& b, int ib, double margin, ManifoldUpdate* update,
-             ContactSet* out) const;
+             ContactSet* out) const {
+    return ReuseAt(Find(a.id, b.id), a, ia, b, ib, margin, update, out);
+  }
+  // The same with the pair's entry found beforehand (Locate; null: none).
+  bool ReuseAt(const CachedManifold* m, const RigidBody& a, int ia, const RigidBody& b, int ib, double margin,
+               ManifoldUpdate* update, ContactSet* out) const;
+  // The entry of each pair (indices into `bodies`, keyed by the two ids) or
+  // null, into `found`: the same as Find on each, by one merge of the pairs
+  // with the sorted entries while the pairs' ids ascend (the broadphase
+  // sorts pairs by index, which follows the ids in most worlds) and by
+  // Find for the rest. Reads only.
+  void Locate(const std::vector<RigidBody>& bodies, const std::vector<std::pair<int, int>>& pairs,
+              std::vector<const CachedManifold*>* found) const;
   // Writes into `update` the manifold of contacts [first, first + count)
   // that Collide just made for (a, b), to keep; none when there are no
   // points or more than kMaxCachedPoints.
@@ -101,6 +117,12 @@ class ManifoldCache {
 
   const CachedManifold* Find(BodyId a, BodyId b) const;
   size_t size() const { return entries_.size(); }
+  // Every kept manifold, sorted by (a, b): the state a snapshot saves
+  // (service/scene/snapshot_manifolds.h).
+  const std::vector<CachedManifold>& entries() const { return entries_; }
+  // Replaces every manifold by a snapshot's, which must be sorted by (a, b)
+  // with no key twice (IsSortedByPair); the counters stay.
+  void Restore(std::vector<CachedManifold> entries);
   int64_t reuses() const { return reuses_; }
   int64_t remakes() const { return remakes_; }
   // Forgets every manifold and zeroes the counters.

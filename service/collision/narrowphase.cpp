@@ -221,6 +221,7 @@ void Narrowphase::CollidePairs(const std::vector<RigidBody>& bodies, const std::
       u.kind = ManifoldUpdate::Kind::kNone;
       u.reuses = u.remakes = 0;
     }
+    manifolds_.Locate(bodies, pairs, &kept_);
   }
   // every pair reads the caches as they were before the detection and
   // writes its change aside; the caches are rebuilt from the changes in
@@ -255,7 +256,7 @@ void Narrowphase::CollidePair(const std::vector<RigidBody>& bodies, const BodyPa
   const RigidBody& a = bodies[p.first];
   const RigidBody& b = bodies[p.second];
   const bool keeps = manifold_reuse_ && KeepsManifold(a, b);
-  if (keeps && manifolds_.Reuse(a, p.first, b, p.second, margin, &manifold_updates_[i], out)) return;
+  if (keeps && manifolds_.ReuseAt(kept_[i], a, p.first, b, p.second, margin, &manifold_updates_[i], out)) return;
   CollideContext ctx;
   ctx.margin = margin;
   ctx.cache = &cache_;

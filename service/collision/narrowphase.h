@@ -9,6 +9,7 @@
 // points and feature ids with flipped normals.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "service/collision/broadphase.h"
@@ -73,6 +74,11 @@ class Narrowphase {
     manifold_reuse_ = on;
   }
   bool manifold_reuse() const { return manifold_reuse_; }
+  // Replaces the kept manifolds by a snapshot's (ManifoldCache::Restore);
+  // with reuse off there are none to keep, and they are dropped.
+  void RestoreManifolds(std::vector<CachedManifold> entries) {
+    if (manifold_reuse_) manifolds_.Restore(std::move(entries));
+  }
   // Forgets the cached axes and manifolds and zeroes the counters (scene reset or load).
   void Reset() {
     cache_.Clear();
@@ -90,6 +96,7 @@ class Narrowphase {
   bool manifold_reuse_ = kManifoldReuseDefault;
   ManifoldCache manifolds_;
   std::vector<ManifoldUpdate> manifold_updates_;   // one per pair of the last CollidePairs, when reusing
+  std::vector<const CachedManifold*> kept_;        // each pair's kept manifold or null (ManifoldCache::Locate)
   // One pair of CollidePairs: its kept manifold when it may be reused, else Dispatch.
   void CollidePair(const std::vector<RigidBody>& bodies, const BodyPair& p, int i, double margin,
                    PolyhedronScratch* scratch, ContactSet* out);

@@ -39,8 +39,8 @@ const std::vector<ServerOption>& ServerOptionTable() {
       {"manifold_reuse", &SO::manifold_reuse, 0, 0, {}, "",
        "a touching pair of boxes or hulls keeps its contact points while the two moved less than a tenth of the "
        "method's margin relative to each other, and recomputes their depths from the poses instead of colliding "
-       "again (docs/physics.md, \"Manifold reuse\"); changes trajectories, and a snapshot does not carry the kept "
-       "points"},
+       "again (docs/physics.md, \"Manifold reuse\"); snapshots carry the kept points, so a restored run continues "
+       "bit for bit; false collides every pair afresh"},
       {"live_line", &SO::live_line, 0, 0, {}, "", "a one-line progress report on stderr"},
       {"joint_state", &SO::joint_state, 0, 0, JointStateChoices(), "",
        "when JOINT_STATE is published with STATE, whose joint block carries the same joints: always; "

@@ -21,7 +21,9 @@ SimServer::SimServer(ServerOptions options, Transport* transport)
       batch_(options_, &publisher_, &world_, &method_,
              {[this](Command& cmd) { return Apply(cmd); },
               [this](World&& world, std::shared_ptr<ContactMethod>&& method) {
-                ReplaceWorld(std::move(world), std::move(method));
+                // an undo within one step boundary: no detection ran since
+                // the copy, so the kept manifolds are still the world's
+                ReplaceWorld(std::move(world), std::move(method), detector_.manifolds().entries());
                 contacts_.clear();
                 publisher_.UpdateRates(world_.dt);
               }}),
@@ -88,10 +90,12 @@ Outcome SimServer::Apply(Command& cmd) {
   }
 }
 
-void SimServer::ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> method) {
+void SimServer::ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> method,
+                             std::vector<CachedManifold> manifolds) {
   world_ = std::move(world);
   method_ = std::move(method);
   detector_.Reset();
+  detector_.RestoreManifolds(std::move(manifolds));
   sleep_.Reset();
   standing_actuators_.clear();
 }

@@ -129,9 +129,13 @@ class SimServer {
   void TakePeriodicSnapshot();
   Status Rewind(int64_t step, const Command* cmd = nullptr);
   Status ReplayRecord(const JournalRecord& record);
-  // Puts `world` and `method` in place, with the detector's and sleeping's
-  // caches dropped.
-  void ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> method);
+  // Puts `world` and `method` in place, with sleeping's caches dropped and
+  // the detector's replaced by `manifolds` (a snapshot's kept manifolds,
+  // service/scene/snapshot_manifolds.h; none for a new world).
+  void ReplaceWorld(World&& world, std::shared_ptr<ContactMethod> method,
+                    std::vector<CachedManifold> manifolds = {});
+  // A snapshot of the world, the method and the detector's kept manifolds.
+  proto::Snapshot SaveState() const;
   // After the world was replaced: no contacts, rates of its time step, and
   // its state the base of REWIND and recovery.
   void StartOver();

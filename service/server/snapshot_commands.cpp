@@ -2,17 +2,24 @@
 // the world into a named slot or a file, a world back from one, and a
 // re-simulation to an earlier step (timeline.cpp). Simulation thread.
 #include "service/scene/snapshot.h"
+#include "service/scene/snapshot_manifolds.h"
 #include "service/server/sim_server.h"
 
 namespace contactsim {
+
+proto::Snapshot SimServer::SaveState() const {
+  proto::Snapshot s;
+  SaveSnapshot(world_, *method_, &s);
+  SaveManifolds(detector_.manifolds(), &s);
+  return s;
+}
 
 Outcome SimServer::ApplySnapshotCommand(Command& cmd) {
   using K = Command::Kind;
   const std::string target = cmd.snapshot_name.empty() ? "file " + cmd.snapshot_path : "\"" + cmd.snapshot_name + "\"";
   Status st;
   if (cmd.kind == K::kSnapshot) {
-    proto::Snapshot s;
-    SaveSnapshot(world_, *method_, &s);
+    proto::Snapshot s = SaveState();
     s.set_journal_seq(batch_.journal().next_seq());
     if (!cmd.snapshot_path.empty()) {
       // a replay must not overwrite the recorded run's file (a RESTORE from it comes later)
@@ -41,10 +48,12 @@ Outcome SimServer::ApplySnapshotCommand(Command& cmd) {
   }
   World world;
   std::shared_ptr<ContactMethod> method;
+  std::vector<CachedManifold> manifolds;
   if (st.ok()) st = LoadSnapshot(*s, &world, &method);
+  if (st.ok()) st = ReadManifolds(*s, &manifolds);
   if (!st.ok()) return Outcome::Failed(st);
   CancelStepCommands("restore");
-  ReplaceWorld(std::move(world), std::move(method));
+  ReplaceWorld(std::move(world), std::move(method), std::move(manifolds));
   StartOver();
   return Outcome::Done("restored " + target + " at step " + std::to_string(world_.step), true);
 }

@@ -7,6 +7,7 @@
 #include <climits>
 
 #include "service/scene/snapshot.h"
+#include "service/scene/snapshot_manifolds.h"
 #include "service/server/arm_driver/driver_commands.h"
 #include "service/server/sim_server.h"
 
@@ -15,8 +16,7 @@ namespace contactsim {
 // The current world as a snapshot that the journal continues from, written
 // to the journal folder when there is one.
 proto::Snapshot SimServer::SaveDurableSnapshot() {
-  proto::Snapshot s;
-  SaveSnapshot(world_, *method_, &s);
+  proto::Snapshot s = SaveState();
   Journal& journal = batch_.journal();
   s.set_journal_seq(journal.next_seq());
   if (journal.open()) {
@@ -91,10 +91,11 @@ Status SimServer::Recover() {
   if (journal.recovered_snapshot()) {
     World world;
     std::shared_ptr<ContactMethod> method;
-    if (!(st = LoadSnapshot(*journal.recovered_snapshot(), &world, &method)).ok()) {
-      return Status::FailedPrecondition(options_.journal_dir + ": " + st.message());
-    }
-    ReplaceWorld(std::move(world), std::move(method));
+    std::vector<CachedManifold> manifolds;
+    st = LoadSnapshot(*journal.recovered_snapshot(), &world, &method);
+    if (st.ok()) st = ReadManifolds(*journal.recovered_snapshot(), &manifolds);
+    if (!st.ok()) return Status::FailedPrecondition(options_.journal_dir + ": " + st.message());
+    ReplaceWorld(std::move(world), std::move(method), std::move(manifolds));
     const int64_t from_step = world_.step;
     batch_.set_replaying(true);
     for (const JournalRecord& r : journal.recovered_records()) {
@@ -118,11 +119,14 @@ Status SimServer::Rewind(int64_t step, const Command* cmd) {
   if (!st.ok()) return st;
   World world;
   std::shared_ptr<ContactMethod> method;
+  std::vector<CachedManifold> manifolds;
   if (!(st = LoadSnapshot(*plan.from, &world, &method)).ok()) return st;
+  if (!(st = ReadManifolds(*plan.from, &manifolds)).ok()) return st;
   // replay on the live members, restoring them if the journal fails
   World saved_world = std::move(world_);
   std::shared_ptr<ContactMethod> saved_method = std::move(method_);
-  ReplaceWorld(std::move(world), std::move(method));
+  std::vector<CachedManifold> saved_manifolds = detector_.manifolds().entries();
+  ReplaceWorld(std::move(world), std::move(method), std::move(manifolds));
   batch_.set_replaying(true);
   if (cmd != nullptr) steps_.BeginRewind(*cmd, world_.step, step);
   for (const JournalRecord* r : plan.records) {
@@ -133,7 +137,7 @@ Status SimServer::Rewind(int64_t step, const Command* cmd) {
   batch_.set_replaying(false);
   steps_.EndRewind();
   if (!st.ok()) {
-    ReplaceWorld(std::move(saved_world), std::move(saved_method));
+    ReplaceWorld(std::move(saved_world), std::move(saved_method), std::move(saved_manifolds));
     return st;
   }
   batch_.history().TruncateAfter(step);

@@ -124,8 +124,9 @@ TEST(XpbdStartOverlap, LandingOnAnOverlappingStackActsInFull) {
 }
 
 // Verifies that the overlaps still allowed travel with the method's state:
-// a placed stack run 0.1 s, its world and method state copied into a new
-// method, and both run on for 0.2 s end on the same poses bit for bit (the
+// a placed stack run 0.1 s, its world, method state and the detector's kept
+// manifolds (manifold_cache.h) copied into a new method and detector, and
+// both run on for 0.2 s end on the same poses bit for bit (the
 // snapshot suite checks every method's exact continuation on its own scene).
 TEST(XpbdStartOverlap, SavedStateContinuesThePushOutExactly) {
   Sim sim("xpbd");
@@ -136,6 +137,7 @@ TEST(XpbdStartOverlap, SavedStateContinuesThePushOutExactly) {
   const std::string state = sim.method->SaveState();
   ASSERT_FALSE(state.empty());
   ASSERT_TRUE(copy.method->LoadState(state).ok());
+  copy.detector.RestoreManifolds(sim.detector.manifolds().entries());
   for (int i = 0; i < 48; ++i) {
     sim.Step();
     copy.Step();

@@ -35,14 +35,14 @@ struct Pinned {
 
 const std::vector<Pinned>& PinnedRuns() {
   static const std::vector<Pinned> pinned = {
-      {"impulse", {}, 0x2d54b712755bfb7dull},
-      {"penalty", {}, 0x3d1efda3e2fbd4f3ull},
-      {"penalty", {{"model", "hunt_crossley"}}, 0xbe904355f25e6dbcull},
-      {"xpbd", {}, 0x14490a9dade13e19ull},
-      {"lcp", {{"solver", "pgs"}}, 0xca054dea281b8b10ull},
-      {"lcp", {{"solver", "lemke"}}, 0x245c20931e03f8baull},
+      {"impulse", {}, 0xc44de2d53dfb4d1cull},
+      {"penalty", {}, 0xe6b488b7ca96cac1ull},
+      {"penalty", {{"model", "hunt_crossley"}}, 0x9ca96564088018feull},
+      {"xpbd", {}, 0x7b2388ec667ed6f5ull},
+      {"lcp", {{"solver", "pgs"}}, 0xe15bb8f79d701b6full},
+      {"lcp", {{"solver", "lemke"}}, 0x8c604ee582352f10ull},
       {"barrier", {}, 0x88fc6486c49e595bull},
-      {"soft", {}, 0x38ce4d472ae34e9dull},
+      {"soft", {}, 0x31d6f20698c91142ull},
   };
   return pinned;
 }

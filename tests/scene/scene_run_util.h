@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "service/collision/manifold_cache.h"
 #include "service/contact/contact_method.h"
 #include "service/scene/scene_spec.h"
 
@@ -22,7 +23,7 @@ struct SceneRun {
   ParamMap params;     // over the method's defaults
   int steps = 0;       // 0: the scene's own `steps`
   int threads = 1;     // of the collision detector
-  bool manifold_reuse = false;  // the detector's (manifold_cache.h)
+  bool manifold_reuse = kManifoldReuseDefault;  // the detector's (manifold_cache.h)
 };
 
 inline std::string Describe(const std::string& method, const ParamMap& params) {

@@ -225,5 +225,22 @@ TEST(SceneBench, SleepIsOffUnlessAskedAndReported) {
   EXPECT_EQ(Number(on.out, "sleeping"), 1) << on.out;
 }
 
+// Verifies that manifold reuse is on unless --no-manifold-reuse is given,
+// as in the server, that the report says which, and that on a box
+// pyramid the two runs differ only in round-off (the same bodies resting,
+// penetration within a tenth of the 1 mm slop of each other).
+TEST(SceneBench, ManifoldReuseIsOnUnlessTurnedOffAndReported) {
+  const std::string run = "--scene " + Scene("box_pyramid.pbtxt") + " --method impulse --steps 120 --repeat 1 --json";
+  const Output on = RunBench(run);
+  ASSERT_EQ(on.exit_code, 0) << on.out;
+  EXPECT_NE(on.out.find("\"manifold_reuse\": true"), std::string::npos) << on.out;
+  const Output off = RunBench(run + " --no-manifold-reuse");
+  ASSERT_EQ(off.exit_code, 0) << off.out;
+  EXPECT_NE(off.out.find("\"manifold_reuse\": false"), std::string::npos) << off.out;
+  EXPECT_NEAR(Number(on.out, "max_penetration"), Number(off.out, "max_penetration"), 1e-4);
+  const Output again = RunBench(run + " --manifold-reuse");
+  EXPECT_NE(again.out.find("\"manifold_reuse\": true"), std::string::npos) << again.out;
+}
+
 }  // namespace
 }  // namespace contactsim::bench

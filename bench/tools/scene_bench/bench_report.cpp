@@ -33,7 +33,8 @@ std::string ToJson(const BenchResult& r) {
   o << "{\"engine\": " << JsonQuote(r.engine) << ", \"scene\": " << JsonQuote(r.scene)
     << ", \"method\": " << JsonQuote(r.method)
     << ", \"threads\": " << r.threads << ", \"sleep\": " << (r.sleep ? "true" : "false")
-    << ", \"sleeping\": " << r.sleeping << ", \"params\": {";
+    << ", \"sleeping\": " << r.sleeping << ", \"manifold_reuse\": " << (r.manifold_reuse ? "true" : "false")
+    << ", \"params\": {";
   bool first = true;
   for (const auto& [key, value] : r.params) {
     o << (first ? "" : ", ") << JsonQuote(key) << ": " << JsonQuote(value);
@@ -66,6 +67,7 @@ void PrintTable(const BenchResult& r, std::ostream& out) {
   row("params", params.empty() ? "-" : params);
   row("threads", std::to_string(r.threads));
   row("sleep", r.sleep ? "on (" + std::to_string(r.sleeping) + " bodies asleep at the end)" : "off");
+  row("manifold reuse", r.manifold_reuse ? "on" : "off");
   row("steps", std::to_string(r.steps_done) + " of " + std::to_string(r.steps));
   row("ms per step", Number(r.ms_per_step) + " (median of " + std::to_string(r.ms_per_step_repeats.size()) +
                          "; min " + Number(r.ms_per_step_min) + ", max " + Number(r.ms_per_step_max) + ")");

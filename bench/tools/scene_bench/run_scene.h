@@ -22,6 +22,7 @@ struct BenchResult {
   ParamMap params;
   int threads = 1;                // of contactsim's collision detector (--threads)
   bool sleep = false;             // settled islands slept (--sleep)
+  bool manifold_reuse = false;    // touching polyhedron pairs kept their manifolds (contactsim's default)
   int sleeping = 0;               // bodies asleep at the end of the first repeat
   int bodies = 0;
   int steps = 0;                  // asked for

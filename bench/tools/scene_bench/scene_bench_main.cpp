@@ -73,9 +73,9 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
       ->default_str(std::to_string(options.threads) + ", the machine's hardware threads");
   app.add_flag("--sleep", options.sleep, "settled islands sleep, as in the server (contactsim only; default off, "
                                         "so that the solver is timed)");
-  app.add_flag("--manifold-reuse", options.manifold_reuse,
+  app.add_flag("--manifold-reuse,!--no-manifold-reuse", options.manifold_reuse,
                "touching boxes and hulls keep their manifolds while they move little, as the server's "
-               "manifold_reuse option (contactsim only; default off)");
+               "manifold_reuse option (contactsim only; default on, --no-manifold-reuse turns it off)");
   app.add_option("--repeat", options.repeat, "repeats; ms_per_step is their median")
       ->check(CLI::PositiveNumber)
       ->default_str("3");
@@ -123,6 +123,7 @@ int SceneBenchMain(int argc, char** argv, const RunnerInfo& info) {
   result.engine = info.engine;
   result.threads = info.threaded ? options.threads : 1;  // Bullet and ODE step on one thread
   result.sleep = info.engine == "contactsim" && options.sleep;
+  result.manifold_reuse = info.engine == "contactsim" && options.manifold_reuse;
   if (options.json) {
     std::cout << ToJson(result) << std::endl;
   } else {

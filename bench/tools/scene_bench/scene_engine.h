@@ -26,7 +26,7 @@ struct BenchOptions {
   std::string broadphase = "sap";
   int threads = DefaultThreadCount();  // of the collision detector (contactsim), of the thread pool (MuJoCo)
   bool sleep = false;            // settled islands sleep (--sleep; contactsim only): off, to time the solver
-  bool manifold_reuse = false;   // touching polyhedron pairs keep their manifolds (--manifold-reuse; contactsim only)
+  bool manifold_reuse = true;    // touching polyhedron pairs keep their manifolds (--no-manifold-reuse; contactsim only)
   int repeat = 3;
   bool json = false;
   double max_seconds = 0.0;      // s of stepping per repeat before giving up; 0: no limit
