@@ -93,6 +93,21 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const Fn accumulate = [&](int i, int j) {
     for (int k = i; k < j; ++k) AccumulateSoftTotals(points_[k]);
   };
+  // Where nothing after the relax passes changes an impulse (no joints, no
+  // direct solve), a sub-step's last relax pass adds each block's impulses
+  // to its points' totals as it relaxes the block: the same sums, on the
+  // thread that holds the points, without a pass over the points in contact
+  // order (another split of them over the threads) and its meeting.
+  const bool fuse_accumulate = params_.relax_iterations > 0 && world.joints().empty() && !ratio_solve_.active() &&
+                               !jointed_solve_.active();
+  const Fn relax_and_accumulate = [&](int i, int j) {
+    SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_);
+    for (int k = i; k < j; ++k) {
+      for (int p = manifolds_[k].first; p < manifolds_[k].first + manifolds_[k].count; ++p) {
+        AccumulateSoftTotals(points_[p]);
+      }
+    }
+  };
   const double threshold = RestitutionThreshold(world);
   const Fn restitute = [&](int, int) {
     RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
@@ -119,13 +134,16 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     }
     list.Add(integrate_positions, 0, bodies, kSoftStageBodyGrain);
     for (int pass = 0; pass < joint_passes; ++pass) {
-      for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
+      for (int it = 0; it < params_.relax_iterations; ++it) {
+        const bool last_relax = it + 1 == params_.relax_iterations;
+        list.AddColours(fuse_accumulate && last_relax ? relax_and_accumulate : relax_blocks, colours_, blocks);
+      }
       const bool last = pass + 1 == joint_passes;
       if (ratio_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_ratio);
       if (jointed_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_jointed);
       if (joints) list.AddSerial(relax_joints);
     }
-    list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
+    if (!fuse_accumulate) list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }
   // a step at rest leaves it after one look at the points (soft_restitution.h)
   list.AddSerial(restitute);
