@@ -103,6 +103,8 @@ class SoftMethod : public ContactMethod {
   BlockColours colours_;
   std::vector<ParallelRunner::Stage> stages_;
   SoftPointsOfBodies points_of_bodies_;
+  std::vector<int> body_order_;   // the body stages' order (soft_stages.cpp)
+  std::vector<char> body_seen_;   // its scratch
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
   SoftJointedSolve jointed_solve_;
