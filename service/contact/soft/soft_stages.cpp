@@ -100,9 +100,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   relax_direct.hold_pushing_gaps = jointed_solve_.active();
 
   using Fn = ParallelRunner::StageFn;
-  const Fn integrate_velocities = [&](int i, int j) {
-    for (int q = i; q < j; ++q) IntegrateSoftVelocities(world, h, body_order_[q], body_order_[q] + 1, bodies_);
-  };
+  const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_); };
   points_of_bodies_.Build(points_, bodies_);
   const Fn warm_start = [&](int i, int j) {
     for (int q = i; q < j; ++q) WarmStartSoftBody(body_order_[q], points_of_bodies_, points_, bodies_);
@@ -114,7 +112,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const Fn relax_joints = [&](int, int) { joints_.SolveVelocities(world, h, bodies_, /*relax=*/true); };
   const bool joint_dynamics = HasJointDynamics(world);
   const Fn integrate_positions = [&](int i, int j) {
-    for (int q = i; q < j; ++q) IntegrateSoftPositions(h, body_order_[q], body_order_[q] + 1, world, bodies_);
+    IntegrateSoftPositions(h, i, j, world, bodies_, /*track_motion=*/true, &body_order_);
   };
   const Fn relax_blocks = [&](int i, int j) { SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_); };
   const Fn relax_ratio = [&](int, int) { ratio_solve_.Solve(relax_direct, points_, bodies_); };
