@@ -1,7 +1,9 @@
 #include "service/contact/warm_start_cache.h"
 
 #include <algorithm>
+#include <functional>
 
+#include "service/collision/parallel_sort.h"
 #include "service/physics/byte_stream.h"
 
 namespace contactsim {
@@ -89,28 +91,12 @@ void WarmStartCache::StoreEntries(size_t n, const MakeEntry& make, ParallelRunne
   for (size_t k = 0; k < n; ++k) {
     if (kept_[k] != 0) impulses_.push_back(scratch_[k]);
   }
-  // runs of kStoreGrain entries sorted apart (the same runs however the
-  // range is split), then merged pairwise, wider and wider. The entries'
-  // order is total (key, then contact index), so this gives what one
-  // std::sort gives, bit for bit. Contacts come pair by pair in body order,
-  // so neighbouring runs are mostly in order already and their merge is
+  // the entries' order is total (key, then contact index), so the sort on
+  // the threads gives what one std::sort gives, bit for bit
+  // (parallel_sort.h). Contacts come pair by pair in body order, so
+  // neighbouring runs are mostly in order already and their merge is
   // skipped.
-  const int m = static_cast<int>(impulses_.size());
-  const auto begin = impulses_.begin();
-  split(m, kStoreGrain, [&](int lo, int hi, int /*worker*/) {
-    for (int r = lo; r < hi; r += kStoreGrain) std::sort(begin + r, begin + std::min(r + kStoreGrain, hi));
-  });
-  for (int width = kStoreGrain; width < m; width *= 2) {
-    const int merges = (m + 2 * width - 1) / (2 * width);
-    split(merges, 1, [&](int first, int last, int /*worker*/) {
-      for (int i = first; i < last; ++i) {
-        const int lo = 2 * i * width, mid = std::min(lo + width, m), hi = std::min(lo + 2 * width, m);
-        if (mid == hi || !(begin[mid] < begin[mid - 1])) continue;
-        std::merge(begin + lo, begin + mid, begin + mid, begin + hi, scratch_.begin() + lo);
-        std::copy(scratch_.begin() + lo, scratch_.begin() + hi, begin + lo);
-      }
-    });
-  }
+  ParallelSort(&impulses_, &scratch_, runner, kStoreGrain, std::less<Entry>());
 }
 
 size_t WarmStartCache::PairStart(const Contact& c, size_t* hint) const {

@@ -32,9 +32,11 @@ void LoadSoftBody(const RigidBody& b, bool substepped, SoftBody* soft) {
   s.substepped = substepped && b.motion != MotionType::kStatic;
 }
 
-void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies) {
+void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies,
+                             const std::vector<int>* order) {
   const auto& src = world.bodies();
-  for (int i = begin; i < end; ++i) {
+  for (int q = begin; q < end; ++q) {
+    const int i = order != nullptr ? (*order)[q] : q;
     SoftBody& s = bodies[i];
     if (!s.substepped || s.inv_mass == 0.0) continue;
     s.v += h * s.inv_mass * src[i].force;
@@ -43,9 +45,10 @@ void IntegrateSoftVelocities(const World& world, double h, int begin, int end, s
 }
 
 void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies,
-                            bool track_motion) {
+                            bool track_motion, const std::vector<int>* order) {
   auto& dst = world.bodies();
-  for (int i = begin; i < end; ++i) {
+  for (int q = begin; q < end; ++q) {
+    const int i = order != nullptr ? (*order)[q] : q;
     SoftBody& s = bodies[i];
     if (!s.substepped) continue;
     RigidBody& b = dst[i];

@@ -40,16 +40,18 @@ void LoadSoftBodies(const World& world, const std::vector<char>& substepped, Par
 void LoadSoftBody(const RigidBody& body, bool substepped, SoftBody* soft);
 
 // v += h F / m and w += h I^-1 tau for the substepped dynamic bodies among
-// [begin, end).
-void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies);
+// [begin, end), or among (*order)[begin, end) when an order is given.
+void IntegrateSoftVelocities(const World& world, double h, int begin, int end, std::vector<SoftBody>& bodies,
+                             const std::vector<int>* order = nullptr);
 
-// Moves the substepped bodies among [begin, end) by h at their velocities
-// and brings the world inverse inertia and, with `track_motion`, dp and dR
-// up to date (xpbd reads the poses themselves and leaves them). A dynamic
-// body's angular momentum I w is kept across the turn (torque-free motion;
-// the gyroscopic term), so w follows the new inertia.
+// Moves the substepped bodies among [begin, end) (of `order` when given)
+// by h at their velocities and brings the world inverse inertia and, with
+// `track_motion`, dp and dR up to date (xpbd reads the poses themselves
+// and leaves them). A dynamic body's angular momentum I w is kept across
+// the turn (torque-free motion; the gyroscopic term), so w follows the new
+// inertia.
 void IntegrateSoftPositions(double h, int begin, int end, World& world, std::vector<SoftBody>& bodies,
-                            bool track_motion = true);
+                            bool track_motion = true, const std::vector<int>* order = nullptr);
 
 // Writes P = m v and L = I w of the substepped dynamic bodies back (on the
 // world's threads).

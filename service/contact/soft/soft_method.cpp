@@ -14,6 +14,8 @@ namespace {
 
 // bodies a thread moves ballistically at a time
 constexpr int kBallisticGrain = 256;
+// contacts a thread looks up, copies or reports at a time
+constexpr int kContactGrain = 512;
 
 }  // namespace
 
@@ -40,15 +42,20 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
   PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
   BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
-  OrderBlocksFromTheTop(world, points_, &manifolds_);
+  OrderBlocksFromTheTop(world, points_, &manifolds_, &runner);
   if (!params_.warm_start) return;
-  for (size_t k = 0; k < contacts_.size(); ++k) {
-    if (const std::array<double, 3>* cached = warm_start_.Find(contacts_[k])) {
-      points_[k].lambda_n = (*cached)[0];
-      points_[k].lambda_t1 = (*cached)[1];
-      points_[k].lambda_t2 = (*cached)[2];
+  // each contact looks up its own point (the hint moves where a search
+  // starts, never what it finds: warm_start_cache.h)
+  runner.For(static_cast<int>(contacts_.size()), kContactGrain, [&](int begin, int end, int) {
+    size_t hint = 0;
+    for (int k = begin; k < end; ++k) {
+      if (const std::array<double, 3>* cached = warm_start_.Find(contacts_[k], &hint)) {
+        points_[k].lambda_n = (*cached)[0];
+        points_[k].lambda_t1 = (*cached)[1];
+        points_[k].lambda_t2 = (*cached)[2];
+      }
     }
-  }
+  });
 }
 
 const std::vector<Vec3>* SoftMethod::FrictionPoints() const {
@@ -84,11 +91,11 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   if (!world.joints().empty()) ProjectJointPositions(world);
 
   impulses_.resize(points_.size());
-  for (size_t k = 0; k < points_.size(); ++k) {
-    impulses_[k] = {points_[k].lambda_n, points_[k].lambda_t1, points_[k].lambda_t2};
-  }
+  detector.runner().For(static_cast<int>(points_.size()), kContactGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) impulses_[k] = {points_[k].lambda_n, points_[k].lambda_t1, points_[k].lambda_t2};
+  });
   warm_start_.StoreFrame(contacts_, impulses_, &detector.runner());
-  StepStats stats = Report(contacts_out);
+  StepStats stats = Report(detector.runner(), contacts_out);
   world.FinishStep();
   return stats;
 }
@@ -101,22 +108,25 @@ double SoftMethod::RestitutionThreshold(const World& world) const {
   return std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * world.dt);
 }
 
-StepStats SoftMethod::Report(ContactSet* contacts_out) const {
+StepStats SoftMethod::Report(ParallelRunner& runner, ContactSet* contacts_out) const {
   StepStats stats;
-  contacts_out->clear();
-  for (size_t k = 0; k < contacts_.size(); ++k) {
-    const SoftPoint& p = points_[k];
-    const SoftBody& A = bodies_[p.a];
-    const SoftBody& B = bodies_[p.b];
-    Contact c = contacts_[k];
-    // the depth at the step's end, from the anchors (soft_contact.h)
-    const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
-    c.depth = -(p.n.dot(d) + p.adjusted_separation);
-    c.normal_value = p.total_n;
-    c.tangent_value = p.total_t1 * p.t1 + p.total_t2 * p.t2;
-    stats.max_penetration = std::max(stats.max_penetration, c.depth);
-    contacts_out->push_back(c);
-  }
+  contacts_out->resize(contacts_.size());
+  // each contact writes its own slot; the deepest is taken after, in order
+  runner.For(static_cast<int>(contacts_.size()), kContactGrain, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      const SoftPoint& p = points_[k];
+      const SoftBody& A = bodies_[p.a];
+      const SoftBody& B = bodies_[p.b];
+      Contact& c = (*contacts_out)[k];
+      c = contacts_[k];
+      // the depth at the step's end, from the anchors (soft_contact.h)
+      const Vec3 d = (B.dp - A.dp) + (B.dR * p.rb - A.dR * p.ra);
+      c.depth = -(p.n.dot(d) + p.adjusted_separation);
+      c.normal_value = p.total_n;
+      c.tangent_value = p.total_t1 * p.t1 + p.total_t2 * p.t2;
+    }
+  });
+  for (const Contact& c : *contacts_out) stats.max_penetration = std::max(stats.max_penetration, c.depth);
   stats.contacts = static_cast<int>(contacts_out->size());
   stats.iterations = params_.substeps * (1 + params_.relax_iterations);
   stats.substeps = params_.substeps;

@@ -84,7 +84,8 @@ class SoftMethod : public ContactMethod {
   // Steps 2 to 3 above as the stages of one ParallelRunner::Stages call
   // (soft_stages.cpp).
   void RunSubsteps(World& world, ParallelRunner& runner);
-  StepStats Report(ContactSet* contacts) const;
+  // The contacts with their step's impulses and end depths, on the threads.
+  StepStats Report(ParallelRunner& runner, ContactSet* contacts) const;
   // where the points' friction acts with patch_torsion (patch_torsion.h);
   // null: at the points
   const std::vector<Vec3>* FrictionPoints() const;
@@ -102,6 +103,8 @@ class SoftMethod : public ContactMethod {
   BlockColours colours_;
   std::vector<ParallelRunner::Stage> stages_;
   SoftPointsOfBodies points_of_bodies_;
+  std::vector<int> body_order_;   // the body stages' order (soft_stages.cpp)
+  std::vector<char> body_seen_;   // its scratch
   SoftJoints joints_;
   SoftRatioSolve ratio_solve_;
   SoftJointedSolve jointed_solve_;

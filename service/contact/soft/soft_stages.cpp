@@ -20,6 +20,30 @@ namespace {
 constexpr int kSoftStageBodyGrain = 128;
 constexpr int kPointGrain = 512;
 
+// The bodies in the order of their first block from the top (`blocks` in
+// the sweep order, before the colouring), then the others in index order.
+// Thread w takes about the same part of every colour pass, the part from
+// w / threads of the way down (parallel_stages.cpp), so walked in this
+// order the body stages hand it about the bodies its blocks write, and a
+// body's cache lines stay in one core's cache from stage to stage; each
+// body's update is its own, so the order changes no result.
+void OrderBodiesFromTheTop(const std::vector<SoftManifold>& blocks, const std::vector<SoftPoint>& points,
+                           std::vector<char>* seen, std::vector<int>* order) {
+  const int n = static_cast<int>(seen->size());
+  std::fill(seen->begin(), seen->end(), 0);
+  order->clear();
+  for (const SoftManifold& m : blocks) {
+    for (int i : {points[m.first].a, points[m.first].b}) {
+      if ((*seen)[i] != 0) continue;
+      (*seen)[i] = 1;
+      order->push_back(i);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if ((*seen)[i] == 0) order->push_back(i);
+  }
+}
+
 }  // namespace
 
 void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
@@ -41,6 +65,8 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   direct.energy_guard = false;
   ratio_solve_.Prepare(direct, bodies_, points_);
   jointed_solve_.Prepare(world, direct, bodies_, points_);
+  body_seen_.resize(bodies_.size());
+  OrderBodiesFromTheTop(manifolds_, points_, &body_seen_, &body_order_);
   ColourManifolds();
   SoftPass solve;
   solve.inv_h = 1.0 / h;
@@ -74,10 +100,10 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   relax_direct.hold_pushing_gaps = jointed_solve_.active();
 
   using Fn = ParallelRunner::StageFn;
-  const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_); };
+  const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_); };
   points_of_bodies_.Build(points_, bodies_);
   const Fn warm_start = [&](int i, int j) {
-    for (int k = i; k < j; ++k) WarmStartSoftBody(k, points_of_bodies_, points_, bodies_);
+    for (int q = i; q < j; ++q) WarmStartSoftBody(body_order_[q], points_of_bodies_, points_, bodies_);
   };
   const Fn solve_blocks = [&](int i, int j) { SolveSoftManifolds(solve, manifolds_, i, j, points_, bodies_); };
   const Fn solve_ratio = [&](int, int) { ratio_solve_.Solve(solve, points_, bodies_); };
@@ -85,13 +111,30 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const Fn solve_joints = [&](int, int) { joints_.SolveVelocities(world, h, bodies_); };
   const Fn relax_joints = [&](int, int) { joints_.SolveVelocities(world, h, bodies_, /*relax=*/true); };
   const bool joint_dynamics = HasJointDynamics(world);
-  const Fn integrate_positions = [&](int i, int j) { IntegrateSoftPositions(h, i, j, world, bodies_); };
+  const Fn integrate_positions = [&](int i, int j) {
+    IntegrateSoftPositions(h, i, j, world, bodies_, /*track_motion=*/true, &body_order_);
+  };
   const Fn relax_blocks = [&](int i, int j) { SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_); };
   const Fn relax_ratio = [&](int, int) { ratio_solve_.Solve(relax_direct, points_, bodies_); };
   const Fn solve_jointed = [&](int, int) { jointed_solve_.Solve(world, h, solve, points_, bodies_); };
   const Fn relax_jointed = [&](int, int) { jointed_solve_.Solve(world, h, relax, points_, bodies_); };
   const Fn accumulate = [&](int i, int j) {
     for (int k = i; k < j; ++k) AccumulateSoftTotals(points_[k]);
+  };
+  // Where nothing after the relax passes changes an impulse (no joints, no
+  // direct solve), a sub-step's last relax pass adds each block's impulses
+  // to its points' totals as it relaxes the block: the same sums, on the
+  // thread that holds the points, without a pass over the points in contact
+  // order (another split of them over the threads) and its meeting.
+  const bool fuse_accumulate = params_.relax_iterations > 0 && world.joints().empty() && !ratio_solve_.active() &&
+                               !jointed_solve_.active();
+  const Fn relax_and_accumulate = [&](int i, int j) {
+    SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_);
+    for (int k = i; k < j; ++k) {
+      for (int p = manifolds_[k].first; p < manifolds_[k].first + manifolds_[k].count; ++p) {
+        AccumulateSoftTotals(points_[p]);
+      }
+    }
   };
   const double threshold = RestitutionThreshold(world);
   const Fn restitute = [&](int, int) {
@@ -119,13 +162,16 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     }
     list.Add(integrate_positions, 0, bodies, kSoftStageBodyGrain);
     for (int pass = 0; pass < joint_passes; ++pass) {
-      for (int it = 0; it < params_.relax_iterations; ++it) list.AddColours(relax_blocks, colours_, blocks);
+      for (int it = 0; it < params_.relax_iterations; ++it) {
+        const bool last_relax = it + 1 == params_.relax_iterations;
+        list.AddColours(fuse_accumulate && last_relax ? relax_and_accumulate : relax_blocks, colours_, blocks);
+      }
       const bool last = pass + 1 == joint_passes;
       if (ratio_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_ratio);
       if (jointed_solve_.active() && params_.relax_iterations > 0 && last) list.AddSerial(relax_jointed);
       if (joints) list.AddSerial(relax_joints);
     }
-    list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
+    if (!fuse_accumulate) list.Add(accumulate, 0, static_cast<int>(points_.size()), kPointGrain);
   }
   // a step at rest leaves it after one look at the points (soft_restitution.h)
   list.AddSerial(restitute);
