@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "service/collision/manifold_cache.h"
 #include "service/contact/contact_method.h"
@@ -66,6 +67,24 @@ inline SceneRunResult RunSceneOnce(const SceneRun& run) {
 }
 
 inline uint64_t RunSceneHash(const SceneRun& run) { return RunSceneOnce(run).hash; }
+
+// A new registered method by name; a failed creation fails the calling test.
+inline std::shared_ptr<ContactMethod> NewMethod(const std::string& name) {
+  std::unique_ptr<ContactMethod> m;
+  EXPECT_TRUE(CreateContactMethod(name, &m).ok()) << name;
+  return std::shared_ptr<ContactMethod>(std::move(m));
+}
+
+// HashWorldState after each of `n` steps of `method` with `detector`.
+inline std::vector<uint64_t> StepHashes(World& w, ContactMethod& method, CollisionDetector& detector, int n) {
+  ContactSet contacts;
+  std::vector<uint64_t> hashes;
+  for (int i = 0; i < n; ++i) {
+    method.Step(w, detector, &contacts);
+    hashes.push_back(HashWorldState(w));
+  }
+  return hashes;
+}
 
 }  // namespace testing_util
 }  // namespace contactsim

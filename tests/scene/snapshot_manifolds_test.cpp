@@ -12,6 +12,7 @@
 
 #include "service/scene/snapshot.h"
 #include "tests/contact/test_bodies.h"
+#include "tests/scene/scene_run_util.h"
 
 namespace contactsim {
 namespace snapshot_manifolds_test {  // a unity build shares the test files' anonymous namespaces
@@ -43,22 +44,7 @@ World PolyhedronWorld() {
   return w;
 }
 
-std::shared_ptr<ContactMethod> Method(const std::string& name) {
-  std::unique_ptr<ContactMethod> m;
-  EXPECT_TRUE(CreateContactMethod(name, &m).ok()) << name;
-  return std::shared_ptr<ContactMethod>(std::move(m));
-}
-
-// Hash of the world after each of `n` steps with `detector`.
-std::vector<uint64_t> RunSteps(World& w, ContactMethod& method, CollisionDetector& detector, int n) {
-  ContactSet contacts;
-  std::vector<uint64_t> hashes;
-  for (int i = 0; i < n; ++i) {
-    method.Step(w, detector, &contacts);
-    hashes.push_back(HashWorldState(w));
-  }
-  return hashes;
-}
+using testing_util::StepHashes;
 
 proto::Snapshot Save(const World& w, const ContactMethod& m, const CollisionDetector& detector) {
   proto::Snapshot s;
@@ -67,7 +53,23 @@ proto::Snapshot Save(const World& w, const ContactMethod& m, const CollisionDete
   return s;
 }
 
+// A run of PolyhedronWorld under `name` with manifold reuse on, stepped
+// kSnapshotStep steps and saved there.
+struct ReuseRun {
+  explicit ReuseRun(const std::string& name);
+  World world;
+  std::shared_ptr<ContactMethod> method;
+  CollisionDetector detector;
+  proto::Snapshot saved;
+};
+
 constexpr int kSnapshotStep = 60, kMoreSteps = 120;
+
+ReuseRun::ReuseRun(const std::string& name) : world(PolyhedronWorld()), method(testing_util::NewMethod(name)) {
+  detector.SetManifoldReuse(true);
+  StepHashes(world, *method, detector, kSnapshotStep);
+  saved = Save(world, *method, detector);
+}
 
 // Verifies, for every registered method with manifold reuse on: a snapshot
 // taken at step k while boxes and a hull rest and slide on each other holds
@@ -77,16 +79,15 @@ constexpr int kSnapshotStep = 60, kMoreSteps = 120;
 TEST(SnapshotManifoldsTest, RestoredRunWithReuseMatchesTheOriginalBitForBitForEveryMethod) {
   for (const std::string& name : ContactMethodNames()) {
     SCOPED_TRACE(name);
-    World world = PolyhedronWorld();
-    auto method = Method(name);
-    CollisionDetector detector;
-    detector.SetManifoldReuse(true);
-    RunSteps(world, *method, detector, kSnapshotStep);
-    proto::Snapshot saved = Save(world, *method, detector);
+    ReuseRun run(name);
+    World& world = run.world;
+    ContactMethod& method = *run.method;
+    CollisionDetector& detector = run.detector;
+    proto::Snapshot& saved = run.saved;
     // a method that finds its own pairs (barrier: pair_search.h) keeps none
     if (detector.stats().detections > 0) EXPECT_GT(saved.manifolds_size(), 0);
-    const std::vector<uint64_t> original = RunSteps(world, *method, detector, kMoreSteps);
-    const std::string original_end = Save(world, *method, detector).SerializeAsString();
+    const std::vector<uint64_t> original = StepHashes(world, method, detector, kMoreSteps);
+    const std::string original_end = Save(world, method, detector).SerializeAsString();
 
     proto::Snapshot parsed;
     ASSERT_TRUE(parsed.ParseFromString(saved.SerializeAsString()));
@@ -99,7 +100,7 @@ TEST(SnapshotManifoldsTest, RestoredRunWithReuseMatchesTheOriginalBitForBitForEv
     CollisionDetector fresh;
     fresh.SetManifoldReuse(true);
     fresh.RestoreManifolds(std::move(manifolds));
-    const std::vector<uint64_t> again = RunSteps(restored, *restored_method, fresh, kMoreSteps);
+    const std::vector<uint64_t> again = StepHashes(restored, *restored_method, fresh, kMoreSteps);
     ASSERT_EQ(again.size(), original.size());
     for (size_t i = 0; i < original.size(); ++i) {
       ASSERT_EQ(again[i], original[i]) << "first divergence at step " << kSnapshotStep + 1 + i;
@@ -117,13 +118,12 @@ TEST(SnapshotManifoldsTest, WithoutTheManifoldsReuseStartsColdAndTheRunDiffers) 
   int differing = 0;
   for (const std::string& name : ContactMethodNames()) {
     SCOPED_TRACE(name);
-    World world = PolyhedronWorld();
-    auto method = Method(name);
-    CollisionDetector detector;
-    detector.SetManifoldReuse(true);
-    RunSteps(world, *method, detector, kSnapshotStep);
-    proto::Snapshot saved = Save(world, *method, detector);
-    const std::vector<uint64_t> original = RunSteps(world, *method, detector, kMoreSteps);
+    ReuseRun run(name);
+    World& world = run.world;
+    ContactMethod& method = *run.method;
+    CollisionDetector& detector = run.detector;
+    proto::Snapshot& saved = run.saved;
+    const std::vector<uint64_t> original = StepHashes(world, method, detector, kMoreSteps);
 
     saved.clear_manifolds();
     World restored;
@@ -134,7 +134,7 @@ TEST(SnapshotManifoldsTest, WithoutTheManifoldsReuseStartsColdAndTheRunDiffers) 
     EXPECT_TRUE(manifolds.empty());
     CollisionDetector cold;
     cold.SetManifoldReuse(true);
-    if (RunSteps(restored, *restored_method, cold, kMoreSteps) != original) ++differing;
+    if (StepHashes(restored, *restored_method, cold, kMoreSteps) != original) ++differing;
   }
   EXPECT_GT(differing, 0);
 }
@@ -142,12 +142,7 @@ TEST(SnapshotManifoldsTest, WithoutTheManifoldsReuseStartsColdAndTheRunDiffers) 
 // Verifies that damaged manifolds are refused with a message naming the
 // pair and the field, leaving the output as it was.
 TEST(SnapshotManifoldsTest, DamagedManifoldsAreRefused) {
-  World world = PolyhedronWorld();
-  auto method = Method("impulse");
-  CollisionDetector detector;
-  detector.SetManifoldReuse(true);
-  RunSteps(world, *method, detector, kSnapshotStep);
-  const proto::Snapshot good = Save(world, *method, detector);
+  const proto::Snapshot good = ReuseRun("impulse").saved;
   ASSERT_GE(good.manifolds_size(), 2);
   const std::vector<CachedManifold> before(1);
   auto refused = [&](const proto::Snapshot& s, const std::string& words) {

@@ -11,6 +11,7 @@
 #include "service/contact/sleep/island_sleep.h"
 #include "service/physics/body_settings.h"
 #include "tests/contact/test_bodies.h"
+#include "tests/scene/scene_run_util.h"
 
 namespace contactsim {
 namespace {
@@ -63,22 +64,12 @@ World MixedWorld() {
   return w;
 }
 
-std::shared_ptr<ContactMethod> Method(const std::string& name) {
-  std::unique_ptr<ContactMethod> m;
-  EXPECT_TRUE(CreateContactMethod(name, &m).ok()) << name;
-  return std::shared_ptr<ContactMethod>(std::move(m));
-}
+std::shared_ptr<ContactMethod> Method(const std::string& name) { return testing_util::NewMethod(name); }
 
-// Hash of the world after each of `n` steps.
+// Hash of the world after each of `n` steps, with a fresh detector.
 std::vector<uint64_t> RunSteps(World& w, ContactMethod& method, int n) {
   CollisionDetector detector;
-  ContactSet contacts;
-  std::vector<uint64_t> hashes;
-  for (int i = 0; i < n; ++i) {
-    method.Step(w, detector, &contacts);
-    hashes.push_back(HashWorldState(w));
-  }
-  return hashes;
+  return testing_util::StepHashes(w, method, detector, n);
 }
 
 std::string Bytes(const World& w, const ContactMethod& m) {
