@@ -57,6 +57,8 @@ proto::Snapshot Save(const World& w, const ContactMethod& m, const CollisionDete
 // kSnapshotStep steps and saved there.
 struct ReuseRun {
   explicit ReuseRun(const std::string& name);
+  // the hashes of the next n steps
+  std::vector<uint64_t> Continue(int n) { return StepHashes(world, *method, detector, n); }
   World world;
   std::shared_ptr<ContactMethod> method;
   CollisionDetector detector;
@@ -80,14 +82,11 @@ TEST(SnapshotManifoldsTest, RestoredRunWithReuseMatchesTheOriginalBitForBitForEv
   for (const std::string& name : ContactMethodNames()) {
     SCOPED_TRACE(name);
     ReuseRun run(name);
-    World& world = run.world;
-    ContactMethod& method = *run.method;
-    CollisionDetector& detector = run.detector;
-    proto::Snapshot& saved = run.saved;
+    const proto::Snapshot& saved = run.saved;
     // a method that finds its own pairs (barrier: pair_search.h) keeps none
-    if (detector.stats().detections > 0) EXPECT_GT(saved.manifolds_size(), 0);
-    const std::vector<uint64_t> original = StepHashes(world, method, detector, kMoreSteps);
-    const std::string original_end = Save(world, method, detector).SerializeAsString();
+    if (run.detector.stats().detections > 0) EXPECT_GT(saved.manifolds_size(), 0);
+    const std::vector<uint64_t> original = run.Continue(kMoreSteps);
+    const std::string original_end = Save(run.world, *run.method, run.detector).SerializeAsString();
 
     proto::Snapshot parsed;
     ASSERT_TRUE(parsed.ParseFromString(saved.SerializeAsString()));
@@ -119,11 +118,8 @@ TEST(SnapshotManifoldsTest, WithoutTheManifoldsReuseStartsColdAndTheRunDiffers) 
   for (const std::string& name : ContactMethodNames()) {
     SCOPED_TRACE(name);
     ReuseRun run(name);
-    World& world = run.world;
-    ContactMethod& method = *run.method;
-    CollisionDetector& detector = run.detector;
     proto::Snapshot& saved = run.saved;
-    const std::vector<uint64_t> original = StepHashes(world, method, detector, kMoreSteps);
+    const std::vector<uint64_t> original = run.Continue(kMoreSteps);
 
     saved.clear_manifolds();
     World restored;
