@@ -7,6 +7,7 @@
 #   scripts/fuzz.sh BUILD_DIR [libFuzzer flags...]
 set -euo pipefail
 build=$(cd "$1" && pwd); shift
+repo=$(cd "$(dirname "$0")/.." && pwd)
 bin=$build/bin
 work=$build/fuzz
 rm -rf "$work/seeds"
@@ -28,9 +29,13 @@ for target in "$bin"/fuzz_*; do
   fi
   corpus=$work/corpus-$name
   mkdir -p "$corpus"
+  # inputs that once failed run first, every time (tests/fuzz/regressions)
+  regressions=$repo/tests/fuzz/regressions/$seeds
+  [ -d "$regressions" ] || regressions=
+
   log=$work/$name.log
   if (cd "$work" && "$target" -artifact_prefix="$work/" -max_len=4096 -print_final_stats=1 "$@" \
-        "$corpus" "$work/seeds/$seeds" >"$log" 2>&1); then
+        "$corpus" "$work/seeds/$seeds" $regressions >"$log" 2>&1); then
     runs=$(grep -a -m1 'stat::number_of_executed_units' "$log" | awk '{print $2}')
     echo "fuzz: $name ok, ${runs:-?} executions, corpus $(ls "$corpus" | wc -l) inputs"
   else

@@ -174,11 +174,11 @@ int World::IndexOf(BodyId id) const {
   // ids grow with the index (AddBody), and until a body is removed they are
   // consecutive: body i has the first body's id + i, found without the map
   // (the joint rows look their bodies up several times a step)
-  if (!bodies_.empty()) {
-    const BodyId guess = id - bodies_.front().id;
-    if (guess >= 0 && guess < static_cast<BodyId>(bodies_.size()) && bodies_[guess].id == id) {
-      return static_cast<int>(guess);
-    }
+  // (a client may send any id: the offset is taken only above the first id,
+  // in unsigned arithmetic, so that no id overflows the subtraction)
+  if (!bodies_.empty() && id >= bodies_.front().id) {
+    const uint64_t guess = static_cast<uint64_t>(id) - static_cast<uint64_t>(bodies_.front().id);
+    if (guess < bodies_.size() && bodies_[guess].id == id) return static_cast<int>(guess);
   }
   const auto it = index_.find(id);
   return it == index_.end() ? -1 : it->second;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 namespace contactsim {
@@ -43,6 +44,27 @@ TEST(WorldIndex, IndexOfAgreesWithAScanThroughAdditionsAndRemovals) {
   World restored;
   ASSERT_TRUE(restored.Assign(saved, {}, ids.back() + 1).ok());
   ExpectIndexMatchesScan(restored, ids.back());
+}
+
+// Verifies that ids no body can have, the extremes of the id type among
+// them, find nothing: a client may name any id, and the lookup's offset
+// from the first id must not overflow (the sanitizer build checks it).
+TEST(WorldIndex, IdsAtTheExtremesFindNothing) {
+  World world;
+  for (int k = 0; k < 4; ++k) world.AddBody(RigidBody{});
+  const BodyId lo = std::numeric_limits<BodyId>::min();
+  const BodyId hi = std::numeric_limits<BodyId>::max();
+  for (BodyId id : {lo, lo + 1, BodyId{-1}, BodyId{0}, hi - 1, hi}) {
+    EXPECT_EQ(world.IndexOf(id), -1) << "id " << id;
+    EXPECT_EQ(world.Find(id), nullptr) << "id " << id;
+  }
+  // a restored world whose ids sit just below the largest id
+  std::vector<RigidBody> saved(world.bodies().begin(), world.bodies().end());
+  for (size_t i = 0; i < saved.size(); ++i) saved[i].id = hi - 8 + 2 * static_cast<BodyId>(i);
+  World restored;
+  ASSERT_TRUE(restored.Assign(saved, {}, hi).ok());
+  for (BodyId id : {lo, BodyId{1}, hi - 9, hi - 7, hi}) EXPECT_EQ(restored.IndexOf(id), -1) << "id " << id;
+  for (size_t i = 0; i < saved.size(); ++i) EXPECT_EQ(restored.IndexOf(saved[i].id), static_cast<int>(i));
 }
 
 }  // namespace
