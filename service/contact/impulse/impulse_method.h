@@ -52,6 +52,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -103,6 +104,10 @@ class ImpulseMethod : public ContactMethod {
   BlockColours ColourGroups(const std::vector<ContactRow>& rows, std::vector<NormalBlock>* groups) const;
   // One collision pass over a pair's rows; true when one of them approached.
   bool CollideGroup(const NormalBlock& g, std::vector<ContactRow>& rows);
+  // CollideGroup on groups_[g] as the phase's check number `order`, or
+  // false at once when no impulse reached its bodies since its last check
+  // found nothing approaching.
+  bool CollideChanged(int g, int64_t order, std::vector<ContactRow>& rows);
   // The contact phase's warm start (the rows' lambdas onto solver_), the
   // joints' rows at the warm-started velocities and the sweeps, on the
   // runner; returns the sweeps done, whether they converged and whether
@@ -164,6 +169,8 @@ class ImpulseMethod : public ContactMethod {
   std::vector<NormalBlock> groups_;         // the collision phase's pairs, colour by colour
   std::vector<double> target_, impulse_;    // per row, the collision phase's
   std::vector<char> group_hit_;             // per group, in the last collision pass
+  std::vector<int64_t> checked_at_;         // per group: the number of its last check, or -1
+  std::vector<int64_t> pushed_at_;          // per solver body: the last check that pushed it, or -1
   BlockColours colours_;                    // of blocks_ (or groups_), for the passes
   std::vector<double> block_worst_;         // per block, its largest change in the last pass
   std::vector<ParallelRunner::Stage> stages_;
