@@ -25,6 +25,13 @@ constexpr int kImpulseBlockGrain = 128;
 constexpr int kImpulsePairGrain = 64;
 constexpr int kImpulseBodyGrain = 64;
 
+// The relative velocity of B against A along d, from d's angular terms
+// r x d (impulse_method.h, AngularResponse).
+inline double RowVelocity(const SolverBody& A, const SolverBody& B, const Vec3& d, const Vec3& ra_d,
+                          const Vec3& rb_d) {
+  return d.dot(B.v - A.v) + rb_d.dot(B.w) - ra_d.dot(A.w);
+}
+
 }  // namespace
 
 Status ImpulseMethod::SetParams(const ParamMap& params) {
@@ -127,7 +134,7 @@ void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
         const ContactRow& row = rows[m.first + i];
         const AngularResponse& r = responses_[m.first + i];
         one_normal = one_normal && row.n.dot(r0.n) >= 1.0 - 1e-9;
-        points[i] = {row.ra, row.ra.cross(row.n), row.rb.cross(row.n), r.a_n, r.b_n};
+        points[i] = {row.ra, r.ra_n, r.rb_n, r.a_n, r.b_n};
       }
       const double k_lin = solver_[r0.a].inv_mass + solver_[r0.b].inv_mass;
       m.block = one_normal && InvertNormalBlock(points, m.count, k_lin, r0.t1, r0.t2, &m.inv_k);
@@ -138,7 +145,11 @@ void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
 bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<ContactRow>& rows,
                                     Eigen::Vector4d* step) const {
   Eigen::Vector4d vn = Eigen::Vector4d::Zero();
-  for (int i = 0; i < m.count; ++i) vn[i] = rows[m.first + i].NormalVelocity(solver_);
+  for (int i = 0; i < m.count; ++i) {
+    const ContactRow& row = rows[m.first + i];
+    const AngularResponse& r = responses_[m.first + i];
+    vn[i] = RowVelocity(solver_[row.a], solver_[row.b], row.n, r.ra_n, r.rb_n);
+  }
   *step = m.inv_k * vn;
   for (int i = 0; i < m.count; ++i) {
     if (rows[m.first + i].lambda_n - (*step)[i] < 0.0) return false;
@@ -148,28 +159,28 @@ bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<Cont
 
 double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& rows) {
   // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
-  // (the same sums as SolverBody::ApplyImpulse)
-  // at lever arms ra, rb
-  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& ra,
-                      const Vec3& rb) {
+  // and angular momenta by +dlb and -dla (the sums of
+  // SolverBody::ApplyImpulse, with r x J from AngularResponse)
+  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& dla,
+                      const Vec3& dlb) {
     SolverBody& A = solver_[row.a];
     SolverBody& B = solver_[row.b];
     if (B.inv_mass != 0.0) {
       B.v += B.inv_mass * J;
       B.w += dwb;
       B.dP += J;
-      B.dL += rb.cross(J);
+      B.dL += dlb;
     }
     if (A.inv_mass != 0.0) {
       A.v -= A.inv_mass * J;
       A.w -= dwa;
       A.dP -= J;
-      A.dL -= ra.cross(J);
+      A.dL -= dla;
     }
   };
   auto normal = [&](ContactRow& row, const AngularResponse& r, double dn) {
     row.lambda_n += dn;
-    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n, row.ra, row.rb);
+    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n, dn * r.ra_n, dn * r.rb_n);
     return std::abs(dn) * row.k_n;
   };
   double worst = 0.0;  // largest change of a relative velocity, m/s
@@ -177,16 +188,18 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
   for (int k = m.first; k < m.first + m.count; ++k) {
     ContactRow& row = rows[k];
     const AngularResponse& r = responses_[k];
-    const Vec3 vrel = row.FrictionVelocity(solver_);
+    const SolverBody& A = solver_[row.a];
+    const SolverBody& B = solver_[row.b];
     const double old1 = row.lambda_t1, old2 = row.lambda_t2;
     double l1 = old1, l2 = old2;
-    SlipFrictionStep(row.friction * row.lambda_n, row.t1.dot(vrel), row.t2.dot(vrel), row.mass_t1, row.mass_t2,
-                     row.k_t12, &l1, &l2);
+    SlipFrictionStep(row.friction * row.lambda_n, RowVelocity(A, B, row.t1, r.fa_t1, r.fb_t1),
+                     RowVelocity(A, B, row.t2, r.fa_t2, r.fb_t2), row.mass_t1, row.mass_t2, row.k_t12, &l1, &l2);
     row.lambda_t1 = l1;
     row.lambda_t2 = l2;
     const double d1 = l1 - old1, d2 = l2 - old2;
     const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
-    apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, row.fa, row.fb);
+    apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, d1 * r.fa_t1 + d2 * r.fa_t2,
+          d1 * r.fb_t1 + d2 * r.fb_t2);
     worst = std::max(worst, dJt.norm() * row.k_n);
   }
   // then the normal rows: together where the block keeps every impulse >= 0
@@ -199,8 +212,10 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
   }
   for (int k = m.first; k < m.first + m.count; ++k) {
     ContactRow& row = rows[k];
-    const double next = std::max(0.0, row.lambda_n - row.NormalVelocity(solver_) * row.mass_n);
-    worst = std::max(worst, normal(row, responses_[k], next - row.lambda_n));
+    const AngularResponse& r = responses_[k];
+    const double vn = RowVelocity(solver_[row.a], solver_[row.b], row.n, r.ra_n, r.rb_n);
+    const double next = std::max(0.0, row.lambda_n - vn * row.mass_n);
+    worst = std::max(worst, normal(row, r, next - row.lambda_n));
   }
   return worst;
 }
@@ -257,12 +272,18 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
       const Mat3& Ia = solver_[row.a].inv_inertia;
       const Mat3& Ib = solver_[row.b].inv_inertia;
       AngularResponse& r = responses_[k];
-      r.a_n = Ia * row.ra.cross(row.n);
-      r.a_t1 = Ia * row.fa.cross(row.t1);
-      r.a_t2 = Ia * row.fa.cross(row.t2);
-      r.b_n = Ib * row.rb.cross(row.n);
-      r.b_t1 = Ib * row.fb.cross(row.t1);
-      r.b_t2 = Ib * row.fb.cross(row.t2);
+      r.ra_n = row.ra.cross(row.n);
+      r.fa_t1 = row.fa.cross(row.t1);
+      r.fa_t2 = row.fa.cross(row.t2);
+      r.rb_n = row.rb.cross(row.n);
+      r.fb_t1 = row.fb.cross(row.t1);
+      r.fb_t2 = row.fb.cross(row.t2);
+      r.a_n = Ia * r.ra_n;
+      r.a_t1 = Ia * r.fa_t1;
+      r.a_t2 = Ia * r.fa_t2;
+      r.b_n = Ib * r.rb_n;
+      r.b_t1 = Ib * r.fb_t1;
+      r.b_t2 = Ib * r.fb_t2;
     }
   });
   BuildNormalBlocks(rows);

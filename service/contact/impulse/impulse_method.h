@@ -124,8 +124,15 @@ class ImpulseMethod : public ContactMethod {
   // as one call.
   void RunPasses(int passes, const bool& done, const std::function<void(ColourStages&)>& prologue,
                  const std::function<void(ColourStages&)>& add_pass);
-  struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
-    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
+  // A contact row's angular terms for d = n, t1, t2, found once a contact
+  // phase (as Bullet's angularComponentA/B and relpos1CrossNormal): its
+  // bodies' I^-1 (r x d), and r x d itself, with which the velocity along d
+  // is d.(v_B - v_A) + (r_B x d).w_B - (r_A x d).w_A (d.(w x r) = w.(r x d))
+  // and an impulse j d adds j (r x d) to L, so the sweeps take no cross
+  // products. The friction rows' r is where the friction acts (fa, fb).
+  struct AngularResponse {
+    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;    // I^-1 (r x d)
+    Vec3 ra_n, fa_t1, fa_t2, rb_n, fb_t1, fb_t2;  // r x d
   };
   // One Gauss-Seidel update of a block of the contact phase: each point's
   // friction, then the block's normal rows (normal_block.h); returns the
