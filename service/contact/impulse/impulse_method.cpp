@@ -25,13 +25,6 @@ constexpr int kImpulseBlockGrain = 128;
 constexpr int kImpulsePairGrain = 64;
 constexpr int kImpulseBodyGrain = 64;
 
-// The relative velocity of B against A along d, from d's angular terms
-// r x d (impulse_method.h, AngularResponse).
-inline double RowVelocity(const SolverBody& A, const SolverBody& B, const Vec3& d, const Vec3& ra_d,
-                          const Vec3& rb_d) {
-  return d.dot(B.v - A.v) + rb_d.dot(B.w) - ra_d.dot(A.w);
-}
-
 }  // namespace
 
 Status ImpulseMethod::SetParams(const ParamMap& params) {
@@ -148,7 +141,7 @@ bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<Cont
   for (int i = 0; i < m.count; ++i) {
     const ContactRow& row = rows[m.first + i];
     const AngularResponse& r = responses_[m.first + i];
-    vn[i] = RowVelocity(solver_[row.a], solver_[row.b], row.n, r.ra_n, r.rb_n);
+    vn[i] = NormalVelocity(row, r);
   }
   *step = m.inv_k * vn;
   for (int i = 0; i < m.count; ++i) {
@@ -158,29 +151,9 @@ bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<Cont
 }
 
 double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& rows) {
-  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
-  // and angular momenta by +dlb and -dla (the sums of
-  // SolverBody::ApplyImpulse, with r x J from AngularResponse)
-  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& dla,
-                      const Vec3& dlb) {
-    SolverBody& A = solver_[row.a];
-    SolverBody& B = solver_[row.b];
-    if (B.inv_mass != 0.0) {
-      B.v += B.inv_mass * J;
-      B.w += dwb;
-      B.dP += J;
-      B.dL += dlb;
-    }
-    if (A.inv_mass != 0.0) {
-      A.v -= A.inv_mass * J;
-      A.w -= dwa;
-      A.dP -= J;
-      A.dL -= dla;
-    }
-  };
   auto normal = [&](ContactRow& row, const AngularResponse& r, double dn) {
     row.lambda_n += dn;
-    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n, dn * r.ra_n, dn * r.rb_n);
+    PushNormal(row, r, dn);
     return std::abs(dn) * row.k_n;
   };
   double worst = 0.0;  // largest change of a relative velocity, m/s
@@ -198,7 +171,7 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
     row.lambda_t2 = l2;
     const double d1 = l1 - old1, d2 = l2 - old2;
     const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
-    apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, d1 * r.fa_t1 + d2 * r.fa_t2,
+    Push(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, d1 * r.fa_t1 + d2 * r.fa_t2,
           d1 * r.fb_t1 + d2 * r.fb_t2);
     worst = std::max(worst, dJt.norm() * row.k_n);
   }
@@ -213,8 +186,7 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
   for (int k = m.first; k < m.first + m.count; ++k) {
     ContactRow& row = rows[k];
     const AngularResponse& r = responses_[k];
-    const double vn = RowVelocity(solver_[row.a], solver_[row.b], row.n, r.ra_n, r.rb_n);
-    const double next = std::max(0.0, row.lambda_n - vn * row.mass_n);
+    const double next = std::max(0.0, row.lambda_n - NormalVelocity(row, r) * row.mass_n);
     worst = std::max(worst, normal(row, r, next - row.lambda_n));
   }
   return worst;
@@ -249,22 +221,8 @@ void ImpulseMethod::LoadWarmStart(const ContactSet& contacts, double h, std::vec
   });
 }
 
-int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
-                                std::vector<ContactRow>& rows) {
-  // Accumulated impulses start from last step's forces times h (or zero);
-  // the collision phase's impulses are kept apart (collision_n) so that
-  // clamping applies to this phase only.
+void ImpulseMethod::FindResponses(const std::vector<ContactRow>& rows) {
   const int n = static_cast<int>(rows.size());
-  std::vector<double> collision_n(n);
-  std::vector<Vec3> collision_t(n);
-  for (int k = 0; k < n; ++k) {
-    collision_n[k] = rows[k].lambda_n;
-    collision_t[k] = rows[k].lambda_t1 * rows[k].t1 + rows[k].lambda_t2 * rows[k].t2;
-  }
-  LoadWarmStart(contacts, h, rows);
-  // The angular velocity change per unit impulse along n, t1, t2 of each
-  // row's bodies, I^-1 (r x d) (world), computed once: the sweeps below
-  // then do no 3x3 products (as Bullet's angularComponentA/B).
   responses_.resize(n);
   runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
     for (int k = begin; k < end; ++k) {
@@ -286,6 +244,21 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
       r.b_t2 = Ib * r.fb_t2;
     }
   });
+}
+
+int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
+                                std::vector<ContactRow>& rows) {
+  // Accumulated impulses start from last step's forces times h (or zero);
+  // the collision phase's impulses are kept apart (collision_n) so that
+  // clamping applies to this phase only.
+  const int n = static_cast<int>(rows.size());
+  std::vector<double> collision_n(n);
+  std::vector<Vec3> collision_t(n);
+  for (int k = 0; k < n; ++k) {
+    collision_n[k] = rows[k].lambda_n;
+    collision_t[k] = rows[k].lambda_t1 * rows[k].t1 + rows[k].lambda_t2 * rows[k].t2;
+  }
+  LoadWarmStart(contacts, h, rows);
   BuildNormalBlocks(rows);
   bool converged = false, interleave = false;
   const int it = SweepContacts(world, h, rows, &converged, &interleave);
@@ -478,6 +451,7 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
         rows_[k] = MakeContactRow(contacts[k], world, solver_, torsion ? &friction_points_[k] : nullptr);
       }
     });
+    FindResponses(rows_);
     stats.iterations += CollisionPhase(rows_);
     StoreSolverBodies(solver_, *runner_, world);
     CopyBodies(world.bodies(), &start_bodies_);

@@ -134,6 +134,41 @@ class ImpulseMethod : public ContactMethod {
     Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;    // I^-1 (r x d)
     Vec3 ra_n, fa_t1, fa_t2, rb_n, fb_t1, fb_t2;  // r x d
   };
+  // responses_ for `rows` at solver_'s inertias: once a sub-step, for both
+  // phases (the forces between them leave the orientations as they are).
+  void FindResponses(const std::vector<ContactRow>& rows);
+  // The relative velocity of B against A along d, from r x d.
+  static double RowVelocity(const SolverBody& A, const SolverBody& B, const Vec3& d, const Vec3& ra_d,
+                            const Vec3& rb_d) {
+    return d.dot(B.v - A.v) + rb_d.dot(B.w) - ra_d.dot(A.w);
+  }
+  double NormalVelocity(const ContactRow& row, const AngularResponse& r) const {
+    return RowVelocity(solver_[row.a], solver_[row.b], row.n, r.ra_n, r.rb_n);
+  }
+  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
+  // and angular momenta by +dlb and -dla (the sums of
+  // SolverBody::ApplyImpulse, with r x J from AngularResponse)
+  void Push(const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& dla,
+            const Vec3& dlb) {
+    SolverBody& A = solver_[row.a];
+    SolverBody& B = solver_[row.b];
+    if (B.inv_mass != 0.0) {
+      B.v += B.inv_mass * J;
+      B.w += dwb;
+      B.dP += J;
+      B.dL += dlb;
+    }
+    if (A.inv_mass != 0.0) {
+      A.v -= A.inv_mass * J;
+      A.w -= dwa;
+      A.dP -= J;
+      A.dL -= dla;
+    }
+  }
+  // dn along the row's normal
+  void PushNormal(const ContactRow& row, const AngularResponse& r, double dn) {
+    Push(row, dn * row.n, dn * r.a_n, dn * r.b_n, dn * r.ra_n, dn * r.rb_n);
+  }
   // One Gauss-Seidel update of a block of the contact phase: each point's
   // friction, then the block's normal rows (normal_block.h); returns the
   // largest change of a relative velocity (m/s).

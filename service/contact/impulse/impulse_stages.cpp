@@ -133,7 +133,7 @@ bool ImpulseMethod::CollideChanged(int g, int64_t order, std::vector<ContactRow>
 bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& rows) {
   const int begin = g.first, end = g.first + g.count;
   bool hit = false;
-  for (int k = begin; k < end; ++k) hit = hit || rows[k].NormalVelocity(solver_) < -params_.collision_threshold;
+  for (int k = begin; k < end; ++k) hit = hit || NormalVelocity(rows[k], responses_[k]) < -params_.collision_threshold;
   if (!hit) return false;
   // Newton's law per point: v_n+ >= -e v_n-; points that barely approach
   // or separate only must not approach. Holding a separating point to
@@ -141,7 +141,7 @@ bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& 
   // impulse slows it: a box resting on the ground, struck by a sphere,
   // was thrown up at 14 m/s as the two pairs took turns (+513 J).
   for (int k = begin; k < end; ++k) {
-    const double vn = rows[k].NormalVelocity(solver_);
+    const double vn = NormalVelocity(rows[k], responses_[k]);
     target_[k] = vn < -params_.collision_threshold ? -rows[k].restitution * vn : 0.0;
     impulse_[k] = 0.0;
   }
@@ -149,10 +149,10 @@ bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& 
     double worst = 0.0;
     for (int k = begin; k < end; ++k) {
       ContactRow& row = rows[k];
-      const double next = std::max(0.0, impulse_[k] + (target_[k] - row.NormalVelocity(solver_)) * row.mass_n);
+      const double next = std::max(0.0, impulse_[k] + (target_[k] - NormalVelocity(row, responses_[k])) * row.mass_n);
       const double d = next - impulse_[k];
       impulse_[k] = next;
-      row.Apply(d * row.n, solver_);
+      PushNormal(row, responses_[k], d);
       worst = std::max(worst, std::abs(d) * row.k_n);
     }
     if (worst < params_.velocity_tolerance) break;
