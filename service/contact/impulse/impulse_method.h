@@ -147,8 +147,10 @@ class ImpulseMethod : public ContactMethod {
   }
   // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
   // and angular momenta by +dlb and -dla (the sums of
-  // SolverBody::ApplyImpulse, with r x J from AngularResponse)
-  void Push(const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& dla,
+  // SolverBody::ApplyImpulse, with r x J from AngularResponse); inlined by
+  // force: GCC called it out of line from the friction rows, which paid
+  // its six vector arguments through memory
+  [[gnu::always_inline]] void Push(const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& dla,
             const Vec3& dlb) {
     SolverBody& A = solver_[row.a];
     SolverBody& B = solver_[row.b];
