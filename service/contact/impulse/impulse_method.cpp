@@ -127,7 +127,7 @@ void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
         const ContactRow& row = rows[m.first + i];
         const AngularResponse& r = responses_[m.first + i];
         one_normal = one_normal && row.n.dot(r0.n) >= 1.0 - 1e-9;
-        points[i] = {row.ra, row.ra.cross(row.n), row.rb.cross(row.n), r.a_n, r.b_n};
+        points[i] = {row.ra, r.ra_n, r.rb_n, r.a_n, r.b_n};
       }
       const double k_lin = solver_[r0.a].inv_mass + solver_[r0.b].inv_mass;
       m.block = one_normal && InvertNormalBlock(points, m.count, k_lin, r0.t1, r0.t2, &m.inv_k);
@@ -138,7 +138,11 @@ void ImpulseMethod::BuildNormalBlocks(const std::vector<ContactRow>& rows) {
 bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<ContactRow>& rows,
                                     Eigen::Vector4d* step) const {
   Eigen::Vector4d vn = Eigen::Vector4d::Zero();
-  for (int i = 0; i < m.count; ++i) vn[i] = rows[m.first + i].NormalVelocity(solver_);
+  for (int i = 0; i < m.count; ++i) {
+    const ContactRow& row = rows[m.first + i];
+    const AngularResponse& r = responses_[m.first + i];
+    vn[i] = NormalVelocity(row, r);
+  }
   *step = m.inv_k * vn;
   for (int i = 0; i < m.count; ++i) {
     if (rows[m.first + i].lambda_n - (*step)[i] < 0.0) return false;
@@ -147,29 +151,9 @@ bool ImpulseMethod::NormalBlockStep(const NormalBlock& m, const std::vector<Cont
 }
 
 double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& rows) {
-  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
-  // (the same sums as SolverBody::ApplyImpulse)
-  // at lever arms ra, rb
-  auto apply = [this](const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& ra,
-                      const Vec3& rb) {
-    SolverBody& A = solver_[row.a];
-    SolverBody& B = solver_[row.b];
-    if (B.inv_mass != 0.0) {
-      B.v += B.inv_mass * J;
-      B.w += dwb;
-      B.dP += J;
-      B.dL += rb.cross(J);
-    }
-    if (A.inv_mass != 0.0) {
-      A.v -= A.inv_mass * J;
-      A.w -= dwa;
-      A.dP -= J;
-      A.dL -= ra.cross(J);
-    }
-  };
   auto normal = [&](ContactRow& row, const AngularResponse& r, double dn) {
     row.lambda_n += dn;
-    apply(row, dn * row.n, dn * r.a_n, dn * r.b_n, row.ra, row.rb);
+    PushNormal(row, r, dn);
     return std::abs(dn) * row.k_n;
   };
   double worst = 0.0;  // largest change of a relative velocity, m/s
@@ -177,16 +161,18 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
   for (int k = m.first; k < m.first + m.count; ++k) {
     ContactRow& row = rows[k];
     const AngularResponse& r = responses_[k];
-    const Vec3 vrel = row.FrictionVelocity(solver_);
+    const SolverBody& A = solver_[row.a];
+    const SolverBody& B = solver_[row.b];
     const double old1 = row.lambda_t1, old2 = row.lambda_t2;
     double l1 = old1, l2 = old2;
-    SlipFrictionStep(row.friction * row.lambda_n, row.t1.dot(vrel), row.t2.dot(vrel), row.mass_t1, row.mass_t2,
-                     row.k_t12, &l1, &l2);
+    SlipFrictionStep(row.friction * row.lambda_n, RowVelocity(A, B, row.t1, r.fa_t1, r.fb_t1),
+                     RowVelocity(A, B, row.t2, r.fa_t2, r.fb_t2), row.mass_t1, row.mass_t2, row.k_t12, &l1, &l2);
     row.lambda_t1 = l1;
     row.lambda_t2 = l2;
     const double d1 = l1 - old1, d2 = l2 - old2;
     const Vec3 dJt = d1 * row.t1 + d2 * row.t2;
-    apply(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, row.fa, row.fb);
+    Push(row, dJt, d1 * r.a_t1 + d2 * r.a_t2, d1 * r.b_t1 + d2 * r.b_t2, d1 * r.fa_t1 + d2 * r.fa_t2,
+          d1 * r.fb_t1 + d2 * r.fb_t2);
     worst = std::max(worst, dJt.norm() * row.k_n);
   }
   // then the normal rows: together where the block keeps every impulse >= 0
@@ -199,8 +185,9 @@ double ImpulseMethod::SweepBlock(const NormalBlock& m, std::vector<ContactRow>& 
   }
   for (int k = m.first; k < m.first + m.count; ++k) {
     ContactRow& row = rows[k];
-    const double next = std::max(0.0, row.lambda_n - row.NormalVelocity(solver_) * row.mass_n);
-    worst = std::max(worst, normal(row, responses_[k], next - row.lambda_n));
+    const AngularResponse& r = responses_[k];
+    const double next = std::max(0.0, row.lambda_n - NormalVelocity(row, r) * row.mass_n);
+    worst = std::max(worst, normal(row, r, next - row.lambda_n));
   }
   return worst;
 }
@@ -234,6 +221,31 @@ void ImpulseMethod::LoadWarmStart(const ContactSet& contacts, double h, std::vec
   });
 }
 
+void ImpulseMethod::FindResponses(const std::vector<ContactRow>& rows) {
+  const int n = static_cast<int>(rows.size());
+  responses_.resize(n);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      const ContactRow& row = rows[k];
+      const Mat3& Ia = solver_[row.a].inv_inertia;
+      const Mat3& Ib = solver_[row.b].inv_inertia;
+      AngularResponse& r = responses_[k];
+      r.ra_n = row.ra.cross(row.n);
+      r.fa_t1 = row.fa.cross(row.t1);
+      r.fa_t2 = row.fa.cross(row.t2);
+      r.rb_n = row.rb.cross(row.n);
+      r.fb_t1 = row.fb.cross(row.t1);
+      r.fb_t2 = row.fb.cross(row.t2);
+      r.a_n = Ia * r.ra_n;
+      r.a_t1 = Ia * r.fa_t1;
+      r.a_t2 = Ia * r.fa_t2;
+      r.b_n = Ib * r.rb_n;
+      r.b_t1 = Ib * r.fb_t1;
+      r.b_t2 = Ib * r.fb_t2;
+    }
+  });
+}
+
 int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
                                 std::vector<ContactRow>& rows) {
   // Accumulated impulses start from last step's forces times h (or zero);
@@ -247,24 +259,6 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
     collision_t[k] = rows[k].lambda_t1 * rows[k].t1 + rows[k].lambda_t2 * rows[k].t2;
   }
   LoadWarmStart(contacts, h, rows);
-  // The angular velocity change per unit impulse along n, t1, t2 of each
-  // row's bodies, I^-1 (r x d) (world), computed once: the sweeps below
-  // then do no 3x3 products (as Bullet's angularComponentA/B).
-  responses_.resize(n);
-  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
-    for (int k = begin; k < end; ++k) {
-      const ContactRow& row = rows[k];
-      const Mat3& Ia = solver_[row.a].inv_inertia;
-      const Mat3& Ib = solver_[row.b].inv_inertia;
-      AngularResponse& r = responses_[k];
-      r.a_n = Ia * row.ra.cross(row.n);
-      r.a_t1 = Ia * row.fa.cross(row.t1);
-      r.a_t2 = Ia * row.fa.cross(row.t2);
-      r.b_n = Ib * row.rb.cross(row.n);
-      r.b_t1 = Ib * row.fb.cross(row.t1);
-      r.b_t2 = Ib * row.fb.cross(row.t2);
-    }
-  });
   BuildNormalBlocks(rows);
   bool converged = false, interleave = false;
   const int it = SweepContacts(world, h, rows, &converged, &interleave);
@@ -457,6 +451,7 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
         rows_[k] = MakeContactRow(contacts[k], world, solver_, torsion ? &friction_points_[k] : nullptr);
       }
     });
+    FindResponses(rows_);
     stats.iterations += CollisionPhase(rows_);
     StoreSolverBodies(solver_, *runner_, world);
     CopyBodies(world.bodies(), &start_bodies_);

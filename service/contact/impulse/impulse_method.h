@@ -52,6 +52,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -103,6 +104,10 @@ class ImpulseMethod : public ContactMethod {
   BlockColours ColourGroups(const std::vector<ContactRow>& rows, std::vector<NormalBlock>* groups) const;
   // One collision pass over a pair's rows; true when one of them approached.
   bool CollideGroup(const NormalBlock& g, std::vector<ContactRow>& rows);
+  // CollideGroup on groups_[g] as the phase's check number `order`, or
+  // false at once when no impulse reached its bodies since its last check
+  // found nothing approaching.
+  bool CollideChanged(int g, int64_t order, std::vector<ContactRow>& rows);
   // The contact phase's warm start (the rows' lambdas onto solver_), the
   // joints' rows at the warm-started velocities and the sweeps, on the
   // runner; returns the sweeps done, whether they converged and whether
@@ -119,9 +124,53 @@ class ImpulseMethod : public ContactMethod {
   // as one call.
   void RunPasses(int passes, const bool& done, const std::function<void(ColourStages&)>& prologue,
                  const std::function<void(ColourStages&)>& add_pass);
-  struct AngularResponse {    // I^-1 (r x d) of a contact row's bodies for d = n, t1, t2
-    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;
+  // A contact row's angular terms for d = n, t1, t2, found once a contact
+  // phase (as Bullet's angularComponentA/B and relpos1CrossNormal): its
+  // bodies' I^-1 (r x d), and r x d itself, with which the velocity along d
+  // is d.(v_B - v_A) + (r_B x d).w_B - (r_A x d).w_A (d.(w x r) = w.(r x d))
+  // and an impulse j d adds j (r x d) to L, so the sweeps take no cross
+  // products. The friction rows' r is where the friction acts (fa, fb).
+  struct AngularResponse {
+    Vec3 a_n, a_t1, a_t2, b_n, b_t1, b_t2;    // I^-1 (r x d)
+    Vec3 ra_n, fa_t1, fa_t2, rb_n, fb_t1, fb_t2;  // r x d
   };
+  // responses_ for `rows` at solver_'s inertias: once a sub-step, for both
+  // phases (the forces between them leave the orientations as they are).
+  void FindResponses(const std::vector<ContactRow>& rows);
+  // The relative velocity of B against A along d, from r x d.
+  static double RowVelocity(const SolverBody& A, const SolverBody& B, const Vec3& d, const Vec3& ra_d,
+                            const Vec3& rb_d) {
+    return d.dot(B.v - A.v) + rb_d.dot(B.w) - ra_d.dot(A.w);
+  }
+  double NormalVelocity(const ContactRow& row, const AngularResponse& r) const {
+    return RowVelocity(solver_[row.a], solver_[row.b], row.n, r.ra_n, r.rb_n);
+  }
+  // +J on B and -J on A, whose angular velocities change by +dwb and -dwa
+  // and angular momenta by +dlb and -dla (the sums of
+  // SolverBody::ApplyImpulse, with r x J from AngularResponse); inlined by
+  // force: GCC called it out of line from the friction rows, which paid
+  // its six vector arguments through memory
+  [[gnu::always_inline]] void Push(const ContactRow& row, const Vec3& J, const Vec3& dwa, const Vec3& dwb, const Vec3& dla,
+            const Vec3& dlb) {
+    SolverBody& A = solver_[row.a];
+    SolverBody& B = solver_[row.b];
+    if (B.inv_mass != 0.0) {
+      B.v += B.inv_mass * J;
+      B.w += dwb;
+      B.dP += J;
+      B.dL += dlb;
+    }
+    if (A.inv_mass != 0.0) {
+      A.v -= A.inv_mass * J;
+      A.w -= dwa;
+      A.dP -= J;
+      A.dL -= dla;
+    }
+  }
+  // dn along the row's normal
+  void PushNormal(const ContactRow& row, const AngularResponse& r, double dn) {
+    Push(row, dn * row.n, dn * r.a_n, dn * r.b_n, dn * r.ra_n, dn * r.rb_n);
+  }
   // One Gauss-Seidel update of a block of the contact phase: each point's
   // friction, then the block's normal rows (normal_block.h); returns the
   // largest change of a relative velocity (m/s).
@@ -164,6 +213,8 @@ class ImpulseMethod : public ContactMethod {
   std::vector<NormalBlock> groups_;         // the collision phase's pairs, colour by colour
   std::vector<double> target_, impulse_;    // per row, the collision phase's
   std::vector<char> group_hit_;             // per group, in the last collision pass
+  std::vector<int64_t> checked_at_;         // per group: the number of its last check, or -1
+  std::vector<int64_t> pushed_at_;          // per solver body: the last check that pushed it, or -1
   BlockColours colours_;                    // of blocks_ (or groups_), for the passes
   std::vector<double> block_worst_;         // per block, its largest change in the last pass
   std::vector<ParallelRunner::Stage> stages_;

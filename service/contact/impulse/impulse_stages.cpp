@@ -91,11 +91,19 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
   target_.resize(n);
   impulse_.resize(n);
   group_hit_.assign(groups, 0);
+  // A pair whose last check found nothing approaching, and neither of whose
+  // bodies an impulse has changed since, would find the same: it is skipped
+  // with the same answer. Each check has its own order number in the
+  // phase, pass * groups + g (the groups run in that order: a colour's
+  // pairs share no moving body, so none of them can change another's
+  // bodies); a body records the number of the last check that pushed it.
+  checked_at_.assign(groups, -1);
+  pushed_at_.assign(solver_.size(), -1);
   int passes = 0;
   bool done = false;  // no pair approached in the last pass
   const Fn pass = [&](int i, int j) {
     if (done) return;
-    for (int g = i; g < j; ++g) group_hit_[g] = CollideGroup(groups_[g], rows);
+    for (int g = i; g < j; ++g) group_hit_[g] = CollideChanged(g, int64_t{passes} * groups + g, rows);
   };
   const Fn check = [&](int, int) {
     if (done) return;
@@ -109,10 +117,23 @@ int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
   return passes;
 }
 
+bool ImpulseMethod::CollideChanged(int g, int64_t order, std::vector<ContactRow>& rows) {
+  const NormalBlock& group = groups_[g];
+  const int a = rows[group.first].a, b = rows[group.first].b;
+  // a check's own push counts: its points may still approach after it
+  if (checked_at_[g] >= 0 && std::max(pushed_at_[a], pushed_at_[b]) < checked_at_[g]) return false;
+  checked_at_[g] = order;
+  if (!CollideGroup(group, rows)) return false;
+  // fixed bodies take no impulse (and are shared across a colour's pairs)
+  if (solver_[a].inv_mass != 0.0) pushed_at_[a] = order;
+  if (solver_[b].inv_mass != 0.0) pushed_at_[b] = order;
+  return true;
+}
+
 bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& rows) {
   const int begin = g.first, end = g.first + g.count;
   bool hit = false;
-  for (int k = begin; k < end; ++k) hit = hit || rows[k].NormalVelocity(solver_) < -params_.collision_threshold;
+  for (int k = begin; k < end; ++k) hit = hit || NormalVelocity(rows[k], responses_[k]) < -params_.collision_threshold;
   if (!hit) return false;
   // Newton's law per point: v_n+ >= -e v_n-; points that barely approach
   // or separate only must not approach. Holding a separating point to
@@ -120,7 +141,7 @@ bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& 
   // impulse slows it: a box resting on the ground, struck by a sphere,
   // was thrown up at 14 m/s as the two pairs took turns (+513 J).
   for (int k = begin; k < end; ++k) {
-    const double vn = rows[k].NormalVelocity(solver_);
+    const double vn = NormalVelocity(rows[k], responses_[k]);
     target_[k] = vn < -params_.collision_threshold ? -rows[k].restitution * vn : 0.0;
     impulse_[k] = 0.0;
   }
@@ -128,10 +149,10 @@ bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& 
     double worst = 0.0;
     for (int k = begin; k < end; ++k) {
       ContactRow& row = rows[k];
-      const double next = std::max(0.0, impulse_[k] + (target_[k] - row.NormalVelocity(solver_)) * row.mass_n);
+      const double next = std::max(0.0, impulse_[k] + (target_[k] - NormalVelocity(row, responses_[k])) * row.mass_n);
       const double d = next - impulse_[k];
       impulse_[k] = next;
-      row.Apply(d * row.n, solver_);
+      PushNormal(row, responses_[k], d);
       worst = std::max(worst, std::abs(d) * row.k_n);
     }
     if (worst < params_.velocity_tolerance) break;
