@@ -64,10 +64,16 @@ void ParallelSort(std::vector<T>* v, std::vector<T>* scratch, ParallelRunner* ru
     split(merges, 1, [&](int first, int last, int /*worker*/) {
       for (int i = first; i < last; ++i) {
         const int lo = 2 * i * width, mid = std::min(lo + width, m), hi = std::min(lo + 2 * width, m);
-        // runs already in order (neighbours that do not overlap) need no merge
+        // runs already in order (neighbours that do not overlap) need no
+        // merge, and of overlapping ones only the overlap: the left run's
+        // elements after the right's first and the right's before the
+        // left's last (a pair's warm-start entries split by a run's end)
         if (mid == hi || !less(begin[mid], begin[mid - 1])) continue;
-        std::merge(begin + lo, begin + mid, begin + mid, begin + hi, scratch->begin() + lo, less);
-        std::copy(scratch->begin() + lo, scratch->begin() + hi, begin + lo);
+        const auto from = std::upper_bound(begin + lo, begin + mid, begin[mid], less);
+        const auto to = std::lower_bound(begin + mid, begin + hi, begin[mid - 1], less);
+        const auto out = scratch->begin() + (from - begin);
+        std::merge(from, begin + mid, begin + mid, to, out, less);
+        std::copy(out, out + (to - from), from);
       }
     });
   }
