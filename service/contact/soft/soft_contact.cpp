@@ -49,8 +49,9 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
                        std::vector<SoftPoint>* points, bool friction_rows) {
   // each point made over last step's in its slot: a point returned and
-  // copied into its slot, or a default one made first, cost 0.08M and 0.2M
-  // instructions of a pyramid step (BENCHMARKS.md, "soft: the float path")
+  // copied into its slot, or a default one made first, cost 0.25M and
+  // 0.18M instructions more a float pyramid step (BENCHMARKS.md, "soft:
+  // the float path")
   points->resize(contacts.size());
   runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {

@@ -1,10 +1,10 @@
 // Columns of a few rows of floats as SIMD batches: lane l of batch k is
 // row l's float k. The float path gathers each lane's body (WideBody, 18
 // floats) into batches field by field; copied one float at a time through
-// a buffer, the gather and its scatter cost 1.1M instructions of a float
-// pyramid step, a fifth of the wide kernels' (BENCHMARKS.md, "soft: the
-// float path"). A transpose in registers moves the same floats, so every
-// lane holds the same values bit for bit.
+// a buffer, the gather's and the scatter's lines counted 1.1M instructions
+// of a float pyramid step, and the transposes saved 0.37M of it
+// (BENCHMARKS.md, "soft: the float path"). A transpose in registers moves
+// the same floats, so every lane holds the same values bit for bit.
 #pragma once
 
 #include <cstddef>
