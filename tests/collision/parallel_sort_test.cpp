@@ -69,5 +69,24 @@ TEST(ParallelSortTest, SortedAndReversedInputs) {
   EXPECT_EQ(down, up);
 }
 
+// Verifies that input out of order only within small groups (the
+// warm-start cache's entries, out of order within a pair), with the groups
+// split by the runs' ends so that neighbouring runs overlap by a few
+// elements, sorts to what std::sort gives.
+TEST(ParallelSortTest, InputOutOfOrderWithinGroups) {
+  std::vector<int> keys(3001);
+  for (int k = 0; k < 3001; ++k) keys[k] = k - 2 * (k % 3) + 2;  // each group of three reversed
+  std::vector<int> expected = keys;
+  std::sort(expected.begin(), expected.end());
+  for (const int run : {16, 64, 1000}) {
+    for (const int threads : {1, 2}) {
+      ParallelRunner runner(threads);
+      std::vector<int> sorted = keys, scratch;
+      ParallelSort(&sorted, &scratch, &runner, run, std::less<int>());
+      EXPECT_EQ(sorted, expected) << "run " << run << " threads " << threads;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace contactsim

@@ -48,21 +48,25 @@ void SetFrictionRows(const Vec3& fa, const Vec3& fb, const SoftBody& sa, const S
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
                        std::vector<SoftPoint>* points, bool friction_rows) {
+  // each point made over last step's in its slot: a point returned and
+  // copied into its slot, or a default one made first, cost 0.25M and
+  // 0.18M instructions more a float pyramid step (BENCHMARKS.md, "soft:
+  // the float path")
   points->resize(contacts.size());
   runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
-      (*points)[k] = PrepareSoftPoint(contacts[k], world, bodies,
-                                      friction_points != nullptr ? &(*friction_points)[k] : nullptr, friction_rows);
+      PrepareSoftPoint(contacts[k], world, bodies, friction_points != nullptr ? &(*friction_points)[k] : nullptr,
+                       friction_rows, &(*points)[k]);
     }
   });
 }
 
-SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                           const Vec3* friction_point, bool friction_rows) {
+void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
+                      const Vec3* friction_point, bool friction_rows, SoftPoint* out) {
   const SoftBody& sa = bodies[c.a];
   const SoftBody& sb = bodies[c.b];
   const ContactRow basis = MakeContactBasis(c, world);
-  SoftPoint p;
+  SoftPoint& p = *out;
   p.a = c.a;
   p.b = c.b;
   p.ra = basis.ra;
@@ -81,11 +85,17 @@ SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vect
     const Vec3 fa = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.a].x) : p.ra;
     const Vec3 fb = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.b].x) : p.rb;
     SetFrictionRows(fa, fb, sa, sb, &p);
+  } else {
+    p.mass_t1 = p.mass_t2 = p.k_t12 = 0.0;
   }
+  // the step's impulses start from nothing (the warm start sets lambda
+  // after) and its spring is set before the sub-steps
+  p.lambda_n = p.lambda_t1 = p.lambda_t2 = 0.0;
+  p.max_push = p.total_n = p.total_t1 = p.total_t2 = 0.0;
+  p.soft = Softness();
   p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
   const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
   p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
-  return p;
 }
 
 void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,

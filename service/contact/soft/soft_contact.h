@@ -82,9 +82,11 @@ struct SoftPoint {
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
                        std::vector<SoftPoint>* points, bool friction_rows = true);
-// One of them; friction_point null: at c.point.
-SoftPoint PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                           const Vec3* friction_point = nullptr, bool friction_rows = true);
+// One of them, into *out (every field written; without friction_rows
+// their Jacobians and responses are left as they were); friction_point
+// null: at c.point.
+void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
+                      const Vec3* friction_point, bool friction_rows, SoftPoint* out);
 // Where point k's friction acts, from A's and B's centres of mass at the
 // step's start: its anchors, or friction_points[k] (patch_torsion.h).
 void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,

@@ -15,6 +15,7 @@
 #include <xsimd/xsimd.hpp>
 
 #include "service/contact/soft/wide/soft_wide_kernels.h"
+#include "service/contact/soft/wide/soft_wide_transpose.h"
 
 namespace contactsim {
 namespace wide {
@@ -69,22 +70,35 @@ struct Lanes {
     B dra[9], drb[9];
   };
 
-  static void GatherSide(const WideView& view, const int* index, V3* v, V3* w, V3* dp, B* dr) {
-    alignas(kAlign) float buf[18][W];
-    for (int l = 0; l < W; ++l) {
-      const WideBody& body = view.bodies[index[l]];
-      for (int k = 0; k < 3; ++k) {
-        buf[k][l] = body.v[k];
-        buf[3 + k][l] = body.w[k];
-        buf[6 + k][l] = body.dp[k];
-      }
-      for (int k = 0; k < 9; ++k) buf[9 + k][l] = body.turn[k];
+  // The first `count` floats of each lane's body (WideBody's order: v, w,
+  // dp, turn) as batches: whole batches of columns transposed in
+  // registers where the instruction set allows (soft_wide_transpose.h),
+  // the rest through a buffer.
+  static void GatherFields(const WideView& view, const int* index, int count, B* out) {
+    const float* rows[W];
+    for (int l = 0; l < W; ++l) rows[l] = view.bodies[index[l]].Floats();
+    if constexpr (TransposesInRegisters<B>()) {
+      int done = 0;
+      for (; done < count && done + W <= kWideBodyFloats; done += W) LoadColumns(rows, done, out + done);
+      // the last few over the batch before them again (the same floats)
+      if (done < count) LoadColumns(rows, count - W, out + count - W);
+      return;
     }
-    *v = {B::load_aligned(buf[0]), B::load_aligned(buf[1]), B::load_aligned(buf[2])};
-    *w = {B::load_aligned(buf[3]), B::load_aligned(buf[4]), B::load_aligned(buf[5])};
+    const int done = 0;
+    alignas(kAlign) float buf[kWideBodyFloats][W];
+    for (int l = 0; l < W; ++l) {
+      for (int k = done; k < count; ++k) buf[k][l] = rows[l][k];
+    }
+    for (int k = done; k < count; ++k) out[k] = B::load_aligned(buf[k]);
+  }
+  static void GatherSide(const WideView& view, const int* index, V3* v, V3* w, V3* dp, B* dr) {
+    B f[kWideBodyFloats];
+    GatherFields(view, index, dp == nullptr ? 6 : kWideBodyFloats, f);
+    *v = {f[0], f[1], f[2]};
+    *w = {f[3], f[4], f[5]};
     if (dp == nullptr) return;
-    *dp = {B::load_aligned(buf[6]), B::load_aligned(buf[7]), B::load_aligned(buf[8])};
-    for (int k = 0; k < 9; ++k) dr[k] = B::load_aligned(buf[9 + k]);
+    *dp = {f[6], f[7], f[8]};
+    for (int k = 0; k < 9; ++k) dr[k] = f[9 + k];
   }
   static void Gather(const WideView& view, int bundle, Pair* p, Motion* m) {
     const int* a = view.body_a + bundle * W;
@@ -96,6 +110,13 @@ struct Lanes {
   // several lanes and bundles at once (block_colours.h).
   static void ScatterSide(const WideView& view, const int* index, const unsigned char* write, const V3& v,
                           const V3& w) {
+    if constexpr (TransposesInRegisters<B>()) {
+      float* rows[W];
+      for (int l = 0; l < W; ++l) rows[l] = view.bodies[index[l]].Floats();
+      const B c[6] = {v.x, v.y, v.z, w.x, w.y, w.z};
+      StoreRows6(c, rows, write);
+      return;
+    }
     alignas(kAlign) float buf[6][W];
     v.x.store_aligned(buf[0]), v.y.store_aligned(buf[1]), v.z.store_aligned(buf[2]);
     w.x.store_aligned(buf[3]), w.y.store_aligned(buf[4]), w.z.store_aligned(buf[5]);

@@ -87,7 +87,13 @@ struct WideBody {
   // apart from the identity, so that a resting body's turn keeps float's
   // digits (soft_wide_kernels_impl.h, NormalTargets)
   float turn[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+
+  // the 18 floats in the order above, for the kernels' gathers
+  const float* Floats() const { return v; }
+  float* Floats() { return v; }
 };
+constexpr int kWideBodyFloats = 18;
+static_assert(sizeof(WideBody) == kWideBodyFloats * sizeof(float), "WideBody's floats lie end to end");
 
 // What a kernel call sees of the bundles and the bodies.
 struct WideView {
