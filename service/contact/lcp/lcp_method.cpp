@@ -21,6 +21,8 @@ constexpr int kLcpBodyGrain = 64;
 // and the products' ordinary give and take) before it is solved again
 // without the velocity products (SolveWithinEnergy).
 constexpr double kEnergyGuard = 1e-6;
+// m/s: the tolerance of lemke's PGS fallback at most (LcpMethod::Solve)
+constexpr double kLemkeFallbackTolerance = 1e-6;
 
 // `velocities`: the rows act on velocities (the energy guard applies), not
 // on the split impulse's pseudo-velocities.
@@ -123,7 +125,11 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   // one warm-started sweep a step lets an over-relaxed mode grow from step
   // to step up to the tolerance; two contract it (pgs.h, "Warm-started solves")
   options.min_iterations = std::min(2, params_.iterations);
-  options.tolerance = params_.tolerance;
+  // lemke is chosen for exact answers: the steps it fails (degenerate
+  // friction) are swept as far as the old default asked, which keeps its
+  // runs where they were (docs/methods/lcp.md, "Sweeps and tolerance")
+  options.tolerance = params_.solver == "lemke" ? std::min(params_.tolerance, kLemkeFallbackTolerance)
+                                                : params_.tolerance;
   GroupNormalBlocks(contacts_, &Contact::normal, &pairs_);
   normal_blocks_.clear();
   for (const NormalBlock& pair : pairs_) {
