@@ -75,6 +75,7 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   options.iterations = params_.iterations;
   options.tolerance = 1e-9;  // m
   options.runner = &runner;
+  options.measure_complementarity = false;
   split_pgs_.Solve(split_rows_, bodies_, options);
   subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_, false));
   auto& bodies = world.bodies();
@@ -141,6 +142,9 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   options.normal_blocks = &normal_blocks_;
   options.runner = &runner;
   options.ordered_from = static_cast<int>(3 * contacts_.size());
+  // nothing in a step reads it, and the pass cost 3% of a pyramid step
+  // (BENCHMARKS.md, "### lcp")
+  options.measure_complementarity = false;
   report_ = pgs_.Solve(rows_, bodies, options);
   SubspaceOptions direct = SubspaceOptionsOf(params_, true);
   // the components of contacts on jointed bodies too, where the sweeps
