@@ -45,15 +45,19 @@ bool InvertNormalBlockK(const Eigen::Matrix4d& k_in, int count, const Vec3* plan
   // a smaller block fills K's unused diagonal with 1 (identity rows)
   Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
   k.topLeftCorner(count, count) = k_in.topLeftCorner(count, count);
-  if (InvertIfWellConditioned(k, inv_k)) {
+  if (count < kMaxNormalBlock) {
+    if (!InvertIfWellConditioned(k, inv_k)) return false;
     for (int i = count; i < kMaxNormalBlock; ++i) {
       inv_k->row(i).setZero();
       inv_k->col(i).setZero();
     }
     return true;
   }
+  // four points with one normal act on three velocities, so their K is
+  // singular (see the header): straight to K^+, without first trying K's
+  // own Cholesky factor (BENCHMARKS.md, "### lcp")
   Eigen::Vector4d c;
-  if (count != 4 || !FaceNullVector(plane_points, t1, t2, &c)) return false;
+  if (!FaceNullVector(plane_points, t1, t2, &c)) return false;
   if (!InvertIfWellConditioned(k + c * c.transpose(), inv_k)) return false;
   *inv_k -= c * c.transpose();
   return true;

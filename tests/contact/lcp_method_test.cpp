@@ -174,7 +174,8 @@ TEST(LcpMethod, WarmStartByFeatureIdConvergesInTheFewestSweeps) {
 // Verifies that Lemke's fallback is the pgs solver, warm start included:
 // with max_lemke_rows = 0 every step falls back, and a stack of four boxes
 // with a pendulum (contact and joint rows) runs bit for bit as under
-// solver = pgs, with every step counted as a fallback.
+// solver = pgs at the fallback's tolerance (1e-6 m/s), with every step
+// counted as a fallback.
 TEST(LcpMethod, LemkeFallsBackToTheWarmStartedPgsSolver) {
   auto run = [](const ParamMap& params, int* fallbacks) {
     testing::MethodSim sim("lcp", params);
@@ -191,7 +192,7 @@ TEST(LcpMethod, LemkeFallsBackToTheWarmStartedPgsSolver) {
     return HashWorldState(sim.world);
   };
   int pgs_fallbacks = -1, lemke_fallbacks = -1;
-  const uint64_t pgs = run({{"solver", "pgs"}}, &pgs_fallbacks);
+  const uint64_t pgs = run({{"solver", "pgs"}, {"tolerance", "1e-6"}}, &pgs_fallbacks);
   const uint64_t lemke = run({{"solver", "lemke"}, {"max_lemke_rows", "0"}}, &lemke_fallbacks);
   EXPECT_EQ(lemke, pgs);
   EXPECT_EQ(pgs_fallbacks, 0);

@@ -39,7 +39,7 @@ const std::vector<Pinned>& PinnedRuns() {
       {"penalty", {}, 0xe6b488b7ca96cac1ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x9ca96564088018feull},
       {"xpbd", {}, 0x7b2388ec667ed6f5ull},
-      {"lcp", {{"solver", "pgs"}}, 0xe15bb8f79d701b6full},
+      {"lcp", {{"solver", "pgs"}}, 0xdda5c5523890dc93ull},
       {"lcp", {{"solver", "lemke"}}, 0x8c604ee582352f10ull},
       {"barrier", {}, 0x88fc6486c49e595bull},
       {"soft", {}, 0x31d6f20698c91142ull},

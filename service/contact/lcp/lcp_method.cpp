@@ -21,6 +21,8 @@ constexpr int kLcpBodyGrain = 64;
 // and the products' ordinary give and take) before it is solved again
 // without the velocity products (SolveWithinEnergy).
 constexpr double kEnergyGuard = 1e-6;
+// m/s: the tolerance of lemke's PGS fallback at most (LcpMethod::Solve)
+constexpr double kLemkeFallbackTolerance = 1e-6;
 
 // `velocities`: the rows act on velocities (the energy guard applies), not
 // on the split impulse's pseudo-velocities.
@@ -73,6 +75,7 @@ void LcpMethod::CorrectPositions(World& world, const ContactSet& contacts, const
   options.iterations = params_.iterations;
   options.tolerance = 1e-9;  // m
   options.runner = &runner;
+  options.measure_complementarity = false;
   split_pgs_.Solve(split_rows_, bodies_, options);
   subspace_.Solve(split_rows_, bodies_, SubspaceOptionsOf(params_, false));
   auto& bodies = world.bodies();
@@ -123,7 +126,11 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   // one warm-started sweep a step lets an over-relaxed mode grow from step
   // to step up to the tolerance; two contract it (pgs.h, "Warm-started solves")
   options.min_iterations = std::min(2, params_.iterations);
-  options.tolerance = params_.tolerance;
+  // lemke is chosen for exact answers: the steps it fails (degenerate
+  // friction) are swept as far as the old default asked, which keeps its
+  // runs where they were (docs/methods/lcp.md, "Sweeps and tolerance")
+  options.tolerance = params_.solver == "lemke" ? std::min(params_.tolerance, kLemkeFallbackTolerance)
+                                                : params_.tolerance;
   GroupNormalBlocks(contacts_, &Contact::normal, &pairs_);
   normal_blocks_.clear();
   for (const NormalBlock& pair : pairs_) {
@@ -135,6 +142,9 @@ void LcpMethod::Solve(const World& world, std::vector<SolverBody>& bodies, Paral
   options.normal_blocks = &normal_blocks_;
   options.runner = &runner;
   options.ordered_from = static_cast<int>(3 * contacts_.size());
+  // nothing in a step reads it, and the pass cost 3% of a pyramid step
+  // (BENCHMARKS.md, "### lcp")
+  options.measure_complementarity = false;
   report_ = pgs_.Solve(rows_, bodies, options);
   SubspaceOptions direct = SubspaceOptionsOf(params_, true);
   // the components of contacts on jointed bodies too, where the sweeps

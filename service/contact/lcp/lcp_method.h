@@ -44,7 +44,8 @@
 //
 // StepStats: iterations = PGS sweeps or Lemke pivots; residual = the
 // solver's residual (pgs: m/s, last sweep's largest row-velocity change);
-// contacts; max_penetration. last_report() adds the complementarity error.
+// contacts; max_penetration. last_report() adds lemke's complementarity
+// error (pgs's solves skip that measure: PgsOptions::measure_complementarity).
 // Contact values are impulses (N s).
 #pragma once
 

@@ -11,7 +11,7 @@ const ParamTable<LcpParams>& LcpParamTable() {
       ChoiceParam("solver", &P::solver, {"pgs", "lemke"}, "projected Gauss-Seidel or Lemke's pivoting method"),
       IntParam("iterations", &P::iterations, 1, 100000, "", "pgs: sweeps per step at most"),
       DoubleParam("tolerance", &P::tolerance, 0.0, 1.0, "m/s",
-                  "pgs stops when no row velocity changes more in a sweep"),
+                  "pgs stops when no row velocity changes more in a sweep (lemke's fallback: at most 1e-6)"),
       BoolParam("warm_start", &P::warm_start,
                 "pgs: start from last step's impulses (matched by feature id, else by place)"),
       DoubleParam("restitution_threshold", &P::restitution_threshold, 0.0, 10.0, "m/s",

@@ -35,7 +35,11 @@ void PgsSolver::PrepareRow(const ConstraintRow& c, const std::vector<SolverBody>
   r.ma_ang = A ? Vec3(A->inv_inertia * r.ja_ang) : Vec3::Zero();
   r.mb_lin = B ? Vec3(B->inv_mass * r.jb_lin) : Vec3::Zero();
   r.mb_ang = B ? Vec3(B->inv_inertia * r.jb_ang) : Vec3::Zero();
-  r.diag = c.Diagonal(bodies);
+  // J M^-1 J^T from the M^-1 J^T above, the same sums as ConstraintRow::Diagonal
+  double diag = 0.0;
+  if (A) diag += A->inv_mass * r.ja_lin.squaredNorm() + r.ja_ang.dot(r.ma_ang);
+  if (B) diag += B->inv_mass * r.jb_lin.squaredNorm() + r.jb_ang.dot(r.mb_ang);
+  r.diag = diag;
   r.cfm = c.cfm;
   r.inv_diag = r.diag + r.cfm > 0.0 ? 1.0 / (r.diag + r.cfm) : 0.0;
   r.rhs = c.rhs;
@@ -236,7 +240,7 @@ void PgsSolver::SweepInOrder(const PgsOptions& options, std::vector<ConstraintRo
   // the impulses go to the bodies through ConstraintRow::Apply, so dP and dL sum
   for (const Row& r : rows_) rows[r.source].lambda = r.lambda;
   for (ConstraintRow& row : rows) row.Apply(row.lambda, bodies);
-  report->complementarity = ComplementarityError(rows, bodies);
+  if (options.measure_complementarity) report->complementarity = ComplementarityError(rows, bodies);
 }
 
 SolveReport PgsSolver::Solve(std::vector<ConstraintRow>& rows, std::vector<SolverBody>& bodies,

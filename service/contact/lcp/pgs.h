@@ -59,7 +59,8 @@
 //                   the last sweep (|change of lambda_k| A_kk); the solve
 //                   stops when it falls below the tolerance;
 //   complementarity J, ComplementarityError of the rows after the solve
-//                   (row_complementarity.h): zero exactly at a solution.
+//                   (row_complementarity.h): zero exactly at a solution;
+//                   0 when PgsOptions::measure_complementarity is off.
 //
 // Performance: rows are copied once per solve into a flat array holding
 // J and M^-1 J^T (so the sweep does no 3x3 products) and the reciprocal of
@@ -109,6 +110,9 @@ struct PgsOptions {
   // with a runner: rows from this index on (joints'), and the rows on their
   // bodies, keep the caller's order after the colours (row_schedule.h); -1: none
   int ordered_from = -1;
+  // SolveReport::complementarity, a pass over every row after the solve;
+  // false leaves it 0 (a caller that does not read it)
+  bool measure_complementarity = true;
 };
 
 class PgsSolver {

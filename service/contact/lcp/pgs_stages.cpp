@@ -63,7 +63,7 @@ void PgsSolver::SweepColoured(const PgsOptions& options, std::vector<ConstraintR
     list.AddSerial(check);
   }
   list.AddColours(apply, colours_, groups);
-  list.Add(measure, 0, n, kErrorGrain);
+  if (options.measure_complementarity) list.Add(measure, 0, n, kErrorGrain);
   options.runner->Stages(stages_);
   report->complementarity = chunk_error_.empty() ? 0.0 : *std::max_element(chunk_error_.begin(), chunk_error_.end());
 }
