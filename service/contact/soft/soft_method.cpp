@@ -36,9 +36,9 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, runner, &bodies_);
   if (FrictionPoints() != nullptr) PatchFrictionPoints(contacts_, &friction_points_);
-  // the float path (SoftWideSolver) computes the friction rows and K^-1 in
-  // float over its lanes; RunSubsteps fills them in should the step turn
-  // to the double path after all
+  // the float path (SoftWideSolver) computes the rows and K^-1 in float
+  // over its lanes; RunSubsteps fills them in should the step turn to the
+  // double path after all, or restitution need them
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
   PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
   BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);

@@ -112,7 +112,7 @@ class SoftMethod : public ContactMethod {
   SoftJointedSolve jointed_solve_;
   SoftWideSolver wide_;  // precision=float
   // this step's points and manifolds wait for the float path's prepare
-  // kernel (no friction rows, no K^-1 yet)
+  // kernel (no rows, no K^-1 yet)
   bool wide_prepare_ = false;
   SequentialImpacts impacts_;
   std::vector<std::array<double, 3>> impulses_;
