@@ -62,27 +62,44 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
   points->resize(contacts.size());
   runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
+      // the narrowphase emits a pair's points together, most with one normal
+      const bool same_frame = k > begin && contacts[k].a == contacts[k - 1].a && contacts[k].b == contacts[k - 1].b &&
+                              contacts[k].normal == contacts[k - 1].normal;
       PrepareSoftPoint(contacts[k], world, bodies, friction_points != nullptr ? &(*friction_points)[k] : nullptr,
-                       rows, &(*points)[k]);
+                       rows, same_frame ? &(*points)[k - 1] : nullptr, &(*points)[k]);
     }
   });
 }
 
 void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                      const Vec3* friction_point, bool rows, SoftPoint* out) {
+                      const Vec3* friction_point, bool rows, const SoftPoint* same_frame, SoftPoint* out) {
   const SoftBody& sa = bodies[c.a];
   const SoftBody& sb = bodies[c.b];
-  const ContactRow basis = MakeContactBasis(c, world);
   SoftPoint& p = *out;
+  if (same_frame != nullptr) {
+    // MakeContactBasis's anchors; its tangents and materials are the same
+    // functions of the same normal and bodies (taken once a manifold,
+    // MakeContactBasis cost 0.07M instructions a float pyramid step
+    // instead of 0.29M: BENCHMARKS.md, "soft: the float path")
+    p.ra = c.point - world.bodies()[c.a].x;
+    p.rb = c.point - world.bodies()[c.b].x;
+    p.n = c.normal;
+    p.t1 = same_frame->t1;
+    p.t2 = same_frame->t2;
+    p.friction = same_frame->friction;
+    p.restitution = same_frame->restitution;
+  } else {
+    const ContactRow basis = MakeContactBasis(c, world);
+    p.ra = basis.ra;
+    p.rb = basis.rb;
+    p.n = basis.n;
+    p.t1 = basis.t1;
+    p.t2 = basis.t2;
+    p.friction = basis.friction;
+    p.restitution = basis.restitution;
+  }
   p.a = c.a;
   p.b = c.b;
-  p.ra = basis.ra;
-  p.rb = basis.rb;
-  p.n = basis.n;
-  p.t1 = basis.t1;
-  p.t2 = basis.t2;
-  p.friction = basis.friction;
-  p.restitution = basis.restitution;
   if (rows) {
     SetNormalRow(sa, sb, &p);
     // where the friction acts: the contact point, or one of the patch's (patch_torsion.h)

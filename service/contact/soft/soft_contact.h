@@ -90,9 +90,10 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
                        std::vector<SoftPoint>* points, bool rows = true);
 // One of them, into *out (every field written; without rows their
 // Jacobians and responses are left as they were); friction_point null: at
-// c.point.
+// c.point; `same_frame`, when given, a point of the same pair with the same
+// normal, whose tangents and materials *out takes.
 void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                      const Vec3* friction_point, bool rows, SoftPoint* out);
+                      const Vec3* friction_point, bool rows, const SoftPoint* same_frame, SoftPoint* out);
 // Where point k's friction acts, from A's and B's centres of mass at the
 // step's start: its anchors, or friction_points[k] (patch_torsion.h).
 void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,

@@ -64,8 +64,8 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // (docs/methods/soft.md, "Heavy on light")
   direct.energy_guard = false;
   ratio_solve_.Select(direct, bodies_, points_);
-  const bool wide = params_.precision == "float" && SoftWideSolver::Applies(world, ratio_solve_.active());
-  if (wide_prepare_ && !wide) {
+  const bool float_path = params_.precision == "float" && SoftWideSolver::Applies(world, ratio_solve_.active());
+  if (wide_prepare_ && !float_path) {
     // the double path's rows, as Prepare makes them for precision=double
     PrepareSoftRows(bodies_, FrictionPoints(), runner, &points_);
     InvertSoftManifolds(points_, runner, &manifolds_);
@@ -78,7 +78,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   SoftPass solve;
   solve.inv_h = 1.0 / h;
   solve.max_push_velocity = params_.max_push_velocity;
-  if (wide) {
+  if (float_path) {
     SoftWideStep wide{h, params_.substeps, params_.relax_iterations, solve, 0};
     if (params_.float_lanes != "widest") wide.lanes = std::stoi(params_.float_lanes);
     wide.friction_points = FrictionPoints();
