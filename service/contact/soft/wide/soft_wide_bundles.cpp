@@ -69,7 +69,7 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   // point by point, the step takes the double path (soft_wide_solver.h)
   put(kFriction, p0.friction);
   put(kBiasRate, p0.soft.bias_rate), put(kMassScale, p0.soft.mass_scale), put(kImpulseScale, p0.soft.impulse_scale);
-  ClearSlots(bundle, lane, m.count);
+  if (m.count < slots_[bundle]) ClearSlots(bundle, lane, m.count);
   for (int s = 0; s < m.count; ++s) {
     const SoftPoint& p = points[m.first + s];
     points_[static_cast<size_t>(index) * kSlots + s] = m.first + s;
