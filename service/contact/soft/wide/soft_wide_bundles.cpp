@@ -141,12 +141,15 @@ void WideBundles::ClearLane(int bundle, int lane) {
 
 template <class Read>
 void WideBundles::ForEachPoint(const Read& read) const {
-  for (size_t entry = 0; entry < points_.size(); ++entry) {
-    const int k = points_[entry];
-    if (k < 0) continue;
-    const size_t index = entry / wide::kSlots;
-    const size_t bundle = index / width_, lane = index % width_;
-    read(k, static_cast<int>(entry % wide::kSlots), Aligned() + offsets_[bundle] + lane);
+  const float* data = Aligned();
+  for (size_t bundle = 0; bundle < slots_.size(); ++bundle) {
+    const float* base = data + offsets_[bundle];
+    const int* entry = &points_[bundle * width_ * wide::kSlots];
+    for (int lane = 0; lane < width_; ++lane, entry += wide::kSlots) {
+      for (int s = 0; s < slots_[bundle]; ++s) {
+        if (entry[s] >= 0) read(entry[s], s, base + lane);
+      }
+    }
   }
 }
 
