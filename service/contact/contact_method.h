@@ -47,6 +47,16 @@ class ContactMethod {
   // Advances the world by world.dt and leaves the step's contacts in
   // `contacts` with their values.
   virtual StepStats Step(World& world, CollisionDetector& detector, ContactSet* contacts) = 0;
+  // Whether Step must fill in the contacts' values and end-of-step depths
+  // and StepStats::max_penetration (the contact report). On by default:
+  // the server's CONTACTS channel, its sensors and status read them, and
+  // island sleep keeps a sleeping body's contacts as reported. A caller
+  // that reads none of it (the scene bench) turns it off; a method may then
+  // leave `contacts` as detected, each pair's points without values and
+  // max_penetration 0, which is what island sleep's islands read
+  // (island_sleep.h). The step itself is the same either way.
+  void RequestContactReport(bool on) { contact_report_ = on; }
+  bool contact_report() const { return contact_report_; }
   // Drops warm-start and other caches (on a switch, reset or scene load).
   virtual void ResetCaches() {}
   // The caches an exact continuation needs (warm starts, friction anchors),
@@ -59,6 +69,9 @@ class ContactMethod {
     return Status::InvalidArgument(std::string("contact method ") + Name() + " keeps no state, got " +
                                    std::to_string(bytes.size()) + " bytes");
   }
+
+ private:
+  bool contact_report_ = true;
 };
 
 // Known method names, in a stable order.

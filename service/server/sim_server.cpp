@@ -111,6 +111,10 @@ void SimServer::StartOver() {
 
 void SimServer::SimulateStep() {
   if (arm_) arm_->BeforeStep(&world_);
+  // the server reads the contact report after any step: the CONTACTS
+  // channel when due, the sensors between steps, the status's count, and
+  // the contacts island sleep keeps while their bodies sleep
+  method_->RequestContactReport(true);
   last_stats_ = sleep_.Step(world_, *method_, detector_, &contacts_);
   RestoreStandingActuators();
   steps_.ReportRewindProgress(world_.step);

@@ -1,7 +1,6 @@
 // Tests of the float path's prepare kernel (soft_wide_prepare_impl.h): the
 // rows, effective masses and K^-1 it computes in float over the lanes
-// agree with the double path's (PrepareSoftPoint's formulas,
-// PrepareSoftFrictionRows, InvertNormalBlock) to float's round-off, take
+// agree with the double path's (PrepareSoftRows, InvertNormalBlock) to float's round-off, take
 // the block solve where the double path does and K is well conditioned,
 // and come out the same bit for bit at every width.
 #include <gtest/gtest.h>
@@ -81,19 +80,13 @@ Scene MakeScene(int repeats) {
         s.manifolds.push_back(SoftManifold{static_cast<int>(s.points.size()), static_cast<int>(shape.uv.size()),
                                            false, Eigen::Matrix4d::Zero()});
         for (const auto& [u, v] : shape.uv) {
-          SoftPoint p;  // its friction rows: PrepareSoftFrictionRows below
+          SoftPoint p;  // its rows: PrepareSoftRows below
           p.ra_t1 = p.ra_t2 = p.rb_t1 = p.rb_t2 = Vec3::Zero();
           p.ia_t1 = p.ia_t2 = p.ib_t1 = p.ib_t2 = Vec3::Zero();
           p.a = a, p.b = a + 1;
           p.n = n, p.t1 = t1, p.t2 = t2;
           const Vec3 point = centre + u * t1 + v * t2;
           p.ra = point - ca, p.rb = point - cb;
-          const SoftBody& A = s.bodies[a];
-          const SoftBody& B = s.bodies[a + 1];
-          p.ra_n = p.ra.cross(n), p.rb_n = p.rb.cross(n);
-          p.ia_n = A.inv_inertia * p.ra_n, p.ib_n = B.inv_inertia * p.rb_n;
-          const double k = A.inv_mass + B.inv_mass + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n);
-          p.mass_n = k > 0.0 ? 1.0 / k : 0.0;
           s.points.push_back(p);
         }
       }
@@ -148,7 +141,7 @@ void ExpectNear3(const Vec3& expected, const float* base, int field, int width, 
 TEST(SoftWidePrepareTest, RowsAndInverseMatchTheDoublePath) {
   Scene scene = MakeScene(3);
   ParallelRunner runner(1);
-  PrepareSoftFrictionRows(scene.bodies, nullptr, runner, &scene.points);
+  PrepareSoftRows(scene.bodies, nullptr, runner, &scene.points);
   std::vector<SoftManifold> reference = scene.manifolds;
   InvertSoftManifolds(scene.points, runner, &reference);
   for (const wide::WideKernels* kernels : Widths()) {

@@ -60,7 +60,7 @@ TEST(SoftFloatDeterminismTest, FloatPathAnswersInItsOwnPrecision) {
 // Verifies that a world the float path hands to the double path (here
 // every point heavy-on-light: direct_mass_ratio 1) steps bit for bit as
 // under precision=double, though the float path's preparation leaves the
-// friction rows and K^-1 to its prepare kernel until it knows the path.
+// rows and K^-1 to its prepare kernel until it knows the path.
 TEST(SoftFloatDeterminismTest, HeavyOnLightWorldStepsAsUnderTheDoublePath) {
   const testing_util::SceneRun single{
       "box_pyramid.pbtxt", "soft", {{"precision", "float"}, {"direct_mass_ratio", "1"}}, 12, 1};

@@ -43,11 +43,18 @@ void SetFrictionRows(const Vec3& fa, const Vec3& fb, const SoftBody& sa, const S
   p->k_t12 = p->ra_t1.dot(p->ia_t2) + p->rb_t1.dot(p->ib_t2);
 }
 
+// The normal row's Jacobians, responses and effective mass.
+void SetNormalRow(const SoftBody& sa, const SoftBody& sb, SoftPoint* p) {
+  p->ra_n = p->ra.cross(p->n), p->rb_n = p->rb.cross(p->n);
+  p->ia_n = sa.inv_inertia * p->ra_n, p->ib_n = sb.inv_inertia * p->rb_n;
+  p->mass_n = MassOf(sa.inv_mass + sb.inv_mass + p->ra_n.dot(p->ia_n) + p->rb_n.dot(p->ib_n));
+}
+
 }  // namespace
 
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
-                       std::vector<SoftPoint>* points, bool friction_rows) {
+                       std::vector<SoftPoint>* points, bool rows) {
   // each point made over last step's in its slot: a point returned and
   // copied into its slot, or a default one made first, cost 0.25M and
   // 0.18M instructions more a float pyramid step (BENCHMARKS.md, "soft:
@@ -55,38 +62,52 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
   points->resize(contacts.size());
   runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
+      // the narrowphase emits a pair's points together, most with one normal
+      const bool same_frame = k > begin && contacts[k].a == contacts[k - 1].a && contacts[k].b == contacts[k - 1].b &&
+                              contacts[k].normal == contacts[k - 1].normal;
       PrepareSoftPoint(contacts[k], world, bodies, friction_points != nullptr ? &(*friction_points)[k] : nullptr,
-                       friction_rows, &(*points)[k]);
+                       rows, same_frame ? &(*points)[k - 1] : nullptr, &(*points)[k]);
     }
   });
 }
 
 void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                      const Vec3* friction_point, bool friction_rows, SoftPoint* out) {
+                      const Vec3* friction_point, bool rows, const SoftPoint* same_frame, SoftPoint* out) {
   const SoftBody& sa = bodies[c.a];
   const SoftBody& sb = bodies[c.b];
-  const ContactRow basis = MakeContactBasis(c, world);
   SoftPoint& p = *out;
+  if (same_frame != nullptr) {
+    // MakeContactBasis's anchors; its tangents and materials are the same
+    // functions of the same normal and bodies (taken once a manifold,
+    // MakeContactBasis cost 0.07M instructions a float pyramid step
+    // instead of 0.29M: BENCHMARKS.md, "soft: the float path")
+    p.ra = c.point - world.bodies()[c.a].x;
+    p.rb = c.point - world.bodies()[c.b].x;
+    p.n = c.normal;
+    p.t1 = same_frame->t1;
+    p.t2 = same_frame->t2;
+    p.friction = same_frame->friction;
+    p.restitution = same_frame->restitution;
+  } else {
+    const ContactRow basis = MakeContactBasis(c, world);
+    p.ra = basis.ra;
+    p.rb = basis.rb;
+    p.n = basis.n;
+    p.t1 = basis.t1;
+    p.t2 = basis.t2;
+    p.friction = basis.friction;
+    p.restitution = basis.restitution;
+  }
   p.a = c.a;
   p.b = c.b;
-  p.ra = basis.ra;
-  p.rb = basis.rb;
-  p.n = basis.n;
-  p.t1 = basis.t1;
-  p.t2 = basis.t2;
-  p.friction = basis.friction;
-  p.restitution = basis.restitution;
-  p.ra_n = p.ra.cross(p.n), p.rb_n = p.rb.cross(p.n);
-  p.ia_n = sa.inv_inertia * p.ra_n, p.ib_n = sb.inv_inertia * p.rb_n;
-  const double k_lin = sa.inv_mass + sb.inv_mass;
-  p.mass_n = MassOf(k_lin + p.ra_n.dot(p.ia_n) + p.rb_n.dot(p.ib_n));
-  if (friction_rows) {
+  if (rows) {
+    SetNormalRow(sa, sb, &p);
     // where the friction acts: the contact point, or one of the patch's (patch_torsion.h)
     const Vec3 fa = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.a].x) : p.ra;
     const Vec3 fb = friction_point != nullptr ? Vec3(*friction_point - world.bodies()[c.b].x) : p.rb;
     SetFrictionRows(fa, fb, sa, sb, &p);
   } else {
-    p.mass_t1 = p.mass_t2 = p.k_t12 = 0.0;
+    p.mass_n = p.mass_t1 = p.mass_t2 = p.k_t12 = 0.0;
   }
   // the step's impulses start from nothing (the warm start sets lambda
   // after) and its spring is set before the sub-steps
@@ -94,8 +115,7 @@ void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<So
   p.max_push = p.total_n = p.total_t1 = p.total_t2 = 0.0;
   p.soft = Softness();
   p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
-  const double vn0 = p.VelocityAlong(p.n, p.ra_n, p.rb_n, sa, sb);
-  p.impact_speed = ImpactSpeed(p, world, vn0, -c.depth);
+  p.impact_speed = ImpactSpeed(p, world, p.NormalVelocity(sa, sb), -c.depth);
 }
 
 void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,
@@ -108,11 +128,13 @@ void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* fricti
   *fb = (*friction_points)[k] - bodies[p.b].x0;
 }
 
-void PrepareSoftFrictionRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
-                             ParallelRunner& runner, std::vector<SoftPoint>* points) {
+void PrepareSoftRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
+                     ParallelRunner& runner, std::vector<SoftPoint>* points, bool friction_rows) {
   runner.For(static_cast<int>(points->size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       SoftPoint& p = (*points)[k];
+      SetNormalRow(bodies[p.a], bodies[p.b], &p);
+      if (!friction_rows) continue;
       Vec3 fa, fb;
       SoftFrictionArms(p, k, friction_points, bodies, &fa, &fb);
       SetFrictionRows(fa, fb, bodies[p.a], bodies[p.b], &p);

@@ -64,6 +64,11 @@ struct SoftPoint {
   double VelocityAlong(const Vec3& d, const Vec3& ja, const Vec3& jb, const SoftBody& A, const SoftBody& B) const {
     return d.dot(B.v - A.v) + jb.dot(B.w) - ja.dot(A.w);
   }
+  // the same along n, from the anchors (the normal row's Jacobians need
+  // not be set; the same value as from them)
+  double NormalVelocity(const SoftBody& A, const SoftBody& B) const {
+    return VelocityAlong(n, ra.cross(n), rb.cross(n), A, B);
+  }
   // +impulse * d on B at r_B, -impulse * d on A at r_A (a static or
   // kinematic body is never written: many threads may hold it at once,
   // block_colours.h)
@@ -75,26 +80,29 @@ struct SoftPoint {
 // The points of `contacts` at the bodies' state at the step's start, their
 // friction rows acting at `friction_points` (patch_torsion.h; null: at the
 // contact points). On the world's threads (each point is its own). Without
-// `friction_rows` the friction rows' Jacobians, responses and masses are
-// left unset: the float path computes them in float over its lanes
-// (soft_wide_kernels.h), and PrepareSoftFrictionRows fills them in when
-// the step turns to the double path after all.
+// `rows` the rows' Jacobians, responses and effective masses are left
+// unset (the masses 0): the float path computes them in float over its
+// lanes (soft_wide_kernels.h), and PrepareSoftRows fills them in where the
+// double state needs them after all (the step turns to the double path,
+// restitution).
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
                        const std::vector<Vec3>* friction_points, ParallelRunner& runner,
-                       std::vector<SoftPoint>* points, bool friction_rows = true);
-// One of them, into *out (every field written; without friction_rows
-// their Jacobians and responses are left as they were); friction_point
-// null: at c.point.
+                       std::vector<SoftPoint>* points, bool rows = true);
+// One of them, into *out (every field written; without rows their
+// Jacobians and responses are left as they were); friction_point null: at
+// c.point; `same_frame`, when given, a point of the same pair with the same
+// normal, whose tangents and materials *out takes.
 void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                      const Vec3* friction_point, bool friction_rows, SoftPoint* out);
+                      const Vec3* friction_point, bool rows, const SoftPoint* same_frame, SoftPoint* out);
 // Where point k's friction acts, from A's and B's centres of mass at the
 // step's start: its anchors, or friction_points[k] (patch_torsion.h).
 void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,
                       const std::vector<SoftBody>& bodies, Vec3* fa, Vec3* fb);
-// The friction rows of points prepared without them, as PrepareSoftPoints
-// computes them.
-void PrepareSoftFrictionRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
-                             ParallelRunner& runner, std::vector<SoftPoint>* points);
+// The rows of points prepared without them, as PrepareSoftPoints computes
+// them from `bodies`' inverse masses and inertias at the step's start: the
+// normal row's, and with `friction_rows` the friction rows'.
+void PrepareSoftRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
+                     ParallelRunner& runner, std::vector<SoftPoint>* points, bool friction_rows = true);
 
 // Each point's spring for sub-steps of h: `hertz` between two movable
 // bodies, twice it against a static or kinematic one, which carries no

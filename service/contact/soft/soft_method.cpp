@@ -36,9 +36,9 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   SoftJoints::MarkJointed(world, &in_contact_);
   LoadSoftBodies(world, in_contact_, runner, &bodies_);
   if (FrictionPoints() != nullptr) PatchFrictionPoints(contacts_, &friction_points_);
-  // the float path (SoftWideSolver) computes the friction rows and K^-1 in
-  // float over its lanes; RunSubsteps fills them in should the step turn
-  // to the double path after all
+  // the float path (SoftWideSolver) computes the rows and K^-1 in float
+  // over its lanes; RunSubsteps fills them in should the step turn to the
+  // double path after all, or restitution need them
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
   PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
   BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
@@ -108,8 +108,16 @@ double SoftMethod::RestitutionThreshold(const World& world) const {
   return std::max(params_.restitution_threshold, 2.0 * world.gravity.norm() * world.dt);
 }
 
-StepStats SoftMethod::Report(ParallelRunner& runner, ContactSet* contacts_out) const {
+StepStats SoftMethod::Report(ParallelRunner& runner, ContactSet* contacts_out) {
   StepStats stats;
+  stats.contacts = static_cast<int>(contacts_.size());
+  stats.iterations = params_.substeps * (1 + params_.relax_iterations);
+  stats.substeps = params_.substeps;
+  if (!contact_report()) {
+    // the next step's detection clears contacts_ before it fills it
+    contacts_out->swap(contacts_);
+    return stats;
+  }
   contacts_out->resize(contacts_.size());
   // each contact writes its own slot; the deepest is taken after, in order
   runner.For(static_cast<int>(contacts_.size()), kContactGrain, [&](int begin, int end, int) {
@@ -127,9 +135,6 @@ StepStats SoftMethod::Report(ParallelRunner& runner, ContactSet* contacts_out) c
     }
   });
   for (const Contact& c : *contacts_out) stats.max_penetration = std::max(stats.max_penetration, c.depth);
-  stats.contacts = static_cast<int>(contacts_out->size());
-  stats.iterations = params_.substeps * (1 + params_.relax_iterations);
-  stats.substeps = params_.substeps;
   return stats;
 }
 

@@ -84,8 +84,10 @@ class SoftMethod : public ContactMethod {
   // Steps 2 to 3 above as the stages of one ParallelRunner::Stages call
   // (soft_stages.cpp).
   void RunSubsteps(World& world, ParallelRunner& runner);
-  // The contacts with their step's impulses and end depths, on the threads.
-  StepStats Report(ParallelRunner& runner, ContactSet* contacts) const;
+  // The contacts with their step's impulses and end depths, on the threads;
+  // without a request for the report (contact_method.h), the contacts as
+  // detected, handed over without a copy.
+  StepStats Report(ParallelRunner& runner, ContactSet* contacts);
   // where the points' friction acts with patch_torsion (patch_torsion.h);
   // null: at the points
   const std::vector<Vec3>* FrictionPoints() const;
@@ -110,7 +112,7 @@ class SoftMethod : public ContactMethod {
   SoftJointedSolve jointed_solve_;
   SoftWideSolver wide_;  // precision=float
   // this step's points and manifolds wait for the float path's prepare
-  // kernel (no friction rows, no K^-1 yet)
+  // kernel (no rows, no K^-1 yet)
   bool wide_prepare_ = false;
   SequentialImpacts impacts_;
   std::vector<std::array<double, 3>> impulses_;

@@ -6,10 +6,13 @@
 
 namespace contactsim {
 
-void SoftRatioSolve::Prepare(const SubspaceOptions& options, const std::vector<SoftBody>& bodies,
-                             std::vector<SoftPoint>& points) {
+void SoftRatioSolve::Select(const SubspaceOptions& options, const std::vector<SoftBody>& bodies,
+                            const std::vector<SoftPoint>& points) {
   options_ = options;
   selected_ = SelectMassRatioPoints(bodies, points, options.mass_ratio, &load_mass_);
+}
+
+void SoftRatioSolve::Stiffen(const std::vector<SoftBody>& bodies, std::vector<SoftPoint>& points) {
   if (selected_.empty()) return;
   for (int k : selected_) {
     SoftPoint& p = points[k];

@@ -44,10 +44,14 @@ void ReadSoftPointRows(const ConstraintRow rows[3], SoftPoint& p);
 
 class SoftRatioSolve {
  public:
-  // Finds the components of `points` that reach `options.mass_ratio` and
-  // stiffens their points' springs (after SetSoftPointSprings). `bodies` at
-  // the step's start give the masses and the inverse inertias of the solve.
-  void Prepare(const SubspaceOptions& options, const std::vector<SoftBody>& bodies, std::vector<SoftPoint>& points);
+  // Finds the components of `points` that reach `options.mass_ratio` (from
+  // the points' bodies only; their rows may come later: soft_contact.h).
+  void Select(const SubspaceOptions& options, const std::vector<SoftBody>& bodies,
+              const std::vector<SoftPoint>& points);
+  // Stiffens the selected points' springs (after SetSoftPointSprings; reads
+  // their normal rows' masses). `bodies` at the step's start give the
+  // masses and the inverse inertias of the solve.
+  void Stiffen(const std::vector<SoftBody>& bodies, std::vector<SoftPoint>& points);
   bool active() const { return !selected_.empty(); }
   // The selected points (indices into Prepare's `points`), ascending.
   const std::vector<int>& selected() const { return selected_; }

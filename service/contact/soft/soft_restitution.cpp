@@ -29,16 +29,19 @@ void AddStartVelocities(const World& world, const std::vector<SoftBody>& bodies,
 
 bool SoftPointStruck(double threshold, const SoftPoint& p, const std::vector<SoftBody>& bodies) {
   if (p.impact_speed < -threshold) return true;
-  return p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]) > threshold;
+  return p.NormalVelocity(bodies[p.a], bodies[p.b]) > threshold;
 }
 
 bool SoftStepNeedsRestitution(double threshold, const std::vector<SoftPoint>& points,
                               const std::vector<SoftBody>& bodies) {
   for (const SoftPoint& p : points) {
-    if (p.total_n <= 0.0 || p.mass_n <= 0.0) continue;
+    // no body to move: K = 1/m_A + 1/m_B + ... = 0, the rows' mass_n 0
+    // (read from the bodies, as the float path prepares the points without
+    // their rows: soft_contact.h)
+    if (p.total_n <= 0.0 || bodies[p.a].inv_mass + bodies[p.b].inv_mass <= 0.0) continue;
     if (p.restitution != 0.0) {
       if (p.impact_speed < -threshold) return true;
-      const double vn = p.VelocityAlong(p.n, p.ra_n, p.rb_n, bodies[p.a], bodies[p.b]);
+      const double vn = p.NormalVelocity(bodies[p.a], bodies[p.b]);
       if (std::abs(vn) > kRestShare * threshold) return true;
     } else if (SoftPointStruck(threshold, p, bodies)) {
       return true;

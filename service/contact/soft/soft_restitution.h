@@ -52,7 +52,8 @@ bool SoftPointStruck(double threshold, const SoftPoint& p, const std::vector<Sof
 // Whether the step's points need the restitution stage at all (above):
 // some point that pushed met faster than `threshold` or leaves moving along
 // its normal faster than kRestShare of it (without restitution: parting
-// faster than it).
+// faster than it). From the points' anchors, not their rows, which the
+// float path's points come without (soft_contact.h).
 bool SoftStepNeedsRestitution(double threshold, const std::vector<SoftPoint>& points,
                               const std::vector<SoftBody>& bodies);
 

@@ -63,7 +63,14 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // it the 1:1000 bridge of MassRatioBridgeTest slid off its supports
   // (docs/methods/soft.md, "Heavy on light")
   direct.energy_guard = false;
-  ratio_solve_.Prepare(direct, bodies_, points_);
+  ratio_solve_.Select(direct, bodies_, points_);
+  const bool float_path = params_.precision == "float" && SoftWideSolver::Applies(world, ratio_solve_.active());
+  if (wide_prepare_ && !float_path) {
+    // the double path's rows, as Prepare makes them for precision=double
+    PrepareSoftRows(bodies_, FrictionPoints(), runner, &points_);
+    InvertSoftManifolds(points_, runner, &manifolds_);
+  }
+  ratio_solve_.Stiffen(bodies_, points_);
   jointed_solve_.Prepare(world, direct, bodies_, points_);
   body_seen_.resize(bodies_.size());
   OrderBodiesFromTheTop(manifolds_, points_, &body_seen_, &body_order_);
@@ -71,22 +78,20 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   SoftPass solve;
   solve.inv_h = 1.0 / h;
   solve.max_push_velocity = params_.max_push_velocity;
-  if (params_.precision == "float" && SoftWideSolver::Applies(world, ratio_solve_.active())) {
+  if (float_path) {
     SoftWideStep wide{h, params_.substeps, params_.relax_iterations, solve, 0};
     if (params_.float_lanes != "widest") wide.lanes = std::stoi(params_.float_lanes);
     wide.friction_points = FrictionPoints();
     wide_.Run(wide, manifolds_, colours_, runner, world, points_, bodies_);
     const double threshold = RestitutionThreshold(world);
     if (!SoftStepNeedsRestitution(threshold, points_, bodies_)) return;
-    // restitution's friction rows are the float path's (soft_wide_solver.h)
+    // restitution's normal rows in double as the double path's (from the
+    // inverse inertias at the step's start, which the float path leaves in
+    // bodies_), its friction rows the float path's (soft_wide_solver.h)
+    PrepareSoftRows(bodies_, FrictionPoints(), runner, &points_, /*friction_rows=*/false);
     wide_.UnpackFrictionRows(points_);
     RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
     return;
-  }
-  if (wide_prepare_) {
-    // the double path's rows, as Prepare makes them for precision=double
-    PrepareSoftFrictionRows(bodies_, FrictionPoints(), runner, &points_);
-    InvertSoftManifolds(points_, runner, &manifolds_);
   }
   SoftPass relax = solve;
   relax.use_bias = false;

@@ -107,7 +107,6 @@ void StoreWideBodies(const WideBodies& bodies, ParallelRunner& runner, std::vect
       s.dp = Eigen::Map<const Vec3f>(f.dp).cast<double>();
       const Quat dq = m.dq.cast<double>();
       s.dR = dq.toRotationMatrix();
-      s.inv_inertia = m.inv_inertia.cast<double>();
       RigidBody& b = world.bodies()[i];
       b.x = s.x0 + s.dp;
       b.q = (dq * s.q0).normalized();

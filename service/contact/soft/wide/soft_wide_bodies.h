@@ -53,8 +53,10 @@ void IntegrateWideVelocities(float h, int begin, int end, WideBodies& bodies);
 // IntegrateSoftPositions moves them: the turn q <- exp(h w) q, and a
 // dynamic anisotropic body's angular momentum I w kept across it.
 void IntegrateWidePositions(float h, int begin, int end, WideBodies& bodies);
-// Writes the step back: the soft bodies' v, w, dp, dR and inverse inertia,
-// and the world's poses x = x0 + dp, q = dq q0 (on the world's threads).
+// Writes the step back: the soft bodies' v, w, dp and dR, and the world's
+// poses x = x0 + dp, q = dq q0 (on the world's threads). The soft bodies'
+// inverse inertias stay at the step's start, from which restitution's
+// normal rows are made (soft_stages.cpp).
 void StoreWideBodies(const WideBodies& bodies, ParallelRunner& runner, std::vector<SoftBody>& soft, World& world);
 
 }  // namespace contactsim

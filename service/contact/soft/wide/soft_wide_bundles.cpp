@@ -64,15 +64,12 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   put3(kN, p0.n), put3(kT1, p0.t1), put3(kT2, p0.t2);
   put(kInvMassA, bodies[p0.a].inv_mass), put(kInvMassB, bodies[p0.b].inv_mass);
   put(kCount, m.count);  // the rows, effective masses and K^-1 are the prepare kernel's
-  // the bundle's slots past the manifold's points: no anchors, no spring, no impulse
-  for (int s = m.count; s < slots_[bundle]; ++s) {
-    for (const int field : {kRa, kRb}) put3(SlotAt(s, field), Vec3::Zero());
-    if (friction_points != nullptr) put3(SlotAt(s, kFa), Vec3::Zero()), put3(SlotAt(s, kFb), Vec3::Zero());
-    for (const int field : {kSeparation, kFriction, kBiasRate, kMassScale, kImpulseScale, kLambdaN,
-                            kLambdaT1, kLambdaT2}) {
-      put(SlotAt(s, field), 0.0);
-    }
-  }
+  // a pair's points share its materials' friction and its spring
+  // (SetSoftPointSprings); where a heavy-on-light solve would stiffen them
+  // point by point, the step takes the double path (soft_wide_solver.h)
+  put(kFriction, p0.friction);
+  put(kBiasRate, p0.soft.bias_rate), put(kMassScale, p0.soft.mass_scale), put(kImpulseScale, p0.soft.impulse_scale);
+  if (m.count < slots_[bundle]) ClearSlots(bundle, lane, m.count);
   for (int s = 0; s < m.count; ++s) {
     const SoftPoint& p = points[m.first + s];
     points_[static_cast<size_t>(index) * kSlots + s] = m.first + s;
@@ -86,9 +83,6 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
     // s_0 itself rather than s_0 - n . (r_B - r_A): in float, that difference
     // of anchors' lengths loses s_0 to their round-off (NormalTargets)
     put(at(kSeparation), p.adjusted_separation + p.n.dot(p.rb - p.ra));
-    put(at(kFriction), p.friction);
-    put(at(kBiasRate), p.soft.bias_rate), put(at(kMassScale), p.soft.mass_scale);
-    put(at(kImpulseScale), p.soft.impulse_scale);
     put(at(kLambdaN), p.lambda_n), put(at(kLambdaT1), p.lambda_t1), put(at(kLambdaT2), p.lambda_t2);
   }
 }
@@ -120,19 +114,42 @@ void WideBundles::Pack(const std::vector<SoftPoint>& points, const std::vector<S
   }
 }
 
-void WideBundles::ClearLane(int bundle, int lane) {
+void WideBundles::ClearSlots(int bundle, int lane, int from) {
+  using namespace wide;
   float* base = Aligned() + offsets_[bundle] + lane;
-  for (int field = 0; field < wide::BundleFields(slots_[bundle]); ++field) base[field * width_] = 0.0f;
+  for (int s = from; s < slots_[bundle]; ++s) {
+    for (const int field : {kRa, kRb}) {
+      for (int k = 0; k < 3; ++k) base[(SlotAt(s, field) + k) * width_] = 0.0f;
+    }
+    if (!friction_at_anchors_) {
+      for (const int field : {kFa, kFb}) {
+        for (int k = 0; k < 3; ++k) base[(SlotAt(s, field) + k) * width_] = 0.0f;
+      }
+    }
+    for (const int field : {kSeparation, kLambdaN, kLambdaT1, kLambdaT2}) base[SlotAt(s, field) * width_] = 0.0f;
+  }
+}
+
+void WideBundles::ClearLane(int bundle, int lane) {
+  // the lane's own fields up to its K^-1, which the prepare kernel writes,
+  // and its slots' (clearing every field cost 0.07M instructions a float
+  // pyramid step, BENCHMARKS.md, "soft: the float path")
+  float* base = Aligned() + offsets_[bundle] + lane;
+  for (int field = 0; field < wide::kBlock; ++field) base[field * width_] = 0.0f;
+  ClearSlots(bundle, lane, 0);
 }
 
 template <class Read>
 void WideBundles::ForEachPoint(const Read& read) const {
-  for (size_t entry = 0; entry < points_.size(); ++entry) {
-    const int k = points_[entry];
-    if (k < 0) continue;
-    const size_t index = entry / wide::kSlots;
-    const size_t bundle = index / width_, lane = index % width_;
-    read(k, static_cast<int>(entry % wide::kSlots), Aligned() + offsets_[bundle] + lane);
+  const float* data = Aligned();
+  for (size_t bundle = 0; bundle < slots_.size(); ++bundle) {
+    const float* base = data + offsets_[bundle];
+    const int* entry = &points_[bundle * width_ * wide::kSlots];
+    for (int lane = 0; lane < width_; ++lane, entry += wide::kSlots) {
+      for (int s = 0; s < slots_[bundle]; ++s) {
+        if (entry[s] >= 0) read(entry[s], s, base + lane);
+      }
+    }
   }
 }
 

@@ -46,7 +46,11 @@ class WideBundles {
   float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
   void PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m, const std::vector<SoftBody>& bodies,
                 const std::vector<Vec3>* friction_points, int bundle, int lane);
-  // A padding lane: every field zero (it reads the resting dummy body).
+  // Zeroes slots [from, slots of the bundle) of a lane: no anchors, no
+  // impulse (the prepare kernel gives them no mass: they push nothing).
+  void ClearSlots(int bundle, int lane, int from);
+  // A padding lane (it reads the resting dummy body): every field the
+  // kernels read before the prepare kernel writes it, zero.
   void ClearLane(int bundle, int lane);
 
   int width_ = 0;

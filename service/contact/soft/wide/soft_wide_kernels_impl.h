@@ -207,7 +207,7 @@ struct Lanes {
     const B u2 = Dot(t2, dv) + Dot(f.Get3(at(kRbT2)), p.wb) - Dot(f.Get3(at(kRaT2)), p.wa);
     const B l1_old = f.Get(at(kLambdaT1)), l2_old = f.Get(at(kLambdaT2));
     B l1 = l1_old, l2 = l2_old;
-    SlipStep(f.Get(at(kFriction)) * f.Get(at(kLambdaN)), u1, u2, f.Get(at(kMassT1)), f.Get(at(kMassT2)),
+    SlipStep(f.Get(kFriction) * f.Get(at(kLambdaN)), u1, u2, f.Get(at(kMassT1)), f.Get(at(kMassT2)),
              f.Get(at(kKT12)), &l1, &l2);
     f.Set(at(kLambdaT1), l1);
     f.Set(at(kLambdaT2), l2);
@@ -241,15 +241,16 @@ struct Lanes {
     const B shift = Dot(n, Sub(m.dpb, m.dpa));
     const V3 na = TurnedBack(m.dra, n), nb = TurnedBack(m.drb, n);
     const B zero(0.0f), one(1.0f), inv_h(pass.inv_h), floor(-pass.max_push_velocity);
+    const B bias_rate = f.Get(kBiasRate), mass_scale = f.Get(kMassScale), impulse_scale = f.Get(kImpulseScale);
     for (int s = 0; s < view.slots[bundle]; ++s) {
       const auto at = [s](int field) { return SlotAt(s, field); };
       const B sep = shift + Dot(nb, f.Get3(at(kRb))) - Dot(na, f.Get3(at(kRa))) + f.Get(at(kSeparation));
       // speculative: may close the gap, not pass it
       const M apart = sep > B(kTouchingGap);
       if (pass.use_bias) {
-        t->bias[s] = xsimd::select(apart, sep * inv_h, xsimd::max(f.Get(at(kBiasRate)) * sep, floor));
-        t->mass_scale[s] = xsimd::select(apart, one, f.Get(at(kMassScale)));
-        t->impulse_scale[s] = xsimd::select(apart, zero, f.Get(at(kImpulseScale)));
+        t->bias[s] = xsimd::select(apart, sep * inv_h, xsimd::max(bias_rate * sep, floor));
+        t->mass_scale[s] = xsimd::select(apart, one, mass_scale);
+        t->impulse_scale[s] = xsimd::select(apart, zero, impulse_scale);
       } else {
         // a point that pushes keeps its gap (SoftPass::hold_pushing_gaps)
         const M speculative = pass.hold_pushing_gaps ? apart && !(lambda[s] > zero) : apart;

@@ -15,9 +15,10 @@ namespace wide {
 constexpr int kSlots = 4;  // kMaxNormalBlock (normal_block.h; checked where the bundles are packed)
 constexpr int kAlign = 64;  // bytes, a cache line and the widest vector
 
-// Per lane: the pair's normal and tangents (shared by its points), inverse
-// masses, its points, whether the normal rows take the block solve and its
-// K^-1 (row-major).
+// Per lane: the pair's normal and tangents, inverse masses, friction
+// coefficient and spring (shared by its points: the materials' and the
+// bodies', SetSoftPointSprings), its points, whether the normal rows take
+// the block solve and its K^-1 (row-major).
 enum LaneField : int {
   kN = 0,
   kT1 = 3,
@@ -25,17 +26,20 @@ enum LaneField : int {
   kInvMassA = 9,
   kInvMassB = 10,
   kCount = 11,  // the manifold's points (0 in a padding lane)
-  kBlock = 12,  // 1 or 0
-  kInvK = 13,
+  kFriction = 12,
+  kBiasRate = 13,
+  kMassScale = 14,
+  kImpulseScale = 15,
+  kBlock = 16,  // 1 or 0
+  kInvK = 17,
   kLaneFields = kInvK + 16,
 };
 
 // Per slot (point): the rows' anchors, Jacobians and responses
-// (SoftPoint), effective masses, spring, accumulated impulses and totals.
+// (SoftPoint), effective masses, accumulated impulses and totals.
 // The bundles are packed with the anchors, where friction acts (kFa, kFb:
 // the patch's point, patch_torsion.h; not packed where it acts at the
-// anchors, WideView::friction_at_anchors), the spring and the
-// warm start; the prepare kernel (soft_wide_kernels.h) computes the rest
+// anchors, WideView::friction_at_anchors) and the warm start; the prepare kernel (soft_wide_kernels.h) computes the rest
 // (Jacobians, responses, effective masses, K^-1) over the lanes.
 enum SlotField : int {
   kRa = 0,
@@ -57,10 +61,6 @@ enum SlotField : int {
   kMassT1,
   kMassT2,
   kKT12,
-  kFriction,
-  kBiasRate,
-  kMassScale,
-  kImpulseScale,
   kLambdaN,
   kLambdaT1,
   kLambdaT2,

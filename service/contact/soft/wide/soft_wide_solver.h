@@ -45,7 +45,7 @@ class SoftWideSolver {
   static bool Applies(const World& world, bool heavy_on_light) { return world.joints().empty() && !heavy_on_light; }
   // The sub-steps: the world's poses and `bodies` (v, w, dp, dR) at the
   // step's end, the points' impulses and totals as the double path leaves them.
-  // The points and manifolds come without their friction rows and K^-1
+  // The points and manifolds come without their rows and K^-1
   // (PrepareSoftPoints, BuildSoftManifolds), which the prepare kernel
   // computes in the bundles.
   void Run(const SoftWideStep& step, const std::vector<SoftManifold>& manifolds, const BlockColours& colours,
