@@ -59,12 +59,26 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
                     const std::vector<SolverBody>& free, const ContactRowOptions& options, ParallelRunner& runner,
                     std::vector<Impact>* impacts) {
   impacts->resize(contacts.size());
+  const auto& bodies = world.bodies();
   runner.For(static_cast<int>(contacts.size()), kContactGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
+      // the normal velocities only (ContactRow::NormalVelocity's sums): an
+      // impact needs no tangents, which the rows' frame alone makes
+      // (ContactRows), and a contact that does not approach (PredictImpact's
+      // first test, most resting ones) no velocity after the forces
       const Contact& c = contacts[k];
-      const ContactRow basis = MakeContactBasis(c, world);
-      (*impacts)[k] = PredictImpact(c.depth, basis.NormalVelocity(before), basis.NormalVelocity(free),
-                                    basis.restitution, options);
+      const Vec3 ra = c.point - bodies[c.a].x;
+      const Vec3 rb = c.point - bodies[c.b].x;
+      const auto normal_velocity = [&](const std::vector<SolverBody>& s) {
+        return c.normal.dot(s[c.b].PointVelocity(rb) - s[c.a].PointVelocity(ra));
+      };
+      const double vn_before = normal_velocity(before);
+      if (vn_before >= -options.restitution_threshold) {
+        (*impacts)[k] = Impact();
+        continue;
+      }
+      const double restitution = CombineRestitution(bodies[c.a].material, bodies[c.b].material);
+      (*impacts)[k] = PredictImpact(c.depth, vn_before, normal_velocity(free), restitution, options);
     }
   });
 }
@@ -107,7 +121,8 @@ void ContactRows(const ContactSet& contacts, size_t k, const World& world, const
   const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
   ConstraintRow& normal = out[0];
   normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
-  const double vn_before = basis.NormalVelocity(before);
+  // the approach speed only where no impact decided the rhs
+  const double vn_before = impact.exact || impact.misses ? 0.0 : basis.NormalVelocity(before);
   if (impact.exact) {
     normal.rhs = impact.end_velocity;
   } else if (impact.misses) {
