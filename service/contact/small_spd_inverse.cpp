@@ -39,18 +39,29 @@ bool Inverse(const Eigen::Matrix4d& k, Eigen::Matrix4d* inv, double* pivots) {
     pivots[i] = l[i][i];
     a[i] = 1.0 / l[i][i];
   }
+#pragma GCC unroll 4
   for (int j = 0; j < N; ++j) {
-    // L y = e_j, subtracting each term as it comes
+    // L y = e_j, subtracting each term as it comes; y's entries above j
+    // stay 0 and subtract (signed) zeros below it, which leave them as
+    // they are, so the solve starts at j
     double y[N];
-    for (int i = 0; i < N; ++i) y[i] = i == j ? 1.0 : 0.0;
-    for (int i = 0; i < N; ++i) {
+#pragma GCC unroll 4
+    for (int i = 0; i < N; ++i) y[i] = 0.0;
+    y[j] = a[j];
+#pragma GCC unroll 4
+    for (int r = j + 1; r < N; ++r) y[r] -= y[j] * l[r][j];
+#pragma GCC unroll 4
+    for (int i = j + 1; i < N; ++i) {
       y[i] *= a[i];
+#pragma GCC unroll 4
       for (int r = i + 1; r < N; ++r) y[r] -= y[i] * l[r][i];
     }
     // L^T x = y, subtracting the sum
     double x[N];
+#pragma GCC unroll 4
     for (int i = N - 1; i >= 0; --i) {
       double b = 0.0;
+#pragma GCC unroll 4
       for (int s = i + 1; s < N; ++s) b += l[s][i] * x[s];
       x[i] = (y[i] - b) * a[i];
     }

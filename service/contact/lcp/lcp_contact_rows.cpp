@@ -1,6 +1,7 @@
 #include "service/contact/lcp/lcp_contact_rows.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "service/contact/contact_row.h"
 
@@ -85,10 +86,27 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
 
 namespace {
 
-// Contact k's basis with its friction's lever arms (patch_torsion.h).
+// Whether contact c has the pair and the normal (bit for bit) of `frame`.
+bool SameFrame(const ContactRow& frame, const Contact& c) {
+  return frame.a == c.a && frame.b == c.b && std::memcmp(frame.n.data(), c.normal.data(), sizeof(Vec3)) == 0;
+}
+
+// Contact k's basis with its friction's lever arms (patch_torsion.h). A
+// manifold's points share their pair and normal: given the last point's
+// basis `last` of the same frame, its tangents and materials are kept
+// (MakeContactBasis would make the same from the same normal and bodies)
+// and only the lever arms made.
 ContactRow FrictionBasis(const ContactSet& contacts, size_t k, const World& world,
-                         const std::vector<Vec3>* friction_points) {
-  ContactRow basis = MakeContactBasis(contacts[k], world);
+                         const std::vector<Vec3>* friction_points, const ContactRow* last = nullptr) {
+  const Contact& c = contacts[k];
+  ContactRow basis;
+  if (last != nullptr && SameFrame(*last, c)) {
+    basis = *last;
+    basis.ra = basis.fa = c.point - world.bodies()[c.a].x;
+    basis.rb = basis.fb = c.point - world.bodies()[c.b].x;
+  } else {
+    basis = MakeContactBasis(c, world);
+  }
   if (friction_points != nullptr) {
     basis.fa = (*friction_points)[k] - world.bodies()[basis.a].x;
     basis.fb = (*friction_points)[k] - world.bodies()[basis.b].x;
@@ -113,12 +131,15 @@ void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free
 
 namespace {
 
-// Contact k's three rows: normal, t1, t2, the normal at `first`.
+// Contact k's three rows: normal, t1, t2, the normal at `first`; *frame
+// holds the last contact's basis (null: none), and then contact k's.
 void ContactRows(const ContactSet& contacts, size_t k, const World& world, const std::vector<SolverBody>& before,
                  const Impact& impact, const ContactRowOptions& options, const std::vector<Vec3>* friction_points,
-                 int first, ConstraintRow* out) {
+                 int first, ConstraintRow* out, ContactRow* frame, bool* has_frame) {
   const Contact& c = contacts[k];
-  const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
+  *frame = FrictionBasis(contacts, k, world, friction_points, *has_frame ? frame : nullptr);
+  *has_frame = true;
+  const ContactRow& basis = *frame;
   ConstraintRow& normal = out[0];
   normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
   // the approach speed only where no impact decided the rhs
@@ -152,9 +173,12 @@ void WriteContactRows(const ContactSet& contacts, const World& world, const std:
                        std::vector<ConstraintRow>* rows) {
   rows->resize(3 * contacts.size());
   runner.For(static_cast<int>(contacts.size()), kContactGrain, [&](int begin, int end, int) {
+    ContactRow frame;
+    bool has_frame = false;
     for (int k = begin; k < end; ++k) {
       const int first = 3 * k;
-      ContactRows(contacts, k, world, before, impacts[k], options, friction_points, first, &(*rows)[first]);
+      ContactRows(contacts, k, world, before, impacts[k], options, friction_points, first, &(*rows)[first], &frame,
+                  &has_frame);
     }
   });
 }
