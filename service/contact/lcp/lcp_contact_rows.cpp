@@ -7,16 +7,26 @@
 
 namespace contactsim {
 
+void SetDirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const Vec3& d, ConstraintRow* row) {
+  row->a = a;
+  row->b = b;
+  // d . (v_b + w_b x rb) - d . (v_a + w_a x ra), with d . (w x r) = w . (r x d)
+  row->lin_a = -d;
+  row->ang_a = -ra.cross(d);
+  row->lin_b = d;
+  row->ang_b = rb.cross(d);
+  row->rhs = 0.0;
+  row->lo = 0.0;
+  row->hi = ConstraintRow::kInf;
+  row->normal_row = -1;
+  row->mu = 0.0;
+  row->lambda = 0.0;
+  row->cfm = 0.0;
+}
+
 ConstraintRow DirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const Vec3& d) {
   ConstraintRow row;
-  row.a = a;
-  row.b = b;
-  // d . (v_b + w_b x rb) - d . (v_a + w_a x ra), with d . (w x r) = w . (r x d)
-  row.lin_a = -d;
-  row.ang_a = -ra.cross(d);
-  row.lin_b = d;
-  row.ang_b = rb.cross(d);
-  row.lo = 0.0;
+  SetDirectionRow(a, b, ra, rb, d, &row);
   return row;
 }
 
@@ -91,26 +101,30 @@ bool SameFrame(const ContactRow& frame, const Contact& c) {
   return frame.a == c.a && frame.b == c.b && std::memcmp(frame.n.data(), c.normal.data(), sizeof(Vec3)) == 0;
 }
 
-// Contact k's basis with its friction's lever arms (patch_torsion.h). A
-// manifold's points share their pair and normal: given the last point's
-// basis `last` of the same frame, its tangents and materials are kept
-// (MakeContactBasis would make the same from the same normal and bodies)
-// and only the lever arms made.
-ContactRow FrictionBasis(const ContactSet& contacts, size_t k, const World& world,
-                         const std::vector<Vec3>* friction_points, const ContactRow* last = nullptr) {
+// *basis becomes contact k's basis with its friction's lever arms
+// (patch_torsion.h). With `reuse`, *basis holds the last contact's: a
+// manifold's points share their pair and normal, and when k's match it bit
+// for bit its tangents and materials are kept (MakeContactBasis would make
+// the same from the same normal and bodies) and only the lever arms made.
+void SetFrictionBasis(const ContactSet& contacts, size_t k, const World& world,
+                      const std::vector<Vec3>* friction_points, bool reuse, ContactRow* basis) {
   const Contact& c = contacts[k];
-  ContactRow basis;
-  if (last != nullptr && SameFrame(*last, c)) {
-    basis = *last;
-    basis.ra = basis.fa = c.point - world.bodies()[c.a].x;
-    basis.rb = basis.fb = c.point - world.bodies()[c.b].x;
+  if (reuse && SameFrame(*basis, c)) {
+    basis->ra = basis->fa = c.point - world.bodies()[c.a].x;
+    basis->rb = basis->fb = c.point - world.bodies()[c.b].x;
   } else {
-    basis = MakeContactBasis(c, world);
+    *basis = MakeContactBasis(c, world);
   }
   if (friction_points != nullptr) {
-    basis.fa = (*friction_points)[k] - world.bodies()[basis.a].x;
-    basis.fb = (*friction_points)[k] - world.bodies()[basis.b].x;
+    basis->fa = (*friction_points)[k] - world.bodies()[basis->a].x;
+    basis->fb = (*friction_points)[k] - world.bodies()[basis->b].x;
   }
+}
+
+ContactRow FrictionBasis(const ContactSet& contacts, size_t k, const World& world,
+                         const std::vector<Vec3>* friction_points) {
+  ContactRow basis;
+  SetFrictionBasis(contacts, k, world, friction_points, false, &basis);
   return basis;
 }
 
@@ -137,11 +151,11 @@ void ContactRows(const ContactSet& contacts, size_t k, const World& world, const
                  const Impact& impact, const ContactRowOptions& options, const std::vector<Vec3>* friction_points,
                  int first, ConstraintRow* out, ContactRow* frame, bool* has_frame) {
   const Contact& c = contacts[k];
-  *frame = FrictionBasis(contacts, k, world, friction_points, *has_frame ? frame : nullptr);
+  SetFrictionBasis(contacts, k, world, friction_points, *has_frame, frame);
   *has_frame = true;
   const ContactRow& basis = *frame;
   ConstraintRow& normal = out[0];
-  normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
+  SetDirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n, &normal);
   // the approach speed only where no impact decided the rhs
   const double vn_before = impact.exact || impact.misses ? 0.0 : basis.NormalVelocity(before);
   if (impact.exact) {
@@ -158,7 +172,7 @@ void ContactRows(const ContactSet& contacts, size_t k, const World& world, const
   const Vec3 tangents[2] = {basis.t1, basis.t2};
   for (int j = 0; j < 2; ++j) {
     ConstraintRow& friction = out[1 + j];
-    friction = DirectionRow(c.a, c.b, basis.fa, basis.fb, tangents[j]);
+    SetDirectionRow(c.a, c.b, basis.fa, basis.fb, tangents[j], &friction);
     friction.lo = -ConstraintRow::kInf;
     friction.normal_row = first;
     friction.mu = basis.friction;
