@@ -146,7 +146,7 @@ void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free
 namespace {
 
 // Contact k's three rows: normal, t1, t2, the normal at `first`; *frame
-// holds the last contact's basis (null: none), and then contact k's.
+// holds the last contact's basis (if *has_frame), and then contact k's.
 void ContactRows(const ContactSet& contacts, size_t k, const World& world, const std::vector<SolverBody>& before,
                  const Impact& impact, const ContactRowOptions& options, const std::vector<Vec3>* friction_points,
                  int first, ConstraintRow* out, ContactRow* frame, bool* has_frame) {
