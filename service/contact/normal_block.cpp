@@ -1,7 +1,8 @@
 #include "service/contact/normal_block.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
+
+#include "service/contact/small_spd_inverse.h"
 
 namespace contactsim {
 namespace {
@@ -27,13 +28,23 @@ bool FaceNullVector(const Vec3* points, const Vec3& t1, const Vec3& t2, Eigen::V
   return true;
 }
 
-// The inverse of a symmetric positive definite `k` when well conditioned.
-bool InvertIfWellConditioned(const Eigen::Matrix4d& k, Eigen::Matrix4d* inv) {
-  const Eigen::LLT<Eigen::Matrix4d> llt(k);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::Vector4d d = llt.matrixLLT().diagonal();
-  if (!(d.minCoeff() > 1e-5 * d.maxCoeff())) return false;
-  *inv = llt.solve(Eigen::Matrix4d::Identity());
+// The inverse of the symmetric positive definite top-left `count` x
+// `count` of `k` (its lower triangle) when well conditioned: L's diagonal
+// spreads by less than 1e5, a smaller block's padding of the identity
+// counting with pivots of 1 (small_spd_inverse.h). *inv is written only
+// then, its other rows and columns zero.
+bool InvertIfWellConditioned(const Eigen::Matrix4d& k, int count, Eigen::Matrix4d* inv) {
+  Eigen::Matrix4d result = Eigen::Matrix4d::Zero();
+  double d[kMaxNormalBlock];
+  if (!SmallSpdInverse(k, count, &result, d)) return false;
+  double lo = count < kMaxNormalBlock ? 1.0 : d[0];
+  double hi = lo;
+  for (int i = 0; i < count; ++i) {
+    lo = std::min(lo, d[i]);
+    hi = std::max(hi, d[i]);
+  }
+  if (!(lo > 1e-5 * hi)) return false;
+  *inv = result;
   return true;
 }
 
@@ -42,23 +53,13 @@ bool InvertIfWellConditioned(const Eigen::Matrix4d& k, Eigen::Matrix4d* inv) {
 bool InvertNormalBlockK(const Eigen::Matrix4d& k_in, int count, const Vec3* plane_points, const Vec3& t1,
                         const Vec3& t2, Eigen::Matrix4d* inv_k) {
   if (count < 2 || count > kMaxNormalBlock) return false;
-  // a smaller block fills K's unused diagonal with 1 (identity rows)
-  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();
-  k.topLeftCorner(count, count) = k_in.topLeftCorner(count, count);
-  if (count < kMaxNormalBlock) {
-    if (!InvertIfWellConditioned(k, inv_k)) return false;
-    for (int i = count; i < kMaxNormalBlock; ++i) {
-      inv_k->row(i).setZero();
-      inv_k->col(i).setZero();
-    }
-    return true;
-  }
+  if (count < kMaxNormalBlock) return InvertIfWellConditioned(k_in, count, inv_k);
   // four points with one normal act on three velocities, so their K is
   // singular (see the header): straight to K^+, without first trying K's
   // own Cholesky factor (BENCHMARKS.md, "### lcp")
   Eigen::Vector4d c;
   if (!FaceNullVector(plane_points, t1, t2, &c)) return false;
-  if (!InvertIfWellConditioned(k + c * c.transpose(), inv_k)) return false;
+  if (!InvertIfWellConditioned(k_in + c * c.transpose(), kMaxNormalBlock, inv_k)) return false;
   *inv_k -= c * c.transpose();
   return true;
 }

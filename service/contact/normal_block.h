@@ -69,8 +69,8 @@ void GroupNormalBlocks(const std::vector<Point>& points, Vec3 Point::*normal, st
 bool InvertNormalBlock(const NormalBlockPoint* points, int count, double k_lin, const Vec3& t1, const Vec3& t2,
                        Eigen::Matrix4d* inv_k);
 
-// The same from K itself (its first `count` rows and columns; the rest is
-// ignored) and a point per row that places it in the face's plane up to an
+// The same from K itself (the lower triangle of its first `count` rows and
+// columns; the rest is ignored) and a point per row that places it in the face's plane up to an
 // affine map (the lever arm r, or r x n, whose tangent coordinates are r's
 // turned by 90 degrees): for solvers that hold each row's J and M^-1 J^T.
 bool InvertNormalBlockK(const Eigen::Matrix4d& k, int count, const Vec3* plane_points, const Vec3& t1,

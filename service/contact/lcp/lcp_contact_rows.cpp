@@ -1,21 +1,32 @@
 #include "service/contact/lcp/lcp_contact_rows.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "service/contact/contact_row.h"
 
 namespace contactsim {
 
+void SetDirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const Vec3& d, ConstraintRow* row) {
+  row->a = a;
+  row->b = b;
+  // d . (v_b + w_b x rb) - d . (v_a + w_a x ra), with d . (w x r) = w . (r x d)
+  row->lin_a = -d;
+  row->ang_a = -ra.cross(d);
+  row->lin_b = d;
+  row->ang_b = rb.cross(d);
+  row->rhs = 0.0;
+  row->lo = 0.0;
+  row->hi = ConstraintRow::kInf;
+  row->normal_row = -1;
+  row->mu = 0.0;
+  row->lambda = 0.0;
+  row->cfm = 0.0;
+}
+
 ConstraintRow DirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const Vec3& d) {
   ConstraintRow row;
-  row.a = a;
-  row.b = b;
-  // d . (v_b + w_b x rb) - d . (v_a + w_a x ra), with d . (w x r) = w . (r x d)
-  row.lin_a = -d;
-  row.ang_a = -ra.cross(d);
-  row.lin_b = d;
-  row.ang_b = rb.cross(d);
-  row.lo = 0.0;
+  SetDirectionRow(a, b, ra, rb, d, &row);
   return row;
 }
 
@@ -59,26 +70,61 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
                     const std::vector<SolverBody>& free, const ContactRowOptions& options, ParallelRunner& runner,
                     std::vector<Impact>* impacts) {
   impacts->resize(contacts.size());
+  const auto& bodies = world.bodies();
   runner.For(static_cast<int>(contacts.size()), kContactGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
+      // the normal velocities only (ContactRow::NormalVelocity's sums): an
+      // impact needs no tangents, which the rows' frame alone makes
+      // (ContactRows), and a contact that does not approach (PredictImpact's
+      // first test, most resting ones) no velocity after the forces
       const Contact& c = contacts[k];
-      const ContactRow basis = MakeContactBasis(c, world);
-      (*impacts)[k] = PredictImpact(c.depth, basis.NormalVelocity(before), basis.NormalVelocity(free),
-                                    basis.restitution, options);
+      const Vec3 ra = c.point - bodies[c.a].x;
+      const Vec3 rb = c.point - bodies[c.b].x;
+      const auto normal_velocity = [&](const std::vector<SolverBody>& s) {
+        return c.normal.dot(s[c.b].PointVelocity(rb) - s[c.a].PointVelocity(ra));
+      };
+      const double vn_before = normal_velocity(before);
+      if (vn_before >= -options.restitution_threshold) {
+        (*impacts)[k] = Impact();
+        continue;
+      }
+      const double restitution = CombineRestitution(bodies[c.a].material, bodies[c.b].material);
+      (*impacts)[k] = PredictImpact(c.depth, vn_before, normal_velocity(free), restitution, options);
     }
   });
 }
 
 namespace {
 
-// Contact k's basis with its friction's lever arms (patch_torsion.h).
+// Whether contact c has the pair and the normal (bit for bit) of `frame`.
+bool SameFrame(const ContactRow& frame, const Contact& c) {
+  return frame.a == c.a && frame.b == c.b && std::memcmp(frame.n.data(), c.normal.data(), sizeof(Vec3)) == 0;
+}
+
+// *basis becomes contact k's basis with its friction's lever arms
+// (patch_torsion.h). With `reuse`, *basis holds the last contact's: a
+// manifold's points share their pair and normal, and when k's match it bit
+// for bit its tangents and materials are kept (MakeContactBasis would make
+// the same from the same normal and bodies) and only the lever arms made.
+void SetFrictionBasis(const ContactSet& contacts, size_t k, const World& world,
+                      const std::vector<Vec3>* friction_points, bool reuse, ContactRow* basis) {
+  const Contact& c = contacts[k];
+  if (reuse && SameFrame(*basis, c)) {
+    basis->ra = basis->fa = c.point - world.bodies()[c.a].x;
+    basis->rb = basis->fb = c.point - world.bodies()[c.b].x;
+  } else {
+    *basis = MakeContactBasis(c, world);
+  }
+  if (friction_points != nullptr) {
+    basis->fa = (*friction_points)[k] - world.bodies()[basis->a].x;
+    basis->fb = (*friction_points)[k] - world.bodies()[basis->b].x;
+  }
+}
+
 ContactRow FrictionBasis(const ContactSet& contacts, size_t k, const World& world,
                          const std::vector<Vec3>* friction_points) {
-  ContactRow basis = MakeContactBasis(contacts[k], world);
-  if (friction_points != nullptr) {
-    basis.fa = (*friction_points)[k] - world.bodies()[basis.a].x;
-    basis.fb = (*friction_points)[k] - world.bodies()[basis.b].x;
-  }
+  ContactRow basis;
+  SetFrictionBasis(contacts, k, world, friction_points, false, &basis);
   return basis;
 }
 
@@ -99,15 +145,19 @@ void SlipDirections(const ContactRow& basis, const std::vector<SolverBody>& free
 
 namespace {
 
-// Contact k's three rows: normal, t1, t2, the normal at `first`.
+// Contact k's three rows: normal, t1, t2, the normal at `first`; *frame
+// holds the last contact's basis (if *has_frame), and then contact k's.
 void ContactRows(const ContactSet& contacts, size_t k, const World& world, const std::vector<SolverBody>& before,
                  const Impact& impact, const ContactRowOptions& options, const std::vector<Vec3>* friction_points,
-                 int first, ConstraintRow* out) {
+                 int first, ConstraintRow* out, ContactRow* frame, bool* has_frame) {
   const Contact& c = contacts[k];
-  const ContactRow basis = FrictionBasis(contacts, k, world, friction_points);
+  SetFrictionBasis(contacts, k, world, friction_points, *has_frame, frame);
+  *has_frame = true;
+  const ContactRow& basis = *frame;
   ConstraintRow& normal = out[0];
-  normal = DirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n);
-  const double vn_before = basis.NormalVelocity(before);
+  SetDirectionRow(c.a, c.b, basis.ra, basis.rb, basis.n, &normal);
+  // the approach speed only where no impact decided the rhs
+  const double vn_before = impact.exact || impact.misses ? 0.0 : basis.NormalVelocity(before);
   if (impact.exact) {
     normal.rhs = impact.end_velocity;
   } else if (impact.misses) {
@@ -122,7 +172,7 @@ void ContactRows(const ContactSet& contacts, size_t k, const World& world, const
   const Vec3 tangents[2] = {basis.t1, basis.t2};
   for (int j = 0; j < 2; ++j) {
     ConstraintRow& friction = out[1 + j];
-    friction = DirectionRow(c.a, c.b, basis.fa, basis.fb, tangents[j]);
+    SetDirectionRow(c.a, c.b, basis.fa, basis.fb, tangents[j], &friction);
     friction.lo = -ConstraintRow::kInf;
     friction.normal_row = first;
     friction.mu = basis.friction;
@@ -137,9 +187,12 @@ void WriteContactRows(const ContactSet& contacts, const World& world, const std:
                        std::vector<ConstraintRow>* rows) {
   rows->resize(3 * contacts.size());
   runner.For(static_cast<int>(contacts.size()), kContactGrain, [&](int begin, int end, int) {
+    ContactRow frame;
+    bool has_frame = false;
     for (int k = begin; k < end; ++k) {
       const int first = 3 * k;
-      ContactRows(contacts, k, world, before, impacts[k], options, friction_points, first, &(*rows)[first]);
+      ContactRows(contacts, k, world, before, impacts[k], options, friction_points, first, &(*rows)[first], &frame,
+                  &has_frame);
     }
   });
 }

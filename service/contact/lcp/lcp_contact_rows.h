@@ -113,6 +113,9 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
 
 // A row along unit d at contact point p between bodies a and b (-1: world).
 ConstraintRow DirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const Vec3& d);
+// The same written into *row, every field (rows kept from the last step
+// are overwritten in place, without a row made and copied).
+void SetDirectionRow(int a, int b, const Vec3& ra, const Vec3& rb, const Vec3& d, ConstraintRow* row);
 
 // *rows becomes three rows per contact in contact order: normal, t1, t2
 // (every field written, so rows kept from the last step cost no

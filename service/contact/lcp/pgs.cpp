@@ -105,14 +105,16 @@ bool PgsSolver::BuildBlock(const PgsNormalBlock& given, Block* out) const {
     const Row& ri = rows_[blk.rows[i]];
     one_normal = one_normal && ri.a == r0.a && ri.b == r0.b && ri.ja_lin == r0.ja_lin && ri.jb_lin == r0.jb_lin;
     plane[i] = b_side ? ri.jb_ang : Vec3(-ri.ja_ang);
-    for (int j = 0; j < blk.count; ++j) {
+    // the lower triangle: the inverse reads no other (small_spd_inverse.h)
+    for (int j = 0; j <= i; ++j) {
       const Row& rj = rows_[blk.rows[j]];
       k(i, j) = ri.ja_lin.dot(rj.ma_lin) + ri.ja_ang.dot(rj.ma_ang) + ri.jb_lin.dot(rj.mb_lin) +
                 ri.jb_ang.dot(rj.mb_ang);
     }
   }
-  Vec3 t1, t2;
-  PerpendicularBasis(n, &t1, &t2);
+  // the face's tangents place a four-point block's points (FaceNullVector)
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
+  if (blk.count == kMaxNormalBlock) PerpendicularBasis(n, &t1, &t2);
   return one_normal && InvertNormalBlockK(k, blk.count, plane, t1, t2, &blk.inv_k);
 }
 

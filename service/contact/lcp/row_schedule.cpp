@@ -69,7 +69,6 @@ void RowSchedule::Order(const std::vector<ConstraintRow>& rows, const std::vecto
 void RowSchedule::Colour(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
                          int first_ordered, std::vector<int>* order, std::vector<int>* group_rows,
                          BlockColours* colours) {
-  FindRuns(rows);
   const int world = static_cast<int>(bodies.size());
   roles_.resize(bodies.size() + 1);
   for (size_t i = 0; i < bodies.size(); ++i) {
@@ -84,6 +83,26 @@ void RowSchedule::Colour(const std::vector<ConstraintRow>& rows, const std::vect
       if (roles_[body] == ColourRole::kColoured) roles_[body] = ColourRole::kSerial;
     }
   }
+  // the rows' bodies and the bodies' roles decide the order: the same as
+  // the last call's, the same order (the contact graph of a resting scene
+  // seldom changes from step to step)
+  if (ends_ == last_ends_ && roles_ == last_roles_) {
+    *order = last_order_;
+    *group_rows = last_group_rows_;
+    *colours = last_colours_;
+    return;
+  }
+  ColourAnew(rows, bodies, order, group_rows, colours);
+  last_ends_ = ends_;
+  last_roles_ = roles_;
+  last_order_ = *order;
+  last_group_rows_ = *group_rows;
+  last_colours_ = *colours;
+}
+
+void RowSchedule::ColourAnew(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                             std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours) {
+  FindRuns(rows);
   coloured_.resize(runs_.size());
   for (size_t i = 0; i < runs_.size(); ++i) coloured_[i] = NormalBlock{runs_[i].first, runs_[i].count};
   const BlockColours by_run = ColourBlocks(ends_, roles_, &coloured_);

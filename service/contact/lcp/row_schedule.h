@@ -64,7 +64,12 @@ class RowSchedule {
   };
   struct Ends {
     int a, b;  // bodies, the world as bodies.size()
+    bool operator==(const Ends& o) const { return a == o.a && b == o.b; }
   };
+  // Colour's order from ends_ and roles_ (made from the same rows and
+  // bodies), when they differ from the last call's.
+  void ColourAnew(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
+                  std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours);
   // runs_ from the rows: consecutive rows on the same body pair
   void FindRuns(const std::vector<ConstraintRow>& rows);
   // Appends row s of every run in sorted_[begin, end) for s = 0, 1, ...
@@ -81,6 +86,11 @@ class RowSchedule {
   std::vector<NormalBlock> coloured_;  // the runs as blocks of rows, colour by colour
   std::vector<Run> sorted_;            // the runs in sweep order
   std::vector<Run> level_sorted_;
+  // the last coloured call's rows' bodies and bodies' roles, and its answer
+  std::vector<Ends> last_ends_;
+  std::vector<ColourRole> last_roles_;
+  std::vector<int> last_order_, last_group_rows_;
+  BlockColours last_colours_;
 };
 
 }  // namespace contactsim
