@@ -176,8 +176,8 @@ bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& 
   return true;
 }
 
-int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<ContactRow>& rows, bool* converged,
-                                 bool* interleave) {
+int ImpulseMethod::SweepContacts(const World& world, double h, int max_sweeps, std::vector<ContactRow>& rows,
+                                 bool* converged, bool* interleave) {
   colours_ = ColourGroups(rows, &blocks_);
   const int blocks = static_cast<int>(blocks_.size());
   block_worst_.assign(blocks, 0.0);
@@ -227,7 +227,7 @@ int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<Conta
     list.AddColours(warm_start, colours_, blocks);
     list.AddSerial(build_joints);
   };
-  RunPasses(params_.iterations, done, warm, [&](ColourStages& list) {
+  RunPasses(max_sweeps, done, warm, [&](ColourStages& list) {
     list.AddColours(sweep, colours_, blocks);
     list.AddSerial(check);
   });
