@@ -28,7 +28,10 @@
 //  6. time of impact: if a pair that was apart now overlaps deeper than
 //     slop, go back to the start of the sub-step, find the first time t_c
 //     its depth reaches zero by bisection or regula falsi, move everything
-//     to t_c and start a new sub-step there (at most max_substeps).
+//     to t_c and start a new sub-step there (at most max_substeps); a
+//     sub-step after an impact checks after impact_sweeps sweeps and, found
+//     free of impacts, is swept again in full (docs/methods/impulse.md,
+//     "Sweeps before the impact check").
 // After the step the joints' drift is projected away (post-stabilisation,
 // joint_solver.h). Penetration left over is removed at the next step's start by a split
 // impulse (pseudo-velocities that move positions, never velocities), so the
