@@ -24,8 +24,8 @@ using Fn = ParallelRunner::StageFn;
 // the threads' meeting at a stage costs. It also keeps small worlds on the
 // serial sweep in contact order, under which a 20-cube aligned stack
 // stands (2e-9 m sideways in 10 s): coloured alternately, the stack's pairs
-// let a rocking mode grow from round-off, 12 mm in 10 s at the default
-// velocity_tolerance (docs/physics.md, "impulse on threads").
+// let a rocking mode grow from round-off, 12 mm in 10 s at a
+// velocity_tolerance of 1e-5 m/s (docs/physics.md, "impulse on threads").
 constexpr int kMinColouredGroups = 256;
 
 double Largest(const std::vector<double>& values) {
