@@ -35,7 +35,7 @@ struct Pinned {
 
 const std::vector<Pinned>& PinnedRuns() {
   static const std::vector<Pinned> pinned = {
-      {"impulse", {}, 0xdc167965de2acd86ull},
+      {"impulse", {}, 0x0c9820223c4c5344ull},
       {"penalty", {}, 0xe6b488b7ca96cac1ull},
       {"penalty", {{"model", "hunt_crossley"}}, 0x9ca96564088018feull},
       {"xpbd", {}, 0x7b2388ec667ed6f5ull},

@@ -246,8 +246,8 @@ void ImpulseMethod::FindResponses(const std::vector<ContactRow>& rows) {
   });
 }
 
-int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h,
-                                std::vector<ContactRow>& rows) {
+int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, double h, int sweeps,
+                                std::vector<ContactRow>& rows, bool* converged) {
   // Accumulated impulses start from last step's forces times h (or zero);
   // the collision phase's impulses are kept apart (collision_n) so that
   // clamping applies to this phase only.
@@ -260,10 +260,10 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
   }
   LoadWarmStart(contacts, h, rows);
   BuildNormalBlocks(rows);
-  bool converged = false, interleave = false;
-  const int it = SweepContacts(world, h, rows, &converged, &interleave);
+  bool interleave = false;
+  const int it = SweepContacts(world, h, sweeps, rows, converged, &interleave);
   // jointed components too, where the sweeps stopped short (jointed_contacts.h)
-  SolveMassRatios(rows, nullptr, interleave && !converged);
+  SolveMassRatios(rows, nullptr, interleave && !*converged);
   // the last joint solve with its velocity products taken at the velocities
   // the sweeps leave: the contacts of a fast-folding chain change them too
   // much for the products taken before (a 100-link chain blew up); the
@@ -283,7 +283,6 @@ int ImpulseMethod::ContactPhase(const World& world, const ContactSet& contacts, 
       row.lambda_t2 += collision_t[k].dot(row.t2);
     }
   });
-  warm_.StoreFrame(contacts, warm_forces_, runner_);  // keeps the points with a normal force
   return it;
 }
 
@@ -427,6 +426,23 @@ void ImpulseMethod::MoveBodies(double h, World& world) {
   });
 }
 
+int ImpulseMethod::SweepAndMove(World& world, const ContactSet& contacts, double h, int sweeps, bool* converged) {
+  IntegrateMomenta(world, h);
+  LoadSolverBodies(world, *runner_, &solver_);
+  const int it = ContactPhase(world, contacts, h, sweeps, rows_, converged);
+  StoreSolverBodies(solver_, *runner_, world);
+  MoveBodies(h, world);
+  return it;
+}
+
+double ImpulseMethod::ImpactTime(const std::vector<RigidBody>& bodies, const ContactSet& contacts,
+                                 CollisionDetector& detector, double h, int* iterations) {
+  const std::vector<Impact> impacts = FindImpacts(bodies, contacts, detector, h);
+  if (impacts.empty()) return h;
+  // h when the overlap was there from the start: it is left to the correction
+  return FindImpactTime(start_bodies_, impacts, h, iterations);
+}
+
 StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts_out) {
   StepStats stats;
   runner_ = &detector.runner();
@@ -456,33 +472,44 @@ StepStats ImpulseMethod::StepOnce(World& world, CollisionDetector& detector, Con
     StoreSolverBodies(solver_, *runner_, world);
     CopyBodies(world.bodies(), &start_bodies_);
 
-    IntegrateMomenta(world, remaining);
-    LoadSolverBodies(world, *runner_, &solver_);
-    stats.iterations += ContactPhase(world, contacts, remaining, rows_);
-    StoreSolverBodies(solver_, *runner_, world);
-    MoveBodies(remaining, world);
-    contacts_out->assign(contacts.begin(), contacts.end());
-    runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
-      for (int k = begin; k < end; ++k) {
-        Contact& c = (*contacts_out)[k];
-        c.normal_value = rows_[k].lambda_n;
-        c.tangent_value = rows_[k].lambda_t1 * rows_[k].t1 + rows_[k].lambda_t2 * rows_[k].t2;
-      }
-    });
-    if (params_.toi == "off" || sub + 1 >= params_.max_substeps) break;
-
+    const bool last = params_.toi == "off" || sub + 1 >= params_.max_substeps;
+    // A sub-step that ends in an impact is thrown away but for the pairs it
+    // finds and its warm-start forces: its contact phase may stop short
+    // (impact_sweeps), and a sub-step found free of impacts is swept again
+    // in full from its start (docs/methods/impulse.md, "Sweeps before the
+    // impact check").
+    const bool trial = sub > 0 && !last && params_.impact_sweeps > 0 && params_.impact_sweeps < params_.iterations;
+    if (trial) collision_rows_ = rows_;
+    bool converged = false;
+    stats.iterations +=
+        SweepAndMove(world, contacts, remaining, trial ? params_.impact_sweeps : params_.iterations, &converged);
     auto& bodies = world.bodies();
-    const std::vector<Impact> impacts = FindImpacts(bodies, contacts, detector, remaining);
-    if (impacts.empty()) break;
-    const double t_c = FindImpactTime(start_bodies_, impacts, remaining, &stats.iterations);
-    if (t_c >= remaining) break;  // the overlap was there from the start: leave it to the correction
+    double t_c = last ? remaining : ImpactTime(bodies, contacts, detector, remaining, &stats.iterations);
+    // sweeps that met the tolerance in the trial are the full phase's, bit for bit
+    if (trial && !converged && t_c >= remaining) {
+      CopyBodies(start_bodies_, &bodies);
+      rows_ = collision_rows_;
+      stats.iterations += SweepAndMove(world, contacts, remaining, params_.iterations, &converged);
+      t_c = ImpactTime(bodies, contacts, detector, remaining, &stats.iterations);
+    }
+    warm_.StoreFrame(contacts, warm_forces_, runner_);  // keeps the points with a normal force
+    if (t_c >= remaining) {
+      contacts_out->assign(contacts.begin(), contacts.end());
+      runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+        for (int k = begin; k < end; ++k) {
+          Contact& c = (*contacts_out)[k];
+          c.normal_value = rows_[k].lambda_n;
+          c.tangent_value = rows_[k].lambda_t1 * rows_[k].t1 + rows_[k].lambda_t2 * rows_[k].t2;
+        }
+      });
+      break;
+    }
     CopyBodies(start_bodies_, &bodies);
     runner_->For(static_cast<int>(bodies.size()), kImpulseBodyGrain, [&](int begin, int end, int /*worker*/) {
       for (int i = begin; i < end; ++i) AdvanceBallistic(bodies[i], t_c);
     });
     remaining -= t_c;
     ++stats.substeps;
-    contacts_out->clear();
   }
   std::vector<double> drive_impulses;  // the last contact phase's, over `remaining`
   joints_.AddDriveImpulses(&drive_impulses);

@@ -28,7 +28,10 @@
 //  6. time of impact: if a pair that was apart now overlaps deeper than
 //     slop, go back to the start of the sub-step, find the first time t_c
 //     its depth reaches zero by bisection or regula falsi, move everything
-//     to t_c and start a new sub-step there (at most max_substeps).
+//     to t_c and start a new sub-step there (at most max_substeps); a
+//     sub-step after an impact checks after impact_sweeps sweeps and, found
+//     free of impacts, is swept again in full (docs/methods/impulse.md,
+//     "Sweeps before the impact check").
 // After the step the joints' drift is projected away (post-stabilisation,
 // joint_solver.h). Penetration left over is removed at the next step's start by a split
 // impulse (pseudo-velocities that move positions, never velocities), so the
@@ -93,7 +96,11 @@ class ImpulseMethod : public ContactMethod {
   StepStats StepOnce(World& world, CollisionDetector& detector, ContactSet* contacts);
   void CorrectPositions(World& world, const ContactSet& contacts);
   int CollisionPhase(std::vector<ContactRow>& rows);
-  int ContactPhase(const World& world, const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
+  // Up to `sweeps` sweeps, *converged when they met velocity_tolerance;
+  // the forces to keep for the warm start are left in warm_forces_ (stored
+  // once the sub-step's impact check has kept them).
+  int ContactPhase(const World& world, const ContactSet& contacts, double h, int sweeps,
+                   std::vector<ContactRow>& rows, bool* converged);
   // Each contact's warm-start impulses from the cache (or zero), not yet applied.
   void LoadWarmStart(const ContactSet& contacts, double h, std::vector<ContactRow>& rows);
   // The colouring's view of the bodies (solver_): static and kinematic ones
@@ -112,7 +119,7 @@ class ImpulseMethod : public ContactMethod {
   // joints' rows at the warm-started velocities and the sweeps, on the
   // runner; returns the sweeps done, whether they converged and whether
   // the joints were solved between them.
-  int SweepContacts(const World& world, double h, std::vector<ContactRow>& rows, bool* converged,
+  int SweepContacts(const World& world, double h, int max_sweeps, std::vector<ContactRow>& rows, bool* converged,
                     bool* interleave);
   // The split impulse's sweeps over rows_ toward `target`, on the runner.
   void SweepPositions(const std::vector<double>& target);
@@ -198,6 +205,13 @@ class ImpulseMethod : public ContactMethod {
                                   CollisionDetector& detector, double h);
   // touching_ from the contacts at the sub-step's start.
   void FindTouching(const ContactSet& contacts);
+  // Steps 3-5 from the world as the collision phase left it: forces, the
+  // contact phase (up to `sweeps`) on rows_, positions; the sweeps done.
+  int SweepAndMove(World& world, const ContactSet& contacts, double h, int sweeps, bool* converged);
+  // The first impact's time in (0, h] from start_bodies_ for the pairs
+  // that overlap at `bodies` (step 6), or h when none does.
+  double ImpactTime(const std::vector<RigidBody>& bodies, const ContactSet& contacts, CollisionDetector& detector,
+                    double h, int* iterations);
   // Moves the bodies over h (step 5), split over the runner's threads.
   void MoveBodies(double h, World& world);
   // *to = from, split over the runner's threads (the sub-step's start state).
@@ -230,6 +244,7 @@ class ImpulseMethod : public ContactMethod {
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  std::vector<ContactRow> collision_rows_;  // rows_ after the collision phase, for a sub-step swept again
   std::vector<RigidBody> start_bodies_;     // the sub-step's start state (kept: a body is dear to construct)
   std::vector<int> row_of_;                 // per contact: its split impulse row, or -1
   std::vector<NormalBlock> blocks_;         // the rows by body pair, up to four

@@ -9,6 +9,9 @@ const ParamTable<ImpulseParams>& ImpulseParamTable() {
   using P = ImpulseParams;
   static const ParamTable<P> table = {
       IntParam("iterations", &P::iterations, 1, 10000, "", "contact-phase sweeps at most"),
+      IntParam("impact_sweeps", &P::impact_sweeps, 0, 10000, "",
+               "contact-phase sweeps at most in a sub-step after an impact, before its impact check; found free "
+               "of impacts, it is swept again with iterations; 0 = off"),
       IntParam("collision_passes", &P::collision_passes, 1, 10000, "", "collision-phase sweeps at most"),
       DoubleParam("velocity_tolerance", &P::velocity_tolerance, 0.0, 1.0, "m/s",
                   "sweeping stops when no impulse changes a relative velocity more"),

@@ -12,8 +12,9 @@ namespace contactsim {
 
 struct ImpulseParams {
   int iterations = 30;
+  int impact_sweeps = 5;  // 0: off (impulse_method.h, step 6)
   int collision_passes = 20;
-  double velocity_tolerance = 1e-5;   // m/s
+  double velocity_tolerance = 1e-4;   // m/s
   double collision_threshold = 0.01;  // m/s
   double slop = 1e-3;                 // m
   double position_correction = 0.2;

@@ -24,8 +24,8 @@ using Fn = ParallelRunner::StageFn;
 // the threads' meeting at a stage costs. It also keeps small worlds on the
 // serial sweep in contact order, under which a 20-cube aligned stack
 // stands (2e-9 m sideways in 10 s): coloured alternately, the stack's pairs
-// let a rocking mode grow from round-off, 12 mm in 10 s at the default
-// velocity_tolerance (docs/physics.md, "impulse on threads").
+// let a rocking mode grow from round-off, 12 mm in 10 s at a
+// velocity_tolerance of 1e-5 m/s (docs/physics.md, "impulse on threads").
 constexpr int kMinColouredGroups = 256;
 
 double Largest(const std::vector<double>& values) {
@@ -176,8 +176,8 @@ bool ImpulseMethod::CollideGroup(const NormalBlock& g, std::vector<ContactRow>& 
   return true;
 }
 
-int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<ContactRow>& rows, bool* converged,
-                                 bool* interleave) {
+int ImpulseMethod::SweepContacts(const World& world, double h, int max_sweeps, std::vector<ContactRow>& rows,
+                                 bool* converged, bool* interleave) {
   colours_ = ColourGroups(rows, &blocks_);
   const int blocks = static_cast<int>(blocks_.size());
   block_worst_.assign(blocks, 0.0);
@@ -227,7 +227,7 @@ int ImpulseMethod::SweepContacts(const World& world, double h, std::vector<Conta
     list.AddColours(warm_start, colours_, blocks);
     list.AddSerial(build_joints);
   };
-  RunPasses(params_.iterations, done, warm, [&](ColourStages& list) {
+  RunPasses(max_sweeps, done, warm, [&](ColourStages& list) {
     list.AddColours(sweep, colours_, blocks);
     list.AddSerial(check);
   });
