@@ -6,6 +6,7 @@
 // the denominator of the impulse formula (Hahn 1988; Mirtich 1996).
 #pragma once
 
+#include <cstring>
 #include <vector>
 
 #include "service/collision/contact.h"
@@ -63,6 +64,12 @@ ContactRow MakeContactRow(const Contact& c, const World& world, const std::vecto
 // The same without the effective masses (k_n, mass_*: left 0), for
 // solvers that take them from their own rows (the lcp method).
 ContactRow MakeContactBasis(const Contact& c, const World& world);
+// Whether contact c has pair (a, b) and normal n bit for bit: a
+// manifold's points share them, and MakeContactBasis then makes the same
+// tangents and materials, which a caller may keep from the point before.
+inline bool SharesContactFrame(const Contact& c, int a, int b, const Vec3& n) {
+  return c.a == a && c.b == b && std::memcmp(c.normal.data(), n.data(), sizeof(Vec3)) == 0;
+}
 
 // K_d for direction d at the row's lever arms, and at its friction's.
 double EffectiveInverseMass(const ContactRow& row, const Vec3& d, const std::vector<SolverBody>& s);

@@ -1,7 +1,6 @@
 #include "service/contact/lcp/lcp_contact_rows.h"
 
 #include <cmath>
-#include <cstring>
 
 #include "service/contact/contact_row.h"
 
@@ -96,11 +95,6 @@ void PredictImpacts(const ContactSet& contacts, const World& world, const std::v
 
 namespace {
 
-// Whether contact c has the pair and the normal (bit for bit) of `frame`.
-bool SameFrame(const ContactRow& frame, const Contact& c) {
-  return frame.a == c.a && frame.b == c.b && std::memcmp(frame.n.data(), c.normal.data(), sizeof(Vec3)) == 0;
-}
-
 // *basis becomes contact k's basis with its friction's lever arms
 // (patch_torsion.h). With `reuse`, *basis holds the last contact's: a
 // manifold's points share their pair and normal, and when k's match it bit
@@ -109,7 +103,7 @@ bool SameFrame(const ContactRow& frame, const Contact& c) {
 void SetFrictionBasis(const ContactSet& contacts, size_t k, const World& world,
                       const std::vector<Vec3>* friction_points, bool reuse, ContactRow* basis) {
   const Contact& c = contacts[k];
-  if (reuse && SameFrame(*basis, c)) {
+  if (reuse && SharesContactFrame(c, basis->a, basis->b, basis->n)) {
     basis->ra = basis->fa = c.point - world.bodies()[c.a].x;
     basis->rb = basis->fb = c.point - world.bodies()[c.b].x;
   } else {

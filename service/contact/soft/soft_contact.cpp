@@ -63,8 +63,8 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
   runner.For(static_cast<int>(contacts.size()), kSoftPrepareGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
       // the narrowphase emits a pair's points together, most with one normal
-      const bool same_frame = k > begin && contacts[k].a == contacts[k - 1].a && contacts[k].b == contacts[k - 1].b &&
-                              contacts[k].normal == contacts[k - 1].normal;
+      const bool same_frame =
+          k > begin && SharesContactFrame(contacts[k], contacts[k - 1].a, contacts[k - 1].b, contacts[k - 1].normal);
       PrepareSoftPoint(contacts[k], world, bodies, friction_points != nullptr ? &(*friction_points)[k] : nullptr,
                        rows, same_frame ? &(*points)[k - 1] : nullptr, &(*points)[k]);
     }
