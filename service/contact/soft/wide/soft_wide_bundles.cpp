@@ -174,9 +174,22 @@ void WideBundles::ForEachPoint(const Read& read) const {
 }
 
 void WideBundles::Unpack(std::vector<SoftPoint>& points) const {
+  if (width_ == 8) {
+    UnpackLanes<8>(points);
+  } else if (width_ == 4) {
+    UnpackLanes<4>(points);
+  } else {
+    UnpackLanes<0>(points);
+  }
+}
+
+// the width known when compiling, as in PackLane
+template <int W>
+void WideBundles::UnpackLanes(std::vector<SoftPoint>& points) const {
   using namespace wide;
+  const int width = W > 0 ? W : width_;
   ForEachPoint([&](int k, int s, const float* base) {
-    const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width_]); };
+    const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width]); };
     SoftPoint& p = points[k];
     p.lambda_n = get(kLambdaN), p.lambda_t1 = get(kLambdaT1), p.lambda_t2 = get(kLambdaT2);
     p.max_push = get(kMaxPush);

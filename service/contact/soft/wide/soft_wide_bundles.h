@@ -43,6 +43,8 @@ class WideBundles {
   // calls read(point, slot, lane's first float) for every packed point
   template <class Read>
   void ForEachPoint(const Read& read) const;
+  template <int W>
+  void UnpackLanes(std::vector<SoftPoint>& points) const;
   float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
   // W: the width, when it is known when compiling (4, 8), else 0 (width_)
   template <int W>
