@@ -23,13 +23,10 @@ const PersistentContacts::Pair* PersistentContacts::FindPair(const Contact& c, W
   return found ? &pairs_[walk->at] : nullptr;
 }
 
-const std::array<double, 3>* PersistentContacts::FindPoint(const Pair& pair, const Contact& c) const {
+const std::array<double, 3>* PersistentContacts::Nearest(const Pair& pair, const Contact& c) const {
+  // WarmStartCache::Near's choice, whose entries are in feature order
   const Point* begin = points_.data() + pair.first;
   const Point* end = begin + pair.count;
-  for (const Point* p = begin; p != end; ++p) {
-    if (p->feature == c.feature_id) return &p->lambda;
-  }
-  // by place: WarmStartCache::Near's choice, whose entries are in feature order
   const Point* best = nullptr;
   double best_d2 = WarmStartCache::kNearMatchDistance * WarmStartCache::kNearMatchDistance;
   for (const Point* p = begin; p != end; ++p) {

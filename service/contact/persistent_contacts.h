@@ -75,8 +75,16 @@ class PersistentContacts {
   };
   // c's pair, walking on from where the last one was, or nullptr
   const Pair* FindPair(const Contact& c, Walk* walk) const;
-  // c's impulses among its pair's points, or nullptr
-  const std::array<double, 3>* FindPoint(const Pair& pair, const Contact& c) const;
+  // c's impulses among its pair's points, or nullptr: by feature id here,
+  // by place (Nearest) where the id is new
+  const std::array<double, 3>* FindPoint(const Pair& pair, const Contact& c) const {
+    const Point* begin = points_.data() + pair.first;
+    for (const Point* p = begin; p != begin + pair.count; ++p) {
+      if (p->feature == c.feature_id) return &p->lambda;
+    }
+    return Nearest(pair, c);
+  }
+  const std::array<double, 3>* Nearest(const Pair& pair, const Contact& c) const;
   void Add(const Contact& c, const std::array<double, 3>& lambda) {
     if (pairs_.empty() || pairs_.back().a != c.id_a || pairs_.back().b != c.id_b) {
       pairs_.push_back({c.id_a, c.id_b, static_cast<uint32_t>(points_.size()), 0});
