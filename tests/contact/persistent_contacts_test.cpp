@@ -14,20 +14,14 @@
 #include <vector>
 
 #include "service/contact/warm_start_cache.h"
+#include "tests/contact/keyed_contact.h"
 
 namespace contactsim {
 namespace {
 
-using Impulses = std::vector<std::array<double, 3>>;
+using testing::KeyedContact;
 
-Contact MakeContact(BodyId a, BodyId b, uint32_t feature, const Vec3& point) {
-  Contact c;
-  c.id_a = a;
-  c.id_b = b;
-  c.feature_id = feature;
-  c.point = point;
-  return c;
-}
+using Impulses = std::vector<std::array<double, 3>>;
 
 // 1 to 4 contacts for each of `pairs` body pairs (A the lower id), pair by
 // pair in body order, then every third pair moved after the others (the
@@ -41,7 +35,7 @@ ContactSet LastStep(int pairs, bool shuffled, std::mt19937* rng, Impulses* impul
     for (int k = 0; k < 1 + p % 4; ++k) {
       const size_t n = slow.size() + fast.size();
       const uint32_t feature = n % 50 == 49 && k > 0 ? 20 + k - 1 : 20 + k;
-      into.push_back(MakeContact(p, p + 1 + p % 3, feature, Vec3(value(*rng), value(*rng), value(*rng))));
+      into.push_back(KeyedContact(p, p + 1 + p % 3, feature, Vec3(value(*rng), value(*rng), value(*rng))));
     }
   }
   slow.insert(slow.end(), fast.begin(), fast.end());
@@ -68,7 +62,7 @@ ContactSet ThisStep(const ContactSet& last, std::mt19937* rng) {
     if (draw < 10) m.feature_id += 100;
     m.point += draw % 4 == 0 ? Vec3(2.0 * d, 0, 0) : Vec3(move(*rng), move(*rng), move(*rng));
     next.push_back(m);
-    if (c.id_a % 10 == 7) next.push_back(MakeContact(c.id_a + 1000, c.id_b + 1000, c.feature_id, c.point));
+    if (c.id_a % 10 == 7) next.push_back(KeyedContact(c.id_a + 1000, c.id_b + 1000, c.feature_id, c.point));
   }
   return next;
 }
@@ -125,8 +119,8 @@ TEST(PersistentContactsTest, EveryContactFindsWhatTheWarmStartCacheFinds) {
 TEST(PersistentContactsTest, OfTwoPointsAsNearTheSmallerFeatureIdThenTheFirstWins) {
   const double d = 0.4 * WarmStartCache::kNearMatchDistance;
   for (const bool larger_first : {false, true}) {
-    ContactSet last = {MakeContact(1, 2, 30, Vec3(d, 0, 0)), MakeContact(1, 2, 40, Vec3(-d, 0, 0)),
-                       MakeContact(1, 2, 40, Vec3(0, d, 0))};
+    ContactSet last = {KeyedContact(1, 2, 30, Vec3(d, 0, 0)), KeyedContact(1, 2, 40, Vec3(-d, 0, 0)),
+                       KeyedContact(1, 2, 40, Vec3(0, d, 0))};
     Impulses impulses = {{1.0, 0.0, 0.0}, {2.0, 0.0, 0.0}, {3.0, 0.0, 0.0}};
     if (larger_first) {
       std::swap(last[0], last[1]);
@@ -136,7 +130,7 @@ TEST(PersistentContactsTest, OfTwoPointsAsNearTheSmallerFeatureIdThenTheFirstWin
     cache.StoreFrame(last, impulses);
     PersistentContacts kept;
     kept.Keep(last, [&](size_t k) { return impulses[k]; });
-    const ContactSet next = {MakeContact(1, 2, 99, Vec3::Zero()), MakeContact(1, 2, 40, Vec3(5.0, 0, 0))};
+    const ContactSet next = {KeyedContact(1, 2, 99, Vec3::Zero()), KeyedContact(1, 2, 40, Vec3(5.0, 0, 0))};
     const auto found = Matched(kept, next, 2);
     ASSERT_TRUE(found[0].has_value());
     EXPECT_EQ((*found[0])[0], 1.0) << "feature 30 is the nearer's smaller id";
@@ -149,9 +143,9 @@ TEST(PersistentContactsTest, OfTwoPointsAsNearTheSmallerFeatureIdThenTheFirstWin
 // Verifies that a pair whose contacts come apart (not from the detectors)
 // is kept as one, in contact order.
 TEST(PersistentContactsTest, APairSplitApartIsKeptAsOne) {
-  const ContactSet last = {MakeContact(1, 2, 5, Vec3(0, 0, 0)), MakeContact(3, 4, 5, Vec3(1, 0, 0)),
-                           MakeContact(1, 2, 5, Vec3(2, 0, 0)), MakeContact(1, 2, 6, Vec3(3, 0, 0)),
-                           MakeContact(0, 9, 5, Vec3(4, 0, 0))};
+  const ContactSet last = {KeyedContact(1, 2, 5, Vec3(0, 0, 0)), KeyedContact(3, 4, 5, Vec3(1, 0, 0)),
+                           KeyedContact(1, 2, 5, Vec3(2, 0, 0)), KeyedContact(1, 2, 6, Vec3(3, 0, 0)),
+                           KeyedContact(0, 9, 5, Vec3(4, 0, 0))};
   const Impulses impulses = {{1.0, 0, 0}, {2.0, 0, 0}, {3.0, 0, 0}, {4.0, 0, 0}, {5.0, 0, 0}};
   WarmStartCache cache;
   cache.StoreFrame(last, impulses);
@@ -159,7 +153,7 @@ TEST(PersistentContactsTest, APairSplitApartIsKeptAsOne) {
   kept.Keep(last, [&](size_t k) { return impulses[k]; });
   EXPECT_TRUE(kept.Save() == cache.Save());
   ContactSet next = last;
-  next.push_back(MakeContact(1, 2, 77, Vec3(3, 0, 0)));
+  next.push_back(KeyedContact(1, 2, 77, Vec3(3, 0, 0)));
   ExpectTheCachesMatches(cache, kept, next, "split pair");
   const auto found = Matched(kept, next, 6);
   EXPECT_EQ((*found[2])[0], 1.0) << "the first of feature 5";
