@@ -40,7 +40,25 @@ const std::array<double, 3>* PersistentContacts::Nearest(const Pair& pair, const
 }
 
 void PersistentContacts::OrderPairs() {
-  bool repeated = false;
+  int runs = 1;
+  for (size_t i = 1; i < pairs_.size(); ++i) runs += pairs_[i - 1] < pairs_[i] ? 0 : 1;
+  if (runs == 1) return;
+  if (runs > kMergedRuns) {
+    // not the detectors' order: sorted whole (stable: a repeated pair's
+    // records stay in contact order)
+    std::stable_sort(pairs_.begin(), pairs_.end());
+  } else {
+    MergeRuns();
+  }
+  for (size_t i = 1; i < pairs_.size(); ++i) {
+    if (!(pairs_[i - 1] < pairs_[i])) {
+      JoinRepeatedPairs();
+      return;
+    }
+  }
+}
+
+void PersistentContacts::MergeRuns() {
   for (size_t i = 1; i < pairs_.size();) {
     if (pairs_[i - 1] < pairs_[i]) {
       ++i;
@@ -54,14 +72,6 @@ void PersistentContacts::OrderPairs() {
     std::merge(pairs_.begin(), pairs_.begin() + i, pairs_.begin() + i, pairs_.begin() + j, std::back_inserter(merged_));
     std::copy(merged_.begin(), merged_.end(), pairs_.begin());
     i = j;
-    repeated = true;  // perhaps: looked for below
-  }
-  if (!repeated) return;
-  for (size_t i = 1; i < pairs_.size(); ++i) {
-    if (!(pairs_[i - 1] < pairs_[i])) {
-      JoinRepeatedPairs();
-      return;
-    }
   }
 }
 

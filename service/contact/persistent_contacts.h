@@ -92,9 +92,13 @@ class PersistentContacts {
     points_.push_back({c.feature_id, lambda, c.point});
     ++pairs_.back().count;
   }
-  // Puts the pairs in order: merges their ascending runs, and joins a
-  // pair's points that came apart (none from the detectors).
+  // Puts the pairs in order: merges their ascending runs (each merge
+  // passes over the pairs before it, so more than kMergedRuns runs are
+  // sorted instead), and joins a pair's points that came apart (none from
+  // the detectors).
+  static constexpr int kMergedRuns = 8;
   void OrderPairs();
+  void MergeRuns();
   void JoinRepeatedPairs();
 
   std::vector<Pair> pairs_;    // ascending, each once
