@@ -18,9 +18,9 @@
 // sorted lists: a walk forward finds each pair, and a point among its
 // pair's few by feature id. DetectAhead appends its fast pairs' contacts
 // after the others (two ascending runs): the walk starts over with a
-// bisection where the pairs' order steps back, and Keep merges the runs.
-// Keep and Save order nothing else; any order of contacts gives the same
-// matches.
+// bisection where the pairs' order steps back, and Keep merges the runs
+// of pair records (and sorts them where more came: not the detectors'
+// order). Any order of contacts gives the same matches.
 #pragma once
 
 #include <array>
