@@ -24,6 +24,9 @@ constexpr int kRowGrain = 256;
 constexpr int kImpulseBlockGrain = 128;
 constexpr int kImpulsePairGrain = 64;
 constexpr int kImpulseBodyGrain = 64;
+// impact pairs a thread advances and collides at a time in the impact
+// time's search (two body copies, two advances and a narrowphase call each)
+constexpr int kImpactGrain = 8;
 
 }  // namespace
 
@@ -360,7 +363,7 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
 }
 
 double ImpulseMethod::FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
-                                     int* iterations) const {
+                                     int* iterations) {
   // Bound on how fast any pair can close during the sub-step (needed for
   // conservative advancement, which keeps thin bodies from being skipped):
   // relative speed plus rotation sweep plus what the forces add over h.
@@ -371,19 +374,27 @@ double ImpulseMethod::FindImpactTime(const std::vector<RigidBody>& start, const 
   // Separations up to everything the sub-step can close are measured exactly
   // rather than clamped, so advancement takes full-size steps.
   const double reach = max_closing * h + 2.0 * params_.slop;
-  ContactSet scratch;
+  // the pairs on the threads, each worker keeping its own deepest: a
+  // maximum is the same whichever pairs each took (impact_scratch_ is
+  // FindImpacts', sized to the threads)
+  impact_deepest_.resize(runner_->threads());
   auto distance_at = [&](double t) {
-    double deepest = -reach;  // the most any pair is past its impact depth
-    for (const Impact& p : impacts) {
-      RigidBody a = start[p.a];
-      RigidBody b = start[p.b];
-      AdvanceBallistic(a, t);
-      AdvanceBallistic(b, t);
-      scratch.clear();
-      Collide(a, p.a, b, p.b, reach, &scratch);
-      for (const Contact& c : scratch) deepest = std::max(deepest, c.depth - p.depth);
-    }
-    return -deepest;
+    std::fill(impact_deepest_.begin(), impact_deepest_.end(), -reach);  // the most a pair is past its impact depth
+    runner_->For(static_cast<int>(impacts.size()), kImpactGrain, [&](int begin, int end, int worker) {
+      ContactSet& scratch = impact_scratch_[worker];
+      double& deepest = impact_deepest_[worker];
+      for (int i = begin; i < end; ++i) {
+        const Impact& p = impacts[i];
+        RigidBody a = start[p.a];
+        RigidBody b = start[p.b];
+        AdvanceBallistic(a, t);
+        AdvanceBallistic(b, t);
+        scratch.clear();
+        Collide(a, p.a, b, p.b, reach, &scratch);
+        for (const Contact& c : scratch) deepest = std::max(deepest, c.depth - p.depth);
+      }
+    });
+    return -*std::max_element(impact_deepest_.begin(), impact_deepest_.end());
   };
   TimeOfImpactOptions options;
   ParseRootFinder(params_.toi, &options.finder);

@@ -218,7 +218,7 @@ class ImpulseMethod : public ContactMethod {
   void CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.
   double FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
-                        int* iterations) const;
+                        int* iterations);
 
   ImpulseParams params_;
   ParallelRunner* runner_ = nullptr;  // the detector's, for the step
@@ -234,6 +234,7 @@ class ImpulseMethod : public ContactMethod {
   std::vector<ParallelRunner::Stage> stages_;
   std::vector<ContactSet> impact_scratch_;  // per worker
   std::vector<double> impact_depth_;        // per candidate pair: the impact's depth, or NaN
+  std::vector<double> impact_deepest_;      // per worker: the impact search's deepest at one time
   struct Touching {
     BodyPair pair;  // body indices, lower first
     double depth;   // m, of the pair's deepest contact
