@@ -294,23 +294,41 @@ void ImpulseMethod::FindTouching(const ContactSet& contacts) {
   // order, so the list comes out sorted and the sort is a check; a stable
   // sort otherwise keeps each pair's contacts in their order, so the
   // deepest is taken in the same order either way
-  touching_.clear();
-  for (const Contact& c : contacts) {
-    touching_.push_back({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth, c.a < c.b ? c.normal : Vec3(-c.normal)});
-  }
-  const auto by_pair = [](const Touching& l, const Touching& r) { return l.pair < r.pair; };
-  if (!std::is_sorted(touching_.begin(), touching_.end(), by_pair)) {
-    std::stable_sort(touching_.begin(), touching_.end(), by_pair);
-  }
-  size_t kept = 0;
-  for (size_t k = 0; k < touching_.size(); ++k) {
-    if (kept > 0 && touching_[kept - 1].pair == touching_[k].pair) {
-      if (touching_[k].depth > touching_[kept - 1].depth) touching_[kept - 1] = touching_[k];
-    } else {
-      touching_[kept++] = touching_[k];
+  const int n = static_cast<int>(contacts.size());
+  touching_points_.resize(n);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      const Contact& c = contacts[k];
+      touching_points_[k] = {
+          {std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth, c.a < c.b ? c.normal : Vec3(-c.normal)};
     }
+  });
+  const auto by_pair = [](const Touching& l, const Touching& r) { return l.pair < r.pair; };
+  if (!std::is_sorted(touching_points_.begin(), touching_points_.end(), by_pair)) {
+    std::stable_sort(touching_points_.begin(), touching_points_.end(), by_pair);
   }
-  touching_.resize(kept);
+  // each pair's deepest point (the first of equal depths), the pairs found
+  // by the runs of kRowGrain points they start in: counted, then written
+  // to their places, each run on any thread
+  const auto starts = [&](int k) { return k == 0 || touching_points_[k - 1].pair != touching_points_[k].pair; };
+  const int runs = (n + kRowGrain - 1) / kRowGrain;
+  touching_offsets_.assign(runs + 1, 0);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) touching_offsets_[k / kRowGrain + 1] += starts(k) ? 1 : 0;
+  });
+  for (int r = 0; r < runs; ++r) touching_offsets_[r + 1] += touching_offsets_[r];
+  touching_.resize(touching_offsets_[runs]);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    int out = touching_offsets_[begin / kRowGrain];
+    for (int k = begin; k < end; ++k) {
+      if (!starts(k)) continue;
+      Touching deepest = touching_points_[k];
+      for (int i = k + 1; i < n && touching_points_[i].pair == deepest.pair; ++i) {
+        if (touching_points_[i].depth > deepest.depth) deepest = touching_points_[i];
+      }
+      touching_[out++] = deepest;
+    }
+  });
 }
 
 std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<RigidBody>& bodies,

@@ -241,6 +241,8 @@ class ImpulseMethod : public ContactMethod {
     Vec3 normal;    // unit, world, that contact's normal from pair.first to pair.second
   };
   std::vector<Touching> touching_;  // the pairs in contact at the sub-step's start, by pair
+  std::vector<Touching> touching_points_;  // FindTouching's: per contact, by pair
+  std::vector<int> touching_offsets_;      // FindTouching's: the pairs before each run of kRowGrain points
   JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
