@@ -53,20 +53,20 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   row_of_.resize(n);
   int count = 0;
   for (int k = 0; k < n; ++k) row_of_[k] = contacts[k].depth - params_.slop > 0.0 ? count++ : -1;
-  rows_.resize(count);
+  split_rows_.resize(count);
   std::vector<double> target(count);
   runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
     for (int k = begin; k < end; ++k) {
       if (row_of_[k] < 0) continue;
-      rows_[row_of_[k]] = MakeContactRow(contacts[k], world, solver_);
+      split_rows_[row_of_[k]] = MakeContactRow(contacts[k], world, solver_);
       target[row_of_[k]] = params_.position_correction * (contacts[k].depth - params_.slop);
     }
   });
-  if (rows_.empty()) return;
+  if (split_rows_.empty()) return;
   for (SolverBody& s : solver_) s.v.setZero(), s.w.setZero();
   SetColourRoles(world);
   SweepPositions(target);
-  SolveMassRatios(rows_, &target);
+  SolveMassRatios(split_rows_, &target);
   DisplaceBodies(solver_, *runner_, world);
 }
 

@@ -121,7 +121,7 @@ class ImpulseMethod : public ContactMethod {
   // the joints were solved between them.
   int SweepContacts(const World& world, double h, int max_sweeps, std::vector<ContactRow>& rows, bool* converged,
                     bool* interleave);
-  // The split impulse's sweeps over rows_ toward `target`, on the runner.
+  // The split impulse's sweeps over split_rows_ toward `target`, on the runner.
   void SweepPositions(const std::vector<double>& target);
   // Up to `passes` passes, each appended to a stage list by add_pass, after
   // prologue's stages (when given), in Stages calls of 1, 2, 4, ... passes
@@ -247,6 +247,9 @@ class ImpulseMethod : public ContactMethod {
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  // the split impulse's rows, apart from rows_ so that neither shrinks and
+  // grows again each step (a row is dear to construct)
+  std::vector<ContactRow> split_rows_;
   std::vector<ContactRow> collision_rows_;  // rows_ after the collision phase, for a sub-step swept again
   std::vector<RigidBody> start_bodies_;     // the sub-step's start state (kept: a body is dear to construct)
   std::vector<int> row_of_;                 // per contact: its split impulse row, or -1

@@ -243,8 +243,8 @@ int ImpulseMethod::SweepContacts(const World& world, double h, int max_sweeps, s
 }
 
 void ImpulseMethod::SweepPositions(const std::vector<double>& target) {
-  GroupNormalBlocks(rows_, &ContactRow::n, &blocks_);
-  colours_ = ColourGroups(rows_, &blocks_);
+  GroupNormalBlocks(split_rows_, &ContactRow::n, &blocks_);
+  colours_ = ColourGroups(split_rows_, &blocks_);
   const int blocks = static_cast<int>(blocks_.size());
   block_worst_.assign(blocks, 0.0);
   bool done = false;
@@ -253,7 +253,7 @@ void ImpulseMethod::SweepPositions(const std::vector<double>& target) {
     for (int b = i; b < j; ++b) {
       double worst = 0.0;
       for (int k = blocks_[b].first; k < blocks_[b].first + blocks_[b].count; ++k) {
-        ContactRow& row = rows_[k];
+        ContactRow& row = split_rows_[k];
         const double gap = target[k] - row.NormalVelocity(solver_);
         const double next = std::max(0.0, row.lambda_n + gap * row.mass_n);
         const double d = next - row.lambda_n;
