@@ -3,10 +3,15 @@
 // split over the threads), then merged pairwise, wider and wider, each
 // merge of a level on any thread. For a total order (no two elements
 // equivalent) the result is what one std::sort gives, bit for bit, on any
-// number of threads; callers make their order total with an index.
+// number of threads; callers make their order total with an index. With
+// a count asked for, it also counts the inversions (the shifts an
+// insertion sort of the whole range would make): within each run, and
+// across two runs as they merge.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <vector>
 
 #include "service/collision/parallel_runner.h"
@@ -18,9 +23,10 @@ namespace contactsim {
 // std::sort. The warm-start cache's entries come pair by pair in body order,
 // out of order only within a pair, where std::sort's partitions cost n log n
 // moves of large entries. A total order has one sorted result, so either
-// way gives the same, bit for bit.
+// way gives the same, bit for bit. With `shifts`, by insertion alone (in
+// O(n + inversions)), adding the inversions to *shifts.
 template <class It, class Less>
-void SortRun(It first, It last, Less less) {
+void SortRun(It first, It last, Less less, int64_t* shifts = nullptr) {
   if (last - first < 2) return;
   auto budget = 2 * (last - first);
   for (It i = first + 1; i != last; ++i) {
@@ -33,18 +39,40 @@ void SortRun(It first, It last, Less less) {
       --budget;
     } while (j != first && less(value, *(j - 1)));
     *j = std::move(value);
-    if (budget < 0) {
+    if (shifts != nullptr) {
+      *shifts += i - j;
+    } else if (budget < 0) {
       std::sort(first, last, less);
       return;
     }
   }
 }
 
+// std::merge of two sorted ranges, returning the inversions between them:
+// for each element taken from the second, the first's elements still left.
+template <class It, class Out, class Less>
+int64_t MergeCounting(It first1, It last1, It first2, It last2, Out out, Less less) {
+  int64_t inversions = 0;
+  while (first1 != last1 && first2 != last2) {
+    if (less(*first2, *first1)) {
+      inversions += last1 - first1;
+      *out++ = *first2++;
+    } else {
+      *out++ = *first1++;
+    }
+  }
+  out = std::copy(first1, last1, out);
+  std::copy(first2, last2, out);
+  return inversions;
+}
+
 // Sorts `v` by `less`, a total order; `scratch` is the merges' buffer
 // (grown to v's size, kept by the caller so a warmed-up step allocates
-// nothing). A null runner sorts on the caller.
+// nothing). A null runner sorts on the caller. With `inversions`, sets it
+// to v's inversions before the sort (the runs then sort by insertion).
 template <class T, class Less>
-void ParallelSort(std::vector<T>* v, std::vector<T>* scratch, ParallelRunner* runner, int run, Less less) {
+void ParallelSort(std::vector<T>* v, std::vector<T>* scratch, ParallelRunner* runner, int run, Less less,
+                  int64_t* inversions = nullptr) {
   const auto split = [runner](int count, int grain, const ParallelRunner::RangeFn& body) {
     if (runner == nullptr) {
       body(0, count, 0);
@@ -54,9 +82,16 @@ void ParallelSort(std::vector<T>* v, std::vector<T>* scratch, ParallelRunner* ru
   };
   const int m = static_cast<int>(v->size());
   const auto begin = v->begin();
+  std::atomic<int64_t> count{0};  // an integer sum: the same in any order
+  const bool counting = inversions != nullptr;
   split(m, run, [&](int lo, int hi, int /*worker*/) {
-    for (int r = lo; r < hi; r += run) SortRun(begin + r, begin + std::min(r + run, hi), less);
+    int64_t shifts = 0;
+    for (int r = lo; r < hi; r += run) {
+      SortRun(begin + r, begin + std::min(r + run, hi), less, counting ? &shifts : nullptr);
+    }
+    count += shifts;
   });
+  if (counting) *inversions = count;
   if (m <= run) return;
   if (scratch->size() < v->size()) scratch->resize(v->size());
   for (int width = run; width < m; width *= 2) {
@@ -71,12 +106,18 @@ void ParallelSort(std::vector<T>* v, std::vector<T>* scratch, ParallelRunner* ru
         if (mid == hi || !less(begin[mid], begin[mid - 1])) continue;
         const auto from = std::upper_bound(begin + lo, begin + mid, begin[mid], less);
         const auto to = std::lower_bound(begin + mid, begin + hi, begin[mid - 1], less);
+        // (no element outside the overlap is out of order with the other run)
         const auto out = scratch->begin() + (from - begin);
-        std::merge(from, begin + mid, begin + mid, to, out, less);
+        if (counting) {
+          count += MergeCounting(from, begin + mid, begin + mid, to, out, less);
+        } else {
+          std::merge(from, begin + mid, begin + mid, to, out, less);
+        }
         std::copy(out, out + (to - from), from);
       }
     });
   }
+  if (counting) *inversions = count;
 }
 
 }  // namespace contactsim

@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "service/collision/broadphase_check.h"
+#include "service/collision/parallel_sort.h"
 #include "service/collision/region_probe.h"
 
 namespace contactsim {
@@ -89,25 +90,18 @@ void SweepAndPrune::Rebuild(const std::vector<Aabb>& boxes) {
             [](const Entry& a, const Entry& b) { return Before(a.min, a.index, b.min, b.index); });
 }
 
-// Insertion sort of the last step's order under the new bounds: each entry
-// moves left past the entries that now start after it.
+// Insertion sort of the last step's order under the new bounds, each entry
+// moving left past the entries that now start after it: by runs of
+// kGatherGrain entries on the threads, then merged (parallel_sort.h). The
+// order (min, index) is total, so the result is one insertion sort's bit
+// for bit, and the inversions counted are its shifts.
 void SweepAndPrune::Repair(const std::vector<Aabb>& boxes) {
   Split(static_cast<int>(entries_.size()), kGatherGrain, [&](int begin, int end, int /*worker*/) {
     for (int k = begin; k < end; ++k) entries_[k].min = boxes[entries_[k].index].min[axis_];
   });
-  int64_t swaps = 0;
-  const int n = static_cast<int>(entries_.size());
-  for (int i = 1; i < n; ++i) {
-    const Entry e = entries_[i];
-    int j = i;
-    while (j > 0 && Before(e.min, e.index, entries_[j - 1].min, entries_[j - 1].index)) {
-      entries_[j] = entries_[j - 1];
-      --j;
-    }
-    swaps += i - j;
-    entries_[j] = e;
-  }
-  last_swaps_ = swaps;
+  ParallelSort(
+      &entries_, &entry_scratch_, runner_, kGatherGrain,
+      [](const Entry& a, const Entry& b) { return Before(a.min, a.index, b.min, b.index); }, &last_swaps_);
 }
 
 void SweepAndPrune::Gather(const std::vector<Aabb>& boxes, const std::vector<bool>& movable) {

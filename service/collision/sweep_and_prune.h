@@ -66,6 +66,7 @@ class SweepAndPrune : public Broadphase {
   std::vector<std::vector<BodyPair>> worker_pairs_;  // per thread, of the sweep
   int axis_ = 0;
   std::vector<Entry> entries_;  // sorted by (min, index)
+  std::vector<Entry> entry_scratch_;  // the repair's merges
   // gathered in sweep order each call
   std::vector<double> max_;     // m, upper bounds on the sweep axis
   std::vector<SweepBounds> sweep_;

@@ -34,6 +34,10 @@ struct BlockColours {
   // colour c's blocks are [starts[c], starts[c + 1]) of the reordered
   // blocks; the overflow is [starts.back(), blocks.size())
   std::vector<int> starts;
+  // where each run of the overflow that shares no movable body with the
+  // others starts, then the blocks' count (overflow_runs.h); empty: the
+  // overflow is one run
+  std::vector<int> overflow_runs;
   int colours() const { return static_cast<int>(starts.size()) - 1; }
 };
 

@@ -24,6 +24,9 @@ constexpr int kRowGrain = 256;
 constexpr int kImpulseBlockGrain = 128;
 constexpr int kImpulsePairGrain = 64;
 constexpr int kImpulseBodyGrain = 64;
+// impact pairs a thread advances and collides at a time in the impact
+// time's search (two body copies, two advances and a narrowphase call each)
+constexpr int kImpactGrain = 8;
 
 }  // namespace
 
@@ -50,20 +53,20 @@ void ImpulseMethod::CorrectPositions(World& world, const ContactSet& contacts) {
   row_of_.resize(n);
   int count = 0;
   for (int k = 0; k < n; ++k) row_of_[k] = contacts[k].depth - params_.slop > 0.0 ? count++ : -1;
-  rows_.resize(count);
+  split_rows_.resize(count);
   std::vector<double> target(count);
   runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
     for (int k = begin; k < end; ++k) {
       if (row_of_[k] < 0) continue;
-      rows_[row_of_[k]] = MakeContactRow(contacts[k], world, solver_);
+      split_rows_[row_of_[k]] = MakeContactRow(contacts[k], world, solver_);
       target[row_of_[k]] = params_.position_correction * (contacts[k].depth - params_.slop);
     }
   });
-  if (rows_.empty()) return;
+  if (split_rows_.empty()) return;
   for (SolverBody& s : solver_) s.v.setZero(), s.w.setZero();
   SetColourRoles(world);
   SweepPositions(target);
-  SolveMassRatios(rows_, &target);
+  SolveMassRatios(split_rows_, &target);
   DisplaceBodies(solver_, *runner_, world);
 }
 
@@ -291,23 +294,41 @@ void ImpulseMethod::FindTouching(const ContactSet& contacts) {
   // order, so the list comes out sorted and the sort is a check; a stable
   // sort otherwise keeps each pair's contacts in their order, so the
   // deepest is taken in the same order either way
-  touching_.clear();
-  for (const Contact& c : contacts) {
-    touching_.push_back({{std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth, c.a < c.b ? c.normal : Vec3(-c.normal)});
-  }
-  const auto by_pair = [](const Touching& l, const Touching& r) { return l.pair < r.pair; };
-  if (!std::is_sorted(touching_.begin(), touching_.end(), by_pair)) {
-    std::stable_sort(touching_.begin(), touching_.end(), by_pair);
-  }
-  size_t kept = 0;
-  for (size_t k = 0; k < touching_.size(); ++k) {
-    if (kept > 0 && touching_[kept - 1].pair == touching_[k].pair) {
-      if (touching_[k].depth > touching_[kept - 1].depth) touching_[kept - 1] = touching_[k];
-    } else {
-      touching_[kept++] = touching_[k];
+  const int n = static_cast<int>(contacts.size());
+  touching_points_.resize(n);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      const Contact& c = contacts[k];
+      touching_points_[k] = {
+          {std::min(c.a, c.b), std::max(c.a, c.b)}, c.depth, c.a < c.b ? c.normal : Vec3(-c.normal)};
     }
+  });
+  const auto by_pair = [](const Touching& l, const Touching& r) { return l.pair < r.pair; };
+  if (!std::is_sorted(touching_points_.begin(), touching_points_.end(), by_pair)) {
+    std::stable_sort(touching_points_.begin(), touching_points_.end(), by_pair);
   }
-  touching_.resize(kept);
+  // each pair's deepest point (the first of equal depths), the pairs found
+  // by the runs of kRowGrain points they start in: counted, then written
+  // to their places, each run on any thread
+  const auto starts = [&](int k) { return k == 0 || touching_points_[k - 1].pair != touching_points_[k].pair; };
+  const int runs = (n + kRowGrain - 1) / kRowGrain;
+  touching_offsets_.assign(runs + 1, 0);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) touching_offsets_[k / kRowGrain + 1] += starts(k) ? 1 : 0;
+  });
+  for (int r = 0; r < runs; ++r) touching_offsets_[r + 1] += touching_offsets_[r];
+  touching_.resize(touching_offsets_[runs]);
+  runner_->For(n, kRowGrain, [&](int begin, int end, int /*worker*/) {
+    int out = touching_offsets_[begin / kRowGrain];
+    for (int k = begin; k < end; ++k) {
+      if (!starts(k)) continue;
+      Touching deepest = touching_points_[k];
+      for (int i = k + 1; i < n && touching_points_[i].pair == deepest.pair; ++i) {
+        if (touching_points_[i].depth > deepest.depth) deepest = touching_points_[i];
+      }
+      touching_[out++] = deepest;
+    }
+  });
 }
 
 std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<RigidBody>& bodies,
@@ -360,7 +381,7 @@ std::vector<ImpulseMethod::Impact> ImpulseMethod::FindImpacts(const std::vector<
 }
 
 double ImpulseMethod::FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
-                                     int* iterations) const {
+                                     int* iterations) {
   // Bound on how fast any pair can close during the sub-step (needed for
   // conservative advancement, which keeps thin bodies from being skipped):
   // relative speed plus rotation sweep plus what the forces add over h.
@@ -371,19 +392,27 @@ double ImpulseMethod::FindImpactTime(const std::vector<RigidBody>& start, const 
   // Separations up to everything the sub-step can close are measured exactly
   // rather than clamped, so advancement takes full-size steps.
   const double reach = max_closing * h + 2.0 * params_.slop;
-  ContactSet scratch;
+  // the pairs on the threads, each worker keeping its own deepest: a
+  // maximum is the same whichever pairs each took (impact_scratch_ is
+  // FindImpacts', sized to the threads)
+  impact_deepest_.resize(runner_->threads());
   auto distance_at = [&](double t) {
-    double deepest = -reach;  // the most any pair is past its impact depth
-    for (const Impact& p : impacts) {
-      RigidBody a = start[p.a];
-      RigidBody b = start[p.b];
-      AdvanceBallistic(a, t);
-      AdvanceBallistic(b, t);
-      scratch.clear();
-      Collide(a, p.a, b, p.b, reach, &scratch);
-      for (const Contact& c : scratch) deepest = std::max(deepest, c.depth - p.depth);
-    }
-    return -deepest;
+    std::fill(impact_deepest_.begin(), impact_deepest_.end(), -reach);  // the most a pair is past its impact depth
+    runner_->For(static_cast<int>(impacts.size()), kImpactGrain, [&](int begin, int end, int worker) {
+      ContactSet& scratch = impact_scratch_[worker];
+      double& deepest = impact_deepest_[worker];
+      for (int i = begin; i < end; ++i) {
+        const Impact& p = impacts[i];
+        RigidBody a = start[p.a];
+        RigidBody b = start[p.b];
+        AdvanceBallistic(a, t);
+        AdvanceBallistic(b, t);
+        scratch.clear();
+        Collide(a, p.a, b, p.b, reach, &scratch);
+        for (const Contact& c : scratch) deepest = std::max(deepest, c.depth - p.depth);
+      }
+    });
+    return -*std::max_element(impact_deepest_.begin(), impact_deepest_.end());
   };
   TimeOfImpactOptions options;
   ParseRootFinder(params_.toi, &options.finder);

@@ -121,7 +121,7 @@ class ImpulseMethod : public ContactMethod {
   // the joints were solved between them.
   int SweepContacts(const World& world, double h, int max_sweeps, std::vector<ContactRow>& rows, bool* converged,
                     bool* interleave);
-  // The split impulse's sweeps over rows_ toward `target`, on the runner.
+  // The split impulse's sweeps over split_rows_ toward `target`, on the runner.
   void SweepPositions(const std::vector<double>& target);
   // Up to `passes` passes, each appended to a stage list by add_pass, after
   // prologue's stages (when given), in Stages calls of 1, 2, 4, ... passes
@@ -218,7 +218,7 @@ class ImpulseMethod : public ContactMethod {
   void CopyBodies(const std::vector<RigidBody>& from, std::vector<RigidBody>* to) const;
   // First time in (0, h] at which an impact's pair reaches its depth, or h.
   double FindImpactTime(const std::vector<RigidBody>& start, const std::vector<Impact>& impacts, double h,
-                        int* iterations) const;
+                        int* iterations);
 
   ImpulseParams params_;
   ParallelRunner* runner_ = nullptr;  // the detector's, for the step
@@ -234,16 +234,22 @@ class ImpulseMethod : public ContactMethod {
   std::vector<ParallelRunner::Stage> stages_;
   std::vector<ContactSet> impact_scratch_;  // per worker
   std::vector<double> impact_depth_;        // per candidate pair: the impact's depth, or NaN
+  std::vector<double> impact_deepest_;      // per worker: the impact search's deepest at one time
   struct Touching {
     BodyPair pair;  // body indices, lower first
     double depth;   // m, of the pair's deepest contact
     Vec3 normal;    // unit, world, that contact's normal from pair.first to pair.second
   };
   std::vector<Touching> touching_;  // the pairs in contact at the sub-step's start, by pair
+  std::vector<Touching> touching_points_;  // FindTouching's: per contact, by pair
+  std::vector<int> touching_offsets_;      // FindTouching's: the pairs before each run of kRowGrain points
   JointVelocityBlock joints_;  // the step's joint rows, solved between the sweeps
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<AngularResponse> responses_;  // per contact row, reused between steps
   std::vector<ContactRow> rows_;
+  // the split impulse's rows, apart from rows_ so that neither shrinks and
+  // grows again each step (a row is dear to construct)
+  std::vector<ContactRow> split_rows_;
   std::vector<ContactRow> collision_rows_;  // rows_ after the collision phase, for a sub-step swept again
   std::vector<RigidBody> start_bodies_;     // the sub-step's start state (kept: a body is dear to construct)
   std::vector<int> row_of_;                 // per contact: its split impulse row, or -1

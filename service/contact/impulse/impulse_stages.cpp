@@ -12,6 +12,7 @@
 
 #include "service/contact/colour_stages.h"
 #include "service/contact/impulse/impulse_method.h"
+#include "service/contact/overflow_runs.h"
 
 namespace contactsim {
 
@@ -19,9 +20,10 @@ namespace {
 
 using Fn = ParallelRunner::StageFn;
 
-// Fewer groups than this keep the caller's order, one serial stage a pass:
-// a colour of a few dozen pairs is a few microseconds of work, about what
-// the threads' meeting at a stage costs. It also keeps small worlds on the
+// Fewer groups than this keep the caller's order, as the overflow (its
+// independent runs one stage a pass, overflow_runs.h): a colour of a few
+// dozen pairs is a few microseconds of work, about what the threads'
+// meeting at a stage costs. It also keeps small worlds on the
 // serial sweep in contact order, under which a 20-cube aligned stack
 // stands (2e-9 m sideways in 10 s): coloured alternately, the stack's pairs
 // let a rocking mode grow from round-off, 12 mm in 10 s at a
@@ -70,10 +72,16 @@ void ImpulseMethod::SetColourRoles(const World& world) {
 // take turns, pass after pass, which is what carries the impulse down a
 // Newton's cradle (Guendelman et al. 2003).
 BlockColours ImpulseMethod::ColourGroups(const std::vector<ContactRow>& rows, std::vector<NormalBlock>* groups) const {
-  if (static_cast<int>(groups->size()) >= kMinColouredGroups) return ColourBlocks(rows, roles_, groups);
-  BlockColours none;  // every group in the overflow
-  none.starts = {0};
-  return none;
+  BlockColours colours;
+  if (static_cast<int>(groups->size()) >= kMinColouredGroups) {
+    colours = ColourBlocks(rows, roles_, groups);
+  } else {
+    colours.starts = {0};  // every group in the overflow
+  }
+  // the overflow's groups that share no moving body with the others on
+  // the threads, each run in its order: the same sweep bit for bit
+  SplitOverflow(rows, roles_, &colours, groups);
+  return colours;
 }
 
 int ImpulseMethod::CollisionPhase(std::vector<ContactRow>& rows) {
@@ -235,8 +243,8 @@ int ImpulseMethod::SweepContacts(const World& world, double h, int max_sweeps, s
 }
 
 void ImpulseMethod::SweepPositions(const std::vector<double>& target) {
-  GroupNormalBlocks(rows_, &ContactRow::n, &blocks_);
-  colours_ = ColourGroups(rows_, &blocks_);
+  GroupNormalBlocks(split_rows_, &ContactRow::n, &blocks_);
+  colours_ = ColourGroups(split_rows_, &blocks_);
   const int blocks = static_cast<int>(blocks_.size());
   block_worst_.assign(blocks, 0.0);
   bool done = false;
@@ -245,7 +253,7 @@ void ImpulseMethod::SweepPositions(const std::vector<double>& target) {
     for (int b = i; b < j; ++b) {
       double worst = 0.0;
       for (int k = blocks_[b].first; k < blocks_[b].first + blocks_[b].count; ++k) {
-        ContactRow& row = rows_[k];
+        ContactRow& row = split_rows_[k];
         const double gap = target[k] - row.NormalVelocity(solver_);
         const double next = std::max(0.0, row.lambda_n + gap * row.mass_n);
         const double d = next - row.lambda_n;

@@ -13,6 +13,8 @@ namespace {
 // groups (of rows) and normal blocks a thread prepares at a time
 constexpr int kPgsPrepareGrain = 16;
 constexpr int kPgsBlockGrain = 64;
+// rows a thread inverts the sweep order of at a time (a store each)
+constexpr int kPgsRowGrain = 2048;
 
 }  // namespace
 
@@ -54,13 +56,21 @@ void PgsSolver::Prepare(const std::vector<ConstraintRow>& rows, const std::vecto
   ParallelRunner* runner = options.runner;
   if (runner != nullptr) {
     const int ordered = options.ordered_from >= 0 ? options.ordered_from : static_cast<int>(rows.size());
-    schedule_.Colour(rows, bodies, ordered, &order_, &group_rows_, &colours_);
+    schedule_.Colour(rows, bodies, ordered, &order_, &group_rows_, &colours_, runner);
   } else {
     schedule_.Order(rows, bodies, &order_);
     group_rows_ = {0, static_cast<int>(rows.size())};
   }
   position_.resize(rows.size());
-  for (size_t k = 0; k < order_.size(); ++k) position_[order_[k]] = static_cast<int>(k);
+  // a permutation's inverse: each slot written once
+  const auto invert = [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) position_[order_[k]] = k;
+  };
+  if (runner != nullptr) {
+    runner->For(static_cast<int>(order_.size()), kPgsRowGrain, invert);
+  } else {
+    invert(0, static_cast<int>(order_.size()), 0);
+  }
   const int groups = static_cast<int>(group_rows_.size()) - 1;
   vel_.resize(world_slot + 1 + groups);
   for (int g = 0; g < groups; ++g) vel_[world_slot + 1 + g] = {Vec3::Zero(), Vec3::Zero()};

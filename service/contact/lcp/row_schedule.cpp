@@ -16,14 +16,23 @@ void RowSchedule::FindRuns(const std::vector<ConstraintRow>& rows) {
   }
 }
 
-void RowSchedule::Interleave(int begin, int end, std::vector<int>* order) const {
+int* RowSchedule::Interleave(int begin, int end, int* out) const {
   int longest = 0;
   for (int i = begin; i < end; ++i) longest = std::max(longest, sorted_[i].count);
   for (int s = 0; s < longest; ++s) {
     for (int i = begin; i < end; ++i) {
-      if (s < sorted_[i].count) order->push_back(sorted_[i].first + s);
+      if (s < sorted_[i].count) *out++ = sorted_[i].first + s;
     }
   }
+  return out;
+}
+
+void RowSchedule::Interleave(int begin, int end, std::vector<int>* order) const {
+  const size_t at = order->size();
+  int rows = 0;
+  for (int i = begin; i < end; ++i) rows += sorted_[i].count;
+  order->resize(at + rows);
+  Interleave(begin, end, order->data() + at);
 }
 
 void RowSchedule::AppendByLevel(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
@@ -68,17 +77,26 @@ void RowSchedule::Order(const std::vector<ConstraintRow>& rows, const std::vecto
 
 void RowSchedule::Colour(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
                          int first_ordered, std::vector<int>* order, std::vector<int>* group_rows,
-                         BlockColours* colours) {
+                         BlockColours* colours, ParallelRunner* runner) {
   const int world = static_cast<int>(bodies.size());
   roles_.resize(bodies.size() + 1);
   for (size_t i = 0; i < bodies.size(); ++i) {
     roles_[i] = bodies[i].inv_mass > 0.0 ? ColourRole::kColoured : ColourRole::kFixed;
   }
   roles_[world] = ColourRole::kFixed;
-  ends_.resize(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    ends_[k] = {rows[k].a >= 0 ? rows[k].a : world, rows[k].b >= 0 ? rows[k].b : world};
-    if (static_cast<int>(k) < first_ordered) continue;
+  const int n = static_cast<int>(rows.size());
+  ends_.resize(n);
+  const auto ends = [&](int begin, int end, int /*worker*/) {
+    for (int k = begin; k < end; ++k) {
+      ends_[k] = {rows[k].a >= 0 ? rows[k].a : world, rows[k].b >= 0 ? rows[k].b : world};
+    }
+  };
+  if (runner != nullptr) {
+    runner->For(n, kEndsGrain, ends);
+  } else {
+    ends(0, n, 0);
+  }
+  for (int k = std::max(first_ordered, 0); k < n; ++k) {
     for (int body : {ends_[k].a, ends_[k].b}) {
       if (roles_[body] == ColourRole::kColoured) roles_[body] = ColourRole::kSerial;
     }
@@ -92,7 +110,7 @@ void RowSchedule::Colour(const std::vector<ConstraintRow>& rows, const std::vect
     *colours = last_colours_;
     return;
   }
-  ColourAnew(rows, bodies, order, group_rows, colours);
+  ColourAnew(rows, bodies, order, group_rows, colours, runner);
   last_ends_ = ends_;
   last_roles_ = roles_;
   last_order_ = *order;
@@ -101,7 +119,8 @@ void RowSchedule::Colour(const std::vector<ConstraintRow>& rows, const std::vect
 }
 
 void RowSchedule::ColourAnew(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
-                             std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours) {
+                             std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours,
+                             ParallelRunner* runner) {
   FindRuns(rows);
   coloured_.resize(runs_.size());
   for (size_t i = 0; i < runs_.size(); ++i) coloured_[i] = NormalBlock{runs_[i].first, runs_[i].count};
@@ -109,16 +128,35 @@ void RowSchedule::ColourAnew(const std::vector<ConstraintRow>& rows, const std::
   sorted_.resize(coloured_.size());
   for (size_t i = 0; i < coloured_.size(); ++i) sorted_[i] = {coloured_[i].first, coloured_[i].count, 0};
 
-  // groups of kRunsPerGroup within each colour; the overflow one group
-  order->clear();
+  // groups of kRunsPerGroup within each colour, each group's rows counted
+  // here and interleaved into its own place on the threads; the overflow
+  // one group
   group_rows->assign(1, 0);
+  group_first_run_.clear();
   colours->starts.clear();
   for (int c = 0; c < by_run.colours(); ++c) {
     colours->starts.push_back(static_cast<int>(group_rows->size()) - 1);
     for (int i = by_run.starts[c]; i < by_run.starts[c + 1]; i += kRunsPerGroup) {
-      Interleave(i, std::min(i + kRunsPerGroup, by_run.starts[c + 1]), order);
-      group_rows->push_back(static_cast<int>(order->size()));
+      int count = 0;
+      for (int r = i; r < std::min(i + kRunsPerGroup, by_run.starts[c + 1]); ++r) count += sorted_[r].count;
+      group_first_run_.push_back(i);
+      group_rows->push_back(group_rows->back() + count);
     }
+  }
+  const int groups = static_cast<int>(group_first_run_.size());
+  group_first_run_.push_back(by_run.starts.back());
+  order->resize(group_rows->back());
+  const auto fill = [&](int begin, int end, int /*worker*/) {
+    for (int g = begin; g < end; ++g) {
+      // a group ends at its colour's end or kRunsPerGroup runs on
+      const int last = std::min(group_first_run_[g] + kRunsPerGroup, group_first_run_[g + 1]);
+      Interleave(group_first_run_[g], last, order->data() + (*group_rows)[g]);
+    }
+  };
+  if (runner != nullptr) {
+    runner->For(groups, kFillGrain, fill);
+  } else {
+    fill(0, groups, 0);
   }
   colours->starts.push_back(static_cast<int>(group_rows->size()) - 1);
   const int overflow = by_run.starts.back();

@@ -36,6 +36,7 @@
 
 #include <vector>
 
+#include "service/collision/parallel_runner.h"
 #include "service/contact/block_colours.h"
 #include "service/contact/constraint_row.h"
 
@@ -55,8 +56,11 @@ class RowSchedule {
   // order[group_rows[g], group_rows[g + 1]); `colours` in groups (a
   // colour's groups share no moving body; the overflow, at most one group,
   // keeps the caller's order). Rows from `first_ordered` on are ordered.
+  // With a runner, the groups' rows are written on its threads (each group
+  // its own slots: the same order on any thread count).
   void Colour(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int first_ordered,
-              std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours);
+              std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours,
+              ParallelRunner* runner = nullptr);
 
  private:
   struct Run {
@@ -69,11 +73,18 @@ class RowSchedule {
   // Colour's order from ends_ and roles_ (made from the same rows and
   // bodies), when they differ from the last call's.
   void ColourAnew(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies,
-                  std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours);
+                  std::vector<int>* order, std::vector<int>* group_rows, BlockColours* colours,
+                  ParallelRunner* runner);
+  // groups a thread fills at a time (a group is a few dozen rows), and
+  // rows whose bodies it reads at a time
+  static constexpr int kFillGrain = 64;
+  static constexpr int kEndsGrain = 2048;
   // runs_ from the rows: consecutive rows on the same body pair
   void FindRuns(const std::vector<ConstraintRow>& rows);
   // Appends row s of every run in sorted_[begin, end) for s = 0, 1, ...
   void Interleave(int begin, int end, std::vector<int>* order) const;
+  // The same written from `out` on; returns the end of what it wrote.
+  int* Interleave(int begin, int end, int* out) const;
   // Appends the rows of sorted_[begin, end) (runs in the caller's order)
   // level by level, each level interleaved.
   void AppendByLevel(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& bodies, int begin,
@@ -86,6 +97,7 @@ class RowSchedule {
   std::vector<NormalBlock> coloured_;  // the runs as blocks of rows, colour by colour
   std::vector<Run> sorted_;            // the runs in sweep order
   std::vector<Run> level_sorted_;
+  std::vector<int> group_first_run_;  // per coloured group: its first run in sorted_, then the overflow's
   // the last coloured call's rows' bodies and bodies' roles, and its answer
   std::vector<Ends> last_ends_;
   std::vector<ColourRole> last_roles_;
