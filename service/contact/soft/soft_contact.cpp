@@ -152,7 +152,8 @@ void SetSoftPointSprings(double hertz, double damping_ratio, double h, const Wor
   }
 }
 
-void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies) {
+void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies,
+                               const std::vector<int>* point_of_contact) {
   start.assign(bodies.size() + 1, 0);
   for (const SoftPoint& p : points) {
     for (int i : {p.a, p.b}) start[i + 1] += bodies[i].inv_mass > 0.0 ? 1 : 0;
@@ -160,7 +161,8 @@ void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::
   for (size_t i = 0; i < bodies.size(); ++i) start[i + 1] += start[i];
   entries.resize(start.back());
   std::vector<int> next(start.begin(), start.end() - 1);
-  for (int k = 0; k < static_cast<int>(points.size()); ++k) {
+  for (int c = 0; c < static_cast<int>(points.size()); ++c) {
+    const int k = point_of_contact != nullptr ? (*point_of_contact)[c] : c;
     if (bodies[points[k].a].inv_mass > 0.0) entries[next[points[k].a]++] = 2 * k;
     if (bodies[points[k].b].inv_mass > 0.0) entries[next[points[k].b]++] = 2 * k + 1;
   }

@@ -119,7 +119,10 @@ struct SoftPointsOfBodies {
   std::vector<int> start;    // body i's entries are [start[i], start[i + 1])
   std::vector<int> entries;  // 2 k for point k's body A, 2 k + 1 for its B
 
-  void Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies);
+  // `point_of_contact` (soft_point_order.h): where contact k's point is,
+  // the sums still taken in contact order; null: point k is contact k's
+  void Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies,
+             const std::vector<int>* point_of_contact = nullptr);
 };
 
 // Applies the accumulated impulses of body i's points to it (warm start of

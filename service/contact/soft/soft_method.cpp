@@ -40,6 +40,7 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   // over its lanes; RunSubsteps fills them in should the step turn to the
   // double path after all, or restitution need them
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
+  point_order_.Reset();
   PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
   BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
   OrderBlocksFromTheTop(world, points_, &manifolds_, &runner);
@@ -92,7 +93,10 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
 
   impulses_.resize(points_.size());
   detector.runner().For(static_cast<int>(points_.size()), kContactGrain, [&](int begin, int end, int) {
-    for (int k = begin; k < end; ++k) impulses_[k] = {points_[k].lambda_n, points_[k].lambda_t1, points_[k].lambda_t2};
+    for (int k = begin; k < end; ++k) {
+      const SoftPoint& p = points_[point_order_.PointOf(k)];
+      impulses_[k] = {p.lambda_n, p.lambda_t1, p.lambda_t2};
+    }
   });
   warm_start_.StoreFrame(contacts_, impulses_, &detector.runner());
   StepStats stats = Report(detector.runner(), contacts_out);
@@ -122,7 +126,7 @@ StepStats SoftMethod::Report(ParallelRunner& runner, ContactSet* contacts_out) {
   // each contact writes its own slot; the deepest is taken after, in order
   runner.For(static_cast<int>(contacts_.size()), kContactGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
-      const SoftPoint& p = points_[k];
+      const SoftPoint& p = points_[point_order_.PointOf(k)];
       const SoftBody& A = bodies_[p.a];
       const SoftBody& B = bodies_[p.b];
       Contact& c = (*contacts_out)[k];

@@ -93,6 +93,8 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
     return;
   }
+  // the ratio and joint-contact solves hold points by their contact index
+  if (!ratio_solve_.active() && !jointed_solve_.active()) point_order_.Apply(runner, &manifolds_, &points_);
   SoftPass relax = solve;
   relax.use_bias = false;
   relax.hold_pushing_gaps = true;
@@ -106,7 +108,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
 
   using Fn = ParallelRunner::StageFn;
   const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_); };
-  points_of_bodies_.Build(points_, bodies_);
+  points_of_bodies_.Build(points_, bodies_, point_order_.PointsOfContacts());
   const Fn warm_start = [&](int i, int j) {
     for (int q = i; q < j; ++q) WarmStartSoftBody(body_order_[q], points_of_bodies_, points_, bodies_);
   };
