@@ -41,7 +41,7 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   // double path after all, or restitution need them
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
   point_order_.Reset();
-  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
+  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), Springs(world), runner, &points_, !wide_prepare_);
   BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
   OrderBlocksFromTheTop(world, points_, &manifolds_, &runner);
   if (!params_.warm_start) return;
@@ -57,6 +57,13 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
       }
     }
   });
+}
+
+SoftSprings SoftMethod::Springs(const World& world) const {
+  const double h = world.dt / params_.substeps;
+  // the spring must be resolved by the sub-step: at most a quarter of its rate
+  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
+  return SoftSprings(hertz, params_.damping_ratio, h);
 }
 
 const std::vector<Vec3>* SoftMethod::FrictionPoints() const {

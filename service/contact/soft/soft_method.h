@@ -92,6 +92,8 @@ class SoftMethod : public ContactMethod {
   // where the points' friction acts with patch_torsion (patch_torsion.h);
   // null: at the points
   const std::vector<Vec3>* FrictionPoints() const;
+  // the contact springs of a sub-step
+  SoftSprings Springs(const World& world) const;
   // Restitution applies to approaches faster than this (m/s).
   double RestitutionThreshold(const World& world) const;
 

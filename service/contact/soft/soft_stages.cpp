@@ -48,9 +48,6 @@ void OrderBodiesFromTheTop(const std::vector<SoftManifold>& blocks, const std::v
 
 void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const double h = world.dt / params_.substeps;
-  // the spring must be resolved by the sub-step: at most a quarter of its rate
-  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
-  SetSoftPointSprings(hertz, params_.damping_ratio, h, world, points_);
   SubspaceOptions direct;
   direct.mass_ratio = params_.direct_mass_ratio;
   direct.max_rows = params_.direct_max_rows;
@@ -107,9 +104,12 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   relax_direct.hold_pushing_gaps = jointed_solve_.active();
 
   using Fn = ParallelRunner::StageFn;
-  const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_); };
   points_of_bodies_.Build(points_, bodies_, point_order_.PointsOfContacts());
-  const Fn warm_start = [&](int i, int j) {
+  // each body's velocity from its forces, then its points' warm start: one
+  // stage, each body's update its own and in the same order as two
+  // stages', so the bodies are read once for both
+  const Fn integrate_and_warm_start = [&](int i, int j) {
+    IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_);
     for (int q = i; q < j; ++q) WarmStartSoftBody(body_order_[q], points_of_bodies_, points_, bodies_);
   };
   const Fn solve_blocks = [&](int i, int j) { SolveSoftManifolds(solve, manifolds_, i, j, points_, bodies_); };
@@ -156,8 +156,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // turn joint_passes times (contact/joints/joint_block.h)
   const int joint_passes = joints ? params_.joint_passes : 1;
   for (int sub = 0; sub < params_.substeps; ++sub) {
-    list.Add(integrate_velocities, 0, bodies, kSoftStageBodyGrain);
-    list.Add(warm_start, 0, bodies, kSoftStageBodyGrain);
+    list.Add(integrate_and_warm_start, 0, bodies, kSoftStageBodyGrain);
     if (joint_dynamics) list.AddSerial(begin_joints);
     // the heavy-on-light direct solve, a dense factorisation, once a stage:
     // before the stage's last joint solve
