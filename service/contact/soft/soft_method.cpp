@@ -42,7 +42,10 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
   point_order_.Reset();
   PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), Springs(world), runner, &points_, !wide_prepare_);
-  BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
+  // K^-1 waits for the sub-steps' colouring: the double path inverts the
+  // blocks as it moves their points into the manifolds' order
+  // (soft_point_order.h), the float path in float (soft_wide_kernels.h)
+  BuildSoftManifolds(points_, runner, &manifolds_, /*invert=*/false);
   OrderBlocksFromTheTop(world, points_, &manifolds_, &runner);
   if (!params_.warm_start) return;
   // each contact looks up its own point (the hint moves where a search

@@ -27,6 +27,7 @@ void SoftPointOrder::Apply(ParallelRunner& runner, std::vector<SoftManifold>* ma
         point_of_contact_[m.first + i] = starts_[k] + i;
       }
       m.first = starts_[k];
+      InvertSoftManifold(scratch_, &m);
     }
   });
   points->swap(scratch_);

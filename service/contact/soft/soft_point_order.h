@@ -25,7 +25,9 @@ class SoftPointOrder {
   // The points back in contact order (as PrepareSoftPoints writes them).
   void Reset() { point_of_contact_.clear(); }
   // Moves `points` (in contact order) into the order of `manifolds`, each
-  // manifold's first rewritten, on the runner's threads.
+  // manifold's first rewritten and its K^-1 taken from the copies while
+  // they are in the cache (InvertSoftManifold: a pass of its own fetched
+  // every point again), on the runner's threads.
   void Apply(ParallelRunner& runner, std::vector<SoftManifold>* manifolds, std::vector<SoftPoint>* points);
   // where contact k's point is
   int PointOf(int contact) const { return point_of_contact_.empty() ? contact : point_of_contact_[contact]; }

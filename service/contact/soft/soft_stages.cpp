@@ -65,7 +65,6 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   if (wide_prepare_ && !float_path) {
     // the double path's rows, as Prepare makes them for precision=double
     PrepareSoftRows(bodies_, FrictionPoints(), runner, &points_);
-    InvertSoftManifolds(points_, runner, &manifolds_);
   }
   ratio_solve_.Stiffen(bodies_, points_);
   jointed_solve_.Prepare(world, direct, bodies_, points_);
@@ -90,8 +89,14 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
     return;
   }
-  // the ratio and joint-contact solves hold points by their contact index
-  if (!ratio_solve_.active() && !jointed_solve_.active()) point_order_.Apply(runner, &manifolds_, &points_);
+  // K^-1 of the blocks, from their points' copies as they move into the
+  // manifolds' order; the ratio and joint-contact solves hold points by
+  // their contact index, so there they stay where they are
+  if (!ratio_solve_.active() && !jointed_solve_.active()) {
+    point_order_.Apply(runner, &manifolds_, &points_);
+  } else {
+    InvertSoftManifolds(points_, runner, &manifolds_);
+  }
   SoftPass relax = solve;
   relax.use_bias = false;
   relax.hold_pushing_gaps = true;
