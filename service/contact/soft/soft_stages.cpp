@@ -140,9 +140,10 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // order (another split of them over the threads) and its meeting.
   const bool fuse_accumulate = params_.relax_iterations > 0 && world.joints().empty() && !ratio_solve_.active() &&
                                !jointed_solve_.active();
-  // Block by block, while the block's points are still in the cache (a
-  // chunk's worth of blocks relaxed first left a 10,000-box step to fetch
-  // them again: BENCHMARKS.md, "Scaling: 1,000 to 10,000 bodies").
+  // Block by block, while the block's points are still in the first-level
+  // cache (a chunk's worth of blocks relaxed first fetched them again: 4%
+  // more first-level misses a 10,000-box step, BENCHMARKS.md "Scaling:
+  // 1,000 to 10,000 bodies").
   const Fn relax_and_accumulate = [&](int i, int j) {
     for (int k = i; k < j; ++k) {
       SolveSoftManifolds(relax, manifolds_, k, k + 1, points_, bodies_);
