@@ -40,34 +40,25 @@
 
 namespace contactsim {
 
-// Laid out for the passes that stream the points (BENCHMARKS.md, "Scaling:
-// 1,000 to 10,000 bodies"): the warm start (WarmStartSoftBody) reads of a
-// point one body's responses, the frame and the impulses, so those come
-// first, A's and B's responses on either side of the frame and impulses,
-// each body's share three cache lines of the 64-byte aligned point instead
-// of five spread over it; what only restitution reads comes last.
-struct alignas(64) SoftPoint {
-  // the rows' responses I^-1 (r x d) on A for d = n, t1, t2, at the step's
-  // start (the solve keeps them for the step)
-  Vec3 ia_n, ia_t1, ia_t2;
-  Vec3 n = Vec3::UnitZ(), t1 = Vec3::UnitX(), t2 = Vec3::UnitY();  // unit, world; n from A to B
-  double lambda_n = 0.0, lambda_t1 = 0.0, lambda_t2 = 0.0;  // N s per sub-step, accumulated
-  Vec3 ib_n, ib_t1, ib_t2;  // the same on B
+struct SoftPoint {
   int a = -1, b = -1;
   Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();  // m, anchors at the step's start
-  // the rows' angular Jacobians r x d for d = n, t1, t2; the friction
-  // rows' r is where the point's friction acts (patch_torsion.h)
+  Vec3 n = Vec3::UnitZ(), t1 = Vec3::UnitX(), t2 = Vec3::UnitY();  // unit, world; n from A to B
+  // the rows' angular Jacobians r x d and responses I^-1 (r x d) for
+  // d = n, t1, t2, at the step's start (the solve keeps them for the step);
+  // the friction rows' r is where the point's friction acts (patch_torsion.h)
   Vec3 ra_n, ra_t1, ra_t2, rb_n, rb_t1, rb_t2;
+  Vec3 ia_n, ia_t1, ia_t2, ib_n, ib_t1, ib_t2;
   double adjusted_separation = 0.0;  // m: s_0 - n . (r_B - r_A)
   double mass_n = 0.0, mass_t1 = 0.0, mass_t2 = 0.0;  // kg
   double k_t12 = 0.0;          // 1/kg, K's coupling of t1 and t2 (slip_friction_step.h)
-  double friction = 0.0;
+  double friction = 0.0, restitution = 0.0;
+  double impact_speed = 0.0;   // m/s, relative normal velocity at impact (< 0 approaching)
+  double lambda_n = 0.0, lambda_t1 = 0.0, lambda_t2 = 0.0;  // N s per sub-step, accumulated
   double max_push = 0.0;       // N s, largest normal increment of the step
   double total_n = 0.0;        // N s over the step
   double total_t1 = 0.0, total_t2 = 0.0;  // N s over the step along t1, t2
   Softness soft;               // of this point's spring (SoftSprings)
-  double restitution = 0.0;
-  double impact_speed = 0.0;   // m/s, relative normal velocity at impact (< 0 approaching)
 
   // relative velocity of B against A at the anchors along n, t1, t2
   double VelocityAlong(const Vec3& d, const Vec3& ja, const Vec3& jb, const SoftBody& A, const SoftBody& B) const {
