@@ -89,8 +89,8 @@ struct SoftSprings {
 // The points of `contacts` at the bodies' state at the step's start, their
 // friction rows acting at `friction_points` (patch_torsion.h; null: at the
 // contact points), each with its spring of `springs` (set as the point is
-// made: a pass of its own over the points cost a 10,000-box step a fetch
-// of each point, BENCHMARKS.md "Scaling: 1,000 to 10,000 bodies"). On the
+// made: a pass of its own over the points fetched two cache lines of each
+// again, BENCHMARKS.md "Scaling: 1,000 to 10,000 bodies"). On the
 // world's threads (each point is its own). Without
 // `rows` the rows' Jacobians, responses and effective masses are left
 // unset (the masses 0): the float path computes them in float over its
