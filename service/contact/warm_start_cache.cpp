@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "service/collision/parallel_sort.h"
+#include "service/contact/saved_impulses.h"
 #include "service/physics/byte_stream.h"
 
 namespace contactsim {
@@ -177,18 +178,17 @@ void WarmStartCache::StoreJoints(const std::vector<JointBlock>& blocks, size_t f
   std::sort(joint_impulses_.begin(), joint_impulses_.end());
 }
 
-// Layout: the contact entries; then, when there are joint rows, their count
-// and entries (snapshots written before joints end after the contacts).
+// Layout: the contact entries (saved_impulses.h); then, when there are
+// joint rows, their count and entries (snapshots written before joints end
+// after the contacts).
 std::string WarmStartCache::Save() const {
-  ByteWriter out;
-  out.Put(static_cast<uint64_t>(impulses_.size()));
+  std::vector<SavedImpulse> saved;
+  saved.reserve(impulses_.size());
   for (const Entry& e : impulses_) {
-    out.Put(std::get<0>(e.key));
-    out.Put(std::get<1>(e.key));
-    out.Put(std::get<2>(e.key));
-    for (double l : e.lambda) out.Put(l);
-    out.PutVec3(e.point);
+    saved.push_back({std::get<0>(e.key), std::get<1>(e.key), std::get<2>(e.key), e.lambda, e.point});
   }
+  ByteWriter out;
+  PutSavedImpulses(saved, &out);
   if (!joint_impulses_.empty()) {
     out.Put(static_cast<uint64_t>(joint_impulses_.size()));
     for (const auto& [key, lambda] : joint_impulses_) {
@@ -201,18 +201,13 @@ std::string WarmStartCache::Save() const {
 }
 
 bool WarmStartCache::Restore(const std::string& bytes) {
-  std::vector<Entry> loaded;
+  std::vector<SavedImpulse> saved;
   ByteReader in(bytes);
-  uint64_t n = 0;
-  bool ok = bytes.empty() || in.Get(&n);
-  for (uint64_t i = 0; ok && i < n; ++i) {
-    BodyId a = 0, b = 0;
-    uint32_t feature = 0;
-    std::array<double, 3> l{};
-    Vec3 point = Vec3::Zero();
-    ok = in.Get(&a) && in.Get(&b) && in.Get(&feature) && in.Get(&l[0]) && in.Get(&l[1]) && in.Get(&l[2]) &&
-         in.GetVec3(&point);
-    loaded.push_back({Key{a, b, feature}, l, point, static_cast<size_t>(i)});
+  bool ok = GetSavedImpulses(&in, &saved);
+  std::vector<Entry> loaded;
+  for (size_t i = 0; ok && i < saved.size(); ++i) {
+    const SavedImpulse& s = saved[i];
+    loaded.push_back({Key{s.a, s.b, s.feature}, s.lambda, s.point, i});
   }
   std::vector<std::pair<JointKey, double>> joints;
   uint64_t m = 0;

@@ -15,18 +15,12 @@
 #include <vector>
 
 #include "service/collision/parallel_runner.h"
+#include "tests/contact/keyed_contact.h"
 
 namespace contactsim {
 namespace {
 
-Contact MakeContact(BodyId a, BodyId b, uint32_t feature, const Vec3& point) {
-  Contact c;
-  c.id_a = a;
-  c.id_b = b;
-  c.feature_id = feature;
-  c.point = point;
-  return c;
-}
+using testing::KeyedContact;
 
 // A cache holding one face's four corners of pair (1, 2), feature ids 10-13,
 // impulses (k + 1, k, -k) for corner k.
@@ -35,7 +29,7 @@ WarmStartCache FourCorners(ContactSet* stored) {
   const Vec3 corners[4] = {{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}};
   std::vector<std::array<double, 3>> impulses;
   for (int k = 0; k < 4; ++k) {
-    stored->push_back(MakeContact(1, 2, 10 + k, corners[k]));
+    stored->push_back(KeyedContact(1, 2, 10 + k, corners[k]));
     impulses.push_back({k + 1.0, 1.0 * k, -1.0 * k});
   }
   WarmStartCache cache;
@@ -47,7 +41,7 @@ TEST(WarmStartCacheTest, SameFeatureIdFindsItsImpulsesWhereverThePointMoved) {
   ContactSet stored;
   const WarmStartCache cache = FourCorners(&stored);
   // feature 12 moved 5 cm (a sliding contact): still its own impulses
-  const std::array<double, 3>* found = cache.Find(MakeContact(1, 2, 12, stored[2].point + Vec3(0.05, 0, 0)));
+  const std::array<double, 3>* found = cache.Find(KeyedContact(1, 2, 12, stored[2].point + Vec3(0.05, 0, 0)));
   ASSERT_NE(found, nullptr);
   EXPECT_EQ((*found)[0], 3.0);
   EXPECT_EQ((*found)[1], 2.0);
@@ -61,26 +55,26 @@ TEST(WarmStartCacheTest, NewFeatureIdTakesTheNearestCachedPointWithinTheDistance
   // each corner under a new id, moved by 0.3 d in some direction
   const Vec3 moves[4] = {{0.3 * d, 0, 0}, {0, -0.3 * d, 0}, {0, 0, 0.3 * d}, {-0.2 * d, 0.2 * d, 0}};
   for (int k = 0; k < 4; ++k) {
-    const std::array<double, 3>* found = cache.Find(MakeContact(1, 2, 99 + k, stored[k].point + moves[k]));
+    const std::array<double, 3>* found = cache.Find(KeyedContact(1, 2, 99 + k, stored[k].point + moves[k]));
     ASSERT_NE(found, nullptr) << "corner " << k;
     EXPECT_EQ((*found)[0], k + 1.0) << "corner " << k;
   }
   // beyond the distance: nothing (a new contact starts from zero)
-  EXPECT_EQ(cache.Find(MakeContact(1, 2, 99, stored[0].point + Vec3(1.01 * d, 0, 0))), nullptr);
+  EXPECT_EQ(cache.Find(KeyedContact(1, 2, 99, stored[0].point + Vec3(1.01 * d, 0, 0))), nullptr);
   // the face's centre is far from every corner
-  EXPECT_EQ(cache.Find(MakeContact(1, 2, 99, Vec3::Zero())), nullptr);
+  EXPECT_EQ(cache.Find(KeyedContact(1, 2, 99, Vec3::Zero())), nullptr);
 }
 
 TEST(WarmStartCacheTest, PlaceMatchesOnlyWithinTheSamePair) {
   ContactSet stored;
   const WarmStartCache cache = FourCorners(&stored);
-  EXPECT_EQ(cache.Find(MakeContact(1, 3, 10, stored[0].point)), nullptr);
-  EXPECT_EQ(cache.Find(MakeContact(2, 1, 10, stored[0].point)), nullptr);
-  EXPECT_EQ(cache.Find(MakeContact(0, 2, 50, stored[0].point)), nullptr);
+  EXPECT_EQ(cache.Find(KeyedContact(1, 3, 10, stored[0].point)), nullptr);
+  EXPECT_EQ(cache.Find(KeyedContact(2, 1, 10, stored[0].point)), nullptr);
+  EXPECT_EQ(cache.Find(KeyedContact(0, 2, 50, stored[0].point)), nullptr);
 }
 
 TEST(WarmStartCacheTest, PointsWithoutNormalImpulseAreNotKept) {
-  ContactSet contacts = {MakeContact(1, 2, 7, Vec3::Zero())};
+  ContactSet contacts = {KeyedContact(1, 2, 7, Vec3::Zero())};
   WarmStartCache cache;
   cache.StoreFrame(contacts, {{0.0, 1.0, 1.0}});
   EXPECT_EQ(cache.size(), 0u);
@@ -94,7 +88,7 @@ TEST(WarmStartCacheTest, SaveAndRestoreKeepIdsImpulsesAndPlaces) {
   ASSERT_TRUE(restored.Restore(cache.Save()));
   EXPECT_EQ(restored.Save(), cache.Save());
   // found by place after the round trip too
-  const std::array<double, 3>* found = restored.Find(MakeContact(1, 2, 77, stored[3].point));
+  const std::array<double, 3>* found = restored.Find(KeyedContact(1, 2, 77, stored[3].point));
   ASSERT_NE(found, nullptr);
   EXPECT_EQ((*found)[0], 4.0);
   // truncated bytes are refused and change nothing
@@ -115,7 +109,7 @@ ContactSet ManyContacts(int pairs, bool shuffled, std::vector<std::array<double,
     const int count = 1 + p % 4;
     for (int k = 0; k < count; ++k) {
       const uint32_t feature = contacts.size() % 50 == 49 && k > 0 ? 20 + k - 1 : 20 + k;
-      contacts.push_back(MakeContact(p, p + 1 + p % 3, feature, Vec3(value(rng), value(rng), value(rng))));
+      contacts.push_back(KeyedContact(p, p + 1 + p % 3, feature, Vec3(value(rng), value(rng), value(rng))));
     }
   }
   if (shuffled) std::shuffle(contacts.begin(), contacts.end(), rng);

@@ -14,7 +14,7 @@ namespace {
 
 // bodies a thread moves ballistically at a time
 constexpr int kBallisticGrain = 256;
-// contacts a thread looks up, copies or reports at a time
+// contacts a thread matches or reports at a time
 constexpr int kContactGrain = 512;
 
 }  // namespace
@@ -48,17 +48,14 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   BuildSoftManifolds(points_, runner, &manifolds_, /*invert=*/false);
   OrderBlocksFromTheTop(world, points_, &manifolds_, &runner);
   if (!params_.warm_start) return;
-  // each contact looks up its own point (the hint moves where a search
-  // starts, never what it finds: warm_start_cache.h)
+  // each chunk of contacts walks last step's pairs on its own
+  // (persistent_contacts.h)
   runner.For(static_cast<int>(contacts_.size()), kContactGrain, [&](int begin, int end, int) {
-    size_t hint = 0;
-    for (int k = begin; k < end; ++k) {
-      if (const std::array<double, 3>* cached = warm_start_.Find(contacts_[k], &hint)) {
-        points_[k].lambda_n = (*cached)[0];
-        points_[k].lambda_t1 = (*cached)[1];
-        points_[k].lambda_t2 = (*cached)[2];
-      }
-    }
+    warm_start_.Match(contacts_, begin, end, [&](int k, const std::array<double, 3>& lambda) {
+      points_[k].lambda_n = lambda[0];
+      points_[k].lambda_t1 = lambda[1];
+      points_[k].lambda_t2 = lambda[2];
+    });
   });
 }
 
@@ -101,14 +98,10 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   StoreSoftBodies(bodies_, detector.runner(), world);
   if (!world.joints().empty()) ProjectJointPositions(world);
 
-  impulses_.resize(points_.size());
-  detector.runner().For(static_cast<int>(points_.size()), kContactGrain, [&](int begin, int end, int) {
-    for (int k = begin; k < end; ++k) {
-      const SoftPoint& p = points_[point_order_.PointOf(k)];
-      impulses_[k] = {p.lambda_n, p.lambda_t1, p.lambda_t2};
-    }
+  warm_start_.Keep(contacts_, [&](size_t k) {
+    const SoftPoint& p = points_[point_order_.PointOf(static_cast<int>(k))];
+    return std::array<double, 3>{p.lambda_n, p.lambda_t1, p.lambda_t2};
   });
-  warm_start_.StoreFrame(contacts_, impulses_, &detector.runner());
   StepStats stats = Report(detector.runner(), contacts_out);
   world.FinishStep();
   return stats;

@@ -30,8 +30,8 @@
 //     than the threshold (max(restitution_threshold, 2 |g| dt)), the
 //     points that pushed leave with the normal velocities of the impacts
 //     taken one at a time (soft_restitution.h), -e v_impact for a lone pair;
-//  4. the impulses are kept per contact feature for the next step's warm
-//     start (warm_start_cache.h).
+//  4. the contacts are kept with their impulses, pair by pair, for the next
+//     step's warm start (persistent_contacts.h).
 // Small sub-steps with one iteration each converge better than many
 // iterations of one step (Macklin et al. 2019, "Small steps in physics
 // simulation"), so stacks stand at four passes a step.
@@ -51,6 +51,7 @@
 #include "service/collision/parallel_runner.h"
 #include "service/contact/block_colours.h"
 #include "service/contact/contact_method.h"
+#include "service/contact/persistent_contacts.h"
 #include "service/contact/sequential_impacts.h"
 #include "service/contact/soft/soft_bodies.h"
 #include "service/contact/soft/soft_contact.h"
@@ -61,7 +62,6 @@
 #include "service/contact/soft/soft_point_order.h"
 #include "service/contact/soft/soft_ratio_solve.h"
 #include "service/contact/soft/wide/soft_wide_solver.h"
-#include "service/contact/warm_start_cache.h"
 
 namespace contactsim {
 
@@ -119,8 +119,7 @@ class SoftMethod : public ContactMethod {
   // kernel (no rows, no K^-1 yet)
   bool wide_prepare_ = false;
   SequentialImpacts impacts_;
-  std::vector<std::array<double, 3>> impulses_;
-  WarmStartCache warm_start_;
+  PersistentContacts warm_start_;
 };
 
 }  // namespace contactsim

@@ -46,17 +46,23 @@ void WideBundles::Allocate(const std::vector<SoftManifold>& manifolds, const Blo
   points_.assign(lanes * wide::kSlots, -1);
 }
 
+// With the width known when compiling, a field's place in the lane is a
+// constant offset: each store is a conversion and a move (the width read
+// and multiplied a store cost 0.08M instructions a float pyramid step,
+// BENCHMARKS.md, "soft: the float path").
+template <int W>
 void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m,
                            const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
                            int bundle, int lane) {
   using namespace wide;
+  const int width = W > 0 ? W : width_;
   float* base = Aligned() + offsets_[bundle] + lane;
-  const auto put = [&](int field, double x) { base[field * width_] = static_cast<float>(x); };
+  const auto put = [base, width](int field, double x) { base[field * width] = static_cast<float>(x); };
   const auto put3 = [&](int field, const Vec3& v) {
     for (int k = 0; k < 3; ++k) put(field + k, v[k]);
   };
   const SoftPoint& p0 = points[m.first];
-  const int index = bundle * width_ + lane;
+  const int index = bundle * width + lane;
   body_a_[index] = p0.a;
   body_b_[index] = p0.b;
   write_a_[index] = bodies[p0.a].inv_mass > 0.0 ? 1 : 0;
@@ -93,24 +99,38 @@ void WideBundles::Pack(const std::vector<SoftPoint>& points, const std::vector<S
   width_ = width;
   dummy_ = dummy;
   friction_at_anchors_ = friction_points == nullptr;
-  const int overflow = static_cast<int>(manifolds.size()) - colours.starts.back();
   colours_.starts.assign(1, 0);
   for (int c = 0; c < colours.colours(); ++c) {
     const int size = colours.starts[c + 1] - colours.starts[c];
     colours_.starts.push_back(colours_.starts.back() + (size + width_ - 1) / width_);
   }
   Allocate(manifolds, colours);
-  for (int c = 0; c < colours.colours(); ++c) {
-    for (int k = colours.starts[c]; k < colours.starts[c + 1]; ++k) {
-      const int offset = k - colours.starts[c];
-      PackLane(points, manifolds[k], bodies, friction_points, colours_.starts[c] + offset / width_, offset % width_);
-    }
-  }
-  for (int k = 0; k < overflow; ++k) {
-    PackLane(points, manifolds[colours.starts.back() + k], bodies, friction_points, colours_.starts.back() + k, 0);
+  if (width_ == 8) {
+    PackLanes<8>(points, manifolds, colours, bodies, friction_points);
+  } else if (width_ == 4) {
+    PackLanes<4>(points, manifolds, colours, bodies, friction_points);
+  } else {
+    PackLanes<0>(points, manifolds, colours, bodies, friction_points);
   }
   for (int index = 0; index < static_cast<int>(body_a_.size()); ++index) {
     if (body_a_[index] == dummy_) ClearLane(index / width_, index % width_);
+  }
+}
+
+template <int W>
+void WideBundles::PackLanes(const std::vector<SoftPoint>& points, const std::vector<SoftManifold>& manifolds,
+                            const BlockColours& colours, const std::vector<SoftBody>& bodies,
+                            const std::vector<Vec3>* friction_points) {
+  const int width = W > 0 ? W : width_;
+  for (int c = 0; c < colours.colours(); ++c) {
+    for (int k = colours.starts[c]; k < colours.starts[c + 1]; ++k) {
+      const int offset = k - colours.starts[c];
+      PackLane<W>(points, manifolds[k], bodies, friction_points, colours_.starts[c] + offset / width, offset % width);
+    }
+  }
+  const int overflow = static_cast<int>(manifolds.size()) - colours.starts.back();
+  for (int k = 0; k < overflow; ++k) {
+    PackLane<W>(points, manifolds[colours.starts.back() + k], bodies, friction_points, colours_.starts.back() + k, 0);
   }
 }
 
@@ -154,9 +174,22 @@ void WideBundles::ForEachPoint(const Read& read) const {
 }
 
 void WideBundles::Unpack(std::vector<SoftPoint>& points) const {
+  if (width_ == 8) {
+    UnpackLanes<8>(points);
+  } else if (width_ == 4) {
+    UnpackLanes<4>(points);
+  } else {
+    UnpackLanes<0>(points);
+  }
+}
+
+// the width known when compiling, as in PackLane
+template <int W>
+void WideBundles::UnpackLanes(std::vector<SoftPoint>& points) const {
   using namespace wide;
+  const int width = W > 0 ? W : width_;
   ForEachPoint([&](int k, int s, const float* base) {
-    const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width_]); };
+    const auto get = [&](int field) { return static_cast<double>(base[SlotAt(s, field) * width]); };
     SoftPoint& p = points[k];
     p.lambda_n = get(kLambdaN), p.lambda_t1 = get(kLambdaT1), p.lambda_t2 = get(kLambdaT2);
     p.max_push = get(kMaxPush);

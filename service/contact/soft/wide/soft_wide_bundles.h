@@ -43,9 +43,17 @@ class WideBundles {
   // calls read(point, slot, lane's first float) for every packed point
   template <class Read>
   void ForEachPoint(const Read& read) const;
+  template <int W>
+  void UnpackLanes(std::vector<SoftPoint>& points) const;
   float* Aligned() { return const_cast<float*>(static_cast<const WideBundles*>(this)->Aligned()); }
+  // W: the width, when it is known when compiling (4, 8), else 0 (width_)
+  template <int W>
   void PackLane(const std::vector<SoftPoint>& points, const SoftManifold& m, const std::vector<SoftBody>& bodies,
                 const std::vector<Vec3>* friction_points, int bundle, int lane);
+  template <int W>
+  void PackLanes(const std::vector<SoftPoint>& points, const std::vector<SoftManifold>& manifolds,
+                 const BlockColours& colours, const std::vector<SoftBody>& bodies,
+                 const std::vector<Vec3>* friction_points);
   // Zeroes slots [from, slots of the bundle) of a lane: no anchors, no
   // impulse (the prepare kernel gives them no mass: they push nothing).
   void ClearSlots(int bundle, int lane, int from);
