@@ -53,7 +53,7 @@ void SetNormalRow(const SoftBody& sa, const SoftBody& sb, SoftPoint* p) {
 }  // namespace
 
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       const std::vector<Vec3>* friction_points, ParallelRunner& runner,
+                       const std::vector<Vec3>* friction_points, const SoftSprings& springs, ParallelRunner& runner,
                        std::vector<SoftPoint>* points, bool rows) {
   // each point made over last step's in its slot: a point returned and
   // copied into its slot, or a default one made first, cost 0.25M and
@@ -66,13 +66,14 @@ void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std
       const bool same_frame =
           k > begin && SharesContactFrame(contacts[k], contacts[k - 1].a, contacts[k - 1].b, contacts[k - 1].normal);
       PrepareSoftPoint(contacts[k], world, bodies, friction_points != nullptr ? &(*friction_points)[k] : nullptr,
-                       rows, same_frame ? &(*points)[k - 1] : nullptr, &(*points)[k]);
+                       springs, rows, same_frame ? &(*points)[k - 1] : nullptr, &(*points)[k]);
     }
   });
 }
 
 void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                      const Vec3* friction_point, bool rows, const SoftPoint* same_frame, SoftPoint* out) {
+                      const Vec3* friction_point, const SoftSprings& springs, bool rows,
+                      const SoftPoint* same_frame, SoftPoint* out) {
   const SoftBody& sa = bodies[c.a];
   const SoftBody& sb = bodies[c.b];
   SoftPoint& p = *out;
@@ -109,11 +110,10 @@ void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<So
   } else {
     p.mass_n = p.mass_t1 = p.mass_t2 = p.k_t12 = 0.0;
   }
-  // the step's impulses start from nothing (the warm start sets lambda
-  // after) and its spring is set before the sub-steps
+  // the step's impulses start from nothing (the warm start sets lambda after)
   p.lambda_n = p.lambda_t1 = p.lambda_t2 = 0.0;
   p.max_push = p.total_n = p.total_t1 = p.total_t2 = 0.0;
-  p.soft = Softness();
+  p.soft = world.bodies()[c.a].IsDynamic() && world.bodies()[c.b].IsDynamic() ? springs.movable : springs.fixed;
   p.adjusted_separation = -c.depth - p.n.dot(p.rb - p.ra);
   p.impact_speed = ImpactSpeed(p, world, p.NormalVelocity(sa, sb), -c.depth);
 }
@@ -142,17 +142,8 @@ void PrepareSoftRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3
   });
 }
 
-void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,
-                         std::vector<SoftPoint>& points) {
-  const auto& bodies = world.bodies();
-  const Softness movable = MakeSoftness(hertz, damping_ratio, h);
-  const Softness fixed = MakeSoftness(2.0 * hertz, damping_ratio, h);
-  for (SoftPoint& p : points) {
-    p.soft = bodies[p.a].IsDynamic() && bodies[p.b].IsDynamic() ? movable : fixed;
-  }
-}
-
-void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies) {
+void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies,
+                               const std::vector<int>* point_of_contact) {
   start.assign(bodies.size() + 1, 0);
   for (const SoftPoint& p : points) {
     for (int i : {p.a, p.b}) start[i + 1] += bodies[i].inv_mass > 0.0 ? 1 : 0;
@@ -160,7 +151,8 @@ void SoftPointsOfBodies::Build(const std::vector<SoftPoint>& points, const std::
   for (size_t i = 0; i < bodies.size(); ++i) start[i + 1] += start[i];
   entries.resize(start.back());
   std::vector<int> next(start.begin(), start.end() - 1);
-  for (int k = 0; k < static_cast<int>(points.size()); ++k) {
+  for (int c = 0; c < static_cast<int>(points.size()); ++c) {
+    const int k = point_of_contact != nullptr ? (*point_of_contact)[c] : c;
     if (bodies[points[k].a].inv_mass > 0.0) entries[next[points[k].a]++] = 2 * k;
     if (bodies[points[k].b].inv_mass > 0.0) entries[next[points[k].b]++] = 2 * k + 1;
   }

@@ -58,7 +58,7 @@ struct SoftPoint {
   double max_push = 0.0;       // N s, largest normal increment of the step
   double total_n = 0.0;        // N s over the step
   double total_t1 = 0.0, total_t2 = 0.0;  // N s over the step along t1, t2
-  Softness soft;               // of this point's spring (SetSoftPointSprings)
+  Softness soft;               // of this point's spring (SoftSprings)
 
   // relative velocity of B against A at the anchors along n, t1, t2
   double VelocityAlong(const Vec3& d, const Vec3& ja, const Vec3& jb, const SoftBody& A, const SoftBody& B) const {
@@ -77,23 +77,36 @@ struct SoftPoint {
   }
 };
 
+// A step's springs for sub-steps of h: `hertz` between two movable bodies,
+// twice it against a static or kinematic one, which carries no share of
+// the motion (Box2D v3's static softness).
+struct SoftSprings {
+  Softness movable, fixed;
+  SoftSprings(double hertz, double damping_ratio, double h)
+      : movable(MakeSoftness(hertz, damping_ratio, h)), fixed(MakeSoftness(2.0 * hertz, damping_ratio, h)) {}
+};
+
 // The points of `contacts` at the bodies' state at the step's start, their
 // friction rows acting at `friction_points` (patch_torsion.h; null: at the
-// contact points). On the world's threads (each point is its own). Without
+// contact points), each with its spring of `springs` (set as the point is
+// made: a pass of its own over the points fetched two cache lines of each
+// again, BENCHMARKS.md "Scaling: 1,000 to 10,000 bodies"). On the
+// world's threads (each point is its own). Without
 // `rows` the rows' Jacobians, responses and effective masses are left
 // unset (the masses 0): the float path computes them in float over its
 // lanes (soft_wide_kernels.h), and PrepareSoftRows fills them in where the
 // double state needs them after all (the step turns to the double path,
 // restitution).
 void PrepareSoftPoints(const ContactSet& contacts, const World& world, const std::vector<SoftBody>& bodies,
-                       const std::vector<Vec3>* friction_points, ParallelRunner& runner,
+                       const std::vector<Vec3>* friction_points, const SoftSprings& springs, ParallelRunner& runner,
                        std::vector<SoftPoint>* points, bool rows = true);
 // One of them, into *out (every field written; without rows their
 // Jacobians and responses are left as they were); friction_point null: at
 // c.point; `same_frame`, when given, a point of the same pair with the same
 // normal, whose tangents and materials *out takes.
 void PrepareSoftPoint(const Contact& c, const World& world, const std::vector<SoftBody>& bodies,
-                      const Vec3* friction_point, bool rows, const SoftPoint* same_frame, SoftPoint* out);
+                      const Vec3* friction_point, const SoftSprings& springs, bool rows,
+                      const SoftPoint* same_frame, SoftPoint* out);
 // Where point k's friction acts, from A's and B's centres of mass at the
 // step's start: its anchors, or friction_points[k] (patch_torsion.h).
 void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* friction_points,
@@ -104,12 +117,6 @@ void SoftFrictionArms(const SoftPoint& p, int k, const std::vector<Vec3>* fricti
 void PrepareSoftRows(const std::vector<SoftBody>& bodies, const std::vector<Vec3>* friction_points,
                      ParallelRunner& runner, std::vector<SoftPoint>* points, bool friction_rows = true);
 
-// Each point's spring for sub-steps of h: `hertz` between two movable
-// bodies, twice it against a static or kinematic one, which carries no
-// share of the motion (Box2D v3's static softness).
-void SetSoftPointSprings(double hertz, double damping_ratio, double h, const World& world,
-                         std::vector<SoftPoint>& points);
-
 // The points each dynamic body takes part in, in point order, for the warm
 // start body by body: a body sums its points' impulses in the order a sweep
 // over the points would, so the result is that sweep's bit for bit, on any
@@ -119,7 +126,10 @@ struct SoftPointsOfBodies {
   std::vector<int> start;    // body i's entries are [start[i], start[i + 1])
   std::vector<int> entries;  // 2 k for point k's body A, 2 k + 1 for its B
 
-  void Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies);
+  // `point_of_contact` (soft_point_order.h): where contact k's point is,
+  // the sums still taken in contact order; null: point k is contact k's
+  void Build(const std::vector<SoftPoint>& points, const std::vector<SoftBody>& bodies,
+             const std::vector<int>* point_of_contact = nullptr);
 };
 
 // Applies the accumulated impulses of body i's points to it (warm start of

@@ -84,11 +84,12 @@ void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& ru
 void InvertSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
                          std::vector<SoftManifold>* manifolds) {
   runner.For(static_cast<int>(manifolds->size()), kInvertGrain, [&](int begin, int end, int) {
-    for (int k = begin; k < end; ++k) {
-      SoftManifold& m = (*manifolds)[k];
-      m.block = m.count >= 2 && InvertBlock(points, &m);
-    }
+    for (int k = begin; k < end; ++k) InvertSoftManifold(points, &(*manifolds)[k]);
   });
+}
+
+void InvertSoftManifold(const std::vector<SoftPoint>& points, SoftManifold* m) {
+  m->block = m->count >= 2 && InvertBlock(points, m);
 }
 
 void SolveSoftManifolds(const SoftPass& pass, const std::vector<SoftManifold>& manifolds, int begin, int end,

@@ -23,6 +23,8 @@ void BuildSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& ru
 // K^-1 of each manifold where a block solve applies (on the world's threads).
 void InvertSoftManifolds(const std::vector<SoftPoint>& points, ParallelRunner& runner,
                          std::vector<SoftManifold>* manifolds);
+// The same for one of them.
+void InvertSoftManifold(const std::vector<SoftPoint>& points, SoftManifold* m);
 
 // Passes over the manifolds [begin, end) (one colour of block_colours.h,
 // or all of them in order):

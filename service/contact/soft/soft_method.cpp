@@ -40,8 +40,12 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
   // over its lanes; RunSubsteps fills them in should the step turn to the
   // double path after all, or restitution need them
   wide_prepare_ = params_.precision == "float" && SoftWideSolver::Applies(world, false);
-  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), runner, &points_, !wide_prepare_);
-  BuildSoftManifolds(points_, runner, &manifolds_, !wide_prepare_);
+  point_order_.Reset();
+  PrepareSoftPoints(contacts_, world, bodies_, FrictionPoints(), Springs(world), runner, &points_, !wide_prepare_);
+  // K^-1 waits for the sub-steps' colouring: the double path inverts the
+  // blocks as it moves their points into the manifolds' order
+  // (soft_point_order.h), the float path in float (soft_wide_kernels.h)
+  BuildSoftManifolds(points_, runner, &manifolds_, /*invert=*/false);
   OrderBlocksFromTheTop(world, points_, &manifolds_, &runner);
   if (!params_.warm_start) return;
   // each chunk of contacts walks last step's pairs on its own
@@ -53,6 +57,13 @@ void SoftMethod::Prepare(World& world, ParallelRunner& runner) {
       points_[k].lambda_t2 = lambda[2];
     });
   });
+}
+
+SoftSprings SoftMethod::Springs(const World& world) const {
+  const double h = world.dt / params_.substeps;
+  // the spring must be resolved by the sub-step: at most a quarter of its rate
+  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
+  return SoftSprings(hertz, params_.damping_ratio, h);
 }
 
 const std::vector<Vec3>* SoftMethod::FrictionPoints() const {
@@ -88,7 +99,8 @@ StepStats SoftMethod::Step(World& world, CollisionDetector& detector, ContactSet
   if (!world.joints().empty()) ProjectJointPositions(world);
 
   warm_start_.Keep(contacts_, [&](size_t k) {
-    return std::array<double, 3>{points_[k].lambda_n, points_[k].lambda_t1, points_[k].lambda_t2};
+    const SoftPoint& p = points_[point_order_.PointOf(static_cast<int>(k))];
+    return std::array<double, 3>{p.lambda_n, p.lambda_t1, p.lambda_t2};
   });
   StepStats stats = Report(detector.runner(), contacts_out);
   world.FinishStep();
@@ -117,7 +129,7 @@ StepStats SoftMethod::Report(ParallelRunner& runner, ContactSet* contacts_out) {
   // each contact writes its own slot; the deepest is taken after, in order
   runner.For(static_cast<int>(contacts_.size()), kContactGrain, [&](int begin, int end, int) {
     for (int k = begin; k < end; ++k) {
-      const SoftPoint& p = points_[k];
+      const SoftPoint& p = points_[point_order_.PointOf(k)];
       const SoftBody& A = bodies_[p.a];
       const SoftBody& B = bodies_[p.b];
       Contact& c = (*contacts_out)[k];

@@ -59,6 +59,7 @@
 #include "service/contact/soft/soft_jointed_solve.h"
 #include "service/contact/soft/soft_manifold.h"
 #include "service/contact/soft/soft_params.h"
+#include "service/contact/soft/soft_point_order.h"
 #include "service/contact/soft/soft_ratio_solve.h"
 #include "service/contact/soft/wide/soft_wide_solver.h"
 
@@ -91,6 +92,8 @@ class SoftMethod : public ContactMethod {
   // where the points' friction acts with patch_torsion (patch_torsion.h);
   // null: at the points
   const std::vector<Vec3>* FrictionPoints() const;
+  // the contact springs of a sub-step
+  SoftSprings Springs(const World& world) const;
   // Restitution applies to approaches faster than this (m/s).
   double RestitutionThreshold(const World& world) const;
 
@@ -100,6 +103,7 @@ class SoftMethod : public ContactMethod {
   std::vector<SoftBody> bodies_;
   std::vector<Vec3> friction_points_;  // with patch_torsion (patch_torsion.h)
   std::vector<SoftPoint> points_;
+  SoftPointOrder point_order_;  // where each contact's point is
   std::vector<SoftManifold> manifolds_;  // colour by colour (block_colours.h)
   std::vector<ColourRole> roles_;  // per body
   BlockColours colours_;

@@ -48,7 +48,7 @@ class SoftRatioSolve {
   // the points' bodies only; their rows may come later: soft_contact.h).
   void Select(const SubspaceOptions& options, const std::vector<SoftBody>& bodies,
               const std::vector<SoftPoint>& points);
-  // Stiffens the selected points' springs (after SetSoftPointSprings; reads
+  // Stiffens the selected points' springs (after PrepareSoftPoints set them, SoftSprings; reads
   // their normal rows' masses). `bodies` at the step's start give the
   // masses and the inverse inertias of the solve.
   void Stiffen(const std::vector<SoftBody>& bodies, std::vector<SoftPoint>& points);

@@ -48,9 +48,6 @@ void OrderBodiesFromTheTop(const std::vector<SoftManifold>& blocks, const std::v
 
 void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   const double h = world.dt / params_.substeps;
-  // the spring must be resolved by the sub-step: at most a quarter of its rate
-  const double hertz = std::min(params_.contact_hertz, 0.25 / h);
-  SetSoftPointSprings(hertz, params_.damping_ratio, h, world, points_);
   SubspaceOptions direct;
   direct.mass_ratio = params_.direct_mass_ratio;
   direct.max_rows = params_.direct_max_rows;
@@ -68,7 +65,6 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   if (wide_prepare_ && !float_path) {
     // the double path's rows, as Prepare makes them for precision=double
     PrepareSoftRows(bodies_, FrictionPoints(), runner, &points_);
-    InvertSoftManifolds(points_, runner, &manifolds_);
   }
   ratio_solve_.Stiffen(bodies_, points_);
   jointed_solve_.Prepare(world, direct, bodies_, points_);
@@ -93,6 +89,14 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
     RestituteSoftPoints(threshold, world, manifolds_, points_, bodies_, &impacts_);
     return;
   }
+  // K^-1 of the blocks, from their points' copies as they move into the
+  // manifolds' order; the ratio and joint-contact solves hold points by
+  // their contact index, so there they stay where they are
+  if (!ratio_solve_.active() && !jointed_solve_.active()) {
+    point_order_.Apply(runner, &manifolds_, &points_);
+  } else {
+    InvertSoftManifolds(points_, runner, &manifolds_);
+  }
   SoftPass relax = solve;
   relax.use_bias = false;
   relax.hold_pushing_gaps = true;
@@ -105,9 +109,12 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   relax_direct.hold_pushing_gaps = jointed_solve_.active();
 
   using Fn = ParallelRunner::StageFn;
-  const Fn integrate_velocities = [&](int i, int j) { IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_); };
-  points_of_bodies_.Build(points_, bodies_);
-  const Fn warm_start = [&](int i, int j) {
+  points_of_bodies_.Build(points_, bodies_, point_order_.PointsOfContacts());
+  // each body's velocity from its forces, then its points' warm start: one
+  // stage, each body's update its own and in the same order as two
+  // stages', so the bodies are read once for both
+  const Fn integrate_and_warm_start = [&](int i, int j) {
+    IntegrateSoftVelocities(world, h, i, j, bodies_, &body_order_);
     for (int q = i; q < j; ++q) WarmStartSoftBody(body_order_[q], points_of_bodies_, points_, bodies_);
   };
   const Fn solve_blocks = [&](int i, int j) { SolveSoftManifolds(solve, manifolds_, i, j, points_, bodies_); };
@@ -133,9 +140,13 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // order (another split of them over the threads) and its meeting.
   const bool fuse_accumulate = params_.relax_iterations > 0 && world.joints().empty() && !ratio_solve_.active() &&
                                !jointed_solve_.active();
+  // Block by block, while the block's points are still in the first-level
+  // cache (a chunk's worth of blocks relaxed first fetched them again: 4%
+  // more first-level misses a 10,000-box step, BENCHMARKS.md "Scaling:
+  // 1,000 to 10,000 bodies").
   const Fn relax_and_accumulate = [&](int i, int j) {
-    SolveSoftManifolds(relax, manifolds_, i, j, points_, bodies_);
     for (int k = i; k < j; ++k) {
+      SolveSoftManifolds(relax, manifolds_, k, k + 1, points_, bodies_);
       for (int p = manifolds_[k].first; p < manifolds_[k].first + manifolds_[k].count; ++p) {
         AccumulateSoftTotals(points_[p]);
       }
@@ -154,8 +165,7 @@ void SoftMethod::RunSubsteps(World& world, ParallelRunner& runner) {
   // turn joint_passes times (contact/joints/joint_block.h)
   const int joint_passes = joints ? params_.joint_passes : 1;
   for (int sub = 0; sub < params_.substeps; ++sub) {
-    list.Add(integrate_velocities, 0, bodies, kSoftStageBodyGrain);
-    list.Add(warm_start, 0, bodies, kSoftStageBodyGrain);
+    list.Add(integrate_and_warm_start, 0, bodies, kSoftStageBodyGrain);
     if (joint_dynamics) list.AddSerial(begin_joints);
     // the heavy-on-light direct solve, a dense factorisation, once a stage:
     // before the stage's last joint solve

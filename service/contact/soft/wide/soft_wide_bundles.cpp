@@ -71,7 +71,7 @@ void WideBundles::PackLane(const std::vector<SoftPoint>& points, const SoftManif
   put(kInvMassA, bodies[p0.a].inv_mass), put(kInvMassB, bodies[p0.b].inv_mass);
   put(kCount, m.count);  // the rows, effective masses and K^-1 are the prepare kernel's
   // a pair's points share its materials' friction and its spring
-  // (SetSoftPointSprings); where a heavy-on-light solve would stiffen them
+  // (SoftSprings); where a heavy-on-light solve would stiffen them
   // point by point, the step takes the double path (soft_wide_solver.h)
   put(kFriction, p0.friction);
   put(kBiasRate, p0.soft.bias_rate), put(kMassScale, p0.soft.mass_scale), put(kImpulseScale, p0.soft.impulse_scale);

@@ -17,7 +17,7 @@ constexpr int kAlign = 64;  // bytes, a cache line and the widest vector
 
 // Per lane: the pair's normal and tangents, inverse masses, friction
 // coefficient and spring (shared by its points: the materials' and the
-// bodies', SetSoftPointSprings), its points, whether the normal rows take
+// bodies', SoftSprings), its points, whether the normal rows take
 // the block solve and its K^-1 (row-major).
 enum LaneField : int {
   kN = 0,
