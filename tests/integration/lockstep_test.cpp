@@ -18,9 +18,9 @@ TEST_F(LockstepTest, PdExampleHoldsTheBoxAtTheTargetHeight) {
                   server_.prefix(), "--seconds", "2", "--target", "0.4"},
                  std::chrono::seconds(120));
   EXPECT_EQ(out.exit_code, 0) << out.output;
-  // the pause lands after the input for step 480 or 481 was sent
-  EXPECT_NE(out.output.find("final: step 48"), std::string::npos) << out.output;
-  EXPECT_TRUE(client_->WaitForState([](const state_t& s) { return s.step >= 480; }, kReplyTimeout).has_value());
+  // STEP 480 in lockstep ends the run at step 480 exactly
+  EXPECT_NE(out.output.find("final: step 480 "), std::string::npos) << out.output;
+  EXPECT_TRUE(client_->WaitForState([](const state_t& s) { return s.step == 480; }, kReplyTimeout).has_value());
 }
 
 }  // namespace
